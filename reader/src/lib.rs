@@ -1,0 +1,1 @@
+//! flexbody-reader: see format-spec/.

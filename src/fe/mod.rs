@@ -1,0 +1,1 @@
+//! Element matrices and sparse assembly of stiffness K and mass M.

@@ -1,0 +1,1 @@
+//! FE model importers: Abaqus/CalculiX `.inp`, Nastran `.bdf`, Gmsh `.msh`, Matrix Market.

@@ -1,0 +1,25 @@
+//! # flexbody
+//!
+//! Turns a finite-element model into a *reduced flexible-body file* for multibody solvers.
+//! The library is a pipeline of plain stages, each a module with one job:
+//!
+//! ```text
+//! import ─► Model ─► fe (assemble) ─► (K, M, DofMap) ─► reduce ─► ModeSet ─► invariants ─► write
+//! ```
+//!
+//! * [`model`] — the resolved FE model (nodes, elements, sections, materials, sets, rigid elements).
+//! * [`import`] — readers for Abaqus/CalculiX `.inp`, Nastran `.bdf`, Gmsh `.msh`, Matrix Market.
+//! * [`fe`] — element matrices and sparse assembly of K and M.
+//! * [`solve`] — sparse Cholesky with METIS ordering and the block shift-invert eigensolver.
+//! * [`reduce`] — normal modes, Craig–Bampton, Craig–Chang, Dietz, reference conditions.
+//! * [`write`] — the reduced-body file writer (types from the `flexbody-reader` crate).
+//!
+//! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.
+#![allow(non_snake_case)]
+
+pub mod fe;
+pub mod import;
+pub mod model;
+pub mod reduce;
+pub mod solve;
+pub mod write;

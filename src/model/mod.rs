@@ -1,0 +1,411 @@
+//! The finite-element model every importer produces and the assembler consumes.
+//!
+//! Importers parse raw records keyed by *external* ids (the ids printed in the input file), then
+//! one resolve pass builds this dense-index [`Model`]: every cross reference (element → node,
+//! element → property, property → material, node → coordinate system) is a 0-based index into the
+//! owning vector, and every entity keeps its external id for user-facing messages and the output
+//! file. Coordinates are resolved to the basic (global rectangular) frame at import.
+//!
+//! Element connectivity is stored in **Abaqus/Nastran node order** for every element kind (see
+//! [`ElementKind`]); importers of other formats permute at the edge.
+//!
+//! Invariant: this module holds plain data only — no parsing, no linear algebra.
+
+use std::collections::BTreeMap;
+
+/// Dense 0-based index of a node in [`Model::nodes`].
+pub type NodeIndex = usize;
+
+/// A grid point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Node {
+    /// External id from the input file.
+    pub id: u64,
+    /// Position in the basic (global rectangular) frame.
+    pub x: [f64; 3],
+    /// Displacement coordinate system (Nastran CD): index into [`Model::coord_systems`];
+    /// `None` = basic frame.
+    pub displacement_frame: Option<usize>,
+}
+
+/// Kind of a coordinate system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CoordKind {
+    /// Rectangular (CORD2R, Abaqus *TRANSFORM TYPE=R).
+    Rectangular,
+    /// Cylindrical (r, θ, z) — CORD2C, *TRANSFORM TYPE=C.
+    Cylindrical,
+    /// Spherical (r, θ, φ) — CORD2S.
+    Spherical,
+}
+
+/// A coordinate system, resolved to the basic frame (chained definitions already followed).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoordSystem {
+    /// External id.
+    pub id: u64,
+    /// Rectangular, cylindrical or spherical.
+    pub kind: CoordKind,
+    /// Origin in the basic frame.
+    pub origin: [f64; 3],
+    /// Rows are the local unit axes e1, e2, e3 expressed in the basic frame
+    /// (so `local = axes · (x − origin)` for a rectangular system).
+    pub axes: [[f64; 3]; 3],
+}
+
+/// Element kinds. Node order is the Abaqus/Nastran order:
+///
+/// ```text
+/// Tet4  : 1-4 corners                Tet10 : 1-4 corners, 5:(1,2) 6:(2,3) 7:(1,3) 8:(1,4) 9:(2,4) 10:(3,4)
+/// Hex8  : 1-4 bottom face, 5-8 top   Hex20 : 1-8 corners, 9-12 bottom edges, 13-16 top edges, 17-20 verticals
+/// Prism6: 1-3 bottom, 4-6 top        Prism15: 1-6 corners, 7-9 bottom edges, 10-12 top edges, 13-15 verticals
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ElementKind {
+    /// 4-node tetrahedron (C3D4, CTETRA 4).
+    Tet4,
+    /// 10-node tetrahedron (C3D10, CTETRA 10).
+    Tet10,
+    /// 8-node hexahedron, full 2×2×2 integration (C3D8, CHEXA 8).
+    Hex8,
+    /// 20-node hexahedron, full 3×3×3 integration (C3D20, CHEXA 20).
+    Hex20,
+    /// 20-node hexahedron, reduced 2×2×2 integration (C3D20R).
+    Hex20R,
+    /// 6-node wedge (C3D6, CPENTA 6).
+    Prism6,
+    /// 15-node wedge (C3D15, CPENTA 15).
+    Prism15,
+    /// 2-node 3D beam (B31, CBAR, CBEAM): 6 dofs per node.
+    Beam2,
+    /// 2-node rod: axial + torsion (CROD, T3D2).
+    Rod2,
+    /// 3-node shell triangle (S3, CTRIA3) — imported, not yet assembled.
+    Tri3,
+    /// 4-node shell quadrilateral (S4, CQUAD4) — imported, not yet assembled.
+    Quad4,
+    /// 6-node triangle (surface element, e.g. gmsh tri6) — graphics/sets only.
+    Tri6,
+    /// 8-node quadrilateral (surface element, S8) — graphics/sets only.
+    Quad8,
+}
+
+impl ElementKind {
+    /// Number of nodes of this element kind.
+    pub fn node_count(self) -> usize {
+        match self {
+            ElementKind::Tet4 => 4,
+            ElementKind::Tet10 => 10,
+            ElementKind::Hex8 => 8,
+            ElementKind::Hex20 | ElementKind::Hex20R => 20,
+            ElementKind::Prism6 => 6,
+            ElementKind::Prism15 => 15,
+            ElementKind::Beam2 | ElementKind::Rod2 => 2,
+            ElementKind::Tri3 => 3,
+            ElementKind::Quad4 => 4,
+            ElementKind::Tri6 => 6,
+            ElementKind::Quad8 => 8,
+        }
+    }
+
+    /// True for 3D continuum elements (3 translational dofs per node).
+    pub fn is_solid(self) -> bool {
+        matches!(
+            self,
+            ElementKind::Tet4
+                | ElementKind::Tet10
+                | ElementKind::Hex8
+                | ElementKind::Hex20
+                | ElementKind::Hex20R
+                | ElementKind::Prism6
+                | ElementKind::Prism15
+        )
+    }
+}
+
+/// An element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Element {
+    /// External id.
+    pub id: u64,
+    /// Kind (fixes the node count and order).
+    pub kind: ElementKind,
+    /// Node indices in Abaqus/Nastran order.
+    pub nodes: Vec<NodeIndex>,
+    /// Index into [`Model::properties`]; `None` for surface elements kept only for sets/graphics.
+    pub property: Option<usize>,
+    /// Beam/bar orientation vector v (basic frame) defining the element's local x–y plane
+    /// (Nastran CBAR/CBEAM X1..X3 or G0 resolved; Abaqus B31 n1 direction).
+    pub orientation: Option<[f64; 3]>,
+}
+
+/// Standard beam cross-section shapes (PBARL/PBEAML TYPE, Abaqus *BEAM SECTION SECTION=).
+#[derive(Debug, Clone, PartialEq)]
+pub enum SectionShape {
+    /// Solid circle, radius r (Nastran ROD: DIM1 = r; Abaqus CIRC: r).
+    Circle { radius: f64 },
+    /// Hollow circle (Nastran TUBE: outer radius, inner radius; Abaqus PIPE: r, t → converted).
+    Tube { outer_radius: f64, inner_radius: f64 },
+    /// Solid rectangle, width (local y) × height (local z) (Nastran BAR, Abaqus RECT).
+    Rectangle { width: f64, height: f64 },
+    /// Hollow rectangle (Nastran BOX / Abaqus BOX): outer width, outer height, wall thicknesses.
+    Box { width: f64, height: f64, t_web: f64, t_flange: f64 },
+    /// I-section: height, flange widths and thicknesses, web thickness.
+    I { height: f64, width_bottom: f64, width_top: f64, t_web: f64, t_bottom: f64, t_top: f64 },
+    /// Any other named shape with its raw dimensions (section values computed by the importer).
+    Other { name: String, dims: Vec<f64> },
+}
+
+/// Section properties of a beam (local axes: x along the beam, y and z the principal directions).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeamSection {
+    /// Cross-section area A.
+    pub area: f64,
+    /// Second moment about local z (bending in the x–y plane), Nastran I1.
+    pub i1: f64,
+    /// Second moment about local y (bending in the x–z plane), Nastran I2.
+    pub i2: f64,
+    /// Product of inertia I12.
+    pub i12: f64,
+    /// Torsion constant J.
+    pub j: f64,
+    /// Shear area factors (Nastran K1, K2) for a Timoshenko beam; `None` = Euler–Bernoulli.
+    pub shear_factors: Option<[f64; 2]>,
+    /// Non-structural mass per length.
+    pub nsm: f64,
+    /// The standard shape the values were computed from, if any.
+    pub shape: Option<SectionShape>,
+}
+
+/// Section kinds.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Section {
+    /// Solid continuum (PSOLID, *SOLID SECTION).
+    Solid,
+    /// Beam (PBAR, PBARL, PBEAM, PBEAML, *BEAM SECTION).
+    Beam(BeamSection),
+    /// Rod: axial + torsion (PROD).
+    Rod { area: f64, j: f64, nsm: f64 },
+    /// Shell (PSHELL, *SHELL SECTION).
+    Shell { thickness: f64 },
+}
+
+/// A property: a section plus its material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Property {
+    /// External id (Nastran PID); for Abaqus a running number, see `name`.
+    pub id: u64,
+    /// Abaqus element-set name of the section, or "PSOLID 1"-style label.
+    pub name: String,
+    /// Index into [`Model::materials`].
+    pub material: usize,
+    /// The section.
+    pub section: Section,
+}
+
+/// Isotropic linear-elastic material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// External id (Nastran MID); for Abaqus a running number.
+    pub id: u64,
+    /// Name (Abaqus *MATERIAL NAME=), or "MAT1 1".
+    pub name: String,
+    /// Young's modulus E.
+    pub e: f64,
+    /// Poisson's ratio ν.
+    pub nu: f64,
+    /// Shear modulus G (given, or E / (2(1+ν))).
+    pub g: f64,
+    /// Mass density ρ (already multiplied by any mass-unit factor such as Nastran WTMASS).
+    pub rho: f64,
+}
+
+/// A set of the six nodal dofs `[ux uy uz rx ry rz]`; bit k = dof k+1 (Nastran digit k+1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+pub struct DofMask(pub u8);
+
+impl DofMask {
+    /// All six dofs.
+    pub const ALL: DofMask = DofMask(0b11_1111);
+    /// The three translations.
+    pub const TRANSLATIONS: DofMask = DofMask(0b00_0111);
+
+    /// From Nastran dof digits, e.g. "123456" or "12". Returns `None` on a character other than
+    /// 1–6 (0 means "scalar point" in Nastran and is not accepted here).
+    pub fn from_digits(s: &str) -> Option<DofMask> {
+        let mut m = 0u8;
+        for c in s.trim().chars() {
+            match c {
+                '1'..='6' => m |= 1 << (c as u8 - b'1'),
+                _ => return None,
+            }
+        }
+        Some(DofMask(m))
+    }
+
+    /// From an inclusive 1-based range (Abaqus *BOUNDARY first..last dof).
+    pub fn from_range(first: u8, last: u8) -> Option<DofMask> {
+        if !(1..=6).contains(&first) || !(first..=6).contains(&last) {
+            return None;
+        }
+        Some(DofMask((first..=last).fold(0, |m, d| m | 1 << (d - 1))))
+    }
+
+    /// Does the mask contain dof `k` (0-based, 0 = ux … 5 = rz)?
+    pub fn contains(self, k: usize) -> bool {
+        k < 6 && self.0 & (1 << k) != 0
+    }
+
+    /// The 0-based dofs in the mask, ascending.
+    pub fn dofs(self) -> impl Iterator<Item = usize> {
+        (0..6).filter(move |&k| self.contains(k))
+    }
+
+    /// Union.
+    pub fn union(self, other: DofMask) -> DofMask {
+        DofMask(self.0 | other.0)
+    }
+
+    /// Nastran digit string ("123").
+    pub fn digits(self) -> String {
+        self.dofs().map(|k| char::from(b'1' + k as u8)).collect()
+    }
+}
+
+/// A rigid element.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RigidElement {
+    /// RBE2-type rigid spider: the `dofs` of every dependent node follow the rigid motion of the
+    /// independent node (Nastran RBE2 GN/CM/GMi; Abaqus *RIGID BODY REF NODE, *KINEMATIC coupling).
+    Rbe2 {
+        /// External element id (or running number).
+        id: u64,
+        /// Independent (reference) node, 6 dofs.
+        independent: NodeIndex,
+        /// Dependent nodes.
+        dependent: Vec<NodeIndex>,
+        /// Which dependent dofs are constrained (CM).
+        dofs: DofMask,
+    },
+    /// RBE3-type weighted interpolation: the reference node's `ref_dofs` are the weighted
+    /// least-squares average of the independent nodes' motion (Nastran RBE3; Abaqus *DISTRIBUTING).
+    Rbe3 {
+        /// External element id (or running number).
+        id: u64,
+        /// Reference (dependent) node.
+        reference: NodeIndex,
+        /// Reference dofs (REFC).
+        ref_dofs: DofMask,
+        /// Independent nodes with weight and the dofs (Ci) that take part.
+        independent: Vec<(NodeIndex, f64, DofMask)>,
+    },
+}
+
+/// A concentrated mass with inertia (CONM2, *MASS + *ROTARY INERTIA).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointMass {
+    /// External element id (or running number).
+    pub id: u64,
+    /// The node it is attached to.
+    pub node: NodeIndex,
+    /// Mass (already scaled by WTMASS).
+    pub mass: f64,
+    /// Offset of the centre of gravity from the node, basic frame.
+    pub offset: [f64; 3],
+    /// 3×3 inertia tensor about the centre of gravity, basic frame (positive-definite tensor
+    /// convention: off-diagonals are −∫xy dm).
+    pub inertia: [[f64; 3]; 3],
+}
+
+/// A single-point constraint (zero displacement) on some dofs of a node.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spc {
+    /// The node.
+    pub node: NodeIndex,
+    /// The constrained dofs (in the node's displacement frame).
+    pub dofs: DofMask,
+    /// Nastran SPC set id (0 for Abaqus *BOUNDARY).
+    pub set_id: u64,
+}
+
+/// Interface (boundary / a-set) dofs declared in the input (Nastran ASET/ASET1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InterfaceDofs {
+    /// The node.
+    pub node: NodeIndex,
+    /// Its interface dofs.
+    pub dofs: DofMask,
+}
+
+/// A non-fatal import finding (unsupported card, ignored keyword, …), reported to the user.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImportWarning {
+    /// File the finding is in.
+    pub file: String,
+    /// Human-readable message, e.g. "unsupported card PLOAD4 ignored (12 cards)".
+    pub message: String,
+}
+
+/// Mass-unit hints from the input (Nastran PARAM,WTMASS; PARAM,COUPMASS).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ModelParams {
+    /// PARAM,WTMASS factor (1.0 when absent). Already applied to densities and point masses.
+    pub wtmass: f64,
+    /// PARAM,COUPMASS > 0 asks for consistent mass.
+    pub coupled_mass: Option<bool>,
+}
+
+/// A whole FE model, resolved to dense indices.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Model {
+    /// The file the model was read from (for messages).
+    pub source: String,
+    /// Grid points, in input order.
+    pub nodes: Vec<Node>,
+    /// Coordinate systems, resolved to the basic frame.
+    pub coord_systems: Vec<CoordSystem>,
+    /// Elements, in input order.
+    pub elements: Vec<Element>,
+    /// Properties (sections).
+    pub properties: Vec<Property>,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Named node sets (names upper-cased as the format allows), sorted unique node indices.
+    pub node_sets: BTreeMap<String, Vec<NodeIndex>>,
+    /// Named element sets, sorted unique element indices.
+    pub element_sets: BTreeMap<String, Vec<usize>>,
+    /// Rigid elements.
+    pub rigid_elements: Vec<RigidElement>,
+    /// Concentrated masses.
+    pub point_masses: Vec<PointMass>,
+    /// Single-point constraints.
+    pub spcs: Vec<Spc>,
+    /// Interface dofs declared in the file (ASET).
+    pub interface: Vec<InterfaceDofs>,
+    /// Solver parameters that change the physics (WTMASS, COUPMASS).
+    pub params: ModelParams,
+    /// Non-fatal findings.
+    pub warnings: Vec<ImportWarning>,
+}
+
+impl Model {
+    /// Map from external node id to dense index (built on demand).
+    pub fn node_index_by_id(&self) -> std::collections::HashMap<u64, NodeIndex> {
+        self.nodes.iter().enumerate().map(|(i, n)| (n.id, i)).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dof_mask_digits_round_trip() {
+        let m = DofMask::from_digits("1236").unwrap();
+        assert_eq!(m.dofs().collect::<Vec<_>>(), vec![0, 1, 2, 5]);
+        assert_eq!(m.digits(), "1236");
+        assert_eq!(DofMask::from_digits("7"), None);
+        assert_eq!(DofMask::from_range(1, 3), Some(DofMask::TRANSLATIONS));
+        assert_eq!(DofMask::from_range(4, 2), None);
+    }
+}

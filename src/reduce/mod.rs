@@ -1,0 +1,1 @@
+//! Modal reduction: normal modes, Craig–Bampton, Craig–Chang, Dietz, reference conditions.

@@ -1,0 +1,1 @@
+//! Sparse factorizations (METIS-ordered Cholesky) and the block shift-invert eigensolver.

@@ -1,0 +1,1 @@
+//! Reduced-body file writer: temp file + rename, deterministic bytes.
