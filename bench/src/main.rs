@@ -1,1 +1,3 @@
-fn main() { println!("flexbody-bench: no suites yet"); }
+fn main() {
+    println!("flexbody-bench: no suites yet");
+}

@@ -1,1 +1,2 @@
 //! FE model importers: Abaqus/CalculiX `.inp`, Nastran `.bdf`, Gmsh `.msh`, Matrix Market.
+pub mod ccx_matrices;

@@ -145,13 +145,28 @@ pub enum SectionShape {
     /// Solid circle, radius r (Nastran ROD: DIM1 = r; Abaqus CIRC: r).
     Circle { radius: f64 },
     /// Hollow circle (Nastran TUBE: outer radius, inner radius; Abaqus PIPE: r, t → converted).
-    Tube { outer_radius: f64, inner_radius: f64 },
+    Tube {
+        outer_radius: f64,
+        inner_radius: f64,
+    },
     /// Solid rectangle, width (local y) × height (local z) (Nastran BAR, Abaqus RECT).
     Rectangle { width: f64, height: f64 },
     /// Hollow rectangle (Nastran BOX / Abaqus BOX): outer width, outer height, wall thicknesses.
-    Box { width: f64, height: f64, t_web: f64, t_flange: f64 },
+    Box {
+        width: f64,
+        height: f64,
+        t_web: f64,
+        t_flange: f64,
+    },
     /// I-section: height, flange widths and thicknesses, web thickness.
-    I { height: f64, width_bottom: f64, width_top: f64, t_web: f64, t_bottom: f64, t_top: f64 },
+    I {
+        height: f64,
+        width_bottom: f64,
+        width_top: f64,
+        t_web: f64,
+        t_bottom: f64,
+        t_top: f64,
+    },
     /// Any other named shape with its raw dimensions (section values computed by the importer).
     Other { name: String, dims: Vec<f64> },
 }
@@ -391,7 +406,11 @@ pub struct Model {
 impl Model {
     /// Map from external node id to dense index (built on demand).
     pub fn node_index_by_id(&self) -> std::collections::HashMap<u64, NodeIndex> {
-        self.nodes.iter().enumerate().map(|(i, n)| (n.id, i)).collect()
+        self.nodes
+            .iter()
+            .enumerate()
+            .map(|(i, n)| (n.id, i))
+            .collect()
     }
 }
 
