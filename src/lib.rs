@@ -19,6 +19,7 @@
 
 pub mod fe;
 pub mod import;
+pub mod invariants;
 pub mod model;
 pub mod reduce;
 pub mod solve;
