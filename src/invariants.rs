@@ -511,8 +511,8 @@ mod tests {
         });
         let inv = compute_invariants(&pts, shapes.as_ref(), InvariantSet::Full, Par::Seq).unwrap();
         assert_eq!(inv.i1, 27.0);
-        for c in 0..3 {
-            assert!((inv.i2[c] / inv.i1 - c0[c]).abs() < 1e-14);
+        for (first_moment, centre) in inv.i2.iter().zip(c0) {
+            assert!((first_moment / inv.i1 - centre).abs() < 1e-14);
         }
         // I7 about the origin = J_c E − parallel-axis term m((c0·c0)E − c0 c0ᵀ).
         let cc = c0.iter().map(|v| v * v).sum::<f64>();
