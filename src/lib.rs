@@ -17,6 +17,7 @@
 //! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.
 #![allow(non_snake_case)]
 
+pub mod faces;
 pub mod fe;
 pub mod import;
 pub mod invariants;
