@@ -20,6 +20,7 @@
 pub mod faces;
 pub mod fe;
 pub mod import;
+pub mod interface;
 pub mod invariants;
 pub mod model;
 pub mod reduce;
