@@ -72,6 +72,15 @@ fn optional<T: serde::de::DeserializeOwned>(
 
 /// Reads and validates a file held in memory with explicit limits.
 pub fn from_bytes_with_limits(bytes: &[u8], limits: &ReadLimits) -> Result<ReducedBody, ReadError> {
+    from_bytes_with_manifest(bytes, limits).map(|(body, _)| body)
+}
+
+/// Like [`from_bytes_with_limits`], also returning the manifest (entry sizes and checksums,
+/// unknown optional entries included) for tools that report on the container.
+pub fn from_bytes_with_manifest(
+    bytes: &[u8],
+    limits: &ReadLimits,
+) -> Result<(ReducedBody, codec::Manifest), ReadError> {
     use codec::*;
     let c = container::open(bytes, limits)?;
     let body = ReducedBody {
@@ -90,7 +99,7 @@ pub fn from_bytes_with_limits(bytes: &[u8], limits: &ReadLimits) -> Result<Reduc
         damping: optional(&c, DAMPING)?,
     };
     validate(&body, limits)?;
-    Ok(body)
+    Ok((body, c.manifest))
 }
 
 /// The payload entries of `body` in container order: (name, required, bytes). The writer
