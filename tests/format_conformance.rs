@@ -10,7 +10,9 @@ fn fixtures() -> PathBuf {
 
 fn files(dir: &Path, ext: &str) -> Vec<PathBuf> {
     let mut out = Vec::new();
-    let Ok(rd) = std::fs::read_dir(dir) else { return out };
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return out;
+    };
     for e in rd.flatten() {
         let p = e.path();
         if p.is_dir() {
@@ -29,16 +31,27 @@ fn json_close(a: &serde_json::Value, b: &serde_json::Value, at: &str) -> Result<
     use serde_json::Value as V;
     match (a, b) {
         (V::Number(x), V::Number(y)) => {
-            let (x, y) = (x.as_f64().unwrap_or(f64::NAN), y.as_f64().unwrap_or(f64::NAN));
-            if (x - y).abs() <= 1e-12 * x.abs().max(y.abs()) { Ok(()) } else { Err(format!("{at}: {x} vs {y}")) }
+            let (x, y) = (
+                x.as_f64().unwrap_or(f64::NAN),
+                y.as_f64().unwrap_or(f64::NAN),
+            );
+            if (x - y).abs() <= 1e-12 * x.abs().max(y.abs()) {
+                Ok(())
+            } else {
+                Err(format!("{at}: {x} vs {y}"))
+            }
         }
-        (V::Array(x), V::Array(y)) if x.len() == y.len() => {
-            x.iter().zip(y).enumerate().try_for_each(|(i, (x, y))| json_close(x, y, &format!("{at}[{i}]")))
+        (V::Array(x), V::Array(y)) if x.len() == y.len() => x
+            .iter()
+            .zip(y)
+            .enumerate()
+            .try_for_each(|(i, (x, y))| json_close(x, y, &format!("{at}[{i}]"))),
+        (V::Object(x), V::Object(y)) if x.len() == y.len() => {
+            x.iter().try_for_each(|(k, v)| match y.get(k) {
+                Some(w) => json_close(v, w, &format!("{at}.{k}")),
+                None => Err(format!("{at}.{k} missing")),
+            })
         }
-        (V::Object(x), V::Object(y)) if x.len() == y.len() => x.iter().try_for_each(|(k, v)| match y.get(k) {
-            Some(w) => json_close(v, w, &format!("{at}.{k}")),
-            None => Err(format!("{at}.{k} missing")),
-        }),
         _ if a == b => Ok(()),
         _ => Err(format!("{at}: {a} vs {b}")),
     }
@@ -49,9 +62,14 @@ fn summary_matches(file: &Path) {
     let (body, manifest) = flexbody_reader::from_bytes_with_manifest(&bytes, &Default::default())
         .unwrap_or_else(|e| panic!("{} must be accepted: {e}", file.display()));
     let got = serde_json::to_value(flexbody::inspect::summarize(&body, &manifest)).expect("json");
-    let want: serde_json::Value = serde_json::from_slice(&std::fs::read(file.with_extension("json")).expect("summary")).expect("summary json");
+    let want: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(file.with_extension("json")).expect("summary"))
+            .expect("summary json");
     if let Err(at) = json_close(&got, &want, "$") {
-        panic!("{}: content differs from its summary at {at}", file.display());
+        panic!(
+            "{}: content differs from its summary at {at}",
+            file.display()
+        );
     }
     // The path API gives the same body.
     assert_eq!(flexbody_reader::read(file).expect("read by path"), body);
@@ -66,17 +84,30 @@ fn golden_and_compat_files_match_their_summaries() {
             n += 1;
         }
     }
-    assert!(n >= 3, "expected at least 2 golden and 1 compat file, found {n}");
+    assert!(
+        n >= 3,
+        "expected at least 2 golden and 1 compat file, found {n}"
+    );
 }
 
 #[test]
 fn every_broken_file_gives_its_named_error_without_panic() {
     let list = files(&fixtures().join("broken"), "flexbody");
-    assert!(list.len() >= 12, "at least 12 broken fixtures, found {}", list.len());
+    assert!(
+        list.len() >= 12,
+        "at least 12 broken fixtures, found {}",
+        list.len()
+    );
     let mut failures = Vec::new();
     for f in &list {
-        let expect: serde_json::Value = serde_json::from_slice(&std::fs::read(f.with_extension("expect")).expect(".expect file")).expect("expect json");
-        let (variant, message) = (expect["variant"].as_str().expect("variant"), expect["message"].as_str().expect("message"));
+        let expect: serde_json::Value = serde_json::from_slice(
+            &std::fs::read(f.with_extension("expect")).expect(".expect file"),
+        )
+        .expect("expect json");
+        let (variant, message) = (
+            expect["variant"].as_str().expect("variant"),
+            expect["message"].as_str().expect("message"),
+        );
         let bytes = std::fs::read(f).expect("read");
         let outcome = std::panic::catch_unwind(|| flexbody_reader::from_bytes(&bytes));
         match outcome {
@@ -85,7 +116,11 @@ fn every_broken_file_gives_its_named_error_without_panic() {
             Ok(Err(e)) => {
                 let text = e.to_string();
                 if e.variant() != variant || !text.contains(message) {
-                    failures.push(format!("{}: got {} \"{text}\", expected {variant} containing \"{message}\"", f.display(), e.variant()));
+                    failures.push(format!(
+                        "{}: got {} \"{text}\", expected {variant} containing \"{message}\"",
+                        f.display(),
+                        e.variant()
+                    ));
                 }
             }
         }
@@ -95,7 +130,8 @@ fn every_broken_file_gives_its_named_error_without_panic() {
 
 #[test]
 fn truncating_a_golden_file_anywhere_never_panics() {
-    let bytes = std::fs::read(fixtures().join("golden/v1.0/three_node_chain.flexbody")).expect("golden");
+    let bytes =
+        std::fs::read(fixtures().join("golden/v1.0/three_node_chain.flexbody")).expect("golden");
     for cut in (0..bytes.len()).step_by(7) {
         let r = std::panic::catch_unwind(|| flexbody_reader::from_bytes(&bytes[..cut]));
         assert!(matches!(r, Ok(Err(_))), "cut at {cut}: {r:?}");

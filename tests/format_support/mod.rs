@@ -19,9 +19,14 @@ pub fn fixtures_dir() -> PathBuf {
 /// returns (λ ascending, V column-major per eigenvector: `v[j][i]`).
 pub fn jacobi_eigen(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
     let n = a.len();
-    let mut v: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect()).collect();
+    let mut v: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect())
+        .collect();
     for _sweep in 0..100 {
-        let off: f64 = (0..n).flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j))).map(|(i, j)| a[i][j] * a[i][j]).sum();
+        let off: f64 = (0..n)
+            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i][j] * a[i][j])
+            .sum();
         let scale: f64 = (0..n).map(|i| a[i][i] * a[i][i]).sum();
         if off <= 1e-30 * scale {
             break;
@@ -57,7 +62,10 @@ pub fn jacobi_eigen(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&x, &y| a[x][x].total_cmp(&a[y][y]));
     let vals = order.iter().map(|&j| a[j][j]).collect();
-    let vecs = order.iter().map(|&j| (0..n).map(|i| v[i][j]).collect()).collect();
+    let vecs = order
+        .iter()
+        .map(|&j| (0..n).map(|i| v[i][j]).collect())
+        .collect();
     (vals, vecs)
 }
 
@@ -78,10 +86,28 @@ fn mat_mul(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
 
 /// The nine invariants (DESIGN.md §3, SPEC.md §5.6) from every mass node: positions `s`,
 /// masses, nodal inertias and mode-major shapes (6 per node). Unselected ones are empty.
-pub fn invariants(nodes: &[Node], nm: &[NodalMass], shapes: &[f64], m: usize, set: InvariantSet) -> Invariants {
+pub fn invariants(
+    nodes: &[Node],
+    nm: &[NodalMass],
+    shapes: &[f64],
+    m: usize,
+    set: InvariantSet,
+) -> Invariants {
     let n = nodes.len();
-    let t = |j: usize, p: usize| [shapes[(j * n + p) * 6], shapes[(j * n + p) * 6 + 1], shapes[(j * n + p) * 6 + 2]];
-    let r = |j: usize, p: usize| [shapes[(j * n + p) * 6 + 3], shapes[(j * n + p) * 6 + 4], shapes[(j * n + p) * 6 + 5]];
+    let t = |j: usize, p: usize| {
+        [
+            shapes[(j * n + p) * 6],
+            shapes[(j * n + p) * 6 + 1],
+            shapes[(j * n + p) * 6 + 2],
+        ]
+    };
+    let r = |j: usize, p: usize| {
+        [
+            shapes[(j * n + p) * 6 + 3],
+            shapes[(j * n + p) * 6 + 4],
+            shapes[(j * n + p) * 6 + 5],
+        ]
+    };
     let (mut i1, mut i2) = (vec![0.0], vec![0.0; 3]);
     let (mut i3, mut i4) = (vec![0.0; 3 * m], vec![0.0; 3 * m]);
     let (mut i5, mut i6) = (vec![0.0; m * 3 * m], vec![0.0; m * m]);
@@ -93,7 +119,14 @@ pub fn invariants(nodes: &[Node], nm: &[NodalMass], shapes: &[f64], m: usize, se
         for a in 0..3 {
             i2[a] += mp * s[a];
         }
-        let sts = mat_mul(&[[st[0][0], st[1][0], st[2][0]], [st[0][1], st[1][1], st[2][1]], [st[0][2], st[1][2], st[2][2]]], &st);
+        let sts = mat_mul(
+            &[
+                [st[0][0], st[1][0], st[2][0]],
+                [st[0][1], st[1][1], st[2][1]],
+                [st[0][2], st[1][2], st[2][2]],
+            ],
+            &st,
+        );
         for a in 0..3 {
             for b in 0..3 {
                 i7[a * 3 + b] += mp * sts[a][b] + ip[a][b];
@@ -117,7 +150,9 @@ pub fn invariants(nodes: &[Node], nm: &[NodalMass], shapes: &[f64], m: usize, se
             for k in 0..m {
                 let (phk, psk) = (t(k, p), r(k, p));
                 let tt: f64 = (0..3).map(|a| phi[a] * phk[a]).sum();
-                let rr: f64 = (0..3).map(|a| (0..3).map(|b| psi[a] * ip[a][b] * psk[b]).sum::<f64>()).sum();
+                let rr: f64 = (0..3)
+                    .map(|a| (0..3).map(|b| psi[a] * ip[a][b] * psk[b]).sum::<f64>())
+                    .sum();
                 i6[j * m + k] += mp * tt + rr;
                 for a in 0..3 {
                     i5[(j * 3 + a) * m + k] += mp * (0..3).map(|b| pt[a][b] * phk[b]).sum::<f64>();
@@ -139,7 +174,18 @@ pub fn invariants(nodes: &[Node], nm: &[NodalMass], shapes: &[f64], m: usize, se
         }
     }
     let [i1, i2, i3, i4, i5, i6, i7, i8, i9] = all;
-    Invariants { mask, i1, i2, i3, i4, i5, i6, i7, i8, i9 }
+    Invariants {
+        mask,
+        i1,
+        i2,
+        i3,
+        i4,
+        i5,
+        i6,
+        i7,
+        i8,
+        i9,
+    }
 }
 
 /// Modal quantities from lumped masses (one per dof) and a dense stiffness over `ndof` dofs:
@@ -147,9 +193,19 @@ pub fn invariants(nodes: &[Node], nm: &[NodalMass], shapes: &[f64], m: usize, se
 pub fn lumped_modes(mass_dof: &[f64], k: &[Vec<f64>], keep: usize) -> (Vec<f64>, Vec<Vec<f64>>) {
     let nd = mass_dof.len();
     let inv_sqrt: Vec<f64> = mass_dof.iter().map(|m| 1.0 / m.sqrt()).collect();
-    let a: Vec<Vec<f64>> = (0..nd).map(|i| (0..nd).map(|j| inv_sqrt[i] * k[i][j] * inv_sqrt[j]).collect()).collect();
+    let a: Vec<Vec<f64>> = (0..nd)
+        .map(|i| {
+            (0..nd)
+                .map(|j| inv_sqrt[i] * k[i][j] * inv_sqrt[j])
+                .collect()
+        })
+        .collect();
     let (vals, vecs) = jacobi_eigen(a);
-    let phis = vecs.iter().take(keep).map(|y| y.iter().zip(&inv_sqrt).map(|(y, s)| y * s).collect()).collect();
+    let phis = vecs
+        .iter()
+        .take(keep)
+        .map(|y| y.iter().zip(&inv_sqrt).map(|(y, s)| y * s).collect())
+        .collect();
     (vals.into_iter().take(keep).collect(), phis)
 }
 
@@ -179,16 +235,37 @@ pub const M3: f64 = 2.0;
 /// ω² = 0, k/m, 3k/m with φ ∝ (1,1,1), (1,0,−1), (1,−2,1).
 pub fn body_3node() -> ReducedBody {
     let nodes = vec![
-        Node { id: 101, xyz: [0.0, 0.0, 0.0], interface: true },
-        Node { id: 102, xyz: [1.0, 0.5, 0.0], interface: false },
-        Node { id: 103, xyz: [2.0, 0.0, 0.0], interface: true },
+        Node {
+            id: 101,
+            xyz: [0.0, 0.0, 0.0],
+            interface: true,
+        },
+        Node {
+            id: 102,
+            xyz: [1.0, 0.5, 0.0],
+            interface: false,
+        },
+        Node {
+            id: 103,
+            xyz: [2.0, 0.0, 0.0],
+            interface: true,
+        },
     ];
-    let nm: Vec<NodalMass> = (0..3).map(|_| NodalMass { mass: M3, inertia: [[0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0.0, 0.0, 0.01]] }).collect();
+    let nm: Vec<NodalMass> = (0..3)
+        .map(|_| NodalMass {
+            mass: M3,
+            inertia: [[0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0.0, 0.0, 0.01]],
+        })
+        .collect();
     let omega2 = vec![0.0, K3 / M3, 3.0 * K3 / M3];
     let ux: [[f64; 3]; 3] = [
         [1.0 / (3.0 * M3).sqrt(); 3],
         [1.0 / (2.0 * M3).sqrt(), 0.0, -1.0 / (2.0 * M3).sqrt()],
-        [1.0 / (6.0 * M3).sqrt(), -2.0 / (6.0 * M3).sqrt(), 1.0 / (6.0 * M3).sqrt()],
+        [
+            1.0 / (6.0 * M3).sqrt(),
+            -2.0 / (6.0 * M3).sqrt(),
+            1.0 / (6.0 * M3).sqrt(),
+        ],
     ];
     let mut shapes = vec![0.0; 3 * 3 * 6];
     for j in 0..3 {
@@ -207,9 +284,16 @@ pub fn body_3node() -> ReducedBody {
     };
     ReducedBody {
         version: FORMAT_VERSION,
-        generator: Generator { name: "flexbody-fixtures".into(), version: "1".into() },
+        generator: Generator {
+            name: "flexbody-fixtures".into(),
+            version: "1".into(),
+        },
         units: Units::si(),
-        header: Header { title: "3-node axial spring-mass chain (closed form)".into(), created_utc: None, request },
+        header: Header {
+            title: "3-node axial spring-mass chain (closed form)".into(),
+            created_utc: None,
+            request,
+        },
         nodes,
         faces: vec![Face::Tri([0, 1, 2])],
         nodal_mass: nm,
@@ -226,16 +310,30 @@ pub fn body_3node() -> ReducedBody {
             method: Method::NormalModes,
             mass_kind: MassKind::Lumped,
             interface: vec![
-                InterfaceNode { node: 0, dofs: [true; 6], frame: identity_frame() },
-                InterfaceNode { node: 2, dofs: [true, true, true, false, false, false], frame: identity_frame() },
+                InterfaceNode {
+                    node: 0,
+                    dofs: [true; 6],
+                    frame: identity_frame(),
+                },
+                InterfaceNode {
+                    node: 2,
+                    dofs: [true, true, true, false, false, false],
+                    frame: identity_frame(),
+                },
             ],
             reference_conditions: vec![],
-            counts: ModeCounts { rigid: 1, normal: 2, ..Default::default() },
+            counts: ModeCounts {
+                rigid: 1,
+                normal: 2,
+                ..Default::default()
+            },
             cutoffs: Cutoffs::default(),
         },
         stress_shapes: None,
         strain_shapes: None,
-        damping: Some(Damping { ratio: vec![0.0, 0.02, 0.02] }),
+        damping: Some(Damping {
+            ratio: vec![0.0, 0.02, 0.02],
+        }),
     }
 }
 
@@ -274,18 +372,36 @@ pub fn stiffness20() -> Vec<Vec<f64>> {
 /// by Jacobi (2 rigid translations + 6 elastic), invariants `Partial`, strain shapes.
 pub fn body_20node() -> ReducedBody {
     let n = 20;
-    let nodes: Vec<Node> = (0..n).map(|p| Node { id: 1000 + 10 * p as u64, xyz: [L20 * p as f64, 0.5 * (p % 3) as f64, 0.0], interface: p == 0 || p == n - 1 }).collect();
+    let nodes: Vec<Node> = (0..n)
+        .map(|p| Node {
+            id: 1000 + 10 * p as u64,
+            xyz: [L20 * p as f64, 0.5 * (p % 3) as f64, 0.0],
+            interface: p == 0 || p == n - 1,
+        })
+        .collect();
     let nm: Vec<NodalMass> = (0..n)
         .map(|p| {
             let j = mass20(p) * 10.0;
-            NodalMass { mass: mass20(p), inertia: [[j, -0.1 * j, 0.0], [-0.1 * j, j, 0.0], [0.0, 0.0, 2.0 * j]] }
+            NodalMass {
+                mass: mass20(p),
+                inertia: [[j, -0.1 * j, 0.0], [-0.1 * j, j, 0.0], [0.0, 0.0, 2.0 * j]],
+            }
         })
         .collect();
     let mass_dof: Vec<f64> = (0..2 * n).map(|d| mass20(d / 2)).collect();
     let m = 8;
     let (mut omega2, phis) = lumped_modes(&mass_dof, &stiffness20(), m);
     let scale = omega2.iter().fold(0.0f64, |a, w| a.max(w.abs()));
-    let labels: Vec<ModeLabel> = omega2.iter().map(|w| if w.abs() < 1e-9 * scale { ModeLabel::Rigid } else { ModeLabel::Normal }).collect();
+    let labels: Vec<ModeLabel> = omega2
+        .iter()
+        .map(|w| {
+            if w.abs() < 1e-9 * scale {
+                ModeLabel::Rigid
+            } else {
+                ModeLabel::Normal
+            }
+        })
+        .collect();
     for (w, l) in omega2.iter_mut().zip(&labels) {
         if *l == ModeLabel::Rigid {
             *w = 0.0; // exact zero for rigid modes: the spring matrix annihilates them exactly
@@ -302,15 +418,26 @@ pub fn body_20node() -> ReducedBody {
     let mut strain = vec![0.0; m * n * 6];
     for j in 0..m {
         for p in 0..n {
-            let elems: Vec<usize> = [p.checked_sub(1), (p + 1 < n).then_some(p)].into_iter().flatten().collect();
+            let elems: Vec<usize> = [p.checked_sub(1), (p + 1 < n).then_some(p)]
+                .into_iter()
+                .flatten()
+                .collect();
             for c in 0..2 {
-                let mean: f64 = elems.iter().map(|&e| (phis[j][2 * (e + 1) + c] - phis[j][2 * e + c]) / L20).sum::<f64>() / elems.len() as f64;
+                let mean: f64 = elems
+                    .iter()
+                    .map(|&e| (phis[j][2 * (e + 1) + c] - phis[j][2 * e + c]) / L20)
+                    .sum::<f64>()
+                    / elems.len() as f64;
                 strain[(j * n + p) * 6 + if c == 0 { 0 } else { 3 }] = mean;
             }
         }
     }
     let invariants = invariants(&nodes, &nm, &shapes, m, InvariantSet::Partial);
-    let faces = (0..n - 2).step_by(2).map(|p| Face::Tri([p as u32, p as u32 + 1, p as u32 + 2])).chain([Face::Quad([0, 1, 3, 2])]).collect();
+    let faces = (0..n - 2)
+        .step_by(2)
+        .map(|p| Face::Tri([p as u32, p as u32 + 1, p as u32 + 2]))
+        .chain([Face::Quad([0, 1, 3, 2])])
+        .collect();
     let request = Request {
         method: Method::NormalModes,
         fmax_hz: Some(200.0),
@@ -320,16 +447,35 @@ pub fn body_20node() -> ReducedBody {
         mass_kind: MassKind::Lumped,
     };
     let units = Units {
-        mass: Unit { name: "t".into(), si: 1000.0 },
-        length: Unit { name: "mm".into(), si: 0.001 },
-        time: Unit { name: "s".into(), si: 1.0 },
-        force: Unit { name: "N".into(), si: 1.0 },
+        mass: Unit {
+            name: "t".into(),
+            si: 1000.0,
+        },
+        length: Unit {
+            name: "mm".into(),
+            si: 0.001,
+        },
+        time: Unit {
+            name: "s".into(),
+            si: 1.0,
+        },
+        force: Unit {
+            name: "N".into(),
+            si: 1.0,
+        },
     };
     ReducedBody {
         version: FORMAT_VERSION,
-        generator: Generator { name: "flexbody-fixtures".into(), version: "1".into() },
+        generator: Generator {
+            name: "flexbody-fixtures".into(),
+            version: "1".into(),
+        },
         units,
-        header: Header { title: "20-node chain, axial + shear springs, mm-t-s".into(), created_utc: Some("2026-01-01T00:00:00Z".into()), request },
+        header: Header {
+            title: "20-node chain, axial + shear springs, mm-t-s".into(),
+            created_utc: Some("2026-01-01T00:00:00Z".into()),
+            request,
+        },
         nodes,
         faces,
         nodal_mass: nm,
@@ -346,22 +492,43 @@ pub fn body_20node() -> ReducedBody {
             method: Method::NormalModes,
             mass_kind: MassKind::Lumped,
             interface: vec![
-                InterfaceNode { node: 0, dofs: [true, true, false, false, false, true], frame: identity_frame() },
-                InterfaceNode { node: 19, dofs: [true; 6], frame: [[0.6, 0.8, 0.0], [-0.8, 0.6, 0.0], [0.0, 0.0, 1.0]] },
+                InterfaceNode {
+                    node: 0,
+                    dofs: [true, true, false, false, false, true],
+                    frame: identity_frame(),
+                },
+                InterfaceNode {
+                    node: 19,
+                    dofs: [true; 6],
+                    frame: [[0.6, 0.8, 0.0], [-0.8, 0.6, 0.0], [0.0, 0.0, 1.0]],
+                },
             ],
             reference_conditions: vec![],
-            counts: ModeCounts { rigid: 2, normal: 6, ..Default::default() },
-            cutoffs: Cutoffs { fmax_hz: Some(200.0), ..Default::default() },
+            counts: ModeCounts {
+                rigid: 2,
+                normal: 6,
+                ..Default::default()
+            },
+            cutoffs: Cutoffs {
+                fmax_hz: Some(200.0),
+                ..Default::default()
+            },
         },
         stress_shapes: None,
-        strain_shapes: Some(FieldShapes { nodes: (0..n as u32).collect(), values: strain }),
+        strain_shapes: Some(FieldShapes {
+            nodes: (0..n as u32).collect(),
+            values: strain,
+        }),
         damping: None,
     }
 }
 
 /// Golden files of v1.0: (file stem, body).
 pub fn golden() -> Vec<(&'static str, ReducedBody)> {
-    vec![("three_node_chain", body_3node()), ("twenty_node_chain", body_20node())]
+    vec![
+        ("three_node_chain", body_3node()),
+        ("twenty_node_chain", body_20node()),
+    ]
 }
 
 /// Every fixture file (path relative to `fixtures/`, bytes), generated deterministically:
@@ -369,14 +536,17 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
 /// broken files with their `.expect`.
 pub fn generate_all() -> Vec<(String, Vec<u8>)> {
     let summary = |bytes: &[u8]| {
-        let (body, manifest) = from_bytes_with_manifest(bytes, &ReadLimits::default()).expect("generated fixture must read back");
-        let mut s = serde_json::to_vec_pretty(&flexbody::inspect::summarize(&body, &manifest)).expect("summary json");
+        let (body, manifest) = from_bytes_with_manifest(bytes, &ReadLimits::default())
+            .expect("generated fixture must read back");
+        let mut s = serde_json::to_vec_pretty(&flexbody::inspect::summarize(&body, &manifest))
+            .expect("summary json");
         s.push(b'\n');
         s
     };
     let mut out = Vec::new();
     for (stem, body) in golden() {
-        let bytes = flexbody::write::to_bytes(&body, &Default::default()).expect("golden body is valid");
+        let bytes =
+            flexbody::write::to_bytes(&body, &Default::default()).expect("golden body is valid");
         out.push((format!("golden/v1.0/{stem}.json"), summary(&bytes)));
         out.push((format!("golden/v1.0/{stem}.flexbody"), bytes));
     }
@@ -387,7 +557,10 @@ pub fn generate_all() -> Vec<(String, Vec<u8>)> {
                 out.push((format!("compat/{}.flexbody", case.name), case.bytes));
             }
             Some((variant, message)) => {
-                let mut e = serde_json::to_vec_pretty(&serde_json::json!({ "variant": variant, "message": message })).expect("json");
+                let mut e = serde_json::to_vec_pretty(
+                    &serde_json::json!({ "variant": variant, "message": message }),
+                )
+                .expect("json");
                 e.push(b'\n');
                 out.push((format!("broken/{}.expect", case.name), e));
                 out.push((format!("broken/{}.flexbody", case.name), case.bytes));
