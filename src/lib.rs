@@ -13,6 +13,7 @@
 //! * [`solve`] — sparse Cholesky with METIS ordering and the block shift-invert eigensolver.
 //! * [`reduce`] — normal modes, Craig–Bampton, Craig–Chang, Dietz, reference conditions.
 //! * [`write`] — the reduced-body file writer (types from the `flexbody-reader` crate).
+//! * [`inspect`] — the summary `flexbody inspect` prints (mass properties, modes, entries).
 //!
 //! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.
 #![allow(non_snake_case)]
@@ -20,6 +21,7 @@
 pub mod faces;
 pub mod fe;
 pub mod import;
+pub mod inspect;
 pub mod interface;
 pub mod invariants;
 pub mod model;

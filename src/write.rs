@@ -1,1 +1,169 @@
-//! Reduced-body file writer: temp file + rename, deterministic bytes.
+//! Reduced-body file writer: validates with the reader's own rules, zips the v1 entries in
+//! their fixed order with fixed timestamps and a fixed deflate level (byte-identical output
+//! for identical input), writes a temp file beside the target and renames it into place.
+//!
+//! ```no_run
+//! # fn demo(body: &flexbody_reader::ReducedBody) -> Result<(), flexbody::write::WriteError> {
+//! flexbody::write::write_reduced_body("rod.flexbody", body, &Default::default())?;
+//! # Ok(()) }
+//! ```
+use std::io::{Cursor, Write};
+use std::path::{Path, PathBuf};
+
+use flexbody_reader::{codec, ReadError, ReadLimits, ReducedBody};
+use zip::write::SimpleFileOptions;
+use zip::{CompressionMethod, DateTime, ZipWriter};
+
+/// Deflate level used by default; fixed so output is reproducible.
+pub const DEFAULT_DEFLATE_LEVEL: i64 = 6;
+
+/// How entries are compressed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Compression {
+    /// Deflate at the given level (1–9).
+    Deflate(i64),
+    /// No compression.
+    Stored,
+}
+
+/// Writer options. The creation time is not an option here: it is `header.created_utc`,
+/// set by the caller only when the user asks for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct WriteOptions {
+    /// Entry compression (default deflate level 6).
+    pub compression: Compression,
+}
+
+impl Default for WriteOptions {
+    fn default() -> Self {
+        WriteOptions {
+            compression: Compression::Deflate(DEFAULT_DEFLATE_LEVEL),
+        }
+    }
+}
+
+/// Why a file was not written. No partial file is left behind in any case.
+#[derive(Debug, thiserror::Error)]
+pub enum WriteError {
+    /// The body breaks a format rule (the reader would refuse it).
+    #[error("{path}: not written, the body breaks a format rule: {source}")]
+    Invalid {
+        /// Target path.
+        path: PathBuf,
+        /// The rule broken.
+        source: ReadError,
+    },
+    /// Creating, writing or renaming failed.
+    #[error("{path}: {action} failed: {source}")]
+    Io {
+        /// The path concerned (temp file or target).
+        path: PathBuf,
+        /// What was being done.
+        action: &'static str,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The zip layer failed (should not happen for in-memory output).
+    #[error("{path}: zip container: {detail}")]
+    Zip {
+        /// Target path.
+        path: PathBuf,
+        /// The zip layer's message.
+        detail: String,
+    },
+}
+
+/// Zips `entries` (name, uncompressed bytes) in the given order with fixed timestamps
+/// (1980-01-01 00:00), fixed permissions and the chosen compression. Low level: no
+/// manifest is added and nothing is checked (the fixture generator uses it for broken files).
+pub fn zip_entries(
+    entries: &[(String, Vec<u8>)],
+    compression: Compression,
+) -> zip::result::ZipResult<Vec<u8>> {
+    let mut zw = ZipWriter::new(Cursor::new(Vec::new()));
+    let base = SimpleFileOptions::default()
+        .last_modified_time(DateTime::default())
+        .unix_permissions(0o644);
+    let opts = match compression {
+        Compression::Deflate(level) => base
+            .compression_method(CompressionMethod::Deflated)
+            .compression_level(Some(level)),
+        Compression::Stored => base.compression_method(CompressionMethod::Stored),
+    };
+    for (name, bytes) in entries {
+        zw.start_file(name.as_str(), opts)?;
+        zw.write_all(bytes)?;
+    }
+    Ok(zw.finish()?.into_inner())
+}
+
+/// The complete file as bytes: `manifest.json` (pretty JSON) then the payload entries.
+pub fn to_bytes(body: &ReducedBody, opts: &WriteOptions) -> Result<Vec<u8>, WriteError> {
+    to_bytes_at(Path::new("<memory>"), body, opts)
+}
+
+fn to_bytes_at(
+    path: &Path,
+    body: &ReducedBody,
+    opts: &WriteOptions,
+) -> Result<Vec<u8>, WriteError> {
+    flexbody_reader::validate(body, &ReadLimits::default()).map_err(|source| {
+        WriteError::Invalid {
+            path: path.to_path_buf(),
+            source,
+        }
+    })?;
+    let payload = flexbody_reader::encode_entries(body);
+    let manifest = flexbody_reader::manifest_for(body, &payload);
+    let mut json = serde_json::to_vec_pretty(&manifest).map_err(|e| WriteError::Zip {
+        path: path.to_path_buf(),
+        detail: e.to_string(),
+    })?;
+    json.push(b'\n');
+    let mut entries = vec![(codec::MANIFEST.to_string(), json)];
+    entries.extend(payload.into_iter().map(|(n, _, b)| (n.to_string(), b)));
+    zip_entries(&entries, opts.compression).map_err(|e| WriteError::Zip {
+        path: path.to_path_buf(),
+        detail: e.to_string(),
+    })
+}
+
+/// Writes `body` to `path`: validate, encode, write `path`'s folder/.name.tmp-PID, fsync,
+/// rename over `path`. On any error the temp file is removed and `path` is untouched.
+pub fn write_reduced_body(
+    path: impl AsRef<Path>,
+    body: &ReducedBody,
+    opts: &WriteOptions,
+) -> Result<(), WriteError> {
+    let path = path.as_ref();
+    let bytes = to_bytes_at(path, body, opts)?;
+    let file_name = path
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out.flexbody".into());
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let tmp = dir.join(format!(".{file_name}.tmp-{}", std::process::id()));
+    fn io<'a>(p: &'a Path, action: &'static str) -> impl FnOnce(std::io::Error) -> WriteError + 'a {
+        move |source| WriteError::Io {
+            path: p.to_path_buf(),
+            action,
+            source,
+        }
+    }
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp).map_err(io(&tmp, "creating the temp file"))?;
+        f.write_all(&bytes)
+            .map_err(io(&tmp, "writing the temp file"))?;
+        f.sync_all().map_err(io(&tmp, "syncing the temp file"))?;
+        drop(f);
+        std::fs::rename(&tmp, path).map_err(io(path, "renaming the temp file onto the target"))
+    })();
+    if result.is_err() {
+        // Best effort: the temp file may not exist if creation itself failed.
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}

@@ -1,1 +1,147 @@
-//! flexbody-reader: see format-spec/.
+//! # flexbody-reader
+//!
+//! Reads and validates *reduced flexible-body files* (`.flexbody`, format v1) written by
+//! flexbody, for multibody solvers. The crate owns the file's types; it has no linear algebra
+//! and no solver code. The authority on the bytes is `format-spec/SPEC.md`.
+//!
+//! * [`read`] / [`from_bytes`] → [`ReducedBody`], every checksum and consistency rule checked;
+//!   [`from_bytes_with_limits`] takes explicit [`ReadLimits`].
+//! * [`ReadError`] names the entry and the rule broken; a hostile file never panics the reader
+//!   and never makes it allocate beyond the limits.
+//! * [`validate`] runs the consistency rules on an in-memory body (the writer uses it), and
+//!   [`codec`] holds the entry names, the manifest type and the v1 payload encoding.
+//!
+//! ```no_run
+//! let body = flexbody_reader::read("rod.flexbody")?;
+//! println!("{} nodes, {} modes", body.node_count(), body.mode_count());
+//! # Ok::<(), flexbody_reader::ReadError>(())
+//! ```
+#![deny(missing_docs)]
+
+pub mod codec;
+mod container;
+mod error;
+mod limits;
+mod types;
+mod validate;
+
+use std::path::Path;
+
+pub use error::ReadError;
+pub use limits::ReadLimits;
+pub use types::*;
+pub use validate::{validate, FRAME_TOL, REL_TOL};
+
+/// The format version this crate writes and fully understands.
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 0 };
+
+/// Reads and validates a file with the default [`ReadLimits`].
+pub fn read(path: impl AsRef<Path>) -> Result<ReducedBody, ReadError> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    from_bytes(&bytes)
+}
+
+/// Reads and validates a file held in memory with the default [`ReadLimits`].
+pub fn from_bytes(bytes: &[u8]) -> Result<ReducedBody, ReadError> {
+    from_bytes_with_limits(bytes, &ReadLimits::default())
+}
+
+fn entry<'a>(c: &'a container::Container, name: &str) -> Result<&'a [u8], ReadError> {
+    c.entries
+        .get(name)
+        .map(Vec::as_slice)
+        .ok_or_else(|| ReadError::MissingEntry {
+            entry: name.to_string(),
+            rule: "required in v1".to_string(),
+        })
+}
+
+fn optional<T: serde::de::DeserializeOwned>(
+    c: &container::Container,
+    name: &str,
+) -> Result<Option<T>, ReadError> {
+    c.entries
+        .get(name)
+        .map(|b| codec::decode(name, b, false))
+        .transpose()
+}
+
+/// Reads and validates a file held in memory with explicit limits.
+pub fn from_bytes_with_limits(bytes: &[u8], limits: &ReadLimits) -> Result<ReducedBody, ReadError> {
+    from_bytes_with_manifest(bytes, limits).map(|(body, _)| body)
+}
+
+/// Like [`from_bytes_with_limits`], also returning the manifest (entry sizes and checksums,
+/// unknown optional entries included) for tools that report on the container.
+pub fn from_bytes_with_manifest(
+    bytes: &[u8],
+    limits: &ReadLimits,
+) -> Result<(ReducedBody, codec::Manifest), ReadError> {
+    use codec::*;
+    let c = container::open(bytes, limits)?;
+    let body = ReducedBody {
+        version: c.manifest.version,
+        generator: c.manifest.generator.clone(),
+        units: c.manifest.units.clone(),
+        header: decode(HEADER, entry(&c, HEADER)?, true)?,
+        nodes: decode(NODES, entry(&c, NODES)?, false)?,
+        faces: decode(FACES, entry(&c, FACES)?, false)?,
+        nodal_mass: decode(NODAL_MASS, entry(&c, NODAL_MASS)?, false)?,
+        modes: decode(MODES, entry(&c, MODES)?, false)?,
+        invariants: decode(INVARIANTS, entry(&c, INVARIANTS)?, false)?,
+        method: decode(METHOD, entry(&c, METHOD)?, true)?,
+        stress_shapes: optional(&c, STRESS_SHAPES)?,
+        strain_shapes: optional(&c, STRAIN_SHAPES)?,
+        damping: optional(&c, DAMPING)?,
+    };
+    validate(&body, limits)?;
+    Ok((body, c.manifest))
+}
+
+/// The payload entries of `body` in container order: (name, required, bytes). The writer
+/// zips these after `manifest.json`.
+pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> {
+    use codec::*;
+    let mut out = vec![
+        (HEADER, true, encode(&body.header)),
+        (NODES, true, encode(&body.nodes)),
+        (FACES, true, encode(&body.faces)),
+        (NODAL_MASS, true, encode(&body.nodal_mass)),
+        (MODES, true, encode(&body.modes)),
+        (INVARIANTS, true, encode(&body.invariants)),
+        (METHOD, true, encode(&body.method)),
+    ];
+    if let Some(s) = &body.stress_shapes {
+        out.push((STRESS_SHAPES, false, encode(s)));
+    }
+    if let Some(s) = &body.strain_shapes {
+        out.push((STRAIN_SHAPES, false, encode(s)));
+    }
+    if let Some(d) = &body.damping {
+        out.push((DAMPING, false, encode(d)));
+    }
+    out
+}
+
+/// The manifest for `body` whose payload entries are `entries` (from [`encode_entries`]).
+pub fn manifest_for(body: &ReducedBody, entries: &[(&str, bool, Vec<u8>)]) -> codec::Manifest {
+    codec::Manifest {
+        format: codec::FORMAT_NAME.to_string(),
+        version: FORMAT_VERSION,
+        generator: body.generator.clone(),
+        units: body.units.clone(),
+        entries: entries
+            .iter()
+            .map(|(name, required, bytes)| codec::ManifestEntry {
+                name: name.to_string(),
+                size: bytes.len() as u64,
+                sha256: codec::sha256_hex(bytes),
+                required: *required,
+            })
+            .collect(),
+    }
+}

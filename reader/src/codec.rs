@@ -1,0 +1,149 @@
+//! Entry names, the manifest, and the one fixed bincode configuration of v1 payloads.
+//!
+//! Layout (SPEC.md §4): little-endian; integers fixed width (u32 = 4 bytes, u64 = 8);
+//! sequence and string lengths are u64; enum tags are u32 variant indices; `Option` is one
+//! byte 0/1 then the value; `bool` one byte 0/1; `f64` 8 bytes IEEE-754 LE; fixed-size arrays
+//! and structs are their elements in order without prefix.
+use serde::{de::DeserializeOwned, Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use crate::error::ReadError;
+
+/// Format name in the manifest.
+pub const FORMAT_NAME: &str = "flexbody-reduced-body";
+/// Name of the manifest entry.
+pub const MANIFEST: &str = "manifest.json";
+
+/// Payload entries known to v1, in the fixed container order, with their required flag.
+pub const ENTRIES: [(&str, bool); 10] = [
+    (HEADER, true),
+    (NODES, true),
+    (FACES, true),
+    (NODAL_MASS, true),
+    (MODES, true),
+    (INVARIANTS, true),
+    (METHOD, true),
+    (STRESS_SHAPES, false),
+    (STRAIN_SHAPES, false),
+    (DAMPING, false),
+];
+/// `header.bin`.
+pub const HEADER: &str = "header.bin";
+/// `nodes.bin`.
+pub const NODES: &str = "nodes.bin";
+/// `faces.bin`.
+pub const FACES: &str = "faces.bin";
+/// `nodal_mass.bin`.
+pub const NODAL_MASS: &str = "nodal_mass.bin";
+/// `modes.bin`.
+pub const MODES: &str = "modes.bin";
+/// `invariants.bin`.
+pub const INVARIANTS: &str = "invariants.bin";
+/// `method.bin`.
+pub const METHOD: &str = "method.bin";
+/// `stress_shapes.bin`.
+pub const STRESS_SHAPES: &str = "stress_shapes.bin";
+/// `strain_shapes.bin`.
+pub const STRAIN_SHAPES: &str = "strain_shapes.bin";
+/// `damping.bin`.
+pub const DAMPING: &str = "damping.bin";
+
+/// `manifest.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    /// Always [`FORMAT_NAME`].
+    pub format: String,
+    /// Format version.
+    pub version: crate::Version,
+    /// Writer program.
+    pub generator: crate::Generator,
+    /// Unit system.
+    pub units: crate::Units,
+    /// Every other entry, in container order.
+    pub entries: Vec<ManifestEntry>,
+}
+
+/// One line of the manifest's entry list.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ManifestEntry {
+    /// Zip entry name.
+    pub name: String,
+    /// Uncompressed size in bytes.
+    pub size: u64,
+    /// Lowercase hex SHA-256 of the uncompressed bytes.
+    pub sha256: String,
+    /// Whether a reader that does not know the entry must refuse the file.
+    pub required: bool,
+}
+
+/// Lowercase hex SHA-256 of `bytes`.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    let digest = Sha256::digest(bytes);
+    let mut s = String::with_capacity(64);
+    for b in digest.iter() {
+        s.push_str(&format!("{b:02x}"));
+    }
+    s
+}
+
+/// The v1 configuration (no decode limit: see [`decode`] for how allocation is bounded).
+fn config() -> bincode::config::Configuration<bincode::config::LittleEndian, bincode::config::Fixint>
+{
+    bincode::config::standard()
+        .with_little_endian()
+        .with_fixed_int_encoding()
+}
+
+/// Byte limit for records that hold strings (header, method): bincode allocates a string's
+/// buffer from its length prefix before reading it, so this bounds that allocation.
+pub const STRING_RECORD_LIMIT: usize = 16 << 20;
+
+/// Encodes a payload record with the v1 layout.
+pub fn encode<T: Serialize>(value: &T) -> Vec<u8> {
+    // Cannot fail: encoding serde-derived plain records into a Vec does no I/O, and the
+    // unlimited config has no size limit to exceed.
+    bincode::serde::encode_to_vec(value, config()).expect("bincode encode into Vec is infallible")
+}
+
+/// Decodes a payload record with the v1 layout; the entry must be consumed exactly.
+///
+/// Allocation is bounded: records with strings use a [`STRING_RECORD_LIMIT`] bincode limit;
+/// sequences of numbers and structs go through serde's cautious preallocation (at most 1 MiB)
+/// and grow only as elements are actually read from `bytes`, whose size the caller bounded.
+pub fn decode<T: DeserializeOwned>(
+    entry: &str,
+    bytes: &[u8],
+    has_strings: bool,
+) -> Result<T, ReadError> {
+    let result = if has_strings {
+        let cfg = config().with_limit::<STRING_RECORD_LIMIT>();
+        bincode::serde::decode_from_slice::<T, _>(bytes, cfg)
+    } else {
+        bincode::serde::decode_from_slice::<T, _>(bytes, config())
+    };
+    let (value, used) = result.map_err(|e| {
+        let detail = match e {
+            bincode::error::DecodeError::UnexpectedEnd { additional } => format!(
+                "record ends early: {additional} more bytes needed; a length prefix claims more \
+                 elements than the entry holds, or the entry is truncated"
+            ),
+            bincode::error::DecodeError::LimitExceeded => {
+                format!("a length prefix exceeds the {STRING_RECORD_LIMIT}-byte record limit")
+            }
+            other => other.to_string(),
+        };
+        ReadError::Decode {
+            entry: entry.to_string(),
+            detail,
+        }
+    })?;
+    if used != bytes.len() {
+        return Err(ReadError::TrailingBytes {
+            entry: entry.to_string(),
+            count: (bytes.len() - used) as u64,
+        });
+    }
+    Ok(value)
+}

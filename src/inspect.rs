@@ -1,0 +1,283 @@
+//! `flexbody inspect`: a plain summary of a reduced-body file — header, units, counts, mass
+//! properties, modes, invariant set, entry sizes. Computed here, printed by `main.rs`.
+//!
+//! The JSON form of [`Summary`] is also the expected-content file of each golden fixture
+//! (`fixtures/golden/v1.0/*.json`) that `format-spec/reference_reader.py` reproduces.
+use flexbody_reader::{codec::Manifest, ReducedBody};
+use serde::Serialize;
+
+/// Counts of the main arrays.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Counts {
+    /// Stored nodes.
+    pub nodes: usize,
+    /// Stored nodes flagged as interface.
+    pub interface_nodes: usize,
+    /// Graphics faces.
+    pub faces: usize,
+    /// Modes.
+    pub modes: usize,
+}
+
+/// One line of the modes table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModeLine {
+    /// 1-based mode number.
+    pub number: usize,
+    /// Frequency, Hz.
+    pub frequency_hz: f64,
+    /// ω², rad²/s².
+    pub omega2: f64,
+    /// Label (`Rigid`, `Normal`, …).
+    pub label: String,
+}
+
+/// One container entry.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EntryLine {
+    /// Entry name.
+    pub name: String,
+    /// Uncompressed bytes.
+    pub size: u64,
+    /// SHA-256 hex.
+    pub sha256: String,
+    /// Required flag.
+    pub required: bool,
+}
+
+/// Mass properties: I1, I2/I1 and the inertia tensors (true tensors: negative products).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MassProperties {
+    /// `invariants` (I1, I2, I7) or `nodal_mass` (stored nodes only).
+    pub source: String,
+    /// Total mass.
+    pub total_mass: f64,
+    /// Centre of mass (I2 / I1); zeros when the mass is zero.
+    pub center_of_mass: [f64; 3],
+    /// Inertia tensor about the body origin (I7), row-major.
+    pub inertia_origin: [[f64; 3]; 3],
+    /// Inertia tensor about the centre of mass: I7 − m((c·c)E − c cᵀ) (parallel axis).
+    pub inertia_center_of_mass: [[f64; 3]; 3],
+}
+
+/// Everything `flexbody inspect` reports.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// `major.minor`.
+    pub format_version: String,
+    /// Writer program and version.
+    pub generator: String,
+    /// Header title.
+    pub title: String,
+    /// Creation time if recorded.
+    pub created_utc: Option<String>,
+    /// Unit system.
+    pub units: flexbody_reader::Units,
+    /// Method, e.g. `CraigBampton`.
+    pub method: String,
+    /// `Lumped` / `Consistent`.
+    pub mass_kind: String,
+    /// Invariant set name.
+    pub invariant_set: String,
+    /// Selected invariants, 1-based.
+    pub invariants_present: Vec<usize>,
+    /// Counts.
+    pub counts: Counts,
+    /// Mass properties.
+    pub mass: MassProperties,
+    /// Modes table.
+    pub modes: Vec<ModeLine>,
+    /// Optional entries present: stress, strain, damping.
+    pub optional: [bool; 3],
+    /// Entries in container order.
+    pub entries: Vec<EntryLine>,
+}
+
+/// Mass properties from I1, I2, I7 when present, else from the stored nodal masses.
+/// Parallel-axis theorem: J_c = J_o − m((c·c)E − c cᵀ).
+pub fn mass_properties(body: &ReducedBody) -> MassProperties {
+    let inv = &body.invariants;
+    let (source, m, first, io) = if inv.mask[0] && inv.mask[1] && inv.mask[6] {
+        let io = [
+            [inv.i7[0], inv.i7[1], inv.i7[2]],
+            [inv.i7[3], inv.i7[4], inv.i7[5]],
+            [inv.i7[6], inv.i7[7], inv.i7[8]],
+        ];
+        (
+            "invariants",
+            inv.i1[0],
+            [inv.i2[0], inv.i2[1], inv.i2[2]],
+            io,
+        )
+    } else {
+        let (mut m, mut s, mut io) = (0.0, [0.0; 3], [[0.0; 3]; 3]);
+        for (node, nm) in body.nodes.iter().zip(&body.nodal_mass) {
+            let x = node.xyz;
+            m += nm.mass;
+            let xx = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+            for i in 0..3 {
+                s[i] += nm.mass * x[i];
+                for j in 0..3 {
+                    let delta = if i == j { xx } else { 0.0 };
+                    io[i][j] += nm.mass * (delta - x[i] * x[j]) + nm.inertia[i][j];
+                }
+            }
+        }
+        ("nodal_mass", m, s, io)
+    };
+    let c = if m > 0.0 {
+        [first[0] / m, first[1] / m, first[2] / m]
+    } else {
+        [0.0; 3]
+    };
+    let cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    let mut ic = io;
+    for i in 0..3 {
+        for j in 0..3 {
+            let delta = if i == j { cc } else { 0.0 };
+            ic[i][j] = io[i][j] - m * (delta - c[i] * c[j]);
+        }
+    }
+    MassProperties {
+        source: source.into(),
+        total_mass: m,
+        center_of_mass: c,
+        inertia_origin: io,
+        inertia_center_of_mass: ic,
+    }
+}
+
+/// Builds the summary of a read body and its manifest.
+pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
+    let req = &body.header.request;
+    Summary {
+        format_version: format!("{}.{}", body.version.major, body.version.minor),
+        generator: format!("{} {}", body.generator.name, body.generator.version),
+        title: body.header.title.clone(),
+        created_utc: body.header.created_utc.clone(),
+        units: body.units.clone(),
+        method: format!("{:?}", body.method.method),
+        mass_kind: format!("{:?}", body.method.mass_kind),
+        invariant_set: format!("{:?}", req.invariant_set),
+        invariants_present: (1..=9).filter(|k| body.invariants.mask[k - 1]).collect(),
+        counts: Counts {
+            nodes: body.nodes.len(),
+            interface_nodes: body.nodes.iter().filter(|n| n.interface).count(),
+            faces: body.faces.len(),
+            modes: body.mode_count(),
+        },
+        mass: mass_properties(body),
+        modes: (0..body.mode_count())
+            .map(|j| ModeLine {
+                number: j + 1,
+                frequency_hz: body.modes.frequency_hz[j],
+                omega2: body.modes.omega2[j],
+                label: format!("{:?}", body.modes.labels[j]),
+            })
+            .collect(),
+        optional: [
+            body.stress_shapes.is_some(),
+            body.strain_shapes.is_some(),
+            body.damping.is_some(),
+        ],
+        entries: manifest
+            .entries
+            .iter()
+            .map(|e| EntryLine {
+                name: e.name.clone(),
+                size: e.size,
+                sha256: e.sha256.clone(),
+                required: e.required,
+            })
+            .collect(),
+    }
+}
+
+/// Human-readable text of a summary.
+pub fn render_text(s: &Summary) -> String {
+    use std::fmt::Write;
+    let mut o = String::new();
+    // Writing into a String cannot fail; the results are ignored on purpose.
+    let _ = writeln!(
+        o,
+        "{}  (flexbody format {}, written by {})",
+        s.title, s.format_version, s.generator
+    );
+    if let Some(t) = &s.created_utc {
+        let _ = writeln!(o, "created      {t}");
+    }
+    let u = |x: &flexbody_reader::Unit| format!("{} (= {} SI)", x.name, x.si);
+    let us = &s.units;
+    let _ = writeln!(
+        o,
+        "units        mass {}, length {}, time {}, force {}",
+        u(&us.mass),
+        u(&us.length),
+        u(&us.time),
+        u(&us.force)
+    );
+    let _ = writeln!(
+        o,
+        "method       {} ({} mass), invariants {} {:?}",
+        s.method, s.mass_kind, s.invariant_set, s.invariants_present
+    );
+    let c = &s.counts;
+    let _ = writeln!(
+        o,
+        "counts       {} nodes ({} interface), {} faces, {} modes",
+        c.nodes, c.interface_nodes, c.faces, c.modes
+    );
+    let mp = &s.mass;
+    let _ = writeln!(
+        o,
+        "mass         {:.6e}  (from {})",
+        mp.total_mass, mp.source
+    );
+    let _ = writeln!(
+        o,
+        "centre       [{:.6e}, {:.6e}, {:.6e}]",
+        mp.center_of_mass[0], mp.center_of_mass[1], mp.center_of_mass[2]
+    );
+    let _ = writeln!(o, "inertia about centre of mass:");
+    for row in &mp.inertia_center_of_mass {
+        let _ = writeln!(
+            o,
+            "             [{:>14.6e} {:>14.6e} {:>14.6e}]",
+            row[0], row[1], row[2]
+        );
+    }
+    let _ = writeln!(o, "modes        #      frequency [Hz]   label");
+    for m in &s.modes {
+        let _ = writeln!(
+            o,
+            "             {:<6} {:>15.6}   {}",
+            m.number, m.frequency_hz, m.label
+        );
+    }
+    let opt: Vec<&str> = ["stress shapes", "strain shapes", "damping"]
+        .iter()
+        .zip(s.optional)
+        .filter(|(_, p)| *p)
+        .map(|(n, _)| *n)
+        .collect();
+    let _ = writeln!(
+        o,
+        "optional     {}",
+        if opt.is_empty() {
+            "none".to_string()
+        } else {
+            opt.join(", ")
+        }
+    );
+    let _ = writeln!(o, "entries      {:<20} {:>12}  required", "name", "bytes");
+    for e in &s.entries {
+        let _ = writeln!(
+            o,
+            "             {:<20} {:>12}  {}",
+            e.name,
+            e.size,
+            if e.required { "yes" } else { "no" }
+        );
+    }
+    o
+}

@@ -1,0 +1,361 @@
+//! Broken (and forward-compatible) files derived from the 3-node golden body, each with the
+//! error a reader must give. Entries are re-encoded after the mutation, and the manifest is
+//! rebuilt from the mutated bytes unless the point is a stale manifest.
+use flexbody::write::{zip_entries, Compression};
+use flexbody_reader::codec;
+use flexbody_reader::*;
+use serde_json::{json, Value};
+
+/// One generated file: stem, bytes, and either `Some((variant, message fragment))` for a file
+/// that must be refused or `None` for one that must be accepted.
+pub struct Case {
+    /// File stem.
+    pub name: &'static str,
+    /// File bytes.
+    pub bytes: Vec<u8>,
+    /// Expected error (variant, fragment) or None to accept.
+    pub expect: Option<(&'static str, &'static str)>,
+}
+
+type Entries = Vec<(String, bool, Vec<u8>)>;
+
+fn entries(body: &ReducedBody) -> Entries {
+    encode_entries(body)
+        .into_iter()
+        .map(|(n, r, b)| (n.to_string(), r, b))
+        .collect()
+}
+
+fn manifest(body: &ReducedBody, e: &Entries) -> Value {
+    let refs: Vec<(&str, bool, Vec<u8>)> = e
+        .iter()
+        .map(|(n, r, b)| (n.as_str(), *r, b.clone()))
+        .collect();
+    serde_json::to_value(manifest_for(body, &refs)).expect("manifest is plain JSON")
+}
+
+fn pack_raw(manifest: Option<Vec<u8>>, e: &Entries) -> Vec<u8> {
+    let mut all: Vec<(String, Vec<u8>)> = manifest
+        .map(|m| vec![(codec::MANIFEST.to_string(), m)])
+        .unwrap_or_default();
+    all.extend(e.iter().map(|(n, _, b)| (n.clone(), b.clone())));
+    zip_entries(&all, Compression::Deflate(6)).expect("in-memory zip")
+}
+
+fn pack(m: &Value, e: &Entries) -> Vec<u8> {
+    let mut text = serde_json::to_vec_pretty(m).expect("json");
+    text.push(b'\n');
+    pack_raw(Some(text), e)
+}
+
+/// Re-encodes a mutated body (no validation) with a matching manifest.
+fn from_body(body: &ReducedBody) -> Vec<u8> {
+    let e = entries(body);
+    pack(&manifest(body, &e), &e)
+}
+
+fn set_entry(e: &mut Entries, name: &str, bytes: Vec<u8>) {
+    if let Some(x) = e.iter_mut().find(|x| x.0 == name) {
+        x.2 = bytes;
+    }
+}
+
+/// Every case, in a fixed order.
+pub fn cases(base: &ReducedBody) -> Vec<Case> {
+    let mut out = Vec::new();
+    let mut add = |name, bytes, expect| {
+        out.push(Case {
+            name,
+            bytes,
+            expect,
+        })
+    };
+    let good = entries(base);
+    let good_manifest = manifest(base, &good);
+
+    add(
+        "not_a_zip",
+        b"solid rod\n  facet normal 0 0 1\nendsolid\n".to_vec(),
+        Some(("NotZip", "not a zip container")),
+    );
+    add(
+        "missing_manifest",
+        pack_raw(None, &good),
+        Some(("MissingEntry", "manifest.json")),
+    );
+    add(
+        "manifest_not_json",
+        pack_raw(
+            Some(b"{ \"format\": \"flexbody-reduced-body\", ".to_vec()),
+            &good,
+        ),
+        Some(("Manifest", "not valid manifest JSON")),
+    );
+
+    let mut m = good_manifest.clone();
+    m["format"] = json!("adams-mnf");
+    add(
+        "wrong_format_name",
+        pack(&m, &good),
+        Some(("WrongFormat", "adams-mnf")),
+    );
+
+    let mut e = good.clone();
+    let modes = &mut e.iter_mut().find(|x| x.0 == codec::MODES).expect("modes").2;
+    let last = modes.len() - 1;
+    modes[last] ^= 0x01; // same size, one bit flipped in the last shape value
+    add(
+        "checksum_mismatch",
+        pack(&good_manifest, &e),
+        Some(("Checksum", "modes.bin")),
+    );
+
+    let mut e = good.clone();
+    let nodes = e
+        .iter()
+        .find(|x| x.0 == codec::NODES)
+        .expect("nodes")
+        .2
+        .clone();
+    set_entry(&mut e, codec::NODES, nodes[..nodes.len() - 5].to_vec());
+    add(
+        "size_mismatch_stale_manifest",
+        pack(&good_manifest, &e),
+        Some(("SizeMismatch", "nodes.bin")),
+    );
+    add(
+        "truncated_entry",
+        pack(&manifest(base, &e), &e),
+        Some(("Decode", "nodes.bin: cannot decode (record ends early")),
+    );
+
+    let mut m = good_manifest.clone();
+    m["version"] = json!({"major": 2, "minor": 0});
+    add(
+        "newer_major_version",
+        pack(&m, &good),
+        Some(("UnsupportedVersion", "format version 2.0 is newer")),
+    );
+
+    let mut e = good.clone();
+    e.push((
+        "future_thing.bin".into(),
+        false,
+        b"opaque bytes of a later minor version".to_vec(),
+    ));
+    let mut m = manifest(base, &e);
+    m["version"] = json!({"major": 1, "minor": 3});
+    add("newer_minor_unknown_optional", pack(&m, &e), None);
+
+    let mut e = good.clone();
+    e.push((
+        "future_thing.bin".into(),
+        true,
+        b"must be understood".to_vec(),
+    ));
+    add(
+        "unknown_required_entry",
+        pack(&manifest(base, &e), &e),
+        Some(("UnknownRequiredEntry", "future_thing.bin")),
+    );
+
+    let mut e = good.clone();
+    e.push(("stray.txt".into(), false, b"not listed".to_vec()));
+    add(
+        "unlisted_entry",
+        pack(&good_manifest, &e),
+        Some(("UnlistedEntry", "stray.txt")),
+    );
+
+    let e: Entries = good
+        .iter()
+        .filter(|x| x.0 != codec::METHOD)
+        .cloned()
+        .collect();
+    add(
+        "missing_required_entry",
+        pack(&manifest(base, &e), &e),
+        Some(("MissingEntry", "method.bin")),
+    );
+
+    let mut b = base.clone();
+    b.nodal_mass.pop();
+    add(
+        "count_mismatch_nodal_mass",
+        from_body(&b),
+        Some((
+            "CountMismatch",
+            "nodal_mass.bin: nodal masses has length 2, expected 3",
+        )),
+    );
+
+    let mut b = base.clone();
+    b.modes.shapes[6] = f64::NAN;
+    add(
+        "nan_in_shape",
+        from_body(&b),
+        Some(("NonFinite", "modes.bin: shapes[6] is not finite")),
+    );
+
+    let mut b = base.clone();
+    b.modes.omega2[2] = f64::INFINITY;
+    add(
+        "inf_in_eigenvalue",
+        from_body(&b),
+        Some(("NonFinite", "modes.bin: omega2[2]")),
+    );
+
+    let mut b = base.clone();
+    b.faces = vec![Face::Tri([0, 1, 7])];
+    add(
+        "face_index_out_of_range",
+        from_body(&b),
+        Some(("IndexOutOfRange", "faces.bin: faces[0][2] node index 7")),
+    );
+
+    let mut e = good.clone();
+    let mut nodes = e
+        .iter()
+        .find(|x| x.0 == codec::NODES)
+        .expect("nodes")
+        .2
+        .clone();
+    nodes[..8].copy_from_slice(&(1u64 << 60).to_le_bytes());
+    set_entry(&mut e, codec::NODES, nodes);
+    add(
+        "length_prefix_2_pow_60",
+        pack(&manifest(base, &e), &e),
+        Some(("Decode", "nodes.bin: cannot decode (record ends early")),
+    );
+
+    let mut e = good.clone();
+    let mut header = e
+        .iter()
+        .find(|x| x.0 == codec::HEADER)
+        .expect("header")
+        .2
+        .clone();
+    header[..8].copy_from_slice(&(1u64 << 40).to_le_bytes()); // title length: 1 TiB string
+    set_entry(&mut e, codec::HEADER, header);
+    add(
+        "string_length_2_pow_40",
+        pack(&manifest(base, &e), &e),
+        Some(("Decode", "header.bin: cannot decode")),
+    );
+
+    let mut m = good_manifest.clone();
+    m["entries"][4]["size"] = json!(1u64 << 40);
+    add(
+        "entry_size_over_limit",
+        pack(&m, &good),
+        Some((
+            "LimitExceeded",
+            "modes.bin: declared size (bytes) 1099511627776 exceeds the limit",
+        )),
+    );
+
+    let mut e = good.clone();
+    let mut header = e
+        .iter()
+        .find(|x| x.0 == codec::HEADER)
+        .expect("header")
+        .2
+        .clone();
+    header.extend_from_slice(&[0, 0, 0]);
+    set_entry(&mut e, codec::HEADER, header);
+    add(
+        "trailing_bytes",
+        pack(&manifest(base, &e), &e),
+        Some(("TrailingBytes", "header.bin: 3 trailing bytes")),
+    );
+
+    let mut e = good.clone();
+    let mut nodes = e
+        .iter()
+        .find(|x| x.0 == codec::NODES)
+        .expect("nodes")
+        .2
+        .clone();
+    nodes[8 + 32] = 2; // interface flag of node 0: bool must be 0 or 1
+    set_entry(&mut e, codec::NODES, nodes);
+    add(
+        "bad_bool_byte",
+        pack(&manifest(base, &e), &e),
+        Some(("Decode", "nodes.bin: cannot decode")),
+    );
+
+    let mut e = good.clone();
+    let mut faces = e
+        .iter()
+        .find(|x| x.0 == codec::FACES)
+        .expect("faces")
+        .2
+        .clone();
+    faces[8] = 7; // face tag 7: only 0 (Tri) and 1 (Quad) exist
+    set_entry(&mut e, codec::FACES, faces);
+    add(
+        "bad_enum_tag",
+        pack(&manifest(base, &e), &e),
+        Some(("Decode", "faces.bin: cannot decode")),
+    );
+
+    let mut b = base.clone();
+    b.modes.generalized_mass[1] = 0.5;
+    add(
+        "generalized_mass_not_symmetric",
+        from_body(&b),
+        Some((
+            "NotSymmetric",
+            "modes.bin: generalized_mass not symmetric at (0, 1)",
+        )),
+    );
+
+    let mut b = base.clone();
+    b.modes.frequency_hz[1] *= 1.01;
+    add(
+        "frequency_disagrees_with_omega2",
+        from_body(&b),
+        Some(("Inconsistent", "modes.bin: frequency_hz[1]")),
+    );
+
+    let mut b = base.clone();
+    b.invariants.mask[8] = false;
+    b.invariants.i9.clear();
+    add(
+        "invariant_mask_not_the_set",
+        from_body(&b),
+        Some(("Inconsistent", "invariants.bin: mask")),
+    );
+
+    let mut b = base.clone();
+    b.invariants.i5.pop();
+    add(
+        "invariant_wrong_length",
+        from_body(&b),
+        Some((
+            "CountMismatch",
+            "invariants.bin: i5 has length 26, expected 27",
+        )),
+    );
+
+    let mut m = good_manifest.clone();
+    let first = m["entries"][0].clone();
+    m["entries"].as_array_mut().expect("array").push(first);
+    add(
+        "duplicate_manifest_entry",
+        pack(&m, &good),
+        Some(("DuplicateEntry", "header.bin")),
+    );
+
+    let mut b = base.clone();
+    b.method.interface[0].frame[0][0] = 0.9;
+    add(
+        "interface_frame_not_orthonormal",
+        from_body(&b),
+        Some((
+            "Inconsistent",
+            "method.bin: interface[0].frame is not orthonormal",
+        )),
+    );
+    out
+}
