@@ -6,6 +6,7 @@
 pub mod abaqus;
 pub mod ccx_matrices;
 pub mod error;
+pub mod gmsh;
 pub mod nastran;
 pub(crate) mod text;
 
@@ -22,6 +23,8 @@ pub enum Format {
     Abaqus,
     /// Nastran bulk data (`.bdf`, `.nas`, `.dat`, `.blk`, `.bulk`).
     Nastran,
+    /// Gmsh 4.1 mesh, ASCII or binary (`.msh`).
+    Gmsh,
 }
 
 impl Format {
@@ -31,6 +34,7 @@ impl Format {
         match ext.as_str() {
             "inp" => Some(Format::Abaqus),
             "bdf" | "nas" | "dat" | "blk" | "bulk" => Some(Format::Nastran),
+            "msh" => Some(Format::Gmsh),
             _ => None,
         }
     }
@@ -40,6 +44,7 @@ impl Format {
         match name.to_ascii_lowercase().as_str() {
             "inp" | "abaqus" | "calculix" | "ccx" => Some(Format::Abaqus),
             "bdf" | "nastran" | "nas" => Some(Format::Nastran),
+            "msh" | "gmsh" => Some(Format::Gmsh),
             _ => None,
         }
     }
@@ -66,6 +71,7 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
     let mut model = match format {
         Format::Abaqus => abaqus::read(path)?,
         Format::Nastran => nastran::read(path)?,
+        Format::Gmsh => gmsh::read(path, None)?,
     };
     if let Some(m) = &opts.material {
         apply_default_material(&mut model, m);
