@@ -7,6 +7,7 @@ pub mod abaqus;
 pub mod ccx_matrices;
 pub mod error;
 pub mod gmsh;
+pub mod matrix_market;
 pub mod nastran;
 pub(crate) mod text;
 
