@@ -1,1 +1,3 @@
 //! Element matrices and sparse assembly of stiffness K and mass M.
+
+pub mod elements;

@@ -1,0 +1,3 @@
+//! Element formulations.
+
+pub mod planar_frame;
