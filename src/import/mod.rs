@@ -1,2 +1,102 @@
 //! FE model importers: Abaqus/CalculiX `.inp`, Nastran `.bdf`, Gmsh `.msh`, Matrix Market.
+//!
+//! [`read_model`] picks the reader from the file extension (or [`ImportOptions::format`]) and
+//! returns a resolved [`Model`]. Every failure is an [`ImportError`] naming file, line and entity.
+//! Readers never panic on bad input.
+pub mod abaqus;
 pub mod ccx_matrices;
+pub mod error;
+pub(crate) mod text;
+
+pub use error::ImportError;
+
+use std::path::Path;
+
+use crate::model::{Material, Model, Property, Section};
+
+/// Input formats with a model reader.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Abaqus / CalculiX input deck (`.inp`).
+    Abaqus,
+}
+
+impl Format {
+    /// Format from a file extension (case-insensitive): `inp`.
+    pub fn from_extension(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "inp" => Some(Format::Abaqus),
+            _ => None,
+        }
+    }
+
+    /// Format from a user-given name (`inp`/`abaqus`/`calculix`).
+    pub fn from_name(name: &str) -> Option<Format> {
+        match name.to_ascii_lowercase().as_str() {
+            "inp" | "abaqus" | "calculix" | "ccx" => Some(Format::Abaqus),
+            _ => None,
+        }
+    }
+}
+
+/// Options of [`read_model`].
+#[derive(Debug, Clone, Default)]
+pub struct ImportOptions {
+    /// Force a format instead of guessing from the extension.
+    pub format: Option<Format>,
+    /// Material for solid elements that have no section in the file (always the case for
+    /// `.msh`; also for a bare Abaqus mesh without *SOLID SECTION).
+    pub material: Option<Material>,
+}
+
+/// Read a model file in any supported format.
+pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportError> {
+    let format = opts
+        .format
+        .or_else(|| Format::from_extension(path))
+        .ok_or_else(|| ImportError::UnknownFormat {
+            file: path.display().to_string(),
+        })?;
+    let mut model = match format {
+        Format::Abaqus => abaqus::read(path)?,
+    };
+    if let Some(m) = &opts.material {
+        apply_default_material(&mut model, m);
+    }
+    Ok(model)
+}
+
+/// Give every solid element without a property a solid section of material `m`
+/// (added as a new material and property named `DEFAULT`). No-op if all elements have one.
+pub fn apply_default_material(model: &mut Model, m: &Material) {
+    let missing = model
+        .elements
+        .iter()
+        .any(|e| e.property.is_none() && e.kind.is_solid());
+    if !missing {
+        return;
+    }
+    model.materials.push(Material {
+        name: if m.name.is_empty() {
+            "DEFAULT".into()
+        } else {
+            m.name.clone()
+        },
+        ..m.clone()
+    });
+    let mat = model.materials.len() - 1;
+    let pid = model.properties.iter().map(|p| p.id).max().unwrap_or(0) + 1;
+    model.properties.push(Property {
+        id: pid,
+        name: "DEFAULT".into(),
+        material: mat,
+        section: Section::Solid,
+    });
+    let prop = model.properties.len() - 1;
+    for e in &mut model.elements {
+        if e.property.is_none() && e.kind.is_solid() {
+            e.property = Some(prop);
+        }
+    }
+}

@@ -13,6 +13,9 @@
 
 use std::collections::BTreeMap;
 
+pub mod generate;
+pub mod section;
+
 /// Dense 0-based index of a node in [`Model::nodes`].
 pub type NodeIndex = usize;
 
@@ -233,6 +236,25 @@ pub struct Material {
     pub g: f64,
     /// Mass density ρ (already multiplied by any mass-unit factor such as Nastran WTMASS).
     pub rho: f64,
+}
+
+impl Material {
+    /// Isotropic material with G = E / (2(1 + ν)).
+    pub fn isotropic(id: u64, name: &str, e: f64, nu: f64, rho: f64) -> Material {
+        Material {
+            id,
+            name: name.to_owned(),
+            e,
+            nu,
+            g: e / (2.0 * (1.0 + nu)),
+            rho,
+        }
+    }
+
+    /// Structural steel in SI units (E = 210 GPa, ν = 0.3, ρ = 7850 kg/m³), as in the reference cases.
+    pub fn steel() -> Material {
+        Material::isotropic(1, "STEEL", 210e9, 0.3, 7850.0)
+    }
 }
 
 /// A set of the six nodal dofs `[ux uy uz rx ry rz]`; bit k = dof k+1 (Nastran digit k+1).

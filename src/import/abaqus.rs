@@ -1,0 +1,989 @@
+//! Abaqus / CalculiX `.inp` reader → [`Model`].
+//!
+//! Reads the whole file (and every `*INCLUDE`) once, line by line without per-line allocation
+//! for data lines, into raw records keyed by external ids; one resolve pass then builds the
+//! dense model. Keywords are case-insensitive; `**` starts a comment; a keyword line ending in a
+//! comma continues on the next line; element data continue on following lines until the
+//! element's node count is reached.
+//!
+//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8(R/I), C3D20(R), C3D6, C3D15, B31, T3D2, S3, S4,
+//! S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE), *MATERIAL, *ELASTIC, *DENSITY,
+//! *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY, *MASS, *ROTARY INERTIA, *RIGID BODY,
+//! *SURFACE (TYPE=NODE), *COUPLING + *KINEMATIC / *DISTRIBUTING, *INCLUDE. Other keywords
+//! (steps, outputs, …) are skipped with one warning per keyword and its count.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+
+use super::error::ImportError;
+use super::text::{parse_f64, parse_u64, read_text, Builder, Loc};
+use crate::model::{
+    DofMask, ElementKind, ImportWarning, Material, Model, PointMass, Property, RigidElement,
+    Section, SectionShape, Spc,
+};
+
+/// Read an Abaqus/CalculiX input deck (following `*INCLUDE`s) into a [`Model`].
+pub fn read(path: &Path) -> Result<Model, ImportError> {
+    let mut p = Parser::new(&path.display().to_string());
+    p.read_file(path, 0, 0)?;
+    p.finish()
+}
+
+/// Node reference: a node id or a node-set name.
+#[derive(Debug, Clone)]
+enum Target {
+    Node(u64),
+    Set(String),
+}
+
+#[derive(Debug)]
+struct RawMaterial {
+    name: String,
+    e: Option<(f64, f64)>,
+    rho: Option<f64>,
+    loc: Loc,
+}
+
+#[derive(Debug)]
+struct RawSection {
+    elset: String,
+    material: String,
+    section: Section,
+    orientation: Option<[f64; 3]>,
+    loc: Loc,
+}
+
+#[derive(Debug)]
+enum CouplingKind {
+    Kinematic(DofMask),
+    Distributing(DofMask),
+}
+
+#[derive(Debug)]
+struct RawCoupling {
+    reference: Target,
+    surface: String,
+    kind: Option<CouplingKind>,
+    loc: Loc,
+}
+
+/// What the data lines after the current keyword mean.
+#[derive(Debug)]
+enum Block {
+    Skip,
+    Node(Option<String>),
+    Element {
+        kind: Option<ElementKind>,
+        card: &'static str,
+        elset: Option<String>,
+    },
+    Set {
+        node: bool,
+        name: String,
+        generate: bool,
+    },
+    Elastic,
+    Density,
+    SectionLine(usize, usize),
+    Boundary,
+    Mass(String),
+    RotaryInertia(String),
+    Surface(String),
+    Coupling(usize),
+}
+
+struct Parser {
+    b: Builder,
+    block: Block,
+    /// Element data split over lines: (entity line loc, values so far).
+    pending: Option<(Loc, Vec<u64>)>,
+    nsets: HashMap<String, Vec<(u64, Loc)>>,
+    elsets: HashMap<String, Vec<(u64, Loc)>>,
+    materials: Vec<RawMaterial>,
+    sections: Vec<RawSection>,
+    boundaries: Vec<(Target, DofMask, Loc)>,
+    /// MASS / ROTARYI elements: id → (node id, loc).
+    mass_elems: HashMap<u64, (u64, Loc)>,
+    masses: Vec<(String, f64, Loc)>,
+    rotary: Vec<(String, [f64; 6], Loc)>,
+    rigid: Vec<(Target, String, Loc)>,
+    surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
+    couplings: Vec<RawCoupling>,
+    skipped: BTreeMap<String, usize>,
+}
+
+fn upper_norm(s: &str) -> String {
+    s.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_ascii_uppercase()
+}
+
+/// Split a keyword line into (KEYWORD, [(KEY, value)]).
+fn keyword(line: &str) -> (String, Vec<(String, String)>) {
+    let mut it = line[1..].split(',');
+    let name = upper_norm(it.next().unwrap_or(""));
+    let params = it
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| match s.split_once('=') {
+            Some((k, v)) => (upper_norm(k), v.trim().to_owned()),
+            None => (upper_norm(s), String::new()),
+        })
+        .collect();
+    (name, params)
+}
+
+fn param<'a>(params: &'a [(String, String)], key: &str) -> Option<&'a str> {
+    params
+        .iter()
+        .find(|(k, _)| k == key)
+        .map(|(_, v)| v.as_str())
+}
+
+/// Data-line fields, trailing empty field (line ending in a comma) dropped.
+fn fields(line: &str) -> impl Iterator<Item = &str> {
+    let line = line.trim_end();
+    let line = line.strip_suffix(',').unwrap_or(line);
+    line.split(',').map(str::trim)
+}
+
+fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str)> {
+    use ElementKind::*;
+    Some(match t {
+        "C3D4" => (Some(Tet4), "C3D4"),
+        "C3D10" | "C3D10M" => (Some(Tet10), "C3D10"),
+        "C3D8" | "C3D8R" | "C3D8I" => (Some(Hex8), "C3D8"),
+        "C3D20" => (Some(Hex20), "C3D20"),
+        "C3D20R" => (Some(Hex20R), "C3D20R"),
+        "C3D6" => (Some(Prism6), "C3D6"),
+        "C3D15" => (Some(Prism15), "C3D15"),
+        "B31" | "B31R" => (Some(Beam2), "B31"),
+        "T3D2" => (Some(Rod2), "T3D2"),
+        "S3" | "S3R" => (Some(Tri3), "S3"),
+        "S4" | "S4R" => (Some(Quad4), "S4"),
+        "S6" => (Some(Tri6), "S6"),
+        "S8" | "S8R" => (Some(Quad8), "S8"),
+        "MASS" => (None, "MASS"),
+        "ROTARYI" => (None, "ROTARYI"),
+        _ => return None,
+    })
+}
+
+impl Parser {
+    fn new(file: &str) -> Parser {
+        Parser {
+            b: Builder::new(file),
+            block: Block::Skip,
+            pending: None,
+            nsets: HashMap::new(),
+            elsets: HashMap::new(),
+            materials: Vec::new(),
+            sections: Vec::new(),
+            boundaries: Vec::new(),
+            mass_elems: HashMap::new(),
+            masses: Vec::new(),
+            rotary: Vec::new(),
+            rigid: Vec::new(),
+            surfaces: HashMap::new(),
+            couplings: Vec::new(),
+            skipped: BTreeMap::new(),
+        }
+    }
+
+    fn err(&self, loc: Loc, entity: impl Into<String>, msg: impl Into<String>) -> ImportError {
+        self.b.err(loc, entity, msg)
+    }
+
+    fn read_file(&mut self, path: &Path, file: u32, depth: usize) -> Result<(), ImportError> {
+        let text = read_text(path)?;
+        let mut lines = text.split('\n').enumerate().peekable();
+        while let Some((i, raw)) = lines.next() {
+            let loc = Loc {
+                file,
+                line: i as u32 + 1,
+            };
+            let line = raw.strip_suffix('\r').unwrap_or(raw);
+            let t = line.trim_start();
+            if t.is_empty() || t.starts_with("**") {
+                continue;
+            }
+            if t.starts_with('*') {
+                self.check_pending()?;
+                let mut kw = t.trim_end().to_owned();
+                while kw.ends_with(',') {
+                    match lines.peek() {
+                        Some((_, next)) if !next.trim_start().starts_with('*') => {
+                            kw.push_str(next.trim_end_matches('\r'));
+                            lines.next();
+                        }
+                        _ => break,
+                    }
+                }
+                let (name, params) = keyword(&kw);
+                if name == "INCLUDE" {
+                    let Some(inc) = param(&params, "INPUT") else {
+                        return Err(self.err(loc, "*INCLUDE", "missing INPUT="));
+                    };
+                    let inc = inc.trim_matches('"');
+                    let dir = path.parent().unwrap_or(Path::new("."));
+                    let full: PathBuf = dir.join(inc);
+                    if depth >= 16 {
+                        return Err(self.err(
+                            loc,
+                            "*INCLUDE",
+                            "includes nested deeper than 16 (cycle?)",
+                        ));
+                    }
+                    self.b.files.push(full.display().to_string());
+                    let idx = self.b.files.len() as u32 - 1;
+                    self.block = Block::Skip;
+                    self.read_file(&full, idx, depth + 1).map_err(|e| match e {
+                        ImportError::Io { file, source } => {
+                            self.err(loc, "*INCLUDE", format!("cannot read {file}: {source}"))
+                        }
+                        e => e,
+                    })?;
+                    continue;
+                }
+                self.block = self.start_keyword(&name, &params, loc)?;
+            } else {
+                self.data_line(line, loc)?;
+            }
+        }
+        self.check_pending()
+    }
+
+    fn check_pending(&mut self) -> Result<(), ImportError> {
+        if let Some((loc, vals)) = self.pending.take() {
+            let id = vals.first().copied().unwrap_or(0);
+            return Err(self.err(
+                loc,
+                format!("*ELEMENT {id}"),
+                "element data end before all nodes are given (missing continuation line)",
+            ));
+        }
+        Ok(())
+    }
+
+    fn start_keyword(
+        &mut self,
+        name: &str,
+        params: &[(String, String)],
+        loc: Loc,
+    ) -> Result<Block, ImportError> {
+        let need = |key: &str| -> Result<String, ImportError> {
+            param(params, key)
+                .filter(|v| !v.is_empty())
+                .map(|v| v.to_ascii_uppercase())
+                .ok_or_else(|| self.err(loc, format!("*{name}"), format!("missing {key}=")))
+        };
+        Ok(match name {
+            "NODE" => Block::Node(param(params, "NSET").map(|s| s.to_ascii_uppercase())),
+            "ELEMENT" => {
+                let t = need("TYPE")?;
+                let Some((kind, card)) = element_kind(&t) else {
+                    return Err(self.err(loc, "*ELEMENT", format!("unsupported element type {t}")));
+                };
+                Block::Element {
+                    kind,
+                    card,
+                    elset: param(params, "ELSET").map(|s| s.to_ascii_uppercase()),
+                }
+            }
+            "NSET" | "ELSET" => {
+                let node = name == "NSET";
+                let name = need(if node { "NSET" } else { "ELSET" })?;
+                let map = if node {
+                    &mut self.nsets
+                } else {
+                    &mut self.elsets
+                };
+                map.entry(name.clone()).or_default();
+                Block::Set {
+                    node,
+                    name,
+                    generate: params.iter().any(|(k, _)| k == "GENERATE"),
+                }
+            }
+            "MATERIAL" => {
+                self.materials.push(RawMaterial {
+                    name: need("NAME")?,
+                    e: None,
+                    rho: None,
+                    loc,
+                });
+                Block::Skip
+            }
+            "ELASTIC" | "DENSITY" => {
+                if self.materials.is_empty() {
+                    return Err(self.err(loc, format!("*{name}"), "outside a *MATERIAL"));
+                }
+                if let Some(t) = param(params, "TYPE") {
+                    if !t.eq_ignore_ascii_case("ISO") {
+                        return Err(self.err(
+                            loc,
+                            "*ELASTIC",
+                            format!("TYPE={t} not supported (isotropic only)"),
+                        ));
+                    }
+                }
+                if name == "ELASTIC" {
+                    Block::Elastic
+                } else {
+                    Block::Density
+                }
+            }
+            "SOLID SECTION" | "BEAM SECTION" | "SHELL SECTION" => {
+                let elset = need("ELSET")?;
+                let material = need("MATERIAL")?;
+                let section = match name {
+                    "SOLID SECTION" => Section::Solid,
+                    "SHELL SECTION" => Section::Shell { thickness: 0.0 },
+                    _ => {
+                        let s = need("SECTION")?;
+                        Section::Beam(crate::model::BeamSection {
+                            area: 0.0,
+                            i1: 0.0,
+                            i2: 0.0,
+                            i12: 0.0,
+                            j: 0.0,
+                            shear_factors: None,
+                            nsm: 0.0,
+                            shape: Some(SectionShape::Other {
+                                name: s,
+                                dims: vec![],
+                            }),
+                        })
+                    }
+                };
+                self.sections.push(RawSection {
+                    elset,
+                    material,
+                    section,
+                    orientation: None,
+                    loc,
+                });
+                Block::SectionLine(self.sections.len() - 1, 0)
+            }
+            "BOUNDARY" => {
+                if param(params, "OP").is_some_and(|v| v.eq_ignore_ascii_case("NEW")) {
+                    self.boundaries.clear();
+                }
+                Block::Boundary
+            }
+            "MASS" => Block::Mass(need("ELSET")?),
+            "ROTARY INERTIA" => Block::RotaryInertia(need("ELSET")?),
+            "RIGID BODY" => {
+                let nset = need("NSET")?;
+                let r = need("REF NODE")?;
+                self.rigid.push((target(&r), nset, loc));
+                Block::Skip
+            }
+            "SURFACE" => {
+                let t = param(params, "TYPE").unwrap_or("ELEMENT");
+                if !t.eq_ignore_ascii_case("NODE") {
+                    return self.skip(name, params);
+                }
+                let n = need("NAME")?;
+                self.surfaces.entry(n.clone()).or_default();
+                Block::Surface(n)
+            }
+            "COUPLING" => {
+                let r = need("REF NODE")?;
+                let s = need("SURFACE")?;
+                self.couplings.push(RawCoupling {
+                    reference: target(&r),
+                    surface: s,
+                    kind: None,
+                    loc,
+                });
+                Block::Skip
+            }
+            "KINEMATIC" | "DISTRIBUTING" => {
+                if self.couplings.is_empty() {
+                    return Err(self.err(loc, format!("*{name}"), "not after a *COUPLING"));
+                }
+                let k = self.couplings.len() - 1;
+                let c = &mut self.couplings[k];
+                c.kind = Some(if name == "KINEMATIC" {
+                    CouplingKind::Kinematic(DofMask(0))
+                } else {
+                    CouplingKind::Distributing(DofMask(0))
+                });
+                Block::Coupling(k)
+            }
+            _ => return self.skip(name, params),
+        })
+    }
+
+    fn skip(&mut self, name: &str, _params: &[(String, String)]) -> Result<Block, ImportError> {
+        *self.skipped.entry(name.to_owned()).or_default() += 1;
+        Ok(Block::Skip)
+    }
+
+    fn data_line(&mut self, line: &str, loc: Loc) -> Result<(), ImportError> {
+        let num = |s: &str, ent: &str, p: &Parser| -> Result<f64, ImportError> {
+            parse_f64(s).ok_or_else(|| p.err(loc, ent.to_owned(), format!("bad number '{s}'")))
+        };
+        match &self.block {
+            Block::Skip => {}
+            Block::Node(nset) => {
+                let mut f = fields(line);
+                let s = f.next().unwrap_or("");
+                let id = parse_u64(s)
+                    .ok_or_else(|| self.err(loc, "*NODE", format!("bad node id '{s}'")))?;
+                let ent = format!("*NODE {id}");
+                let mut x = [0.0; 3];
+                for (k, s) in f.enumerate() {
+                    if k < 3 && !s.is_empty() {
+                        x[k] = num(s, &ent, self)?;
+                    }
+                }
+                if let Some(n) = nset {
+                    let n = n.clone();
+                    self.nsets.entry(n).or_default().push((id, loc));
+                }
+                self.b.add_node(id, x, loc);
+            }
+            Block::Element { kind, card, elset } => {
+                let (kind, card, elset) = (*kind, *card, elset.clone());
+                let (start, mut vals) = self.pending.take().unwrap_or((loc, Vec::new()));
+                for s in fields(line) {
+                    let id = vals.first().copied();
+                    let v = parse_u64(s).ok_or_else(|| {
+                        let ent = id.map_or("*ELEMENT".to_owned(), |id| format!("*ELEMENT {id}"));
+                        self.err(loc, ent, format!("bad node id '{s}'"))
+                    })?;
+                    vals.push(v);
+                }
+                let nn = kind.map_or(1, ElementKind::node_count);
+                if vals.len() < nn + 1 {
+                    self.pending = Some((start, vals));
+                    return Ok(());
+                }
+                if vals.len() > nn + 1 {
+                    return Err(self.err(
+                        start,
+                        format!("*ELEMENT {}", vals[0]),
+                        format!("{card} takes {nn} nodes, got {}", vals.len() - 1),
+                    ));
+                }
+                let id = vals[0];
+                if let Some(e) = elset {
+                    self.elsets.entry(e).or_default().push((id, start));
+                }
+                match kind {
+                    Some(kind) => {
+                        let nodes = vals[1..].iter().map(|&v| v as usize).collect();
+                        self.b.add_element(id, kind, nodes, None, card, start);
+                    }
+                    None => {
+                        if self.mass_elems.insert(id, (vals[1], start)).is_some() {
+                            return Err(self.err(
+                                start,
+                                format!("*ELEMENT {id}"),
+                                "duplicate element id",
+                            ));
+                        }
+                    }
+                }
+            }
+            Block::Set {
+                node,
+                name,
+                generate,
+            } => {
+                let (node, name, generate) = (*node, name.clone(), *generate);
+                let kw = if node { "*NSET" } else { "*ELSET" };
+                let ent = format!("{kw} {name}");
+                let mut add: Vec<(u64, Loc)> = Vec::new();
+                if generate {
+                    let v: Vec<&str> = fields(line).collect();
+                    let g: Option<Vec<u64>> = v.iter().map(|s| parse_u64(s)).collect();
+                    match g.as_deref() {
+                        Some([a, b]) | Some([a, b, 1]) if a <= b => {
+                            add.extend((*a..=*b).map(|i| (i, loc)))
+                        }
+                        Some([a, b, s]) if a <= b && *s > 0 => {
+                            add.extend((*a..=*b).step_by(*s as usize).map(|i| (i, loc)))
+                        }
+                        _ => {
+                            return Err(self.err(
+                                loc,
+                                ent,
+                                format!("bad GENERATE line '{}'", line.trim()),
+                            ))
+                        }
+                    }
+                } else {
+                    let map = if node { &self.nsets } else { &self.elsets };
+                    for s in fields(line).filter(|s| !s.is_empty()) {
+                        if let Some(id) = parse_u64(s) {
+                            add.push((id, loc));
+                        } else if let Some(members) = map.get(&s.to_ascii_uppercase()) {
+                            add.extend_from_slice(members);
+                        } else {
+                            return Err(self.err(
+                                loc,
+                                ent,
+                                format!("'{s}' is neither an id nor a defined set"),
+                            ));
+                        }
+                    }
+                }
+                let map = if node {
+                    &mut self.nsets
+                } else {
+                    &mut self.elsets
+                };
+                map.entry(name).or_default().extend(add);
+            }
+            Block::Elastic | Block::Density => {
+                let elastic = matches!(self.block, Block::Elastic);
+                let k = self.materials.len() - 1;
+                let ent = format!("*MATERIAL {}", self.materials[k].name);
+                let v: Vec<&str> = fields(line).collect();
+                if elastic {
+                    if v.len() < 2 {
+                        return Err(self.err(loc, ent, "*ELASTIC needs E, nu"));
+                    }
+                    let e = num(v[0], &ent, self)?;
+                    let nu = num(v[1], &ent, self)?;
+                    self.materials[k].e = Some((e, nu));
+                } else {
+                    let rho = num(v[0], &ent, self)?;
+                    self.materials[k].rho = Some(rho);
+                }
+                self.block = Block::Skip;
+            }
+            Block::SectionLine(k, n) => {
+                let (k, n) = (*k, *n);
+                let ent = format!("*SECTION ELSET={}", self.sections[k].elset);
+                let v: Vec<f64> = fields(line)
+                    .filter(|s| !s.is_empty())
+                    .map(|s| num(s, &ent, self))
+                    .collect::<Result<_, _>>()?;
+                self.block = Block::SectionLine(k, n + 1);
+                let sec = &mut self.sections[k];
+                match &mut sec.section {
+                    Section::Solid => {}
+                    Section::Shell { thickness } if n == 0 => {
+                        *thickness = *v
+                            .first()
+                            .ok_or_else(|| self.b.err(loc, ent.clone(), "missing thickness"))?
+                    }
+                    Section::Beam(bs) if n == 0 => {
+                        let Some(SectionShape::Other { name, .. }) = &bs.shape else {
+                            return Ok(());
+                        };
+                        let shape = abaqus_shape(name, &v).ok_or_else(|| {
+                            self.b.err(
+                                loc,
+                                ent.clone(),
+                                format!("SECTION={name} with {} dimensions not supported", v.len()),
+                            )
+                        })?;
+                        let mut s = shape
+                            .to_section()
+                            .ok_or_else(|| self.b.err(loc, ent.clone(), "unsupported shape"))?;
+                        s.nsm = 0.0;
+                        *bs = s;
+                    }
+                    Section::Beam(_) if n == 1 && v.len() >= 3 => {
+                        sec.orientation = Some([v[0], v[1], v[2]])
+                    }
+                    _ => {}
+                }
+            }
+            Block::Boundary => {
+                let v: Vec<&str> = fields(line).collect();
+                let ent = format!("*BOUNDARY {}", v[0]);
+                let first = v.get(1).and_then(|s| parse_u64(s));
+                let last = match v.get(2) {
+                    Some(s) if !s.is_empty() => parse_u64(s),
+                    _ => first,
+                };
+                let mask = match (first, last) {
+                    (Some(a), Some(b)) if a <= 6 && b <= 6 => DofMask::from_range(a as u8, b as u8),
+                    _ => None,
+                };
+                let Some(mask) = mask else {
+                    return Err(self.err(loc, ent, format!("bad dof range in '{}'", line.trim())));
+                };
+                if let Some(val) = v.get(3).filter(|s| !s.is_empty()) {
+                    if num(val, &ent, self)? != 0.0 {
+                        return Err(self.err(
+                            loc,
+                            ent,
+                            "non-zero prescribed displacement not supported",
+                        ));
+                    }
+                }
+                self.boundaries.push((target(v[0]), mask, loc));
+            }
+            Block::Mass(set) | Block::RotaryInertia(set) => {
+                let set = set.clone();
+                let ent = format!("*MASS ELSET={set}");
+                let v: Vec<f64> = fields(line)
+                    .filter(|s| !s.is_empty())
+                    .map(|s| num(s, &ent, self))
+                    .collect::<Result<_, _>>()?;
+                if matches!(self.block, Block::Mass(_)) {
+                    self.masses
+                        .push((set, v.first().copied().unwrap_or(0.0), loc));
+                } else {
+                    let mut r = [0.0; 6];
+                    for (k, x) in v.iter().take(6).enumerate() {
+                        r[k] = *x;
+                    }
+                    self.rotary.push((set, r, loc));
+                }
+                self.block = Block::Skip;
+            }
+            Block::Surface(name) => {
+                let name = name.clone();
+                let v: Vec<&str> = fields(line).collect();
+                let w = match v.get(1).filter(|s| !s.is_empty()) {
+                    Some(s) => num(s, &format!("*SURFACE {name}"), self)?,
+                    None => 1.0,
+                };
+                self.surfaces
+                    .entry(name)
+                    .or_default()
+                    .push((target(v[0]), w, loc));
+            }
+            Block::Coupling(k) => {
+                let k = *k;
+                let v: Vec<&str> = fields(line).collect();
+                let a = parse_u64(v[0]);
+                let b = v.get(1).and_then(|s| parse_u64(s)).or(a);
+                let m = match (a, b) {
+                    (Some(a), Some(b)) if a <= 6 && b <= 6 => DofMask::from_range(a as u8, b as u8),
+                    _ => None,
+                }
+                .ok_or_else(|| {
+                    self.err(loc, "*COUPLING", format!("bad dof range '{}'", line.trim()))
+                })?;
+                match &mut self.couplings[k].kind {
+                    Some(CouplingKind::Kinematic(d)) | Some(CouplingKind::Distributing(d)) => {
+                        *d = d.union(m)
+                    }
+                    None => {}
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(mut self) -> Result<Model, ImportError> {
+        let nodes = self.b.node_map("*NODE")?;
+        self.b.resolve_element_nodes(&nodes)?;
+        let elems = self.b.element_map()?;
+        for (id, (node, loc)) in &self.mass_elems {
+            if elems.get(*id).is_some() {
+                return Err(self.err(*loc, format!("*ELEMENT {id}"), "duplicate element id"));
+            }
+            if nodes.get(*node).is_none() {
+                return Err(self.err(
+                    *loc,
+                    format!("*ELEMENT {id}"),
+                    format!("references unknown node {node}"),
+                ));
+            }
+        }
+        // Node sets.
+        let mut node_sets = BTreeMap::new();
+        for (name, members) in &self.nsets {
+            let mut idx = Vec::with_capacity(members.len());
+            for &(id, loc) in members {
+                idx.push(nodes.get(id).ok_or_else(|| {
+                    self.err(loc, format!("*NSET {name}"), format!("unknown node {id}"))
+                })?);
+            }
+            idx.sort_unstable();
+            idx.dedup();
+            node_sets.insert(name.clone(), idx);
+        }
+        // Element sets (mass elements are not in `Model::elements` and are left out).
+        let mut element_sets = BTreeMap::new();
+        for (name, members) in &self.elsets {
+            let mut idx = Vec::with_capacity(members.len());
+            for &(id, loc) in members {
+                match elems.get(id) {
+                    Some(i) => idx.push(i),
+                    None if self.mass_elems.contains_key(&id) => {}
+                    None => {
+                        return Err(self.err(
+                            loc,
+                            format!("*ELSET {name}"),
+                            format!("unknown element {id}"),
+                        ))
+                    }
+                }
+            }
+            idx.sort_unstable();
+            idx.dedup();
+            element_sets.insert(name.clone(), idx);
+        }
+        // Materials.
+        let mut mat_index = HashMap::new();
+        for (k, m) in self.materials.iter().enumerate() {
+            let ent = format!("*MATERIAL {}", m.name);
+            let (e, nu) =
+                m.e.ok_or_else(|| self.err(m.loc, ent.clone(), "no *ELASTIC given"))?;
+            if mat_index.insert(m.name.clone(), k).is_some() {
+                return Err(self.err(m.loc, ent, "duplicate material name"));
+            }
+            if m.rho.is_none() {
+                self.b.model.warnings.push(ImportWarning {
+                    file: self.b.file_name(m.loc).to_owned(),
+                    message: format!("material {} has no *DENSITY: density 0", m.name),
+                });
+            }
+            self.b.model.materials.push(Material {
+                id: k as u64 + 1,
+                name: m.name.clone(),
+                e,
+                nu,
+                g: e / (2.0 * (1.0 + nu)),
+                rho: m.rho.unwrap_or(0.0),
+            });
+        }
+        // Sections → properties, assigned to the elements of their set.
+        for (k, s) in self.sections.iter().enumerate() {
+            let ent = format!("*SECTION ELSET={}", s.elset);
+            let material = *mat_index.get(&s.material).ok_or_else(|| {
+                self.err(
+                    s.loc,
+                    ent.clone(),
+                    format!("unknown material {}", s.material),
+                )
+            })?;
+            let members = element_sets.get(&s.elset).ok_or_else(|| {
+                self.err(
+                    s.loc,
+                    ent.clone(),
+                    format!("unknown element set {}", s.elset),
+                )
+            })?;
+            if let Section::Beam(b) = &s.section {
+                if matches!(b.shape, Some(SectionShape::Other { .. })) {
+                    return Err(self.err(s.loc, ent, "missing section dimensions line"));
+                }
+            }
+            self.b.model.properties.push(Property {
+                id: k as u64 + 1,
+                name: s.elset.clone(),
+                material,
+                section: s.section.clone(),
+            });
+            for &e in members {
+                let el = &self.b.model.elements[e];
+                if el.property.is_some() {
+                    return Err(self.err(
+                        s.loc,
+                        ent,
+                        format!("element {} already has a section", el.id),
+                    ));
+                }
+                let el = &mut self.b.model.elements[e];
+                el.property = Some(k);
+                el.orientation = s.orientation;
+            }
+        }
+        let resolve_target =
+            |t: &Target, loc: Loc, ent: &str, p: &Parser| -> Result<Vec<usize>, ImportError> {
+                match t {
+                    Target::Node(id) => nodes
+                        .get(*id)
+                        .map(|i| vec![i])
+                        .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node {id}"))),
+                    Target::Set(s) => node_sets
+                        .get(s)
+                        .cloned()
+                        .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node set {s}"))),
+                }
+            };
+        for (t, dofs, loc) in &self.boundaries {
+            for node in resolve_target(t, *loc, "*BOUNDARY", &self)? {
+                self.b.model.spcs.push(Spc {
+                    node,
+                    dofs: *dofs,
+                    set_id: 0,
+                });
+            }
+        }
+        // Point masses from MASS / ROTARYI elements.
+        let mut pm: BTreeMap<u64, PointMass> = BTreeMap::new();
+        let set_mass_elems =
+            |set: &str, loc: Loc, p: &Parser| -> Result<Vec<(u64, usize)>, ImportError> {
+                let m = p.elsets.get(set).ok_or_else(|| {
+                    p.err(loc, format!("*MASS ELSET={set}"), "unknown element set")
+                })?;
+                Ok(m.iter()
+                    .filter_map(|(id, _)| {
+                        p.mass_elems
+                            .get(id)
+                            .and_then(|(n, _)| nodes.get(*n))
+                            .map(|n| (*id, n))
+                    })
+                    .collect())
+            };
+        for (set, mass, loc) in &self.masses {
+            for (id, node) in set_mass_elems(set, *loc, &self)? {
+                pm.entry(id).or_insert_with(|| empty_mass(id, node)).mass = *mass;
+            }
+        }
+        for (set, r, loc) in &self.rotary {
+            for (id, node) in set_mass_elems(set, *loc, &self)? {
+                let p = pm.entry(id).or_insert_with(|| empty_mass(id, node));
+                // Abaqus order I11, I22, I33, I12, I13, I23 (I_ij = −∫ x_i x_j dm for i ≠ j).
+                p.inertia = [[r[0], r[3], r[4]], [r[3], r[1], r[5]], [r[4], r[5], r[2]]];
+            }
+        }
+        self.b.model.point_masses = pm.into_values().collect();
+        // Rigid bodies and couplings.
+        let mut rid = 0u64;
+        for (r, nset, loc) in &self.rigid {
+            let ind = single(
+                resolve_target(r, *loc, "*RIGID BODY", &self)?,
+                *loc,
+                "*RIGID BODY",
+                &self,
+            )?;
+            let dep = resolve_target(&Target::Set(nset.clone()), *loc, "*RIGID BODY", &self)?;
+            rid += 1;
+            self.b.model.rigid_elements.push(RigidElement::Rbe2 {
+                id: rid,
+                independent: ind,
+                dependent: dep.into_iter().filter(|&n| n != ind).collect(),
+                dofs: DofMask::ALL,
+            });
+        }
+        for c in &self.couplings {
+            let ent = format!("*COUPLING SURFACE={}", c.surface);
+            let reference = single(
+                resolve_target(&c.reference, c.loc, &ent, &self)?,
+                c.loc,
+                &ent,
+                &self,
+            )?;
+            let surf = self
+                .surfaces
+                .get(&c.surface)
+                .ok_or_else(|| self.err(c.loc, ent.clone(), "unknown node surface"))?;
+            let mut members = Vec::new();
+            for (t, w, loc) in surf {
+                for n in resolve_target(t, *loc, &ent, &self)? {
+                    members.push((n, *w));
+                }
+            }
+            rid += 1;
+            let rigid = match c.kind {
+                Some(CouplingKind::Kinematic(d)) => RigidElement::Rbe2 {
+                    id: rid,
+                    independent: reference,
+                    dependent: members
+                        .iter()
+                        .map(|m| m.0)
+                        .filter(|&n| n != reference)
+                        .collect(),
+                    dofs: if d.0 == 0 { DofMask::ALL } else { d },
+                },
+                Some(CouplingKind::Distributing(d)) => RigidElement::Rbe3 {
+                    id: rid,
+                    reference,
+                    ref_dofs: if d.0 == 0 { DofMask::ALL } else { d },
+                    independent: members
+                        .iter()
+                        .map(|&(n, w)| (n, w, DofMask::TRANSLATIONS))
+                        .collect(),
+                },
+                None => return Err(self.err(c.loc, ent, "no *KINEMATIC or *DISTRIBUTING follows")),
+            };
+            self.b.model.rigid_elements.push(rigid);
+        }
+        for (name, count) in &self.skipped {
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!("keyword *{name} ignored ({count}×)"),
+            });
+        }
+        self.b.model.node_sets = node_sets;
+        self.b.model.element_sets = element_sets;
+        Ok(self.b.model)
+    }
+}
+
+fn target(s: &str) -> Target {
+    match parse_u64(s) {
+        Some(id) => Target::Node(id),
+        None => Target::Set(s.trim().to_ascii_uppercase()),
+    }
+}
+
+fn single(v: Vec<usize>, loc: Loc, ent: &str, p: &Parser) -> Result<usize, ImportError> {
+    match v.as_slice() {
+        [n] => Ok(*n),
+        _ => Err(p.err(
+            loc,
+            ent.to_owned(),
+            format!("reference node set must hold one node, has {}", v.len()),
+        )),
+    }
+}
+
+fn empty_mass(id: u64, node: usize) -> PointMass {
+    PointMass {
+        id,
+        node,
+        mass: 0.0,
+        offset: [0.0; 3],
+        inertia: [[0.0; 3]; 3],
+    }
+}
+
+/// Abaqus *BEAM SECTION shapes (Abaqus Analysis User's Guide, "Beam cross-section library").
+fn abaqus_shape(name: &str, v: &[f64]) -> Option<SectionShape> {
+    Some(match (name, v) {
+        ("CIRC", [r, ..]) => SectionShape::Circle { radius: *r },
+        ("PIPE", [r, t, ..]) => SectionShape::Tube {
+            outer_radius: *r,
+            inner_radius: r - t,
+        },
+        ("RECT", [a, b, ..]) => SectionShape::Rectangle {
+            width: *a,
+            height: *b,
+        },
+        // BOX: a (width, 1-dir), b (height, 2-dir), t1..t4; uniform walls assumed (t1 = t3, t2 = t4).
+        ("BOX", [a, b, t1, t2, ..]) => SectionShape::Box {
+            width: *a,
+            height: *b,
+            t_web: *t2,
+            t_flange: *t1,
+        },
+        // I: l (centroid offset, ignored), h, b1 (bottom), b2 (top), t1, t2, t3 (web).
+        ("I", [_l, h, b1, b2, t1, t2, t3, ..]) => SectionShape::I {
+            height: *h,
+            width_bottom: *b1,
+            width_top: *b2,
+            t_web: *t3,
+            t_bottom: *t1,
+            t_top: *t2,
+        },
+        _ => return None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keyword_split_is_case_insensitive() {
+        let (n, p) = keyword("*Solid  section, elset=Solid, material=Steel");
+        assert_eq!(n, "SOLID SECTION");
+        assert_eq!(param(&p, "ELSET"), Some("Solid"));
+        assert_eq!(param(&p, "MATERIAL"), Some("Steel"));
+    }
+}

@@ -1,0 +1,146 @@
+//! Section constants (A, I1, I2, J) of the standard beam cross-section shapes shared by the
+//! Nastran PBARL/PBEAML and Abaqus *BEAM SECTION importers.
+//!
+//! Convention (Nastran): local y is the first section axis, z the second; I1 = ∫y² dA (bending
+//! in the x–y plane), I2 = ∫z² dA.
+
+use super::{BeamSection, SectionShape};
+use std::f64::consts::PI;
+
+/// Torsion constant of a solid rectangle a×b (a ≥ b): J = a b³ [1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))]
+/// (Roark, Table 10.7 case 4).
+pub fn rect_torsion(w: f64, h: f64) -> f64 {
+    let (a, b) = if w >= h { (w, h) } else { (h, w) };
+    a * b.powi(3) * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b.powi(4) / (12.0 * a.powi(4))))
+}
+
+impl SectionShape {
+    /// (A, I1, I2, J) of the shape, I about the centroidal axes.
+    pub fn constants(&self) -> Option<(f64, f64, f64, f64)> {
+        match *self {
+            SectionShape::Circle { radius: r } => {
+                let i = PI * r.powi(4) / 4.0;
+                Some((PI * r * r, i, i, 2.0 * i))
+            }
+            SectionShape::Tube {
+                outer_radius: ro,
+                inner_radius: ri,
+            } => {
+                let i = PI * (ro.powi(4) - ri.powi(4)) / 4.0;
+                Some((PI * (ro * ro - ri * ri), i, i, 2.0 * i))
+            }
+            SectionShape::Rectangle {
+                width: w,
+                height: h,
+            } => Some((
+                w * h,
+                h * w.powi(3) / 12.0,
+                w * h.powi(3) / 12.0,
+                rect_torsion(w, h),
+            )),
+            SectionShape::Box {
+                width: w,
+                height: h,
+                t_web: t1,
+                t_flange: t2,
+            } => {
+                let (wi, hi) = (w - 2.0 * t1, h - 2.0 * t2);
+                let a = w * h - wi * hi;
+                let i1 = (h * w.powi(3) - hi * wi.powi(3)) / 12.0;
+                let i2 = (w * h.powi(3) - wi * hi.powi(3)) / 12.0;
+                // Bredt–Batho thin-walled closed section: J = 2 t1 t2 (w−t1)²(h−t2)² / (w t1 + h t2 − t1² − t2²).
+                let j = 2.0 * t1 * t2 * (w - t1).powi(2) * (h - t2).powi(2)
+                    / (w * t1 + h * t2 - t1 * t1 - t2 * t2);
+                Some((a, i1, i2, j))
+            }
+            SectionShape::I {
+                height: h,
+                width_bottom: wb,
+                width_top: wt,
+                t_web: tw,
+                t_bottom: tb,
+                t_top: tt,
+            } => {
+                // Parts: bottom flange, web, top flange; z measured from the bottom.
+                let hw = h - tb - tt;
+                let parts = [
+                    (wb * tb, tb / 2.0, wb, tb),
+                    (tw * hw, tb + hw / 2.0, tw, hw),
+                    (wt * tt, h - tt / 2.0, wt, tt),
+                ];
+                let a: f64 = parts.iter().map(|p| p.0).sum();
+                let zc = parts.iter().map(|p| p.0 * p.1).sum::<f64>() / a;
+                let i2 = parts
+                    .iter()
+                    .map(|&(ai, zi, b, t)| b * t.powi(3) / 12.0 + ai * (zi - zc).powi(2))
+                    .sum();
+                let i1 = parts.iter().map(|&(_, _, b, t)| t * b.powi(3) / 12.0).sum();
+                // Open thin-walled section: J = Σ b t³ / 3.
+                let j = (wb * tb.powi(3) + wt * tt.powi(3) + hw * tw.powi(3)) / 3.0;
+                Some((a, i1, i2, j))
+            }
+            SectionShape::Other { .. } => None,
+        }
+    }
+
+    /// A [`BeamSection`] from this shape (no shear factors, no NSM); `None` for `Other`.
+    pub fn to_section(&self) -> Option<BeamSection> {
+        let (area, i1, i2, j) = self.constants()?;
+        Some(BeamSection {
+            area,
+            i1,
+            i2,
+            i12: 0.0,
+            j,
+            shear_factors: None,
+            nsm: 0.0,
+            shape: Some(self.clone()),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-12 * b.abs().max(1e-30)
+    }
+
+    #[test]
+    fn rectangle_and_circle_closed_form() {
+        let (a, i1, i2, j) = SectionShape::Rectangle {
+            width: 0.02,
+            height: 0.01,
+        }
+        .constants()
+        .unwrap();
+        assert!(close(a, 2e-4) && close(i1, 0.01 * 0.02f64.powi(3) / 12.0));
+        assert!(close(i2, 0.02 * 1e-6 / 12.0));
+        // Roark for a/b = 2: J = 0.229 a b³ (table value, 3 digits).
+        assert!((j / (0.02 * 1e-6) - 0.2287).abs() < 1e-3);
+        let (a, i1, _, j) = SectionShape::Circle { radius: 0.5 }.constants().unwrap();
+        assert!(close(a, PI * 0.25) && close(i1, PI / 64.0) && close(j, PI / 32.0));
+    }
+
+    #[test]
+    fn symmetric_i_equals_box_difference_formula() {
+        // Symmetric I: I2 = [b h³ − (b − tw)(h − 2t)³]/12.
+        let (h, b, tw, t) = (0.2, 0.1, 0.006, 0.01);
+        let (a, _, i2, _) = SectionShape::I {
+            height: h,
+            width_bottom: b,
+            width_top: b,
+            t_web: tw,
+            t_bottom: t,
+            t_top: t,
+        }
+        .constants()
+        .unwrap();
+        assert!(close(a, 2.0 * b * t + (h - 2.0 * t) * tw));
+        assert!(close(
+            i2,
+            (b * h.powi(3) - (b - tw) * (h - 2.0 * t).powi(3)) / 12.0
+        ));
+    }
+}
