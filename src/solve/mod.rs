@@ -1,1 +1,363 @@
 //! Sparse factorizations (METIS-ordered Cholesky) and the block shift-invert eigensolver.
+//!
+//! [`lowest_modes`] returns the lowest eigenpairs of K φ = ω² M φ for full symmetric sparse K, M
+//! (M positive semi-definite: lumped, consistent, massless dofs allowed), M-orthonormal, each
+//! result checked (ΦᵀMΦ, ΦᵀKΦ, residuals) before it is returned. Problems with n ≤
+//! [`DENSE_MAX`] go to a dense solver.
+
+pub mod cholesky;
+pub mod dense;
+pub mod eigen;
+pub mod ordering;
+pub mod sparse_ops;
+
+pub use cholesky::{FactorStats, SparseLlt};
+pub use faer::sparse::SparseColMat;
+use faer::{Mat, MatRef, Par};
+use thiserror::Error;
+
+/// Problems up to this size are solved densely.
+pub const DENSE_MAX: usize = 300;
+
+/// Errors of the factorizations and eigensolvers.
+#[derive(Debug, Error)]
+pub enum SolveError {
+    /// Shapes do not fit.
+    #[error("dimension mismatch: {0}")]
+    Dimension(String),
+    /// NaN or infinity in an input.
+    #[error("non-finite value in {0}")]
+    NonFinite(&'static str),
+    /// The Cholesky factorization met a non-positive pivot.
+    #[error("matrix not positive definite: non-positive pivot at dof {dof}")]
+    NonPositivePivot { dof: usize },
+    /// A dense K − σM was not positive definite.
+    #[error("K - sigma*M is not positive definite for sigma = {shift:e}")]
+    NotPositiveDefinite { shift: f64 },
+    /// METIS failed.
+    #[error("ordering failed: {0}")]
+    Ordering(String),
+    /// faer's symbolic analysis failed.
+    #[error("factorization failed: {0}")]
+    Factor(String),
+    /// More modes than finite eigenvalues.
+    #[error("{requested} modes requested but the problem has only {available} finite eigenvalues")]
+    TooManyModes { requested: usize, available: usize },
+    /// The iteration did not converge.
+    #[error("eigensolver did not converge to {requested} modes in {steps} block steps")]
+    NotConverged { requested: usize, steps: usize },
+    /// A dense eigen-decomposition failed.
+    #[error("dense eigensolver: {0}")]
+    DenseEigen(String),
+    /// A basis was not of full M-rank where it must be.
+    #[error("basis is not of full rank in the mass metric")]
+    DependentBasis,
+    /// A result failed its check.
+    #[error("result check failed: {what} = {value:e} > {limit:e}")]
+    CheckFailed {
+        what: &'static str,
+        value: f64,
+        limit: f64,
+    },
+    /// Bad input.
+    #[error("invalid input: {0}")]
+    Invalid(String),
+}
+
+/// What to compute.
+#[derive(Clone, Debug)]
+pub struct EigenSpec {
+    /// How many lowest modes.
+    pub count: usize,
+    /// σ with K − σM positive definite; `None` = automatic: σ = −10⁻⁶·tr K/tr M (negative so that
+    /// free bodies factor; negligible against the first flexible eigenvalue), then −10⁻³·, −1·.
+    pub shift: Option<f64>,
+    /// Relative residual tolerance (default 1e-10).
+    pub tol: f64,
+    /// Vectors per block solve (`None`: min(count, 24)).
+    pub block: Option<usize>,
+    /// Dofs per node for the METIS node graph (`None`: order the dof graph).
+    pub dofs_per_node: Option<usize>,
+    /// Parallelism of the dense kernels inside the factorization and solves.
+    pub par: Par,
+}
+
+impl Default for EigenSpec {
+    fn default() -> Self {
+        Self {
+            count: 10,
+            shift: None,
+            tol: 1e-10,
+            block: None,
+            dofs_per_node: None,
+            par: Par::Seq,
+        }
+    }
+}
+
+/// How a solution was obtained and how good it is.
+#[derive(Clone, Debug, Default)]
+pub struct EigenInfo {
+    /// The shift σ of the factorization.
+    pub shift: f64,
+    /// Whether the dense path was used.
+    pub dense: bool,
+    /// Vectors solved with the factorization.
+    pub solves: usize,
+    /// Block steps and thick restarts.
+    pub steps: usize,
+    /// Thick restarts.
+    pub restarts: usize,
+    /// ‖ΦᵀMΦ − I‖_max.
+    pub orthonormality: f64,
+    /// ‖ΦᵀKΦ − diag(ω²)‖_max / max|ω²|.
+    pub stiffness_diag: f64,
+    /// Factorization size (sparse path).
+    pub factor: Option<FactorStats>,
+    /// Wall time of the factorization and of the iteration (s).
+    pub seconds_factor: f64,
+    /// Wall time of the iteration (s).
+    pub seconds_eigen: f64,
+}
+
+/// Lowest eigenpairs.
+#[derive(Clone, Debug)]
+pub struct EigenSolution {
+    /// ω², ascending.
+    pub eigenvalues: Vec<f64>,
+    /// n × count, ΦᵀMΦ = I.
+    pub vectors: Mat<f64>,
+    /// ‖Kφ − λMφ‖ / ‖Kφ‖ per mode (large for rigid modes, where ‖Kφ‖ is rounding noise).
+    pub residuals: Vec<f64>,
+    /// Diagnostics.
+    pub info: EigenInfo,
+}
+
+/// tr K / tr M: a stiffness-over-mass scale of the order of the highest eigenvalues.
+pub fn trace_ratio(k: &SparseColMat<usize, f64>, m: &SparseColMat<usize, f64>) -> f64 {
+    let tr = |a: &SparseColMat<usize, f64>| {
+        let mut t = 0.0;
+        for j in 0..a.ncols() {
+            for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+                if i == j {
+                    t += v;
+                }
+            }
+        }
+        t
+    };
+    ratio(tr(k), tr(m))
+}
+
+pub(crate) fn trace_ratio_dense(k: MatRef<'_, f64>, m: MatRef<'_, f64>) -> f64 {
+    let tk: f64 = (0..k.nrows()).map(|i| k[(i, i)]).sum();
+    let tm: f64 = (0..m.nrows()).map(|i| m[(i, i)]).sum();
+    ratio(tk, tm)
+}
+
+fn ratio(tk: f64, tm: f64) -> f64 {
+    if tm > 0.0 && tk > 0.0 {
+        tk / tm
+    } else {
+        tk.abs().max(1.0)
+    }
+}
+
+fn validate(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    count: usize,
+) -> Result<(), SolveError> {
+    let n = k.nrows();
+    if k.ncols() != n || m.nrows() != n || m.ncols() != n {
+        return Err(SolveError::Dimension(format!(
+            "K is {}x{}, M is {}x{}",
+            k.nrows(),
+            k.ncols(),
+            m.nrows(),
+            m.ncols()
+        )));
+    }
+    if k.val().iter().any(|v| !v.is_finite()) {
+        return Err(SolveError::NonFinite("K"));
+    }
+    if m.val().iter().any(|v| !v.is_finite()) {
+        return Err(SolveError::NonFinite("M"));
+    }
+    if count == 0 || count > n {
+        return Err(SolveError::TooManyModes {
+            requested: count,
+            available: n,
+        });
+    }
+    Ok(())
+}
+
+/// The lowest `spec.count` eigenpairs of K φ = ω² M φ (K, M full symmetric, same size).
+pub fn lowest_modes(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    spec: &EigenSpec,
+) -> Result<EigenSolution, SolveError> {
+    validate(k, m, spec.count)?;
+    let n = k.nrows();
+    let count = spec.count;
+    let b = spec.block.unwrap_or(count.min(24)).max(1);
+    let max_basis = (3 * count).max(count + 4 * b);
+    if n <= DENSE_MAX || (2 * max_basis > n && n <= 3000) {
+        let t = std::time::Instant::now();
+        let kd = sparse_ops::to_dense(k.as_ref());
+        let md = sparse_ops::to_dense(m.as_ref());
+        let (vals, vecs) = dense::lowest(kd.as_ref(), md.as_ref(), count, spec.shift)?;
+        let info = EigenInfo {
+            dense: true,
+            seconds_eigen: t.elapsed().as_secs_f64(),
+            ..Default::default()
+        };
+        return finish(k, m, vals, vecs, info, spec.tol);
+    }
+    lowest_modes_iterative(k, m, spec)
+}
+
+/// [`lowest_modes`] always on the sparse path (factorization + block shift-invert iteration),
+/// whatever the size.
+pub fn lowest_modes_iterative(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    spec: &EigenSpec,
+) -> Result<EigenSolution, SolveError> {
+    validate(k, m, spec.count)?;
+    let n = k.nrows();
+    let count = spec.count;
+    let b = spec.block.unwrap_or(count.min(24)).max(1);
+    let max_basis = (3 * count).max(count + 4 * b);
+    if count + 2 * b > n {
+        return Err(SolveError::TooManyModes {
+            requested: count + 2 * b,
+            available: n,
+        });
+    }
+    let scale = trace_ratio(k, m);
+    let shifts = match spec.shift {
+        Some(s) => vec![s],
+        None => vec![-1e-6 * scale, -1e-3 * scale, -scale],
+    };
+    let t0 = std::time::Instant::now();
+    let mut last = None;
+    for sigma in shifts {
+        let a = sparse_ops::add_scaled(k.as_ref(), m.as_ref(), -sigma)?;
+        let llt = match SparseLlt::factor(a.as_ref(), spec.dofs_per_node, spec.par) {
+            Ok(l) => l,
+            Err(e @ SolveError::NonPositivePivot { .. }) => {
+                last = Some(e);
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        let seconds_factor = t0.elapsed().as_secs_f64();
+        let t1 = std::time::Instant::now();
+        let prm = eigen::BlockParams {
+            count,
+            block: b,
+            max_basis: max_basis.min(n),
+            tol: spec.tol,
+            max_steps: 200 + 20 * count.div_ceil(b),
+        };
+        let r = eigen::block_shift_invert(k.as_ref(), m.as_ref(), &llt, sigma, &prm)?;
+        let info = EigenInfo {
+            shift: sigma,
+            dense: false,
+            solves: r.solves,
+            steps: r.steps,
+            restarts: r.restarts,
+            factor: Some(llt.stats.clone()),
+            seconds_factor,
+            seconds_eigen: t1.elapsed().as_secs_f64(),
+            ..Default::default()
+        };
+        return finish(k, m, r.values, r.vectors, info, spec.tol);
+    }
+    Err(last.unwrap_or(SolveError::NotPositiveDefinite { shift: 0.0 }))
+}
+
+/// Final Rayleigh–Ritz cleanup (exact ΦᵀMΦ = I, ΦᵀKΦ = diag to rounding) and the checks.
+fn finish(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    _vals: Vec<f64>,
+    x: Mat<f64>,
+    mut info: EigenInfo,
+    tol: f64,
+) -> Result<EigenSolution, SolveError> {
+    let kx = sparse_ops::spmm(k.as_ref(), x.as_ref());
+    let mx = sparse_ops::spmm(m.as_ref(), x.as_ref());
+    let kp = x.transpose() * &kx;
+    let mp = x.transpose() * &mx;
+    let (vals, y) = dense::projected(kp.as_ref(), mp.as_ref())?;
+    let x = &x * &y;
+    let kx = &kx * &y;
+    let mx = &mx * &y;
+    let c = vals.len();
+    let mut orth = 0.0f64;
+    let mut kd = 0.0f64;
+    let mp = x.transpose() * &mx;
+    let kp = x.transpose() * &kx;
+    let lmax = vals
+        .iter()
+        .fold(0.0f64, |a, &b| a.max(b.abs()))
+        .max(f64::MIN_POSITIVE);
+    for j in 0..c {
+        for i in 0..c {
+            let id = if i == j { 1.0 } else { 0.0 };
+            orth = orth.max((mp[(i, j)] - id).abs());
+            kd = kd.max((kp[(i, j)] - id * vals[j]).abs() / lmax);
+        }
+    }
+    let scale = trace_ratio(k, m);
+    let mut residuals = Vec::with_capacity(c);
+    for j in 0..c {
+        let (mut rn, mut kn) = (0.0, 0.0);
+        for i in 0..x.nrows() {
+            let r = kx[(i, j)] - vals[j] * mx[(i, j)];
+            rn += r * r;
+            kn += kx[(i, j)] * kx[(i, j)];
+        }
+        let res = if kn > 0.0 {
+            (rn / kn).sqrt()
+        } else {
+            rn.sqrt()
+        };
+        residuals.push(res);
+        let flexible = vals[j] > 1e-8 * scale;
+        let limit = (1e3 * tol).max(1e-8);
+        if flexible && (res.is_nan() || res > limit) {
+            return Err(SolveError::CheckFailed {
+                what: "relative residual",
+                value: res,
+                limit,
+            });
+        }
+    }
+    if orth.is_nan() || orth > 1e-9 {
+        return Err(SolveError::CheckFailed {
+            what: "|PhiT M Phi - I|max",
+            value: orth,
+            limit: 1e-9,
+        });
+    }
+    if kd.is_nan() || kd > 1e-9 {
+        return Err(SolveError::CheckFailed {
+            what: "|PhiT K Phi - diag|max/max w2",
+            value: kd,
+            limit: 1e-9,
+        });
+    }
+    info.orthonormality = orth;
+    info.stiffness_diag = kd;
+    Ok(EigenSolution {
+        eigenvalues: vals,
+        vectors: x,
+        residuals,
+        info,
+    })
+}
