@@ -290,12 +290,18 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
     }
     let pattern = Pattern::build(&dofs, &conn);
     let nnz = pattern.nnz();
+    let nn = model.nodes.len();
+    let lumped = spec.mass == MassKind::Lumped;
+    // Lumped M lives in the nodes' own diagonal blocks only (column-major count² per node).
+    let mut moff = vec![0usize; nn + 1];
+    for a in 0..nn {
+        moff[a + 1] = moff[a] + usize::from(dofs.count[a]).pow(2);
+    }
     let mut kv = vec![0.0f64; nnz];
-    let mut mv = vec![0.0f64; nnz];
+    let mut mv = vec![0.0f64; if lumped { moff[nn] } else { nnz }];
 
     // Column ranges (by node) of roughly equal size, one per parallel part.
     let parts = (4 * rayon::current_num_threads()).max(1);
-    let nn = model.nodes.len();
     let mut cuts = vec![0usize];
     for a in 0..nn {
         let end = pattern.base[a] + usize::from(dofs.count[a]) * pattern.col_len[a];
@@ -306,6 +312,7 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
     cuts.push(nn);
     cuts.dedup();
     let value_start = |a: usize| if a < nn { pattern.base[a] } else { nnz };
+    let mass_start = |a: usize| if lumped { moff[a] } else { value_start(a) };
 
     const CHUNK: usize = 4096;
     for chunk in elems.chunks(CHUNK) {
@@ -326,9 +333,8 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
         let mut mparts = Vec::new();
         let (mut krest, mut mrest): (&mut [f64], &mut [f64]) = (&mut kv, &mut mv);
         for w in cuts.windows(2) {
-            let len = value_start(w[1]) - value_start(w[0]);
-            let (kh, kt) = krest.split_at_mut(len);
-            let (mh, mt) = mrest.split_at_mut(len);
+            let (kh, kt) = krest.split_at_mut(value_start(w[1]) - value_start(w[0]));
+            let (mh, mt) = mrest.split_at_mut(mass_start(w[1]) - mass_start(w[0]));
             kparts.push((w[0], w[1], kh));
             mparts.push(mh);
             krest = kt;
@@ -338,7 +344,7 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
             .into_par_iter()
             .zip(mparts)
             .for_each(|((lo, hi, kp), mp)| {
-                let off = value_start(lo);
+                let (koff, moff0) = (value_start(lo), mass_start(lo));
                 for (&e, em) in chunk.iter().zip(&mats) {
                     let nodes = &model.elements[e].nodes;
                     let (dpn, nd) = (em.dpn, em.dpn * nodes.len());
@@ -346,14 +352,24 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
                         if a < lo || a >= hi {
                             continue;
                         }
-                        for c in 0..dpn.min(usize::from(dofs.count[a])) {
+                        let na = usize::from(dofs.count[a]);
+                        for c in 0..dpn.min(na) {
                             let col = la * dpn + c;
                             for (lb, &b) in nodes.iter().enumerate() {
-                                let p = pattern.block(a, c, b) - off;
-                                for r in 0..dpn.min(usize::from(dofs.count[b])) {
-                                    let row = lb * dpn + r;
-                                    kp[p + r] += em.k[row * nd + col];
-                                    mp[p + r] += em.m[row * nd + col];
+                                let p = pattern.block(a, c, b) - koff;
+                                let rows = dpn.min(usize::from(dofs.count[b]));
+                                for r in 0..rows {
+                                    kp[p + r] += em.k[(lb * dpn + r) * nd + col];
+                                }
+                                if !lumped {
+                                    for r in 0..rows {
+                                        mp[p + r] += em.m[(lb * dpn + r) * nd + col];
+                                    }
+                                } else if b == a {
+                                    let q = moff[a] - moff0 + c * na;
+                                    for r in 0..rows {
+                                        mp[q + r] += em.m[(lb * dpn + r) * nd + col];
+                                    }
                                 }
                             }
                         }
@@ -374,7 +390,11 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
         }
         let na = usize::from(dofs.count[a]);
         for c in 0..na {
-            let p = pattern.block(a, c, a);
+            let p = if lumped {
+                moff[a] + c * na
+            } else {
+                pattern.block(a, c, a)
+            };
             for r in 0..na {
                 mv[p + r] += m6[r * 6 + c];
             }
@@ -393,7 +413,19 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
             );
             SparseColMat::new(sym, mv)
         }
-        MassKind::Lumped => drop_zeros(n, &pattern.col_ptr, &pattern.row_idx, &mv),
+        MassKind::Lumped => {
+            // Node blocks as CSC: column (a, c) holds rows first[a]..first[a] + count[a].
+            let mut cp = vec![0usize];
+            let mut ri = Vec::with_capacity(mv.len());
+            for a in 0..nn {
+                let na = usize::from(dofs.count[a]);
+                for _ in 0..na {
+                    ri.extend((0..na).map(|r| dofs.first[a] + r));
+                    cp.push(ri.len());
+                }
+            }
+            drop_zeros(n, &cp, &ri, &mv)
+        }
     };
     let Pattern {
         col_ptr, row_idx, ..

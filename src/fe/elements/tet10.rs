@@ -16,6 +16,8 @@
 //! ρV/420 × [6 on corner diagonals, 32 on mid-side diagonals, …]).
 
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
+use std::sync::OnceLock;
+
 use crate::fe::quadrature;
 
 /// Which integration rule forms the tet10 consistent mass.
@@ -78,13 +80,36 @@ pub fn stiffness(x: &[Xyz; 10], mat: &Isotropic) -> Result<Vec<f64>, ElementErro
     solid_stiffness(x, shape, &quadrature::tet4(), mat)
 }
 
-/// Scalar consistent mass 10×10 by the chosen rule.
+/// Scalar consistent mass 10×10 by the chosen rule. A straight-edged element (mid-side nodes at
+/// the edge midpoints, to 1e-10 of the edge length) has a constant Jacobian, so its mass is the
+/// reference-element mass times ρ·det J, computed once per rule.
 pub fn scalar_mass(x: &[Xyz; 10], rho: f64, rule: Tet10MassRule) -> Result<Vec<f64>, ElementError> {
-    let points = match rule {
+    static REF: [OnceLock<Vec<f64>>; 2] = [OnceLock::new(), OnceLock::new()];
+    let points = || match rule {
         Tet10MassRule::CalculixFourPoint => quadrature::tet4(),
         Tet10MassRule::Exact => quadrature::tet_duffy(4),
     };
-    solid_scalar_mass(x, shape, &points, rho)
+    if is_straight(x) {
+        let det = super::map_point(x, shape, &[0.25; 3], 0)?.2;
+        let reference = REF[rule as usize].get_or_init(|| {
+            let unit: [Xyz; 10] = NODES;
+            // The unit element has det J = 1 everywhere; the map cannot fail.
+            solid_scalar_mass(&unit, shape, &points(), 1.0).unwrap_or_default()
+        });
+        return Ok(reference.iter().map(|v| v * rho * det).collect());
+    }
+    solid_scalar_mass(x, shape, &points(), rho)
+}
+
+/// Are the mid-side nodes at the edge midpoints (affine element)?
+fn is_straight(x: &[Xyz; 10]) -> bool {
+    EDGES.iter().enumerate().all(|(e, &(i, j))| {
+        let len2: f64 = (0..3).map(|k| (x[i][k] - x[j][k]).powi(2)).sum();
+        let off2: f64 = (0..3)
+            .map(|k| (x[4 + e][k] - 0.5 * (x[i][k] + x[j][k])).powi(2))
+            .sum();
+        off2 <= 1e-20 * len2
+    })
 }
 
 #[cfg(test)]
