@@ -80,6 +80,9 @@ impl Reduced {
 
 type Expr = Vec<(usize, f64)>;
 
+/// Per-thread accumulator of the Gustavson product: dense values, marks, finished columns.
+type Accumulator = (Vec<f64>, Vec<usize>, Vec<(usize, Vec<usize>, Vec<f64>)>);
+
 /// Build T and the reduced K, M.
 pub fn eliminate(
     model: &Model,
@@ -401,7 +404,7 @@ fn rbe3_rows(
                 }
             })
             .collect();
-        if sc.iter().any(|&v| v == 0.0) {
+        if sc.contains(&0.0) {
             return None;
         }
         let ss = Mat::from_fn(nq, nq, |a, b| sc[a] * s[(a, b)] * sc[b]);
@@ -487,12 +490,7 @@ fn triple(
             .into_par_iter()
             .fold(
                 || (vec![0.0f64; nr], vec![usize::MAX; nr], Vec::new()),
-                |(mut acc, mut mark, mut out): (
-                    Vec<f64>,
-                    Vec<usize>,
-                    Vec<(usize, Vec<usize>, Vec<f64>)>,
-                ),
-                 rj| {
+                |(mut acc, mut mark, mut out): Accumulator, rj| {
                     let mut touched = Vec::new();
                     for p in cnt[rj]..cnt[rj + 1] {
                         let (j, tj) = (ti[p], tv[p]);

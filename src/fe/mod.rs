@@ -12,6 +12,9 @@
 //! * [`assembly::assemble`] — parallel assembly into faer `SparseColMat` (full symmetric).
 //! * [`constraints::eliminate`] — RBE2/RBE3/SPC elimination, keeps T for shape recovery.
 
+// Index loops mirror the subscripts of the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
 pub mod assembly;
 pub mod constraints;
 pub mod dofs;

@@ -39,7 +39,7 @@ pub struct BeamProps {
 pub fn local_frame(x: &[Xyz; 2], v: Option<Xyz>) -> Result<([Xyz; 3], f64), ElementError> {
     let d = sub(x[1], x[0]);
     let l = norm(d);
-    if !(l > 0.0) {
+    if l.is_nan() || l <= 0.0 {
         return Err(ElementError::ZeroLength);
     }
     let ex = scale(d, 1.0 / l);
@@ -57,7 +57,7 @@ pub fn local_frame(x: &[Xyz; 2], v: Option<Xyz>) -> Result<([Xyz; 3], f64), Elem
     };
     let y = sub(v, scale(ex, dot(v, ex)));
     let ny = norm(y);
-    if !(ny > 1e-9 * norm(v)) {
+    if ny.is_nan() || ny <= 1e-9 * norm(v) {
         return Err(ElementError::BadOrientation { v });
     }
     let ey = scale(y, 1.0 / ny);
