@@ -6,6 +6,8 @@
 pub mod abaqus;
 pub mod ccx_matrices;
 pub mod error;
+pub mod gmsh;
+pub mod nastran;
 pub(crate) mod text;
 
 pub use error::ImportError;
@@ -19,14 +21,20 @@ use crate::model::{Material, Model, Property, Section};
 pub enum Format {
     /// Abaqus / CalculiX input deck (`.inp`).
     Abaqus,
+    /// Nastran bulk data (`.bdf`, `.nas`, `.dat`, `.blk`, `.bulk`).
+    Nastran,
+    /// Gmsh 4.1 mesh, ASCII or binary (`.msh`).
+    Gmsh,
 }
 
 impl Format {
-    /// Format from a file extension (case-insensitive): `inp`.
+    /// Format from a file extension (case-insensitive).
     pub fn from_extension(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
             "inp" => Some(Format::Abaqus),
+            "bdf" | "nas" | "dat" | "blk" | "bulk" => Some(Format::Nastran),
+            "msh" => Some(Format::Gmsh),
             _ => None,
         }
     }
@@ -35,6 +43,8 @@ impl Format {
     pub fn from_name(name: &str) -> Option<Format> {
         match name.to_ascii_lowercase().as_str() {
             "inp" | "abaqus" | "calculix" | "ccx" => Some(Format::Abaqus),
+            "bdf" | "nastran" | "nas" => Some(Format::Nastran),
+            "msh" | "gmsh" => Some(Format::Gmsh),
             _ => None,
         }
     }
@@ -60,6 +70,8 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
         })?;
     let mut model = match format {
         Format::Abaqus => abaqus::read(path)?,
+        Format::Nastran => nastran::read(path)?,
+        Format::Gmsh => gmsh::read(path, None)?,
     };
     if let Some(m) = &opts.material {
         apply_default_material(&mut model, m);

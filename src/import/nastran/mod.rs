@@ -1,0 +1,38 @@
+//! Nastran bulk-data reader → [`Model`].
+//!
+//! Cards: GRID (CP/CD), CORD2R/CORD2C/CORD2S (chained), CTETRA (4/10), CHEXA (8/20),
+//! CPENTA (6/15), CBAR, CBEAM, CROD, CQUAD4, CTRIA3, PSOLID, PBAR, PBARL, PBEAM, PBEAML, PROD,
+//! PSHELL, MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, ASET, ASET1, PARAM WTMASS/COUPMASS.
+//! Every other card is counted and reported once per card type as a warning; elements that
+//! reference a property of an unsupported type (e.g. PCOMP) get no property and a warning.
+//!
+//! Node sets: `SPC_<sid>` holds the nodes of SPC/SPC1 set `sid` (the reference `.bdf` files
+//! write one SPC1 per named node set). Element sets: `PID_<pid>` per property.
+//! CHEXA20/CPENTA15 mid-side nodes are permuted to Abaqus order (Nastran lists the vertical
+//! edges before the top edges).
+
+mod cards;
+mod coord;
+mod fields;
+mod lex;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::error::ImportError;
+use crate::model::Model;
+
+/// Card counts by card name (`GRID`, `CHEXA`, `PARAM`, …), supported or not.
+pub type CardCounts = BTreeMap<String, usize>;
+
+/// Read a Nastran deck (bulk data after `BEGIN BULK`, or a bare bulk file; `INCLUDE` followed).
+pub fn read(path: &Path) -> Result<Model, ImportError> {
+    read_with_counts(path).map(|(m, _)| m)
+}
+
+/// [`read`], also returning how many cards of each type the deck holds.
+pub fn read_with_counts(path: &Path) -> Result<(Model, CardCounts), ImportError> {
+    let mut lexer = lex::Lexer::new(&path.display().to_string());
+    lexer.lex_file(path, 0, 0)?;
+    cards::build(lexer)
+}
