@@ -1,1 +1,187 @@
-//! Modal reduction: normal modes, Craig–Bampton, Craig–Chang, Dietz, reference conditions.
+//! Modal reduction: normal modes, Craig–Bampton (with the improved reference-condition methods of
+//! Wang, Niu & Feng 2023), Craig–Chang and Dietz frequency-response modes, mode selection.
+//!
+//! Every method works on full symmetric sparse (K, M) over one dof numbering plus index lists
+//! (interface dofs, reference-condition dofs) and returns a [`ModeSet`]: Φ over all dofs with
+//! ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²), a label per mode, and diagnostics that were checked.
+
+pub mod craig_bampton;
+pub mod craig_chang;
+pub mod dietz;
+pub mod normal;
+pub mod orthonormalize;
+pub mod reference;
+pub mod select;
+
+use crate::solve::SolveError;
+use faer::Mat;
+use thiserror::Error;
+
+pub use orthonormalize::{orthonormalize, Orthonormalized, DEPENDENCY_TOL};
+
+/// Errors of the reduction methods.
+#[derive(Debug, Error)]
+pub enum ReduceError {
+    /// A factorization or eigensolve failed.
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    /// A dof index list is invalid.
+    #[error("{what}: {detail}")]
+    Dofs { what: &'static str, detail: String },
+    /// Nothing is left after removing dependent vectors.
+    #[error("the reduction basis is empty after removing dependent vectors")]
+    EmptyBasis,
+    /// The rigid-body modes could not be found or supported.
+    #[error("rigid-body modes: {0}")]
+    Rigid(String),
+}
+
+/// Where a basis vector (or, by its dominant component, a final mode) comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ModeLabel {
+    /// Rigid-body mode (ω² ≈ 0).
+    Rigid,
+    /// A normal (eigen) mode of the full model, free or constrained.
+    Normal,
+    /// Craig–Bampton constraint (static) mode of interface dof `dof`.
+    Constraint { dof: usize },
+    /// Craig–Bampton fixed-interface normal mode number `index`.
+    FixedInterface { index: usize },
+    /// Craig–Chang inertia-relief attachment mode for a unit load at `dof`.
+    Attachment { dof: usize },
+    /// Dietz frequency-response mode for a unit load at `dof`.
+    FrequencyResponse { dof: usize },
+}
+
+/// A basis vector removed as dependent by the rank-revealing step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RemovedVector {
+    /// Column of the basis before orthonormalization.
+    pub column: usize,
+    /// Its origin.
+    pub label: ModeLabel,
+    /// Remaining M-norm² of the (diagonally scaled) column after projecting out the kept ones.
+    pub remaining: f64,
+}
+
+/// Checked quality figures of a mode set.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Diagnostics {
+    /// ‖ΦᵀMΦ − I‖_max against the full M.
+    pub orthonormality: f64,
+    /// ‖ΦᵀKΦ − diag(ω²)‖_max / max ω² against the full K.
+    pub stiffness_diag: f64,
+    /// ‖Kφ − ω²Mφ‖/‖Kφ‖ against the full model (small only for exact eigenvectors; for reduced
+    /// bases this measures the truncation, not an error).
+    pub residuals: Vec<f64>,
+    /// Vectors removed as dependent, with the tolerance used.
+    pub removed: Vec<RemovedVector>,
+    /// Relative pivot tolerance of the rank-revealing step.
+    pub dependency_tol: f64,
+    /// Free-text notes (choices made automatically, e.g. the support dofs).
+    pub notes: Vec<String>,
+}
+
+/// Which method produced a mode set.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Method {
+    /// Normal modes with the given dofs fixed (empty = free-free).
+    NormalModes,
+    /// Craig–Bampton with interface dofs.
+    CraigBampton {
+        interface: Vec<usize>,
+        fixed_interface_modes: usize,
+    },
+    /// Improved Craig–Bampton, Wang et al. 2023 §5.1 (reference columns removed from Φ_CB).
+    ImprovedCraigBampton1 {
+        interface: Vec<usize>,
+        fixed_interface_modes: usize,
+    },
+    /// Improved Craig–Bampton, Wang et al. 2023 §5.2 (reference conditions imposed on K, M).
+    ImprovedCraigBampton2 {
+        interface: Vec<usize>,
+        fixed_interface_modes: usize,
+    },
+    /// Craig–Chang with inertia-relief attachment modes at the given dofs.
+    CraigChang {
+        attachment: Vec<usize>,
+        support: Vec<usize>,
+    },
+    /// Dietz frequency-response modes (static procedure), shift ℓ.
+    Dietz { attachment: Vec<usize>, shift: f64 },
+    /// Dietz modified procedure from an extended free-free set of `extended` modes, shift ℓ.
+    DietzModified {
+        attachment: Vec<usize>,
+        shift: f64,
+        extended: usize,
+    },
+}
+
+/// A mass-orthonormal mode set over all dofs of the model it was computed from.
+#[derive(Clone, Debug)]
+pub struct ModeSet {
+    /// Φ, n × modes, ΦᵀMΦ = I.
+    pub phi: Mat<f64>,
+    /// ω² per mode, ascending.
+    pub omega2: Vec<f64>,
+    /// Label per mode (rigid, or the dominant origin of the mode).
+    pub labels: Vec<ModeLabel>,
+    /// The producing method.
+    pub method: Method,
+    /// Dofs held at zero (reference conditions / constraints) that define the body frame.
+    pub reference_dofs: Vec<usize>,
+    /// The selection applied (set by [`select`]).
+    pub selection: Option<select::Selection>,
+    /// Checked diagnostics.
+    pub diagnostics: Diagnostics,
+}
+
+impl ModeSet {
+    /// Frequencies in Hz (negative ω² rounding noise maps to 0).
+    pub fn frequencies_hz(&self) -> Vec<f64> {
+        self.omega2
+            .iter()
+            .map(|&l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+            .collect()
+    }
+
+    /// Number of modes.
+    pub fn len(&self) -> usize {
+        self.omega2.len()
+    }
+
+    /// Whether the set is empty.
+    pub fn is_empty(&self) -> bool {
+        self.omega2.is_empty()
+    }
+}
+
+/// Checks a dof list against n: in range and without duplicates.
+pub(crate) fn check_dofs(what: &'static str, dofs: &[usize], n: usize) -> Result<(), ReduceError> {
+    let mut seen = vec![false; n];
+    for &d in dofs {
+        if d >= n {
+            return Err(ReduceError::Dofs {
+                what,
+                detail: format!("dof {d} out of range (n = {n})"),
+            });
+        }
+        if seen[d] {
+            return Err(ReduceError::Dofs {
+                what,
+                detail: format!("dof {d} listed twice"),
+            });
+        }
+        seen[d] = true;
+    }
+    Ok(())
+}
+
+/// The dofs of 0..n not in `dofs`.
+pub(crate) fn complement(dofs: &[usize], n: usize) -> Vec<usize> {
+    let mut mark = vec![false; n];
+    for &d in dofs {
+        mark[d] = true;
+    }
+    (0..n).filter(|&i| !mark[i]).collect()
+}

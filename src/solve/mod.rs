@@ -230,7 +230,6 @@ pub fn lowest_modes_iterative(
     let n = k.nrows();
     let count = spec.count;
     let b = spec.block.unwrap_or(count.min(24)).max(1);
-    let max_basis = (3 * count).max(count + 4 * b);
     if count + 2 * b > n {
         return Err(SolveError::TooManyModes {
             requested: count + 2 * b,
@@ -255,29 +254,52 @@ pub fn lowest_modes_iterative(
             Err(e) => return Err(e),
         };
         let seconds_factor = t0.elapsed().as_secs_f64();
-        let t1 = std::time::Instant::now();
-        let prm = eigen::BlockParams {
-            count,
-            block: b,
-            max_basis: max_basis.min(n),
-            tol: spec.tol,
-            max_steps: 200 + 20 * count.div_ceil(b),
-        };
-        let r = eigen::block_shift_invert(k.as_ref(), m.as_ref(), &llt, sigma, &prm)?;
-        let info = EigenInfo {
-            shift: sigma,
-            dense: false,
-            solves: r.solves,
-            steps: r.steps,
-            restarts: r.restarts,
-            factor: Some(llt.stats.clone()),
-            seconds_factor,
-            seconds_eigen: t1.elapsed().as_secs_f64(),
-            ..Default::default()
-        };
-        return finish(k, m, r.values, r.vectors, info, spec.tol);
+        let mut sol = lowest_modes_factored(k, m, &llt, sigma, spec)?;
+        sol.info.seconds_factor = seconds_factor;
+        return Ok(sol);
     }
     Err(last.unwrap_or(SolveError::NotPositiveDefinite { shift: 0.0 }))
+}
+
+/// The block iteration with an existing factorization `llt` of K − σM (e.g. K_ii reused by
+/// Craig–Bampton with σ = 0).
+pub fn lowest_modes_factored(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    llt: &SparseLlt,
+    sigma: f64,
+    spec: &EigenSpec,
+) -> Result<EigenSolution, SolveError> {
+    validate(k, m, spec.count)?;
+    let n = k.nrows();
+    let count = spec.count;
+    let b = spec.block.unwrap_or(count.min(24)).max(1);
+    if count + 2 * b > n || llt.n() != n {
+        return Err(SolveError::TooManyModes {
+            requested: count + 2 * b,
+            available: n,
+        });
+    }
+    let t1 = std::time::Instant::now();
+    let prm = eigen::BlockParams {
+        count,
+        block: b,
+        max_basis: ((3 * count).max(count + 4 * b)).min(n),
+        tol: spec.tol,
+        max_steps: 200 + 20 * count.div_ceil(b),
+    };
+    let r = eigen::block_shift_invert(k.as_ref(), m.as_ref(), llt, sigma, &prm)?;
+    let info = EigenInfo {
+        shift: sigma,
+        dense: false,
+        solves: r.solves,
+        steps: r.steps,
+        restarts: r.restarts,
+        factor: Some(llt.stats.clone()),
+        seconds_eigen: t1.elapsed().as_secs_f64(),
+        ..Default::default()
+    };
+    finish(k, m, r.values, r.vectors, info, spec.tol)
 }
 
 /// Final Rayleigh–Ritz cleanup (exact ΦᵀMΦ = I, ΦᵀKΦ = diag to rounding) and the checks.

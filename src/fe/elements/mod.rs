@@ -12,6 +12,7 @@
 pub mod beam;
 pub mod hex20;
 pub mod hex8;
+pub mod planar_frame;
 pub mod prism6;
 pub mod rod;
 pub mod tet10;

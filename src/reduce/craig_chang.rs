@@ -1,0 +1,1 @@
+//! Craig–Chang (placeholder while in progress).

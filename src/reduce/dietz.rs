@@ -1,0 +1,1 @@
+//! Dietz (placeholder while in progress).

@@ -1,0 +1,59 @@
+//! Normal modes of the full model: free-free, or with dofs held at zero (constraints or the
+//! reference conditions of Wang, Niu & Feng 2023, which then define the body frame).
+
+use super::orthonormalize::{diagnose, RIGID_REL};
+use super::select::{solve_count, ModeCount};
+use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
+use crate::solve::{sparse_ops, trace_ratio, EigenSpec, SparseColMat};
+use faer::Mat;
+
+/// Lowest normal modes of K φ = ω² M φ with the dofs `fixed` held at zero; Φ is expanded to all
+/// dofs (zero rows at `fixed`).
+pub fn normal_modes(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    count: ModeCount,
+    fixed: &[usize],
+    eig: &EigenSpec,
+) -> Result<ModeSet, ReduceError> {
+    let n = k.nrows();
+    check_dofs("fixed dofs", fixed, n)?;
+    let free = complement(fixed, n);
+    let (kf, mf);
+    let (kr, mr) = if fixed.is_empty() {
+        (k, m)
+    } else {
+        kf = sparse_ops::submatrix(k.as_ref(), &free, &free)?;
+        mf = sparse_ops::submatrix(m.as_ref(), &free, &free)?;
+        (&kf, &mf)
+    };
+    let s = solve_count(kr, mr, count, eig)?;
+    let mut phi = Mat::<f64>::zeros(n, s.eigenvalues.len());
+    for j in 0..phi.ncols() {
+        for (r, &i) in free.iter().enumerate() {
+            phi[(i, j)] = s.vectors[(r, j)];
+        }
+    }
+    let scale = trace_ratio(k, m);
+    let labels = s
+        .eigenvalues
+        .iter()
+        .map(|&l| {
+            if l.abs() <= RIGID_REL * scale {
+                ModeLabel::Rigid
+            } else {
+                ModeLabel::Normal
+            }
+        })
+        .collect();
+    let diagnostics = diagnose(k, m, &phi, &s.eigenvalues)?;
+    Ok(ModeSet {
+        phi,
+        omega2: s.eigenvalues,
+        labels,
+        method: Method::NormalModes,
+        reference_dofs: fixed.to_vec(),
+        selection: None,
+        diagnostics,
+    })
+}
