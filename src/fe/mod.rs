@@ -1,3 +1,78 @@
-//! Element matrices and sparse assembly of stiffness K and mass M.
+//! Element matrices and sparse assembly of stiffness K and mass M, with rigid elements and
+//! constraints eliminated by u = T u_r.
+//!
+//! ```text
+//! Model ──► DofMap::from_model ──► assemble (K, M over all physical dofs)
+//!                                     │
+//!                                     └──► constraints::eliminate ──► (K_r = TᵀKT, M_r = TᵀMT, T)
+//! ```
+//! * [`elements`] — one file per element kind: shape functions, quadrature, formulas.
+//! * [`dofs::DofMap`] — node ↔ dof numbering (3 or 6 per node, node-major, CD frames).
+//! * [`mass`] — lumping (row-sum, HRZ) and point masses.
+//! * [`assembly::assemble`] — parallel assembly into faer `SparseColMat` (full symmetric).
+//! * [`constraints::eliminate`] — RBE2/RBE3/SPC elimination, keeps T for shape recovery.
 
+// Index loops mirror the subscripts of the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+pub mod assembly;
+pub mod constraints;
+pub mod dofs;
 pub mod elements;
+pub mod mass;
+pub mod pattern;
+pub mod quadrature;
+
+pub use assembly::{assemble, Assembled, AssemblySpec, BeamTheory};
+pub use constraints::{eliminate, ConstraintSpec, Reduced};
+pub use dofs::DofMap;
+pub use elements::tet10::Tet10MassRule;
+pub use mass::MassKind;
+
+use crate::model::ElementKind;
+
+/// Errors of assembly and constraint elimination; each names the model file and the entity.
+#[derive(Debug, thiserror::Error)]
+pub enum FeError {
+    /// An element's matrices could not be formed.
+    #[error("{source_file}: element {id} ({kind:?}): {err}")]
+    Element {
+        /// Model file.
+        source_file: String,
+        /// External element id.
+        id: u64,
+        /// Element kind.
+        kind: ElementKind,
+        /// Cause.
+        #[source]
+        err: elements::ElementError,
+    },
+    /// The element (or its property) is of a kind the assembler does not handle.
+    #[error("{source_file}: element {id} ({kind:?}) {message}")]
+    Unsupported {
+        /// Model file.
+        source_file: String,
+        /// External element id.
+        id: u64,
+        /// Element kind.
+        kind: ElementKind,
+        /// What is missing.
+        message: String,
+    },
+    /// A dangling index in the model.
+    #[error("{source_file}: {message}")]
+    BadReference {
+        /// Model file.
+        source_file: String,
+        /// What refers to what.
+        message: String,
+    },
+    /// Inconsistent rigid elements or constraints.
+    #[error("{source_file}: {message}")]
+    Constraint {
+        /// Model file.
+        source_file: String,
+        /// The conflict, naming the element / node ids.
+        message: String,
+    },
+}

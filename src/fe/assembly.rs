@@ -1,0 +1,460 @@
+//! Sparse assembly of K and M: element matrices computed in parallel (rayon), rotated into the
+//! nodes' displacement frames, and scattered straight into the compressed columns of a pattern
+//! built once per `DofMap` (no triplet list, so a 10⁶-dof model stays within a few GB).
+//!
+//! K = Σ_e A_eᵀ K_e A_e and M = Σ_e A_eᵀ M_e A_e + Σ_p M_p (A_e the Boolean gather of element e's
+//! dofs; M_p point masses), both stored full symmetric (both triangles). The scatter is parallel
+//! over disjoint column ranges, so no two threads write the same value.
+
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use rayon::prelude::*;
+
+use super::dofs::DofMap;
+use super::elements::beam::BeamProps;
+use super::elements::tet10::Tet10MassRule;
+use super::elements::{beam, hex20, hex8, prism6, rod, tet10, tet4, ElementError, Isotropic, Xyz};
+use super::mass::{self, MassKind};
+use super::pattern::Pattern;
+use super::FeError;
+use crate::model::{ElementKind, Model, Section};
+
+/// Bending theory of beam elements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BeamTheory {
+    /// Euler–Bernoulli (shear-rigid); the default.
+    #[default]
+    EulerBernoulli,
+    /// Timoshenko: shear flexibility from the section's shear factors (Euler–Bernoulli where a
+    /// section has none).
+    Timoshenko,
+}
+
+/// Options of the assembly.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct AssemblySpec {
+    /// Lumped (default) or consistent mass.
+    pub mass: MassKind,
+    /// Integration of the tet10 consistent mass (CalculiX 4-point by default).
+    pub tet10_mass: Tet10MassRule,
+    /// Beam bending theory.
+    pub beam: BeamTheory,
+}
+
+/// The assembled physical system.
+#[derive(Debug, Clone)]
+pub struct Assembled {
+    /// Dof numbering.
+    pub dofs: DofMap,
+    /// Stiffness, full symmetric.
+    pub k: SparseColMat<usize, f64>,
+    /// Mass, full symmetric (lumped: node-block diagonal, explicit zeros dropped).
+    pub m: SparseColMat<usize, f64>,
+}
+
+/// One element's matrices in the basic frame, node-major with `dpn` dofs per node.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElementMatrices {
+    /// Dofs per element node (3 solids, 6 beams and rods).
+    pub dpn: usize,
+    /// Stiffness, row-major.
+    pub k: Vec<f64>,
+    /// Mass, row-major.
+    pub m: Vec<f64>,
+}
+
+/// Does the assembler form matrices for this element (solids, beams, rods with a property)?
+pub fn is_structural(kind: ElementKind) -> bool {
+    kind.is_solid() || matches!(kind, ElementKind::Beam2 | ElementKind::Rod2)
+}
+
+fn coords<const N: usize>(model: &Model, nodes: &[usize]) -> [Xyz; N] {
+    std::array::from_fn(|i| model.nodes[nodes[i]].x)
+}
+
+/// Matrices of element `e` of `model` in the basic frame.
+pub fn element_matrices(
+    model: &Model,
+    e: usize,
+    spec: &AssemblySpec,
+) -> Result<ElementMatrices, FeError> {
+    let el = &model.elements[e];
+    let fail = |message: String| FeError::Unsupported {
+        source_file: model.source.clone(),
+        id: el.id,
+        kind: el.kind,
+        message,
+    };
+    let elem_err = |err: ElementError| FeError::Element {
+        source_file: model.source.clone(),
+        id: el.id,
+        kind: el.kind,
+        err,
+    };
+    if el.nodes.len() != el.kind.node_count() || el.nodes.iter().any(|&n| n >= model.nodes.len()) {
+        return Err(fail(format!(
+            "has {} node indices, expected {} valid ones",
+            el.nodes.len(),
+            el.kind.node_count()
+        )));
+    }
+    let prop = el
+        .property
+        .and_then(|p| model.properties.get(p))
+        .ok_or_else(|| fail("has no (valid) property".into()))?;
+    let mat = model
+        .materials
+        .get(prop.material)
+        .ok_or_else(|| fail(format!("property {} names a missing material", prop.id)))?;
+    let iso = Isotropic {
+        e: mat.e,
+        nu: mat.nu,
+        g: mat.g,
+        rho: mat.rho,
+    };
+    let lumped = spec.mass == MassKind::Lumped;
+    if el.kind.is_solid() && prop.section != Section::Solid {
+        return Err(fail(format!(
+            "solid element with non-solid property {}",
+            prop.id
+        )));
+    }
+    let n = &el.nodes;
+    let solid = |k: Vec<f64>, ms: Vec<f64>, nn: usize, quadratic: bool| -> ElementMatrices {
+        let m = match (lumped, quadratic) {
+            (false, _) => super::elements::expand_scalar_mass(&ms, nn),
+            (true, false) => mass::diagonal_solid_mass(&mass::row_sum(&ms, nn)),
+            (true, true) => mass::diagonal_solid_mass(&mass::hrz(&ms, nn)),
+        };
+        ElementMatrices { dpn: 3, k, m }
+    };
+    let out = match el.kind {
+        ElementKind::Tet4 => {
+            let x = coords::<4>(model, n);
+            solid(
+                tet4::stiffness(&x, &iso).map_err(elem_err)?,
+                tet4::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                4,
+                false,
+            )
+        }
+        ElementKind::Tet10 => {
+            let x = coords::<10>(model, n);
+            // HRZ lumping uses the exact consistent diagonal (the 4-point one is a cruder estimate).
+            let rule = if lumped {
+                Tet10MassRule::Exact
+            } else {
+                spec.tet10_mass
+            };
+            solid(
+                tet10::stiffness(&x, &iso).map_err(elem_err)?,
+                tet10::scalar_mass(&x, iso.rho, rule).map_err(elem_err)?,
+                10,
+                true,
+            )
+        }
+        ElementKind::Hex8 => {
+            let x = coords::<8>(model, n);
+            solid(
+                hex8::stiffness(&x, &iso).map_err(elem_err)?,
+                hex8::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                8,
+                false,
+            )
+        }
+        ElementKind::Hex20 | ElementKind::Hex20R => {
+            let x = coords::<20>(model, n);
+            let reduced = el.kind == ElementKind::Hex20R;
+            solid(
+                hex20::stiffness(&x, &iso, reduced).map_err(elem_err)?,
+                hex20::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                20,
+                true,
+            )
+        }
+        ElementKind::Prism6 => {
+            let x = coords::<6>(model, n);
+            solid(
+                prism6::stiffness(&x, &iso).map_err(elem_err)?,
+                prism6::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                6,
+                false,
+            )
+        }
+        ElementKind::Beam2 => {
+            let Section::Beam(s) = &prop.section else {
+                return Err(fail(format!(
+                    "beam element with non-beam property {}",
+                    prop.id
+                )));
+            };
+            if s.i12 != 0.0 {
+                return Err(fail(format!("property {}: product of inertia I12 = {} is not supported (principal axes only)", prop.id, s.i12)));
+            }
+            let p = BeamProps {
+                area: s.area,
+                iz: s.i1,
+                iy: s.i2,
+                j: s.j,
+                shear: if spec.beam == BeamTheory::Timoshenko {
+                    s.shear_factors
+                } else {
+                    None
+                },
+                nsm: s.nsm,
+            };
+            let (k, m) = beam::matrices(&coords::<2>(model, n), el.orientation, &iso, &p, lumped)
+                .map_err(elem_err)?;
+            ElementMatrices { dpn: 6, k, m }
+        }
+        ElementKind::Rod2 => {
+            let (area, j, nsm) = match &prop.section {
+                Section::Rod { area, j, nsm } => (*area, *j, *nsm),
+                _ => {
+                    return Err(fail(format!(
+                        "rod element with non-rod property {}",
+                        prop.id
+                    )))
+                }
+            };
+            let (k, m) = rod::matrices(&coords::<2>(model, n), &iso, area, j, nsm, lumped)
+                .map_err(elem_err)?;
+            ElementMatrices { dpn: 6, k, m }
+        }
+        other => {
+            return Err(fail(format!(
+                "{other:?} elements are not assembled (no element formulation yet)"
+            )))
+        }
+    };
+    Ok(out)
+}
+
+/// Rotate an element matrix into the nodes' displacement frames: A' = T A Tᵀ, T = diag(R_a).
+fn to_frames(a: &mut [f64], nodes: &[usize], dpn: usize, frames: &[Option<[[f64; 3]; 3]>]) {
+    let nd = nodes.len() * dpn;
+    let blocks: Vec<Option<&[[f64; 3]; 3]>> = nodes
+        .iter()
+        .flat_map(|&n| std::iter::repeat_n(frames[n].as_ref(), dpn / 3))
+        .collect();
+    // rows: A ← T A
+    for (bi, r) in blocks.iter().enumerate() {
+        let Some(r) = r else { continue };
+        for col in 0..nd {
+            let v: [f64; 3] = std::array::from_fn(|k| a[(3 * bi + k) * nd + col]);
+            for i in 0..3 {
+                a[(3 * bi + i) * nd + col] = r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2];
+            }
+        }
+    }
+    // columns: A ← A Tᵀ
+    for (bj, r) in blocks.iter().enumerate() {
+        let Some(r) = r else { continue };
+        for row in 0..nd {
+            let v: [f64; 3] = std::array::from_fn(|k| a[row * nd + 3 * bj + k]);
+            for j in 0..3 {
+                a[row * nd + 3 * bj + j] = r[j][0] * v[0] + r[j][1] * v[1] + r[j][2] * v[2];
+            }
+        }
+    }
+}
+
+/// Assemble K and M of `model`.
+pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError> {
+    let dofs = DofMap::from_model(model)?;
+    let elems: Vec<usize> = model
+        .elements
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| e.property.is_some() || is_structural(e.kind))
+        .map(|(i, _)| i)
+        .collect();
+    let conn: Vec<&[usize]> = elems
+        .iter()
+        .map(|&e| model.elements[e].nodes.as_slice())
+        .collect();
+    if let Some(&e) = elems.iter().find(|&&e| {
+        model.elements[e]
+            .nodes
+            .iter()
+            .any(|&n| n >= model.nodes.len())
+    }) {
+        let el = &model.elements[e];
+        return Err(FeError::BadReference {
+            source_file: model.source.clone(),
+            message: format!(
+                "element {} refers to a node index beyond the {} nodes",
+                el.id,
+                model.nodes.len()
+            ),
+        });
+    }
+    let pattern = Pattern::build(&dofs, &conn);
+    let nnz = pattern.nnz();
+    let nn = model.nodes.len();
+    let lumped = spec.mass == MassKind::Lumped;
+    // Lumped M lives in the nodes' own diagonal blocks only (column-major count² per node).
+    let mut moff = vec![0usize; nn + 1];
+    for a in 0..nn {
+        moff[a + 1] = moff[a] + usize::from(dofs.count[a]).pow(2);
+    }
+    let mut kv = vec![0.0f64; nnz];
+    let mut mv = vec![0.0f64; if lumped { moff[nn] } else { nnz }];
+
+    // Column ranges (by node) of roughly equal size, one per parallel part.
+    let parts = (4 * rayon::current_num_threads()).max(1);
+    let mut cuts = vec![0usize];
+    for a in 0..nn {
+        let end = pattern.base[a] + usize::from(dofs.count[a]) * pattern.col_len[a];
+        if end * parts >= nnz * cuts.len() && cuts.len() < parts {
+            cuts.push(a + 1);
+        }
+    }
+    cuts.push(nn);
+    cuts.dedup();
+    let value_start = |a: usize| if a < nn { pattern.base[a] } else { nnz };
+    let mass_start = |a: usize| if lumped { moff[a] } else { value_start(a) };
+
+    const CHUNK: usize = 4096;
+    for chunk in elems.chunks(CHUNK) {
+        let mats: Vec<ElementMatrices> = chunk
+            .par_iter()
+            .map(|&e| {
+                let mut em = element_matrices(model, e, spec)?;
+                let nodes = &model.elements[e].nodes;
+                if nodes.iter().any(|&n| dofs.frames[n].is_some()) {
+                    to_frames(&mut em.k, nodes, em.dpn, &dofs.frames);
+                    to_frames(&mut em.m, nodes, em.dpn, &dofs.frames);
+                }
+                Ok(em)
+            })
+            .collect::<Result<_, FeError>>()?;
+        // Split the value arrays at the cuts and scatter each range in parallel.
+        let mut kparts = Vec::new();
+        let mut mparts = Vec::new();
+        let (mut krest, mut mrest): (&mut [f64], &mut [f64]) = (&mut kv, &mut mv);
+        for w in cuts.windows(2) {
+            let (kh, kt) = krest.split_at_mut(value_start(w[1]) - value_start(w[0]));
+            let (mh, mt) = mrest.split_at_mut(mass_start(w[1]) - mass_start(w[0]));
+            kparts.push((w[0], w[1], kh));
+            mparts.push(mh);
+            krest = kt;
+            mrest = mt;
+        }
+        kparts
+            .into_par_iter()
+            .zip(mparts)
+            .for_each(|((lo, hi, kp), mp)| {
+                let (koff, moff0) = (value_start(lo), mass_start(lo));
+                for (&e, em) in chunk.iter().zip(&mats) {
+                    let nodes = &model.elements[e].nodes;
+                    let (dpn, nd) = (em.dpn, em.dpn * nodes.len());
+                    for (la, &a) in nodes.iter().enumerate() {
+                        if a < lo || a >= hi {
+                            continue;
+                        }
+                        let na = usize::from(dofs.count[a]);
+                        for c in 0..dpn.min(na) {
+                            let col = la * dpn + c;
+                            for (lb, &b) in nodes.iter().enumerate() {
+                                let p = pattern.block(a, c, b) - koff;
+                                let rows = dpn.min(usize::from(dofs.count[b]));
+                                for r in 0..rows {
+                                    kp[p + r] += em.k[(lb * dpn + r) * nd + col];
+                                }
+                                if !lumped {
+                                    for r in 0..rows {
+                                        mp[p + r] += em.m[(lb * dpn + r) * nd + col];
+                                    }
+                                } else if b == a {
+                                    let q = moff[a] - moff0 + c * na;
+                                    for r in 0..rows {
+                                        mp[q + r] += em.m[(lb * dpn + r) * nd + col];
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            });
+    }
+
+    for pm in &model.point_masses {
+        let a = pm.node;
+        let mut m6: Vec<f64> = mass::point_mass_matrix(pm)
+            .iter()
+            .flatten()
+            .copied()
+            .collect();
+        if dofs.frames[a].is_some() {
+            to_frames(&mut m6, &[a], 6, &dofs.frames);
+        }
+        let na = usize::from(dofs.count[a]);
+        for c in 0..na {
+            let p = if lumped {
+                moff[a] + c * na
+            } else {
+                pattern.block(a, c, a)
+            };
+            for r in 0..na {
+                mv[p + r] += m6[r * 6 + c];
+            }
+        }
+    }
+
+    let n = dofs.n_dofs;
+    let m = match spec.mass {
+        MassKind::Consistent => {
+            let sym = SymbolicSparseColMat::new_checked(
+                n,
+                n,
+                pattern.col_ptr.clone(),
+                None,
+                pattern.row_idx.clone(),
+            );
+            SparseColMat::new(sym, mv)
+        }
+        MassKind::Lumped => {
+            // Node blocks as CSC: column (a, c) holds rows first[a]..first[a] + count[a].
+            let mut cp = vec![0usize];
+            let mut ri = Vec::with_capacity(mv.len());
+            for a in 0..nn {
+                let na = usize::from(dofs.count[a]);
+                for _ in 0..na {
+                    ri.extend((0..na).map(|r| dofs.first[a] + r));
+                    cp.push(ri.len());
+                }
+            }
+            drop_zeros(n, &cp, &ri, &mv)
+        }
+    };
+    let Pattern {
+        col_ptr, row_idx, ..
+    } = pattern;
+    let k = SparseColMat::new(
+        SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx),
+        kv,
+    );
+    Ok(Assembled { dofs, k, m })
+}
+
+/// Copy a CSC matrix without its explicit zeros (diagonal entries are always kept).
+pub fn drop_zeros(
+    n: usize,
+    col_ptr: &[usize],
+    row_idx: &[usize],
+    val: &[f64],
+) -> SparseColMat<usize, f64> {
+    let mut cp = Vec::with_capacity(n + 1);
+    let (mut ri, mut vv) = (Vec::new(), Vec::new());
+    cp.push(0);
+    for j in 0..n {
+        for p in col_ptr[j]..col_ptr[j + 1] {
+            if val[p] != 0.0 || row_idx[p] == j {
+                ri.push(row_idx[p]);
+                vv.push(val[p]);
+            }
+        }
+        cp.push(ri.len());
+    }
+    SparseColMat::new(SymbolicSparseColMat::new_checked(n, n, cp, None, ri), vv)
+}

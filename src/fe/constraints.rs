@@ -1,0 +1,533 @@
+//! Rigid elements and constraints by elimination: u = T u_r, K_r = Tᵀ K T, M_r = Tᵀ M T
+//! (Cook, Malkus, Plesha & Witt, *Concepts and Applications of FEA*, 4th ed. §9.2).
+//!
+//! * RBE2 (rigid spider): each constrained dof of a dependent node d follows the independent node
+//!   i rigidly, u_d = u_i + θ_i × (x_d − x_i), θ_d = θ_i (in basic components; rotated into the
+//!   nodes' displacement frames).
+//! * RBE3 (weighted average): the reference node's motion q = [u θ] is the weighted least-squares
+//!   rigid fit of the independent nodes, q = S⁻¹ Σ w Gᵀ u with G = [I, −r̃] per translation row
+//!   (r = x_i − x_ref) and S = Σ w GᵀG (MSC Nastran QRG, RBE3 remarks). With only translations
+//!   referenced and a degenerate S (one node, collinear nodes) the translation-only average is used.
+//! * SPCs: the dofs are dropped (their T rows are empty).
+//! * AUTOSPC (on by default): retained dofs whose K_r and M_r diagonals are both exactly zero
+//!   (e.g. bending rotations of rod-only nodes) are dropped too, and listed.
+//!
+//! Chains (a dependent dof referring to another dependent dof) are resolved by substitution;
+//! a cycle or a dof made dependent twice is an error naming the elements.
+
+use std::collections::HashMap;
+
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::{Mat, MatRef};
+use rayon::prelude::*;
+
+use super::dofs::DofMap;
+use super::elements::beam::sub;
+use super::FeError;
+use crate::model::{DofMask, Model, NodeIndex, RigidElement};
+
+/// Which constraints to apply.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConstraintSpec {
+    /// SPC set ids to apply; `None` = every SPC of the model.
+    pub spc_sets: Option<Vec<u64>>,
+    /// Further fixed dofs (e.g. an interface set clamped for fixed-interface modes).
+    pub fixed: Vec<(NodeIndex, DofMask)>,
+    /// Drop retained dofs with zero stiffness and zero mass diagonal (Nastran AUTOSPC).
+    pub auto_spc: bool,
+}
+
+impl Default for ConstraintSpec {
+    fn default() -> Self {
+        ConstraintSpec {
+            spc_sets: None,
+            fixed: Vec::new(),
+            auto_spc: true,
+        }
+    }
+}
+
+/// The reduced system and the map back to physical dofs.
+#[derive(Debug, Clone)]
+pub struct Reduced {
+    /// T (n_physical × n_reduced): u = T u_r.
+    pub t: SparseColMat<usize, f64>,
+    /// K_r = Tᵀ K T, full symmetric.
+    pub k: SparseColMat<usize, f64>,
+    /// M_r = Tᵀ M T, full symmetric.
+    pub m: SparseColMat<usize, f64>,
+    /// Physical dof of each reduced dof (reduced dofs are retained physical dofs).
+    pub retained: Vec<usize>,
+    /// Physical dofs dropped by AUTOSPC.
+    pub auto_spc: Vec<usize>,
+}
+
+impl Reduced {
+    /// Physical vectors from reduced ones: X = T X_r (mode shapes at every physical node).
+    pub fn expand(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        let t = self.t.as_ref();
+        let mut out = Mat::zeros(t.nrows(), x.ncols());
+        for j in 0..t.ncols() {
+            for (i, v) in t.row_idx_of_col(j).zip(t.val_of_col(j)) {
+                for c in 0..x.ncols() {
+                    out[(i, c)] += v * x[(j, c)];
+                }
+            }
+        }
+        out
+    }
+}
+
+type Expr = Vec<(usize, f64)>;
+
+/// Per-thread accumulator of the Gustavson product: dense values, marks, finished columns.
+type Accumulator = (Vec<f64>, Vec<usize>, Vec<(usize, Vec<usize>, Vec<f64>)>);
+
+/// Build T and the reduced K, M.
+pub fn eliminate(
+    model: &Model,
+    dofs: &DofMap,
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    spec: &ConstraintSpec,
+) -> Result<Reduced, FeError> {
+    let n = dofs.n_dofs;
+    let err = |message: String| FeError::Constraint {
+        source_file: model.source.clone(),
+        message,
+    };
+    let node_ok = |node: usize, what: &str| -> Result<(), FeError> {
+        if node < model.nodes.len() {
+            Ok(())
+        } else {
+            Err(err(format!(
+                "{what} refers to node index {node} beyond the {} nodes",
+                model.nodes.len()
+            )))
+        }
+    };
+    let mut fixed = vec![false; n];
+    let mut fix = |node: usize, mask: DofMask| {
+        for c in mask.dofs() {
+            if let Some(d) = dofs.dof(node, c) {
+                fixed[d] = true;
+            }
+        }
+    };
+    for s in &model.spcs {
+        node_ok(s.node, "SPC")?;
+        if spec
+            .spc_sets
+            .as_ref()
+            .is_none_or(|sets| sets.contains(&s.set_id))
+        {
+            fix(s.node, s.dofs);
+        }
+    }
+    for &(node, mask) in &spec.fixed {
+        node_ok(node, "fixed dof")?;
+        fix(node, mask);
+    }
+
+    // Dependent dof → (expression over physical dofs, owning rigid element id).
+    let mut dep: HashMap<usize, (Expr, u64)> = HashMap::new();
+    let mut add_dep = |d: usize, e: Expr, id: u64| -> Result<(), FeError> {
+        if let Some((_, other)) = dep.get(&d) {
+            let (node, c) = dofs.node_of(d).unwrap_or((usize::MAX, 0));
+            return Err(err(format!(
+                "dof {} of node {} is dependent in rigid elements {other} and {id}",
+                c + 1,
+                model.nodes.get(node).map_or(0, |n| n.id)
+            )));
+        }
+        dep.insert(d, (e, id));
+        Ok(())
+    };
+    for r in &model.rigid_elements {
+        match r {
+            RigidElement::Rbe2 {
+                id,
+                independent,
+                dependent,
+                dofs: mask,
+            } => {
+                node_ok(*independent, "RBE2")?;
+                let i = *independent;
+                for &d in dependent {
+                    node_ok(d, "RBE2")?;
+                    if d == i {
+                        return Err(err(format!(
+                            "RBE2 {id}: node {} is both independent and dependent",
+                            model.nodes[d].id
+                        )));
+                    }
+                    let h = rbe2_map(model, dofs, i, d);
+                    for c in mask.dofs() {
+                        let Some(dd) = dofs.dof(d, c) else { continue };
+                        let e: Expr = (0..6)
+                            .filter_map(|q| dofs.dof(i, q).map(|di| (di, h[c][q])))
+                            .filter(|t| t.1 != 0.0)
+                            .collect();
+                        add_dep(dd, e, *id)?;
+                    }
+                }
+            }
+            RigidElement::Rbe3 {
+                id,
+                reference,
+                ref_dofs,
+                independent,
+            } => {
+                node_ok(*reference, "RBE3")?;
+                for &(nd, _, _) in independent {
+                    node_ok(nd, "RBE3")?;
+                }
+                let rows = rbe3_rows(model, dofs, *reference, *ref_dofs, independent)
+                    .map_err(|m| err(format!("RBE3 {id}: {m}")))?;
+                for (c, e) in rows {
+                    if let Some(dd) = dofs.dof(*reference, c) {
+                        add_dep(dd, e, *id)?;
+                    }
+                }
+            }
+        }
+    }
+    for (&d, (_, id)) in &dep {
+        if fixed[d] {
+            let (node, c) = dofs.node_of(d).unwrap_or((0, 0));
+            return Err(err(format!(
+                "dof {} of node {} is constrained by an SPC and is dependent in rigid element {id}",
+                c + 1,
+                model.nodes[node].id
+            )));
+        }
+    }
+
+    // Retained dofs, then rows of T by substitution.
+    let mut red = vec![usize::MAX; n];
+    let mut retained = Vec::new();
+    for d in 0..n {
+        if !fixed[d] && !dep.contains_key(&d) {
+            red[d] = retained.len();
+            retained.push(d);
+        }
+    }
+    let mut rows: Vec<Option<Expr>> = vec![None; n];
+    let mut state = vec![0u8; n];
+    for d in 0..n {
+        resolve(d, &dep, &fixed, &red, &mut rows, &mut state).map_err(|(d, id)| {
+            let (node, c) = dofs.node_of(d).unwrap_or((0, 0));
+            err(format!(
+                "rigid element {id}: dependency cycle through dof {} of node {}",
+                c + 1,
+                model.nodes[node].id
+            ))
+        })?;
+    }
+    let rows: Vec<Expr> = rows.into_iter().map(Option::unwrap_or_default).collect();
+    let (mut t, mut k_r, mut m_r) = triple(&rows, retained.len(), k, m);
+
+    let mut auto = Vec::new();
+    if spec.auto_spc {
+        let diag = |a: &SparseColMat<usize, f64>, j: usize| {
+            let a = a.as_ref();
+            a.row_idx_of_col(j)
+                .zip(a.val_of_col(j))
+                .find(|(i, _)| *i == j)
+                .map_or(0.0, |(_, v)| *v)
+        };
+        let drop: Vec<bool> = (0..retained.len())
+            .map(|j| diag(&k_r, j) == 0.0 && diag(&m_r, j) == 0.0)
+            .collect();
+        if drop.iter().any(|&b| b) {
+            let mut new_idx = vec![usize::MAX; retained.len()];
+            let mut kept = Vec::new();
+            for (j, &d) in retained.iter().enumerate() {
+                if drop[j] {
+                    auto.push(d);
+                } else {
+                    new_idx[j] = kept.len();
+                    kept.push(d);
+                }
+            }
+            let rows2: Vec<Expr> = rows
+                .iter()
+                .map(|r| {
+                    r.iter()
+                        .filter(|(j, _)| !drop[*j])
+                        .map(|&(j, v)| (new_idx[j], v))
+                        .collect()
+                })
+                .collect();
+            retained = kept;
+            (t, k_r, m_r) = triple(&rows2, retained.len(), k, m);
+        }
+    }
+    Ok(Reduced {
+        t,
+        k: k_r,
+        m: m_r,
+        retained,
+        auto_spc: auto,
+    })
+}
+
+/// Resolve the T row of dof d over retained dofs; Err((dof, element id)) on a cycle.
+fn resolve(
+    d: usize,
+    dep: &HashMap<usize, (Expr, u64)>,
+    fixed: &[bool],
+    red: &[usize],
+    rows: &mut [Option<Expr>],
+    state: &mut [u8],
+) -> Result<(), (usize, u64)> {
+    if state[d] == 2 {
+        return Ok(());
+    }
+    let Some((expr, id)) = dep.get(&d) else {
+        state[d] = 2;
+        rows[d] = Some(if fixed[d] {
+            Vec::new()
+        } else {
+            vec![(red[d], 1.0)]
+        });
+        return Ok(());
+    };
+    if state[d] == 1 {
+        return Err((d, *id));
+    }
+    state[d] = 1;
+    let mut acc: HashMap<usize, f64> = HashMap::new();
+    for &(s, c) in expr {
+        resolve(s, dep, fixed, red, rows, state)?;
+        for &(j, v) in rows[s].as_deref().unwrap_or(&[]) {
+            *acc.entry(j).or_insert(0.0) += c * v;
+        }
+    }
+    let mut e: Expr = acc.into_iter().filter(|t| t.1 != 0.0).collect();
+    e.sort_unstable_by_key(|t| t.0);
+    rows[d] = Some(e);
+    state[d] = 2;
+    Ok(())
+}
+
+/// 6×6 map from the independent node's local dofs to the dependent node's local dofs of a rigid
+/// link: H = R_d · [I, −r̃; 0, I] · R_iᵀ (r = x_d − x_i).
+fn rbe2_map(model: &Model, dofs: &DofMap, i: usize, d: usize) -> [[f64; 6]; 6] {
+    let r = sub(model.nodes[d].x, model.nodes[i].x);
+    let mut g = [[0.0; 6]; 6];
+    for k in 0..6 {
+        g[k][k] = 1.0;
+    }
+    // −r̃ θ = θ × r: rows of −r̃
+    let neg_rt = [[0.0, r[2], -r[1]], [-r[2], 0.0, r[0]], [r[1], -r[0], 0.0]];
+    for a in 0..3 {
+        for b in 0..3 {
+            g[a][3 + b] = neg_rt[a][b];
+        }
+    }
+    let rot6 = |f: Option<[[f64; 3]; 3]>| -> [[f64; 6]; 6] {
+        let f = f.unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let mut o = [[0.0; 6]; 6];
+        for blk in [0, 3] {
+            for a in 0..3 {
+                for b in 0..3 {
+                    o[blk + a][blk + b] = f[a][b];
+                }
+            }
+        }
+        o
+    };
+    let (rd, ri) = (rot6(dofs.frames[d]), rot6(dofs.frames[i]));
+    let mut out = [[0.0; 6]; 6];
+    for a in 0..6 {
+        for b in 0..6 {
+            // Σ_p Σ_q rd[a][p] g[p][q] ri[b][q]   (R_iᵀ)
+            out[a][b] = (0..6)
+                .map(|p| rd[a][p] * (0..6).map(|q| g[p][q] * ri[b][q]).sum::<f64>())
+                .sum();
+        }
+    }
+    out
+}
+
+/// RBE3 rows: for each referenced component c of the reference node, its expression over the
+/// independent nodes' physical dofs (module formula).
+fn rbe3_rows(
+    model: &Model,
+    dofs: &DofMap,
+    reference: usize,
+    ref_dofs: DofMask,
+    independent: &[(NodeIndex, f64, DofMask)],
+) -> Result<Vec<(usize, Expr)>, String> {
+    let xr = model.nodes[reference].x;
+    let eye = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    // One observation row per independent dof: g · q ≈ u_dof, weight w.
+    let mut obs: Vec<([f64; 6], f64, usize)> = Vec::new();
+    for &(node, w, mask) in independent {
+        if !(w >= 0.0 && w.is_finite()) {
+            return Err(format!(
+                "weight {w} of node {} is not a non-negative number",
+                model.nodes[node].id
+            ));
+        }
+        let f = dofs.frames[node].unwrap_or(eye);
+        let r = sub(model.nodes[node].x, xr);
+        for c in mask.dofs() {
+            let Some(d) = dofs.dof(node, c) else { continue };
+            let mut g = [0.0; 6];
+            if c < 3 {
+                let e = f[c];
+                g[..3].copy_from_slice(&e);
+                // e · (θ × r) = θ · (r × e)
+                g[3] = r[1] * e[2] - r[2] * e[1];
+                g[4] = r[2] * e[0] - r[0] * e[2];
+                g[5] = r[0] * e[1] - r[1] * e[0];
+            } else {
+                g[3..].copy_from_slice(&f[c - 3]);
+            }
+            obs.push((g, w, d));
+        }
+    }
+    let want_rot = ref_dofs.dofs().any(|c| c >= 3);
+    let solve = |nq: usize| -> Option<Mat<f64>> {
+        // S = Σ w g gᵀ (nq × nq), Jacobi-scaled, inverted through a symmetric eigendecomposition.
+        let s = Mat::from_fn(nq, nq, |a, b| {
+            obs.iter().map(|(g, w, _)| w * g[a] * g[b]).sum::<f64>()
+        });
+        let sc: Vec<f64> = (0..nq)
+            .map(|a| {
+                if s[(a, a)] > 0.0 {
+                    1.0 / s[(a, a)].sqrt()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        if sc.contains(&0.0) {
+            return None;
+        }
+        let ss = Mat::from_fn(nq, nq, |a, b| sc[a] * s[(a, b)] * sc[b]);
+        let eig = ss.self_adjoint_eigen(faer::Side::Lower).ok()?;
+        let lam: Vec<f64> = (0..nq).map(|k| eig.S()[k]).collect();
+        let lmax = lam.iter().fold(0.0f64, |a, &b| a.max(b));
+        if lam.iter().any(|&l| l <= 1e-10 * lmax) {
+            return None;
+        }
+        let u = eig.U();
+        Some(Mat::from_fn(nq, nq, |a, b| {
+            sc[a] * sc[b] * (0..nq).map(|k| u[(a, k)] * u[(b, k)] / lam[k]).sum::<f64>()
+        }))
+    };
+    let (sinv, nq) = match solve(6) {
+        Some(s) => (s, 6),
+        None if !want_rot => (solve(3).ok_or("independent nodes do not determine the reference translation (zero weights?)")?, 3),
+        None => return Err("independent nodes do not determine the reference rotation (one node or collinear nodes)".into()),
+    };
+    let fr = dofs.frames[reference].unwrap_or(eye);
+    let mut out = Vec::new();
+    for c in ref_dofs.dofs() {
+        let blk = if c < 3 { 0 } else { 3 };
+        if blk + 3 > nq {
+            continue;
+        }
+        // local component c = fr[c mod 3] · q[blk..blk+3]
+        let mut coef: HashMap<usize, f64> = HashMap::new();
+        for (g, w, d) in &obs {
+            let mut v = 0.0;
+            for a in 0..3 {
+                let row = blk + a;
+                v += fr[c % 3][a] * (0..nq).map(|b| sinv[(row, b)] * g[b]).sum::<f64>();
+            }
+            *coef.entry(*d).or_insert(0.0) += w * v;
+        }
+        let mut e: Expr = coef.into_iter().filter(|t| t.1 != 0.0).collect();
+        e.sort_unstable_by_key(|t| t.0);
+        out.push((c, e));
+    }
+    Ok(out)
+}
+
+/// T from its rows and the products Tᵀ K T, Tᵀ M T (Gustavson, column by column in parallel).
+fn triple(
+    rows: &[Expr],
+    nr: usize,
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+) -> (
+    SparseColMat<usize, f64>,
+    SparseColMat<usize, f64>,
+    SparseColMat<usize, f64>,
+) {
+    let n = rows.len();
+    // Columns of T.
+    let mut cnt = vec![0usize; nr + 1];
+    for r in rows {
+        for &(j, _) in r {
+            cnt[j + 1] += 1;
+        }
+    }
+    for j in 0..nr {
+        cnt[j + 1] += cnt[j];
+    }
+    let mut fill = cnt.clone();
+    let mut ti = vec![0usize; cnt[nr]];
+    let mut tv = vec![0.0; cnt[nr]];
+    for (i, r) in rows.iter().enumerate() {
+        for &(j, v) in r {
+            ti[fill[j]] = i;
+            tv[fill[j]] = v;
+            fill[j] += 1;
+        }
+    }
+    let t = SparseColMat::new(
+        SymbolicSparseColMat::new_checked(n, nr, cnt.clone(), None, ti.clone()),
+        tv.clone(),
+    );
+    let product = |a: &SparseColMat<usize, f64>| -> SparseColMat<usize, f64> {
+        let a = a.as_ref();
+        let cols: Vec<(usize, Vec<usize>, Vec<f64>)> = (0..nr)
+            .into_par_iter()
+            .fold(
+                || (vec![0.0f64; nr], vec![usize::MAX; nr], Vec::new()),
+                |(mut acc, mut mark, mut out): Accumulator, rj| {
+                    let mut touched = Vec::new();
+                    for p in cnt[rj]..cnt[rj + 1] {
+                        let (j, tj) = (ti[p], tv[p]);
+                        for (i, aij) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
+                            for &(ri, tij) in &rows[i] {
+                                if mark[ri] != rj {
+                                    mark[ri] = rj;
+                                    acc[ri] = 0.0;
+                                    touched.push(ri);
+                                }
+                                acc[ri] += tij * aij * tj;
+                            }
+                        }
+                    }
+                    touched.sort_unstable();
+                    let vals = touched.iter().map(|&r| acc[r]).collect();
+                    out.push((rj, touched, vals));
+                    (acc, mark, out)
+                },
+            )
+            .map(|(_, _, out)| out)
+            .reduce(Vec::new, |mut a, mut b| {
+                a.append(&mut b);
+                a
+            });
+        let mut cols = cols;
+        cols.sort_unstable_by_key(|c| c.0);
+        let mut cp = Vec::with_capacity(nr + 1);
+        cp.push(0usize);
+        let total: usize = cols.iter().map(|c| c.1.len()).sum();
+        let (mut ri, mut vv) = (Vec::with_capacity(total), Vec::with_capacity(total));
+        for (_, r, v) in cols {
+            ri.extend(r);
+            vv.extend(v);
+            cp.push(ri.len());
+        }
+        SparseColMat::new(SymbolicSparseColMat::new_checked(nr, nr, cp, None, ri), vv)
+    };
+    (t, product(k), product(m))
+}

@@ -1,0 +1,200 @@
+//! `DofMap`: node ↔ global dof index, node-major, 3 dofs per solid-only node and 6 where beams,
+//! rods, rigid elements or point masses with inertia attach; nodes that nothing uses get none.
+//!
+//! Dofs are expressed in each node's displacement frame (Nastran GRID CD): for a node with a
+//! frame, `frames[node]` holds R whose rows are the local unit axes at the node in the basic
+//! frame, so u_local = R u_basic for translations and rotations alike. Cylindrical frames use
+//! (e_r, e_θ, e_z) and spherical ones (e_R, e_θ, e_φ) evaluated at the node (MSC Nastran QRG,
+//! CORD2C/CORD2S).
+
+use super::elements::beam::{cross, dot, norm, scale, sub};
+use super::mass::point_mass_has_rotary;
+use super::FeError;
+use crate::model::{CoordKind, ElementKind, Model, RigidElement};
+
+/// Node ↔ dof numbering of a model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DofMap {
+    /// First global dof of each node (meaningful when `count[node] > 0`).
+    pub first: Vec<usize>,
+    /// Dofs per node: 0, 3 or 6 (`[ux uy uz]` or `[ux uy uz rx ry rz]`).
+    pub count: Vec<u8>,
+    /// Displacement-frame rotation per node (rows = local axes in the basic frame).
+    pub frames: Vec<Option<[[f64; 3]; 3]>>,
+    /// Total number of dofs.
+    pub n_dofs: usize,
+}
+
+impl DofMap {
+    /// Number the dofs of `model` (rules in the module doc).
+    pub fn from_model(model: &Model) -> Result<DofMap, FeError> {
+        let nn = model.nodes.len();
+        let mut count = vec![0u8; nn];
+        let bad_node = |node: usize, what: String| FeError::BadReference {
+            source_file: model.source.clone(),
+            message: format!("{what} refers to node index {node}, but the model has {nn} nodes"),
+        };
+        let mut raise = |node: usize, n: u8, what: &dyn Fn() -> String| -> Result<(), FeError> {
+            let c = count.get_mut(node).ok_or_else(|| bad_node(node, what()))?;
+            *c = (*c).max(n);
+            Ok(())
+        };
+        for e in &model.elements {
+            let n = match e.kind {
+                k if k.is_solid() => 3,
+                ElementKind::Beam2 | ElementKind::Rod2 => 6,
+                _ => continue,
+            };
+            if e.property.is_none() {
+                continue;
+            }
+            for &node in &e.nodes {
+                raise(node, n, &|| format!("element {}", e.id))?;
+            }
+        }
+        for p in &model.point_masses {
+            let n = if point_mass_has_rotary(p) { 6 } else { 3 };
+            raise(p.node, n, &|| format!("point mass {}", p.id))?;
+        }
+        for r in &model.rigid_elements {
+            match r {
+                RigidElement::Rbe2 {
+                    id,
+                    independent,
+                    dependent,
+                    ..
+                } => {
+                    raise(*independent, 6, &|| format!("RBE2 {id}"))?;
+                    for &d in dependent {
+                        raise(d, 3, &|| format!("RBE2 {id}"))?;
+                    }
+                }
+                RigidElement::Rbe3 {
+                    id,
+                    reference,
+                    ref_dofs,
+                    independent,
+                } => {
+                    let n = if ref_dofs.dofs().any(|k| k >= 3) {
+                        6
+                    } else {
+                        3
+                    };
+                    raise(*reference, n, &|| format!("RBE3 {id}"))?;
+                    for &(node, _, _) in independent {
+                        raise(node, 3, &|| format!("RBE3 {id}"))?;
+                    }
+                }
+            }
+        }
+        let mut first = vec![0usize; nn];
+        let mut next = 0usize;
+        for (f, &c) in first.iter_mut().zip(&count) {
+            *f = next;
+            next += usize::from(c);
+        }
+        let mut frames = vec![None; nn];
+        for (i, node) in model.nodes.iter().enumerate() {
+            if let Some(cs) = node.displacement_frame {
+                let sys = model
+                    .coord_systems
+                    .get(cs)
+                    .ok_or_else(|| FeError::BadReference {
+                        source_file: model.source.clone(),
+                        message: format!(
+                            "node {} uses coordinate system index {cs}, which does not exist",
+                            node.id
+                        ),
+                    })?;
+                frames[i] = Some(frame_at(sys.kind, sys.origin, &sys.axes, node.x));
+            }
+        }
+        Ok(DofMap {
+            first,
+            count,
+            frames,
+            n_dofs: next,
+        })
+    }
+
+    /// Global dof of component `comp` (0 = ux … 5 = rz) of `node`, if it exists.
+    pub fn dof(&self, node: usize, comp: usize) -> Option<usize> {
+        let c = usize::from(*self.count.get(node)?);
+        (comp < c).then(|| self.first[node] + comp)
+    }
+
+    /// (node, component) of a global dof.
+    pub fn node_of(&self, dof: usize) -> Option<(usize, usize)> {
+        if dof >= self.n_dofs {
+            return None;
+        }
+        // Last node whose first dof is ≤ dof and that owns dofs.
+        let mut node = self.first.partition_point(|&f| f <= dof).checked_sub(1)?;
+        while self.count[node] == 0 || self.first[node] > dof {
+            node = node.checked_sub(1)?;
+        }
+        Some((node, dof - self.first[node]))
+    }
+}
+
+/// Local axes (rows, basic components) of a displacement frame at point `x`.
+pub fn frame_at(
+    kind: CoordKind,
+    origin: [f64; 3],
+    axes: &[[f64; 3]; 3],
+    x: [f64; 3],
+) -> [[f64; 3]; 3] {
+    let d = sub(x, origin);
+    let p = [dot(axes[0], d), dot(axes[1], d), dot(axes[2], d)];
+    let to_basic = |v: [f64; 3]| -> [f64; 3] {
+        std::array::from_fn(|i| axes[0][i] * v[0] + axes[1][i] * v[1] + axes[2][i] * v[2])
+    };
+    match kind {
+        CoordKind::Rectangular => *axes,
+        CoordKind::Cylindrical => {
+            let r = (p[0] * p[0] + p[1] * p[1]).sqrt();
+            let (c, s) = if r > 0.0 {
+                (p[0] / r, p[1] / r)
+            } else {
+                (1.0, 0.0)
+            };
+            [to_basic([c, s, 0.0]), to_basic([-s, c, 0.0]), axes[2]]
+        }
+        CoordKind::Spherical => {
+            let rr = norm(p);
+            let er = if rr > 0.0 {
+                scale(p, 1.0 / rr)
+            } else {
+                [0.0, 0.0, 1.0]
+            };
+            let rxy = (p[0] * p[0] + p[1] * p[1]).sqrt();
+            let ephi = if rxy > 0.0 {
+                [-p[1] / rxy, p[0] / rxy, 0.0]
+            } else {
+                [0.0, 1.0, 0.0]
+            };
+            let eth = cross(ephi, er);
+            [to_basic(er), to_basic(eth), to_basic(ephi)]
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cylindrical_frame_at_node_is_radial_tangential_axial() {
+        let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let r = frame_at(
+            CoordKind::Cylindrical,
+            [1.0, 0.0, 0.0],
+            &axes,
+            [1.0, 2.0, 5.0],
+        );
+        assert_eq!(r, [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]);
+        let s = frame_at(CoordKind::Spherical, [0.0; 3], &axes, [3.0, 0.0, 0.0]);
+        // e_R = x, e_θ (towards −z from the equator… θ measured from z) = −z, e_φ = y
+        assert_eq!(s, [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]);
+    }
+}

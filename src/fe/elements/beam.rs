@@ -1,0 +1,315 @@
+//! 2-node 3D beam (B31, CBAR, CBEAM): axial, torsion and bending in two planes; Euler–Bernoulli
+//! or Timoshenko (shear-flexible) bending.
+//!
+//! ```text
+//!        y (v, θy ↑ in the x–v plane)
+//!        |                         local x = (x2 − x1)/L
+//!        1 ──────────────── 2 ─ x  local y = v − (v·x)x normalised (v = orientation vector)
+//!       /                          local z = x × y
+//!      z                           dofs per node [u v w θx θy θz], 12 per element
+//! ```
+//! Stiffness: Przemieniecki, *Theory of Matrix Structural Analysis* (1968) eq. 5.116 (with shear
+//! parameters Φ_y = 12EI_z/(G k_y A L²), Φ_z = 12EI_y/(G k_z A L²); Φ = 0 is Euler–Bernoulli).
+//! I1 = I_z bends in the x–y plane (Nastran plane 1), I2 = I_y in the x–z plane.
+//! Consistent mass: Przemieniecki eq. 11.42 without the rotary-inertia terms of bending (the
+//! Euler–Bernoulli mass), plus axial m/6·[2 1; 1 2] and torsional ρI_pL/6·[2 1; 1 2] with
+//! I_p = I_y + I_z. Lumped mass: m/2 on each node's translations, section rotary inertia
+//! ρL/2·(I_p, I_y, I_z) on its rotations. Non-structural mass adds to the translational mass only.
+
+use super::{ElementError, Isotropic, Xyz};
+
+/// Section constants of a beam element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BeamProps {
+    /// Area A.
+    pub area: f64,
+    /// I_z: bending in the local x–y plane (Nastran I1).
+    pub iz: f64,
+    /// I_y: bending in the local x–z plane (Nastran I2).
+    pub iy: f64,
+    /// Torsion constant J.
+    pub j: f64,
+    /// Shear area factors (k_y, k_z); `None` = Euler–Bernoulli.
+    pub shear: Option<[f64; 2]>,
+    /// Non-structural mass per length.
+    pub nsm: f64,
+}
+
+/// Local frame of a line element: rows e_x, e_y, e_z (basic components) and the length.
+pub fn local_frame(x: &[Xyz; 2], v: Option<Xyz>) -> Result<([Xyz; 3], f64), ElementError> {
+    let d = sub(x[1], x[0]);
+    let l = norm(d);
+    if l.is_nan() || l <= 0.0 {
+        return Err(ElementError::ZeroLength);
+    }
+    let ex = scale(d, 1.0 / l);
+    let v = match v {
+        Some(v) => v,
+        // No orientation (rods): any vector not parallel to the axis.
+        None => {
+            let k = (0..3)
+                .min_by(|&a, &b| ex[a].abs().total_cmp(&ex[b].abs()))
+                .unwrap_or(0);
+            let mut e = [0.0; 3];
+            e[k] = 1.0;
+            e
+        }
+    };
+    let y = sub(v, scale(ex, dot(v, ex)));
+    let ny = norm(y);
+    if ny.is_nan() || ny <= 1e-9 * norm(v) {
+        return Err(ElementError::BadOrientation { v });
+    }
+    let ey = scale(y, 1.0 / ny);
+    Ok(([ex, ey, cross(ex, ey)], l))
+}
+
+/// Local 12×12 stiffness, Przemieniecki eq. 5.116.
+pub fn stiffness_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 12]; 12] {
+    let mut k = [[0.0; 12]; 12];
+    let ea = mat.e * p.area / l;
+    let gj = mat.g * p.j / l;
+    add2(&mut k, 0, 6, [[ea, -ea], [-ea, ea]]);
+    add2(&mut k, 3, 9, [[gj, -gj], [-gj, gj]]);
+    let phi = |i: f64, ks: f64| {
+        if ks > 0.0 {
+            12.0 * mat.e * i / (mat.g * ks * p.area * l * l)
+        } else {
+            0.0
+        }
+    };
+    let (phy, phz) = match p.shear {
+        Some([ky, kz]) => (phi(p.iz, ky), phi(p.iy, kz)),
+        None => (0.0, 0.0),
+    };
+    // Bending in x–y: dofs (v1, θz1, v2, θz2) = (1, 5, 7, 11); s = +1.
+    // Bending in x–z: dofs (w1, θy1, w2, θy2) = (2, 4, 8, 10); s = −1.
+    for (dofs, i, ph, s) in [
+        ([1, 5, 7, 11], p.iz, phy, 1.0),
+        ([2, 4, 8, 10], p.iy, phz, -1.0),
+    ] {
+        let c = mat.e * i / ((1.0 + ph) * l * l * l);
+        let b = [
+            [12.0, s * 6.0 * l, -12.0, s * 6.0 * l],
+            [
+                s * 6.0 * l,
+                (4.0 + ph) * l * l,
+                -s * 6.0 * l,
+                (2.0 - ph) * l * l,
+            ],
+            [-12.0, -s * 6.0 * l, 12.0, -s * 6.0 * l],
+            [
+                s * 6.0 * l,
+                (2.0 - ph) * l * l,
+                -s * 6.0 * l,
+                (4.0 + ph) * l * l,
+            ],
+        ];
+        for r in 0..4 {
+            for cc in 0..4 {
+                k[dofs[r]][dofs[cc]] += c * b[r][cc];
+            }
+        }
+    }
+    k
+}
+
+/// Local 12×12 consistent mass (module formula).
+pub fn consistent_mass_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 12]; 12] {
+    let mut m = [[0.0; 12]; 12];
+    let mass = (mat.rho * p.area + p.nsm) * l;
+    let a = mass / 6.0;
+    add2(&mut m, 0, 6, [[2.0 * a, a], [a, 2.0 * a]]);
+    let t = mat.rho * (p.iy + p.iz) * l / 6.0;
+    add2(&mut m, 3, 9, [[2.0 * t, t], [t, 2.0 * t]]);
+    for (dofs, s) in [([1, 5, 7, 11], 1.0), ([2, 4, 8, 10], -1.0)] {
+        let c = mass / 420.0;
+        let b = [
+            [156.0, s * 22.0 * l, 54.0, -s * 13.0 * l],
+            [s * 22.0 * l, 4.0 * l * l, s * 13.0 * l, -3.0 * l * l],
+            [54.0, s * 13.0 * l, 156.0, -s * 22.0 * l],
+            [-s * 13.0 * l, -3.0 * l * l, -s * 22.0 * l, 4.0 * l * l],
+        ];
+        for r in 0..4 {
+            for cc in 0..4 {
+                m[dofs[r]][dofs[cc]] += c * b[r][cc];
+            }
+        }
+    }
+    m
+}
+
+/// Local 12×12 lumped (diagonal) mass with section rotary inertia (module formula).
+pub fn lumped_mass_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 12]; 12] {
+    let mut m = [[0.0; 12]; 12];
+    let half = 0.5 * (mat.rho * p.area + p.nsm) * l;
+    let r = 0.5 * mat.rho * l;
+    for n in [0, 6] {
+        for i in 0..3 {
+            m[n + i][n + i] = half;
+        }
+        m[n + 3][n + 3] = r * (p.iy + p.iz);
+        m[n + 4][n + 4] = r * p.iy;
+        m[n + 5][n + 5] = r * p.iz;
+    }
+    m
+}
+
+/// Rotate a local 12×12 matrix to the basic frame: A = Tᵀ A_l T, T = diag(R, R, R, R),
+/// R rows = local axes.
+pub fn to_basic(a: &[[f64; 12]; 12], r: &[Xyz; 3]) -> Vec<f64> {
+    // t[i][j] = T_ij (block diagonal)
+    let t = |i: usize, j: usize| {
+        if i / 3 == j / 3 {
+            r[i % 3][j % 3]
+        } else {
+            0.0
+        }
+    };
+    let mut at = [[0.0; 12]; 12]; // A_l T
+    for i in 0..12 {
+        for j in 0..12 {
+            let blk = j / 3 * 3;
+            at[i][j] = (0..3).map(|k| a[i][blk + k] * t(blk + k, j)).sum();
+        }
+    }
+    let mut out = vec![0.0; 144];
+    for i in 0..12 {
+        let blk = i / 3 * 3;
+        for j in 0..12 {
+            out[i * 12 + j] = (0..3).map(|k| t(blk + k, i) * at[blk + k][j]).sum();
+        }
+    }
+    out
+}
+
+/// Checks section and material constants.
+pub fn check(mat: &Isotropic, p: &BeamProps) -> Result<(), ElementError> {
+    let ok = mat.e > 0.0
+        && mat.g > 0.0
+        && mat.rho >= 0.0
+        && p.area > 0.0
+        && p.iy >= 0.0
+        && p.iz >= 0.0
+        && p.j >= 0.0
+        && p.nsm >= 0.0;
+    if !ok {
+        return Err(ElementError::BadConstants(format!(
+            "beam needs E, G, A > 0 and ρ, I, J, nsm ≥ 0 (E = {}, G = {}, A = {}, Iz = {}, Iy = {}, J = {})",
+            mat.e, mat.g, p.area, p.iz, p.iy, p.j
+        )));
+    }
+    Ok(())
+}
+
+/// Basic-frame stiffness and mass (12×12 each) of a beam.
+pub fn matrices(
+    x: &[Xyz; 2],
+    v: Option<Xyz>,
+    mat: &Isotropic,
+    p: &BeamProps,
+    lumped: bool,
+) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
+    check(mat, p)?;
+    let v = v.ok_or(ElementError::BadOrientation { v: [0.0; 3] })?;
+    let (r, l) = local_frame(x, Some(v))?;
+    let k = stiffness_local(l, mat, p);
+    let m = if lumped {
+        lumped_mass_local(l, mat, p)
+    } else {
+        consistent_mass_local(l, mat, p)
+    };
+    Ok((to_basic(&k, &r), to_basic(&m, &r)))
+}
+
+fn add2(k: &mut [[f64; 12]; 12], a: usize, b: usize, v: [[f64; 2]; 2]) {
+    let d = [a, b];
+    for r in 0..2 {
+        for c in 0..2 {
+            k[d[r]][d[c]] += v[r][c];
+        }
+    }
+}
+
+pub(crate) fn sub(a: Xyz, b: Xyz) -> Xyz {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+pub(crate) fn dot(a: Xyz, b: Xyz) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+pub(crate) fn norm(a: Xyz) -> f64 {
+    dot(a, a).sqrt()
+}
+pub(crate) fn scale(a: Xyz, s: f64) -> Xyz {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+pub(crate) fn cross(a: Xyz, b: Xyz) -> Xyz {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn props() -> BeamProps {
+        BeamProps {
+            area: 2e-4,
+            iz: 3e-9,
+            iy: 5e-9,
+            j: 6e-9,
+            shear: Some([0.85, 0.85]),
+            nsm: 0.0,
+        }
+    }
+
+    /// Six rigid motions u = a + θ × x give zero force; the rotated element keeps it.
+    #[test]
+    fn beam_rigid_body_motion_gives_zero_force() {
+        let x = [[0.1, 0.2, -0.3], [0.5, -0.1, 0.4]];
+        let mat = Isotropic::new(210e9, 0.3, 7850.0);
+        let (k, _) = matrices(&x, Some([0.0, 0.3, 1.0]), &mat, &props(), false).unwrap();
+        let kmax = k.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        for mode in 0..6 {
+            let mut u = [0.0; 12];
+            for (n, xn) in x.iter().enumerate() {
+                let (mut t, mut th) = ([0.0; 3], [0.0; 3]);
+                if mode < 3 {
+                    t[mode] = 1.0;
+                } else {
+                    th[mode - 3] = 1.0;
+                    t = cross(th, *xn);
+                }
+                u[6 * n..6 * n + 3].copy_from_slice(&t);
+                u[6 * n + 3..6 * n + 6].copy_from_slice(&th);
+            }
+            for i in 0..12 {
+                let f: f64 = (0..12).map(|j| k[i * 12 + j] * u[j]).sum();
+                assert!(f.abs() < 1e-12 * kmax, "mode {mode} row {i}: {f}");
+            }
+        }
+    }
+
+    /// A cantilever tip load P along local y gives the closed-form tip deflection
+    /// PL³/(3EI) + PL/(kGA) (Timoshenko) — one element is exact.
+    #[test]
+    fn beam_cantilever_tip_deflection_is_exact() {
+        let mat = Isotropic::new(200e9, 0.3, 0.0);
+        let p = props();
+        let l = 0.7;
+        let k = stiffness_local(l, &mat, &p);
+        // Free dofs v2, θz2 = (7, 11).
+        let (a, b, c) = (k[7][7], k[7][11], k[11][11]);
+        let det = a * c - b * b;
+        let v2 = c / det; // unit load
+        let want = l.powi(3) / (3.0 * mat.e * p.iz) + l / (0.85 * mat.g * p.area);
+        assert!((v2 - want).abs() < 1e-12 * want);
+        let (a, b, c) = (k[8][8], k[8][10], k[10][10]);
+        let w2 = c / (a * c - b * b);
+        let want = l.powi(3) / (3.0 * mat.e * p.iy) + l / (0.85 * mat.g * p.area);
+        assert!((w2 - want).abs() < 1e-12 * want);
+    }
+}

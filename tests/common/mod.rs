@@ -1,0 +1,57 @@
+//! Test support for the fe tests: the reference-data paths, reading the reference meshes through
+//! the `.inp` importer, dense copies of sparse matrices, and a dense generalized symmetric
+//! eigen-solve for small systems.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use faer::sparse::SparseColMat;
+use faer::Mat;
+use flexbody::model::{Material, Model};
+
+pub fn reference(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference").join(rel)
+}
+
+pub fn steel() -> Material {
+    Material { id: 1, name: "STEEL".into(), e: 210e9, nu: 0.3, g: 210e9 / 2.6, rho: 7850.0 }
+}
+
+/// Read a reference mesh.inp with the `.inp` importer; solids without a section get steel.
+pub fn read_mesh_inp(path: &Path) -> Model {
+    let opts = flexbody::import::ImportOptions { material: Some(steel()), ..Default::default() };
+    flexbody::import::read_model(path, &opts).expect("reference mesh.inp imports")
+}
+
+pub fn dense(a: &SparseColMat<usize, f64>) -> Mat<f64> {
+    let a = a.as_ref();
+    let mut d = Mat::zeros(a.nrows(), a.ncols());
+    for j in 0..a.ncols() {
+        for (i, v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
+            d[(i, j)] += v;
+        }
+    }
+    d
+}
+
+/// Eigenvalues λ of K x = λ M x (M positive definite), ascending, via M = LLᵀ and
+/// L⁻¹ K L⁻ᵀ (dense; for n up to a few thousand).
+pub fn generalized_eigenvalues(k: &Mat<f64>, m: &Mat<f64>) -> Vec<f64> {
+    let n = k.nrows();
+    let llt = m.llt(faer::Side::Lower).expect("M positive definite");
+    let l = llt.L();
+    // A = L⁻¹ K L⁻ᵀ
+    let mut a = k.clone();
+    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, a.as_mut(), faer::Par::Seq);
+    let mut at = a.transpose().to_owned();
+    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, at.as_mut(), faer::Par::Seq);
+    let sym = Mat::from_fn(n, n, |i, j| 0.5 * (at[(i, j)] + at[(j, i)]));
+    let mut ev = sym.self_adjoint_eigenvalues(faer::Side::Lower).expect("eigenvalues converge");
+    ev.sort_by(f64::total_cmp);
+    ev
+}
+
+/// Hz from ω².
+pub fn hz(lambda: f64) -> f64 {
+    lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+}
