@@ -18,6 +18,8 @@
 //! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.
 #![allow(non_snake_case)]
 
+pub mod build;
+pub mod check;
 pub mod faces;
 pub mod fe;
 pub mod import;

@@ -1,0 +1,291 @@
+//! `flexbody check`: a verification report on a reduced-body file, in the spirit of pyyeti's
+//! `cbcheck`. Each check measures one figure against a stated limit; the file passes only when
+//! every check passes.
+//!
+//! From the file alone:
+//! * generalized mass = I and generalized stiffness = diag(ω²), frequencies = √ω²/2π;
+//! * rigid-body properties from the invariants: I1 > 0, centre of mass I2/I1 inside the nodes'
+//!   bounding box, I7 symmetric positive definite;
+//! * the number of rigid-body modes against the expectation (6 for a free body, 0 with
+//!   reference conditions);
+//! * when every node is stored: invariants I1, I2, I3, I6, I7 recomputed from the stored nodal
+//!   masses and shapes equal the stored ones, and (lumped mass) I6 equals the generalized mass —
+//!   a corrupted mode shape breaks these.
+//!
+//! With the FE model (`--model`, rebuilt with the same interface spiders as `build`):
+//! * ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²) against the model's own K and M (all nodes stored);
+//! * eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖ (normal modes: must be small; reduced bases: reported);
+//! * frequencies against a full normal-mode solve: Rayleigh–Ritz bound (reduced ≥ full) and
+//!   relative error ≤ 1% for the flexible modes below the scene's fmax (or the lower half).
+
+use std::path::PathBuf;
+
+use faer::{Mat, Par};
+use flexbody_reader as file;
+
+use crate::fe::{self, assemble, eliminate, AssemblySpec, ConstraintSpec};
+use crate::import::{self, Format, ImportOptions};
+use crate::interface::{resolve_interfaces, SpiderKind};
+use crate::invariants::{compute_invariants, InvariantSet, MassPoint};
+use crate::model::Material;
+use crate::reduce::select::ModeCount;
+use crate::solve::{sparse_ops, EigenSpec};
+
+/// One check: a measured figure against its limit.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CheckItem {
+    /// Short name.
+    pub name: String,
+    /// Measured value.
+    pub value: f64,
+    /// Limit the value must not exceed (or reach, see `detail`).
+    pub limit: f64,
+    /// Did it pass?
+    pub pass: bool,
+    /// One line explaining the figure.
+    pub detail: String,
+}
+
+/// The whole report.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
+pub struct CheckReport {
+    /// Checks in the order run.
+    pub items: Vec<CheckItem>,
+}
+
+impl CheckReport {
+    /// True when every check passed.
+    pub fn passed(&self) -> bool {
+        self.items.iter().all(|i| i.pass)
+    }
+
+    fn push(&mut self, name: &str, value: f64, limit: f64, detail: String) {
+        let pass = value.is_finite() && value <= limit;
+        self.items.push(CheckItem { name: name.into(), value, limit, pass, detail });
+    }
+}
+
+/// The FE model to check against, rebuilt as `build` did.
+#[derive(Debug, Clone)]
+pub struct ModelInput {
+    /// Model file.
+    pub path: PathBuf,
+    /// Format override.
+    pub format: Option<Format>,
+    /// Material for elements without a section.
+    pub material: Option<Material>,
+    /// The interface entries given to `build`.
+    pub interface: Vec<String>,
+    /// The spider kind given to `build`.
+    pub spider: SpiderKind,
+}
+
+/// Errors that stop the check from running at all (a failed check is not an error).
+#[derive(Debug, thiserror::Error)]
+pub enum CheckError {
+    /// The model could not be rebuilt.
+    #[error(transparent)]
+    Build(#[from] crate::build::BuildError),
+}
+
+/// Limit on ‖ΦᵀMΦ − I‖ and the stored-data identities (relative).
+pub const ORTHO_LIMIT: f64 = 1e-8;
+/// Limit on the relative frequency error of modes in the scene's band.
+pub const FREQ_LIMIT: f64 = 0.01;
+
+/// Run every check that the inputs allow.
+pub fn check(body: &file::ReducedBody, model: Option<&ModelInput>) -> Result<CheckReport, CheckError> {
+    let mut r = CheckReport::default();
+    let m = body.mode_count();
+    let n = body.node_count();
+    let md = &body.modes;
+    let max_w2 = md.omega2.iter().fold(0.0f64, |a, &b| a.max(b.abs())).max(f64::MIN_POSITIVE);
+
+    let gm_err = (0..m * m).map(|i| (md.generalized_mass[i] - if i / m == i % m { 1.0 } else { 0.0 }).abs()).fold(0.0, f64::max);
+    r.push("generalized mass = I", gm_err, ORTHO_LIMIT, format!("max |Φᵀ M Φ − I| as stored, {m} modes"));
+    let gk_err = (0..m * m).map(|i| (md.generalized_stiffness[i] - if i / m == i % m { md.omega2[i / m] } else { 0.0 }).abs()).fold(0.0, f64::max) / max_w2;
+    r.push("generalized stiffness = diag(ω²)", gk_err, ORTHO_LIMIT, "max |Φᵀ K Φ − diag(ω²)| / max ω², as stored".into());
+    let f_err = md.omega2.iter().zip(&md.frequency_hz).map(|(&w2, &f)| (w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI) - f).abs() / f.max(1e-300)).filter(|e| e.is_finite()).fold(0.0, f64::max);
+    r.push("frequencies = √ω²/2π", f_err, 1e-12, "relative".into());
+
+    // Rigid-body properties from the invariants.
+    let inv = &body.invariants;
+    let i1 = inv.i1.first().copied().unwrap_or(0.0);
+    r.push("total mass I1 > 0", if i1 > 0.0 { 0.0 } else { 1.0 }, 0.0, format!("I1 = {i1:.6e}"));
+    if i1 > 0.0 && inv.i2.len() == 3 && n > 0 {
+        let cm: Vec<f64> = inv.i2.iter().map(|v| v / i1).collect();
+        let outside = (0..3)
+            .map(|k| {
+                let lo = body.nodes.iter().map(|p| p.xyz[k]).fold(f64::INFINITY, f64::min);
+                let hi = body.nodes.iter().map(|p| p.xyz[k]).fold(f64::NEG_INFINITY, f64::max);
+                let tol = 1e-9 * (hi - lo).abs().max(1e-300);
+                ((lo - tol) - cm[k]).max(cm[k] - (hi + tol)).max(0.0)
+            })
+            .fold(0.0, f64::max);
+        r.push("centre of mass inside the body's bounding box", outside, 0.0, format!("I2/I1 = ({:.6e}, {:.6e}, {:.6e})", cm[0], cm[1], cm[2]));
+    }
+    if inv.i7.len() == 9 {
+        let t = Mat::from_fn(3, 3, |a, b| inv.i7[3 * a + b]);
+        let asym = (0..3).flat_map(|a| (0..3).map(move |b| (a, b))).map(|(a, b)| (t[(a, b)] - t[(b, a)]).abs()).fold(0.0, f64::max);
+        let ev = t.self_adjoint_eigenvalues(faer::Side::Lower).unwrap_or_default();
+        let min_ev = ev.first().copied().unwrap_or(-1.0);
+        let max_ev = ev.last().copied().unwrap_or(1.0);
+        r.push("inertia tensor I7 symmetric positive definite", if min_ev > 0.0 { asym / max_ev } else { 1.0 }, 1e-12, format!("principal values {ev:?}"));
+    }
+
+    // Rigid modes against the expectation.
+    let fmax_stored = md.frequency_hz.iter().fold(0.0f64, |a, &b| a.max(b));
+    let rigid = md.frequency_hz.iter().filter(|&&f| f < 1e-4 * fmax_stored).count();
+    let expected = if body.method.reference_conditions.is_empty() { 6 } else { 0 };
+    let labelled = md.labels.iter().filter(|l| **l == file::ModeLabel::Rigid).count();
+    r.push(
+        "rigid-body modes as expected",
+        (rigid as f64 - expected as f64).abs() + (labelled as f64 - rigid as f64).abs(),
+        0.0,
+        format!("{rigid} modes below 1e-4·f_max (labelled rigid: {labelled}); expected {expected} ({})", if expected == 6 { "free body" } else { "reference conditions hold the body frame" }),
+    );
+
+    // Invariants recomputed from the stored nodes (only meaningful when every node is stored).
+    let all_nodes = body.header.request.keep_nodes == file::KeepNodes::All;
+    if all_nodes {
+        let points: Vec<MassPoint> = body.nodes.iter().zip(&body.nodal_mass).map(|(p, nm)| MassPoint { position: p.xyz, mass: nm.mass, inertia: nm.inertia }).collect();
+        let shapes = Mat::from_fn(6 * n, m, |row, j| md.shapes[(j * n + row / 6) * 6 + row % 6]);
+        if let Ok(re) = compute_invariants(&points, shapes.as_ref(), InvariantSet::Constant, Par::Seq) {
+            let rel = |a: f64, b: f64, scale: f64| (a - b).abs() / scale.max(f64::MIN_POSITIVE);
+            let mut worst: f64 = rel(re.i1, i1, i1.abs());
+            let len = (inv.i7.iter().map(|v| v.abs()).fold(0.0, f64::max) / i1.max(f64::MIN_POSITIVE)).sqrt();
+            for k in 0..3 {
+                worst = worst.max(rel(re.i2[k], inv.i2.get(k).copied().unwrap_or(f64::NAN), i1 * len));
+            }
+            for k in 0..9 {
+                worst = worst.max(rel(re.i7[k / 3][k % 3], inv.i7.get(k).copied().unwrap_or(f64::NAN), i1 * len * len));
+            }
+            if inv.i6.len() == m * m {
+                if let Some(i6) = &re.i6 {
+                    for a in 0..m {
+                        for b in 0..m {
+                            worst = worst.max(rel(i6[(a, b)], inv.i6[a * m + b], 1.0));
+                        }
+                    }
+                }
+            }
+            r.push("stored invariants = recomputation from stored nodes", worst, 1e-9, "I1, I2, I6, I7 relative (point masses with offsets are lumped to their node in the file)".into());
+            if body.method.mass_kind == file::MassKind::Lumped {
+                if let Some(i6) = &re.i6 {
+                    let e = (0..m * m).map(|i| (i6[(i / m, i % m)] - md.generalized_mass[i]).abs()).fold(0.0, f64::max);
+                    r.push("I6 from stored shapes = generalized mass", e, 1e-6, "lumped mass: Σ m ΦᵀΦ + Φ*ᵀ I Φ* must equal Φᵀ M Φ = I".into());
+                }
+            }
+        }
+    }
+
+    if let Some(input) = model {
+        model_checks(body, input, &mut r)?;
+    }
+    Ok(r)
+}
+
+fn model_checks(body: &file::ReducedBody, input: &ModelInput, r: &mut CheckReport) -> Result<(), CheckError> {
+    use crate::build::BuildError;
+    let mut model = import::read_model(&input.path, &ImportOptions { format: input.format, material: input.material.clone() }).map_err(BuildError::from)?;
+    resolve_interfaces(&mut model, &input.interface, input.spider).map_err(BuildError::from)?;
+    let mass = match body.method.mass_kind {
+        file::MassKind::Lumped => fe::MassKind::Lumped,
+        file::MassKind::Consistent => fe::MassKind::Consistent,
+    };
+    let a = assemble(&model, &AssemblySpec { mass, ..Default::default() }).map_err(BuildError::from)?;
+    let red = eliminate(&model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).map_err(BuildError::from)?;
+    let m = body.mode_count();
+    let n_r = red.retained.len();
+    let by_id = model.node_index_by_id();
+    // Reference-condition dofs in the reduced numbering.
+    let mut reduced_index = vec![usize::MAX; a.dofs.n_dofs];
+    for (i, &p) in red.retained.iter().enumerate() {
+        reduced_index[p] = i;
+    }
+    let mut fixed = Vec::new();
+    for rc in &body.method.reference_conditions {
+        let node = body.nodes.get(rc.node as usize).and_then(|p| by_id.get(&p.id)).copied();
+        if let Some(node) = node {
+            for c in (0..usize::from(a.dofs.count[node])).filter(|&c| rc.dofs[c]) {
+                let d = reduced_index[a.dofs.first[node] + c];
+                if d != usize::MAX {
+                    fixed.push(d);
+                }
+            }
+        }
+    }
+
+    // Frequencies against the full normal-mode solve.
+    let flexible: Vec<(usize, f64)> = body.modes.frequency_hz.iter().copied().enumerate().filter(|&(j, _)| body.modes.labels[j] != file::ModeLabel::Rigid).collect();
+    let wanted = (body.modes.labels.iter().filter(|l| **l == file::ModeLabel::Rigid).count() + flexible.len()).min(n_r.saturating_sub(fixed.len())).max(1);
+    let eig = EigenSpec { dofs_per_node: Some(3), ..Default::default() };
+    let full = crate::reduce::normal::normal_modes(&red.k, &red.m, ModeCount::Count(wanted), &fixed, &eig).map_err(BuildError::from)?;
+    let full_flex: Vec<f64> = full.frequencies_hz().into_iter().zip(&full.labels).filter(|(_, l)| **l != crate::reduce::ModeLabel::Rigid).map(|(f, _)| f).collect();
+    let band = body.header.request.fmax_hz.unwrap_or(f64::INFINITY);
+    let mut worst_err: f64 = 0.0;
+    let mut worst_bound: f64 = 0.0;
+    let mut compared = 0;
+    for (q, (_, f)) in flexible.iter().enumerate() {
+        let Some(&f_full) = full_flex.get(q) else { break };
+        worst_bound = worst_bound.max((f_full - f) / f_full);
+        let in_band = if band.is_finite() { f_full <= band } else { q < full_flex.len().div_ceil(2) };
+        if in_band {
+            worst_err = worst_err.max((f - f_full).abs() / f_full);
+            compared += 1;
+        }
+    }
+    r.push("Rayleigh–Ritz bound: reduced ≥ full frequencies", worst_bound, 1e-8, format!("max (f_full − f)/f_full over {} flexible modes", flexible.len().min(full_flex.len())));
+    r.push("frequencies vs full normal-mode solve", worst_err, FREQ_LIMIT, format!("max relative error over the {compared} flexible modes {}", if band.is_finite() { format!("below fmax = {band} Hz") } else { "in the lower half".into() }));
+
+    // ΦᵀMΦ, ΦᵀKΦ and residuals against the model's matrices (needs every node's shape).
+    if body.header.request.keep_nodes == file::KeepNodes::All {
+        let pos: std::collections::HashMap<u64, usize> = body.nodes.iter().enumerate().map(|(i, p)| (p.id, i)).collect();
+        let ns = body.node_count();
+        let mut phi = Mat::<f64>::zeros(n_r, m);
+        let mut missing = 0usize;
+        for (i, &p) in red.retained.iter().enumerate() {
+            let Some((node, c)) = a.dofs.node_of(p) else { continue };
+            let Some(&q) = pos.get(&model.nodes[node].id) else {
+                missing += 1;
+                continue;
+            };
+            for j in 0..m {
+                let s = &body.modes.shapes[(j * ns + q) * 6..(j * ns + q) * 6 + 6];
+                let (base, v) = if c < 3 { (0, [s[0], s[1], s[2]]) } else { (3, [s[3], s[4], s[5]]) };
+                // local = A · basic
+                phi[(i, j)] = match a.dofs.frames[node] {
+                    None => v[c - base],
+                    Some(ax) => (0..3).map(|k| ax[c - base][k] * v[k]).sum(),
+                };
+            }
+        }
+        if missing == 0 {
+            let mphi = sparse_ops::spmm(red.m.as_ref(), phi.as_ref());
+            let kphi = sparse_ops::spmm(red.k.as_ref(), phi.as_ref());
+            let g = phi.transpose() * &mphi;
+            let h = phi.transpose() * &kphi;
+            let w2 = &body.modes.omega2;
+            let max_w2 = w2.iter().fold(0.0f64, |x, &y| x.max(y.abs())).max(f64::MIN_POSITIVE);
+            let ortho = (0..m * m).map(|i| (g[(i / m, i % m)] - if i / m == i % m { 1.0 } else { 0.0 }).abs()).fold(0.0, f64::max);
+            let stiff = (0..m * m).map(|i| (h[(i / m, i % m)] - if i / m == i % m { w2[i / m] } else { 0.0 }).abs()).fold(0.0, f64::max) / max_w2;
+            r.push("Φᵀ M Φ = I against the model", ortho, ORTHO_LIMIT, format!("{m} modes, {n_r} independent dofs"));
+            r.push("Φᵀ K Φ = diag(ω²) against the model", stiff, ORTHO_LIMIT, "relative to max ω²".into());
+            let mut worst_res: f64 = 0.0;
+            for j in (0..m).filter(|&j| body.modes.labels[j] != file::ModeLabel::Rigid) {
+                let (mut rn, mut kn) = (0.0, 0.0);
+                for i in 0..n_r {
+                    rn += (kphi[(i, j)] - w2[j] * mphi[(i, j)]).powi(2);
+                    kn += kphi[(i, j)].powi(2);
+                }
+                worst_res = worst_res.max((rn / kn.max(f64::MIN_POSITIVE)).sqrt());
+            }
+            if body.method.method == file::Method::NormalModes {
+                r.push("eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖", worst_res, 1e-6, "normal modes are eigenvectors of the model".into());
+            } else {
+                r.push("eigen residuals (reduced basis, for information)", worst_res, f64::INFINITY, "a reduced basis is not an eigenbasis of the full model: this measures truncation".into());
+            }
+        }
+    }
+    Ok(())
+}
