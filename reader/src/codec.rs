@@ -96,7 +96,7 @@ fn config() -> bincode::config::Configuration<bincode::config::LittleEndian, bin
         .with_fixed_int_encoding()
 }
 
-/// Byte limit for records that hold strings (header, method): bincode allocates a string's
+/// Byte limit for records that hold strings (only `header.bin` in v1): bincode allocates a string's
 /// buffer from its length prefix before reading it, so this bounds that allocation.
 pub const STRING_RECORD_LIMIT: usize = 16 << 20;
 
