@@ -60,6 +60,20 @@ fn set_entry(e: &mut Entries, name: &str, bytes: Vec<u8>) {
     }
 }
 
+/// Rewrites the compression-method field of entry `name` in its local header (offset 8) and
+/// central-directory header (offset 10) — APPNOTE 4.3.7 / 4.3.12.
+fn patch_method(mut zip: Vec<u8>, name: &str, method: u16) -> Vec<u8> {
+    let n = name.as_bytes();
+    for (sig, at, name_at) in [(0x04034b50u32, 8usize, 30usize), (0x02014b50, 10, 46)] {
+        let sig = sig.to_le_bytes();
+        let pos = (0..zip.len().saturating_sub(name_at + n.len()))
+            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + n.len()] == n)
+            .expect("entry header present");
+        zip[pos + at..pos + at + 2].copy_from_slice(&method.to_le_bytes());
+    }
+    zip
+}
+
 /// Every case, in a fixed order.
 pub fn cases(base: &ReducedBody) -> Vec<Case> {
     let mut out = Vec::new();
@@ -356,6 +370,12 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
             "Inconsistent",
             "method.bin: interface[0].frame is not orthonormal",
         )),
+    );
+    // Method 12 (bzip2) on damping.bin: v1 allows only stored (0) and deflate (8).
+    add(
+        "unsupported_compression",
+        patch_method(pack(&good_manifest, &good), codec::DAMPING, 12),
+        Some(("Compression", "damping.bin: compression method")),
     );
     out
 }
