@@ -379,3 +379,16 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
     );
     out
 }
+
+/// `base` written with entry `name` replaced by `bytes` and a manifest that matches, so the
+/// mutation reaches the decoder and the consistency rules instead of the checksum.
+pub fn with_entry(base: &ReducedBody, name: &str, bytes: Vec<u8>) -> Vec<u8> {
+    let mut e = entries(base);
+    set_entry(&mut e, name, bytes);
+    pack(&manifest(base, &e), &e)
+}
+
+/// The encoded payload entries of `base`: (name, bytes).
+pub fn payloads(base: &ReducedBody) -> Vec<(String, Vec<u8>)> {
+    entries(base).into_iter().map(|(n, _, b)| (n, b)).collect()
+}
