@@ -30,6 +30,7 @@ LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_byt
               max_entries=64, max_nodes=10_000_000, max_faces=50_000_000, max_modes=100_000)
 STRING_LIMIT = 16 << 20
 REL_TOL, FRAME_TOL = 1e-9, 1e-6
+UNIT_KEYS = ["mass", "length", "time", "force"]
 
 METHOD = ["NormalModes", "CraigBampton", "CraigChang", "Dietz"]
 MASS_KIND = ["Lumped", "Consistent"]
@@ -197,8 +198,9 @@ def read_entry(zf, info, declared):
 
 def parse_manifest(text):
     def exact(obj, keys, what):
-        if not isinstance(obj, dict) or set(obj) != set(keys):
-            raise ReadError("Manifest", f"{what} must have exactly the members {sorted(keys)}")
+        # Members must be present; unknown members are ignored (a newer minor may add some).
+        if not isinstance(obj, dict) or not set(keys) <= set(obj):
+            raise ReadError("Manifest", f"{what} must have the members {sorted(keys)}")
         return obj
 
     def uint(v, what):
@@ -221,8 +223,9 @@ def parse_manifest(text):
     uint(m["version"]["major"], "version.major"), uint(m["version"]["minor"], "version.minor")
     exact(m["generator"], ["name", "version"], "generator")
     text_(m["generator"]["name"], "generator.name"), text_(m["generator"]["version"], "generator.version")
-    exact(m["units"], ["mass", "length", "time", "force"], "units")
-    for k, u in m["units"].items():
+    exact(m["units"], UNIT_KEYS, "units")
+    for k in UNIT_KEYS:
+        u = m["units"][k]
         exact(u, ["name", "si"], f"units.{k}")
         text_(u["name"], f"units.{k}.name")
         if not isinstance(u["si"], (int, float)) or isinstance(u["si"], bool):
@@ -350,7 +353,8 @@ def validate(b, m):
         err("LimitExceeded", "faces.bin", "face count")
     if nm > LIMITS["max_modes"]:
         err("LimitExceeded", "modes.bin", "mode count")
-    for k, u in m["units"].items():
+    for k in UNIT_KEYS:
+        u = m["units"][k]
         if not (math.isfinite(u["si"]) and u["si"] > 0):
             err("Inconsistent", MANIFEST, f"units.{k}.si must be finite and > 0")
     req = b["header.bin"]["request"]
@@ -470,7 +474,7 @@ def summarize(b, m):
         "generator": f"{m['generator']['name']} {m['generator']['version']}",
         "title": h["title"],
         "created_utc": h["created_utc"],
-        "units": m["units"],
+        "units": {k: {"name": m["units"][k]["name"], "si": m["units"][k]["si"]} for k in UNIT_KEYS},
         "method": me["method"],
         "mass_kind": me["mass_kind"],
         "invariant_set": h["request"]["invariant_set"],
@@ -481,7 +485,7 @@ def summarize(b, m):
         "modes": [{"number": j + 1, "frequency_hz": modes["frequency_hz"][j], "omega2": modes["omega2"][j],
                    "label": modes["labels"][j]} for j in range(len(modes["omega2"]))],
         "optional": [x in b for x in ("stress_shapes.bin", "strain_shapes.bin", "damping.bin")],
-        "entries": m["entries"],
+        "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
     }
 
 

@@ -50,7 +50,6 @@ pub const DAMPING: &str = "damping.bin";
 
 /// `manifest.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct Manifest {
     /// Always [`FORMAT_NAME`].
     pub format: String,
@@ -66,7 +65,6 @@ pub struct Manifest {
 
 /// One line of the manifest's entry list.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct ManifestEntry {
     /// Zip entry name.
     pub name: String,

@@ -161,6 +161,28 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
     m["version"] = json!({"major": 1, "minor": 3});
     add("newer_minor_unknown_optional", pack(&m, &e), None);
 
+    let mut m = good_manifest.clone();
+    m["version"] = json!({"major": 1, "minor": 1});
+    m["source_model"] = json!({"sha256": "0".repeat(64)});
+    m["units"]["temperature"] = json!({"name": "K", "si": 1.0});
+    m["entries"][0]["media_type"] = json!("application/octet-stream");
+    add(
+        "newer_minor_unknown_manifest_members",
+        pack(&m, &good),
+        None,
+    );
+
+    let mut m = good_manifest.clone();
+    m["units"]["mass"]
+        .as_object_mut()
+        .expect("object")
+        .remove("si");
+    add(
+        "manifest_member_missing",
+        pack(&m, &good),
+        Some(("Manifest", "missing field `si`")),
+    );
+
     let mut e = good.clone();
     e.push((
         "future_thing.bin".into(),
