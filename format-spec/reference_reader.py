@@ -125,6 +125,8 @@ class Decoder:
 
 
 def decode_header(d):
+    if len(d.data) > STRING_LIMIT:
+        d.fail("header.bin exceeds the 16 MiB record limit")
     title, created = d.string(), d.option(d.string)
     method, fmax, count = METHOD[d.tag(METHOD)], d.option(d.f64), d.option(d.u64)
     kt = d.tag(["All", "InterfaceAndSurface", "List"])
