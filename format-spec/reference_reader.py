@@ -205,9 +205,9 @@ def parse_manifest(text):
             raise ReadError("Manifest", f"{what} must have the members {sorted(keys)}")
         return obj
 
-    def uint(v, what):
-        if not isinstance(v, int) or isinstance(v, bool) or v < 0:
-            raise ReadError("Manifest", f"{what} must be an unsigned integer")
+    def uint(v, what, bits):
+        if not isinstance(v, int) or isinstance(v, bool) or not 0 <= v < 1 << bits:
+            raise ReadError("Manifest", f"{what} must be an integer in 0..2^{bits}-1")
         return v
 
     def text_(v, what):
@@ -215,14 +215,17 @@ def parse_manifest(text):
             raise ReadError("Manifest", f"{what} must be a string")
         return v
 
+    def no_constants(c):  # JSON has no NaN/Infinity; Python's json would accept them
+        raise ValueError(f"{c} is not JSON")
+
     try:
-        m = json.loads(text)
+        m = json.loads(text, parse_constant=no_constants)
     except ValueError as e:
         raise ReadError("Manifest", f"not valid manifest JSON: {e}")
     exact(m, ["format", "version", "generator", "units", "entries"], "manifest")
     text_(m["format"], "format")
     exact(m["version"], ["major", "minor"], "version")
-    uint(m["version"]["major"], "version.major"), uint(m["version"]["minor"], "version.minor")
+    uint(m["version"]["major"], "version.major", 32), uint(m["version"]["minor"], "version.minor", 32)
     exact(m["generator"], ["name", "version"], "generator")
     text_(m["generator"]["name"], "generator.name"), text_(m["generator"]["version"], "generator.version")
     exact(m["units"], UNIT_KEYS, "units")
@@ -236,7 +239,7 @@ def parse_manifest(text):
         raise ReadError("Manifest", "entries must be a list")
     for e in m["entries"]:
         exact(e, ["name", "size", "sha256", "required"], "entry")
-        text_(e["name"], "entry.name"), uint(e["size"], "entry.size"), text_(e["sha256"], "entry.sha256")
+        text_(e["name"], "entry.name"), uint(e["size"], "entry.size", 64), text_(e["sha256"], "entry.sha256")
         if not isinstance(e["required"], bool):
             raise ReadError("Manifest", "entry.required must be a boolean")
     return m
