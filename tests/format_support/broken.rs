@@ -74,6 +74,20 @@ fn patch_method(mut zip: Vec<u8>, name: &str, method: u16) -> Vec<u8> {
     zip
 }
 
+/// Flips the low bit of entry `name`'s CRC-32 in its local header (offset 14) and
+/// central-directory header (offset 16): the zip layer's own integrity check must fail.
+fn patch_crc(mut zip: Vec<u8>, name: &str) -> Vec<u8> {
+    let n = name.as_bytes();
+    for (sig, at, name_at) in [(0x04034b50u32, 14usize, 30usize), (0x02014b50, 16, 46)] {
+        let sig = sig.to_le_bytes();
+        let pos = (0..zip.len().saturating_sub(name_at + n.len()))
+            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + n.len()] == n)
+            .expect("entry header present");
+        zip[pos + at] ^= 1;
+    }
+    zip
+}
+
 /// Every case, in a fixed order.
 pub fn cases(base: &ReducedBody) -> Vec<Case> {
     let mut out = Vec::new();
@@ -392,6 +406,11 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
             "Inconsistent",
             "method.bin: interface[0].frame is not orthonormal",
         )),
+    );
+    add(
+        "zip_crc_mismatch",
+        patch_crc(pack(&good_manifest, &good), codec::NODES),
+        Some(("Container", "nodes.bin: damaged zip data")),
     );
     // Method 12 (bzip2) on damping.bin: v1 allows only stored (0) and deflate (8).
     add(
