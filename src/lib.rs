@@ -12,7 +12,7 @@
 //! * [`fe`] — element matrices and sparse assembly of K and M.
 //! * [`solve`] — sparse Cholesky with METIS ordering and the block shift-invert eigensolver.
 //! * [`reduce`] — normal modes, Craig–Bampton, Craig–Chang, Dietz, reference conditions.
-//! * [`write`] — the reduced-body file writer (types from the `flexbody-reader` crate).
+//! * [`write`](mod@write) — the reduced-body file writer (types from the `flexbody-reader` crate).
 //! * [`inspect`] — the summary `flexbody inspect` prints (mass properties, modes, entries).
 //!
 //! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.

@@ -114,6 +114,27 @@ fn to_bytes_at(
         }
     })?;
     let payload = flexbody_reader::encode_entries(body);
+    // Refuse what the reader's default limits would refuse, so every written file reads back.
+    let limits = ReadLimits::default();
+    for (name, _, bytes) in &payload {
+        let limit = if *name == codec::HEADER {
+            codec::STRING_RECORD_LIMIT as u64
+        } else {
+            limits.max_entry_bytes
+        };
+        if bytes.len() as u64 > limit {
+            let source = ReadError::LimitExceeded {
+                entry: name.to_string(),
+                what: "encoded size (bytes)".into(),
+                value: bytes.len() as u64,
+                limit,
+            };
+            return Err(WriteError::Invalid {
+                path: path.to_path_buf(),
+                source,
+            });
+        }
+    }
     let manifest = flexbody_reader::manifest_for(body, &payload);
     let mut json = serde_json::to_vec_pretty(&manifest).map_err(|e| WriteError::Zip {
         path: path.to_path_buf(),

@@ -246,3 +246,28 @@ fn layout_matches_hand_computed_bytes() {
         flexbody_reader::codec::decode("header.bin", &encode(&header), true).expect("decode");
     assert_eq!(back, header);
 }
+
+#[test]
+fn writer_refuses_a_header_the_reader_would_refuse() {
+    let mut body = format_support::body_3node();
+    body.header.title = "x".repeat(flexbody_reader::codec::STRING_RECORD_LIMIT + 1);
+    let err = to_bytes(&body, &WriteOptions::default()).expect_err("17 MiB title");
+    assert!(
+        matches!(
+            &err,
+            WriteError::Invalid {
+                source: ReadError::LimitExceeded { .. },
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    // 8 + (2^24 + 1) title, 1 None, request: 4 method + 1 None + 9 Some(u64) + 4 + 4 + 4.
+    let size = 8 + (1 << 24) + 1 + 1 + 4 + 1 + 9 + 4 + 4 + 4;
+    assert!(
+        err.to_string().contains(&format!(
+            "header.bin: encoded size (bytes) {size} exceeds the limit 16777216"
+        )),
+        "{err}"
+    );
+}

@@ -50,7 +50,6 @@ pub const DAMPING: &str = "damping.bin";
 
 /// `manifest.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct Manifest {
     /// Always [`FORMAT_NAME`].
     pub format: String,
@@ -66,7 +65,6 @@ pub struct Manifest {
 
 /// One line of the manifest's entry list.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct ManifestEntry {
     /// Zip entry name.
     pub name: String,
@@ -96,7 +94,7 @@ fn config() -> bincode::config::Configuration<bincode::config::LittleEndian, bin
         .with_fixed_int_encoding()
 }
 
-/// Byte limit for records that hold strings (header, method): bincode allocates a string's
+/// Byte limit for records that hold strings (only `header.bin` in v1): bincode allocates a string's
 /// buffer from its length prefix before reading it, so this bounds that allocation.
 pub const STRING_RECORD_LIMIT: usize = 16 << 20;
 

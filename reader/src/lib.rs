@@ -93,7 +93,7 @@ pub fn from_bytes_with_manifest(
         nodal_mass: decode(NODAL_MASS, entry(&c, NODAL_MASS)?, false)?,
         modes: decode(MODES, entry(&c, MODES)?, false)?,
         invariants: decode(INVARIANTS, entry(&c, INVARIANTS)?, false)?,
-        method: decode(METHOD, entry(&c, METHOD)?, true)?,
+        method: decode(METHOD, entry(&c, METHOD)?, false)?,
         stress_shapes: optional(&c, STRESS_SHAPES)?,
         strain_shapes: optional(&c, STRAIN_SHAPES)?,
         damping: optional(&c, DAMPING)?,

@@ -329,8 +329,9 @@ pub struct Damping {
     pub ratio: Vec<f64>,
 }
 
-/// A whole reduced body: everything a file holds, validated when read.
-#[derive(Debug, Clone, PartialEq)]
+/// A whole reduced body: everything a file holds, validated when read. (Serde derives are
+/// for tools, e.g. a JSON dump; the file itself stores the parts as separate entries.)
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ReducedBody {
     /// Format version of the file read (written files carry [`crate::FORMAT_VERSION`]).
     pub version: Version,

@@ -13,6 +13,11 @@ pub const REL_TOL: f64 = 1e-9;
 /// Tolerance of the frame orthonormality rule.
 pub const FRAME_TOL: f64 = 1e-6;
 
+/// Product of array dimensions, saturating (a saturated product never equals a real length).
+fn dims(d: &[usize]) -> usize {
+    d.iter().fold(1usize, |a, &b| a.saturating_mul(b))
+}
+
 fn count(
     entry: &str,
     field: &str,
@@ -116,7 +121,7 @@ fn field_shapes(entry: &str, s: &FieldShapes, n: usize, m: usize) -> Result<(), 
         entry,
         "values",
         s.values.len(),
-        m * s.nodes.len() * 6,
+        dims(&[m, s.nodes.len(), 6]),
         "modes × listed nodes × 6",
     )?;
     finite(entry, "values", &s.values)
@@ -220,21 +225,21 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
         MODES,
         "generalized_mass",
         md.generalized_mass.len(),
-        m * m,
+        dims(&[m, m]),
         "modes × modes",
     )?;
     count(
         MODES,
         "generalized_stiffness",
         md.generalized_stiffness.len(),
-        m * m,
+        dims(&[m, m]),
         "modes × modes",
     )?;
     count(
         MODES,
         "shapes",
         md.shapes.len(),
-        m * n * 6,
+        dims(&[m, n, 6]),
         "modes × stored nodes (nodes.bin) × 6",
     )?;
     finite(MODES, "omega2", &md.omega2)?;
@@ -265,7 +270,17 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
             ),
         ));
     }
-    let shapes = [1, 3, 3 * m, 3 * m, m * 3 * m, m * m, 9, m * 9, m * m * 9];
+    let shapes = [
+        1,
+        3,
+        dims(&[3, m]),
+        dims(&[3, m]),
+        dims(&[m, 3, m]),
+        dims(&[m, m]),
+        9,
+        dims(&[m, 9]),
+        dims(&[m, m, 9]),
+    ];
     let fields = [
         &inv.i1, &inv.i2, &inv.i3, &inv.i4, &inv.i5, &inv.i6, &inv.i7, &inv.i8, &inv.i9,
     ];

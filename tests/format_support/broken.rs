@@ -60,6 +60,34 @@ fn set_entry(e: &mut Entries, name: &str, bytes: Vec<u8>) {
     }
 }
 
+/// Rewrites the compression-method field of entry `name` in its local header (offset 8) and
+/// central-directory header (offset 10) — APPNOTE 4.3.7 / 4.3.12.
+fn patch_method(mut zip: Vec<u8>, name: &str, method: u16) -> Vec<u8> {
+    let n = name.as_bytes();
+    for (sig, at, name_at) in [(0x04034b50u32, 8usize, 30usize), (0x02014b50, 10, 46)] {
+        let sig = sig.to_le_bytes();
+        let pos = (0..zip.len().saturating_sub(name_at + n.len()))
+            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + n.len()] == n)
+            .expect("entry header present");
+        zip[pos + at..pos + at + 2].copy_from_slice(&method.to_le_bytes());
+    }
+    zip
+}
+
+/// Flips the low bit of entry `name`'s CRC-32 in its local header (offset 14) and
+/// central-directory header (offset 16): the zip layer's own integrity check must fail.
+fn patch_crc(mut zip: Vec<u8>, name: &str) -> Vec<u8> {
+    let n = name.as_bytes();
+    for (sig, at, name_at) in [(0x04034b50u32, 14usize, 30usize), (0x02014b50, 16, 46)] {
+        let sig = sig.to_le_bytes();
+        let pos = (0..zip.len().saturating_sub(name_at + n.len()))
+            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + n.len()] == n)
+            .expect("entry header present");
+        zip[pos + at] ^= 1;
+    }
+    zip
+}
+
 /// Every case, in a fixed order.
 pub fn cases(base: &ReducedBody) -> Vec<Case> {
     let mut out = Vec::new();
@@ -146,6 +174,28 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
     let mut m = manifest(base, &e);
     m["version"] = json!({"major": 1, "minor": 3});
     add("newer_minor_unknown_optional", pack(&m, &e), None);
+
+    let mut m = good_manifest.clone();
+    m["version"] = json!({"major": 1, "minor": 1});
+    m["source_model"] = json!({"sha256": "0".repeat(64)});
+    m["units"]["temperature"] = json!({"name": "K", "si": 1.0});
+    m["entries"][0]["media_type"] = json!("application/octet-stream");
+    add(
+        "newer_minor_unknown_manifest_members",
+        pack(&m, &good),
+        None,
+    );
+
+    let mut m = good_manifest.clone();
+    m["units"]["mass"]
+        .as_object_mut()
+        .expect("object")
+        .remove("si");
+    add(
+        "manifest_member_missing",
+        pack(&m, &good),
+        Some(("Manifest", "missing field `si`")),
+    );
 
     let mut e = good.clone();
     e.push((
@@ -357,5 +407,29 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
             "method.bin: interface[0].frame is not orthonormal",
         )),
     );
+    add(
+        "zip_crc_mismatch",
+        patch_crc(pack(&good_manifest, &good), codec::NODES),
+        Some(("Container", "nodes.bin: damaged zip data")),
+    );
+    // Method 12 (bzip2) on damping.bin: v1 allows only stored (0) and deflate (8).
+    add(
+        "unsupported_compression",
+        patch_method(pack(&good_manifest, &good), codec::DAMPING, 12),
+        Some(("Compression", "damping.bin: compression method")),
+    );
     out
+}
+
+/// `base` written with entry `name` replaced by `bytes` and a manifest that matches, so the
+/// mutation reaches the decoder and the consistency rules instead of the checksum.
+pub fn with_entry(base: &ReducedBody, name: &str, bytes: Vec<u8>) -> Vec<u8> {
+    let mut e = entries(base);
+    set_entry(&mut e, name, bytes);
+    pack(&manifest(base, &e), &e)
+}
+
+/// The encoded payload entries of `base`: (name, bytes).
+pub fn payloads(base: &ReducedBody) -> Vec<(String, Vec<u8>)> {
+    entries(base).into_iter().map(|(n, _, b)| (n, b)).collect()
 }

@@ -1,0 +1,27 @@
+//! Architecture invariant: the reader links no linear algebra or solver code. Its direct
+//! dependencies are exactly the container, encoding, checksum and error crates.
+#[test]
+fn reader_depends_only_on_container_encoding_checksum_and_error_crates() {
+    let manifest = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml"))
+        .expect("Cargo.toml");
+    let mut section = String::new();
+    let mut deps = Vec::new();
+    for line in manifest.lines().map(str::trim) {
+        if line.starts_with('[') {
+            section = line.to_string();
+        } else if section == "[dependencies]" && !line.is_empty() && !line.starts_with('#') {
+            deps.push(
+                line.split(['=', '.'])
+                    .next()
+                    .unwrap_or_default()
+                    .trim()
+                    .to_string(),
+            );
+        }
+    }
+    deps.sort();
+    assert_eq!(
+        deps,
+        ["bincode", "serde", "serde_json", "sha2", "thiserror", "zip"]
+    );
+}

@@ -1,0 +1,47 @@
+//! The reader on its own (no flexbody crate): the golden 3-node chain reads back with its
+//! closed-form content, and its modes are mass-orthonormal w.r.t. the stored nodal masses.
+use std::path::Path;
+
+fn golden(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures/golden/v1.0")
+        .join(name)
+}
+
+#[test]
+fn three_node_chain_reads_with_closed_form_content() {
+    let b = flexbody_reader::read(golden("three_node_chain.flexbody")).expect("golden file reads");
+    assert_eq!(b.version, flexbody_reader::FORMAT_VERSION);
+    assert_eq!(
+        b.nodes.iter().map(|n| n.id).collect::<Vec<_>>(),
+        vec![101, 102, 103]
+    );
+    // Three 2 kg masses on two 800 N/m springs: ω² = 0, k/m = 400, 3k/m = 1200.
+    assert_eq!(b.modes.omega2, vec![0.0, 400.0, 1200.0]);
+    assert_eq!(b.invariants.i1, vec![6.0]);
+    assert_eq!(
+        b.damping.as_ref().map(|d| d.ratio.clone()),
+        Some(vec![0.0, 0.02, 0.02])
+    );
+    let (n, m) = (b.node_count(), b.mode_count());
+    for i in 0..m {
+        for j in 0..m {
+            let mij: f64 = (0..n)
+                .map(|p| {
+                    b.nodal_mass[p].mass
+                        * b.modes.shapes[(i * n + p) * 6]
+                        * b.modes.shapes[(j * n + p) * 6]
+                })
+                .sum();
+            let want = if i == j { 1.0 } else { 0.0 };
+            assert!((mij - want).abs() < 1e-14, "phi_{i}' M phi_{j} = {mij}");
+        }
+    }
+}
+
+#[test]
+fn a_missing_file_is_an_io_error_naming_the_path() {
+    let err = flexbody_reader::read(golden("no_such.flexbody")).expect_err("missing");
+    assert_eq!(err.variant(), "Io");
+    assert!(err.to_string().contains("no_such.flexbody"), "{err}");
+}
