@@ -27,6 +27,7 @@ pub mod inspect;
 pub mod interface;
 pub mod invariants;
 pub mod model;
+pub mod options;
 pub mod reduce;
 pub mod solve;
 pub mod write;

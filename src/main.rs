@@ -1,5 +1,5 @@
 //! The `flexbody` command line. The only place where errors become text and exit codes:
-//! 0 ok, 1 a `check` failed (later), 2 error.
+//! 0 ok, 1 a `check` failed, 2 error.
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -15,6 +15,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Build a reduced flexible-body file from an FE model (.inp, .bdf, .msh).
+    Build(BuildArgs),
     /// Print what a .flexbody file holds: header, units, counts, mass properties, modes, entries.
     Inspect {
         /// The .flexbody file.
@@ -23,6 +25,93 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Verify a .flexbody file (orthonormality, mass properties, rigid modes; with --model also
+    /// frequencies and residuals against the FE model). Exit code 1 when a check fails.
+    Check(CheckArgs),
+}
+
+/// Model options shared by `build` and `check --model`.
+#[derive(clap::Args, Clone)]
+struct ModelArgs {
+    /// Input format (default: from the extension): inp, bdf, msh.
+    #[arg(long)]
+    format: Option<String>,
+    /// Material for elements without a section (Gmsh meshes): E=…,nu=…,rho=…
+    #[arg(long)]
+    material: Option<String>,
+    /// Interface nodes: node ids and/or node-set names, comma separated.
+    #[arg(long, value_delimiter = ',')]
+    interface: Vec<String>,
+    /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
+    /// (weighted average) or none (every node of the set is an interface node).
+    #[arg(long, default_value = "rbe2")]
+    spider: String,
+}
+
+#[derive(clap::Args)]
+struct BuildArgs {
+    /// The FE model file.
+    model: PathBuf,
+    #[command(flatten)]
+    model_args: ModelArgs,
+    /// Output file (.flexbody).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Reduction method: cb (Craig–Bampton) or normal.
+    #[arg(long, default_value = "cb")]
+    method: String,
+    /// Number of fixed-interface modes (cb) or normal modes (normal); default 20 without --fmax.
+    #[arg(long)]
+    modes: Option<usize>,
+    /// Highest frequency of the scene in Hz: modes are kept up to 3× it.
+    #[arg(long)]
+    fmax: Option<f64>,
+    /// Reference conditions NODE:DOFS (Nastran dof digits), e.g. 1:12,9:2.
+    #[arg(long, value_delimiter = ',')]
+    reference_conditions: Vec<String>,
+    /// Improved Craig–Bampton method for reference conditions: 1 or 2.
+    #[arg(long, default_value_t = 1)]
+    reference_method: u8,
+    /// Mass matrix: lumped (default; what multibody invariants need) or consistent.
+    #[arg(long, default_value = "lumped")]
+    mass: String,
+    /// The model's consistent unit system (recorded in the file, never guessed): si (kg m s N),
+    /// mm-t-s (t mm s N), mm-kg-ms (kg mm ms kN), cm-g-s (g cm s dyn), in-lbf-s (lbf·s²/in in s lbf).
+    #[arg(long)]
+    units: String,
+    /// Which nodes get mode shapes in the file: all, interface, surface, or a node-set name.
+    #[arg(long, default_value = "all")]
+    keep_nodes: String,
+    /// Invariant set: full, partial (no 5, 9), constant (1, 2, 6, 7) or rigid (1, 2, 7).
+    /// Invariant 9 costs 72·M² bytes for M modes.
+    #[arg(long, default_value = "full")]
+    invariants: String,
+    /// Title stored in the header (default: the model file name).
+    #[arg(long)]
+    title: Option<String>,
+    /// Record the creation time in the header (makes the output non-reproducible).
+    #[arg(long)]
+    timestamp: bool,
+    /// No progress on stderr.
+    #[arg(long, short)]
+    quiet: bool,
+    /// Print the build report as JSON on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(clap::Args)]
+struct CheckArgs {
+    /// The .flexbody file.
+    file: PathBuf,
+    /// The FE model the file was built from (give the same --interface/--spider as to build).
+    #[arg(long)]
+    model: Option<PathBuf>,
+    #[command(flatten)]
+    model_args: ModelArgs,
+    /// Print the report as JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 fn inspect(file: &PathBuf, json: bool) -> anyhow::Result<()> {
@@ -40,13 +129,149 @@ fn inspect(file: &PathBuf, json: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
+fn import_format(name: &Option<String>) -> anyhow::Result<Option<flexbody::import::Format>> {
+    name.as_deref()
+        .map(|n| flexbody::import::Format::from_name(n).ok_or_else(|| anyhow::anyhow!("--format {n}: expected inp, bdf or msh")))
+        .transpose()
+}
+
+/// clap arguments → the library's build spec (the one conversion point).
+fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
+    use flexbody::options::*;
+    Ok(flexbody::build::BuildSpec {
+        model: a.model.clone(),
+        format: import_format(&a.model_args.format)?,
+        material: a.model_args.material.as_deref().map(parse_material).transpose()?,
+        interface: a.model_args.interface.clone(),
+        spider: parse_spider(&a.model_args.spider)?,
+        method: parse_method(&a.method)?,
+        modes: a.modes,
+        fmax_hz: a.fmax,
+        reference_conditions: parse_reference_conditions(&a.reference_conditions)?,
+        reference_method: a.reference_method,
+        mass: parse_mass(&a.mass)?,
+        units: parse_units(&a.units)?,
+        keep_nodes: parse_keep_nodes(&a.keep_nodes),
+        invariants: parse_invariants(&a.invariants)?,
+        title: a.title.clone(),
+        created_utc: a.timestamp.then(utc_now),
+    })
+}
+
+/// Current time as RFC 3339 UTC (civil-from-days, no time-zone database needed).
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
+    let (days, rem) = ((secs / 86_400) as i64, secs % 86_400);
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!("{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z", rem / 3600, rem % 3600 / 60, rem % 60)
+}
+
+fn build(a: &BuildArgs) -> anyhow::Result<()> {
+    use anyhow::Context;
+    let spec = build_spec(a)?;
+    let quiet = a.quiet || a.json;
+    let start = std::time::Instant::now();
+    let mut progress = |stage: &str| {
+        if !quiet {
+            eprintln!("flexbody: [{:7.2} s] {stage}", start.elapsed().as_secs_f64());
+        }
+    };
+    let out = flexbody::build::build(&spec, &mut progress).with_context(|| format!("cannot build {}", a.model.display()))?;
+    flexbody::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
+    let r = &out.report;
+    if a.json {
+        let summary = serde_json::json!({
+            "output": a.output.display().to_string(),
+            "dofs": r.dofs.0,
+            "independent_dofs": r.dofs.1,
+            "modes": out.body.mode_count(),
+            "frequency_hz": out.body.modes.frequency_hz,
+            "stages_s": r.stages.iter().map(|(k, v)| (k.clone(), *v)).collect::<std::collections::BTreeMap<_, _>>(),
+            "interfaces": r.interfaces.iter().map(|i| serde_json::json!({
+                "entry": i.entry,
+                "nodes": i.nodes.len(),
+                "spider_centre": i.spider.as_ref().map(|s| s.centre),
+                "spider_centre_node": i.spider.as_ref().map(|s| s.centre_node_id),
+                "offset_from_node_average": i.spider.as_ref().map(|s| s.offset_from_node_average),
+            })).collect::<Vec<_>>(),
+            "orthonormality": r.diagnostics.orthonormality,
+            "removed_dependent": r.diagnostics.removed.len(),
+            "warnings": r.warnings,
+        });
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+        return Ok(());
+    }
+    if !a.quiet {
+        for w in &r.warnings {
+            eprintln!("flexbody: warning: {w}");
+        }
+        for i in &r.interfaces {
+            if let Some(s) = &i.spider {
+                eprintln!(
+                    "flexbody: interface {}: {} nodes → centre node {} at ({:.6e}, {:.6e}, {:.6e}) by {:?} ({:.3e} from the node average)",
+                    i.entry, s.set_nodes, s.centre_node_id, s.centre[0], s.centre[1], s.centre[2], s.method, s.offset_from_node_average
+                );
+            }
+        }
+        let times: Vec<String> = r.stages.iter().map(|(k, v)| format!("{k} {v:.2} s")).collect();
+        eprintln!("flexbody: {} dofs ({} independent); {}", r.dofs.0, r.dofs.1, times.join(", "));
+        let f = &out.body.modes.frequency_hz;
+        eprintln!(
+            "flexbody: wrote {} — {} modes ({} rigid), {} nodes; first flexible modes: {}",
+            a.output.display(),
+            f.len(),
+            out.body.method.counts.rigid,
+            out.body.node_count(),
+            f.iter().zip(&out.body.modes.labels).filter(|(_, l)| **l != flexbody_reader::ModeLabel::Rigid).take(6).map(|(f, _)| format!("{f:.2} Hz")).collect::<Vec<_>>().join(", ")
+        );
+    }
+    Ok(())
+}
+
+fn check(a: &CheckArgs) -> anyhow::Result<bool> {
+    use anyhow::Context;
+    let body = flexbody_reader::read(&a.file).with_context(|| format!("{} is not a valid flexbody file", a.file.display()))?;
+    let model = match &a.model {
+        None => None,
+        Some(path) => Some(flexbody::check::ModelInput {
+            path: path.clone(),
+            format: import_format(&a.model_args.format)?,
+            material: a.model_args.material.as_deref().map(flexbody::options::parse_material).transpose()?,
+            interface: a.model_args.interface.clone(),
+            spider: flexbody::options::parse_spider(&a.model_args.spider)?,
+        }),
+    };
+    let report = flexbody::check::check(&body, model.as_ref())?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        for i in &report.items {
+            println!("{} {:<52} {:>12.3e} (limit {:.1e})  {}", if i.pass { "ok  " } else { "FAIL" }, i.name, i.value, i.limit, i.detail);
+        }
+        let failed = report.items.iter().filter(|i| !i.pass).count();
+        println!("{} checks, {} failed: {}", report.items.len(), failed, if failed == 0 { "PASS" } else { "FAIL" });
+    }
+    Ok(report.passed())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Inspect { file, json } => inspect(file, *json),
+        Command::Build(args) => build(args).map(|()| true),
+        Command::Inspect { file, json } => inspect(file, *json).map(|()| true),
+        Command::Check(args) => check(args),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(1),
         Err(e) => {
             eprintln!("flexbody: {e:#}");
             ExitCode::from(2)
