@@ -224,3 +224,28 @@ fn keywords_generate_continuation_mass_rigid_coupling_beam() {
     );
     assert!(m.warnings.iter().any(|w| w.message.contains("*HEADING")));
 }
+
+/// The format comes from the extension unless overridden: an Abaqus deck saved as `.txt` is
+/// refused without a format and read with one.
+#[test]
+fn format_detection_by_extension_with_override() {
+    use flexbody::import::{Format, ImportError};
+    let text = std::fs::read_to_string(reference("e_matrices/hex8_single/mesh.inp")).unwrap();
+    let path = write_deck("fmt", &[("deck.txt", &text)]);
+    let e = read_model(&path, &ImportOptions::default()).unwrap_err();
+    assert!(matches!(e, ImportError::UnknownFormat { .. }));
+    let opts = ImportOptions {
+        format: Format::from_name("abaqus"),
+        ..Default::default()
+    };
+    let m = read_model(&path, &opts).unwrap();
+    assert_eq!((m.nodes.len(), m.elements.len()), (8, 1));
+    assert_eq!(
+        Format::from_extension(Path::new("x.BDF")),
+        Some(Format::Nastran)
+    );
+    assert_eq!(
+        Format::from_extension(Path::new("x.msh")),
+        Some(Format::Gmsh)
+    );
+}
