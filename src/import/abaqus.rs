@@ -110,6 +110,8 @@ struct Parser {
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
     couplings: Vec<RawCoupling>,
     skipped: BTreeMap<String, usize>,
+    /// Elements that listed more node ids than their type takes, by type.
+    extra_nodes: BTreeMap<&'static str, usize>,
 }
 
 fn upper_norm(s: &str) -> String {
@@ -187,6 +189,7 @@ impl Parser {
             surfaces: HashMap::new(),
             couplings: Vec::new(),
             skipped: BTreeMap::new(),
+            extra_nodes: BTreeMap::new(),
         }
     }
 
@@ -462,11 +465,9 @@ impl Parser {
                     return Ok(());
                 }
                 if vals.len() > nn + 1 {
-                    return Err(self.err(
-                        start,
-                        format!("*ELEMENT {}", vals[0]),
-                        format!("{card} takes {nn} nodes, got {}", vals.len() - 1),
-                    ));
+                    // CalculiX reads the nodes the type needs and ignores the rest of the line.
+                    vals.truncate(nn + 1);
+                    *self.extra_nodes.entry(card).or_default() += 1;
                 }
                 let id = vals[0];
                 if let Some(e) = elset {
@@ -902,6 +903,14 @@ impl Parser {
                 None => return Err(self.err(c.loc, ent, "no *KINEMATIC or *DISTRIBUTING follows")),
             };
             self.b.model.rigid_elements.push(rigid);
+        }
+        for (card, count) in &self.extra_nodes {
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!(
+                    "{count} {card} elements list more node ids than the type takes; the extra ids were ignored (as CalculiX does)"
+                ),
+            });
         }
         for (name, count) in &self.skipped {
             self.b.model.warnings.push(ImportWarning {
