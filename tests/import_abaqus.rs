@@ -249,3 +249,29 @@ fn format_detection_by_extension_with_override() {
         Some(Format::Gmsh)
     );
 }
+
+/// *TRANSFORM gives the nodes of its set a displacement frame; C3D8I is read as C3D8 with a
+/// warning.
+#[test]
+fn transform_frames_and_substituted_types() {
+    let deck = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, 0, 0, 1\n6, 1, 0, 1\n7, 1, 1, 1\n8, 0, 1, 1\n\
+*ELEMENT, TYPE=C3D8I, ELSET=E\n1, 1, 2, 3, 4, 5, 6, 7, 8\n*NSET, NSET=R\n1, 2\n*NSET, NSET=C\n7\n\
+*TRANSFORM, NSET=R\n0, 1, 0, -1, 0, 0\n*TRANSFORM, NSET=C, TYPE=C\n0, 0, 0, 0, 0, 2\n";
+    let path = write_deck("transform", &[("t.inp", deck)]);
+    let m = abaqus::read(&path).unwrap();
+    let r = &m.coord_systems[m.nodes[0].displacement_frame.unwrap()];
+    // a = +y is local x, b = −x in the x–y plane: e3 = a × b = +z, e2 = e3 × e1 = −x.
+    assert_eq!(r.axes, [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]);
+    assert_eq!(m.nodes[1].displacement_frame, m.nodes[0].displacement_frame);
+    let c = &m.coord_systems[m.nodes[6].displacement_frame.unwrap()];
+    assert_eq!(
+        (c.kind, c.axes[2]),
+        (flexbody::model::CoordKind::Cylindrical, [0.0, 0.0, 1.0])
+    );
+    assert_eq!(m.nodes[2].displacement_frame, None);
+    assert_eq!(m.elements[0].kind, ElementKind::Hex8);
+    assert!(m
+        .warnings
+        .iter()
+        .any(|w| w.message.contains("C3D8I read as C3D8")));
+}

@@ -1,7 +1,7 @@
 //! Abaqus / CalculiX `.inp` reader → [`Model`].
 //!
-//! Reads the whole file (and every `*INCLUDE`) once, line by line without per-line allocation
-//! for data lines, into raw records keyed by external ids; one resolve pass then builds the
+//! Reads the whole file (and every `*INCLUDE`) once, line by line (node lines parse without
+//! allocating), into raw records keyed by external ids; one resolve pass then builds the
 //! dense model. Keywords are case-insensitive; `**` starts a comment; a keyword line ending in a
 //! comma continues on the next line; element data continue on following lines until the
 //! element's node count is reached.
@@ -9,7 +9,9 @@
 //! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8(R/I), C3D20(R), C3D6, C3D15, B31, T3D2, S3, S4,
 //! S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE), *MATERIAL, *ELASTIC, *DENSITY,
 //! *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY, *MASS, *ROTARY INERTIA, *RIGID BODY,
-//! *SURFACE (TYPE=NODE), *COUPLING + *KINEMATIC / *DISTRIBUTING, *INCLUDE. Other keywords
+//! *SURFACE (TYPE=NODE), *COUPLING + *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE.
+//! Reduced/incompatible-mode variants (C3D8R, C3D8I, C3D10M, B31R, S4R, …) are read as the base
+//! type with a warning: their special formulation is not reproduced. Other keywords
 //! (steps, outputs, …) are skipped with one warning per keyword and its count.
 
 mod resolve;
@@ -19,7 +21,7 @@ use std::path::{Path, PathBuf};
 
 use super::error::ImportError;
 use super::text::{parse_f64, parse_u64, read_text, Builder, Loc};
-use crate::model::{DofMask, ElementKind, Model, Section, SectionShape};
+use crate::model::{CoordKind, CoordSystem, DofMask, ElementKind, Model, Section, SectionShape};
 
 /// Read an Abaqus/CalculiX input deck (following `*INCLUDE`s) into a [`Model`].
 pub fn read(path: &Path) -> Result<Model, ImportError> {
@@ -89,6 +91,7 @@ enum Block {
     RotaryInertia(String),
     Surface(String),
     Coupling(usize),
+    Transform(String, bool),
 }
 
 struct Parser {
@@ -106,9 +109,13 @@ struct Parser {
     masses: Vec<(String, f64, Loc)>,
     rotary: Vec<(String, [f64; 6], Loc)>,
     rigid: Vec<(Target, String, Loc)>,
+    /// *TRANSFORM: node set and its (resolved) nodal displacement frame.
+    transforms: Vec<(String, CoordSystem, Loc)>,
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
     couplings: Vec<RawCoupling>,
     skipped: BTreeMap<String, usize>,
+    /// Element types read as a close relative (C3D8I as C3D8, …): "X read as Y" → blocks.
+    substituted: BTreeMap<String, usize>,
     /// Elements that listed more node ids than their type takes, by type.
     extra_nodes: BTreeMap<&'static str, usize>,
 }
@@ -185,10 +192,12 @@ impl Parser {
             masses: Vec::new(),
             rotary: Vec::new(),
             rigid: Vec::new(),
+            transforms: Vec::new(),
             surfaces: HashMap::new(),
             couplings: Vec::new(),
             skipped: BTreeMap::new(),
             extra_nodes: BTreeMap::new(),
+            substituted: BTreeMap::new(),
         }
     }
 
@@ -286,6 +295,12 @@ impl Parser {
                 let Some((kind, card)) = element_kind(&t) else {
                     return Err(self.err(loc, "*ELEMENT", format!("unsupported element type {t}")));
                 };
+                if t != card {
+                    *self
+                        .substituted
+                        .entry(format!("{t} read as {card}"))
+                        .or_default() += 1;
+                }
                 Block::Element {
                     kind,
                     card,
@@ -375,6 +390,23 @@ impl Parser {
             }
             "MASS" => Block::Mass(need("ELSET")?),
             "ROTARY INERTIA" => Block::RotaryInertia(need("ELSET")?),
+            "TRANSFORM" => {
+                let cyl = match param(params, "TYPE")
+                    .map(str::to_ascii_uppercase)
+                    .as_deref()
+                {
+                    None | Some("R") => false,
+                    Some("C") => true,
+                    Some(t) => {
+                        return Err(self.err(
+                            loc,
+                            "*TRANSFORM",
+                            format!("TYPE={t} not supported (R, C)"),
+                        ))
+                    }
+                };
+                Block::Transform(need("NSET")?, cyl)
+            }
             "RIGID BODY" => {
                 let nset = need("NSET")?;
                 let r = need("REF NODE")?;
@@ -434,11 +466,12 @@ impl Parser {
                 let s = f.next().unwrap_or("");
                 let id = parse_u64(s)
                     .ok_or_else(|| self.err(loc, "*NODE", format!("bad node id '{s}'")))?;
-                let ent = format!("*NODE {id}");
                 let mut x = [0.0; 3];
                 for (k, s) in f.enumerate() {
                     if k < 3 && !s.is_empty() {
-                        x[k] = num(s, &ent, self)?;
+                        x[k] = parse_f64(s).ok_or_else(|| {
+                            self.err(loc, format!("*NODE {id}"), format!("bad number '{s}'"))
+                        })?;
                     }
                 }
                 if let Some(n) = nset {
@@ -640,6 +673,22 @@ impl Parser {
                 }
                 self.block = Block::Skip;
             }
+            Block::Transform(nset, cyl) => {
+                let (nset, cyl) = (nset.clone(), *cyl);
+                let ent = format!("*TRANSFORM NSET={nset}");
+                let v: Vec<f64> = fields(line)
+                    .filter(|s| !s.is_empty())
+                    .map(|s| num(s, &ent, self))
+                    .collect::<Result<_, _>>()?;
+                let [a1, a2, a3, b1, b2, b3] = v[..] else {
+                    return Err(self.err(loc, ent, "needs a1, a2, a3, b1, b2, b3"));
+                };
+                let id = self.transforms.len() as u64 + 1;
+                let cs = transform_frame(id, cyl, [a1, a2, a3], [b1, b2, b3])
+                    .ok_or_else(|| self.err(loc, ent.clone(), "degenerate points a, b"))?;
+                self.transforms.push((nset, cs, loc));
+                self.block = Block::Skip;
+            }
             Block::Surface(name) => {
                 let name = name.clone();
                 let v: Vec<&str> = fields(line).collect();
@@ -673,6 +722,49 @@ impl Parser {
             }
         }
         Ok(())
+    }
+}
+
+/// *TRANSFORM frame. TYPE=R: a on local x, b in the local x–y plane, origin 0:
+/// e1 = a/|a|, e3 = a×b/|a×b|, e2 = e3×e1. TYPE=C: a and b on the local z axis, origin a,
+/// e3 = (b−a)/|b−a| (e1 any unit vector ⟂ e3; nodal r, θ directions follow from the position).
+fn transform_frame(id: u64, cyl: bool, a: [f64; 3], b: [f64; 3]) -> Option<CoordSystem> {
+    let cross = |p: [f64; 3], q: [f64; 3]| {
+        [
+            p[1] * q[2] - p[2] * q[1],
+            p[2] * q[0] - p[0] * q[2],
+            p[0] * q[1] - p[1] * q[0],
+        ]
+    };
+    let unit = |p: [f64; 3]| {
+        let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        (n > 0.0 && n.is_finite()).then(|| p.map(|c| c / n))
+    };
+    if cyl {
+        let e3 = unit([b[0] - a[0], b[1] - a[1], b[2] - a[2]])?;
+        let k = (0..3)
+            .min_by(|&i, &j| e3[i].abs().total_cmp(&e3[j].abs()))
+            .unwrap_or(0);
+        let mut t = [0.0; 3];
+        t[k] = 1.0;
+        let e2 = unit(cross(e3, t))?;
+        let e1 = cross(e2, e3);
+        Some(CoordSystem {
+            id,
+            kind: CoordKind::Cylindrical,
+            origin: a,
+            axes: [e1, e2, e3],
+        })
+    } else {
+        let e1 = unit(a)?;
+        let e3 = unit(cross(a, b))?;
+        let e2 = cross(e3, e1);
+        Some(CoordSystem {
+            id,
+            kind: CoordKind::Rectangular,
+            origin: [0.0; 3],
+            axes: [e1, e2, e3],
+        })
     }
 }
 

@@ -179,6 +179,16 @@ impl Parser {
             }
         }
         self.b.model.point_masses = pm.into_values().collect();
+        // *TRANSFORM: nodal displacement frames.
+        for (nset, cs, loc) in &self.transforms {
+            let ent = format!("*TRANSFORM NSET={nset}");
+            let members = resolve_target(&Target::Set(nset.clone()), *loc, &ent, &self)?;
+            self.b.model.coord_systems.push(cs.clone());
+            let k = self.b.model.coord_systems.len() - 1;
+            for n in members {
+                self.b.model.nodes[n].displacement_frame = Some(k);
+            }
+        }
         // Rigid bodies and couplings.
         let mut rid = 0u64;
         for (r, nset, loc) in &self.rigid {
@@ -239,6 +249,14 @@ impl Parser {
                 None => return Err(self.err(c.loc, ent, "no *KINEMATIC or *DISTRIBUTING follows")),
             };
             self.b.model.rigid_elements.push(rigid);
+        }
+        for (what, count) in &self.substituted {
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!(
+                    "element type {what} ({count} *ELEMENT blocks): its special formulation is not reproduced"
+                ),
+            });
         }
         for (card, count) in &self.extra_nodes {
             self.b.model.warnings.push(ImportWarning {
