@@ -33,6 +33,9 @@ pub fn read(path: &Path) -> Result<Model, ImportError> {
     p.finish()
 }
 
+/// Largest id range one GENERATE line may expand to.
+const MAX_RANGE: u64 = 20_000_000;
+
 /// Node reference: a node id or a node-set name.
 #[derive(Debug, Clone)]
 enum Target {
@@ -515,10 +518,11 @@ impl Parser {
                     let v: Vec<&str> = fields(line).collect();
                     let g: Option<Vec<u64>> = v.iter().map(|s| parse_u64(s)).collect();
                     match g.as_deref() {
-                        Some([a, b]) | Some([a, b, 1]) if a <= b => {
+                        // At most MAX_RANGE ids per line: a corrupted bound must not exhaust memory.
+                        Some([a, b]) | Some([a, b, 1]) if a <= b && b - a < MAX_RANGE => {
                             add.extend((*a..=*b).map(|i| (i, loc)))
                         }
-                        Some([a, b, s]) if a <= b && *s > 0 => {
+                        Some([a, b, s]) if a <= b && *s > 0 && (b - a) / s < MAX_RANGE => {
                             add.extend((*a..=*b).step_by(*s as usize).map(|i| (i, loc)))
                         }
                         _ => {
