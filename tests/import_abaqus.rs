@@ -275,3 +275,18 @@ fn transform_frames_and_substituted_types() {
         .iter()
         .any(|w| w.message.contains("C3D8I read as C3D8")));
 }
+
+/// *NSET from an element set, and named boundary conditions.
+#[test]
+fn nset_from_elset_and_named_boundaries() {
+    let deck = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n\
+*ELEMENT, TYPE=C3D4, ELSET=E\n1, 1, 2, 3, 4\n*NSET, NSET=N, ELSET=E\n\
+*BOUNDARY\nN, ENCASTRE\n5, XSYMM\n";
+    let path = write_deck("nsetelset", &[("t.inp", deck)]);
+    let m = abaqus::read(&path).unwrap();
+    assert_eq!(m.node_sets["N"], vec![0, 1, 2, 3]);
+    assert_eq!(m.spcs.len(), 5);
+    assert!(m.spcs[..4].iter().all(|s| s.dofs == DofMask::ALL));
+    // XSYMM: u1 = ur2 = ur3 = 0.
+    assert_eq!(m.spcs[4].dofs, DofMask::from_digits("156").unwrap());
+}

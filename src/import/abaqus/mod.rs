@@ -7,8 +7,8 @@
 //! element's node count is reached.
 //!
 //! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8(R/I), C3D20(R), C3D6, C3D15, B31, T3D2, S3, S4,
-//! S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE), *MATERIAL, *ELASTIC, *DENSITY,
-//! *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY, *MASS, *ROTARY INERTIA, *RIGID BODY,
+//! S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC, *DENSITY,
+//! *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY (dof ranges, ENCASTRE/PINNED/X-Y-ZSYMM), *MASS, *ROTARY INERTIA, *RIGID BODY,
 //! *SURFACE (TYPE=NODE), *COUPLING + *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE.
 //! Reduced/incompatible-mode variants (C3D8R, C3D8I, C3D10M, B31R, S4R, …) are read as the base
 //! type with a warning: their special formulation is not reproduced. Other keywords
@@ -115,6 +115,8 @@ struct Parser {
     masses: Vec<(String, f64, Loc)>,
     rotary: Vec<(String, [f64; 6], Loc)>,
     rigid: Vec<(Target, String, Loc)>,
+    /// *NSET, NSET=A, ELSET=B requests: (A, B, loc).
+    nset_from_elset: Vec<(String, String, Loc)>,
     /// *TRANSFORM: node set and its (resolved) nodal displacement frame.
     transforms: Vec<(String, CoordSystem, Loc)>,
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
@@ -177,6 +179,7 @@ impl Parser {
             rotary: Vec::new(),
             rigid: Vec::new(),
             transforms: Vec::new(),
+            nset_from_elset: Vec::new(),
             surfaces: HashMap::new(),
             couplings: Vec::new(),
             skipped: BTreeMap::new(),
@@ -300,6 +303,12 @@ impl Parser {
                     &mut self.elsets
                 };
                 map.entry(name.clone()).or_default();
+                if let (true, Some(e)) = (node, param(params, "ELSET")) {
+                    // *NSET, NSET=A, ELSET=B: the nodes of B's elements (resolved later).
+                    self.nset_from_elset
+                        .push((name, e.to_ascii_uppercase(), loc));
+                    return Ok(Block::Skip);
+                }
                 Block::Set {
                     node,
                     name,
@@ -616,6 +625,21 @@ impl Parser {
             Block::Boundary => {
                 let v: Vec<&str> = fields(line).collect();
                 let ent = format!("*BOUNDARY {}", v[0]);
+                // Named conditions: ENCASTRE, PINNED, XSYMM, YSYMM, ZSYMM.
+                let named = v
+                    .get(1)
+                    .and_then(|s| match s.to_ascii_uppercase().as_str() {
+                        "ENCASTRE" => Some(DofMask::ALL),
+                        "PINNED" => Some(DofMask::TRANSLATIONS),
+                        "XSYMM" => Some(DofMask(0b11_0001)),
+                        "YSYMM" => Some(DofMask(0b10_1010)),
+                        "ZSYMM" => Some(DofMask(0b01_1100)),
+                        _ => None,
+                    });
+                if let Some(mask) = named {
+                    self.boundaries.push((target(v[0]), mask, loc));
+                    return Ok(());
+                }
                 let first = v.get(1).and_then(|s| parse_u64(s));
                 let last = match v.get(2) {
                     Some(s) if !s.is_empty() => parse_u64(s),

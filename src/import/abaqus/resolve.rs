@@ -62,6 +62,21 @@ impl Parser {
             idx.dedup();
             element_sets.insert(name.clone(), idx);
         }
+        for (nset, elset, loc) in &self.nset_from_elset {
+            let members = element_sets.get(elset).ok_or_else(|| {
+                self.err(
+                    *loc,
+                    format!("*NSET {nset}"),
+                    format!("unknown element set {elset}"),
+                )
+            })?;
+            let set: &mut Vec<usize> = node_sets.entry(nset.clone()).or_default();
+            for &e in members {
+                set.extend_from_slice(&self.b.model.elements[e].nodes);
+            }
+            set.sort_unstable();
+            set.dedup();
+        }
         // Materials.
         let mut mat_index = HashMap::new();
         for (k, m) in self.materials.iter().enumerate() {
