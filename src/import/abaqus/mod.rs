@@ -6,13 +6,14 @@
 //! comma continues on the next line; element data continue on following lines until the
 //! element's node count is reached.
 //!
-//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8(R/I), C3D20(R), C3D6, C3D15, B31, T3D2, S3, S4,
-//! S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC, *DENSITY,
-//! *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY (dof ranges, ENCASTRE/PINNED/X-Y-ZSYMM), *MASS, *ROTARY INERTIA, *RIGID BODY,
-//! *SURFACE (TYPE=NODE), *COUPLING + *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE.
+//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8(R/I), C3D20(R), C3D6, C3D15, B31, T3D2, S3,
+//! S4, S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE; *NSET from ELSET=), *MATERIAL,
+//! *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY (dof ranges, ENCASTRE, PINNED,
+//! X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *RIGID BODY, *SURFACE (TYPE=NODE), *COUPLING +
+//! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE.
 //! Reduced/incompatible-mode variants (C3D8R, C3D8I, C3D10M, B31R, S4R, …) are read as the base
-//! type with a warning: their special formulation is not reproduced. Other keywords
-//! (steps, outputs, …) are skipped with one warning per keyword and its count.
+//! type with a warning: their special formulation is not reproduced. Other keywords (steps,
+//! outputs, …) are skipped with one warning per keyword and its count.
 
 mod defs;
 mod resolve;
