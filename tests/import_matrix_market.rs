@@ -81,3 +81,22 @@ fn ccx_hex8_single_round_trip_through_matrix_market() {
     let total: f64 = mm.m.full().iter().map(|e| e.2).sum::<f64>() / 3.0;
     assert!((total - 5.401610119999975).abs() < 1e-9);
 }
+
+#[test]
+fn ccx_dump_with_mesh_nodes() {
+    let mesh = abaqus::read(&reference("e_matrices/hex8_block_coarse/mesh.inp")).unwrap();
+    let mm = matrix_market::from_ccx_dump(
+        &reference("e_matrices/hex8_block_coarse/ccx_matrix_fixed"),
+        &mesh,
+    )
+    .unwrap();
+    // Fixed run: END_X0 (9 nodes) constrained, so 90 of the 99 nodes carry equations.
+    assert_eq!(mm.nodes.len(), 90);
+    assert_eq!(mm.dofs.len(), 270);
+    assert_eq!((mm.k.n, mm.m.n), (270, 270));
+    let end = &mesh.node_sets["END_X0"];
+    assert!(mm
+        .nodes
+        .iter()
+        .all(|n| !end.iter().any(|&i| mesh.nodes[i].id == n.id)));
+}

@@ -243,3 +243,43 @@ pub fn read_matrix(path: &Path) -> Result<SymmetricTriplets, ImportError> {
     upper.sort_by_key(|e| (e.1, e.0));
     Ok(SymmetricTriplets { n, upper })
 }
+
+/// A [`MatrixModel`] from a CalculiX matrix dump (`STEM.sti/.mas/.dof`, see
+/// [`super::ccx_matrices`]) plus the mesh it was made from (for node coordinates). Nodes are
+/// those of the dump's equations, in order of first appearance. The dump must hold M.
+pub fn from_ccx_dump(stem: &Path, mesh: &crate::model::Model) -> Result<MatrixModel, ImportError> {
+    let dump = super::ccx_matrices::read_ccx_matrices(stem)?;
+    let dof_file = stem.with_extension("dof").display().to_string();
+    let m = dump.m.ok_or_else(|| {
+        parse_err(
+            &stem.with_extension("mas").display().to_string(),
+            1,
+            "file",
+            "no .mas (mass) file next to the .sti",
+        )
+    })?;
+    let index = mesh.node_index_by_id();
+    let mut nodes: Vec<Node> = Vec::new();
+    let mut seen = std::collections::HashSet::new();
+    for (k, eq) in dump.dofs.iter().enumerate() {
+        if !seen.insert(eq.node) {
+            continue;
+        }
+        let i = index.get(&eq.node).ok_or_else(|| {
+            parse_err(
+                &dof_file,
+                k + 1,
+                format!("node {}", eq.node),
+                format!("node not in the mesh {}", mesh.source),
+            )
+        })?;
+        nodes.push(mesh.nodes[*i].clone());
+    }
+    Ok(MatrixModel {
+        source: stem.display().to_string(),
+        nodes,
+        dofs: dump.dofs,
+        k: dump.k,
+        m,
+    })
+}
