@@ -20,6 +20,12 @@ pub(super) fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str
         "S4" | "S4R" => (Some(Quad4), "S4"),
         "S6" => (Some(Tri6), "S6"),
         "S8" | "S8R" => (Some(Quad8), "S8"),
+        // 2D continuum faces, as gmsh writes the faces of physical surfaces: kept as surface
+        // elements (sets, graphics); a section on them is not assembled.
+        "CPS3" | "CPE3" => (Some(Tri3), "CPS3"),
+        "CPS4" | "CPE4" => (Some(Quad4), "CPS4"),
+        "CPS6" | "CPE6" | "STRI65" => (Some(Tri6), "CPS6"),
+        "CPS8" | "CPE8" => (Some(Quad8), "CPS8"),
         "MASS" => (None, "MASS"),
         "ROTARYI" => (None, "ROTARYI"),
         _ => return None,
