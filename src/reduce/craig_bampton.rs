@@ -105,7 +105,10 @@ fn fixed_interface_modes(
             shift: Some(0.0),
             ..eig.clone()
         };
-        let b = spec.block.unwrap_or(c.min(24)).max(1);
+        let b = spec
+            .block
+            .unwrap_or(c.min(crate::solve::DEFAULT_BLOCK))
+            .max(1);
         if ni <= DENSE_MAX || c + 4 * b > ni / 2 {
             Ok(lowest_modes(kii, mii, &spec)?)
         } else {

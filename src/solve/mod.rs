@@ -16,6 +16,12 @@ pub use faer::sparse::SparseColMat;
 use faer::{Mat, MatRef, Par};
 use thiserror::Error;
 
+/// Default block size of the eigensolver. Measured on the tet10 block (1356 dofs): 20 modes took
+/// 68/84/112/144/216 solved vectors with blocks of 4/6/8/12/24 (60 modes: 212/252/296/372/648),
+/// while a block solve costs ~1/3 per vector of single solves; 6 also covers the six-fold rigid
+/// eigenvalue of a free body.
+pub const DEFAULT_BLOCK: usize = 6;
+
 /// Problems up to this size are solved densely.
 pub const DENSE_MAX: usize = 300;
 
@@ -74,7 +80,7 @@ pub struct EigenSpec {
     pub shift: Option<f64>,
     /// Relative residual tolerance (default 1e-10).
     pub tol: f64,
-    /// Vectors per block solve (`None`: min(count, 24)).
+    /// Vectors per block solve (`None`: min(count, DEFAULT_BLOCK)).
     pub block: Option<usize>,
     /// Dofs per node for the METIS node graph (`None`: order the dof graph).
     pub dofs_per_node: Option<usize>,
@@ -202,7 +208,7 @@ pub fn lowest_modes(
     validate(k, m, spec.count)?;
     let n = k.nrows();
     let count = spec.count;
-    let b = spec.block.unwrap_or(count.min(24)).max(1);
+    let b = spec.block.unwrap_or(count.min(DEFAULT_BLOCK)).max(1);
     let max_basis = (3 * count).max(count + 4 * b);
     if n <= DENSE_MAX || (2 * max_basis > n && n <= 3000) {
         let t = std::time::Instant::now();
@@ -229,7 +235,7 @@ pub fn lowest_modes_iterative(
     validate(k, m, spec.count)?;
     let n = k.nrows();
     let count = spec.count;
-    let b = spec.block.unwrap_or(count.min(24)).max(1);
+    let b = spec.block.unwrap_or(count.min(DEFAULT_BLOCK)).max(1);
     if count + 2 * b > n {
         return Err(SolveError::TooManyModes {
             requested: count + 2 * b,
@@ -273,7 +279,7 @@ pub fn lowest_modes_factored(
     validate(k, m, spec.count)?;
     let n = k.nrows();
     let count = spec.count;
-    let b = spec.block.unwrap_or(count.min(24)).max(1);
+    let b = spec.block.unwrap_or(count.min(DEFAULT_BLOCK)).max(1);
     if count + 2 * b > n || llt.n() != n {
         return Err(SolveError::TooManyModes {
             requested: count + 2 * b,
