@@ -12,8 +12,9 @@ pub mod ordering;
 pub mod sparse_ops;
 
 pub use cholesky::{FactorStats, SparseLlt};
-pub use faer::sparse::SparseColMat;
-use faer::{Mat, MatRef, Par};
+pub use faer::sparse::{SparseColMat, Triplet};
+pub use faer::Mat;
+use faer::{MatRef, Par};
 use thiserror::Error;
 
 /// Default block size of the eigensolver. Measured on the tet10 block (1356 dofs): 20 modes took
