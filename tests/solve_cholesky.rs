@@ -8,9 +8,14 @@ use flexbody::solve::{sparse_ops, SolveError, SparseLlt};
 use std::path::Path;
 
 fn tet10_free_k() -> SparseColMat<usize, f64> {
-    let stem = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/e_matrices/tet10_block_coarse/ccx_matrix_free");
+    let stem = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/reference/e_matrices/tet10_block_coarse/ccx_matrix_free");
     let c = read_ccx_matrices(&stem).unwrap();
-    let t: Vec<_> = c.k.full().into_iter().map(|(i, j, v)| Triplet::new(i, j, v)).collect();
+    let t: Vec<_> =
+        c.k.full()
+            .into_iter()
+            .map(|(i, j, v)| Triplet::new(i, j, v))
+            .collect();
     SparseColMat::try_new_from_triplets(c.k.n, c.k.n, &t).unwrap()
 }
 
@@ -28,12 +33,17 @@ fn multi_rhs_solve_and_metis_fill() {
     let rel = r.norm_max() / b.norm_max();
     assert!(rel < 1e-6, "relative residual {rel}");
     // backward error: ‖Kx − b‖ / (‖K‖‖x‖)
-    let knorm = (0..n).map(|j| kf.val_of_col(j).iter().map(|v| v.abs()).sum::<f64>()).fold(0.0, f64::max);
+    let knorm = (0..n)
+        .map(|j| kf.val_of_col(j).iter().map(|v| v.abs()).sum::<f64>())
+        .fold(0.0, f64::max);
     assert!(r.norm_max() / (knorm * x.norm_max()) < 1e-14);
     // nested dissection must not fill more than the natural ordering's band
     let st = &llt.stats;
     assert_eq!(st.n, n);
-    assert!(st.nnz_l >= kf.compute_nnz() / 2, "L holds at least the lower triangle of K");
+    assert!(
+        st.nnz_l >= kf.compute_nnz() / 2,
+        "L holds at least the lower triangle of K"
+    );
     let ident = {
         let d = sparse_ops::to_dense(kf.as_ref());
         // natural-order profile fill: Σ_j (j − first nonzero row of column j in the lower part) + 1
@@ -44,7 +54,11 @@ fn multi_rhs_solve_and_metis_fill() {
         }
         fill
     };
-    assert!(st.nnz_l < ident, "METIS nnz(L) {} vs natural profile {ident}", st.nnz_l);
+    assert!(
+        st.nnz_l < ident,
+        "METIS nnz(L) {} vs natural profile {ident}",
+        st.nnz_l
+    );
     assert!(st.flops > st.nnz_l as f64 && st.factor_bytes >= 8 * st.nnz_l);
 }
 

@@ -147,7 +147,9 @@ impl SparseLlt {
                 SymbolicCholeskyRaw::Simplicial(_) => index.saturating_sub(1),
                 SymbolicCholeskyRaw::Supernodal(_) => index,
             };
-            let dof = symbolic.perm().map_or(pos, |p| p.arrays().0[pos.min(p.arrays().0.len() - 1)]);
+            let dof = symbolic
+                .perm()
+                .map_or(pos, |p| p.arrays().0[pos.min(p.arrays().0.len() - 1)]);
             return Err(SolveError::NonPositivePivot { dof });
         }
         Ok(Self {

@@ -27,7 +27,13 @@ fn lattice(nx: usize, ny: usize, nz: usize) -> (Sparse, Sparse) {
                 let a = id(i, j, k);
                 for (di, dj, dk) in neighbours() {
                     let (ii, jj, kk) = (i as i64 + di, j as i64 + dj, k as i64 + dk);
-                    if ii < 0 || jj < 0 || kk < 0 || ii > nx as i64 || jj > ny as i64 || kk > nz as i64 {
+                    if ii < 0
+                        || jj < 0
+                        || kk < 0
+                        || ii > nx as i64
+                        || jj > ny as i64
+                        || kk > nz as i64
+                    {
                         continue;
                     }
                     let b = id(ii as usize, jj as usize, kk as usize);
@@ -72,8 +78,16 @@ fn neighbours() -> Vec<(i64, i64, i64)> {
 fn peak_rss_mb() -> f64 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("VmHWM")).map(|l| l.to_string()))
-        .and_then(|l| l.split_whitespace().nth(1).and_then(|x| x.parse::<f64>().ok()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM"))
+                .map(|l| l.to_string())
+        })
+        .and_then(|l| {
+            l.split_whitespace()
+                .nth(1)
+                .and_then(|x| x.parse::<f64>().ok())
+        })
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
@@ -83,26 +97,50 @@ fn main() {
     let modes = pos("--modes").map_or(30, |i| args[i + 1].parse().expect("--modes N"));
     let t0 = Instant::now();
     let (k, m, label) = if let Some(i) = pos("--ccx") {
-        let c = flexbody::import::ccx_matrices::read_ccx_matrices(Path::new(&args[i + 1])).expect("ccx dump");
+        let c = flexbody::import::ccx_matrices::read_ccx_matrices(Path::new(&args[i + 1]))
+            .expect("ccx dump");
         let tr = |t: &flexbody::import::ccx_matrices::SymmetricTriplets| {
-            let v: Vec<_> = t.full().into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect();
+            let v: Vec<_> = t
+                .full()
+                .into_iter()
+                .map(|(i, j, x)| Triplet::new(i, j, x))
+                .collect();
             SparseColMat::try_new_from_triplets(t.n, t.n, &v).expect("indices in range")
         };
         let m = tr(c.m.as_ref().expect("mass dump"));
         (tr(&c.k), m, args[i + 1].clone())
     } else {
         let g = pos("--grid").map_or([40, 8, 8], |i| {
-            [args[i + 1].parse().unwrap(), args[i + 2].parse().unwrap(), args[i + 3].parse().unwrap()]
+            [
+                args[i + 1].parse().unwrap(),
+                args[i + 2].parse().unwrap(),
+                args[i + 3].parse().unwrap(),
+            ]
         });
         let (k, m) = lattice(g[0], g[1], g[2]);
         (k, m, format!("lattice {}x{}x{}", g[0], g[1], g[2]))
     };
     let n = k.nrows();
-    println!("model: {label}, {n} dofs, nnz(K) = {}, built in {:.2} s", k.compute_nnz(), t0.elapsed().as_secs_f64());
-    let eig = EigenSpec { dofs_per_node: Some(3), ..Default::default() };
+    println!(
+        "model: {label}, {n} dofs, nnz(K) = {}, built in {:.2} s",
+        k.compute_nnz(),
+        t0.elapsed().as_secs_f64()
+    );
+    let eig = EigenSpec {
+        dofs_per_node: Some(3),
+        ..Default::default()
+    };
     if pos("--normal").is_some() {
         let t = Instant::now();
-        let s = lowest_modes(&k, &m, &EigenSpec { count: modes, ..eig.clone() }).expect("normal modes");
+        let s = lowest_modes(
+            &k,
+            &m,
+            &EigenSpec {
+                count: modes,
+                ..eig.clone()
+            },
+        )
+        .expect("normal modes");
         println!(
             "normal modes ({modes}): {:.2} s total, factor {:.2} s, eigen {:.2} s, {} solves, {:?}",
             t.elapsed().as_secs_f64(),
@@ -115,7 +153,8 @@ fn main() {
     // interface: the first 2 and last 2 nodes (12 dofs)
     let interface: Vec<usize> = (0..6).chain(n - 6..n).collect();
     let t = Instant::now();
-    let cb = craig_bampton(&k, &m, &interface, ModeCount::Count(modes), &eig).expect("Craig-Bampton");
+    let cb =
+        craig_bampton(&k, &m, &interface, ModeCount::Count(modes), &eig).expect("Craig-Bampton");
     let total = t.elapsed().as_secs_f64();
     println!("Craig-Bampton: 12 interface dofs, {modes} fixed-interface modes, {} modes, {total:.2} s total", cb.len());
     for note in &cb.diagnostics.notes {
