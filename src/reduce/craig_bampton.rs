@@ -34,6 +34,7 @@ pub fn craig_bampton_basis(
     modes: ModeCount,
     eig: &EigenSpec,
 ) -> Result<CbBasis, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     check_dofs("interface dofs", interface, n)?;
     if interface.is_empty() {
@@ -165,6 +166,7 @@ pub fn craig_bampton(
     modes: ModeCount,
     eig: &EigenSpec,
 ) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let basis = craig_bampton_basis(k, m, interface, modes, eig)?;
     let nq = basis.fixed_omega2.len();
     let t3 = Instant::now();

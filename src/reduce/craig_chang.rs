@@ -177,6 +177,7 @@ pub fn craig_chang(
     modes: ModeCount,
     eig: &EigenSpec,
 ) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     if fa.nrows() != n {
         return Err(ReduceError::Dofs {

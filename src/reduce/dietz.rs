@@ -73,6 +73,7 @@ pub fn dietz(
     shift: Option<f64>,
     eig: &EigenSpec,
 ) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     if fa.nrows() != n {
         return Err(ReduceError::Dofs {
@@ -145,6 +146,7 @@ pub fn dietz_modified(
     shift: Option<f64>,
     eig: &EigenSpec,
 ) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     if fa.nrows() != n || extended < modes {
         return Err(ReduceError::Dofs {

@@ -84,15 +84,12 @@ fn mqr(
         .collect();
     let mut q = Mat::<f64>::zeros(n, b);
     let mut r = Mat::<f64>::zeros(b, b);
+    let tk = Mat::from_fn(b, keep.len(), |t, c| u[(t, keep[c])] / s[keep[c]].sqrt());
+    q.as_mut()
+        .subcols_mut(0, keep.len())
+        .copy_from((&w * &tk).as_ref());
     for (c, &i) in keep.iter().enumerate() {
         let sq = s[i].sqrt();
-        for row in 0..n {
-            let mut x = 0.0;
-            for t in 0..b {
-                x += w[(row, t)] * u[(t, i)];
-            }
-            q[(row, c)] = x / sq;
-        }
         for t in 0..b {
             r[(c, t)] = sq * u[(t, i)];
         }
@@ -184,9 +181,9 @@ pub fn block_shift_invert(
     let mut e = Mat::<f64>::identity(b, b);
     for step in 0..prm.max_steps {
         let p = v.ncols();
-        // M-QR of the residual block (re-orthogonalized once more against V; T absorbs it)
-        let (c, f2) = gs(m, &v, f);
-        t += &c * e.transpose();
+        // M-QR of the residual block (already M-orthogonal to V: two Gram–Schmidt passes when it
+        // was formed, and V only shrinks to V·Y_k at a restart)
+        let f2 = f;
         let fscale = t.norm_max().powi(2);
         let (q, rf) = mqr(m, llt, &v, f2, fscale, &mut seed, &mut solves)?;
         let ts = dense::sym(t.as_ref());

@@ -12,20 +12,16 @@ pub fn spmm(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> 
     y
 }
 
-/// Y = A X into an existing matrix (overwritten).
-pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, mut y: MatMut<'_, f64>) {
-    y.fill(0.0);
-    for c in 0..x.ncols() {
-        for j in 0..a.ncols() {
-            let xj = x[(j, c)];
-            if xj == 0.0 {
-                continue;
-            }
-            for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-                y[(i, c)] += v * xj;
-            }
-        }
-    }
+/// Y = A X into an existing matrix (overwritten), faer's sparse × dense kernel.
+pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, y: MatMut<'_, f64>) {
+    faer::sparse::linalg::matmul::sparse_dense_matmul(
+        y,
+        faer::Accum::Replace,
+        a,
+        x,
+        1.0,
+        faer::Par::Seq,
+    );
 }
 
 /// A = K + s·M on the union of both patterns.

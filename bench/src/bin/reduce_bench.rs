@@ -93,6 +93,9 @@ fn peak_rss_mb() -> f64 {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if args.iter().any(|a| a == "--seq") {
+        flexbody::solve::faer::set_global_parallelism(flexbody::solve::faer::Par::Seq);
+    }
     let pos = |name: &str| args.iter().position(|a| a == name);
     let modes = pos("--modes").map_or(30, |i| args[i + 1].parse().expect("--modes N"));
     let t0 = Instant::now();
