@@ -168,7 +168,7 @@ pub fn element_matrices(
             let reduced = el.kind == ElementKind::Hex20R;
             solid(
                 hex20::stiffness(&x, &iso, reduced).map_err(elem_err)?,
-                hex20::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                hex20::scalar_mass(&x, iso.rho, reduced && !lumped).map_err(elem_err)?,
                 20,
                 true,
             )
