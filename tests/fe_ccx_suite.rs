@@ -1,6 +1,6 @@
-//! C3D20R (hex20, reduced 2×2×2 stiffness) against the CalculiX test-suite case `beamf`
-//! (`../shared/reference/ccx_tests/beamf.inp`, cantilever, `*FREQUENCY`, consistent mass;
-//! reference frequencies in `beamf.dat.ref`, identical in ccx 2.11 and 2.20).
+//! Cantilevers of the CalculiX test suite (`../shared/reference/ccx_tests/`, `*FREQUENCY`,
+//! consistent mass; reference frequencies in the `.dat.ref` files, identical in ccx 2.11 and
+//! 2.20): `beamf` (C3D20R, hex20 with reduced 2×2×2 integration) and `beam8f` (C3D8).
 
 mod common;
 
@@ -31,7 +31,20 @@ fn dat_freqs(text: &str) -> Vec<f64> {
 
 #[test]
 fn hex20r_cantilever_beamf_matches_ccx_test_suite_1e6() {
-    let model = read_model(&reference("ccx_tests/beamf.inp"), &ImportOptions::default()).unwrap();
+    check("beamf");
+}
+
+#[test]
+fn hex8_cantilever_beam8f_matches_ccx_test_suite_1e6() {
+    check("beam8f");
+}
+
+fn check(case: &str) {
+    let model = read_model(
+        &reference(&format!("ccx_tests/{case}.inp")),
+        &ImportOptions::default(),
+    )
+    .unwrap();
     let asm = assemble(
         &model,
         &AssemblySpec {
@@ -48,8 +61,10 @@ fn hex20r_cantilever_beamf_matches_ccx_test_suite_1e6() {
         &ConstraintSpec::default(),
     )
     .unwrap();
-    let want = dat_freqs(&std::fs::read_to_string(reference("ccx_tests/beamf.dat.ref")).unwrap());
-    assert_eq!(want.len(), 10);
+    let want = dat_freqs(
+        &std::fs::read_to_string(reference(&format!("ccx_tests/{case}.dat.ref"))).unwrap(),
+    );
+    assert!(want.len() >= 4, "{case}: {want:?}");
     let sol = lowest_modes(
         &red.k,
         &red.m,
@@ -62,7 +77,7 @@ fn hex20r_cantilever_beamf_matches_ccx_test_suite_1e6() {
     for (i, (l, w)) in sol.eigenvalues.iter().zip(&want).enumerate() {
         let f = hz(*l);
         let err = (f - w) / w;
-        eprintln!("beamf mode {}: ours {f:.2} ccx {w} rel {err:+.2e}", i + 1);
-        assert!(err.abs() < 1e-6, "mode {}: {f} vs {w}", i + 1);
+        eprintln!("{case} mode {}: ours {f:.2} ccx {w} rel {err:+.2e}", i + 1);
+        assert!(err.abs() < 1e-6, "{case} mode {}: {f} vs {w}", i + 1);
     }
 }
