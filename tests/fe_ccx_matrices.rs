@@ -11,21 +11,38 @@ use flexbody::import::ccx_matrices::read_ccx_matrices;
 /// Max |ours − ccx| / max |ccx| for K and M; also checks that ours has nothing outside ccx's dofs.
 fn compare(case: &str, stem: &str) -> (f64, f64) {
     let model = read_mesh_inp(&reference(&format!("e_matrices/{case}/mesh.inp")));
-    let spec = AssemblySpec { mass: MassKind::Consistent, tet10_mass: Tet10MassRule::CalculixFourPoint, ..Default::default() };
+    let spec = AssemblySpec {
+        mass: MassKind::Consistent,
+        tet10_mass: Tet10MassRule::CalculixFourPoint,
+        ..Default::default()
+    };
     let asm = assemble(&model, &spec).unwrap();
     let ccx = read_ccx_matrices(&reference(&format!("e_matrices/{case}/{stem}"))).unwrap();
-    assert_eq!(ccx.dofs.len(), asm.dofs.n_dofs, "{case}: same number of equations (free run)");
+    assert_eq!(
+        ccx.dofs.len(),
+        asm.dofs.n_dofs,
+        "{case}: same number of equations (free run)"
+    );
     let idx = model.node_index_by_id();
-    let map: Vec<usize> = ccx.dofs.iter().map(|d| asm.dofs.dof(idx[&d.node], d.dir as usize).unwrap()).collect();
+    let map: Vec<usize> = ccx
+        .dofs
+        .iter()
+        .map(|d| asm.dofs.dof(idx[&d.node], d.dir as usize).unwrap())
+        .collect();
     let (k, m) = (dense(&asm.k), dense(&asm.m));
-    let rel = |ours: &faer::Mat<f64>, theirs: &flexbody::import::ccx_matrices::SymmetricTriplets| {
+    let rel = |ours: &faer::Mat<f64>,
+               theirs: &flexbody::import::ccx_matrices::SymmetricTriplets| {
         let n = theirs.n;
         let mut t = faer::Mat::<f64>::zeros(n, n);
         for (r, c, v) in theirs.full() {
             t[(map[r], map[c])] = v;
         }
-        let scale = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).fold(0.0f64, |a, (i, j)| a.max(t[(i, j)].abs()));
-        let diff = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).fold(0.0f64, |a, (i, j)| a.max((ours[(i, j)] - t[(i, j)]).abs()));
+        let scale = (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .fold(0.0f64, |a, (i, j)| a.max(t[(i, j)].abs()));
+        let diff = (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .fold(0.0f64, |a, (i, j)| a.max((ours[(i, j)] - t[(i, j)]).abs()));
         diff / scale
     };
     let ek = rel(&k, &ccx.k);

@@ -13,16 +13,45 @@ use flexbody::solve::{lowest_modes, EigenSpec};
 fn case_freqs(case: &str, key: &str, field: &str) -> Vec<f64> {
     let text = std::fs::read_to_string(reference(&format!("{case}/case.json"))).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    v[key][field].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    v[key][field]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
 }
 
 /// Our lowest `count` frequencies (Hz) of the deck `case/deck`.
 fn our_freqs(case: &str, deck: &str, count: usize) -> Vec<f64> {
-    let model = read_model(&reference(&format!("{case}/{deck}")), &ImportOptions::default()).unwrap();
-    let spec = AssemblySpec { mass: MassKind::Consistent, tet10_mass: Tet10MassRule::CalculixFourPoint, ..Default::default() };
+    let model = read_model(
+        &reference(&format!("{case}/{deck}")),
+        &ImportOptions::default(),
+    )
+    .unwrap();
+    let spec = AssemblySpec {
+        mass: MassKind::Consistent,
+        tet10_mass: Tet10MassRule::CalculixFourPoint,
+        ..Default::default()
+    };
     let asm = assemble(&model, &spec).unwrap();
-    let red = eliminate(&model, &asm.dofs, &asm.k, &asm.m, &ConstraintSpec::default()).unwrap();
-    let sol = lowest_modes(&red.k, &red.m, &EigenSpec { count, dofs_per_node: Some(3), ..Default::default() }).unwrap();
+    let red = eliminate(
+        &model,
+        &asm.dofs,
+        &asm.k,
+        &asm.m,
+        &ConstraintSpec::default(),
+    )
+    .unwrap();
+    let sol = lowest_modes(
+        &red.k,
+        &red.m,
+        &EigenSpec {
+            count,
+            dofs_per_node: Some(3),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     sol.eigenvalues.iter().map(|&l| hz(l)).collect()
 }
 
@@ -31,8 +60,19 @@ fn check(case: &str) {
     let free = our_freqs(case, "ccx_free.inp", 16);
     for i in 6..16 {
         let err = (free[i] - want_free[i]) / want_free[i];
-        eprintln!("{case} free-free mode {}: ours {:.7} ccx {} rel {err:+.2e}", i + 1, free[i], want_free[i]);
-        assert!(err.abs() < 2e-6, "{case}: free-free mode {} {} vs {}", i + 1, free[i], want_free[i]);
+        eprintln!(
+            "{case} free-free mode {}: ours {:.7} ccx {} rel {err:+.2e}",
+            i + 1,
+            free[i],
+            want_free[i]
+        );
+        assert!(
+            err.abs() < 2e-6,
+            "{case}: free-free mode {} {} vs {}",
+            i + 1,
+            free[i],
+            want_free[i]
+        );
     }
     for f in &free[..6] {
         assert!(*f < 1e-3 * want_free[6], "{case}: rigid mode at {f} Hz");
@@ -41,7 +81,10 @@ fn check(case: &str) {
     let fixed = our_freqs(case, "ccx_fixed.inp", want_fixed.len());
     for (i, (f, w)) in fixed.iter().zip(&want_fixed).enumerate() {
         let err = (f - w) / w;
-        eprintln!("{case} fixed mode {}: ours {f:.7} ccx {w} rel {err:+.2e}", i + 1);
+        eprintln!(
+            "{case} fixed mode {}: ours {f:.7} ccx {w} rel {err:+.2e}",
+            i + 1
+        );
         assert!(err.abs() < 2e-6, "{case}: fixed mode {} {f} vs {w}", i + 1);
     }
 }

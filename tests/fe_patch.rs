@@ -14,9 +14,17 @@ use flexbody::model::{Element, ElementKind, Model, Node, Property, Section};
 
 /// Unit-cube 2×2×2 patch of the given kind; the centre node is moved to (0.55, 0.43, 0.52).
 fn patch(kind: ElementKind) -> Model {
-    let mut model = Model { source: format!("patch {kind:?}"), ..Model::default() };
+    let mut model = Model {
+        source: format!("patch {kind:?}"),
+        ..Model::default()
+    };
     model.materials.push(steel());
-    model.properties.push(Property { id: 1, name: "P".into(), material: 0, section: Section::Solid });
+    model.properties.push(Property {
+        id: 1,
+        name: "P".into(),
+        material: 0,
+        section: Section::Solid,
+    });
     let id = |i: usize, j: usize, k: usize| i + 3 * (j + 3 * k);
     for k in 0..3 {
         for j in 0..3 {
@@ -25,7 +33,11 @@ fn patch(kind: ElementKind) -> Model {
                 if (i, j, k) == (1, 1, 1) {
                     x = [0.55, 0.43, 0.52];
                 }
-                model.nodes.push(Node { id: id(i, j, k) as u64 + 1, x, displacement_frame: None });
+                model.nodes.push(Node {
+                    id: id(i, j, k) as u64 + 1,
+                    x,
+                    displacement_frame: None,
+                });
             }
         }
     }
@@ -57,14 +69,23 @@ fn patch(kind: ElementKind) -> Model {
                     id(i, j + 1, k + 1),
                 ];
                 match kind {
-                    ElementKind::Hex8 | ElementKind::Hex20 | ElementKind::Hex20R => cells.push((kind, h.to_vec())),
+                    ElementKind::Hex8 | ElementKind::Hex20 | ElementKind::Hex20R => {
+                        cells.push((kind, h.to_vec()))
+                    }
                     ElementKind::Prism6 => {
                         cells.push((kind, vec![h[0], h[1], h[2], h[4], h[5], h[6]]));
                         cells.push((kind, vec![h[0], h[2], h[3], h[4], h[6], h[7]]));
                     }
                     _ => {
                         // Kuhn split along the 1–7 diagonal: 6 positive tets.
-                        for t in [[0, 1, 2, 6], [0, 2, 3, 6], [0, 3, 7, 6], [0, 7, 4, 6], [0, 4, 5, 6], [0, 5, 1, 6]] {
+                        for t in [
+                            [0, 1, 2, 6],
+                            [0, 2, 3, 6],
+                            [0, 3, 7, 6],
+                            [0, 7, 4, 6],
+                            [0, 4, 5, 6],
+                            [0, 5, 1, 6],
+                        ] {
                             cells.push((kind, t.iter().map(|&q| h[q]).collect()));
                         }
                     }
@@ -81,7 +102,20 @@ fn patch(kind: ElementKind) -> Model {
                 }
             }
             ElementKind::Hex20 | ElementKind::Hex20R => {
-                for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)] {
+                for (a, b) in [
+                    (0, 1),
+                    (1, 2),
+                    (2, 3),
+                    (3, 0),
+                    (4, 5),
+                    (5, 6),
+                    (6, 7),
+                    (7, 4),
+                    (0, 4),
+                    (1, 5),
+                    (2, 6),
+                    (3, 7),
+                ] {
                     let m = mid(&mut model, nodes[a], nodes[b]);
                     nodes.push(m);
                 }
@@ -93,7 +127,8 @@ fn patch(kind: ElementKind) -> Model {
             let x: Vec<[f64; 3]> = nodes[..4].iter().map(|&n| model.nodes[n].x).collect();
             let d = |a: usize| std::array::from_fn::<f64, 3, _>(|c| x[a][c] - x[0][c]);
             let (u, v, w) = (d(1), d(2), d(3));
-            let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+            let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+                + u[2] * (v[0] * w[1] - v[1] * w[0]);
             if det < 0.0 {
                 nodes.swap(1, 2);
                 if kind == ElementKind::Tet10 {
@@ -103,13 +138,20 @@ fn patch(kind: ElementKind) -> Model {
                 }
             }
         }
-        model.elements.push(Element { id: e as u64 + 1, kind, nodes, property: Some(0), orientation: None });
+        model.elements.push(Element {
+            id: e as u64 + 1,
+            kind,
+            nodes,
+            property: Some(0),
+            orientation: None,
+        });
     }
     model
 }
 
 fn on_boundary(x: [f64; 3]) -> bool {
-    x.iter().any(|&c| c.abs() < 1e-12 || (c - 1.0).abs() < 1e-12)
+    x.iter()
+        .any(|&c| c.abs() < 1e-12 || (c - 1.0).abs() < 1e-12)
 }
 
 const KINDS: [ElementKind; 6] = [
@@ -124,14 +166,20 @@ const KINDS: [ElementKind; 6] = [
 #[test]
 fn every_solid_passes_the_constant_strain_patch_test() {
     // u = b + A x with a general A (symmetric part = strain ε).
-    let a = [[1.0e-3, 2.0e-4, -3.0e-4], [5.0e-4, -7.0e-4, 1.0e-4], [-2.0e-4, 6.0e-4, 4.0e-4]];
+    let a = [
+        [1.0e-3, 2.0e-4, -3.0e-4],
+        [5.0e-4, -7.0e-4, 1.0e-4],
+        [-2.0e-4, 6.0e-4, 4.0e-4],
+    ];
     let b = [1e-3, -2e-3, 5e-4];
     let mat = steel();
     let lam = mat.e * mat.nu / ((1.0 + mat.nu) * (1.0 - 2.0 * mat.nu));
     let mu = mat.g;
-    let eps: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (a[i][j] + a[j][i])));
+    let eps: [[f64; 3]; 3] =
+        std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (a[i][j] + a[j][i])));
     let tr = eps[0][0] + eps[1][1] + eps[2][2];
-    let energy_density = 0.5 * lam * tr * tr + mu * eps.iter().flatten().map(|e| e * e).sum::<f64>();
+    let energy_density =
+        0.5 * lam * tr * tr + mu * eps.iter().flatten().map(|e| e * e).sum::<f64>();
     for kind in KINDS {
         let model = patch(kind);
         let asm = assemble(&model, &AssemblySpec::default()).unwrap();
@@ -140,10 +188,13 @@ fn every_solid_passes_the_constant_strain_patch_test() {
         let mut u = vec![0.0; n];
         for (p, node) in model.nodes.iter().enumerate() {
             for i in 0..3 {
-                u[asm.dofs.dof(p, i).unwrap()] = b[i] + (0..3).map(|j| a[i][j] * node.x[j]).sum::<f64>();
+                u[asm.dofs.dof(p, i).unwrap()] =
+                    b[i] + (0..3).map(|j| a[i][j] * node.x[j]).sum::<f64>();
             }
         }
-        let f: Vec<f64> = (0..n).map(|r| (0..n).map(|c| k[(r, c)] * u[c]).sum()).collect();
+        let f: Vec<f64> = (0..n)
+            .map(|r| (0..n).map(|c| k[(r, c)] * u[c]).sum())
+            .collect();
         let fscale = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let mut interior = 0;
         for (p, node) in model.nodes.iter().enumerate() {
@@ -151,13 +202,20 @@ fn every_solid_passes_the_constant_strain_patch_test() {
                 interior += 1;
                 for i in 0..3 {
                     let fi = f[asm.dofs.dof(p, i).unwrap()];
-                    assert!(fi.abs() < 1e-11 * fscale, "{kind:?}: interior node {} force {fi:e} (scale {fscale:e})", node.id);
+                    assert!(
+                        fi.abs() < 1e-11 * fscale,
+                        "{kind:?}: interior node {} force {fi:e} (scale {fscale:e})",
+                        node.id
+                    );
                 }
             }
         }
         assert!(interior >= 1);
         let energy = 0.5 * u.iter().zip(&f).map(|(a, b)| a * b).sum::<f64>();
-        assert!((energy - energy_density).abs() < 1e-11 * energy_density, "{kind:?}: energy {energy} vs {energy_density}");
+        assert!(
+            (energy - energy_density).abs() < 1e-11 * energy_density,
+            "{kind:?}: energy {energy} vs {energy_density}"
+        );
     }
 }
 
@@ -181,15 +239,28 @@ fn every_solid_k_is_symmetric_psd_with_six_rigid_modes_and_zero_rigid_force() {
             u[asm.dofs.dof(p, 0).unwrap()] = -r[1];
             u[asm.dofs.dof(p, 1).unwrap()] = r[0];
         }
-        let fmax = (0..n).map(|r| (0..n).map(|c| k[(r, c)] * u[c]).sum::<f64>().abs()).fold(0.0, f64::max);
-        assert!(fmax < 1e-11 * kmax, "{kind:?}: rigid rotation force {fmax:e}");
+        let fmax = (0..n)
+            .map(|r| (0..n).map(|c| k[(r, c)] * u[c]).sum::<f64>().abs())
+            .fold(0.0, f64::max);
+        assert!(
+            fmax < 1e-11 * kmax,
+            "{kind:?}: rigid rotation force {fmax:e}"
+        );
         let mut ev = k.self_adjoint_eigenvalues(faer::Side::Lower).unwrap();
         ev.sort_by(f64::total_cmp);
         let top = ev[n - 1];
         let zeros = ev.iter().filter(|&&l| l.abs() < 1e-10 * top).count();
         assert_eq!(zeros, 6, "{kind:?}: {:?}", &ev[..8]);
-        assert!(ev[0] > -1e-10 * top, "{kind:?}: negative eigenvalue {}", ev[0]);
-        assert!(ev[6] > 1e-6 * top, "{kind:?}: 7th eigenvalue {} too small (mechanism)", ev[6]);
+        assert!(
+            ev[0] > -1e-10 * top,
+            "{kind:?}: negative eigenvalue {}",
+            ev[0]
+        );
+        assert!(
+            ev[6] > 1e-6 * top,
+            "{kind:?}: 7th eigenvalue {} too small (mechanism)",
+            ev[6]
+        );
     }
 }
 
@@ -203,13 +274,30 @@ fn mass_totals_rho_v_for_both_lumpings_and_hrz_is_positive() {
             (MassKind::Consistent, Tet10MassRule::CalculixFourPoint),
             (MassKind::Consistent, Tet10MassRule::Exact),
         ] {
-            let asm = assemble(&model, &AssemblySpec { mass, tet10_mass, ..Default::default() }).unwrap();
+            let asm = assemble(
+                &model,
+                &AssemblySpec {
+                    mass,
+                    tet10_mass,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
             let m = dense(&asm.m);
             let n = m.nrows();
             // Total mass in x: Σ over x-dofs of all entries.
-            let xd: Vec<usize> = (0..model.nodes.len()).map(|p| asm.dofs.dof(p, 0).unwrap()).collect();
-            let total: f64 = xd.iter().flat_map(|&i| xd.iter().map(move |&j| (i, j))).map(|(i, j)| m[(i, j)]).sum();
-            assert!((total - rho).abs() < 1e-12 * rho, "{kind:?} {mass:?}: total {total} vs ρV {rho}");
+            let xd: Vec<usize> = (0..model.nodes.len())
+                .map(|p| asm.dofs.dof(p, 0).unwrap())
+                .collect();
+            let total: f64 = xd
+                .iter()
+                .flat_map(|&i| xd.iter().map(move |&j| (i, j)))
+                .map(|(i, j)| m[(i, j)])
+                .sum();
+            assert!(
+                (total - rho).abs() < 1e-12 * rho,
+                "{kind:?} {mass:?}: total {total} vs ρV {rho}"
+            );
             if mass == MassKind::Lumped {
                 for i in 0..n {
                     assert!(m[(i, i)] > 0.0, "{kind:?}: lumped mass {i} not positive");

@@ -10,7 +10,7 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 
 use super::dofs::DofMap;
-use super::elements::beam::BeamProps;
+use super::elements::beam::{BeamLumping, BeamProps};
 use super::elements::tet10::Tet10MassRule;
 use super::elements::{beam, hex20, hex8, prism6, rod, tet10, tet4, ElementError, Isotropic, Xyz};
 use super::mass::{self, MassKind};
@@ -38,6 +38,8 @@ pub struct AssemblySpec {
     pub tet10_mass: Tet10MassRule,
     /// Beam bending theory.
     pub beam: BeamTheory,
+    /// Rotational inertia of lumped beam masses.
+    pub beam_lumping: BeamLumping,
 }
 
 /// The assembled physical system.
@@ -166,7 +168,7 @@ pub fn element_matrices(
             let reduced = el.kind == ElementKind::Hex20R;
             solid(
                 hex20::stiffness(&x, &iso, reduced).map_err(elem_err)?,
-                hex20::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                hex20::scalar_mass(&x, iso.rho, reduced && !lumped).map_err(elem_err)?,
                 20,
                 true,
             )
@@ -202,7 +204,8 @@ pub fn element_matrices(
                 },
                 nsm: s.nsm,
             };
-            let (k, m) = beam::matrices(&coords::<2>(model, n), el.orientation, &iso, &p, lumped)
+            let lumping = lumped.then_some(spec.beam_lumping);
+            let (k, m) = beam::matrices(&coords::<2>(model, n), el.orientation, &iso, &p, lumping)
                 .map_err(elem_err)?;
             ElementMatrices { dpn: 6, k, m }
         }

@@ -80,9 +80,6 @@ impl Reduced {
 
 type Expr = Vec<(usize, f64)>;
 
-/// Per-thread accumulator of the Gustavson product: dense values, marks, finished columns.
-type Accumulator = (Vec<f64>, Vec<usize>, Vec<(usize, Vec<usize>, Vec<f64>)>);
-
 /// Build T and the reduced K, M.
 pub fn eliminate(
     model: &Model,
@@ -484,49 +481,77 @@ fn triple(
         SymbolicSparseColMat::new_checked(n, nr, cnt.clone(), None, ti.clone()),
         tv.clone(),
     );
+    // Two passes so that only the result is allocated: count each column's entries, then fill
+    // disjoint column slices in parallel. Marks hold rj + 1 (0 = untouched) so the per-thread
+    // work arrays start zeroed (calloc, pages touched lazily).
     let product = |a: &SparseColMat<usize, f64>| -> SparseColMat<usize, f64> {
         let a = a.as_ref();
-        let cols: Vec<(usize, Vec<usize>, Vec<f64>)> = (0..nr)
-            .into_par_iter()
-            .fold(
-                || (vec![0.0f64; nr], vec![usize::MAX; nr], Vec::new()),
-                |(mut acc, mut mark, mut out): Accumulator, rj| {
-                    let mut touched = Vec::new();
-                    for p in cnt[rj]..cnt[rj + 1] {
-                        let (j, tj) = (ti[p], tv[p]);
-                        for (i, aij) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
-                            for &(ri, tij) in &rows[i] {
-                                if mark[ri] != rj {
-                                    mark[ri] = rj;
-                                    acc[ri] = 0.0;
-                                    touched.push(ri);
-                                }
-                                acc[ri] += tij * aij * tj;
-                            }
-                        }
+        // Calls f(row, first time seen in this column, contribution t_i,ri a_ij t_j,rj).
+        let visit = |rj: usize, mark: &mut [usize], f: &mut dyn FnMut(usize, bool, f64)| {
+            for p in cnt[rj]..cnt[rj + 1] {
+                let (j, tj) = (ti[p], tv[p]);
+                for (i, aij) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
+                    for &(ri, tij) in &rows[i] {
+                        let fresh = mark[ri] != rj + 1;
+                        mark[ri] = rj + 1;
+                        f(ri, fresh, tij * aij * tj);
                     }
-                    touched.sort_unstable();
-                    let vals = touched.iter().map(|&r| acc[r]).collect();
-                    out.push((rj, touched, vals));
-                    (acc, mark, out)
+                }
+            }
+        };
+        const MIN_LEN: usize = 1 << 14;
+        let counts: Vec<usize> = (0..nr)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map_init(
+                || vec![0usize; nr],
+                |mark, rj| {
+                    let mut c = 0usize;
+                    visit(rj, mark, &mut |_, fresh, _| c += usize::from(fresh));
+                    c
                 },
             )
-            .map(|(_, _, out)| out)
-            .reduce(Vec::new, |mut a, mut b| {
-                a.append(&mut b);
-                a
-            });
-        let mut cols = cols;
-        cols.sort_unstable_by_key(|c| c.0);
+            .collect();
         let mut cp = Vec::with_capacity(nr + 1);
         cp.push(0usize);
-        let total: usize = cols.iter().map(|c| c.1.len()).sum();
-        let (mut ri, mut vv) = (Vec::with_capacity(total), Vec::with_capacity(total));
-        for (_, r, v) in cols {
-            ri.extend(r);
-            vv.extend(v);
-            cp.push(ri.len());
+        for c in &counts {
+            cp.push(cp[cp.len() - 1] + c);
         }
+        let total = cp[nr];
+        let mut ri = vec![0usize; total];
+        let mut vv = vec![0.0f64; total];
+        let mut slices = Vec::with_capacity(nr);
+        let (mut rrest, mut vrest): (&mut [usize], &mut [f64]) = (&mut ri, &mut vv);
+        for c in counts {
+            let (rh, rt) = rrest.split_at_mut(c);
+            let (vh, vt) = vrest.split_at_mut(c);
+            slices.push((rh, vh));
+            rrest = rt;
+            vrest = vt;
+        }
+        slices
+            .into_par_iter()
+            .enumerate()
+            .with_min_len(MIN_LEN)
+            .for_each_init(
+                || (vec![0usize; nr], vec![0.0f64; nr]),
+                |(mark, acc), (rj, (rs, vs))| {
+                    let mut t = 0usize;
+                    visit(rj, mark, &mut |r, fresh, v| {
+                        if fresh {
+                            rs[t] = r;
+                            t += 1;
+                            acc[r] = v;
+                        } else {
+                            acc[r] += v;
+                        }
+                    });
+                    rs.sort_unstable();
+                    for (slot, &r) in vs.iter_mut().zip(rs.iter()) {
+                        *slot = acc[r];
+                    }
+                },
+            );
         SparseColMat::new(SymbolicSparseColMat::new_checked(nr, nr, cp, None, ri), vv)
     };
     (t, product(k), product(m))

@@ -182,6 +182,51 @@ pub fn frame_at(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::{DofMask, Element, Node, PointMass};
+
+    /// Tet4 on nodes 0–3, a beam 3–4, a translational point mass on 5, an RBE2 from 6 to 0,
+    /// node 7 unused: counts 3,3,3,6,6,3,6,0 and node-major numbering.
+    #[test]
+    fn dof_counts_follow_what_attaches_and_numbering_is_node_major() {
+        let mut m = Model::default();
+        for i in 0..8 {
+            m.nodes.push(Node {
+                id: 100 + i as u64,
+                x: [i as f64, 0.0, 0.0],
+                displacement_frame: None,
+            });
+        }
+        let el = |kind, nodes| Element {
+            id: 1,
+            kind,
+            nodes,
+            property: Some(0),
+            orientation: None,
+        };
+        m.elements.push(el(ElementKind::Tet4, vec![0, 1, 2, 3]));
+        m.elements.push(el(ElementKind::Beam2, vec![3, 4]));
+        m.point_masses.push(PointMass {
+            id: 2,
+            node: 5,
+            mass: 1.0,
+            offset: [0.0; 3],
+            inertia: [[0.0; 3]; 3],
+        });
+        m.rigid_elements.push(RigidElement::Rbe2 {
+            id: 3,
+            independent: 6,
+            dependent: vec![0],
+            dofs: DofMask::ALL,
+        });
+        let d = DofMap::from_model(&m).unwrap();
+        assert_eq!(d.count, vec![3, 3, 3, 6, 6, 3, 6, 0]);
+        assert_eq!(d.n_dofs, 30);
+        assert_eq!(d.dof(3, 5), Some(14));
+        assert_eq!(d.dof(0, 3), None);
+        assert_eq!(d.node_of(14), Some((3, 5)));
+        assert_eq!(d.node_of(29), Some((6, 5)));
+        assert_eq!(d.node_of(30), None);
+    }
 
     #[test]
     fn cylindrical_frame_at_node_is_radial_tangential_axial() {

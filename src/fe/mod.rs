@@ -26,6 +26,7 @@ pub mod quadrature;
 pub use assembly::{assemble, Assembled, AssemblySpec, BeamTheory};
 pub use constraints::{eliminate, ConstraintSpec, Reduced};
 pub use dofs::DofMap;
+pub use elements::beam::BeamLumping;
 pub use elements::tet10::Tet10MassRule;
 pub use mass::MassKind;
 

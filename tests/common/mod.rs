@@ -10,16 +10,28 @@ use faer::Mat;
 use flexbody::model::{Material, Model};
 
 pub fn reference(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference").join(rel)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/reference")
+        .join(rel)
 }
 
 pub fn steel() -> Material {
-    Material { id: 1, name: "STEEL".into(), e: 210e9, nu: 0.3, g: 210e9 / 2.6, rho: 7850.0 }
+    Material {
+        id: 1,
+        name: "STEEL".into(),
+        e: 210e9,
+        nu: 0.3,
+        g: 210e9 / 2.6,
+        rho: 7850.0,
+    }
 }
 
 /// Read a reference mesh.inp with the `.inp` importer; solids without a section get steel.
 pub fn read_mesh_inp(path: &Path) -> Model {
-    let opts = flexbody::import::ImportOptions { material: Some(steel()), ..Default::default() };
+    let opts = flexbody::import::ImportOptions {
+        material: Some(steel()),
+        ..Default::default()
+    };
     flexbody::import::read_model(path, &opts).expect("reference mesh.inp imports")
 }
 
@@ -46,7 +58,9 @@ pub fn generalized_eigenvalues(k: &Mat<f64>, m: &Mat<f64>) -> Vec<f64> {
     let mut at = a.transpose().to_owned();
     faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, at.as_mut(), faer::Par::Seq);
     let sym = Mat::from_fn(n, n, |i, j| 0.5 * (at[(i, j)] + at[(j, i)]));
-    let mut ev = sym.self_adjoint_eigenvalues(faer::Side::Lower).expect("eigenvalues converge");
+    let mut ev = sym
+        .self_adjoint_eigenvalues(faer::Side::Lower)
+        .expect("eigenvalues converge");
     ev.sort_by(f64::total_cmp);
     ev
 }

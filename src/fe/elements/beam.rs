@@ -139,18 +139,40 @@ pub fn consistent_mass_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 1
     m
 }
 
-/// Local 12×12 lumped (diagonal) mass with section rotary inertia (module formula).
-pub fn lumped_mass_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 12]; 12] {
+/// Which rotational inertia a lumped beam mass carries (translations always get m/2 per node).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BeamLumping {
+    /// Section rotary inertia ρL/2·(I_p, I_y, I_z) on the rotations; the default.
+    #[default]
+    SectionRotary,
+    /// Torsional inertia ρI_pL/2 only, no bending rotary inertia (as Nastran CBEAM lumped).
+    TorsionOnly,
+    /// No rotational inertia at all (as Nastran CBAR lumped).
+    TranslationsOnly,
+}
+
+/// Local 12×12 lumped (diagonal) mass (module formula; rotational part per `lumping`).
+pub fn lumped_mass_local(
+    l: f64,
+    mat: &Isotropic,
+    p: &BeamProps,
+    lumping: BeamLumping,
+) -> [[f64; 12]; 12] {
     let mut m = [[0.0; 12]; 12];
     let half = 0.5 * (mat.rho * p.area + p.nsm) * l;
     let r = 0.5 * mat.rho * l;
+    let (tors, bend) = match lumping {
+        BeamLumping::SectionRotary => (1.0, 1.0),
+        BeamLumping::TorsionOnly => (1.0, 0.0),
+        BeamLumping::TranslationsOnly => (0.0, 0.0),
+    };
     for n in [0, 6] {
         for i in 0..3 {
             m[n + i][n + i] = half;
         }
-        m[n + 3][n + 3] = r * (p.iy + p.iz);
-        m[n + 4][n + 4] = r * p.iy;
-        m[n + 5][n + 5] = r * p.iz;
+        m[n + 3][n + 3] = tors * r * (p.iy + p.iz);
+        m[n + 4][n + 4] = bend * r * p.iy;
+        m[n + 5][n + 5] = bend * r * p.iz;
     }
     m
 }
@@ -208,16 +230,15 @@ pub fn matrices(
     v: Option<Xyz>,
     mat: &Isotropic,
     p: &BeamProps,
-    lumped: bool,
+    lumped: Option<BeamLumping>,
 ) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
     check(mat, p)?;
     let v = v.ok_or(ElementError::BadOrientation { v: [0.0; 3] })?;
     let (r, l) = local_frame(x, Some(v))?;
     let k = stiffness_local(l, mat, p);
-    let m = if lumped {
-        lumped_mass_local(l, mat, p)
-    } else {
-        consistent_mass_local(l, mat, p)
+    let m = match lumped {
+        Some(lumping) => lumped_mass_local(l, mat, p, lumping),
+        None => consistent_mass_local(l, mat, p),
     };
     Ok((to_basic(&k, &r), to_basic(&m, &r)))
 }
@@ -271,7 +292,7 @@ mod tests {
     fn beam_rigid_body_motion_gives_zero_force() {
         let x = [[0.1, 0.2, -0.3], [0.5, -0.1, 0.4]];
         let mat = Isotropic::new(210e9, 0.3, 7850.0);
-        let (k, _) = matrices(&x, Some([0.0, 0.3, 1.0]), &mat, &props(), false).unwrap();
+        let (k, _) = matrices(&x, Some([0.0, 0.3, 1.0]), &mat, &props(), None).unwrap();
         let kmax = k.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         for mode in 0..6 {
             let mut u = [0.0; 12];

@@ -1,0 +1,83 @@
+//! Cantilevers of the CalculiX test suite (`../shared/reference/ccx_tests/`, `*FREQUENCY`,
+//! consistent mass; reference frequencies in the `.dat.ref` files, identical in ccx 2.11 and
+//! 2.20): `beamf` (C3D20R, hex20 with reduced 2×2×2 integration) and `beam8f` (C3D8).
+
+mod common;
+
+use common::{hz, reference};
+use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
+use flexbody::import::{read_model, ImportOptions};
+use flexbody::solve::{lowest_modes, EigenSpec};
+
+/// The (cycles/time) column of the EIGENVALUE OUTPUT table of a ccx .dat file.
+fn dat_freqs(text: &str) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut inside = false;
+    for line in text.lines() {
+        if line.contains("E I G E N V A L U E   O U T P U T") {
+            inside = true;
+            continue;
+        }
+        if inside && line.contains("P A R T I C I P A T I O N") {
+            break;
+        }
+        let f: Vec<&str> = line.split_whitespace().collect();
+        if inside && f.len() == 5 && f[0].parse::<usize>().is_ok() {
+            out.push(f[3].parse().unwrap());
+        }
+    }
+    out
+}
+
+#[test]
+fn hex20r_cantilever_beamf_matches_ccx_test_suite_1e6() {
+    check("beamf");
+}
+
+#[test]
+fn hex8_cantilever_beam8f_matches_ccx_test_suite_1e6() {
+    check("beam8f");
+}
+
+fn check(case: &str) {
+    let model = read_model(
+        &reference(&format!("ccx_tests/{case}.inp")),
+        &ImportOptions::default(),
+    )
+    .unwrap();
+    let asm = assemble(
+        &model,
+        &AssemblySpec {
+            mass: MassKind::Consistent,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let red = eliminate(
+        &model,
+        &asm.dofs,
+        &asm.k,
+        &asm.m,
+        &ConstraintSpec::default(),
+    )
+    .unwrap();
+    let want = dat_freqs(
+        &std::fs::read_to_string(reference(&format!("ccx_tests/{case}.dat.ref"))).unwrap(),
+    );
+    assert!(want.len() >= 4, "{case}: {want:?}");
+    let sol = lowest_modes(
+        &red.k,
+        &red.m,
+        &EigenSpec {
+            count: want.len(),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    for (i, (l, w)) in sol.eigenvalues.iter().zip(&want).enumerate() {
+        let f = hz(*l);
+        let err = (f - w) / w;
+        eprintln!("{case} mode {}: ours {f:.2} ccx {w} rel {err:+.2e}", i + 1);
+        assert!(err.abs() < 1e-6, "{case} mode {}: {f} vs {w}", i + 1);
+    }
+}
