@@ -33,6 +33,10 @@ pub enum BuildMethod {
     Normal,
     /// Craig–Bampton on the interface dofs.
     CraigBampton,
+    /// Craig–Chang: free-free modes + inertia-relief attachment modes at the interface dofs.
+    CraigChang,
+    /// Dietz frequency-response modes at the interface dofs (static procedure).
+    Dietz,
 }
 
 /// Which nodes get their mode shapes stored in the file (invariants always use every node).
@@ -160,8 +164,11 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
     lap(&mut report, STAGES[0]);
 
     progress(STAGES[1]);
-    if spec.method == BuildMethod::CraigBampton && spec.interface.is_empty() {
-        return Err(request_err("Craig–Bampton needs interface nodes: give --interface with node ids or node-set names".into()));
+    if spec.method != BuildMethod::Normal && spec.interface.is_empty() {
+        return Err(request_err(format!("{:?} needs interface nodes: give --interface with node ids or node-set names", spec.method)));
+    }
+    if !spec.reference_conditions.is_empty() && matches!(spec.method, BuildMethod::CraigChang | BuildMethod::Dietz) {
+        return Err(request_err("reference conditions are defined for normal modes and Craig–Bampton (improved CB methods 1 and 2), not for Craig–Chang or Dietz".into()));
     }
     report.interfaces = resolve_interfaces(&mut model, &spec.interface, spec.spider)?;
     let interface_nodes: Vec<NodeIndex> = report.interfaces.iter().flat_map(|r| r.nodes.iter().copied()).collect();
@@ -233,10 +240,18 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
             2 => reduce::reference::improved_cb_method2(k_r, m_r, &interface_dofs, &reference, count, &eig)?,
             other => return Err(request_err(format!("--reference-method {other}: must be 1 or 2"))),
         },
+        BuildMethod::CraigChang => {
+            let fa = reduce::craig_chang::unit_loads(k_r.nrows(), &interface_dofs)?;
+            reduce::craig_chang::craig_chang(k_r, m_r, &fa, count, &eig)?
+        }
+        BuildMethod::Dietz => {
+            let fa = reduce::craig_chang::unit_loads(k_r.nrows(), &interface_dofs)?;
+            reduce::dietz::dietz(k_r, m_r, &fa, count, None, &eig)?
+        }
     };
     if let (Some(n), Some(_)) = (spec.modes, spec.fmax_hz) {
         // Both given: the count caps the band (CB keeps its constraint-derived modes on top).
-        let extra = if spec.method == BuildMethod::CraigBampton { interface_dofs.len() } else { 0 };
+        let extra = if spec.method == BuildMethod::Normal { 0 } else { interface_dofs.len() };
         set = select::by_count(set, n + extra);
     }
     report.diagnostics = set.diagnostics.clone();

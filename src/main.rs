@@ -57,10 +57,11 @@ struct BuildArgs {
     /// Output file (.flexbody).
     #[arg(short, long)]
     output: PathBuf,
-    /// Reduction method: cb (Craig–Bampton) or normal.
+    /// Reduction method: cb (Craig–Bampton), normal, craig-chang or dietz.
     #[arg(long, default_value = "cb")]
     method: String,
-    /// Number of fixed-interface modes (cb) or normal modes (normal); default 20 without --fmax.
+    /// Number of fixed-interface modes (cb), free-free modes (craig-chang, dietz) or normal
+    /// modes (normal); default 20 without --fmax.
     #[arg(long)]
     modes: Option<usize>,
     /// Highest frequency of the scene in Hz: modes are kept up to 3× it.
