@@ -224,3 +224,69 @@ fn keywords_generate_continuation_mass_rigid_coupling_beam() {
     );
     assert!(m.warnings.iter().any(|w| w.message.contains("*HEADING")));
 }
+
+/// The format comes from the extension unless overridden: an Abaqus deck saved as `.txt` is
+/// refused without a format and read with one.
+#[test]
+fn format_detection_by_extension_with_override() {
+    use flexbody::import::{Format, ImportError};
+    let text = std::fs::read_to_string(reference("e_matrices/hex8_single/mesh.inp")).unwrap();
+    let path = write_deck("fmt", &[("deck.txt", &text)]);
+    let e = read_model(&path, &ImportOptions::default()).unwrap_err();
+    assert!(matches!(e, ImportError::UnknownFormat { .. }));
+    let opts = ImportOptions {
+        format: Format::from_name("abaqus"),
+        ..Default::default()
+    };
+    let m = read_model(&path, &opts).unwrap();
+    assert_eq!((m.nodes.len(), m.elements.len()), (8, 1));
+    assert_eq!(
+        Format::from_extension(Path::new("x.BDF")),
+        Some(Format::Nastran)
+    );
+    assert_eq!(
+        Format::from_extension(Path::new("x.msh")),
+        Some(Format::Gmsh)
+    );
+}
+
+/// *TRANSFORM gives the nodes of its set a displacement frame; C3D8I is read as C3D8 with a
+/// warning.
+#[test]
+fn transform_frames_and_substituted_types() {
+    let deck = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, 0, 0, 1\n6, 1, 0, 1\n7, 1, 1, 1\n8, 0, 1, 1\n\
+*ELEMENT, TYPE=C3D8I, ELSET=E\n1, 1, 2, 3, 4, 5, 6, 7, 8\n*NSET, NSET=R\n1, 2\n*NSET, NSET=C\n7\n\
+*TRANSFORM, NSET=R\n0, 1, 0, -1, 0, 0\n*TRANSFORM, NSET=C, TYPE=C\n0, 0, 0, 0, 0, 2\n";
+    let path = write_deck("transform", &[("t.inp", deck)]);
+    let m = abaqus::read(&path).unwrap();
+    let r = &m.coord_systems[m.nodes[0].displacement_frame.unwrap()];
+    // a = +y is local x, b = −x in the x–y plane: e3 = a × b = +z, e2 = e3 × e1 = −x.
+    assert_eq!(r.axes, [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]);
+    assert_eq!(m.nodes[1].displacement_frame, m.nodes[0].displacement_frame);
+    let c = &m.coord_systems[m.nodes[6].displacement_frame.unwrap()];
+    assert_eq!(
+        (c.kind, c.axes[2]),
+        (flexbody::model::CoordKind::Cylindrical, [0.0, 0.0, 1.0])
+    );
+    assert_eq!(m.nodes[2].displacement_frame, None);
+    assert_eq!(m.elements[0].kind, ElementKind::Hex8);
+    assert!(m
+        .warnings
+        .iter()
+        .any(|w| w.message.contains("C3D8I read as C3D8")));
+}
+
+/// *NSET from an element set, and named boundary conditions.
+#[test]
+fn nset_from_elset_and_named_boundaries() {
+    let deck = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n\
+*ELEMENT, TYPE=C3D4, ELSET=E\n1, 1, 2, 3, 4\n*NSET, NSET=N, ELSET=E\n\
+*BOUNDARY\nN, ENCASTRE\n5, XSYMM\n";
+    let path = write_deck("nsetelset", &[("t.inp", deck)]);
+    let m = abaqus::read(&path).unwrap();
+    assert_eq!(m.node_sets["N"], vec![0, 1, 2, 3]);
+    assert_eq!(m.spcs.len(), 5);
+    assert!(m.spcs[..4].iter().all(|s| s.dofs == DofMask::ALL));
+    // XSYMM: u1 = ur2 = ur3 = 0.
+    assert_eq!(m.spcs[4].dofs, DofMask::from_digits("156").unwrap());
+}

@@ -77,6 +77,16 @@ struct Cur<'a> {
 }
 
 impl<'a> Cur<'a> {
+    /// Error about the line last returned by [`Cur::next_line`].
+    fn err_hdr(&self, msg: impl Into<String>) -> ImportError {
+        parse_err(
+            self.file,
+            self.line.saturating_sub(1).max(1) as usize,
+            self.section,
+            msg,
+        )
+    }
+
     fn err(&self, msg: impl Into<String>) -> ImportError {
         let mut m = msg.into();
         if self.binary {
@@ -215,14 +225,14 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                 let hdr = c.next_line().ok_or_else(|| c.err("missing version line"))?;
                 let v: Vec<&str> = hdr.split_whitespace().collect();
                 if v.len() < 3 || !v[0].starts_with("4.1") {
-                    return Err(c.err(format!("only MSH 4.1 is supported, found '{hdr}'")));
+                    return Err(c.err_hdr(format!("only MSH 4.1 is supported, found '{hdr}'")));
                 }
                 c.binary = v[1] == "1";
                 c.size_t = v[2]
                     .parse()
                     .ok()
                     .filter(|s| *s == 4 || *s == 8)
-                    .ok_or_else(|| c.err("bad data size"))?;
+                    .ok_or_else(|| c.err_hdr("bad data size"))?;
                 if c.binary {
                     if c.raw::<4>()? != 1i32.to_le_bytes() {
                         return Err(c.err("big-endian binary mesh not supported"));
@@ -232,13 +242,13 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                 seen_format = true;
                 c.end_section("MeshFormat")?;
             }
-            _ if !seen_format => return Err(c.err("file does not start with $MeshFormat")),
+            _ if !seen_format => return Err(c.err_hdr("file does not start with $MeshFormat")),
             "$PhysicalNames" => {
                 c.section = "$PhysicalNames";
                 let n: usize = c
                     .next_line()
                     .and_then(|s| s.trim().parse().ok())
-                    .ok_or_else(|| c.err("bad count"))?;
+                    .ok_or_else(|| c.err_hdr("bad count"))?;
                 for _ in 0..n {
                     let s = c
                         .next_line()
@@ -251,7 +261,7 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                         .map(|x| x.trim().trim_matches('"').to_ascii_uppercase());
                     match (dim, tag, name) {
                         (Some(d), Some(t), Some(nm)) => names.insert((d, t), nm),
-                        _ => return Err(c.err(format!("bad physical name line '{s}'"))),
+                        _ => return Err(c.err_hdr(format!("bad physical name line '{s}'"))),
                     };
                 }
                 c.end_section("PhysicalNames")?;

@@ -7,10 +7,13 @@ pub mod abaqus;
 pub mod ccx_matrices;
 pub mod error;
 pub mod gmsh;
+pub mod material_file;
+pub mod matrix_market;
 pub mod nastran;
 pub(crate) mod text;
 
 pub use error::ImportError;
+pub use material_file::read_material_file;
 
 use std::path::Path;
 
@@ -56,7 +59,8 @@ pub struct ImportOptions {
     /// Force a format instead of guessing from the extension.
     pub format: Option<Format>,
     /// Material for solid elements that have no section in the file (always the case for
-    /// `.msh`; also for a bare Abaqus mesh without *SOLID SECTION).
+    /// `.msh`; also for a bare Abaqus mesh without *SOLID SECTION). From the command line or
+    /// a side file ([`read_material_file`]).
     pub material: Option<Material>,
 }
 

@@ -264,6 +264,7 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
         });
     }
     let mut element_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    let mut no_prop: BTreeMap<(&str, String), (usize, u64)> = BTreeMap::new();
     for (k, (pid, loc)) in elem_pid.iter().enumerate() {
         let e = &b.model.elements[k];
         match pids.get(*pid) {
@@ -275,13 +276,12 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
                     .push(k);
             }
             None => match unsupported_props.get(pid) {
-                Some(card) => b.model.warnings.push(ImportWarning {
-                    file: b.file_name(*loc).to_owned(),
-                    message: format!(
-                        "{} {}: property {pid} is {card} (unsupported): element has no property",
-                        b.elem_card[k], e.id
-                    ),
-                }),
+                Some(card) => {
+                    let entry = no_prop
+                        .entry((b.elem_card[k], card.clone()))
+                        .or_insert((0, e.id));
+                    entry.0 += 1;
+                }
                 None => {
                     return Err(parse_err(
                         b.file_name(*loc),
@@ -292,6 +292,14 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
                 }
             },
         }
+    }
+    for ((elem, card), (n, first)) in no_prop {
+        b.model.warnings.push(ImportWarning {
+            file: files[0].clone(),
+            message: format!(
+                "{n} {elem} elements (first: {first}) reference {card} properties (unsupported): no property"
+            ),
+        });
     }
     // Bar/beam orientation.
     for (k, o, loc) in orient {

@@ -120,7 +120,7 @@ impl<'a> C<'a> {
                     return Err(self.err(k, "THRU without a start id"));
                 };
                 let b = self.id(k + 1, "THRU end")?;
-                if b < a || b - a > 100_000_000 {
+                if b < a || b - a > 20_000_000 {
                     return Err(self.err(k, format!("bad THRU range {a}..{b}")));
                 }
                 out.extend((a + 1..=b).map(|i| (i, k)));

@@ -1,26 +1,31 @@
 //! Abaqus / CalculiX `.inp` reader → [`Model`].
 //!
-//! Reads the whole file (and every `*INCLUDE`) once, line by line without per-line allocation
-//! for data lines, into raw records keyed by external ids; one resolve pass then builds the
+//! Reads the whole file (and every `*INCLUDE`) once, line by line (node lines parse without
+//! allocating), into raw records keyed by external ids; one resolve pass then builds the
 //! dense model. Keywords are case-insensitive; `**` starts a comment; a keyword line ending in a
 //! comma continues on the next line; element data continue on following lines until the
 //! element's node count is reached.
 //!
-//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8(R/I), C3D20(R), C3D6, C3D15, B31, T3D2, S3, S4,
-//! S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE), *MATERIAL, *ELASTIC, *DENSITY,
-//! *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY, *MASS, *ROTARY INERTIA, *RIGID BODY,
-//! *SURFACE (TYPE=NODE), *COUPLING + *KINEMATIC / *DISTRIBUTING, *INCLUDE. Other keywords
-//! (steps, outputs, …) are skipped with one warning per keyword and its count.
+//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8(R/I), C3D20(R), C3D6, C3D15, B31, T3D2, S3,
+//! S4, S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE; *NSET from ELSET=), *MATERIAL,
+//! *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY (dof ranges, ENCASTRE, PINNED,
+//! X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *RIGID BODY, *SURFACE (TYPE=NODE), *COUPLING +
+//! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE.
+//! Reduced/incompatible-mode variants (C3D8R, C3D8I, C3D10M, B31R, S4R, …) are read as the base
+//! type with a warning: their special formulation is not reproduced. Other keywords (steps,
+//! outputs, …) are skipped with one warning per keyword and its count.
+
+mod defs;
+mod resolve;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
 use super::error::ImportError;
 use super::text::{parse_f64, parse_u64, read_text, Builder, Loc};
-use crate::model::{
-    DofMask, ElementKind, ImportWarning, Material, Model, PointMass, Property, RigidElement,
-    Section, SectionShape, Spc,
-};
+use defs::{abaqus_shape, element_kind, transform_frame};
+
+use crate::model::{CoordSystem, DofMask, ElementKind, Model, Section, SectionShape};
 
 /// Read an Abaqus/CalculiX input deck (following `*INCLUDE`s) into a [`Model`].
 pub fn read(path: &Path) -> Result<Model, ImportError> {
@@ -28,6 +33,9 @@ pub fn read(path: &Path) -> Result<Model, ImportError> {
     p.read_file(path, 0, 0)?;
     p.finish()
 }
+
+/// Largest id range one GENERATE line may expand to.
+const MAX_RANGE: u64 = 20_000_000;
 
 /// Node reference: a node id or a node-set name.
 #[derive(Debug, Clone)]
@@ -90,6 +98,7 @@ enum Block {
     RotaryInertia(String),
     Surface(String),
     Coupling(usize),
+    Transform(String, bool),
 }
 
 struct Parser {
@@ -107,9 +116,17 @@ struct Parser {
     masses: Vec<(String, f64, Loc)>,
     rotary: Vec<(String, [f64; 6], Loc)>,
     rigid: Vec<(Target, String, Loc)>,
+    /// *NSET, NSET=A, ELSET=B requests: (A, B, loc).
+    nset_from_elset: Vec<(String, String, Loc)>,
+    /// *TRANSFORM: node set and its (resolved) nodal displacement frame.
+    transforms: Vec<(String, CoordSystem, Loc)>,
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
     couplings: Vec<RawCoupling>,
     skipped: BTreeMap<String, usize>,
+    /// Element types read as a close relative (C3D8I as C3D8, …): "X read as Y" → blocks.
+    substituted: BTreeMap<String, usize>,
+    /// Elements that listed more node ids than their type takes, by type.
+    extra_nodes: BTreeMap<&'static str, usize>,
 }
 
 fn upper_norm(s: &str) -> String {
@@ -147,28 +164,6 @@ fn fields(line: &str) -> impl Iterator<Item = &str> {
     line.split(',').map(str::trim)
 }
 
-fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str)> {
-    use ElementKind::*;
-    Some(match t {
-        "C3D4" => (Some(Tet4), "C3D4"),
-        "C3D10" | "C3D10M" => (Some(Tet10), "C3D10"),
-        "C3D8" | "C3D8R" | "C3D8I" => (Some(Hex8), "C3D8"),
-        "C3D20" => (Some(Hex20), "C3D20"),
-        "C3D20R" => (Some(Hex20R), "C3D20R"),
-        "C3D6" => (Some(Prism6), "C3D6"),
-        "C3D15" => (Some(Prism15), "C3D15"),
-        "B31" | "B31R" => (Some(Beam2), "B31"),
-        "T3D2" => (Some(Rod2), "T3D2"),
-        "S3" | "S3R" => (Some(Tri3), "S3"),
-        "S4" | "S4R" => (Some(Quad4), "S4"),
-        "S6" => (Some(Tri6), "S6"),
-        "S8" | "S8R" => (Some(Quad8), "S8"),
-        "MASS" => (None, "MASS"),
-        "ROTARYI" => (None, "ROTARYI"),
-        _ => return None,
-    })
-}
-
 impl Parser {
     fn new(file: &str) -> Parser {
         Parser {
@@ -184,9 +179,13 @@ impl Parser {
             masses: Vec::new(),
             rotary: Vec::new(),
             rigid: Vec::new(),
+            transforms: Vec::new(),
+            nset_from_elset: Vec::new(),
             surfaces: HashMap::new(),
             couplings: Vec::new(),
             skipped: BTreeMap::new(),
+            extra_nodes: BTreeMap::new(),
+            substituted: BTreeMap::new(),
         }
     }
 
@@ -284,6 +283,12 @@ impl Parser {
                 let Some((kind, card)) = element_kind(&t) else {
                     return Err(self.err(loc, "*ELEMENT", format!("unsupported element type {t}")));
                 };
+                if t != card {
+                    *self
+                        .substituted
+                        .entry(format!("{t} read as {card}"))
+                        .or_default() += 1;
+                }
                 Block::Element {
                     kind,
                     card,
@@ -299,6 +304,12 @@ impl Parser {
                     &mut self.elsets
                 };
                 map.entry(name.clone()).or_default();
+                if let (true, Some(e)) = (node, param(params, "ELSET")) {
+                    // *NSET, NSET=A, ELSET=B: the nodes of B's elements (resolved later).
+                    self.nset_from_elset
+                        .push((name, e.to_ascii_uppercase(), loc));
+                    return Ok(Block::Skip);
+                }
                 Block::Set {
                     node,
                     name,
@@ -373,6 +384,23 @@ impl Parser {
             }
             "MASS" => Block::Mass(need("ELSET")?),
             "ROTARY INERTIA" => Block::RotaryInertia(need("ELSET")?),
+            "TRANSFORM" => {
+                let cyl = match param(params, "TYPE")
+                    .map(str::to_ascii_uppercase)
+                    .as_deref()
+                {
+                    None | Some("R") => false,
+                    Some("C") => true,
+                    Some(t) => {
+                        return Err(self.err(
+                            loc,
+                            "*TRANSFORM",
+                            format!("TYPE={t} not supported (R, C)"),
+                        ))
+                    }
+                };
+                Block::Transform(need("NSET")?, cyl)
+            }
             "RIGID BODY" => {
                 let nset = need("NSET")?;
                 let r = need("REF NODE")?;
@@ -432,11 +460,12 @@ impl Parser {
                 let s = f.next().unwrap_or("");
                 let id = parse_u64(s)
                     .ok_or_else(|| self.err(loc, "*NODE", format!("bad node id '{s}'")))?;
-                let ent = format!("*NODE {id}");
                 let mut x = [0.0; 3];
                 for (k, s) in f.enumerate() {
                     if k < 3 && !s.is_empty() {
-                        x[k] = num(s, &ent, self)?;
+                        x[k] = parse_f64(s).ok_or_else(|| {
+                            self.err(loc, format!("*NODE {id}"), format!("bad number '{s}'"))
+                        })?;
                     }
                 }
                 if let Some(n) = nset {
@@ -462,11 +491,9 @@ impl Parser {
                     return Ok(());
                 }
                 if vals.len() > nn + 1 {
-                    return Err(self.err(
-                        start,
-                        format!("*ELEMENT {}", vals[0]),
-                        format!("{card} takes {nn} nodes, got {}", vals.len() - 1),
-                    ));
+                    // CalculiX reads the nodes the type needs and ignores the rest of the line.
+                    vals.truncate(nn + 1);
+                    *self.extra_nodes.entry(card).or_default() += 1;
                 }
                 let id = vals[0];
                 if let Some(e) = elset {
@@ -501,10 +528,11 @@ impl Parser {
                     let v: Vec<&str> = fields(line).collect();
                     let g: Option<Vec<u64>> = v.iter().map(|s| parse_u64(s)).collect();
                     match g.as_deref() {
-                        Some([a, b]) | Some([a, b, 1]) if a <= b => {
+                        // At most MAX_RANGE ids per line: a corrupted bound must not exhaust memory.
+                        Some([a, b]) | Some([a, b, 1]) if a <= b && b - a < MAX_RANGE => {
                             add.extend((*a..=*b).map(|i| (i, loc)))
                         }
-                        Some([a, b, s]) if a <= b && *s > 0 => {
+                        Some([a, b, s]) if a <= b && *s > 0 && (b - a) / s < MAX_RANGE => {
                             add.extend((*a..=*b).step_by(*s as usize).map(|i| (i, loc)))
                         }
                         _ => {
@@ -598,6 +626,21 @@ impl Parser {
             Block::Boundary => {
                 let v: Vec<&str> = fields(line).collect();
                 let ent = format!("*BOUNDARY {}", v[0]);
+                // Named conditions: ENCASTRE, PINNED, XSYMM, YSYMM, ZSYMM.
+                let named = v
+                    .get(1)
+                    .and_then(|s| match s.to_ascii_uppercase().as_str() {
+                        "ENCASTRE" => Some(DofMask::ALL),
+                        "PINNED" => Some(DofMask::TRANSLATIONS),
+                        "XSYMM" => Some(DofMask(0b11_0001)),
+                        "YSYMM" => Some(DofMask(0b10_1010)),
+                        "ZSYMM" => Some(DofMask(0b01_1100)),
+                        _ => None,
+                    });
+                if let Some(mask) = named {
+                    self.boundaries.push((target(v[0]), mask, loc));
+                    return Ok(());
+                }
                 let first = v.get(1).and_then(|s| parse_u64(s));
                 let last = match v.get(2) {
                     Some(s) if !s.is_empty() => parse_u64(s),
@@ -640,6 +683,22 @@ impl Parser {
                 }
                 self.block = Block::Skip;
             }
+            Block::Transform(nset, cyl) => {
+                let (nset, cyl) = (nset.clone(), *cyl);
+                let ent = format!("*TRANSFORM NSET={nset}");
+                let v: Vec<f64> = fields(line)
+                    .filter(|s| !s.is_empty())
+                    .map(|s| num(s, &ent, self))
+                    .collect::<Result<_, _>>()?;
+                let [a1, a2, a3, b1, b2, b3] = v[..] else {
+                    return Err(self.err(loc, ent, "needs a1, a2, a3, b1, b2, b3"));
+                };
+                let id = self.transforms.len() as u64 + 1;
+                let cs = transform_frame(id, cyl, [a1, a2, a3], [b1, b2, b3])
+                    .ok_or_else(|| self.err(loc, ent.clone(), "degenerate points a, b"))?;
+                self.transforms.push((nset, cs, loc));
+                self.block = Block::Skip;
+            }
             Block::Surface(name) => {
                 let name = name.clone();
                 let v: Vec<&str> = fields(line).collect();
@@ -674,245 +733,6 @@ impl Parser {
         }
         Ok(())
     }
-
-    fn finish(mut self) -> Result<Model, ImportError> {
-        let nodes = self.b.node_map("*NODE")?;
-        self.b.resolve_element_nodes(&nodes)?;
-        let elems = self.b.element_map()?;
-        for (id, (node, loc)) in &self.mass_elems {
-            if elems.get(*id).is_some() {
-                return Err(self.err(*loc, format!("*ELEMENT {id}"), "duplicate element id"));
-            }
-            if nodes.get(*node).is_none() {
-                return Err(self.err(
-                    *loc,
-                    format!("*ELEMENT {id}"),
-                    format!("references unknown node {node}"),
-                ));
-            }
-        }
-        // Node sets.
-        let mut node_sets = BTreeMap::new();
-        for (name, members) in &self.nsets {
-            let mut idx = Vec::with_capacity(members.len());
-            for &(id, loc) in members {
-                idx.push(nodes.get(id).ok_or_else(|| {
-                    self.err(loc, format!("*NSET {name}"), format!("unknown node {id}"))
-                })?);
-            }
-            idx.sort_unstable();
-            idx.dedup();
-            node_sets.insert(name.clone(), idx);
-        }
-        // Element sets (mass elements are not in `Model::elements` and are left out).
-        let mut element_sets = BTreeMap::new();
-        for (name, members) in &self.elsets {
-            let mut idx = Vec::with_capacity(members.len());
-            for &(id, loc) in members {
-                match elems.get(id) {
-                    Some(i) => idx.push(i),
-                    None if self.mass_elems.contains_key(&id) => {}
-                    None => {
-                        return Err(self.err(
-                            loc,
-                            format!("*ELSET {name}"),
-                            format!("unknown element {id}"),
-                        ))
-                    }
-                }
-            }
-            idx.sort_unstable();
-            idx.dedup();
-            element_sets.insert(name.clone(), idx);
-        }
-        // Materials.
-        let mut mat_index = HashMap::new();
-        for (k, m) in self.materials.iter().enumerate() {
-            let ent = format!("*MATERIAL {}", m.name);
-            let (e, nu) =
-                m.e.ok_or_else(|| self.err(m.loc, ent.clone(), "no *ELASTIC given"))?;
-            if mat_index.insert(m.name.clone(), k).is_some() {
-                return Err(self.err(m.loc, ent, "duplicate material name"));
-            }
-            if m.rho.is_none() {
-                self.b.model.warnings.push(ImportWarning {
-                    file: self.b.file_name(m.loc).to_owned(),
-                    message: format!("material {} has no *DENSITY: density 0", m.name),
-                });
-            }
-            self.b.model.materials.push(Material {
-                id: k as u64 + 1,
-                name: m.name.clone(),
-                e,
-                nu,
-                g: e / (2.0 * (1.0 + nu)),
-                rho: m.rho.unwrap_or(0.0),
-            });
-        }
-        // Sections → properties, assigned to the elements of their set.
-        for (k, s) in self.sections.iter().enumerate() {
-            let ent = format!("*SECTION ELSET={}", s.elset);
-            let material = *mat_index.get(&s.material).ok_or_else(|| {
-                self.err(
-                    s.loc,
-                    ent.clone(),
-                    format!("unknown material {}", s.material),
-                )
-            })?;
-            let members = element_sets.get(&s.elset).ok_or_else(|| {
-                self.err(
-                    s.loc,
-                    ent.clone(),
-                    format!("unknown element set {}", s.elset),
-                )
-            })?;
-            if let Section::Beam(b) = &s.section {
-                if matches!(b.shape, Some(SectionShape::Other { .. })) {
-                    return Err(self.err(s.loc, ent, "missing section dimensions line"));
-                }
-            }
-            self.b.model.properties.push(Property {
-                id: k as u64 + 1,
-                name: s.elset.clone(),
-                material,
-                section: s.section.clone(),
-            });
-            for &e in members {
-                let el = &self.b.model.elements[e];
-                if el.property.is_some() {
-                    return Err(self.err(
-                        s.loc,
-                        ent,
-                        format!("element {} already has a section", el.id),
-                    ));
-                }
-                let el = &mut self.b.model.elements[e];
-                el.property = Some(k);
-                el.orientation = s.orientation;
-            }
-        }
-        let resolve_target =
-            |t: &Target, loc: Loc, ent: &str, p: &Parser| -> Result<Vec<usize>, ImportError> {
-                match t {
-                    Target::Node(id) => nodes
-                        .get(*id)
-                        .map(|i| vec![i])
-                        .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node {id}"))),
-                    Target::Set(s) => node_sets
-                        .get(s)
-                        .cloned()
-                        .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node set {s}"))),
-                }
-            };
-        for (t, dofs, loc) in &self.boundaries {
-            for node in resolve_target(t, *loc, "*BOUNDARY", &self)? {
-                self.b.model.spcs.push(Spc {
-                    node,
-                    dofs: *dofs,
-                    set_id: 0,
-                });
-            }
-        }
-        // Point masses from MASS / ROTARYI elements.
-        let mut pm: BTreeMap<u64, PointMass> = BTreeMap::new();
-        let set_mass_elems =
-            |set: &str, loc: Loc, p: &Parser| -> Result<Vec<(u64, usize)>, ImportError> {
-                let m = p.elsets.get(set).ok_or_else(|| {
-                    p.err(loc, format!("*MASS ELSET={set}"), "unknown element set")
-                })?;
-                Ok(m.iter()
-                    .filter_map(|(id, _)| {
-                        p.mass_elems
-                            .get(id)
-                            .and_then(|(n, _)| nodes.get(*n))
-                            .map(|n| (*id, n))
-                    })
-                    .collect())
-            };
-        for (set, mass, loc) in &self.masses {
-            for (id, node) in set_mass_elems(set, *loc, &self)? {
-                pm.entry(id).or_insert_with(|| empty_mass(id, node)).mass = *mass;
-            }
-        }
-        for (set, r, loc) in &self.rotary {
-            for (id, node) in set_mass_elems(set, *loc, &self)? {
-                let p = pm.entry(id).or_insert_with(|| empty_mass(id, node));
-                // Abaqus order I11, I22, I33, I12, I13, I23 (I_ij = −∫ x_i x_j dm for i ≠ j).
-                p.inertia = [[r[0], r[3], r[4]], [r[3], r[1], r[5]], [r[4], r[5], r[2]]];
-            }
-        }
-        self.b.model.point_masses = pm.into_values().collect();
-        // Rigid bodies and couplings.
-        let mut rid = 0u64;
-        for (r, nset, loc) in &self.rigid {
-            let ind = single(
-                resolve_target(r, *loc, "*RIGID BODY", &self)?,
-                *loc,
-                "*RIGID BODY",
-                &self,
-            )?;
-            let dep = resolve_target(&Target::Set(nset.clone()), *loc, "*RIGID BODY", &self)?;
-            rid += 1;
-            self.b.model.rigid_elements.push(RigidElement::Rbe2 {
-                id: rid,
-                independent: ind,
-                dependent: dep.into_iter().filter(|&n| n != ind).collect(),
-                dofs: DofMask::ALL,
-            });
-        }
-        for c in &self.couplings {
-            let ent = format!("*COUPLING SURFACE={}", c.surface);
-            let reference = single(
-                resolve_target(&c.reference, c.loc, &ent, &self)?,
-                c.loc,
-                &ent,
-                &self,
-            )?;
-            let surf = self
-                .surfaces
-                .get(&c.surface)
-                .ok_or_else(|| self.err(c.loc, ent.clone(), "unknown node surface"))?;
-            let mut members = Vec::new();
-            for (t, w, loc) in surf {
-                for n in resolve_target(t, *loc, &ent, &self)? {
-                    members.push((n, *w));
-                }
-            }
-            rid += 1;
-            let rigid = match c.kind {
-                Some(CouplingKind::Kinematic(d)) => RigidElement::Rbe2 {
-                    id: rid,
-                    independent: reference,
-                    dependent: members
-                        .iter()
-                        .map(|m| m.0)
-                        .filter(|&n| n != reference)
-                        .collect(),
-                    dofs: if d.0 == 0 { DofMask::ALL } else { d },
-                },
-                Some(CouplingKind::Distributing(d)) => RigidElement::Rbe3 {
-                    id: rid,
-                    reference,
-                    ref_dofs: if d.0 == 0 { DofMask::ALL } else { d },
-                    independent: members
-                        .iter()
-                        .map(|&(n, w)| (n, w, DofMask::TRANSLATIONS))
-                        .collect(),
-                },
-                None => return Err(self.err(c.loc, ent, "no *KINEMATIC or *DISTRIBUTING follows")),
-            };
-            self.b.model.rigid_elements.push(rigid);
-        }
-        for (name, count) in &self.skipped {
-            self.b.model.warnings.push(ImportWarning {
-                file: self.b.files[0].clone(),
-                message: format!("keyword *{name} ignored ({count}×)"),
-            });
-        }
-        self.b.model.node_sets = node_sets;
-        self.b.model.element_sets = element_sets;
-        Ok(self.b.model)
-    }
 }
 
 fn target(s: &str) -> Target {
@@ -920,59 +740,6 @@ fn target(s: &str) -> Target {
         Some(id) => Target::Node(id),
         None => Target::Set(s.trim().to_ascii_uppercase()),
     }
-}
-
-fn single(v: Vec<usize>, loc: Loc, ent: &str, p: &Parser) -> Result<usize, ImportError> {
-    match v.as_slice() {
-        [n] => Ok(*n),
-        _ => Err(p.err(
-            loc,
-            ent.to_owned(),
-            format!("reference node set must hold one node, has {}", v.len()),
-        )),
-    }
-}
-
-fn empty_mass(id: u64, node: usize) -> PointMass {
-    PointMass {
-        id,
-        node,
-        mass: 0.0,
-        offset: [0.0; 3],
-        inertia: [[0.0; 3]; 3],
-    }
-}
-
-/// Abaqus *BEAM SECTION shapes (Abaqus Analysis User's Guide, "Beam cross-section library").
-fn abaqus_shape(name: &str, v: &[f64]) -> Option<SectionShape> {
-    Some(match (name, v) {
-        ("CIRC", [r, ..]) => SectionShape::Circle { radius: *r },
-        ("PIPE", [r, t, ..]) => SectionShape::Tube {
-            outer_radius: *r,
-            inner_radius: r - t,
-        },
-        ("RECT", [a, b, ..]) => SectionShape::Rectangle {
-            width: *a,
-            height: *b,
-        },
-        // BOX: a (width, 1-dir), b (height, 2-dir), t1..t4; uniform walls assumed (t1 = t3, t2 = t4).
-        ("BOX", [a, b, t1, t2, ..]) => SectionShape::Box {
-            width: *a,
-            height: *b,
-            t_web: *t2,
-            t_flange: *t1,
-        },
-        // I: l (centroid offset, ignored), h, b1 (bottom), b2 (top), t1, t2, t3 (web).
-        ("I", [_l, h, b1, b2, t1, t2, t3, ..]) => SectionShape::I {
-            height: *h,
-            width_bottom: *b1,
-            width_top: *b2,
-            t_web: *t3,
-            t_bottom: *t1,
-            t_top: *t2,
-        },
-        _ => return None,
-    })
 }
 
 #[cfg(test)]

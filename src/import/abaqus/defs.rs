@@ -1,0 +1,102 @@
+//! Abaqus tables and small geometric definitions: element type names, *BEAM SECTION shapes,
+//! *TRANSFORM frames.
+
+use crate::model::{CoordKind, CoordSystem, ElementKind, SectionShape};
+
+/// Abaqus element type → (model kind, `None` for MASS/ROTARYI; canonical type name).
+pub(super) fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str)> {
+    use ElementKind::*;
+    Some(match t {
+        "C3D4" => (Some(Tet4), "C3D4"),
+        "C3D10" | "C3D10M" => (Some(Tet10), "C3D10"),
+        "C3D8" | "C3D8R" | "C3D8I" => (Some(Hex8), "C3D8"),
+        "C3D20" => (Some(Hex20), "C3D20"),
+        "C3D20R" => (Some(Hex20R), "C3D20R"),
+        "C3D6" => (Some(Prism6), "C3D6"),
+        "C3D15" => (Some(Prism15), "C3D15"),
+        "B31" | "B31R" => (Some(Beam2), "B31"),
+        "T3D2" => (Some(Rod2), "T3D2"),
+        "S3" | "S3R" => (Some(Tri3), "S3"),
+        "S4" | "S4R" => (Some(Quad4), "S4"),
+        "S6" => (Some(Tri6), "S6"),
+        "S8" | "S8R" => (Some(Quad8), "S8"),
+        "MASS" => (None, "MASS"),
+        "ROTARYI" => (None, "ROTARYI"),
+        _ => return None,
+    })
+}
+
+/// *TRANSFORM frame. TYPE=R: a on local x, b in the local x–y plane, origin 0:
+/// e1 = a/|a|, e3 = a×b/|a×b|, e2 = e3×e1. TYPE=C: a and b on the local z axis, origin a,
+/// e3 = (b−a)/|b−a| (e1 any unit vector ⟂ e3; nodal r, θ directions follow from the position).
+pub(super) fn transform_frame(id: u64, cyl: bool, a: [f64; 3], b: [f64; 3]) -> Option<CoordSystem> {
+    let cross = |p: [f64; 3], q: [f64; 3]| {
+        [
+            p[1] * q[2] - p[2] * q[1],
+            p[2] * q[0] - p[0] * q[2],
+            p[0] * q[1] - p[1] * q[0],
+        ]
+    };
+    let unit = |p: [f64; 3]| {
+        let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        (n > 0.0 && n.is_finite()).then(|| p.map(|c| c / n))
+    };
+    if cyl {
+        let e3 = unit([b[0] - a[0], b[1] - a[1], b[2] - a[2]])?;
+        let k = (0..3)
+            .min_by(|&i, &j| e3[i].abs().total_cmp(&e3[j].abs()))
+            .unwrap_or(0);
+        let mut t = [0.0; 3];
+        t[k] = 1.0;
+        let e2 = unit(cross(e3, t))?;
+        let e1 = cross(e2, e3);
+        Some(CoordSystem {
+            id,
+            kind: CoordKind::Cylindrical,
+            origin: a,
+            axes: [e1, e2, e3],
+        })
+    } else {
+        let e1 = unit(a)?;
+        let e3 = unit(cross(a, b))?;
+        let e2 = cross(e3, e1);
+        Some(CoordSystem {
+            id,
+            kind: CoordKind::Rectangular,
+            origin: [0.0; 3],
+            axes: [e1, e2, e3],
+        })
+    }
+}
+
+/// Abaqus *BEAM SECTION shapes (Abaqus Analysis User's Guide, "Beam cross-section library").
+pub(super) fn abaqus_shape(name: &str, v: &[f64]) -> Option<SectionShape> {
+    Some(match (name, v) {
+        ("CIRC", [r, ..]) => SectionShape::Circle { radius: *r },
+        ("PIPE", [r, t, ..]) => SectionShape::Tube {
+            outer_radius: *r,
+            inner_radius: r - t,
+        },
+        ("RECT", [a, b, ..]) => SectionShape::Rectangle {
+            width: *a,
+            height: *b,
+        },
+        // BOX: a (width, 1-dir), b (height, 2-dir), t1..t4; uniform walls assumed (t1 = t3, t2 = t4).
+        ("BOX", [a, b, t1, t2, ..]) => SectionShape::Box {
+            width: *a,
+            height: *b,
+            t_web: *t2,
+            t_flange: *t1,
+        },
+        // I: l (centroid offset, ignored), h, b1 (bottom), b2 (top), t1, t2, t3 (web).
+        ("I", [_l, h, b1, b2, t1, t2, t3, ..]) => SectionShape::I {
+            height: *h,
+            width_bottom: *b1,
+            width_top: *b2,
+            t_web: *t3,
+            t_bottom: *t1,
+            t_top: *t2,
+        },
+        _ => return None,
+    })
+}

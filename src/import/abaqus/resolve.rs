@@ -1,0 +1,315 @@
+//! Resolve pass of the Abaqus reader: external ids → dense indices, sets, materials, sections,
+//! boundary conditions, point masses, rigid bodies and couplings.
+
+use std::collections::{BTreeMap, HashMap};
+
+use super::{CouplingKind, Parser, Target};
+use crate::import::error::ImportError;
+use crate::import::text::Loc;
+use crate::model::{
+    DofMask, ImportWarning, Material, Model, PointMass, Property, RigidElement, Section,
+    SectionShape, Spc,
+};
+
+impl Parser {
+    pub(super) fn finish(mut self) -> Result<Model, ImportError> {
+        let nodes = self.b.node_map("*NODE")?;
+        self.b.resolve_element_nodes(&nodes)?;
+        let elems = self.b.element_map()?;
+        for (id, (node, loc)) in &self.mass_elems {
+            if elems.get(*id).is_some() {
+                return Err(self.err(*loc, format!("*ELEMENT {id}"), "duplicate element id"));
+            }
+            if nodes.get(*node).is_none() {
+                return Err(self.err(
+                    *loc,
+                    format!("*ELEMENT {id}"),
+                    format!("references unknown node {node}"),
+                ));
+            }
+        }
+        // Node sets.
+        let mut node_sets = BTreeMap::new();
+        for (name, members) in &self.nsets {
+            let mut idx = Vec::with_capacity(members.len());
+            for &(id, loc) in members {
+                idx.push(nodes.get(id).ok_or_else(|| {
+                    self.err(loc, format!("*NSET {name}"), format!("unknown node {id}"))
+                })?);
+            }
+            idx.sort_unstable();
+            idx.dedup();
+            node_sets.insert(name.clone(), idx);
+        }
+        // Element sets (mass elements are not in `Model::elements` and are left out).
+        let mut element_sets = BTreeMap::new();
+        for (name, members) in &self.elsets {
+            let mut idx = Vec::with_capacity(members.len());
+            for &(id, loc) in members {
+                match elems.get(id) {
+                    Some(i) => idx.push(i),
+                    None if self.mass_elems.contains_key(&id) => {}
+                    None => {
+                        return Err(self.err(
+                            loc,
+                            format!("*ELSET {name}"),
+                            format!("unknown element {id}"),
+                        ))
+                    }
+                }
+            }
+            idx.sort_unstable();
+            idx.dedup();
+            element_sets.insert(name.clone(), idx);
+        }
+        for (nset, elset, loc) in &self.nset_from_elset {
+            let members = element_sets.get(elset).ok_or_else(|| {
+                self.err(
+                    *loc,
+                    format!("*NSET {nset}"),
+                    format!("unknown element set {elset}"),
+                )
+            })?;
+            let set: &mut Vec<usize> = node_sets.entry(nset.clone()).or_default();
+            for &e in members {
+                set.extend_from_slice(&self.b.model.elements[e].nodes);
+            }
+            set.sort_unstable();
+            set.dedup();
+        }
+        // Materials.
+        let mut mat_index = HashMap::new();
+        for (k, m) in self.materials.iter().enumerate() {
+            let ent = format!("*MATERIAL {}", m.name);
+            let (e, nu) =
+                m.e.ok_or_else(|| self.err(m.loc, ent.clone(), "no *ELASTIC given"))?;
+            if mat_index.insert(m.name.clone(), k).is_some() {
+                return Err(self.err(m.loc, ent, "duplicate material name"));
+            }
+            if m.rho.is_none() {
+                self.b.model.warnings.push(ImportWarning {
+                    file: self.b.file_name(m.loc).to_owned(),
+                    message: format!("material {} has no *DENSITY: density 0", m.name),
+                });
+            }
+            self.b.model.materials.push(Material {
+                id: k as u64 + 1,
+                name: m.name.clone(),
+                e,
+                nu,
+                g: e / (2.0 * (1.0 + nu)),
+                rho: m.rho.unwrap_or(0.0),
+            });
+        }
+        // Sections → properties, assigned to the elements of their set.
+        for (k, s) in self.sections.iter().enumerate() {
+            let ent = format!("*SECTION ELSET={}", s.elset);
+            let material = *mat_index.get(&s.material).ok_or_else(|| {
+                self.err(
+                    s.loc,
+                    ent.clone(),
+                    format!("unknown material {}", s.material),
+                )
+            })?;
+            let members = element_sets.get(&s.elset).ok_or_else(|| {
+                self.err(
+                    s.loc,
+                    ent.clone(),
+                    format!("unknown element set {}", s.elset),
+                )
+            })?;
+            if let Section::Beam(b) = &s.section {
+                if matches!(b.shape, Some(SectionShape::Other { .. })) {
+                    return Err(self.err(s.loc, ent, "missing section dimensions line"));
+                }
+            }
+            self.b.model.properties.push(Property {
+                id: k as u64 + 1,
+                name: s.elset.clone(),
+                material,
+                section: s.section.clone(),
+            });
+            for &e in members {
+                let el = &self.b.model.elements[e];
+                if el.property.is_some() {
+                    return Err(self.err(
+                        s.loc,
+                        ent,
+                        format!("element {} already has a section", el.id),
+                    ));
+                }
+                let el = &mut self.b.model.elements[e];
+                el.property = Some(k);
+                el.orientation = s.orientation;
+            }
+        }
+        let resolve_target =
+            |t: &Target, loc: Loc, ent: &str, p: &Parser| -> Result<Vec<usize>, ImportError> {
+                match t {
+                    Target::Node(id) => nodes
+                        .get(*id)
+                        .map(|i| vec![i])
+                        .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node {id}"))),
+                    Target::Set(s) => node_sets
+                        .get(s)
+                        .cloned()
+                        .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node set {s}"))),
+                }
+            };
+        for (t, dofs, loc) in &self.boundaries {
+            for node in resolve_target(t, *loc, "*BOUNDARY", &self)? {
+                self.b.model.spcs.push(Spc {
+                    node,
+                    dofs: *dofs,
+                    set_id: 0,
+                });
+            }
+        }
+        // Point masses from MASS / ROTARYI elements.
+        let mut pm: BTreeMap<u64, PointMass> = BTreeMap::new();
+        let set_mass_elems =
+            |set: &str, loc: Loc, p: &Parser| -> Result<Vec<(u64, usize)>, ImportError> {
+                let m = p.elsets.get(set).ok_or_else(|| {
+                    p.err(loc, format!("*MASS ELSET={set}"), "unknown element set")
+                })?;
+                Ok(m.iter()
+                    .filter_map(|(id, _)| {
+                        p.mass_elems
+                            .get(id)
+                            .and_then(|(n, _)| nodes.get(*n))
+                            .map(|n| (*id, n))
+                    })
+                    .collect())
+            };
+        for (set, mass, loc) in &self.masses {
+            for (id, node) in set_mass_elems(set, *loc, &self)? {
+                pm.entry(id).or_insert_with(|| empty_mass(id, node)).mass = *mass;
+            }
+        }
+        for (set, r, loc) in &self.rotary {
+            for (id, node) in set_mass_elems(set, *loc, &self)? {
+                let p = pm.entry(id).or_insert_with(|| empty_mass(id, node));
+                // Abaqus order I11, I22, I33, I12, I13, I23 (I_ij = −∫ x_i x_j dm for i ≠ j).
+                p.inertia = [[r[0], r[3], r[4]], [r[3], r[1], r[5]], [r[4], r[5], r[2]]];
+            }
+        }
+        self.b.model.point_masses = pm.into_values().collect();
+        // *TRANSFORM: nodal displacement frames.
+        for (nset, cs, loc) in &self.transforms {
+            let ent = format!("*TRANSFORM NSET={nset}");
+            let members = resolve_target(&Target::Set(nset.clone()), *loc, &ent, &self)?;
+            self.b.model.coord_systems.push(cs.clone());
+            let k = self.b.model.coord_systems.len() - 1;
+            for n in members {
+                self.b.model.nodes[n].displacement_frame = Some(k);
+            }
+        }
+        // Rigid bodies and couplings.
+        let mut rid = 0u64;
+        for (r, nset, loc) in &self.rigid {
+            let ind = single(
+                resolve_target(r, *loc, "*RIGID BODY", &self)?,
+                *loc,
+                "*RIGID BODY",
+                &self,
+            )?;
+            let dep = resolve_target(&Target::Set(nset.clone()), *loc, "*RIGID BODY", &self)?;
+            rid += 1;
+            self.b.model.rigid_elements.push(RigidElement::Rbe2 {
+                id: rid,
+                independent: ind,
+                dependent: dep.into_iter().filter(|&n| n != ind).collect(),
+                dofs: DofMask::ALL,
+            });
+        }
+        for c in &self.couplings {
+            let ent = format!("*COUPLING SURFACE={}", c.surface);
+            let reference = single(
+                resolve_target(&c.reference, c.loc, &ent, &self)?,
+                c.loc,
+                &ent,
+                &self,
+            )?;
+            let surf = self
+                .surfaces
+                .get(&c.surface)
+                .ok_or_else(|| self.err(c.loc, ent.clone(), "unknown node surface"))?;
+            let mut members = Vec::new();
+            for (t, w, loc) in surf {
+                for n in resolve_target(t, *loc, &ent, &self)? {
+                    members.push((n, *w));
+                }
+            }
+            rid += 1;
+            let rigid = match c.kind {
+                Some(CouplingKind::Kinematic(d)) => RigidElement::Rbe2 {
+                    id: rid,
+                    independent: reference,
+                    dependent: members
+                        .iter()
+                        .map(|m| m.0)
+                        .filter(|&n| n != reference)
+                        .collect(),
+                    dofs: if d.0 == 0 { DofMask::ALL } else { d },
+                },
+                Some(CouplingKind::Distributing(d)) => RigidElement::Rbe3 {
+                    id: rid,
+                    reference,
+                    ref_dofs: if d.0 == 0 { DofMask::ALL } else { d },
+                    independent: members
+                        .iter()
+                        .map(|&(n, w)| (n, w, DofMask::TRANSLATIONS))
+                        .collect(),
+                },
+                None => return Err(self.err(c.loc, ent, "no *KINEMATIC or *DISTRIBUTING follows")),
+            };
+            self.b.model.rigid_elements.push(rigid);
+        }
+        for (what, count) in &self.substituted {
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!(
+                    "element type {what} ({count} *ELEMENT blocks): its special formulation is not reproduced"
+                ),
+            });
+        }
+        for (card, count) in &self.extra_nodes {
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!(
+                    "{count} {card} elements list more node ids than the type takes; the extra ids were ignored (as CalculiX does)"
+                ),
+            });
+        }
+        for (name, count) in &self.skipped {
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!("keyword *{name} ignored ({count}×)"),
+            });
+        }
+        self.b.model.node_sets = node_sets;
+        self.b.model.element_sets = element_sets;
+        Ok(self.b.model)
+    }
+}
+
+fn single(v: Vec<usize>, loc: Loc, ent: &str, p: &Parser) -> Result<usize, ImportError> {
+    match v.as_slice() {
+        [n] => Ok(*n),
+        _ => Err(p.err(
+            loc,
+            ent.to_owned(),
+            format!("reference node set must hold one node, has {}", v.len()),
+        )),
+    }
+}
+
+fn empty_mass(id: u64, node: usize) -> PointMass {
+    PointMass {
+        id,
+        node,
+        mass: 0.0,
+        offset: [0.0; 3],
+        inertia: [[0.0; 3]; 3],
+    }
+}
