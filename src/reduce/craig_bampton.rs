@@ -34,6 +34,7 @@ pub fn craig_bampton_basis(
     modes: ModeCount,
     eig: &EigenSpec,
 ) -> Result<CbBasis, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     check_dofs("interface dofs", interface, n)?;
     if interface.is_empty() {
@@ -105,7 +106,10 @@ fn fixed_interface_modes(
             shift: Some(0.0),
             ..eig.clone()
         };
-        let b = spec.block.unwrap_or(c.min(24)).max(1);
+        let b = spec
+            .block
+            .unwrap_or(c.min(crate::solve::DEFAULT_BLOCK))
+            .max(1);
         if ni <= DENSE_MAX || c + 4 * b > ni / 2 {
             Ok(lowest_modes(kii, mii, &spec)?)
         } else {
@@ -162,6 +166,7 @@ pub fn craig_bampton(
     modes: ModeCount,
     eig: &EigenSpec,
 ) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let basis = craig_bampton_basis(k, m, interface, modes, eig)?;
     let nq = basis.fixed_omega2.len();
     let t3 = Instant::now();

@@ -1,1 +1,236 @@
-//! Craig–Chang (placeholder while in progress).
+//! Craig–Chang reduction (MotionView flexbody theory, "Craig-Chang modes"): free-free modes
+//! Xn = [Xr X1 … Xk] plus inertia-relief attachment modes Xa from K Xa = P Fa, P = I − M Xr Xrᵀ,
+//! solved on an automatically chosen statically determinate support, purified of rigid content
+//! (Xa ← Xa − Xr XrᵀM Xa), then orthonormalized with dependent vectors removed and reported.
+//!
+//! K̂ is formed as XᵀKX, which equals the documented [Dn, XnᵀFe; FeᵀXn, XaᵀFe] because the
+//! support reactions of an equilibrated load vanish.
+
+use super::orthonormalize::{orthonormalize, RIGID_REL};
+use super::select::{solve_count, ModeCount};
+use super::{complement, Method, ModeLabel, ModeSet, ReduceError};
+use crate::solve::{sparse_ops, trace_ratio, EigenSolution, EigenSpec, SparseColMat, SparseLlt};
+use faer::Mat;
+
+/// Unit loads: column j has 1 at `dofs[j]` (duplicates allowed: they give dependent vectors).
+pub fn unit_loads(n: usize, dofs: &[usize]) -> Result<Mat<f64>, ReduceError> {
+    if let Some(&d) = dofs.iter().find(|&&d| d >= n) {
+        return Err(ReduceError::Dofs {
+            what: "attachment dofs",
+            detail: format!("dof {d} out of range (n = {n})"),
+        });
+    }
+    Ok(Mat::from_fn(n, dofs.len(), |i, j| {
+        if dofs[j] == i {
+            1.0
+        } else {
+            0.0
+        }
+    }))
+}
+
+/// Label dof of a load column: its largest entry.
+pub(crate) fn load_dof(f: &Mat<f64>, j: usize) -> usize {
+    (0..f.nrows()).fold(0, |b, i| {
+        if f[(i, j)].abs() > f[(b, j)].abs() {
+            i
+        } else {
+            b
+        }
+    })
+}
+
+/// Free-free modes and the number of rigid ones (ω² ≤ RIGID_REL·tr K/tr M, leading).
+pub(crate) fn free_free(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    modes: ModeCount,
+    eig: &EigenSpec,
+) -> Result<(EigenSolution, usize), ReduceError> {
+    let s = solve_count(k, m, modes, eig)?;
+    let scale = trace_ratio(k, m);
+    let nr = s
+        .eigenvalues
+        .iter()
+        .take_while(|&&l| l.abs() <= RIGID_REL * scale)
+        .count();
+    if nr == s.eigenvalues.len() {
+        return Err(ReduceError::Rigid(format!(
+            "all {nr} computed free-free modes are rigid; ask for more modes"
+        )));
+    }
+    Ok((s, nr))
+}
+
+/// `r` dofs at which the rigid modes Xr (n × r) are independent (greedy pivoted QR on the rows of
+/// Xr): holding them at zero is a statically determinate support.
+pub fn determinate_support(xr: &Mat<f64>) -> Result<Vec<usize>, ReduceError> {
+    let (n, r) = (xr.nrows(), xr.ncols());
+    let mut res = xr.clone();
+    let mut support = Vec::with_capacity(r);
+    let norm0 = (0..n)
+        .map(|i| (0..r).map(|j| xr[(i, j)].powi(2)).sum::<f64>())
+        .fold(0.0, f64::max);
+    for _ in 0..r {
+        let (mut best, mut bv) = (usize::MAX, 0.0);
+        for i in 0..n {
+            let v: f64 = (0..r).map(|j| res[(i, j)].powi(2)).sum();
+            if v > bv {
+                best = i;
+                bv = v;
+            }
+        }
+        if best == usize::MAX || bv <= 1e-12 * norm0 {
+            return Err(ReduceError::Rigid(
+                "rigid modes are not independent at any dof set".into(),
+            ));
+        }
+        support.push(best);
+        let q: Vec<f64> = (0..r).map(|j| res[(best, j)] / bv.sqrt()).collect();
+        for i in 0..n {
+            let d: f64 = (0..r).map(|j| res[(i, j)] * q[j]).sum();
+            for j in 0..r {
+                res[(i, j)] -= d * q[j];
+            }
+        }
+    }
+    support.sort_unstable();
+    Ok(support)
+}
+
+/// Inertia-relief static solver: y with K y = P f, Xrᵀ M y = 0 (f → P f → support solve → purify).
+pub(crate) struct InertiaRelief<'a> {
+    m: &'a SparseColMat<usize, f64>,
+    xr: Mat<f64>,
+    free: Vec<usize>,
+    llt: SparseLlt,
+    /// The support dofs.
+    pub support: Vec<usize>,
+}
+
+impl<'a> InertiaRelief<'a> {
+    pub(crate) fn new(
+        k: &SparseColMat<usize, f64>,
+        m: &'a SparseColMat<usize, f64>,
+        xr: Mat<f64>,
+        eig: &EigenSpec,
+    ) -> Result<Self, ReduceError> {
+        let n = k.nrows();
+        let support = if xr.ncols() > 0 {
+            determinate_support(&xr)?
+        } else {
+            vec![]
+        };
+        let free = complement(&support, n);
+        let kff = sparse_ops::submatrix(k.as_ref(), &free, &free)?;
+        let llt = SparseLlt::factor(kff.as_ref(), None, eig.par)?;
+        Ok(Self {
+            m,
+            xr,
+            free,
+            llt,
+            support,
+        })
+    }
+
+    /// P f = f − M Xr Xrᵀ f.
+    pub(crate) fn equilibrate(&self, f: &Mat<f64>) -> Mat<f64> {
+        if self.xr.ncols() == 0 {
+            return f.clone();
+        }
+        let c = self.xr.transpose() * f;
+        let mxr = sparse_ops::spmm(self.m.as_ref(), self.xr.as_ref());
+        f - &mxr * &c
+    }
+
+    /// y = purify(K_ff⁻¹ f_f) for an already equilibrated f.
+    pub(crate) fn solve_equilibrated(&self, f: &Mat<f64>) -> Mat<f64> {
+        let n = f.nrows();
+        let mut rhs = Mat::from_fn(self.free.len(), f.ncols(), |r, j| f[(self.free[r], j)]);
+        self.llt.solve_in_place(rhs.as_mut());
+        let mut y = Mat::<f64>::zeros(n, f.ncols());
+        for j in 0..f.ncols() {
+            for (r, &i) in self.free.iter().enumerate() {
+                y[(i, j)] = rhs[(r, j)];
+            }
+        }
+        self.purify(y)
+    }
+
+    /// y − Xr Xrᵀ M y.
+    pub(crate) fn purify(&self, y: Mat<f64>) -> Mat<f64> {
+        if self.xr.ncols() == 0 {
+            return y;
+        }
+        let my = sparse_ops::spmm(self.m.as_ref(), y.as_ref());
+        let c = self.xr.transpose() * &my;
+        &y - &self.xr * &c
+    }
+}
+
+/// Craig–Chang mode set from free-free modes (`modes`, rigid ones included) and attachment loads
+/// `fa` (n × na, e.g. [`unit_loads`] of the interface dofs).
+pub fn craig_chang(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    fa: &Mat<f64>,
+    modes: ModeCount,
+    eig: &EigenSpec,
+) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
+    let n = k.nrows();
+    if fa.nrows() != n {
+        return Err(ReduceError::Dofs {
+            what: "attachment loads",
+            detail: format!("{} rows for n = {n}", fa.nrows()),
+        });
+    }
+    let (xn, nr) = free_free(k, m, modes, eig)?;
+    let xr = xn.vectors.as_ref().subcols(0, nr).to_owned();
+    let ir = InertiaRelief::new(k, m, xr, eig)?;
+    let fe = ir.equilibrate(fa);
+    let xa = ir.solve_equilibrated(&fe);
+    let nn = xn.eigenvalues.len();
+    let na = fa.ncols();
+    let mut x = Mat::<f64>::zeros(n, nn + na);
+    x.as_mut().subcols_mut(0, nn).copy_from(xn.vectors.as_ref());
+    x.as_mut().subcols_mut(nn, na).copy_from(xa.as_ref());
+    let mut labels: Vec<ModeLabel> = (0..nn)
+        .map(|j| {
+            if j < nr {
+                ModeLabel::Rigid
+            } else {
+                ModeLabel::Normal
+            }
+        })
+        .collect();
+    labels.extend((0..na).map(|j| ModeLabel::Attachment {
+        dof: load_dof(fa, j),
+    }));
+    let o = orthonormalize(k, m, &x, &labels)?;
+    let mut diagnostics = o.diagnostics;
+    diagnostics.notes.push(format!(
+        "statically determinate support (automatic): dofs {:?}",
+        ir.support
+    ));
+    if !diagnostics.removed.is_empty() {
+        diagnostics.notes.push(format!(
+            "{} dependent vector(s) removed (remaining M-norm² below {:e} of their own)",
+            diagnostics.removed.len(),
+            diagnostics.dependency_tol
+        ));
+    }
+    let attachment = (0..na).map(|j| load_dof(fa, j)).collect();
+    Ok(ModeSet {
+        phi: o.phi,
+        omega2: o.omega2,
+        labels: o.labels,
+        method: Method::CraigChang {
+            attachment,
+            support: ir.support.clone(),
+        },
+        reference_dofs: vec![],
+        selection: None,
+        diagnostics,
+    })
+}

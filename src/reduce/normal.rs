@@ -16,6 +16,7 @@ pub fn normal_modes(
     fixed: &[usize],
     eig: &EigenSpec,
 ) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     check_dofs("fixed dofs", fixed, n)?;
     let free = complement(fixed, n);

@@ -39,6 +39,7 @@ pub fn improved_cb_method1(
     modes: ModeCount,
     eig: &EigenSpec,
 ) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     check_dofs("interface dofs", interface, n)?;
     check_subset(reference, interface, n)?;
@@ -72,6 +73,7 @@ pub fn improved_cb_method2(
     modes: ModeCount,
     eig: &EigenSpec,
 ) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     check_dofs("interface dofs", interface, n)?;
     check_subset(reference, interface, n)?;

@@ -61,10 +61,17 @@ pub fn solve_count(
     match count {
         ModeCount::Count(c) => Ok(run(c.min(n))?),
         ModeCount::All => {
-            let s = crate::solve::sparse_ops::to_dense(k.as_ref());
-            let t = crate::solve::sparse_ops::to_dense(m.as_ref());
+            let kd = crate::solve::sparse_ops::to_dense(k.as_ref());
+            let md = crate::solve::sparse_ops::to_dense(m.as_ref());
+            // all finite eigenvalues: the dense solver reports how many there are
             let (vals, vecs) =
-                crate::solve::dense::lowest(s.as_ref(), t.as_ref(), rank_guess(m), eig.shift)?;
+                match crate::solve::dense::lowest(kd.as_ref(), md.as_ref(), n, eig.shift) {
+                    Ok(r) => r,
+                    Err(crate::solve::SolveError::TooManyModes { available, .. }) => {
+                        crate::solve::dense::lowest(kd.as_ref(), md.as_ref(), available, eig.shift)?
+                    }
+                    Err(e) => return Err(e.into()),
+                };
             Ok(EigenSolution {
                 residuals: vec![0.0; vals.len()],
                 eigenvalues: vals,
@@ -85,19 +92,6 @@ pub fn solve_count(
             }
         }
     }
-}
-
-/// Number of dofs with mass on the diagonal (an upper bound of the finite eigenvalue count for
-/// lumped M; the dense solver reports the exact count).
-fn rank_guess(m: &SparseColMat<usize, f64>) -> usize {
-    (0..m.ncols())
-        .filter(|&j| {
-            m.row_idx_of_col_raw(j)
-                .iter()
-                .zip(m.val_of_col(j))
-                .any(|(&i, &v)| i == j && v > 0.0)
-        })
-        .count()
 }
 
 /// The first `keep` pairs of a solution.

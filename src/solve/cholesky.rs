@@ -141,7 +141,15 @@ impl SparseLlt {
         );
         if let Err(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }) = res
         {
-            let dof = symbolic.perm().map_or(index, |p| p.arrays().0[index]);
+            // faer 0.24 reports the simplicial pivot 1-based and the supernodal one 0-based,
+            // both in the permuted order
+            let pos = match symbolic.raw() {
+                SymbolicCholeskyRaw::Simplicial(_) => index.saturating_sub(1),
+                SymbolicCholeskyRaw::Supernodal(_) => index,
+            };
+            let dof = symbolic
+                .perm()
+                .map_or(pos, |p| p.arrays().0[pos.min(p.arrays().0.len() - 1)]);
             return Err(SolveError::NonPositivePivot { dof });
         }
         Ok(Self {

@@ -15,12 +15,22 @@ pub fn sym(a: MatRef<'_, f64>) -> Mat<f64> {
 }
 
 /// Eigen-decomposition of a symmetric matrix: ascending eigenvalues and orthonormal vectors.
+///
+/// The matrix is scaled to max |a_ij| = 1 first: faer 0.24's `self_adjoint_eigen` was measured
+/// here to lose accuracy on unscaled stiffness-sized matrices (‖AU − UΛ‖/‖A‖ = 1e-4 at
+/// ‖A‖ = 3.5e10 on the hex8 block, 3e-15 after scaling).
 pub fn eigh(a: MatRef<'_, f64>) -> Result<(Vec<f64>, Mat<f64>), SolveError> {
-    let s = sym(a);
+    let mut s = sym(a);
+    let amax = s.norm_max();
+    if !amax.is_finite() {
+        return Err(SolveError::NonFinite("dense eigenproblem"));
+    }
+    let scale = if amax > 0.0 { 1.0 / amax } else { 1.0 };
+    s *= faer::Scale(scale);
     let evd = s
         .self_adjoint_eigen(Side::Lower)
         .map_err(|e| SolveError::DenseEigen(format!("{e:?}")))?;
-    let vals: Vec<f64> = (0..s.nrows()).map(|i| evd.S()[i]).collect();
+    let vals: Vec<f64> = (0..s.nrows()).map(|i| evd.S()[i] / scale).collect();
     if vals.iter().any(|v| !v.is_finite()) {
         return Err(SolveError::NonFinite("dense eigenvalues"));
     }

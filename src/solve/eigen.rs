@@ -1,14 +1,14 @@
-//! Our block shift-invert eigensolver for the lowest eigenpairs of K x = λ M x (M ⪰ 0).
+//! Our block shift-invert eigensolver for the lowest eigenpairs of K x = λ M x (M ⪰ 0): a block
+//! Krylov–Schur (thick-restart block Lanczos) iteration on A = (K − σM)⁻¹M, self-adjoint in the
+//! M inner product, with full reorthogonalization.
 //!
-//! The search space grows by blocks W = (K − σM)⁻¹ R of the residuals R = KX − MXΛ of the lowest
-//! unconverged Ritz vectors; since (K − σM)⁻¹r = x − (λ − σ)(K − σM)⁻¹Mx this is the block Krylov
-//! space of the shift-invert operator (K − σM)⁻¹M, built without cancellation. The basis is kept
-//! M-orthonormal by full reorthogonalization (block classical Gram–Schmidt, twice, then an
-//! eigen-based orthonormalization of the block that drops dependent directions), the projection
-//! H = VᵀKV is grown block by block, and when the basis is full it is thick-restarted onto its
-//! lowest Ritz vectors (V ← VY, H ← diag(θ)). Vectors in the range of (K − σM)⁻¹M have positive
-//! M-norm, so massless dofs need no special treatment. Convergence is relative:
-//! ‖Kx − θMx‖ ≤ tol·(‖Kx‖ + (|θ| + |σ|)‖Mx‖), with a rounding floor.
+//! It maintains A V = V T + F Eᵀ with V M-orthonormal (n × p), T = VᵀMAV (p × p), F M-orthogonal
+//! to V (n × b) and E (p × b). A step M-orthonormalizes F = QR, computes W = A Q with one
+//! multi-RHS solve, Gram–Schmidt's it twice against [V Q] and appends the block to T. When the
+//! basis is full, T = YΘYᵀ is truncated to its largest Ritz values (lowest λ = σ + 1/θ):
+//! V ← VY_k, T ← Θ_k, E ← Y_kᵀE. Ritz pair i is converged when its estimate ‖R_F Eᵀy_i‖ ≤
+//! tol·|θ_i| (relative). Vectors in the range of A have positive M-norm, so massless dofs need no
+//! special treatment; every start and padding vector is A applied to a random block.
 
 use super::cholesky::SparseLlt;
 use super::dense;
@@ -47,91 +47,84 @@ pub struct BlockResult {
     pub restarts: usize,
 }
 
-struct Space<'a> {
-    k: SparseColMatRef<'a, usize, f64>,
-    m: SparseColMatRef<'a, usize, f64>,
-    v: Mat<f64>,
-    h: Mat<f64>,
+/// M-orthonormalization of `w` against the M-orthonormal `v` (classical Gram–Schmidt twice):
+/// returns (coefficients C with w = vC + rest, rest).
+fn gs(m: SparseColMatRef<'_, usize, f64>, v: &Mat<f64>, mut w: Mat<f64>) -> (Mat<f64>, Mat<f64>) {
+    let mut c = Mat::<f64>::zeros(v.ncols(), w.ncols());
+    if v.ncols() == 0 {
+        return (c, w);
+    }
+    for _ in 0..2 {
+        let mw = spmm(m, w.as_ref());
+        let d = v.transpose() * &mw;
+        w -= v * &d;
+        c += &d;
+    }
+    (c, w)
 }
 
-impl Space<'_> {
-    /// Appends the M-orthonormalized part of `w` that is independent of the basis; returns how
-    /// many vectors were added.
-    fn add(&mut self, mut w: Mat<f64>) -> Result<usize, SolveError> {
-        // unit M-norm columns, so that the drop threshold below is relative
-        let mw = spmm(self.m, w.as_ref());
-        let mut cols = Vec::new();
-        for j in 0..w.ncols() {
-            let nrm = w.col(j).transpose() * mw.col(j);
-            if nrm.is_finite() && nrm > 0.0 {
-                cols.push((j, 1.0 / nrm.sqrt()));
-            }
+/// M-QR of a block already M-orthogonal to `v`: w ≈ Q R with Q M-orthonormal. Directions of
+/// relative M-norm² below 1e-24 are replaced by fresh random directions (rows of R zero).
+#[allow(clippy::too_many_arguments)]
+fn mqr(
+    m: SparseColMatRef<'_, usize, f64>,
+    llt: &SparseLlt,
+    v: &Mat<f64>,
+    w: Mat<f64>,
+    scale2: f64,
+    seed: &mut u64,
+    solves: &mut usize,
+) -> Result<(Mat<f64>, Mat<f64>), SolveError> {
+    let (n, b) = (w.nrows(), w.ncols());
+    let mw = spmm(m, w.as_ref());
+    let g = w.transpose() * &mw;
+    let (s, u) = dense::eigh(g.as_ref())?;
+    let keep: Vec<usize> = (0..b)
+        .filter(|&i| s[i] > 1e-24 * scale2.max(f64::MIN_POSITIVE))
+        .collect();
+    let mut q = Mat::<f64>::zeros(n, b);
+    let mut r = Mat::<f64>::zeros(b, b);
+    let tk = Mat::from_fn(b, keep.len(), |t, c| u[(t, keep[c])] / s[keep[c]].sqrt());
+    q.as_mut()
+        .subcols_mut(0, keep.len())
+        .copy_from((&w * &tk).as_ref());
+    for (c, &i) in keep.iter().enumerate() {
+        let sq = s[i].sqrt();
+        for t in 0..b {
+            r[(c, t)] = sq * u[(t, i)];
         }
-        let mut w2 = Mat::<f64>::zeros(w.nrows(), cols.len());
-        for (c, &(j, s)) in cols.iter().enumerate() {
-            for i in 0..w.nrows() {
-                w2[(i, c)] = w[(i, j)] * s;
-            }
-        }
-        w = w2;
-        for _round in 0..2 {
-            if w.ncols() == 0 {
-                return Ok(0);
-            }
-            for _pass in 0..2 {
-                if self.v.ncols() > 0 {
-                    let mw = spmm(self.m, w.as_ref());
-                    let c = self.v.transpose() * &mw;
-                    w -= &self.v * &c;
-                }
-            }
-            let mw = spmm(self.m, w.as_ref());
-            let g = w.transpose() * &mw;
-            let (s, u) = dense::eigh(g.as_ref())?;
-            let smax = s.iter().fold(0.0f64, |a, &b| a.max(b));
-            let keep: Vec<usize> = (0..s.len())
-                .filter(|&i| s[i] > 1e-14f64.max(1e-14 * smax))
-                .collect();
-            let mut t = Mat::<f64>::zeros(u.nrows(), keep.len());
-            for (c, &i) in keep.iter().enumerate() {
-                let f = 1.0 / s[i].sqrt();
-                for r in 0..u.nrows() {
-                    t[(r, c)] = u[(r, i)] * f;
-                }
-            }
-            w = &w * &t;
-        }
-        let q = w.ncols();
-        if q == 0 {
-            return Ok(0);
-        }
-        let kw = spmm(self.k, w.as_ref());
-        let p = self.v.ncols();
-        let vkw = self.v.transpose() * &kw;
-        let wkw = w.transpose() * &kw;
-        let mut h = Mat::<f64>::zeros(p + q, p + q);
-        for j in 0..p {
-            for i in 0..p {
-                h[(i, j)] = self.h[(i, j)];
-            }
-        }
-        for j in 0..q {
-            for i in 0..p {
-                h[(i, p + j)] = vkw[(i, j)];
-                h[(p + j, i)] = vkw[(i, j)];
-            }
-            for i in 0..q {
-                h[(p + i, p + j)] = 0.5 * (wkw[(i, j)] + wkw[(j, i)]);
-            }
-        }
-        let n = self.v.nrows();
-        let mut v = Mat::<f64>::zeros(n, p + q);
-        v.as_mut().subcols_mut(0, p).copy_from(self.v.as_ref());
-        v.as_mut().subcols_mut(p, q).copy_from(w.as_ref());
-        self.v = v;
-        self.h = h;
-        Ok(q)
     }
+    let kq = keep.len();
+    if kq < b {
+        // pad with A·random, orthogonal to v and to the kept part of q
+        let z = random_block(n, b - kq, seed);
+        let mut pz = spmm(m, z.as_ref());
+        llt.solve_in_place(pz.as_mut());
+        *solves += b - kq;
+        let mut basis = Mat::<f64>::zeros(n, v.ncols() + kq);
+        basis
+            .as_mut()
+            .subcols_mut(0, v.ncols())
+            .copy_from(v.as_ref());
+        basis
+            .as_mut()
+            .subcols_mut(v.ncols(), kq)
+            .copy_from(q.as_ref().subcols(0, kq));
+        let (_, pz) = gs(m, &basis, pz);
+        let mpz = spmm(m, pz.as_ref());
+        let g = pz.transpose() * &mpz;
+        let (s2, u2) = dense::eigh(g.as_ref())?;
+        if s2.iter().any(|&x| x.is_nan() || x <= 0.0) {
+            return Err(SolveError::NotConverged {
+                requested: 0,
+                steps: 0,
+            });
+        }
+        let t = Mat::from_fn(b - kq, b - kq, |i, j| u2[(i, j)] / s2[j].sqrt());
+        let pq = &pz * &t;
+        q.as_mut().subcols_mut(kq, b - kq).copy_from(pq.as_ref());
+    }
+    Ok((q, r))
 }
 
 /// Deterministic pseudo-random block (xorshift), entries in (−1, 1).
@@ -144,6 +137,15 @@ fn random_block(n: usize, b: usize, seed: &mut u64) -> Mat<f64> {
     })
 }
 
+fn hcat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
+    let mut out = Mat::<f64>::zeros(a.nrows(), a.ncols() + b.ncols());
+    out.as_mut().subcols_mut(0, a.ncols()).copy_from(a.as_ref());
+    out.as_mut()
+        .subcols_mut(a.ncols(), b.ncols())
+        .copy_from(b.as_ref());
+    out
+}
+
 /// Lowest `count` eigenpairs of (K, M) with the factorization `llt` of K − σM.
 pub fn block_shift_invert(
     k: SparseColMatRef<'_, usize, f64>,
@@ -152,93 +154,86 @@ pub fn block_shift_invert(
     sigma: f64,
     prm: &BlockParams,
 ) -> Result<BlockResult, SolveError> {
-    let n = k.nrows();
+    let _ = k;
+    let n = m.nrows();
     let b = prm.block.max(1);
     let count = prm.count;
-    let keep = count + b;
-    let max_basis = prm.max_basis.max(keep + b).min(n);
-    let knorm = (0..n)
-        .map(|j| k.val_of_col(j).iter().map(|v| v.abs()).sum::<f64>())
-        .fold(0.0, f64::max);
-    let mnorm = (0..n)
-        .map(|j| m.val_of_col(j).iter().map(|v| v.abs()).sum::<f64>())
-        .fold(0.0, f64::max);
+    let max_basis = prm.max_basis.max(count + 3 * b).min(n);
+    let keep = (count + b).max(max_basis / 2).min(max_basis - b);
     let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-    let mut space = Space {
-        k,
-        m,
-        v: Mat::zeros(n, 0),
-        h: Mat::zeros(0, 0),
-    };
     let mut solves = 0usize;
     let mut restarts = 0usize;
-    // start: (K − σM)⁻¹ M Z for a random block Z (purged of massless components)
-    let z = random_block(n, b.max(count.min(2 * b)), &mut seed);
-    let mut w = spmm(m, z.as_ref());
-    llt.solve_in_place(w.as_mut());
-    solves += w.ncols();
-    space.add(w)?;
+    let apply = |x: &Mat<f64>, solves: &mut usize| {
+        let mut w = spmm(m, x.as_ref());
+        llt.solve_in_place(w.as_mut());
+        *solves += x.ncols();
+        w
+    };
+    // start: V = MQR(A Z), then A V = V T + F Eᵀ
+    let z = random_block(n, b, &mut seed);
+    let w0 = apply(&z, &mut solves);
+    let empty = Mat::<f64>::zeros(n, 0);
+    let s0 = w0.norm_max().powi(2);
+    let (mut v, _) = mqr(m, llt, &empty, w0, s0, &mut seed, &mut solves)?;
+    let w = apply(&v, &mut solves);
+    let (c, mut f) = gs(m, &v, w);
+    let mut t = c;
+    let mut e = Mat::<f64>::identity(b, b);
     for step in 0..prm.max_steps {
-        let p = space.v.ncols();
-        let (theta, y) = dense::eigh(space.h.as_ref())?;
-        let ncheck = p.min(count + b);
-        let x = &space.v * y.as_ref().subcols(0, ncheck);
-        let kx = spmm(k, x.as_ref());
-        let mx = spmm(m, x.as_ref());
-        let mut r = kx.clone();
-        let mut conv = vec![false; ncheck];
-        for j in 0..ncheck {
-            let mut rn = 0.0;
-            let (mut kn, mut mn, mut xn) = (0.0, 0.0, 0.0);
-            for i in 0..n {
-                r[(i, j)] -= theta[j] * mx[(i, j)];
-                rn += r[(i, j)] * r[(i, j)];
-                kn += kx[(i, j)] * kx[(i, j)];
-                mn += mx[(i, j)] * mx[(i, j)];
-                xn += x[(i, j)] * x[(i, j)];
-            }
-            let scale = kn.sqrt() + (theta[j].abs() + sigma.abs()) * mn.sqrt();
-            let floor = 64.0 * f64::EPSILON * (knorm + theta[j].abs() * mnorm) * xn.sqrt();
-            conv[j] = rn.sqrt() <= (prm.tol * scale).max(floor);
-        }
-        if p >= count && conv[..count].iter().all(|&c| c) {
-            let values = theta[..count].to_vec();
-            let vectors = x.as_ref().subcols(0, count).to_owned();
+        let p = v.ncols();
+        // M-QR of the residual block (already M-orthogonal to V: two Gram–Schmidt passes when it
+        // was formed, and V only shrinks to V·Y_k at a restart)
+        let f2 = f;
+        let fscale = t.norm_max().powi(2);
+        let (q, rf) = mqr(m, llt, &v, f2, fscale, &mut seed, &mut solves)?;
+        let ts = dense::sym(t.as_ref());
+        let (theta_asc, y_asc) = dense::eigh(ts.as_ref())?;
+        // descending θ = ascending λ
+        let order: Vec<usize> = (0..p).rev().collect();
+        let theta: Vec<f64> = order.iter().map(|&i| theta_asc[i]).collect();
+        let y = Mat::from_fn(p, p, |r, c| y_asc[(r, order[c])]);
+        let ey = e.transpose() * &y; // b × p
+        let est = &rf * &ey;
+        let nconv = (0..count.min(p))
+            .take_while(|&j| {
+                let r = est.col(j).norm_l2();
+                theta[j] > 0.0 && r <= prm.tol * theta[j].abs()
+            })
+            .count();
+        if p >= count && nconv == count {
+            let x = &v * y.as_ref().subcols(0, count);
+            let values = theta[..count].iter().map(|&th| sigma + 1.0 / th).collect();
             return Ok(BlockResult {
                 values,
-                vectors,
+                vectors: x,
                 solves,
                 steps: step,
                 restarts,
             });
         }
-        let sel: Vec<usize> = (0..ncheck).filter(|&j| !conv[j]).take(b).collect();
-        let mut w = Mat::<f64>::zeros(n, sel.len());
-        for (c, &j) in sel.iter().enumerate() {
-            w.col_mut(c).copy_from(r.col(j));
-        }
-        llt.solve_in_place(w.as_mut());
-        solves += w.ncols();
-        if p + w.ncols() > max_basis {
-            let kk = keep.min(p);
-            space.v = &space.v * y.as_ref().subcols(0, kk);
-            space.h = Mat::from_fn(kk, kk, |i, j| if i == j { theta[i] } else { 0.0 });
+        if p + b > max_basis {
+            let yk = y.as_ref().subcols(0, keep);
+            v = &v * yk;
+            t = Mat::from_fn(keep, keep, |i, j| if i == j { theta[i] } else { 0.0 });
+            e = yk.transpose() * &e;
             restarts += 1;
         }
-        let added = space.add(w)?;
-        if added == 0 {
-            if space.v.ncols() >= n {
-                return Err(SolveError::NotConverged {
-                    requested: count,
-                    steps: step,
-                });
-            }
-            let z = random_block(n, b, &mut seed);
-            let mut w = spmm(m, z.as_ref());
-            llt.solve_in_place(w.as_mut());
-            solves += w.ncols();
-            space.add(w)?;
-        }
+        // expand with Q: A Q = [V Q] C + F'
+        let p = v.ncols();
+        let aq = apply(&q, &mut solves);
+        let vq = hcat(&v, &q);
+        let (c, fnew) = gs(m, &vq, aq);
+        let mut tn = Mat::<f64>::zeros(p + b, p + b);
+        tn.as_mut().submatrix_mut(0, 0, p, p).copy_from(t.as_ref());
+        tn.as_mut()
+            .submatrix_mut(0, p, p + b, b)
+            .copy_from(c.as_ref());
+        let re = &rf * e.transpose(); // b × p
+        tn.as_mut().submatrix_mut(p, 0, b, p).copy_from(re.as_ref());
+        t = tn;
+        e = Mat::from_fn(p + b, b, |i, j| if i == p + j { 1.0 } else { 0.0 });
+        v = vq;
+        f = fnew;
     }
     Err(SolveError::NotConverged {
         requested: count,

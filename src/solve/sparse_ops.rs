@@ -1,5 +1,5 @@
 //! Small sparse kernels the solvers need: Y = A·X for a full symmetric CSC matrix, the combination
-//! K − σM on the union pattern, symmetric sub-matrices by index lists, and dense conversions.
+//! K − σM on the union pattern, sub-matrices by index lists, and dense conversions.
 
 use super::SolveError;
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
@@ -12,20 +12,16 @@ pub fn spmm(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> 
     y
 }
 
-/// Y = A X into an existing matrix (overwritten).
-pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, mut y: MatMut<'_, f64>) {
-    y.fill(0.0);
-    for c in 0..x.ncols() {
-        for j in 0..a.ncols() {
-            let xj = x[(j, c)];
-            if xj == 0.0 {
-                continue;
-            }
-            for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-                y[(i, c)] += v * xj;
-            }
-        }
-    }
+/// Y = A X into an existing matrix (overwritten), faer's sparse × dense kernel.
+pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, y: MatMut<'_, f64>) {
+    faer::sparse::linalg::matmul::sparse_dense_matmul(
+        y,
+        faer::Accum::Replace,
+        a,
+        x,
+        1.0,
+        faer::Par::Seq,
+    );
 }
 
 /// A = K + s·M on the union of both patterns.
@@ -95,31 +91,4 @@ pub fn from_dense(d: MatRef<'_, f64>) -> SparseColMat<usize, f64> {
     }
     // Cannot fail: every index is inside the declared shape.
     SparseColMat::try_new_from_triplets(d.nrows(), d.ncols(), &trips).expect("indices in range")
-}
-
-/// max_ij |A_ij - A_ji| relative to max |A_ij| (0 for an exactly symmetric matrix).
-pub fn asymmetry(a: SparseColMatRef<'_, usize, f64>) -> f64 {
-    let t = a.to_row_major().ok();
-    let Some(t) = t else { return f64::INFINITY };
-    let mut maxv = 0.0f64;
-    let mut diff = 0.0f64;
-    // Row-major storage of A is column-major storage of Aᵀ: compare column j of both.
-    for j in 0..a.ncols() {
-        let mut col = std::collections::HashMap::new();
-        for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-            *col.entry(i).or_insert(0.0) += v;
-            maxv = maxv.max(v.abs());
-        }
-        for (&i, &v) in t.col_idx_of_row_raw(j).iter().zip(t.val_of_row(j)) {
-            *col.entry(i).or_insert(0.0) -= v;
-        }
-        for v in col.values() {
-            diff = diff.max(v.abs());
-        }
-    }
-    if maxv == 0.0 {
-        0.0
-    } else {
-        diff / maxv
-    }
 }

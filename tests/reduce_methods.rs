@@ -1,0 +1,291 @@
+//! Craig–Bampton, Craig–Chang and Dietz on the CalculiX e_matrices hex8/tet10 blocks: spectra
+//! against the full model (CB with all modes), CalculiX fixed-interface frequencies, span
+//! properties, and dependent attachment vectors removed and reported.
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::Mat;
+use flexbody::import::ccx_matrices::read_ccx_matrices;
+use flexbody::reduce::craig_bampton::{craig_bampton, craig_bampton_basis};
+use flexbody::reduce::craig_chang::{craig_chang, unit_loads};
+use flexbody::reduce::dietz::{dietz, dietz_modified};
+use flexbody::reduce::normal::normal_modes;
+use flexbody::reduce::select::{by_fmax, ModeCount, FMAX_FACTOR};
+use flexbody::reduce::{ModeLabel, ModeSet};
+use flexbody::solve::{sparse_ops, EigenSpec};
+use std::path::{Path, PathBuf};
+
+type Sparse = SparseColMat<usize, f64>;
+
+fn case(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/reference/e_matrices")
+        .join(name)
+}
+
+fn to_sparse(n: usize, t: &[(usize, usize, f64)]) -> Sparse {
+    let trips: Vec<_> = t.iter().map(|&(i, j, v)| Triplet::new(i, j, v)).collect();
+    SparseColMat::try_new_from_triplets(n, n, &trips).unwrap()
+}
+
+/// K, M of the free dump and the equation indices of the nodes of node set `set`.
+fn load(name: &str, set: &str) -> (Sparse, Sparse, Vec<usize>) {
+    let dir = case(name);
+    let c = read_ccx_matrices(&dir.join("ccx_matrix_free")).unwrap();
+    let mm = c.m.as_ref().unwrap();
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("case.json")).unwrap()).unwrap();
+    let nodes: Vec<u64> = j["node_sets"][set]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .collect();
+    let dofs = (0..c.dofs.len())
+        .filter(|&i| nodes.contains(&c.dofs[i].node))
+        .collect();
+    (
+        to_sparse(c.k.n, &c.k.full()),
+        to_sparse(mm.n, &mm.full()),
+        dofs,
+    )
+}
+
+fn ccx_freqs(path: &Path) -> Vec<f64> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut out = Vec::new();
+    let mut on = false;
+    for line in text.lines() {
+        if line.contains("E I G E N V A L U E   O U T P U T") {
+            on = true;
+            continue;
+        }
+        if line.contains("P A R T I C I P A T I O N") {
+            break;
+        }
+        let f: Vec<&str> = line.split_whitespace().collect();
+        if on && f.len() == 5 && f[0].parse::<usize>().is_ok() {
+            out.push(f[1].parse::<f64>().unwrap().max(0.0).sqrt() / (2.0 * std::f64::consts::PI));
+        }
+    }
+    out
+}
+
+fn eig() -> EigenSpec {
+    EigenSpec {
+        dofs_per_node: Some(3),
+        ..Default::default()
+    }
+}
+
+fn checks(s: &ModeSet) {
+    assert!(
+        s.diagnostics.orthonormality <= 1e-10,
+        "orth {}",
+        s.diagnostics.orthonormality
+    );
+    assert!(
+        s.diagnostics.stiffness_diag <= 1e-10,
+        "kdiag {}",
+        s.diagnostics.stiffness_diag
+    );
+    assert!(s.omega2.iter().all(|v| v.is_finite()));
+}
+
+/// ‖x − ΦΦᵀMx‖_M / ‖x‖_M, the part of x outside span Φ.
+fn outside(set: &ModeSet, m: &Sparse, x: &Mat<f64>) -> f64 {
+    let mx = sparse_ops::spmm(m.as_ref(), x.as_ref());
+    let c = set.phi.transpose() * &mx;
+    let r = x - &set.phi * &c;
+    let mr = sparse_ops::spmm(m.as_ref(), r.as_ref());
+    let mut worst = 0.0f64;
+    for j in 0..x.ncols() {
+        let a = r.col(j).transpose() * mr.col(j);
+        let b = x.col(j).transpose() * mx.col(j);
+        worst = worst.max((a.max(0.0) / b).sqrt());
+    }
+    worst
+}
+
+#[test]
+fn cb_all_fixed_interface_modes_is_the_full_spectrum_hex8() {
+    let (k, m, ends) = load("hex8_block_coarse", "ENDS");
+    let n = k.nrows();
+    let full = normal_modes(&k, &m, ModeCount::Count(n), &[], &eig()).unwrap();
+    let cb = craig_bampton(&k, &m, &ends, ModeCount::All, &eig()).unwrap();
+    checks(&cb);
+    assert_eq!(cb.len(), n);
+    let lmax = full.omega2[n - 1];
+    // rigid modes compared in absolute terms (their ω² is rounding noise of the dumped K)
+    for j in 0..n {
+        let tol = 1e-9 * full.omega2[j].abs().max(full.omega2[6]);
+        assert!(
+            (cb.omega2[j] - full.omega2[j]).abs() <= tol,
+            "mode {j}: {} vs {}",
+            cb.omega2[j],
+            full.omega2[j]
+        );
+    }
+    assert!(lmax > 0.0);
+}
+
+#[test]
+fn cb_truncated_is_rayleigh_ritz_bound_tet10() {
+    let (k, m, ends) = load("tet10_block_coarse", "ENDS");
+    let full = normal_modes(&k, &m, ModeCount::Count(60), &[], &eig()).unwrap();
+    for nq in [5, 20] {
+        let cb = craig_bampton(&k, &m, &ends, ModeCount::Count(nq), &eig()).unwrap();
+        checks(&cb);
+        assert_eq!(
+            cb.labels.iter().filter(|l| **l == ModeLabel::Rigid).count(),
+            6
+        );
+        for j in 6..cb.len().min(60) {
+            assert!(
+                cb.omega2[j] >= full.omega2[j] * (1.0 - 1e-10),
+                "nq {nq} mode {j}"
+            );
+        }
+        // the lowest flexible modes are well represented
+        let rel = cb.omega2[6] / full.omega2[6] - 1.0;
+        assert!(
+            rel < if nq == 20 { 1e-3 } else { 5e-2 },
+            "nq {nq}: first flexible off by {rel}"
+        );
+    }
+}
+
+#[test]
+fn cb_fixed_interface_modes_equal_ccx_fixed_run() {
+    for name in ["hex8_block_coarse", "tet10_block_coarse"] {
+        let (k, m, x0) = load(name, "END_X0");
+        let basis = craig_bampton_basis(&k, &m, &x0, ModeCount::Count(10), &eig()).unwrap();
+        let ccx = ccx_freqs(&case(name).join("ccx_fixed.dat"));
+        for (i, &l) in basis.fixed_omega2.iter().enumerate() {
+            let f = l.sqrt() / (2.0 * std::f64::consts::PI);
+            assert!(
+                (f - ccx[i]).abs() <= 2e-6 * ccx[i],
+                "{name} {i}: {f} vs ccx {}",
+                ccx[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn cb_fmax_selection_keeps_rigid_and_modes_below_cutoff() {
+    let (k, m, ends) = load("hex8_block_coarse", "ENDS");
+    let cb = craig_bampton(&k, &m, &ends, ModeCount::Count(10), &eig()).unwrap();
+    let scene = 1500.0;
+    let sel = by_fmax(cb, scene);
+    let f = sel.frequencies_hz();
+    assert!(f.iter().all(|&x| x <= FMAX_FACTOR * scene));
+    // rigid (6) + 1241, 1241, 3221, 3337, 3337 Hz flexible modes are below 4500 Hz
+    assert_eq!(sel.len(), 11, "{f:?}");
+}
+
+#[test]
+fn craig_chang_span_contains_free_modes_and_static_solutions() {
+    let (k, m, ends) = load("hex8_block_coarse", "ENDS");
+    let fa = unit_loads(k.nrows(), &ends).unwrap();
+    let nn = 16;
+    let cc = craig_chang(&k, &m, &fa, ModeCount::Count(nn), &eig()).unwrap();
+    checks(&cc);
+    let ff = normal_modes(&k, &m, ModeCount::Count(nn), &[], &eig()).unwrap();
+    let out = outside(&cc, &m, &ff.phi);
+    assert!(
+        out < 1e-9,
+        "free-free modes outside the Craig–Chang span: {out}"
+    );
+    for j in 6..nn {
+        assert!(
+            (cc.omega2[j] - ff.omega2[j]).abs() <= 1e-9 * ff.omega2[j],
+            "{j}"
+        );
+    }
+    // inertia-relief static response to an interface load, solved densely from the bordered
+    // system [K MXr; XrᵀM 0][y; μ] = [Pf; 0]: it lies in the span (attachment completeness)
+    let n = k.nrows();
+    let kd = sparse_ops::to_dense(k.as_ref());
+    let md = sparse_ops::to_dense(m.as_ref());
+    let xr = ff.phi.as_ref().subcols(0, 6).to_owned();
+    let mxr = &md * &xr;
+    let mut f = Mat::<f64>::zeros(n, 1);
+    f[(ends[4], 0)] = 1.0;
+    let pf = &f - &mxr * (xr.transpose() * &f);
+    let mut a = Mat::<f64>::zeros(n + 6, n + 6);
+    a.as_mut().submatrix_mut(0, 0, n, n).copy_from(kd.as_ref());
+    a.as_mut().submatrix_mut(0, n, n, 6).copy_from(mxr.as_ref());
+    a.as_mut()
+        .submatrix_mut(n, 0, 6, n)
+        .copy_from(mxr.transpose());
+    let mut rhs = Mat::<f64>::zeros(n + 6, 1);
+    rhs.as_mut()
+        .submatrix_mut(0, 0, n, 1)
+        .copy_from(pf.as_ref());
+    let sol = a.as_ref().partial_piv_lu().solve(&rhs);
+    let y = sol.as_ref().submatrix(0, 0, n, 1).to_owned();
+    let out = outside(&cc, &m, &y);
+    assert!(
+        out < 1e-8,
+        "inertia-relief response outside the Craig–Chang span: {out}"
+    );
+    assert!(cc.diagnostics.notes.iter().any(|n| n.contains("support")));
+}
+
+#[test]
+fn craig_chang_dependent_attachments_are_removed_and_reported() {
+    let (k, m, ends) = load("hex8_block_coarse", "ENDS");
+    let mut dofs = ends.clone();
+    dofs.extend_from_slice(&ends[..5]); // 5 duplicated attachment loads
+    let fa = unit_loads(k.nrows(), &dofs).unwrap();
+    let cc = craig_chang(&k, &m, &fa, ModeCount::Count(12), &eig()).unwrap();
+    checks(&cc);
+    assert!(
+        cc.diagnostics.removed.len() >= 5,
+        "removed {:?}",
+        cc.diagnostics.removed.len()
+    );
+    assert!(cc
+        .diagnostics
+        .removed
+        .iter()
+        .all(|r| matches!(r.label, ModeLabel::Attachment { .. })));
+    assert!(cc.len() <= 12 + ends.len());
+}
+
+#[test]
+fn dietz_static_and_modified_agree_and_contain_the_response() {
+    let (k, m, ends) = load("hex8_block_coarse", "ENDS");
+    let n = k.nrows();
+    let fa = unit_loads(n, &ends[..6]).unwrap();
+    let st = dietz(&k, &m, &fa, ModeCount::Count(12), None, &eig()).unwrap();
+    let md = dietz_modified(&k, &m, &fa, 12, n, None, &eig()).unwrap();
+    checks(&st);
+    checks(&md);
+    assert_eq!(st.len(), md.len());
+    for j in 6..st.len() {
+        assert!(
+            (st.omega2[j] - md.omega2[j]).abs() <= 1e-8 * st.omega2[j],
+            "{j}: {} vs {}",
+            st.omega2[j],
+            md.omega2[j]
+        );
+    }
+    // (K − ℓM) x = Fa solved densely lies in the span
+    let ell = match st.method {
+        flexbody::reduce::Method::Dietz { shift, .. } => shift,
+        _ => unreachable!(),
+    };
+    let ff = normal_modes(&k, &m, ModeCount::Count(7), &[], &eig()).unwrap();
+    assert!((ell - 0.25 * ff.omega2[6]).abs() <= 1e-9 * ell);
+    let kd = sparse_ops::to_dense(k.as_ref());
+    let md_ = sparse_ops::to_dense(m.as_ref());
+    let a = Mat::from_fn(n, n, |i, j| kd[(i, j)] - ell * md_[(i, j)]);
+    let x = a.as_ref().partial_piv_lu().solve(&fa);
+    let out = outside(&st, &m, &x);
+    assert!(
+        out < 1e-7,
+        "frequency response outside the Dietz span: {out}"
+    );
+}
