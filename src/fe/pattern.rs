@@ -2,9 +2,9 @@
 //! that scatters an element's node blocks into the compressed columns.
 //!
 //! Column (a, c) — dof c of node a — holds, for every neighbour b of a in ascending order
-//! (a included), the rows first[b] .. first[b] + count[b]. So its length L_a = Σ_b count[b] is the
+//! (a included), the rows `first[b] .. first[b] + count[b]`. So its length `L_a = Σ_b count[b]` is the
 //! same for all columns of node a, the row indices are sorted, and the block of node b in it
-//! starts at base[a] + c·L_a + off(a, b).
+//! starts at `base[a] + c·L_a + off(a, b)`.
 
 use rayon::prelude::*;
 

@@ -4,7 +4,7 @@
 //! (`--grid NX NY NZ`: 3 dofs per node, springs to all 26 neighbours, i.e. the 27-point pattern
 //! of a hex8 mesh; both ends restrained only through the interface).
 //!
-//! Usage: `reduce_bench [--grid NX NY NZ | --ccx STEM] [--modes 30] [--normal]`
+//! Usage: `reduce_bench [--grid NX NY NZ | --ccx STEM] [--modes 30] [--block B] [--normal] [--seq]`
 
 use flexbody::reduce::craig_bampton::craig_bampton;
 use flexbody::reduce::select::ModeCount;
