@@ -289,3 +289,54 @@ fn dietz_static_and_modified_agree_and_contain_the_response() {
         "frequency response outside the Dietz span: {out}"
     );
 }
+
+#[test]
+fn bad_dof_lists_are_errors() {
+    use flexbody::reduce::reference::improved_cb_method1;
+    use flexbody::reduce::ReduceError;
+    let (k, m, ends) = load("hex8_block_coarse", "ENDS");
+    let n = k.nrows();
+    let r = craig_bampton(&k, &m, &[0, n], ModeCount::Count(4), &eig());
+    assert!(matches!(r, Err(ReduceError::Dofs { .. })), "{r:?}");
+    let r = craig_bampton(&k, &m, &[3, 3], ModeCount::Count(4), &eig());
+    assert!(matches!(r, Err(ReduceError::Dofs { .. })), "{r:?}");
+    // a reference dof that is not an interface dof
+    let inner = (0..n).find(|d| !ends.contains(d)).unwrap();
+    let r = improved_cb_method1(&k, &m, &ends, &[inner], ModeCount::Count(4), &eig());
+    assert!(matches!(r, Err(ReduceError::Dofs { .. })), "{r:?}");
+    assert!(matches!(
+        unit_loads(n, &[n + 1]),
+        Err(ReduceError::Dofs { .. })
+    ));
+}
+
+#[test]
+fn normal_modes_with_fixed_end_equal_ccx_fixed_and_count_selection() {
+    use flexbody::reduce::select::by_count;
+    let (k, m, x0) = load("tet10_block_coarse", "END_X0");
+    let s = normal_modes(&k, &m, ModeCount::Count(10), &x0, &eig()).unwrap();
+    checks(&s);
+    assert_eq!(s.reference_dofs, x0);
+    assert!(x0
+        .iter()
+        .all(|&d| (0..s.len()).all(|j| s.phi[(d, j)] == 0.0)));
+    let ccx = ccx_freqs(&case("tet10_block_coarse").join("ccx_fixed.dat"));
+    for (j, f) in s.frequencies_hz().iter().enumerate() {
+        assert!(
+            (f - ccx[j]).abs() <= 2e-6 * ccx[j],
+            "{j}: {f} vs {}",
+            ccx[j]
+        );
+        assert!(
+            s.diagnostics.residuals[j] <= 1e-8,
+            "{j}: {}",
+            s.diagnostics.residuals[j]
+        );
+    }
+    let s4 = by_count(s, 4);
+    assert_eq!(s4.len(), 4);
+    assert_eq!(
+        s4.selection,
+        Some(flexbody::reduce::select::Selection::Count(4))
+    );
+}
