@@ -145,41 +145,86 @@ pub enum BuildError {
 }
 
 /// Stages reported to the progress callback, in order.
-pub const STAGES: [&str; 7] = ["import", "interfaces", "assembly", "constraints", "reduction", "invariants", "assemble file"];
+pub const STAGES: [&str; 7] = [
+    "import",
+    "interfaces",
+    "assembly",
+    "constraints",
+    "reduction",
+    "invariants",
+    "assemble file",
+];
 
 /// Run the pipeline. `progress(stage)` is called as each stage starts.
 pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOutput, BuildError> {
     let mut report = BuildReport::default();
     let mut clock = Instant::now();
     let mut lap = |report: &mut BuildReport, name: &str| {
-        report.stages.push((name.to_string(), clock.elapsed().as_secs_f64()));
+        report
+            .stages
+            .push((name.to_string(), clock.elapsed().as_secs_f64()));
         clock = Instant::now();
     };
     let file_name = spec.model.display().to_string();
-    let request_err = |message: String| BuildError::Request { file: file_name.clone(), message };
+    let request_err = |message: String| BuildError::Request {
+        file: file_name.clone(),
+        message,
+    };
 
     progress(STAGES[0]);
-    let mut model = import::read_model(&spec.model, &ImportOptions { format: spec.format, material: spec.material.clone() })?;
-    report.warnings.extend(model.warnings.iter().map(|w| format!("{}: {}", w.file, w.message)));
+    let mut model = import::read_model(
+        &spec.model,
+        &ImportOptions {
+            format: spec.format,
+            material: spec.material.clone(),
+        },
+    )?;
+    report.warnings.extend(
+        model
+            .warnings
+            .iter()
+            .map(|w| format!("{}: {}", w.file, w.message)),
+    );
     lap(&mut report, STAGES[0]);
 
     progress(STAGES[1]);
     if spec.method != BuildMethod::Normal && spec.interface.is_empty() {
-        return Err(request_err(format!("{:?} needs interface nodes: give --interface with node ids or node-set names", spec.method)));
+        return Err(request_err(format!(
+            "{:?} needs interface nodes: give --interface with node ids or node-set names",
+            spec.method
+        )));
     }
-    if !spec.reference_conditions.is_empty() && matches!(spec.method, BuildMethod::CraigChang | BuildMethod::Dietz) {
+    if !spec.reference_conditions.is_empty()
+        && matches!(spec.method, BuildMethod::CraigChang | BuildMethod::Dietz)
+    {
         return Err(request_err("reference conditions are defined for normal modes and Craig–Bampton (improved CB methods 1 and 2), not for Craig–Chang or Dietz".into()));
     }
     report.interfaces = resolve_interfaces(&mut model, &spec.interface, spec.spider)?;
-    let interface_nodes: Vec<NodeIndex> = report.interfaces.iter().flat_map(|r| r.nodes.iter().copied()).collect();
+    let interface_nodes: Vec<NodeIndex> = report
+        .interfaces
+        .iter()
+        .flat_map(|r| r.nodes.iter().copied())
+        .collect();
     lap(&mut report, STAGES[1]);
 
     progress(STAGES[2]);
-    let assembled = assemble(&model, &AssemblySpec { mass: spec.mass, ..Default::default() })?;
+    let assembled = assemble(
+        &model,
+        &AssemblySpec {
+            mass: spec.mass,
+            ..Default::default()
+        },
+    )?;
     lap(&mut report, STAGES[2]);
 
     progress(STAGES[3]);
-    let reduced = eliminate(&model, &assembled.dofs, &assembled.k, &assembled.m, &ConstraintSpec::default())?;
+    let reduced = eliminate(
+        &model,
+        &assembled.dofs,
+        &assembled.k,
+        &assembled.m,
+        &ConstraintSpec::default(),
+    )?;
     let dofs = &assembled.dofs;
     report.dofs = (dofs.n_dofs, reduced.retained.len());
     // Physical dof → independent (reduced) dof.
@@ -187,7 +232,10 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
     for (r, &p) in reduced.retained.iter().enumerate() {
         reduced_index[p] = r;
     }
-    let node_dofs = |node: NodeIndex, mask: DofMask, what: &str| -> Result<Vec<usize>, BuildError> {
+    let node_dofs = |node: NodeIndex,
+                     mask: DofMask,
+                     what: &str|
+     -> Result<Vec<usize>, BuildError> {
         let id = model.nodes[node].id;
         let count = usize::from(dofs.count[node]);
         if count == 0 {
@@ -217,7 +265,9 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
     let mut reference = Vec::new();
     let mut reference_records = Vec::new();
     for &(id, mask) in &spec.reference_conditions {
-        let node = *by_id.get(&id).ok_or_else(|| request_err(format!("reference-condition node {id} does not exist")))?;
+        let node = *by_id
+            .get(&id)
+            .ok_or_else(|| request_err(format!("reference-condition node {id} does not exist")))?;
         reference.extend(node_dofs(node, mask, "reference-condition")?);
         reference_records.push((node, mask));
     }
@@ -225,20 +275,48 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
 
     progress(STAGES[4]);
     let count = match (spec.modes, spec.fmax_hz) {
-        (_, Some(f)) if !(f.is_finite() && f > 0.0) => return Err(request_err(format!("--fmax {f} must be a positive frequency in Hz"))),
+        (_, Some(f)) if !(f.is_finite() && f > 0.0) => {
+            return Err(request_err(format!(
+                "--fmax {f} must be a positive frequency in Hz"
+            )))
+        }
         (_, Some(f)) => ModeCount::BelowHz(select::FMAX_FACTOR * f),
         (Some(n), None) => ModeCount::Count(n),
         (None, None) => ModeCount::Count(DEFAULT_MODES),
     };
-    let eig = EigenSpec { dofs_per_node: Some(3), par: Par::Seq, ..Default::default() };
+    let eig = EigenSpec {
+        dofs_per_node: Some(3),
+        par: Par::Seq,
+        ..Default::default()
+    };
     let (k_r, m_r) = (&reduced.k, &reduced.m);
     let mut set: ModeSet = match spec.method {
         BuildMethod::Normal => reduce::normal::normal_modes(k_r, m_r, count, &reference, &eig)?,
-        BuildMethod::CraigBampton if reference.is_empty() => reduce::craig_bampton::craig_bampton(k_r, m_r, &interface_dofs, count, &eig)?,
+        BuildMethod::CraigBampton if reference.is_empty() => {
+            reduce::craig_bampton::craig_bampton(k_r, m_r, &interface_dofs, count, &eig)?
+        }
         BuildMethod::CraigBampton => match spec.reference_method {
-            1 => reduce::reference::improved_cb_method1(k_r, m_r, &interface_dofs, &reference, count, &eig)?,
-            2 => reduce::reference::improved_cb_method2(k_r, m_r, &interface_dofs, &reference, count, &eig)?,
-            other => return Err(request_err(format!("--reference-method {other}: must be 1 or 2"))),
+            1 => reduce::reference::improved_cb_method1(
+                k_r,
+                m_r,
+                &interface_dofs,
+                &reference,
+                count,
+                &eig,
+            )?,
+            2 => reduce::reference::improved_cb_method2(
+                k_r,
+                m_r,
+                &interface_dofs,
+                &reference,
+                count,
+                &eig,
+            )?,
+            other => {
+                return Err(request_err(format!(
+                    "--reference-method {other}: must be 1 or 2"
+                )))
+            }
         },
         BuildMethod::CraigChang => {
             let fa = reduce::craig_chang::unit_loads(k_r.nrows(), &interface_dofs)?;
@@ -251,7 +329,11 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
     };
     if let (Some(n), Some(_)) = (spec.modes, spec.fmax_hz) {
         // Both given: the count caps the band (CB keeps its constraint-derived modes on top).
-        let extra = if spec.method == BuildMethod::Normal { 0 } else { interface_dofs.len() };
+        let extra = if spec.method == BuildMethod::Normal {
+            0
+        } else {
+            interface_dofs.len()
+        };
         set = select::by_count(set, n + extra);
     }
     report.diagnostics = set.diagnostics.clone();
@@ -260,14 +342,35 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
 
     progress(STAGES[5]);
     let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi)?;
-    let inv = compute_invariants(&points, point_shapes.as_ref(), invariant_set(spec.invariants), Par::Seq)?;
+    let inv = compute_invariants(
+        &points,
+        point_shapes.as_ref(),
+        invariant_set(spec.invariants),
+        Par::Seq,
+    )?;
     lap(&mut report, STAGES[5]);
 
     progress(STAGES[6]);
     let faces = graphics_faces(&model);
-    let always: Vec<NodeIndex> = interface_nodes.iter().copied().chain(reference_records.iter().map(|r| r.0)).collect();
+    let always: Vec<NodeIndex> = interface_nodes
+        .iter()
+        .copied()
+        .chain(reference_records.iter().map(|r| r.0))
+        .collect();
     let stored = stored_nodes(&model, &spec.keep_nodes, &always, &faces).map_err(request_err)?;
-    let body = assemble_body(spec, &model, dofs, &phi, &set, &stored, &interface_nodes, &reference_records, &faces, &nodal, &inv)?;
+    let body = assemble_body(
+        spec,
+        &model,
+        dofs,
+        &phi,
+        &set,
+        &stored,
+        &interface_nodes,
+        &reference_records,
+        &faces,
+        &nodal,
+        &inv,
+    )?;
     lap(&mut report, STAGES[6]);
     Ok(BuildOutput { body, report })
 }
@@ -293,7 +396,9 @@ fn node_shape(dofs: &DofMap, phi: &Mat<f64>, p: NodeIndex, j: usize) -> [f64; 6]
     match dofs.frames[p] {
         None => local,
         Some(a) => {
-            let rot = |v: &[f64]| -> [f64; 3] { std::array::from_fn(|i| (0..3).map(|k| a[k][i] * v[k]).sum()) };
+            let rot = |v: &[f64]| -> [f64; 3] {
+                std::array::from_fn(|i| (0..3).map(|k| a[k][i] * v[k]).sum())
+            };
             let (t, r) = (rot(&local[..3]), rot(&local[3..]));
             [t[0], t[1], t[2], r[0], r[1], r[2]]
         }
@@ -308,13 +413,26 @@ type NodalMass = Vec<(f64, [[f64; 3]; 3])>;
 /// moving rigidly with its node (u + θ × d). Returns the points, their 6-row shapes, and the
 /// per-node mass (structure + point masses lumped to the node, inertia shifted to the node) that
 /// the file stores.
-fn mass_points(model: &Model, dofs: &DofMap, phi: &Mat<f64>) -> Result<(Vec<MassPoint>, Mat<f64>, NodalMass), BuildError> {
+fn mass_points(
+    model: &Model,
+    dofs: &DofMap,
+    phi: &Mat<f64>,
+) -> Result<(Vec<MassPoint>, Mat<f64>, NodalMass), BuildError> {
     let mut bare = model.clone();
     bare.point_masses.clear();
-    let lumped = assemble(&bare, &AssemblySpec { mass: fe::MassKind::Lumped, ..Default::default() })?;
+    let lumped = assemble(
+        &bare,
+        &AssemblySpec {
+            mass: fe::MassKind::Lumped,
+            ..Default::default()
+        },
+    )?;
     let (ld, lm) = (&lumped.dofs, lumped.m.as_ref());
     let entry = |row: usize, col: usize| -> f64 {
-        lm.row_idx_of_col(col).zip(lm.val_of_col(col)).find(|(r, _)| *r == row).map_or(0.0, |(_, v)| *v)
+        lm.row_idx_of_col(col)
+            .zip(lm.val_of_col(col))
+            .find(|(r, _)| *r == row)
+            .map_or(0.0, |(_, v)| *v)
     };
     let nn = model.nodes.len();
     let mut nodal: NodalMass = Vec::with_capacity(nn);
@@ -328,11 +446,18 @@ fn mass_points(model: &Model, dofs: &DofMap, phi: &Mat<f64>) -> Result<(Vec<Mass
         let mass = (0..3).map(|c| entry(f + c, f + c)).sum::<f64>() / 3.0;
         let mut inertia = [[0.0; 3]; 3];
         if count == 6 {
-            let local: [[f64; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|c| entry(f + 3 + r, f + 3 + c)));
+            let local: [[f64; 3]; 3] =
+                std::array::from_fn(|r| std::array::from_fn(|c| entry(f + 3 + r, f + 3 + c)));
             // I_basic = Aᵀ I_local A.
             inertia = match ld.frames[p] {
                 None => local,
-                Some(a) => std::array::from_fn(|r| std::array::from_fn(|c| (0..3).map(|i| (0..3).map(|k| a[i][r] * local[i][k] * a[k][c]).sum::<f64>()).sum())),
+                Some(a) => std::array::from_fn(|r| {
+                    std::array::from_fn(|c| {
+                        (0..3)
+                            .map(|i| (0..3).map(|k| a[i][r] * local[i][k] * a[k][c]).sum::<f64>())
+                            .sum()
+                    })
+                }),
             };
         }
         nodal.push((mass, inertia));
@@ -342,7 +467,11 @@ fn mass_points(model: &Model, dofs: &DofMap, phi: &Mat<f64>) -> Result<(Vec<Mass
     let mut points = Vec::with_capacity(np);
     let mut shapes = Mat::<f64>::zeros(6 * np, nm);
     for (p, node) in model.nodes.iter().enumerate() {
-        points.push(MassPoint { position: node.x, mass: nodal[p].0, inertia: nodal[p].1 });
+        points.push(MassPoint {
+            position: node.x,
+            mass: nodal[p].0,
+            inertia: nodal[p].1,
+        });
         for j in 0..nm {
             let s = node_shape(dofs, phi, p, j);
             for (c, v) in s.iter().enumerate() {
@@ -354,10 +483,18 @@ fn mass_points(model: &Model, dofs: &DofMap, phi: &Mat<f64>) -> Result<(Vec<Mass
         let row = 6 * (nn + q);
         let d = pm.offset;
         let x = model.nodes[pm.node].x;
-        points.push(MassPoint { position: std::array::from_fn(|k| x[k] + d[k]), mass: pm.mass, inertia: pm.inertia });
+        points.push(MassPoint {
+            position: std::array::from_fn(|k| x[k] + d[k]),
+            mass: pm.mass,
+            inertia: pm.inertia,
+        });
         for j in 0..nm {
             let s = node_shape(dofs, phi, pm.node, j);
-            let cross = [s[4] * d[2] - s[5] * d[1], s[5] * d[0] - s[3] * d[2], s[3] * d[1] - s[4] * d[0]];
+            let cross = [
+                s[4] * d[2] - s[5] * d[1],
+                s[5] * d[0] - s[3] * d[2],
+                s[3] * d[1] - s[4] * d[0],
+            ];
             for c in 0..3 {
                 shapes[(row + c, j)] = s[c] + cross[c];
                 shapes[(row + 3 + c, j)] = s[3 + c];
@@ -369,7 +506,8 @@ fn mass_points(model: &Model, dofs: &DofMap, phi: &Mat<f64>) -> Result<(Vec<Mass
         *m0 += pm.mass;
         for r in 0..3 {
             for c in 0..3 {
-                i0[r][c] += pm.inertia[r][c] + pm.mass * (if r == c { dd } else { 0.0 } - d[r] * d[c]);
+                i0[r][c] +=
+                    pm.inertia[r][c] + pm.mass * (if r == c { dd } else { 0.0 } - d[r] * d[c]);
             }
         }
     }
@@ -378,7 +516,12 @@ fn mass_points(model: &Model, dofs: &DofMap, phi: &Mat<f64>) -> Result<(Vec<Mass
 
 /// The nodes whose shapes go into the file, ascending; `always` (interface and reference nodes)
 /// are always included.
-fn stored_nodes(model: &Model, keep: &KeepNodes, always: &[NodeIndex], faces: &[crate::faces::GraphicsFace]) -> Result<Vec<NodeIndex>, String> {
+fn stored_nodes(
+    model: &Model,
+    keep: &KeepNodes,
+    always: &[NodeIndex],
+    faces: &[crate::faces::GraphicsFace],
+) -> Result<Vec<NodeIndex>, String> {
     let mut on = vec![false; model.nodes.len()];
     for &n in always {
         on[n] = true;
@@ -386,13 +529,26 @@ fn stored_nodes(model: &Model, keep: &KeepNodes, always: &[NodeIndex], faces: &[
     match keep {
         KeepNodes::All => on.iter_mut().for_each(|v| *v = true),
         KeepNodes::Interface => {}
-        KeepNodes::Surface => faces.iter().flat_map(|f| f.nodes.iter()).for_each(|&n| on[n] = true),
+        KeepNodes::Surface => faces
+            .iter()
+            .flat_map(|f| f.nodes.iter())
+            .for_each(|&n| on[n] = true),
         KeepNodes::Set(name) => {
             let set = model
                 .node_sets
                 .iter()
                 .find(|(k, _)| k.eq_ignore_ascii_case(name))
-                .ok_or_else(|| format!("--keep-nodes {name}: no such node set (node sets: {})", model.node_sets.keys().cloned().collect::<Vec<_>>().join(", ")))?;
+                .ok_or_else(|| {
+                    format!(
+                        "--keep-nodes {name}: no such node set (node sets: {})",
+                        model
+                            .node_sets
+                            .keys()
+                            .cloned()
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )
+                })?;
             set.1.iter().for_each(|&n| on[n] = true);
         }
     }
@@ -415,7 +571,9 @@ fn mask_bools(m: DofMask) -> [bool; 6] {
 }
 
 fn flat(m: &Mat<f64>) -> Vec<f64> {
-    (0..m.nrows()).flat_map(|r| (0..m.ncols()).map(move |c| m[(r, c)])).collect()
+    (0..m.nrows())
+        .flat_map(|r| (0..m.ncols()).map(move |c| m[(r, c)]))
+        .collect()
 }
 
 /// Convert everything into the file's records.
@@ -438,13 +596,24 @@ fn assemble_body(
         position[n] = i as u32;
     }
     let is_interface: std::collections::HashSet<NodeIndex> = interface.iter().copied().collect();
-    let nodes = stored.iter().map(|&n| file::Node { id: model.nodes[n].id, xyz: model.nodes[n].x, interface: is_interface.contains(&n) }).collect();
+    let nodes = stored
+        .iter()
+        .map(|&n| file::Node {
+            id: model.nodes[n].id,
+            xyz: model.nodes[n].x,
+            interface: is_interface.contains(&n),
+        })
+        .collect();
     let file_faces = faces
         .iter()
         .filter(|f| f.nodes.iter().all(|&n| position[n] != u32::MAX))
         .filter_map(|f| match f.nodes.len() {
-            3 => Some(file::Face::Tri(std::array::from_fn(|k| position[f.nodes[k]]))),
-            4 => Some(file::Face::Quad(std::array::from_fn(|k| position[f.nodes[k]]))),
+            3 => Some(file::Face::Tri(std::array::from_fn(|k| {
+                position[f.nodes[k]]
+            }))),
+            4 => Some(file::Face::Quad(std::array::from_fn(|k| {
+                position[f.nodes[k]]
+            }))),
             _ => None, // beam/rod lines: not representable in v1 faces
         })
         .collect();
@@ -453,21 +622,50 @@ fn assemble_body(
     let mut shapes = vec![0.0; nm * ns * 6];
     for j in 0..nm {
         for (q, &p) in stored.iter().enumerate() {
-            shapes[(j * ns + q) * 6..(j * ns + q) * 6 + 6].copy_from_slice(&node_shape(dofs, phi, p, j));
+            shapes[(j * ns + q) * 6..(j * ns + q) * 6 + 6]
+                .copy_from_slice(&node_shape(dofs, phi, p, j));
         }
     }
     let omega2 = set.omega2.clone();
-    let identity: Vec<f64> = (0..nm * nm).map(|i| if i / nm == i % nm { 1.0 } else { 0.0 }).collect();
-    let diag: Vec<f64> = (0..nm * nm).map(|i| if i / nm == i % nm { omega2[i / nm] } else { 0.0 }).collect();
+    let identity: Vec<f64> = (0..nm * nm)
+        .map(|i| if i / nm == i % nm { 1.0 } else { 0.0 })
+        .collect();
+    let diag: Vec<f64> = (0..nm * nm)
+        .map(|i| {
+            if i / nm == i % nm {
+                omega2[i / nm]
+            } else {
+                0.0
+            }
+        })
+        .collect();
     let labels: Vec<file::ModeLabel> = set.labels.iter().map(file_label).collect();
     let count_of = |l: file::ModeLabel| labels.iter().filter(|x| **x == l).count() as u64;
     let (method, interface_count, fixed_count) = match &set.method {
         reduce::Method::NormalModes => (file::Method::NormalModes, 0, 0),
-        reduce::Method::CraigBampton { interface, fixed_interface_modes }
-        | reduce::Method::ImprovedCraigBampton1 { interface, fixed_interface_modes }
-        | reduce::Method::ImprovedCraigBampton2 { interface, fixed_interface_modes } => (file::Method::CraigBampton, interface.len() as u64, *fixed_interface_modes as u64),
-        reduce::Method::CraigChang { attachment, .. } => (file::Method::CraigChang, attachment.len() as u64, 0),
-        reduce::Method::Dietz { attachment, .. } | reduce::Method::DietzModified { attachment, .. } => (file::Method::Dietz, attachment.len() as u64, 0),
+        reduce::Method::CraigBampton {
+            interface,
+            fixed_interface_modes,
+        }
+        | reduce::Method::ImprovedCraigBampton1 {
+            interface,
+            fixed_interface_modes,
+        }
+        | reduce::Method::ImprovedCraigBampton2 {
+            interface,
+            fixed_interface_modes,
+        } => (
+            file::Method::CraigBampton,
+            interface.len() as u64,
+            *fixed_interface_modes as u64,
+        ),
+        reduce::Method::CraigChang { attachment, .. } => {
+            (file::Method::CraigChang, attachment.len() as u64, 0)
+        }
+        reduce::Method::Dietz { attachment, .. }
+        | reduce::Method::DietzModified { attachment, .. } => {
+            (file::Method::Dietz, attachment.len() as u64, 0)
+        }
     };
     let identity3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let interface_records = interface
@@ -486,7 +684,13 @@ fn assemble_body(
         KeepNodes::All => file::KeepNodes::All,
         KeepNodes::Surface => file::KeepNodes::InterfaceAndSurface,
         KeepNodes::Interface => file::KeepNodes::List(vec![]),
-        KeepNodes::Set(_) => file::KeepNodes::List(stored.iter().filter(|n| !is_interface.contains(n)).map(|&n| model.nodes[n].id).collect()),
+        KeepNodes::Set(_) => file::KeepNodes::List(
+            stored
+                .iter()
+                .filter(|n| !is_interface.contains(n))
+                .map(|&n| model.nodes[n].id)
+                .collect(),
+        ),
     };
     let invariants = file::Invariants {
         mask: spec.invariants.mask(),
@@ -494,11 +698,23 @@ fn assemble_body(
         i2: inv.i2.to_vec(),
         i3: inv.i3.as_ref().map(flat).unwrap_or_default(),
         i4: inv.i4.as_ref().map(flat).unwrap_or_default(),
-        i5: inv.i5.as_ref().map(|v| v.iter().flat_map(flat).collect()).unwrap_or_default(),
+        i5: inv
+            .i5
+            .as_ref()
+            .map(|v| v.iter().flat_map(flat).collect())
+            .unwrap_or_default(),
         i6: inv.i6.as_ref().map(flat).unwrap_or_default(),
         i7: inv.i7.iter().flatten().copied().collect(),
-        i8: inv.i8.as_ref().map(|v| v.iter().flat_map(|m| m.iter().flatten().copied()).collect()).unwrap_or_default(),
-        i9: inv.i9.as_ref().map(|v| v.iter().flat_map(|m| m.iter().flatten().copied()).collect()).unwrap_or_default(),
+        i8: inv
+            .i8
+            .as_ref()
+            .map(|v| v.iter().flat_map(|m| m.iter().flatten().copied()).collect())
+            .unwrap_or_default(),
+        i9: inv
+            .i9
+            .as_ref()
+            .map(|v| v.iter().flat_map(|m| m.iter().flatten().copied()).collect())
+            .unwrap_or_default(),
     };
     let removed = set.diagnostics.removed.len() as u64;
     let fmax_hz = match &set.selection {
@@ -507,10 +723,18 @@ fn assemble_body(
     };
     Ok(file::ReducedBody {
         version: flexbody_reader::FORMAT_VERSION,
-        generator: file::Generator { name: "flexbody".into(), version: env!("CARGO_PKG_VERSION").into() },
+        generator: file::Generator {
+            name: "flexbody".into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+        },
         units: spec.units.clone(),
         header: file::Header {
-            title: spec.title.clone().unwrap_or_else(|| spec.model.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default()),
+            title: spec.title.clone().unwrap_or_else(|| {
+                spec.model
+                    .file_name()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_default()
+            }),
             created_utc: spec.created_utc.clone(),
             request: file::Request {
                 method,
@@ -523,7 +747,13 @@ fn assemble_body(
         },
         nodes,
         faces: file_faces,
-        nodal_mass: stored.iter().map(|&n| file::NodalMass { mass: nodal[n].0, inertia: nodal[n].1 }).collect(),
+        nodal_mass: stored
+            .iter()
+            .map(|&n| file::NodalMass {
+                mass: nodal[n].0,
+                inertia: nodal[n].1,
+            })
+            .collect(),
         modes: file::Modes {
             frequency_hz: set.frequencies_hz(),
             omega2,
@@ -537,16 +767,30 @@ fn assemble_body(
             method,
             mass_kind,
             interface: interface_records,
-            reference_conditions: reference.iter().map(|&(n, m)| file::ReferenceCondition { node: position[n], dofs: mask_bools(m) }).collect(),
+            reference_conditions: reference
+                .iter()
+                .map(|&(n, m)| file::ReferenceCondition {
+                    node: position[n],
+                    dofs: mask_bools(m),
+                })
+                .collect(),
             counts: file::ModeCounts {
                 rigid: count_of(file::ModeLabel::Rigid),
                 normal: count_of(file::ModeLabel::Normal),
                 constraint: interface_count,
                 fixed_interface: fixed_count,
-                attachment: if matches!(method, file::Method::CraigChang | file::Method::Dietz) { interface_count } else { 0 },
+                attachment: if matches!(method, file::Method::CraigChang | file::Method::Dietz) {
+                    interface_count
+                } else {
+                    0
+                },
                 removed_dependent: removed,
             },
-            cutoffs: file::Cutoffs { fmax_hz, shift_fraction: None, dependency_tolerance: Some(set.diagnostics.dependency_tol) },
+            cutoffs: file::Cutoffs {
+                fmax_hz,
+                shift_fraction: None,
+                dependency_tolerance: Some(set.diagnostics.dependency_tol),
+            },
         },
         stress_shapes: None,
         strain_shapes: None,

@@ -61,7 +61,13 @@ impl CheckReport {
 
     fn push(&mut self, name: &str, value: f64, limit: f64, detail: String) {
         let pass = value.is_finite() && value <= limit;
-        self.items.push(CheckItem { name: name.into(), value, limit, pass, detail });
+        self.items.push(CheckItem {
+            name: name.into(),
+            value,
+            limit,
+            pass,
+            detail,
+        });
     }
 }
 
@@ -94,71 +100,179 @@ pub const ORTHO_LIMIT: f64 = 1e-8;
 pub const FREQ_LIMIT: f64 = 0.01;
 
 /// Run every check that the inputs allow.
-pub fn check(body: &file::ReducedBody, model: Option<&ModelInput>) -> Result<CheckReport, CheckError> {
+pub fn check(
+    body: &file::ReducedBody,
+    model: Option<&ModelInput>,
+) -> Result<CheckReport, CheckError> {
     let mut r = CheckReport::default();
     let m = body.mode_count();
     let n = body.node_count();
     let md = &body.modes;
-    let max_w2 = md.omega2.iter().fold(0.0f64, |a, &b| a.max(b.abs())).max(f64::MIN_POSITIVE);
+    let max_w2 = md
+        .omega2
+        .iter()
+        .fold(0.0f64, |a, &b| a.max(b.abs()))
+        .max(f64::MIN_POSITIVE);
 
-    let gm_err = (0..m * m).map(|i| (md.generalized_mass[i] - if i / m == i % m { 1.0 } else { 0.0 }).abs()).fold(0.0, f64::max);
-    r.push("generalized mass = I", gm_err, ORTHO_LIMIT, format!("max |Φᵀ M Φ − I| as stored, {m} modes"));
-    let gk_err = (0..m * m).map(|i| (md.generalized_stiffness[i] - if i / m == i % m { md.omega2[i / m] } else { 0.0 }).abs()).fold(0.0, f64::max) / max_w2;
-    r.push("generalized stiffness = diag(ω²)", gk_err, ORTHO_LIMIT, "max |Φᵀ K Φ − diag(ω²)| / max ω², as stored".into());
-    let f_err = md.omega2.iter().zip(&md.frequency_hz).map(|(&w2, &f)| (w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI) - f).abs() / f.max(1e-300)).filter(|e| e.is_finite()).fold(0.0, f64::max);
+    let gm_err = (0..m * m)
+        .map(|i| (md.generalized_mass[i] - if i / m == i % m { 1.0 } else { 0.0 }).abs())
+        .fold(0.0, f64::max);
+    r.push(
+        "generalized mass = I",
+        gm_err,
+        ORTHO_LIMIT,
+        format!("max |Φᵀ M Φ − I| as stored, {m} modes"),
+    );
+    let gk_err = (0..m * m)
+        .map(|i| {
+            (md.generalized_stiffness[i]
+                - if i / m == i % m {
+                    md.omega2[i / m]
+                } else {
+                    0.0
+                })
+            .abs()
+        })
+        .fold(0.0, f64::max)
+        / max_w2;
+    r.push(
+        "generalized stiffness = diag(ω²)",
+        gk_err,
+        ORTHO_LIMIT,
+        "max |Φᵀ K Φ − diag(ω²)| / max ω², as stored".into(),
+    );
+    let f_err = md
+        .omega2
+        .iter()
+        .zip(&md.frequency_hz)
+        .map(|(&w2, &f)| {
+            (w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI) - f).abs() / f.max(1e-300)
+        })
+        .filter(|e| e.is_finite())
+        .fold(0.0, f64::max);
     r.push("frequencies = √ω²/2π", f_err, 1e-12, "relative".into());
 
     // Rigid-body properties from the invariants.
     let inv = &body.invariants;
     let i1 = inv.i1.first().copied().unwrap_or(0.0);
-    r.push("total mass I1 > 0", if i1 > 0.0 { 0.0 } else { 1.0 }, 0.0, format!("I1 = {i1:.6e}"));
+    r.push(
+        "total mass I1 > 0",
+        if i1 > 0.0 { 0.0 } else { 1.0 },
+        0.0,
+        format!("I1 = {i1:.6e}"),
+    );
     if i1 > 0.0 && inv.i2.len() == 3 && n > 0 {
         let cm: Vec<f64> = inv.i2.iter().map(|v| v / i1).collect();
         let outside = (0..3)
             .map(|k| {
-                let lo = body.nodes.iter().map(|p| p.xyz[k]).fold(f64::INFINITY, f64::min);
-                let hi = body.nodes.iter().map(|p| p.xyz[k]).fold(f64::NEG_INFINITY, f64::max);
+                let lo = body
+                    .nodes
+                    .iter()
+                    .map(|p| p.xyz[k])
+                    .fold(f64::INFINITY, f64::min);
+                let hi = body
+                    .nodes
+                    .iter()
+                    .map(|p| p.xyz[k])
+                    .fold(f64::NEG_INFINITY, f64::max);
                 let tol = 1e-9 * (hi - lo).abs().max(1e-300);
                 ((lo - tol) - cm[k]).max(cm[k] - (hi + tol)).max(0.0)
             })
             .fold(0.0, f64::max);
-        r.push("centre of mass inside the body's bounding box", outside, 0.0, format!("I2/I1 = ({:.6e}, {:.6e}, {:.6e})", cm[0], cm[1], cm[2]));
+        r.push(
+            "centre of mass inside the body's bounding box",
+            outside,
+            0.0,
+            format!("I2/I1 = ({:.6e}, {:.6e}, {:.6e})", cm[0], cm[1], cm[2]),
+        );
     }
     if inv.i7.len() == 9 {
         let t = Mat::from_fn(3, 3, |a, b| inv.i7[3 * a + b]);
-        let asym = (0..3).flat_map(|a| (0..3).map(move |b| (a, b))).map(|(a, b)| (t[(a, b)] - t[(b, a)]).abs()).fold(0.0, f64::max);
-        let ev = t.self_adjoint_eigenvalues(faer::Side::Lower).unwrap_or_default();
+        let asym = (0..3)
+            .flat_map(|a| (0..3).map(move |b| (a, b)))
+            .map(|(a, b)| (t[(a, b)] - t[(b, a)]).abs())
+            .fold(0.0, f64::max);
+        let ev = t
+            .self_adjoint_eigenvalues(faer::Side::Lower)
+            .unwrap_or_default();
         let min_ev = ev.first().copied().unwrap_or(-1.0);
         let max_ev = ev.last().copied().unwrap_or(1.0);
-        r.push("inertia tensor I7 symmetric positive definite", if min_ev > 0.0 { asym / max_ev } else { 1.0 }, 1e-12, format!("principal values {ev:?}"));
+        r.push(
+            "inertia tensor I7 symmetric positive definite",
+            if min_ev > 0.0 { asym / max_ev } else { 1.0 },
+            1e-12,
+            format!("principal values {ev:?}"),
+        );
     }
 
     // Rigid modes against the expectation.
     let fmax_stored = md.frequency_hz.iter().fold(0.0f64, |a, &b| a.max(b));
-    let rigid = md.frequency_hz.iter().filter(|&&f| f < 1e-4 * fmax_stored).count();
-    let expected = if body.method.reference_conditions.is_empty() { 6 } else { 0 };
-    let labelled = md.labels.iter().filter(|l| **l == file::ModeLabel::Rigid).count();
+    let rigid = md
+        .frequency_hz
+        .iter()
+        .filter(|&&f| f < 1e-4 * fmax_stored)
+        .count();
+    let expected = if body.method.reference_conditions.is_empty() {
+        6
+    } else {
+        0
+    };
+    let labelled = md
+        .labels
+        .iter()
+        .filter(|l| **l == file::ModeLabel::Rigid)
+        .count();
     r.push(
         "rigid-body modes as expected",
         (rigid as f64 - expected as f64).abs() + (labelled as f64 - rigid as f64).abs(),
         0.0,
-        format!("{rigid} modes below 1e-4·f_max (labelled rigid: {labelled}); expected {expected} ({})", if expected == 6 { "free body" } else { "reference conditions hold the body frame" }),
+        format!(
+            "{rigid} modes below 1e-4·f_max (labelled rigid: {labelled}); expected {expected} ({})",
+            if expected == 6 {
+                "free body"
+            } else {
+                "reference conditions hold the body frame"
+            }
+        ),
     );
 
     // Invariants recomputed from the stored nodes (only meaningful when every node is stored).
     let all_nodes = body.header.request.keep_nodes == file::KeepNodes::All;
     if all_nodes {
-        let points: Vec<MassPoint> = body.nodes.iter().zip(&body.nodal_mass).map(|(p, nm)| MassPoint { position: p.xyz, mass: nm.mass, inertia: nm.inertia }).collect();
-        let shapes = Mat::from_fn(6 * n, m, |row, j| md.shapes[(j * n + row / 6) * 6 + row % 6]);
-        if let Ok(re) = compute_invariants(&points, shapes.as_ref(), InvariantSet::Constant, Par::Seq) {
+        let points: Vec<MassPoint> = body
+            .nodes
+            .iter()
+            .zip(&body.nodal_mass)
+            .map(|(p, nm)| MassPoint {
+                position: p.xyz,
+                mass: nm.mass,
+                inertia: nm.inertia,
+            })
+            .collect();
+        let shapes = Mat::from_fn(6 * n, m, |row, j| {
+            md.shapes[(j * n + row / 6) * 6 + row % 6]
+        });
+        if let Ok(re) =
+            compute_invariants(&points, shapes.as_ref(), InvariantSet::Constant, Par::Seq)
+        {
             let rel = |a: f64, b: f64, scale: f64| (a - b).abs() / scale.max(f64::MIN_POSITIVE);
             let mut worst: f64 = rel(re.i1, i1, i1.abs());
-            let len = (inv.i7.iter().map(|v| v.abs()).fold(0.0, f64::max) / i1.max(f64::MIN_POSITIVE)).sqrt();
+            let len = (inv.i7.iter().map(|v| v.abs()).fold(0.0, f64::max)
+                / i1.max(f64::MIN_POSITIVE))
+            .sqrt();
             for k in 0..3 {
-                worst = worst.max(rel(re.i2[k], inv.i2.get(k).copied().unwrap_or(f64::NAN), i1 * len));
+                worst = worst.max(rel(
+                    re.i2[k],
+                    inv.i2.get(k).copied().unwrap_or(f64::NAN),
+                    i1 * len,
+                ));
             }
             for k in 0..9 {
-                worst = worst.max(rel(re.i7[k / 3][k % 3], inv.i7.get(k).copied().unwrap_or(f64::NAN), i1 * len * len));
+                worst = worst.max(rel(
+                    re.i7[k / 3][k % 3],
+                    inv.i7.get(k).copied().unwrap_or(f64::NAN),
+                    i1 * len * len,
+                ));
             }
             if inv.i6.len() == m * m {
                 if let Some(i6) = &re.i6 {
@@ -172,8 +286,15 @@ pub fn check(body: &file::ReducedBody, model: Option<&ModelInput>) -> Result<Che
             r.push("stored invariants = recomputation from stored nodes", worst, 1e-9, "I1, I2, I6, I7 relative (point masses with offsets are lumped to their node in the file)".into());
             if body.method.mass_kind == file::MassKind::Lumped {
                 if let Some(i6) = &re.i6 {
-                    let e = (0..m * m).map(|i| (i6[(i / m, i % m)] - md.generalized_mass[i]).abs()).fold(0.0, f64::max);
-                    r.push("I6 from stored shapes = generalized mass", e, 1e-6, "lumped mass: Σ m ΦᵀΦ + Φ*ᵀ I Φ* must equal Φᵀ M Φ = I".into());
+                    let e = (0..m * m)
+                        .map(|i| (i6[(i / m, i % m)] - md.generalized_mass[i]).abs())
+                        .fold(0.0, f64::max);
+                    r.push(
+                        "I6 from stored shapes = generalized mass",
+                        e,
+                        1e-6,
+                        "lumped mass: Σ m ΦᵀΦ + Φ*ᵀ I Φ* must equal Φᵀ M Φ = I".into(),
+                    );
                 }
             }
         }
@@ -185,16 +306,35 @@ pub fn check(body: &file::ReducedBody, model: Option<&ModelInput>) -> Result<Che
     Ok(r)
 }
 
-fn model_checks(body: &file::ReducedBody, input: &ModelInput, r: &mut CheckReport) -> Result<(), CheckError> {
+fn model_checks(
+    body: &file::ReducedBody,
+    input: &ModelInput,
+    r: &mut CheckReport,
+) -> Result<(), CheckError> {
     use crate::build::BuildError;
-    let mut model = import::read_model(&input.path, &ImportOptions { format: input.format, material: input.material.clone() }).map_err(BuildError::from)?;
+    let mut model = import::read_model(
+        &input.path,
+        &ImportOptions {
+            format: input.format,
+            material: input.material.clone(),
+        },
+    )
+    .map_err(BuildError::from)?;
     resolve_interfaces(&mut model, &input.interface, input.spider).map_err(BuildError::from)?;
     let mass = match body.method.mass_kind {
         file::MassKind::Lumped => fe::MassKind::Lumped,
         file::MassKind::Consistent => fe::MassKind::Consistent,
     };
-    let a = assemble(&model, &AssemblySpec { mass, ..Default::default() }).map_err(BuildError::from)?;
-    let red = eliminate(&model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).map_err(BuildError::from)?;
+    let a = assemble(
+        &model,
+        &AssemblySpec {
+            mass,
+            ..Default::default()
+        },
+    )
+    .map_err(BuildError::from)?;
+    let red = eliminate(&model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default())
+        .map_err(BuildError::from)?;
     let m = body.mode_count();
     let n_r = red.retained.len();
     let by_id = model.node_index_by_id();
@@ -205,7 +345,11 @@ fn model_checks(body: &file::ReducedBody, input: &ModelInput, r: &mut CheckRepor
     }
     let mut fixed = Vec::new();
     for rc in &body.method.reference_conditions {
-        let node = body.nodes.get(rc.node as usize).and_then(|p| by_id.get(&p.id)).copied();
+        let node = body
+            .nodes
+            .get(rc.node as usize)
+            .and_then(|p| by_id.get(&p.id))
+            .copied();
         if let Some(node) = node {
             for c in (0..usize::from(a.dofs.count[node])).filter(|&c| rc.dofs[c]) {
                 let d = reduced_index[a.dofs.first[node] + c];
@@ -217,42 +361,105 @@ fn model_checks(body: &file::ReducedBody, input: &ModelInput, r: &mut CheckRepor
     }
 
     // Frequencies against the full normal-mode solve.
-    let flexible: Vec<(usize, f64)> = body.modes.frequency_hz.iter().copied().enumerate().filter(|&(j, _)| body.modes.labels[j] != file::ModeLabel::Rigid).collect();
-    let wanted = (body.modes.labels.iter().filter(|l| **l == file::ModeLabel::Rigid).count() + flexible.len()).min(n_r.saturating_sub(fixed.len())).max(1);
-    let eig = EigenSpec { dofs_per_node: Some(3), ..Default::default() };
-    let full = crate::reduce::normal::normal_modes(&red.k, &red.m, ModeCount::Count(wanted), &fixed, &eig).map_err(BuildError::from)?;
-    let full_flex: Vec<f64> = full.frequencies_hz().into_iter().zip(&full.labels).filter(|(_, l)| **l != crate::reduce::ModeLabel::Rigid).map(|(f, _)| f).collect();
+    let flexible: Vec<(usize, f64)> = body
+        .modes
+        .frequency_hz
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|&(j, _)| body.modes.labels[j] != file::ModeLabel::Rigid)
+        .collect();
+    let wanted = (body
+        .modes
+        .labels
+        .iter()
+        .filter(|l| **l == file::ModeLabel::Rigid)
+        .count()
+        + flexible.len())
+    .min(n_r.saturating_sub(fixed.len()))
+    .max(1);
+    let eig = EigenSpec {
+        dofs_per_node: Some(3),
+        ..Default::default()
+    };
+    let full =
+        crate::reduce::normal::normal_modes(&red.k, &red.m, ModeCount::Count(wanted), &fixed, &eig)
+            .map_err(BuildError::from)?;
+    let full_flex: Vec<f64> = full
+        .frequencies_hz()
+        .into_iter()
+        .zip(&full.labels)
+        .filter(|(_, l)| **l != crate::reduce::ModeLabel::Rigid)
+        .map(|(f, _)| f)
+        .collect();
     let band = body.header.request.fmax_hz.unwrap_or(f64::INFINITY);
     let mut worst_err: f64 = 0.0;
     let mut worst_bound: f64 = 0.0;
     let mut compared = 0;
     for (q, (_, f)) in flexible.iter().enumerate() {
-        let Some(&f_full) = full_flex.get(q) else { break };
+        let Some(&f_full) = full_flex.get(q) else {
+            break;
+        };
         worst_bound = worst_bound.max((f_full - f) / f_full);
-        let in_band = if band.is_finite() { f_full <= band } else { q < full_flex.len().div_ceil(2) };
+        let in_band = if band.is_finite() {
+            f_full <= band
+        } else {
+            q < full_flex.len().div_ceil(2)
+        };
         if in_band {
             worst_err = worst_err.max((f - f_full).abs() / f_full);
             compared += 1;
         }
     }
-    r.push("Rayleigh–Ritz bound: reduced ≥ full frequencies", worst_bound, 1e-8, format!("max (f_full − f)/f_full over {} flexible modes", flexible.len().min(full_flex.len())));
-    r.push("frequencies vs full normal-mode solve", worst_err, FREQ_LIMIT, format!("max relative error over the {compared} flexible modes {}", if band.is_finite() { format!("below fmax = {band} Hz") } else { "in the lower half".into() }));
+    r.push(
+        "Rayleigh–Ritz bound: reduced ≥ full frequencies",
+        worst_bound,
+        1e-8,
+        format!(
+            "max (f_full − f)/f_full over {} flexible modes",
+            flexible.len().min(full_flex.len())
+        ),
+    );
+    r.push(
+        "frequencies vs full normal-mode solve",
+        worst_err,
+        FREQ_LIMIT,
+        format!(
+            "max relative error over the {compared} flexible modes {}",
+            if band.is_finite() {
+                format!("below fmax = {band} Hz")
+            } else {
+                "in the lower half".into()
+            }
+        ),
+    );
 
     // ΦᵀMΦ, ΦᵀKΦ and residuals against the model's matrices (needs every node's shape).
     if body.header.request.keep_nodes == file::KeepNodes::All {
-        let pos: std::collections::HashMap<u64, usize> = body.nodes.iter().enumerate().map(|(i, p)| (p.id, i)).collect();
+        let pos: std::collections::HashMap<u64, usize> = body
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (p.id, i))
+            .collect();
         let ns = body.node_count();
         let mut phi = Mat::<f64>::zeros(n_r, m);
         let mut missing = 0usize;
         for (i, &p) in red.retained.iter().enumerate() {
-            let Some((node, c)) = a.dofs.node_of(p) else { continue };
+            let Some((node, c)) = a.dofs.node_of(p) else {
+                continue;
+            };
             let Some(&q) = pos.get(&model.nodes[node].id) else {
                 missing += 1;
                 continue;
             };
             for j in 0..m {
                 let s = &body.modes.shapes[(j * ns + q) * 6..(j * ns + q) * 6 + 6];
-                let (base, v) = if c < 3 { (0, [s[0], s[1], s[2]]) } else { (3, [s[3], s[4], s[5]]) };
+                let (base, v) = if c < 3 {
+                    (0, [s[0], s[1], s[2]])
+                } else {
+                    (3, [s[3], s[4], s[5]])
+                };
                 // local = A · basic
                 phi[(i, j)] = match a.dofs.frames[node] {
                     None => v[c - base],
@@ -266,11 +473,29 @@ fn model_checks(body: &file::ReducedBody, input: &ModelInput, r: &mut CheckRepor
             let g = phi.transpose() * &mphi;
             let h = phi.transpose() * &kphi;
             let w2 = &body.modes.omega2;
-            let max_w2 = w2.iter().fold(0.0f64, |x, &y| x.max(y.abs())).max(f64::MIN_POSITIVE);
-            let ortho = (0..m * m).map(|i| (g[(i / m, i % m)] - if i / m == i % m { 1.0 } else { 0.0 }).abs()).fold(0.0, f64::max);
-            let stiff = (0..m * m).map(|i| (h[(i / m, i % m)] - if i / m == i % m { w2[i / m] } else { 0.0 }).abs()).fold(0.0, f64::max) / max_w2;
-            r.push("Φᵀ M Φ = I against the model", ortho, ORTHO_LIMIT, format!("{m} modes, {n_r} independent dofs"));
-            r.push("Φᵀ K Φ = diag(ω²) against the model", stiff, ORTHO_LIMIT, "relative to max ω²".into());
+            let max_w2 = w2
+                .iter()
+                .fold(0.0f64, |x, &y| x.max(y.abs()))
+                .max(f64::MIN_POSITIVE);
+            let ortho = (0..m * m)
+                .map(|i| (g[(i / m, i % m)] - if i / m == i % m { 1.0 } else { 0.0 }).abs())
+                .fold(0.0, f64::max);
+            let stiff = (0..m * m)
+                .map(|i| (h[(i / m, i % m)] - if i / m == i % m { w2[i / m] } else { 0.0 }).abs())
+                .fold(0.0, f64::max)
+                / max_w2;
+            r.push(
+                "Φᵀ M Φ = I against the model",
+                ortho,
+                ORTHO_LIMIT,
+                format!("{m} modes, {n_r} independent dofs"),
+            );
+            r.push(
+                "Φᵀ K Φ = diag(ω²) against the model",
+                stiff,
+                ORTHO_LIMIT,
+                "relative to max ω²".into(),
+            );
             let mut worst_res: f64 = 0.0;
             for j in (0..m).filter(|&j| body.modes.labels[j] != file::ModeLabel::Rigid) {
                 let (mut rn, mut kn) = (0.0, 0.0);
@@ -281,7 +506,12 @@ fn model_checks(body: &file::ReducedBody, input: &ModelInput, r: &mut CheckRepor
                 worst_res = worst_res.max((rn / kn.max(f64::MIN_POSITIVE)).sqrt());
             }
             if body.method.method == file::Method::NormalModes {
-                r.push("eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖", worst_res, 1e-6, "normal modes are eigenvectors of the model".into());
+                r.push(
+                    "eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖",
+                    worst_res,
+                    1e-6,
+                    "normal modes are eigenvectors of the model".into(),
+                );
             } else {
                 r.push("eigen residuals (reduced basis, for information)", worst_res, f64::INFINITY, "a reduced basis is not an eigenbasis of the full model: this measures truncation".into());
             }

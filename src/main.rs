@@ -132,7 +132,10 @@ fn inspect(file: &PathBuf, json: bool) -> anyhow::Result<()> {
 
 fn import_format(name: &Option<String>) -> anyhow::Result<Option<flexbody::import::Format>> {
     name.as_deref()
-        .map(|n| flexbody::import::Format::from_name(n).ok_or_else(|| anyhow::anyhow!("--format {n}: expected inp, bdf or msh")))
+        .map(|n| {
+            flexbody::import::Format::from_name(n)
+                .ok_or_else(|| anyhow::anyhow!("--format {n}: expected inp, bdf or msh"))
+        })
         .transpose()
 }
 
@@ -142,7 +145,12 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
     Ok(flexbody::build::BuildSpec {
         model: a.model.clone(),
         format: import_format(&a.model_args.format)?,
-        material: a.model_args.material.as_deref().map(parse_material).transpose()?,
+        material: a
+            .model_args
+            .material
+            .as_deref()
+            .map(parse_material)
+            .transpose()?,
         interface: a.model_args.interface.clone(),
         spider: parse_spider(&a.model_args.spider)?,
         method: parse_method(&a.method)?,
@@ -161,7 +169,9 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
 
 /// Current time as RFC 3339 UTC (civil-from-days, no time-zone database needed).
 fn utc_now() -> String {
-    let secs = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
     let (days, rem) = ((secs / 86_400) as i64, secs % 86_400);
     let z = days + 719_468;
     let era = z.div_euclid(146_097);
@@ -172,7 +182,12 @@ fn utc_now() -> String {
     let d = doy - (153 * mp + 2) / 5 + 1;
     let m = if mp < 10 { mp + 3 } else { mp - 9 };
     let y = yoe + era * 400 + i64::from(m <= 2);
-    format!("{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z", rem / 3600, rem % 3600 / 60, rem % 60)
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
 }
 
 fn build(a: &BuildArgs) -> anyhow::Result<()> {
@@ -182,10 +197,14 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
     let start = std::time::Instant::now();
     let mut progress = |stage: &str| {
         if !quiet {
-            eprintln!("flexbody: [{:7.2} s] {stage}", start.elapsed().as_secs_f64());
+            eprintln!(
+                "flexbody: [{:7.2} s] {stage}",
+                start.elapsed().as_secs_f64()
+            );
         }
     };
-    let out = flexbody::build::build(&spec, &mut progress).with_context(|| format!("cannot build {}", a.model.display()))?;
+    let out = flexbody::build::build(&spec, &mut progress)
+        .with_context(|| format!("cannot build {}", a.model.display()))?;
     flexbody::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
     let r = &out.report;
     if a.json {
@@ -222,8 +241,17 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
                 );
             }
         }
-        let times: Vec<String> = r.stages.iter().map(|(k, v)| format!("{k} {v:.2} s")).collect();
-        eprintln!("flexbody: {} dofs ({} independent); {}", r.dofs.0, r.dofs.1, times.join(", "));
+        let times: Vec<String> = r
+            .stages
+            .iter()
+            .map(|(k, v)| format!("{k} {v:.2} s"))
+            .collect();
+        eprintln!(
+            "flexbody: {} dofs ({} independent); {}",
+            r.dofs.0,
+            r.dofs.1,
+            times.join(", ")
+        );
         let f = &out.body.modes.frequency_hz;
         eprintln!(
             "flexbody: wrote {} — {} modes ({} rigid), {} nodes; first flexible modes: {}",
@@ -231,7 +259,13 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
             f.len(),
             out.body.method.counts.rigid,
             out.body.node_count(),
-            f.iter().zip(&out.body.modes.labels).filter(|(_, l)| **l != flexbody_reader::ModeLabel::Rigid).take(6).map(|(f, _)| format!("{f:.2} Hz")).collect::<Vec<_>>().join(", ")
+            f.iter()
+                .zip(&out.body.modes.labels)
+                .filter(|(_, l)| **l != flexbody_reader::ModeLabel::Rigid)
+                .take(6)
+                .map(|(f, _)| format!("{f:.2} Hz"))
+                .collect::<Vec<_>>()
+                .join(", ")
         );
     }
     Ok(())
@@ -239,13 +273,19 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
 
 fn check(a: &CheckArgs) -> anyhow::Result<bool> {
     use anyhow::Context;
-    let body = flexbody_reader::read(&a.file).with_context(|| format!("{} is not a valid flexbody file", a.file.display()))?;
+    let body = flexbody_reader::read(&a.file)
+        .with_context(|| format!("{} is not a valid flexbody file", a.file.display()))?;
     let model = match &a.model {
         None => None,
         Some(path) => Some(flexbody::check::ModelInput {
             path: path.clone(),
             format: import_format(&a.model_args.format)?,
-            material: a.model_args.material.as_deref().map(flexbody::options::parse_material).transpose()?,
+            material: a
+                .model_args
+                .material
+                .as_deref()
+                .map(flexbody::options::parse_material)
+                .transpose()?,
             interface: a.model_args.interface.clone(),
             spider: flexbody::options::parse_spider(&a.model_args.spider)?,
         }),
@@ -255,10 +295,22 @@ fn check(a: &CheckArgs) -> anyhow::Result<bool> {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         for i in &report.items {
-            println!("{} {:<52} {:>12.3e} (limit {:.1e})  {}", if i.pass { "ok  " } else { "FAIL" }, i.name, i.value, i.limit, i.detail);
+            println!(
+                "{} {:<52} {:>12.3e} (limit {:.1e})  {}",
+                if i.pass { "ok  " } else { "FAIL" },
+                i.name,
+                i.value,
+                i.limit,
+                i.detail
+            );
         }
         let failed = report.items.iter().filter(|i| !i.pass).count();
-        println!("{} checks, {} failed: {}", report.items.len(), failed, if failed == 0 { "PASS" } else { "FAIL" });
+        println!(
+            "{} checks, {} failed: {}",
+            report.items.len(),
+            failed,
+            if failed == 0 { "PASS" } else { "FAIL" }
+        );
     }
     Ok(report.passed())
 }

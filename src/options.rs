@@ -22,16 +22,43 @@ pub struct OptionError {
 }
 
 fn bad(option: &'static str, value: &str, expected: &str) -> OptionError {
-    OptionError { option, value: value.to_string(), expected: expected.to_string() }
+    OptionError {
+        option,
+        value: value.to_string(),
+        expected: expected.to_string(),
+    }
 }
 
-/// Unit-system presets: (names, [mass, length, time, force] as (name, SI factor)).
-pub const UNIT_PRESETS: &[(&[&str], [(&str, f64); 4])] = &[
-    (&["si", "m-kg-s", "mks"], [("kg", 1.0), ("m", 1.0), ("s", 1.0), ("N", 1.0)]),
-    (&["mm-t-s", "mmts"], [("t", 1000.0), ("mm", 1e-3), ("s", 1.0), ("N", 1.0)]),
-    (&["mm-kg-ms"], [("kg", 1.0), ("mm", 1e-3), ("ms", 1e-3), ("kN", 1000.0)]),
-    (&["cm-g-s", "cgs"], [("g", 1e-3), ("cm", 1e-2), ("s", 1.0), ("dyn", 1e-5)]),
-    (&["in-lbf-s", "ips"], [("lbf*s^2/in", 4.448_221_615_260_5 / 0.0254), ("in", 0.0254), ("s", 1.0), ("lbf", 4.448_221_615_260_5)]),
+/// One unit as (display name, SI factor).
+pub type UnitDef = (&'static str, f64);
+
+/// Unit-system presets: (names, [mass, length, time, force]).
+pub const UNIT_PRESETS: &[(&[&str], [UnitDef; 4])] = &[
+    (
+        &["si", "m-kg-s", "mks"],
+        [("kg", 1.0), ("m", 1.0), ("s", 1.0), ("N", 1.0)],
+    ),
+    (
+        &["mm-t-s", "mmts"],
+        [("t", 1000.0), ("mm", 1e-3), ("s", 1.0), ("N", 1.0)],
+    ),
+    (
+        &["mm-kg-ms"],
+        [("kg", 1.0), ("mm", 1e-3), ("ms", 1e-3), ("kN", 1000.0)],
+    ),
+    (
+        &["cm-g-s", "cgs"],
+        [("g", 1e-3), ("cm", 1e-2), ("s", 1.0), ("dyn", 1e-5)],
+    ),
+    (
+        &["in-lbf-s", "ips"],
+        [
+            ("lbf*s^2/in", 4.448_221_615_260_5 / 0.0254),
+            ("in", 0.0254),
+            ("s", 1.0),
+            ("lbf", 4.448_221_615_260_5),
+        ],
+    ),
 ];
 
 /// `--units`: a preset name (see [`UNIT_PRESETS`]).
@@ -41,16 +68,27 @@ pub fn parse_units(s: &str) -> Result<file::Units, OptionError> {
         .iter()
         .find(|(names, _)| names.contains(&key.as_str()))
         .ok_or_else(|| bad("units", s, "one of si, mm-t-s, mm-kg-ms, cm-g-s, in-lbf-s"))?;
-    let unit = |(name, si): (&str, f64)| file::Unit { name: name.to_string(), si };
-    Ok(file::Units { mass: unit(u[0]), length: unit(u[1]), time: unit(u[2]), force: unit(u[3]) })
+    let unit = |(name, si): UnitDef| file::Unit {
+        name: name.to_string(),
+        si,
+    };
+    Ok(file::Units {
+        mass: unit(u[0]),
+        length: unit(u[1]),
+        time: unit(u[2]),
+        force: unit(u[3]),
+    })
 }
 
 /// `--material E=…,nu=…,rho=…` (G derived as E / (2(1+ν))).
 pub fn parse_material(s: &str) -> Result<Material, OptionError> {
-    let expected = "E=<Young's modulus>,nu=<Poisson's ratio>,rho=<density>, e.g. E=210e9,nu=0.3,rho=7850";
+    let expected =
+        "E=<Young's modulus>,nu=<Poisson's ratio>,rho=<density>, e.g. E=210e9,nu=0.3,rho=7850";
     let (mut e, mut nu, mut rho) = (None, None, None);
     for part in s.split(',') {
-        let (k, v) = part.split_once('=').ok_or_else(|| bad("material", s, expected))?;
+        let (k, v) = part
+            .split_once('=')
+            .ok_or_else(|| bad("material", s, expected))?;
         let v: f64 = v.trim().parse().map_err(|_| bad("material", s, expected))?;
         match k.trim().to_ascii_lowercase().as_str() {
             "e" => e = Some(v),
@@ -59,11 +97,20 @@ pub fn parse_material(s: &str) -> Result<Material, OptionError> {
             _ => return Err(bad("material", s, expected)),
         }
     }
-    let (Some(e), Some(nu), Some(rho)) = (e, nu, rho) else { return Err(bad("material", s, expected)) };
-    if !(e > 0.0 && e.is_finite()) || !(-1.0 < nu && nu < 0.5) || !(rho >= 0.0 && rho.is_finite()) {
+    let (Some(e), Some(nu), Some(rho)) = (e, nu, rho) else {
+        return Err(bad("material", s, expected));
+    };
+    if !(e > 0.0 && e.is_finite() && -1.0 < nu && nu < 0.5 && rho >= 0.0 && rho.is_finite()) {
         return Err(bad("material", s, "E > 0, −1 < ν < 0.5 and ρ ≥ 0"));
     }
-    Ok(Material { id: 0, name: "CLI".into(), e, nu, g: e / (2.0 * (1.0 + nu)), rho })
+    Ok(Material {
+        id: 0,
+        name: "CLI".into(),
+        e,
+        nu,
+        g: e / (2.0 * (1.0 + nu)),
+        rho,
+    })
 }
 
 /// `--reference-conditions NODE:DOFS,…` with Nastran dof digits.
@@ -73,9 +120,16 @@ pub fn parse_reference_conditions(items: &[String]) -> Result<Vec<(u64, DofMask)
         .filter(|s| !s.trim().is_empty())
         .map(|s| {
             let expected = "NODE:DOFS with Nastran dof digits 1–6, e.g. 1:12";
-            let (n, d) = s.split_once(':').ok_or_else(|| bad("reference-conditions", s, expected))?;
-            let node: u64 = n.trim().parse().map_err(|_| bad("reference-conditions", s, expected))?;
-            let dofs = DofMask::from_digits(d).filter(|m| m.0 != 0).ok_or_else(|| bad("reference-conditions", s, expected))?;
+            let (n, d) = s
+                .split_once(':')
+                .ok_or_else(|| bad("reference-conditions", s, expected))?;
+            let node: u64 = n
+                .trim()
+                .parse()
+                .map_err(|_| bad("reference-conditions", s, expected))?;
+            let dofs = DofMask::from_digits(d)
+                .filter(|m| m.0 != 0)
+                .ok_or_else(|| bad("reference-conditions", s, expected))?;
             Ok((node, dofs))
         })
         .collect()
@@ -164,10 +218,19 @@ mod tests {
     fn names() {
         assert_eq!(parse_method("CB").unwrap(), BuildMethod::CraigBampton);
         assert_eq!(parse_method("dietz").unwrap(), BuildMethod::Dietz);
-        assert!(parse_method("guyan").unwrap_err().to_string().contains("cb, normal, craig-chang or dietz"));
-        assert_eq!(parse_keep_nodes("BIG_END"), KeepNodes::Set("BIG_END".into()));
+        assert!(parse_method("guyan")
+            .unwrap_err()
+            .to_string()
+            .contains("cb, normal, craig-chang or dietz"));
+        assert_eq!(
+            parse_keep_nodes("BIG_END"),
+            KeepNodes::Set("BIG_END".into())
+        );
         assert_eq!(parse_spider("none").unwrap(), SpiderKind::None);
-        assert_eq!(parse_invariants("partial").unwrap(), file::InvariantSet::Partial);
+        assert_eq!(
+            parse_invariants("partial").unwrap(),
+            file::InvariantSet::Partial
+        );
         assert_eq!(parse_mass("consistent").unwrap(), MassKind::Consistent);
     }
 }

@@ -1,6 +1,9 @@
 //! End to end (issue 6): `flexbody build` from a model file to a file the reader accepts, with
 //! invariants, `check`, and accuracy against full normal-mode solves of the same model.
 
+// Index loops mirror the matrix formulas (RᵀMR, the 6×6 rigid identity).
+#![allow(clippy::needless_range_loop)]
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -12,7 +15,9 @@ use flexbody::interface::SpiderKind;
 use flexbody_reader as file;
 
 fn shared(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared").join(p)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared")
+        .join(p)
 }
 
 fn conrod() -> PathBuf {
@@ -71,7 +76,10 @@ fn a_block_free_body_invariants_equal_mesh_mass_properties() {
     assert!((i1 / 9.8125 - 1.0).abs() < 1e-12, "I1 = {i1}, ρV = 9.8125");
     let centre = [0.25, 0.025, 0.025];
     for k in 0..3 {
-        assert!((inv.i2[k] / i1 - centre[k]).abs() < 1e-14, "centre of mass {k}");
+        assert!(
+            (inv.i2[k] / i1 - centre[k]).abs() < 1e-14,
+            "centre of mass {k}"
+        );
     }
     // I7 against RᵀMR from the assembled lumped mass matrix.
     let model = read_model(&model_path, &ImportOptions::default()).unwrap();
@@ -84,7 +92,11 @@ fn a_block_free_body_invariants_equal_mesh_mass_properties() {
             let mut w = [0.0; 3];
             w[axis] = 1.0;
             let x = node.x;
-            let u = [w[1] * x[2] - w[2] * x[1], w[2] * x[0] - w[0] * x[2], w[0] * x[1] - w[1] * x[0]];
+            let u = [
+                w[1] * x[2] - w[2] * x[1],
+                w[2] * x[0] - w[0] * x[2],
+                w[0] * x[1] - w[1] * x[0],
+            ];
             v[d0..d0 + 3].copy_from_slice(&u);
         }
         v
@@ -105,7 +117,11 @@ fn a_block_free_body_invariants_equal_mesh_mass_properties() {
         let mr = mv(&r[a_]);
         for b in 0..3 {
             let rmr: f64 = r[b].iter().zip(&mr).map(|(x, y)| x * y).sum();
-            assert!((inv.i7[3 * a_ + b] - rmr).abs() < 1e-10 * i7_max, "I7[{a_}][{b}] {} vs RᵀMR {rmr}", inv.i7[3 * a_ + b]);
+            assert!(
+                (inv.i7[3 * a_ + b] - rmr).abs() < 1e-10 * i7_max,
+                "I7[{a_}][{b}] {} vs RᵀMR {rmr}",
+                inv.i7[3 * a_ + b]
+            );
         }
     }
     // I6 = I (lumped reduction mass = the invariants' nodal masses).
@@ -113,22 +129,47 @@ fn a_block_free_body_invariants_equal_mesh_mass_properties() {
     let i6_err = max_abs((0..m * m).map(|i| inv.i6[i] - if i / m == i % m { 1.0 } else { 0.0 }));
     assert!(i6_err < 1e-10, "I6 − I = {i6_err:e}");
     // Rigid identity over the six rigid modes.
-    let rigid: Vec<usize> = (0..m).filter(|&j| body.modes.labels[j] == file::ModeLabel::Rigid).collect();
+    let rigid: Vec<usize> = (0..m)
+        .filter(|&j| body.modes.labels[j] == file::ModeLabel::Rigid)
+        .collect();
     assert_eq!(rigid.len(), 6);
-    let row = |k: usize, j: usize| if k < 3 { inv.i3[k * m + j] } else { inv.i4[(k - 3) * m + j] };
+    let row = |k: usize, j: usize| {
+        if k < 3 {
+            inv.i3[k * m + j]
+        } else {
+            inv.i4[(k - 3) * m + j]
+        }
+    };
     let i2 = &inv.i2;
-    let skew = [[0.0, -i2[2], i2[1]], [i2[2], 0.0, -i2[0]], [-i2[1], i2[0], 0.0]];
+    let skew = [
+        [0.0, -i2[2], i2[1]],
+        [i2[2], 0.0, -i2[0]],
+        [-i2[1], i2[0], 0.0],
+    ];
     for a_ in 0..6 {
         for b in 0..6 {
             let got: f64 = rigid.iter().map(|&j| row(a_, j) * row(b, j)).sum();
             let want = match (a_ < 3, b < 3) {
-                (true, true) => if a_ == b { i1 } else { 0.0 },
+                (true, true) => {
+                    if a_ == b {
+                        i1
+                    } else {
+                        0.0
+                    }
+                }
                 (true, false) => -skew[a_][b - 3],
                 (false, true) => skew[a_ - 3][b],
                 (false, false) => inv.i7[3 * (a_ - 3) + (b - 3)],
             };
-            let scale = if a_ < 3 && b < 3 { i1 } else { i7_max.max(i1 * 0.25) };
-            assert!((got - want).abs() < 1e-10 * scale, "rigid identity [{a_}][{b}]: {got} vs {want}");
+            let scale = if a_ < 3 && b < 3 {
+                i1
+            } else {
+                i7_max.max(i1 * 0.25)
+            };
+            assert!(
+                (got - want).abs() < 1e-10 * scale,
+                "rigid identity [{a_}][{b}]: {got} vs {want}"
+            );
         }
     }
 }
@@ -139,23 +180,55 @@ fn a_block_free_body_invariants_equal_mesh_mass_properties() {
 #[test]
 fn a_block_cb_on_end_faces_is_rayleigh_ritz_and_within_1pc_below_fmax() {
     let model_path = shared("reference/a_block_hex8/ccx_free.inp");
-    let mut s = spec(model_path.clone(), BuildMethod::CraigBampton, &["FIXED", "TIP"]);
+    let mut s = spec(
+        model_path.clone(),
+        BuildMethod::CraigBampton,
+        &["FIXED", "TIP"],
+    );
     s.fmax_hz = Some(3000.0);
     let out = build(&s, &mut |_| {}).unwrap();
     let body = &out.body;
     assert_eq!(body.method.counts.constraint, 12);
     assert_eq!(body.method.counts.rigid, 6);
-    let input = ModelInput { path: model_path, format: None, material: None, interface: s.interface.clone(), spider: SpiderKind::Rbe2 };
+    let input = ModelInput {
+        path: model_path,
+        format: None,
+        material: None,
+        interface: s.interface.clone(),
+        spider: SpiderKind::Rbe2,
+    };
     let report = check(body, Some(&input)).unwrap();
     for i in &report.items {
-        assert!(i.pass, "check `{}` failed: {} > {} ({})", i.name, i.value, i.limit, i.detail);
+        assert!(
+            i.pass,
+            "check `{}` failed: {} > {} ({})",
+            i.name, i.value, i.limit, i.detail
+        );
     }
-    let freq = report.items.iter().find(|i| i.name == "frequencies vs full normal-mode solve").unwrap();
-    assert!(freq.value < 0.01 && freq.detail.contains("below fmax = 3000 Hz"), "{freq:?}");
+    let freq = report
+        .items
+        .iter()
+        .find(|i| i.name == "frequencies vs full normal-mode solve")
+        .unwrap();
+    assert!(
+        freq.value < 0.01 && freq.detail.contains("below fmax = 3000 Hz"),
+        "{freq:?}"
+    );
     // The first bending pair: ccx gives 1043.155 Hz (consistent mass, no spiders); lumped mass
     // lowers it and the end-face spiders barely stiffen a slender block: measured 1040.57 Hz.
-    let flex: Vec<f64> = body.modes.frequency_hz.iter().zip(&body.modes.labels).filter(|(_, l)| **l != file::ModeLabel::Rigid).map(|(f, _)| *f).collect();
-    assert!((flex[0] / 1043.155 - 1.0).abs() < 0.005, "first flexible {} Hz", flex[0]);
+    let flex: Vec<f64> = body
+        .modes
+        .frequency_hz
+        .iter()
+        .zip(&body.modes.labels)
+        .filter(|(_, l)| **l != file::ModeLabel::Rigid)
+        .map(|(f, _)| *f)
+        .collect();
+    assert!(
+        (flex[0] / 1043.155 - 1.0).abs() < 0.005,
+        "first flexible {} Hz",
+        flex[0]
+    );
 }
 
 /// The bundled connecting rod, as the README builds it, through the real binary: the file is
@@ -169,7 +242,18 @@ fn conrod_cli_build_check_and_corrupted_file_fails_check() {
     let out = dir.join("conrod.flexbody");
     let model = conrod();
     let status = Command::new(exe)
-        .args(["build", model.to_str().unwrap(), "--interface", "BIG_END,SMALL_END", "--fmax", "3000", "--units", "si", "-q", "-o"])
+        .args([
+            "build",
+            model.to_str().unwrap(),
+            "--interface",
+            "BIG_END,SMALL_END",
+            "--fmax",
+            "3000",
+            "--units",
+            "si",
+            "-q",
+            "-o",
+        ])
         .arg(&out)
         .status()
         .unwrap();
@@ -177,25 +261,50 @@ fn conrod_cli_build_check_and_corrupted_file_fails_check() {
     let body = file::read(&out).unwrap();
     assert_eq!(body.nodes.iter().filter(|n| n.interface).count(), 2);
     let checked = Command::new(exe)
-        .args(["check", out.to_str().unwrap(), "--model", model.to_str().unwrap(), "--interface", "BIG_END,SMALL_END"])
+        .args([
+            "check",
+            out.to_str().unwrap(),
+            "--model",
+            model.to_str().unwrap(),
+            "--interface",
+            "BIG_END,SMALL_END",
+        ])
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&checked.stdout);
     assert_eq!(checked.status.code(), Some(0), "{text}");
-    assert!(text.contains("failed: PASS") || text.contains("0 failed"), "{text}");
+    assert!(
+        text.contains("failed: PASS") || text.contains("0 failed"),
+        "{text}"
+    );
 
     // Corrupt: scale the shapes of the first flexible mode by 1.01 (a valid file otherwise).
     let mut bad = body.clone();
-    let (n, j) = (bad.node_count(), bad.modes.labels.iter().position(|l| *l != file::ModeLabel::Rigid).unwrap());
+    let (n, j) = (
+        bad.node_count(),
+        bad.modes
+            .labels
+            .iter()
+            .position(|l| *l != file::ModeLabel::Rigid)
+            .unwrap(),
+    );
     for v in &mut bad.modes.shapes[j * n * 6..(j + 1) * n * 6] {
         *v *= 1.01;
     }
     let bad_path = dir.join("conrod_corrupted.flexbody");
     flexbody::write::write_reduced_body(&bad_path, &bad, &Default::default()).unwrap();
-    let checked = Command::new(exe).args(["check", bad_path.to_str().unwrap()]).output().unwrap();
+    let checked = Command::new(exe)
+        .args(["check", bad_path.to_str().unwrap()])
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&checked.stdout);
     assert_eq!(checked.status.code(), Some(1), "{text}");
-    assert!(text.lines().any(|l| l.starts_with("FAIL") && l.contains("I6 from stored shapes = generalized mass")), "{text}");
+    assert!(
+        text.lines().any(
+            |l| l.starts_with("FAIL") && l.contains("I6 from stored shapes = generalized mass")
+        ),
+        "{text}"
+    );
 }
 
 /// Normal modes with consistent mass of the bundled rod equal CalculiX's free-free run of the
@@ -212,12 +321,26 @@ fn conrod_consistent_normal_modes_equal_calculix() {
     let f = &out.body.modes.frequency_hz;
     assert_eq!(out.body.method.counts.rigid, 6);
     for (k, want) in ccx.iter().enumerate() {
-        assert!((f[6 + k] / want - 1.0).abs() < 2e-6, "mode {}: {} vs ccx {want}", 7 + k, f[6 + k]);
+        assert!(
+            (f[6 + k] / want - 1.0).abs() < 2e-6,
+            "mode {}: {} vs ccx {want}",
+            7 + k,
+            f[6 + k]
+        );
     }
     let (_, back) = write_and_read(&out.body, "conrod_nm.flexbody");
-    assert!(back.modes.frequency_hz.iter().zip(f).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(back
+        .modes
+        .frequency_hz
+        .iter()
+        .zip(f)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
     // keep-nodes interface with no interface: only the 0 interface nodes are stored, but the
     // invariants still come from every node (mass of the whole rod).
     assert_eq!(back.node_count(), 0);
-    assert!((back.invariants.i1[0] - 0.9663223).abs() < 1e-6, "I1 = {}", back.invariants.i1[0]);
+    assert!(
+        (back.invariants.i1[0] - 0.9663223).abs() < 1e-6,
+        "I1 = {}",
+        back.invariants.i1[0]
+    );
 }
