@@ -3,10 +3,10 @@
 //! orthonormalization by the second eigenproblem (Wang, Niu & Feng 2023 eqs. 24–31).
 
 use super::orthonormalize::orthonormalize;
-use super::select::{truncate, ModeCount};
+use super::select::{solve_count_with, ModeCount};
 use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
 use crate::solve::{
-    dense, lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, SparseColMat,
+    lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, SparseColMat,
     SparseLlt, DENSE_MAX,
 };
 use faer::Mat;
@@ -116,46 +116,15 @@ fn fixed_interface_modes(
             Ok(lowest_modes_factored(kii, mii, llt, 0.0, &spec)?)
         }
     };
-    let hz = |l: f64| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI);
-    match modes {
-        ModeCount::Count(0) => Ok(EigenSolution {
+    if modes == ModeCount::Count(0) {
+        return Ok(EigenSolution {
             eigenvalues: vec![],
             vectors: Mat::zeros(ni, 0),
             residuals: vec![],
             info: Default::default(),
-        }),
-        ModeCount::Count(c) => run(c.min(ni)),
-        ModeCount::All => {
-            let kd = sparse_ops::to_dense(kii.as_ref());
-            let md = sparse_ops::to_dense(mii.as_ref());
-            // all finite eigenvalues: try n, fall back to the count the dense solver reports
-            let (vals, vecs) = match dense::lowest(kd.as_ref(), md.as_ref(), ni, Some(0.0)) {
-                Ok(r) => r,
-                Err(crate::solve::SolveError::TooManyModes { available, .. }) => {
-                    dense::lowest(kd.as_ref(), md.as_ref(), available, Some(0.0))?
-                }
-                Err(e) => return Err(e.into()),
-            };
-            Ok(EigenSolution {
-                residuals: vec![0.0; vals.len()],
-                eigenvalues: vals,
-                vectors: vecs,
-                info: Default::default(),
-            })
-        }
-        ModeCount::BelowHz(f) => {
-            let mut c = 12usize.min(ni);
-            loop {
-                let s = run(c)?;
-                let last = *s.eigenvalues.last().unwrap_or(&0.0);
-                if hz(last) > f || c == ni {
-                    let keep = s.eigenvalues.iter().filter(|&&l| hz(l) <= f).count();
-                    return Ok(truncate(s, keep));
-                }
-                c = (2 * c).min(ni);
-            }
-        }
+        });
     }
+    solve_count_with(kii, mii, modes, Some(0.0), &run)
 }
 
 /// Craig–Bampton mode set: the basis orthonormalized by K̂N = M̂NΛ (exact I and diag(ω²)).

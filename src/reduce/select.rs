@@ -47,31 +47,43 @@ pub fn solve_count(
     count: ModeCount,
     eig: &EigenSpec,
 ) -> Result<EigenSolution, ReduceError> {
-    let n = k.nrows();
-    let run = |c: usize| {
-        lowest_modes(
+    let run = |c: usize| -> Result<EigenSolution, ReduceError> {
+        Ok(lowest_modes(
             k,
             m,
             &EigenSpec {
                 count: c,
                 ..eig.clone()
             },
-        )
+        )?)
     };
+    solve_count_with(k, m, count, eig.shift, &run)
+}
+
+/// [`solve_count`] with the solver of a given count supplied by the caller (e.g. one reusing an
+/// existing factorization); `shift` is used for the dense `All` path.
+pub fn solve_count_with(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    count: ModeCount,
+    shift: Option<f64>,
+    run: &dyn Fn(usize) -> Result<EigenSolution, ReduceError>,
+) -> Result<EigenSolution, ReduceError> {
+    let n = k.nrows();
     match count {
-        ModeCount::Count(c) => Ok(run(c.min(n))?),
+        ModeCount::Count(c) => run(c.min(n)),
         ModeCount::All => {
             let kd = crate::solve::sparse_ops::to_dense(k.as_ref());
             let md = crate::solve::sparse_ops::to_dense(m.as_ref());
             // all finite eigenvalues: the dense solver reports how many there are
-            let (vals, vecs) =
-                match crate::solve::dense::lowest(kd.as_ref(), md.as_ref(), n, eig.shift) {
-                    Ok(r) => r,
-                    Err(crate::solve::SolveError::TooManyModes { available, .. }) => {
-                        crate::solve::dense::lowest(kd.as_ref(), md.as_ref(), available, eig.shift)?
-                    }
-                    Err(e) => return Err(e.into()),
-                };
+            let (vals, vecs) = match crate::solve::dense::lowest(kd.as_ref(), md.as_ref(), n, shift)
+            {
+                Ok(r) => r,
+                Err(crate::solve::SolveError::TooManyModes { available, .. }) => {
+                    crate::solve::dense::lowest(kd.as_ref(), md.as_ref(), available, shift)?
+                }
+                Err(e) => return Err(e.into()),
+            };
             Ok(EigenSolution {
                 residuals: vec![0.0; vals.len()],
                 eigenvalues: vals,
