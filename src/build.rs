@@ -342,12 +342,7 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
 
     progress(STAGES[5]);
     let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi)?;
-    let inv = compute_invariants(
-        &points,
-        point_shapes.as_ref(),
-        invariant_set(spec.invariants),
-        Par::Seq,
-    )?;
+    let inv = compute_invariants(&points, point_shapes.as_ref(), spec.invariants, Par::Seq)?;
     lap(&mut report, STAGES[5]);
 
     progress(STAGES[6]);
@@ -373,16 +368,6 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
     )?;
     lap(&mut report, STAGES[6]);
     Ok(BuildOutput { body, report })
-}
-
-fn invariant_set(s: file::InvariantSet) -> crate::invariants::InvariantSet {
-    use crate::invariants::InvariantSet as I;
-    match s {
-        file::InvariantSet::Full => I::Full,
-        file::InvariantSet::Partial => I::Partial,
-        file::InvariantSet::Constant => I::Constant,
-        file::InvariantSet::Rigid => I::Rigid,
-    }
 }
 
 /// Rows `[ux uy uz rx ry rz]` of node `p` for mode `j` in the basic frame (zeros where the node

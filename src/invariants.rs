@@ -40,41 +40,20 @@ pub struct MassPoint {
     pub inertia: [[f64; 3]; 3],
 }
 
-/// Which invariants to compute and store (MSC Nastran `ADAMSMNF MINVAR`, Adams "inertia modeling").
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum InvariantSet {
-    /// All nine.
-    Full,
-    /// All but 5 and 9 (Adams' default "partial coupling").
-    Partial,
-    /// 1, 2, 6, 7.
-    Constant,
-    /// 1, 2, 7 (rigid body).
-    Rigid,
-}
+/// Which invariants to compute: the file's selection (MSC Nastran `ADAMSMNF MINVAR`, Adams
+/// "inertia modeling"), whose [`InvariantSet::mask`] says which of I1…I9 are on.
+pub use flexbody_reader::InvariantSet;
 
-impl InvariantSet {
-    /// Selection mask, entry k for invariant k+1.
-    pub fn mask(self) -> [bool; 9] {
-        match self {
-            InvariantSet::Full => [true; 9],
-            InvariantSet::Partial => [true, true, true, true, false, true, true, true, false],
-            InvariantSet::Constant => [true, true, false, false, false, true, true, false, false],
-            InvariantSet::Rigid => [true, true, false, false, false, false, true, false, false],
-        }
-    }
-
-    /// Bytes needed to hold the selected invariants for `modes` modes (I9 grows as 9·M²·8 bytes).
-    pub fn storage_bytes(self, modes: usize) -> usize {
-        let m = modes;
-        let sizes = [1, 3, 3 * m, 3 * m, 3 * m * m, m * m, 9, 9 * m, 9 * m * m];
-        self.mask()
-            .iter()
-            .zip(sizes)
-            .filter(|(on, _)| **on)
-            .map(|(_, s)| s * 8)
-            .sum()
-    }
+/// Bytes needed to hold the selected invariants for `modes` modes (I9 grows as 9·M²·8 bytes).
+pub fn storage_bytes(set: InvariantSet, modes: usize) -> usize {
+    let m = modes;
+    let sizes = [1, 3, 3 * m, 3 * m, 3 * m * m, m * m, 9, 9 * m, 9 * m * m];
+    set.mask()
+        .iter()
+        .zip(sizes)
+        .filter(|(on, _)| **on)
+        .map(|(_, s)| s * 8)
+        .sum()
 }
 
 /// The invariants; the ones not selected are `None`.
@@ -572,7 +551,7 @@ mod tests {
             compute_invariants(&pts, sh.as_ref(), InvariantSet::Partial, Par::Seq).unwrap();
         assert!(partial.i5.is_none() && partial.i9.is_none() && partial.i8.is_some());
         assert_eq!(
-            InvariantSet::Full.storage_bytes(10) - InvariantSet::Partial.storage_bytes(10),
+            storage_bytes(InvariantSet::Full, 10) - storage_bytes(InvariantSet::Partial, 10),
             (30 * 10 + 9 * 100) * 8
         );
         let bad =
