@@ -168,6 +168,35 @@ impl<'a> InertiaRelief<'a> {
     }
 }
 
+/// X = [Xn Xl] (free-free modes, the first `nr` rigid, then one load response per column of
+/// `fa`) labelled and orthonormalized by K̂N = M̂NΛ with dependent vectors removed — the last
+/// step shared by Craig–Chang and Dietz.
+pub(crate) fn stacked_basis(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    xn: &Mat<f64>,
+    nr: usize,
+    xl: &Mat<f64>,
+    fa: &Mat<f64>,
+    load_label: fn(usize) -> ModeLabel,
+) -> Result<super::Orthonormalized, ReduceError> {
+    let (n, nn, na) = (xn.nrows(), xn.ncols(), xl.ncols());
+    let mut x = Mat::<f64>::zeros(n, nn + na);
+    x.as_mut().subcols_mut(0, nn).copy_from(xn.as_ref());
+    x.as_mut().subcols_mut(nn, na).copy_from(xl.as_ref());
+    let mut labels: Vec<ModeLabel> = (0..nn)
+        .map(|j| {
+            if j < nr {
+                ModeLabel::Rigid
+            } else {
+                ModeLabel::Normal
+            }
+        })
+        .collect();
+    labels.extend((0..na).map(|j| load_label(load_dof(fa, j))));
+    orthonormalize(k, m, &x, &labels)
+}
+
 /// Craig–Chang mode set from free-free modes (`modes`, rigid ones included) and attachment loads
 /// `fa` (n × na, e.g. [`unit_loads`] of the interface dofs).
 pub fn craig_chang(
@@ -190,24 +219,9 @@ pub fn craig_chang(
     let ir = InertiaRelief::new(k, m, xr, eig)?;
     let fe = ir.equilibrate(fa);
     let xa = ir.solve_equilibrated(&fe);
-    let nn = xn.eigenvalues.len();
-    let na = fa.ncols();
-    let mut x = Mat::<f64>::zeros(n, nn + na);
-    x.as_mut().subcols_mut(0, nn).copy_from(xn.vectors.as_ref());
-    x.as_mut().subcols_mut(nn, na).copy_from(xa.as_ref());
-    let mut labels: Vec<ModeLabel> = (0..nn)
-        .map(|j| {
-            if j < nr {
-                ModeLabel::Rigid
-            } else {
-                ModeLabel::Normal
-            }
-        })
-        .collect();
-    labels.extend((0..na).map(|j| ModeLabel::Attachment {
-        dof: load_dof(fa, j),
-    }));
-    let o = orthonormalize(k, m, &x, &labels)?;
+    let o = stacked_basis(k, m, &xn.vectors, nr, &xa, fa, |dof| {
+        ModeLabel::Attachment { dof }
+    })?;
     let mut diagnostics = o.diagnostics;
     diagnostics.notes.push(format!(
         "statically determinate support (automatic): dofs {:?}",
@@ -220,7 +234,7 @@ pub fn craig_chang(
             diagnostics.dependency_tol
         ));
     }
-    let attachment = (0..na).map(|j| load_dof(fa, j)).collect();
+    let attachment = (0..fa.ncols()).map(|j| load_dof(fa, j)).collect();
     Ok(ModeSet {
         phi: o.phi,
         omega2: o.omega2,

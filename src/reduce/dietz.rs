@@ -10,8 +10,7 @@
 //! solves K y = Fe + ℓ M y by the inertia-relief fixed point y ← G(Fe + ℓMy), which contracts
 //! with rate ℓ/λ₁ (1/4 by default).
 
-use super::craig_chang::{free_free, load_dof, InertiaRelief};
-use super::orthonormalize::orthonormalize;
+use super::craig_chang::{free_free, load_dof, stacked_basis, InertiaRelief};
 use super::select::ModeCount;
 use super::{Method, ModeLabel, ModeSet, ReduceError};
 use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
@@ -22,33 +21,6 @@ pub const DEFAULT_SHIFT_FRACTION: f64 = 0.25;
 
 /// Relative convergence of the static procedure's fixed point.
 const FIXED_POINT_TOL: f64 = 1e-13;
-
-fn combine(
-    k: &SparseColMat<usize, f64>,
-    m: &SparseColMat<usize, f64>,
-    xn: &Mat<f64>,
-    nr: usize,
-    xf: &Mat<f64>,
-    fa: &Mat<f64>,
-) -> Result<super::Orthonormalized, ReduceError> {
-    let (n, nn, na) = (xn.nrows(), xn.ncols(), xf.ncols());
-    let mut x = Mat::<f64>::zeros(n, nn + na);
-    x.as_mut().subcols_mut(0, nn).copy_from(xn.as_ref());
-    x.as_mut().subcols_mut(nn, na).copy_from(xf.as_ref());
-    let mut labels: Vec<ModeLabel> = (0..nn)
-        .map(|j| {
-            if j < nr {
-                ModeLabel::Rigid
-            } else {
-                ModeLabel::Normal
-            }
-        })
-        .collect();
-    labels.extend((0..na).map(|j| ModeLabel::FrequencyResponse {
-        dof: load_dof(fa, j),
-    }));
-    orthonormalize(k, m, &x, &labels)
-}
 
 fn finish(o: super::Orthonormalized, method: Method, note: String) -> ModeSet {
     let mut diagnostics = o.diagnostics;
@@ -119,7 +91,9 @@ pub fn dietz(
     } else {
         y
     };
-    let o = combine(k, m, &xn.vectors, nr, &xf, fa)?;
+    let o = stacked_basis(k, m, &xn.vectors, nr, &xf, fa, |dof| {
+        ModeLabel::FrequencyResponse { dof }
+    })?;
     let note = format!(
         "Dietz static procedure: l = {ell:e} ({iters} fixed-point steps), support {:?}",
         ir.support
@@ -173,7 +147,9 @@ pub fn dietz_modified(
         .as_ref()
         .subcols(0, modes.min(xe.eigenvalues.len()))
         .to_owned();
-    let o = combine(k, m, &xn, nr, &xf, fa)?;
+    let o = stacked_basis(k, m, &xn, nr, &xf, fa, |dof| ModeLabel::FrequencyResponse {
+        dof,
+    })?;
     let note = format!("Dietz modified procedure: l = {ell:e}, extended set of {extended} modes");
     let attachment = (0..fa.ncols()).map(|j| load_dof(fa, j)).collect();
     Ok(finish(
