@@ -3,7 +3,8 @@
 //!
 //! ```text
 //! import ─► interface spiders ─► assemble K, M ─► eliminate (u = T u_r) ─► reduce ─► Φ = T Φ_r
-//!        ─► mass points (lumped, every node + point masses) ─► invariants ─► keep nodes ─► body
+//!        ─► mass points (lumped, every node + point masses) ─► invariants ─► keep nodes
+//!        ─► stress/strain shapes at the kept nodes (when asked) ─► body
 //! ```
 //!
 //! Every stage is a call into its own module; this one only connects them, converts between the
@@ -25,6 +26,7 @@ use crate::model::{DofMask, Material, Model, NodeIndex};
 use crate::reduce::select::{self, ModeCount};
 use crate::reduce::{self, ModeSet};
 use crate::solve::EigenSpec;
+use crate::stress::{modal_fields, FieldRequest, ModalFields};
 
 /// Reduction method asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -83,6 +85,8 @@ pub struct BuildSpec {
     pub keep_nodes: KeepNodes,
     /// Invariant selection.
     pub invariants: file::InvariantSet,
+    /// Modal stress/strain shapes of the solid elements at the stored nodes.
+    pub fields: FieldRequest,
     /// Title for the header (default: the model file name).
     pub title: Option<String>,
     /// Creation time to record (only when the user asks; default output is deterministic).
@@ -134,6 +138,9 @@ pub enum BuildError {
     /// Invariants could not be formed.
     #[error(transparent)]
     Invariants(#[from] crate::invariants::InvariantError),
+    /// Stress/strain shapes could not be recovered.
+    #[error(transparent)]
+    Fields(#[from] crate::stress::StressError),
     /// The request does not fit the model.
     #[error("{file}: {message}")]
     Request {
@@ -145,18 +152,44 @@ pub enum BuildError {
 }
 
 /// Stages reported to the progress callback, in order.
-pub const STAGES: [&str; 7] = [
+pub const STAGES: [&str; 8] = [
     "import",
     "interfaces",
     "assembly",
     "constraints",
     "reduction",
     "invariants",
+    "stress shapes",
     "assemble file",
 ];
 
 /// Run the pipeline. `progress(stage)` is called as each stage starts.
 pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOutput, BuildError> {
+    let clock = Instant::now();
+    progress(STAGES[0]);
+    let model = import::read_model(
+        &spec.model,
+        &ImportOptions {
+            format: spec.format,
+            material: spec.material.clone(),
+        },
+    )?;
+    let import_s = clock.elapsed().as_secs_f64();
+    let mut out = build_model(spec, model, progress)?;
+    out.report
+        .stages
+        .insert(0, (STAGES[0].to_string(), import_s));
+    Ok(out)
+}
+
+/// The pipeline after import, for a model already in memory (generated meshes, models edited
+/// by a program); `spec.model` only names it in messages and the header. `progress(stage)` is
+/// called as each stage starts.
+pub fn build_model(
+    spec: &BuildSpec,
+    mut model: Model,
+    progress: &mut dyn FnMut(&str),
+) -> Result<BuildOutput, BuildError> {
     let mut report = BuildReport::default();
     let mut clock = Instant::now();
     let mut lap = |report: &mut BuildReport, name: &str| {
@@ -170,22 +203,12 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
         file: file_name.clone(),
         message,
     };
-
-    progress(STAGES[0]);
-    let mut model = import::read_model(
-        &spec.model,
-        &ImportOptions {
-            format: spec.format,
-            material: spec.material.clone(),
-        },
-    )?;
     report.warnings.extend(
         model
             .warnings
             .iter()
             .map(|w| format!("{}: {}", w.file, w.message)),
     );
-    lap(&mut report, STAGES[0]);
 
     progress(STAGES[1]);
     if spec.method != BuildMethod::Normal && spec.interface.is_empty() {
@@ -345,7 +368,6 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
     let inv = compute_invariants(&points, point_shapes.as_ref(), spec.invariants, Par::Seq)?;
     lap(&mut report, STAGES[5]);
 
-    progress(STAGES[6]);
     let faces = graphics_faces(&model);
     let always: Vec<NodeIndex> = interface_nodes
         .iter()
@@ -353,6 +375,31 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
         .chain(reference_records.iter().map(|r| r.0))
         .collect();
     let stored = stored_nodes(&model, &spec.keep_nodes, &always, &faces).map_err(request_err)?;
+    let fields = if spec.fields.is_empty() {
+        None
+    } else {
+        progress(STAGES[6]);
+        let u = |p: NodeIndex, j: usize| -> [f64; 3] {
+            let s = node_shape(dofs, &phi, p, j);
+            [s[0], s[1], s[2]]
+        };
+        let f = modal_fields(&model, &stored, phi.ncols(), &u, spec.fields)?;
+        if f.nodes.is_empty() {
+            report.warnings.push(
+                "stress/strain shapes asked for, but no stored node belongs to a solid element: none written".into(),
+            );
+        }
+        if f.centroid_fallbacks > 0 {
+            report.warnings.push(format!(
+                "stress/strain shapes: {} element corners have a non-positive Jacobian (strongly distorted elements); their centroid values were used there",
+                f.centroid_fallbacks
+            ));
+        }
+        lap(&mut report, STAGES[6]);
+        Some(f).filter(|f| !f.nodes.is_empty())
+    };
+
+    progress(STAGES[7]);
     let body = assemble_body(
         spec,
         &model,
@@ -365,8 +412,9 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
         &faces,
         &nodal,
         &inv,
+        fields.as_ref(),
     )?;
-    lap(&mut report, STAGES[6]);
+    lap(&mut report, STAGES[7]);
     Ok(BuildOutput { body, report })
 }
 
@@ -575,6 +623,7 @@ fn assemble_body(
     faces: &[crate::faces::GraphicsFace],
     nodal: &NodalMass,
     inv: &crate::invariants::Invariants,
+    fields: Option<&ModalFields>,
 ) -> Result<file::ReducedBody, BuildError> {
     let mut position = vec![u32::MAX; model.nodes.len()];
     for (i, &n) in stored.iter().enumerate() {
@@ -777,8 +826,21 @@ fn assemble_body(
                 dependency_tolerance: Some(set.diagnostics.dependency_tol),
             },
         },
-        stress_shapes: None,
-        strain_shapes: None,
+        stress_shapes: fields.and_then(|f| field_shapes(f, f.stress.as_ref(), &position)),
+        strain_shapes: fields.and_then(|f| field_shapes(f, f.strain.as_ref(), &position)),
         damping: None,
+    })
+}
+
+/// Recovered fields → the file's entry: node indices become positions in the stored node list
+/// (the fields were recovered at stored nodes only, so every position exists).
+fn field_shapes(
+    f: &ModalFields,
+    values: Option<&Vec<f64>>,
+    position: &[u32],
+) -> Option<file::FieldShapes> {
+    values.map(|v| file::FieldShapes {
+        nodes: f.nodes.iter().map(|&n| position[n]).collect(),
+        values: v.clone(),
     })
 }

@@ -13,6 +13,7 @@
 //! * [`solve`] — sparse Cholesky with METIS ordering and the block shift-invert eigensolver.
 //! * [`reduce`] — normal modes, Craig–Bampton, Craig–Chang, Dietz, reference conditions.
 //! * [`write`](mod@write) — the reduced-body file writer (types from the `flexbody-reader` crate).
+//! * [`stress`] — modal stress and strain shapes of solid elements (nodal averages).
 //! * [`inspect`] — the summary `flexbody inspect` prints (mass properties, modes, entries).
 //!
 //! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.
@@ -30,4 +31,5 @@ pub mod model;
 pub mod options;
 pub mod reduce;
 pub mod solve;
+pub mod stress;
 pub mod write;

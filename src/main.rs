@@ -16,7 +16,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Build a reduced flexible-body file from an FE model (.inp, .bdf, .msh).
-    Build(BuildArgs),
+    Build(Box<BuildArgs>),
     /// Print what a .flexbody file holds: header, units, counts, mass properties, modes, entries.
     Inspect {
         /// The .flexbody file.
@@ -87,6 +87,14 @@ struct BuildArgs {
     /// Invariant 9 costs 72·M² bytes for M modes.
     #[arg(long, default_value = "full")]
     invariants: String,
+    /// Store modal stress and strain shapes of the solid elements at the kept nodes (nodal
+    /// averages, body axes, xx yy zz xy yz zx): both (default when given), stress or strain.
+    /// Costs 48·M bytes per kept node and field for M modes.
+    #[arg(long, num_args = 0..=1, default_missing_value = "both", value_name = "FIELDS")]
+    stress_modes: Option<String>,
+    /// No stress or strain shapes (the default; for scripts that want to say so).
+    #[arg(long, conflicts_with = "stress_modes")]
+    no_stress: bool,
     /// Title stored in the header (default: the model file name).
     #[arg(long)]
     title: Option<String>,
@@ -162,6 +170,11 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
         units: parse_units(&a.units)?,
         keep_nodes: parse_keep_nodes(&a.keep_nodes),
         invariants: parse_invariants(&a.invariants)?,
+        fields: parse_field_request(if a.no_stress {
+            None
+        } else {
+            a.stress_modes.as_deref()
+        })?,
         title: a.title.clone(),
         created_utc: a.timestamp.then(utc_now),
     })
@@ -193,19 +206,17 @@ fn utc_now() -> String {
 fn build(a: &BuildArgs) -> anyhow::Result<()> {
     use anyhow::Context;
     let spec = build_spec(a)?;
-    let quiet = a.quiet || a.json;
-    let start = std::time::Instant::now();
-    let mut progress = |stage: &str| {
-        if !quiet {
-            eprintln!(
-                "flexbody: [{:7.2} s] {stage}",
-                start.elapsed().as_secs_f64()
-            );
-        }
+    let mut progress = StageProgress::new(a.quiet || a.json);
+    let mut run = || -> anyhow::Result<flexbody::build::BuildOutput> {
+        let out = flexbody::build::build(&spec, &mut |stage| progress.stage(stage))
+            .with_context(|| format!("cannot build {}", a.model.display()))?;
+        progress.stage("write");
+        flexbody::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
+        Ok(out)
     };
-    let out = flexbody::build::build(&spec, &mut progress)
-        .with_context(|| format!("cannot build {}", a.model.display()))?;
-    flexbody::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
+    let result = run();
+    progress.finish();
+    let out = result?;
     let r = &out.report;
     if a.json {
         let summary = serde_json::json!({
@@ -241,16 +252,11 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
                 );
             }
         }
-        let times: Vec<String> = r
-            .stages
-            .iter()
-            .map(|(k, v)| format!("{k} {v:.2} s"))
-            .collect();
         eprintln!(
-            "flexbody: {} dofs ({} independent); {}",
+            "flexbody: {} dofs ({} independent); total {:.2} s",
             r.dofs.0,
             r.dofs.1,
-            times.join(", ")
+            r.stages.iter().map(|(_, t)| t).sum::<f64>()
         );
         let f = &out.body.modes.frequency_hz;
         eprintln!(
@@ -269,6 +275,63 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// Stage progress on stderr: on a terminal a spinner shows the running stage and its elapsed
+/// time; every finished stage leaves one line with its duration (also when stderr is a log).
+struct StageProgress {
+    quiet: bool,
+    bar: Option<indicatif::ProgressBar>,
+    current: Option<(String, std::time::Instant)>,
+}
+
+impl StageProgress {
+    fn new(quiet: bool) -> StageProgress {
+        let bar = (!quiet).then(|| {
+            let bar = indicatif::ProgressBar::new_spinner();
+            if let Ok(style) =
+                indicatif::ProgressStyle::with_template("flexbody: {spinner} {msg:<14} {elapsed}")
+            {
+                bar.set_style(style);
+            }
+            bar.enable_steady_tick(std::time::Duration::from_millis(120));
+            bar
+        });
+        StageProgress {
+            quiet,
+            bar,
+            current: None,
+        }
+    }
+
+    fn stage(&mut self, name: &str) {
+        self.end_current();
+        self.current = Some((name.to_string(), std::time::Instant::now()));
+        if let Some(bar) = &self.bar {
+            bar.set_message(name.to_string());
+        }
+    }
+
+    fn end_current(&mut self) {
+        let Some((name, t)) = self.current.take() else {
+            return;
+        };
+        if self.quiet {
+            return;
+        }
+        let line = format!("flexbody: {name:<14} {:8.2} s", t.elapsed().as_secs_f64());
+        match &self.bar {
+            Some(bar) if !bar.is_hidden() => bar.println(line),
+            _ => eprintln!("{line}"),
+        }
+    }
+
+    fn finish(&mut self) {
+        self.end_current();
+        if let Some(bar) = self.bar.take() {
+            bar.finish_and_clear();
+        }
+    }
 }
 
 fn check(a: &CheckArgs) -> anyhow::Result<bool> {

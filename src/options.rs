@@ -175,6 +175,19 @@ pub fn parse_keep_nodes(s: &str) -> KeepNodes {
     }
 }
 
+/// `--stress-modes [both|stress|strain]` (absent: none).
+pub fn parse_field_request(s: Option<&str>) -> Result<crate::stress::FieldRequest, OptionError> {
+    use crate::stress::FieldRequest;
+    let (stress, strain) = match s.map(str::to_ascii_lowercase).as_deref() {
+        None => (false, false),
+        Some("both") => (true, true),
+        Some("stress") => (true, false),
+        Some("strain") => (false, true),
+        Some(other) => return Err(bad("--stress-modes", other, "both, stress or strain")),
+    };
+    Ok(FieldRequest { stress, strain })
+}
+
 /// `--invariants`.
 pub fn parse_invariants(s: &str) -> Result<file::InvariantSet, OptionError> {
     match s.to_ascii_lowercase().as_str() {

@@ -40,6 +40,7 @@ fn spec(model: PathBuf, method: BuildMethod, interface: &[&str]) -> BuildSpec {
         units: file::Units::si(),
         keep_nodes: KeepNodes::All,
         invariants: file::InvariantSet::Full,
+        fields: Default::default(),
         title: None,
         created_utc: None,
     }
@@ -251,6 +252,7 @@ fn conrod_cli_build_check_and_corrupted_file_fails_check() {
             "3000",
             "--units",
             "si",
+            "--stress-modes",
             "-q",
             "-o",
         ])
@@ -260,6 +262,39 @@ fn conrod_cli_build_check_and_corrupted_file_fails_check() {
     assert!(status.success());
     let body = file::read(&out).unwrap();
     assert_eq!(body.nodes.iter().filter(|n| n.interface).count(), 2);
+    // Stress shapes: every tet node carries values (not the two spider centres); rigid-body
+    // modes are strain-free, so their stress is round-off next to the flexible modes'.
+    let stress = body
+        .stress_shapes
+        .as_ref()
+        .expect("--stress-modes stores stress");
+    assert!(
+        body.strain_shapes.is_some(),
+        "--stress-modes stores strain too"
+    );
+    assert_eq!(stress.nodes.len(), body.node_count() - 2);
+    let k = stress.nodes.len();
+    let mode_max = |j: usize| max_abs(stress.values[j * k * 6..(j + 1) * k * 6].iter().copied());
+    let labels = &body.modes.labels;
+    let flexible_max = (0..labels.len())
+        .filter(|&j| labels[j] != file::ModeLabel::Rigid)
+        .map(mode_max)
+        .fold(f64::INFINITY, f64::min);
+    let rigid_max = (0..labels.len())
+        .filter(|&j| labels[j] == file::ModeLabel::Rigid)
+        .map(mode_max)
+        .fold(0.0, f64::max);
+    assert_eq!(body.method.counts.rigid, 6);
+    assert!(
+        rigid_max < 1e-6 * flexible_max,
+        "rigid-mode stress {rigid_max:e} vs flexible {flexible_max:e}"
+    );
+    let inspected = Command::new(exe)
+        .args(["inspect", "--json", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&inspected.stdout);
+    assert!(text.contains("stress_shapes.bin"), "{text}");
     let checked = Command::new(exe)
         .args([
             "check",

@@ -1,0 +1,427 @@
+//! Modal stress and strain shapes of solid elements: for each mode, the strain at every element
+//! node from the shape-function gradients, Hooke's law for the stress, and the average over the
+//! elements that share a node (the "corner" recovery of Nastran's MNF and RecurDyn's RFI
+//! export).
+//!
+//! Values are in the basic (body) frame, Voigt order **xx yy zz xy yz zx**, per unit modal
+//! coordinate; strain shear components are engineering strains γ = 2ε (format spec §5.8).
+//! Only solid elements carry fields; a node touched by no solid element gets none. Nodal
+//! averaging mixes the values of elements of different materials at a shared node, as every
+//! corner-averaging post-processor does; the jump is not resolved.
+
+use crate::fe::elements::{self, hex20, hex8, map_point, prism6, tet10, tet4, ElementError, Xyz};
+use crate::model::{ElementKind, Model, NodeIndex};
+
+/// Which field shapes to recover.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FieldRequest {
+    /// Stress shapes (force/length²).
+    pub stress: bool,
+    /// Strain shapes (engineering shear).
+    pub strain: bool,
+}
+
+impl FieldRequest {
+    /// Nothing asked for.
+    pub fn is_empty(self) -> bool {
+        !(self.stress || self.strain)
+    }
+}
+
+/// Nodal field shapes, mode-major `values[(j*K + q)*6 + c]` over the K listed nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModalFields {
+    /// Nodes that carry values, ascending (those of the wanted nodes that a solid touches).
+    pub nodes: Vec<NodeIndex>,
+    /// Stress shapes, when asked for.
+    pub stress: Option<Vec<f64>>,
+    /// Strain shapes, when asked for.
+    pub strain: Option<Vec<f64>>,
+    /// Element corners whose Jacobian is not positive (strongly distorted elements): the value
+    /// used there is the element's centroid value.
+    pub centroid_fallbacks: usize,
+}
+
+/// Why fields could not be recovered.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum StressError {
+    /// An element cannot be evaluated at all (no valid material, degenerate at its centroid).
+    #[error("{file}: element {id} ({kind:?}): {message}")]
+    Element {
+        /// Model file.
+        file: String,
+        /// External element id.
+        id: u64,
+        /// Element kind.
+        kind: ElementKind,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Physical shape-function gradients ∂N_b/∂x at each of the element's own nodes (index a), plus
+/// the number of corners where the map is degenerate (the centroid gradients stand in there).
+type NodalGradients = (Vec<Vec<Xyz>>, usize);
+
+/// Gradients ∂N_b/∂x_i at ξ = ξ_a for every node a (isoparametric map, `map_point`).
+fn nodal_gradients<const N: usize>(
+    x: &[Xyz; N],
+    shape: elements::ShapeFn<N>,
+    reference_nodes: &[Xyz; N],
+    centroid: Xyz,
+) -> Result<NodalGradients, ElementError> {
+    let mut fallbacks = 0;
+    let mut centre: Option<[Xyz; N]> = None;
+    let mut out = Vec::with_capacity(N);
+    for (a, xi) in reference_nodes.iter().enumerate() {
+        let g = match map_point(x, shape, xi, a) {
+            Ok((_, g, _)) => g,
+            Err(_) => {
+                fallbacks += 1;
+                match centre {
+                    Some(g) => g,
+                    None => {
+                        let g = map_point(x, shape, &centroid, N)?.1;
+                        centre = Some(g);
+                        g
+                    }
+                }
+            }
+        };
+        out.push(g.to_vec());
+    }
+    Ok((out, fallbacks))
+}
+
+fn coords<const N: usize>(model: &Model, nodes: &[NodeIndex]) -> [Xyz; N] {
+    std::array::from_fn(|i| model.nodes[nodes[i]].x)
+}
+
+/// Gradients at the nodes of a solid element, or `None` for kinds without a formulation.
+fn element_gradients(
+    model: &Model,
+    nodes: &[NodeIndex],
+    kind: ElementKind,
+) -> Result<Option<NodalGradients>, ElementError> {
+    const THIRD: f64 = 1.0 / 3.0;
+    Ok(Some(match kind {
+        ElementKind::Tet4 => nodal_gradients(
+            &coords::<4>(model, nodes),
+            tet4::shape,
+            &tet4::NODES,
+            [0.25; 3],
+        )?,
+        ElementKind::Tet10 => nodal_gradients(
+            &coords::<10>(model, nodes),
+            tet10::shape,
+            &tet10::NODES,
+            [0.25; 3],
+        )?,
+        ElementKind::Hex8 => nodal_gradients(
+            &coords::<8>(model, nodes),
+            hex8::shape,
+            &hex8::NODES,
+            [0.0; 3],
+        )?,
+        ElementKind::Hex20 | ElementKind::Hex20R => nodal_gradients(
+            &coords::<20>(model, nodes),
+            hex20::shape,
+            &hex20::NODES,
+            [0.0; 3],
+        )?,
+        ElementKind::Prism6 => nodal_gradients(
+            &coords::<6>(model, nodes),
+            prism6::shape,
+            &prism6::NODES,
+            [THIRD, THIRD, 0.0],
+        )?,
+        _ => return Ok(None),
+    }))
+}
+
+/// Small-strain tensor in Voigt form with engineering shears:
+/// ε_ij = ½ Σ_b (∂_j N_b u_bi + ∂_i N_b u_bj), γ_ij = 2 ε_ij.
+fn strain(gradients: &[Xyz], u: &[[f64; 3]]) -> [f64; 6] {
+    let mut h = [[0.0; 3]; 3]; // displacement gradient h_ij = ∂u_i/∂x_j
+    for (g, ub) in gradients.iter().zip(u) {
+        for i in 0..3 {
+            for j in 0..3 {
+                h[i][j] += ub[i] * g[j];
+            }
+        }
+    }
+    [
+        h[0][0],
+        h[1][1],
+        h[2][2],
+        h[0][1] + h[1][0],
+        h[1][2] + h[2][1],
+        h[2][0] + h[0][2],
+    ]
+}
+
+/// Isotropic Hooke's law in Voigt form: σ = λ tr(ε) I + 2μ ε, i.e. σ_ij = μ γ_ij for shears.
+fn hooke(lambda: f64, mu: f64, e: &[f64; 6]) -> [f64; 6] {
+    let tr = lambda * (e[0] + e[1] + e[2]);
+    [
+        tr + 2.0 * mu * e[0],
+        tr + 2.0 * mu * e[1],
+        tr + 2.0 * mu * e[2],
+        mu * e[3],
+        mu * e[4],
+        mu * e[5],
+    ]
+}
+
+/// Recover nodal stress/strain shapes of `n_modes` modes at the `wanted` nodes.
+/// `displacement(node, mode)` gives the node's translation (basic frame) in that mode.
+pub fn modal_fields(
+    model: &Model,
+    wanted: &[NodeIndex],
+    n_modes: usize,
+    displacement: &dyn Fn(NodeIndex, usize) -> [f64; 3],
+    request: FieldRequest,
+) -> Result<ModalFields, StressError> {
+    let nn = model.nodes.len();
+    let mut is_wanted = vec![false; nn];
+    for &n in wanted {
+        if n < nn {
+            is_wanted[n] = true;
+        }
+    }
+    // Accumulators per wanted node touched by a solid: slot → (count, sums).
+    let mut slot = vec![usize::MAX; nn];
+    let mut touched: Vec<NodeIndex> = Vec::new();
+    for el in &model.elements {
+        if !el.kind.is_solid() {
+            continue;
+        }
+        for &n in &el.nodes {
+            if n < nn && is_wanted[n] && slot[n] == usize::MAX {
+                slot[n] = 0;
+                touched.push(n);
+            }
+        }
+    }
+    touched.sort_unstable();
+    for (q, &n) in touched.iter().enumerate() {
+        slot[n] = q;
+    }
+    let k = touched.len();
+    let mut count = vec![0u32; k];
+    let mut sum_strain = vec![0.0; n_modes * k * 6];
+    let mut sum_stress = vec![0.0; if request.stress { n_modes * k * 6 } else { 0 }];
+    let mut fallbacks = 0;
+    let mut u = Vec::new();
+    for el in &model.elements {
+        if !el.kind.is_solid() || !el.nodes.iter().any(|&n| n < nn && is_wanted[n]) {
+            continue;
+        }
+        let fail = |message: String| StressError::Element {
+            file: model.source.clone(),
+            id: el.id,
+            kind: el.kind,
+            message,
+        };
+        if el.nodes.len() != el.kind.node_count() || el.nodes.iter().any(|&n| n >= nn) {
+            return Err(fail("node list does not match the element kind".into()));
+        }
+        let material = el
+            .property
+            .and_then(|p| model.properties.get(p))
+            .and_then(|p| model.materials.get(p.material))
+            .ok_or_else(|| fail("has no property with a valid material".into()))?;
+        let (lambda, mu) = elements::Isotropic::new(material.e, material.nu, material.rho).lame();
+        let Some((grads, fb)) = element_gradients(model, &el.nodes, el.kind)
+            .map_err(|e| fail(format!("cannot evaluate strains: {e}")))?
+        else {
+            continue; // a solid kind without a formulation (assembly reports it)
+        };
+        fallbacks += fb;
+        for j in 0..n_modes {
+            u.clear();
+            u.extend(el.nodes.iter().map(|&n| displacement(n, j)));
+            for (a, &n) in el.nodes.iter().enumerate() {
+                if !is_wanted[n] {
+                    continue;
+                }
+                let q = slot[n];
+                let e = strain(&grads[a], &u);
+                let base = (j * k + q) * 6;
+                for c in 0..6 {
+                    sum_strain[base + c] += e[c];
+                }
+                if request.stress {
+                    let s = hooke(lambda, mu, &e);
+                    for c in 0..6 {
+                        sum_stress[base + c] += s[c];
+                    }
+                }
+            }
+        }
+        for &n in &el.nodes {
+            if is_wanted[n] {
+                count[slot[n]] += 1;
+            }
+        }
+    }
+    let average = |mut v: Vec<f64>| -> Vec<f64> {
+        for (i, x) in v.iter_mut().enumerate() {
+            *x /= f64::from(count[(i / 6) % k]);
+        }
+        v
+    };
+    Ok(ModalFields {
+        nodes: touched,
+        stress: request.stress.then(|| average(sum_stress)),
+        strain: request.strain.then(|| average(sum_strain)),
+        centroid_fallbacks: fallbacks,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::generate::{block, BlockElement, BlockSpec};
+    use crate::model::Material;
+
+    /// Every solid reproduces a linear displacement field exactly, so the recovered strain is
+    /// the field's constant strain at every node (patch test).
+    #[test]
+    fn linear_field_gives_its_constant_strain_everywhere() {
+        let h = [
+            [1.0e-3, 2.0e-4, -3.0e-4],
+            [5.0e-4, -2.0e-3, 7.0e-4],
+            [-1.0e-4, 4.0e-4, 3.0e-3],
+        ];
+        let exact = [
+            h[0][0],
+            h[1][1],
+            h[2][2],
+            h[0][1] + h[1][0],
+            h[1][2] + h[2][1],
+            h[2][0] + h[0][2],
+        ];
+        for element in [
+            BlockElement::Hex8,
+            BlockElement::Tet10Six,
+            BlockElement::Tet10Five,
+        ] {
+            let mut model = block(&BlockSpec {
+                n: [3, 2, 2],
+                size: [0.3, 0.1, 0.12],
+                element,
+                material: Material::steel(),
+            });
+            // Distort the interior a little so the Jacobians are not constant.
+            for node in &mut model.nodes {
+                let [x, y, z] = node.x;
+                node.x = [
+                    x + 0.01 * (y * 10.0).sin() * (z * 8.0).sin(),
+                    y + 0.004 * (x * 9.0).sin(),
+                    z,
+                ];
+            }
+            let disp = |n: NodeIndex, _j: usize| -> [f64; 3] {
+                let x = model.nodes[n].x;
+                std::array::from_fn(|i| (0..3).map(|j| h[i][j] * x[j]).sum())
+            };
+            let all: Vec<NodeIndex> = (0..model.nodes.len()).collect();
+            let f = modal_fields(
+                &model,
+                &all,
+                1,
+                &disp,
+                FieldRequest {
+                    stress: false,
+                    strain: true,
+                },
+            )
+            .unwrap(); // the block has only valid solids: cannot fail
+            assert_eq!(f.nodes.len(), model.nodes.len());
+            assert_eq!(f.centroid_fallbacks, 0);
+            let strain = f.strain.unwrap(); // asked for: always present
+            for q in 0..f.nodes.len() {
+                for c in 0..6 {
+                    let err = (strain[q * 6 + c] - exact[c]).abs();
+                    assert!(err < 1e-13, "{element:?} node {q} comp {c}: error {err:e}");
+                }
+            }
+        }
+    }
+
+    /// Uniaxial stress: u = ε (x, −ν y, −ν z) gives σ_xx = E ε and every other component 0.
+    #[test]
+    fn uniaxial_strain_field_gives_e_times_strain() {
+        let steel = Material::steel();
+        let model = block(&BlockSpec {
+            n: [2, 2, 2],
+            size: [1.0, 0.5, 0.25],
+            element: BlockElement::Tet10Six,
+            material: steel.clone(),
+        });
+        let eps = 1.0e-3;
+        let nu = steel.nu;
+        let disp = |n: NodeIndex, j: usize| -> [f64; 3] {
+            let x = model.nodes[n].x;
+            let s = eps * (j + 1) as f64;
+            [s * x[0], -nu * s * x[1], -nu * s * x[2]]
+        };
+        let wanted = [0, 5, model.nodes.len() - 1];
+        let f = modal_fields(
+            &model,
+            &wanted,
+            2,
+            &disp,
+            FieldRequest {
+                stress: true,
+                strain: true,
+            },
+        )
+        .unwrap(); // valid solids: cannot fail
+        assert_eq!(f.nodes, wanted.to_vec());
+        let stress = f.stress.unwrap(); // asked for
+        let strain = f.strain.unwrap(); // asked for
+        for j in 0..2 {
+            let s = eps * (j + 1) as f64;
+            for q in 0..3 {
+                let b = (j * 3 + q) * 6;
+                assert!((stress[b] / (steel.e * s) - 1.0).abs() < 1e-12);
+                for c in 1..6 {
+                    assert!(stress[b + c].abs() < 1e-12 * steel.e * s, "σ comp {c}");
+                }
+                assert!((strain[b] / s - 1.0).abs() < 1e-12);
+                assert!((strain[b + 1] / (-nu * s) - 1.0).abs() < 1e-12);
+            }
+        }
+    }
+
+    /// Simple shear: u_x = γ y gives γ_xy = γ and σ_xy = G γ.
+    #[test]
+    fn simple_shear_gives_g_times_gamma() {
+        let steel = Material::steel();
+        let model = block(&BlockSpec {
+            n: [2, 2, 1],
+            size: [1.0, 1.0, 0.5],
+            element: BlockElement::Hex8,
+            material: steel.clone(),
+        });
+        let gamma = 2.0e-4;
+        let disp = |n: NodeIndex, _j: usize| [gamma * model.nodes[n].x[1], 0.0, 0.0];
+        let f = modal_fields(
+            &model,
+            &[4],
+            1,
+            &disp,
+            FieldRequest {
+                stress: true,
+                strain: true,
+            },
+        )
+        .unwrap(); // valid solids: cannot fail
+        let (stress, strain) = (f.stress.unwrap(), f.strain.unwrap()); // both asked for
+        assert!((strain[3] / gamma - 1.0).abs() < 1e-12);
+        assert!((stress[3] / (steel.g * gamma) - 1.0).abs() < 1e-12);
+        assert!(stress[0].abs() < 1e-9 * steel.g * gamma);
+    }
+}
