@@ -246,7 +246,11 @@ pub fn build_model(
         &assembled.dofs,
         &assembled.k,
         &assembled.m,
-        &ConstraintSpec::default(),
+        &ConstraintSpec {
+            // RBE3 spiders at interface nodes keep their centre independent (UM-style).
+            independent_rbe3_reference: interface_nodes.clone(),
+            ..Default::default()
+        },
     )?;
     let dofs = &assembled.dofs;
     report.dofs = (dofs.n_dofs, reduced.retained.len());

@@ -4,8 +4,9 @@
 //!
 //! A node set becomes, by default, a rigid RBE2-type spider from a new centre node to every node
 //! of the set (dependent dofs 123: the set's nodes are solid nodes); `Rbe3` makes the centre node
-//! the weighted average of the set instead (unit weights, dofs 123); `None` makes every node of
-//! the set an interface node.
+//! the weighted average of the set instead (unit weights, dofs 123; it adds no stiffness, and
+//! `build` keeps its centre independent so it can be a Craig–Bampton interface node — see
+//! `fe::constraints`); `None` makes every node of the set an interface node.
 //!
 //! The centre is never the plain node average: on an unevenly meshed bore that drifts off the
 //! axis (0.77 mm on a 25 mm bore in the case that motivated this). In order of preference:

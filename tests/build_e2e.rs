@@ -379,3 +379,72 @@ fn conrod_consistent_normal_modes_equal_calculix() {
         back.invariants.i1[0]
     );
 }
+
+/// a_block_hex8 with Craig–Bampton on RBE3 (weighted-average) spiders at both end faces, their
+/// centre nodes kept independent (the RBE3 relation is solved for dofs of the face nodes, as
+/// Nastran's UM set does). An RBE3 adds no stiffness, so the full model's free-free spectrum is
+/// the plain block's: CalculiX's consistent-mass run `ccx_free.dat`. Every reduced frequency
+/// below fmax is ≥ it and within 1%; each mode moves the centre by the mean translation of its
+/// face (the weighted least-squares fit with equal weights about the face centroid).
+#[test]
+fn a_block_cb_on_rbe3_spiders_keeps_centres_independent_and_matches_calculix() {
+    let model_path = shared("reference/a_block_hex8/ccx_free.inp");
+    let mut s = spec(model_path, BuildMethod::CraigBampton, &["FIXED", "TIP"]);
+    s.spider = SpiderKind::Rbe3;
+    s.mass = MassKind::Consistent;
+    s.fmax_hz = Some(3000.0);
+    let out = build(&s, &mut |_| {}).unwrap();
+    let body = &out.body;
+    assert_eq!(body.method.counts.constraint, 12);
+    let ccx = [1043.155, 1043.155, 2724.445, 2724.445, 2981.727];
+    let flex: Vec<f64> = body
+        .modes
+        .frequency_hz
+        .iter()
+        .zip(&body.modes.labels)
+        .filter(|(_, l)| **l != file::ModeLabel::Rigid)
+        .map(|(f, _)| *f)
+        .collect();
+    for (k, want) in ccx.iter().enumerate() {
+        let rel = flex[k] / want - 1.0;
+        assert!(
+            (-2e-6..0.01).contains(&rel),
+            "mode {k}: {} Hz vs ccx {want} Hz",
+            flex[k]
+        );
+    }
+    // Centre translation = mean translation of the face nodes, in every mode.
+    let model = read_model(&s.model, &ImportOptions::default()).unwrap();
+    let n = body.node_count();
+    let pos_of_id: std::collections::HashMap<u64, usize> = body
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(k, nd)| (nd.id, k))
+        .collect();
+    let mut worst = 0.0f64;
+    for (k, set) in ["FIXED", "TIP"].iter().enumerate() {
+        let centre = pos_of_id[&out.report.interfaces[k]
+            .spider
+            .as_ref()
+            .unwrap()
+            .centre_node_id];
+        let face: Vec<usize> = model.node_sets[*set]
+            .iter()
+            .map(|&p| pos_of_id[&model.nodes[p].id])
+            .collect();
+        for j in 0..body.mode_count() {
+            let sh = |p: usize, c: usize| body.modes.shapes[(j * n + p) * 6 + c];
+            let scale = max_abs((0..n).map(|p| sh(p, 2)).chain((0..n).map(|p| sh(p, 1))));
+            for c in 0..3 {
+                let mean = face.iter().map(|&p| sh(p, c)).sum::<f64>() / face.len() as f64;
+                worst = worst.max((sh(centre, c) - mean).abs() / scale);
+            }
+        }
+    }
+    println!(
+        "RBE3 CB: flexible {:?} Hz; centre vs face mean {worst:.1e}",
+        &flex[..5]
+    );
+    assert!(worst < 1e-9, "centre vs face mean translation: {worst:e}");
+}

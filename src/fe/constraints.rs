@@ -8,6 +8,10 @@
 //!   rigid fit of the independent nodes, q = S⁻¹ Σ w Gᵀ u with G = [I, −r̃] per translation row
 //!   (r = x_i − x_ref) and S = Σ w GᵀG (MSC Nastran QRG, RBE3 remarks). With only translations
 //!   referenced and a degenerate S (one node, collinear nodes) the translation-only average is used.
+//!   For an RBE3 whose reference node must stay independent (an interface node of a
+//!   Craig–Bampton reduction), the same relation q = A u is solved instead for as many dofs u_m
+//!   of the weighted nodes (Nastran's UM set), chosen by column-pivoted Gram–Schmidt on A so
+//!   that A_m is well conditioned: u_m = A_m⁻¹ (q − A_o u_o).
 //! * SPCs: the dofs are dropped (their T rows are empty).
 //! * AUTOSPC (on by default): retained dofs whose K_r and M_r diagonals are both exactly zero
 //!   (e.g. bending rotations of rod-only nodes) are dropped too, and listed.
@@ -35,6 +39,9 @@ pub struct ConstraintSpec {
     pub fixed: Vec<(NodeIndex, DofMask)>,
     /// Drop retained dofs with zero stiffness and zero mass diagonal (Nastran AUTOSPC).
     pub auto_spc: bool,
+    /// RBE3 reference nodes whose dofs stay independent (interface nodes): the element's
+    /// relation makes dofs of its weighted nodes dependent instead (module doc).
+    pub independent_rbe3_reference: Vec<NodeIndex>,
 }
 
 impl Default for ConstraintSpec {
@@ -43,6 +50,7 @@ impl Default for ConstraintSpec {
             spc_sets: None,
             fixed: Vec::new(),
             auto_spc: true,
+            independent_rbe3_reference: Vec::new(),
         }
     }
 }
@@ -181,8 +189,22 @@ pub fn eliminate(
                 }
                 let rows = rbe3_rows(model, dofs, *reference, *ref_dofs, independent)
                     .map_err(|m| err(format!("RBE3 {id}: {m}")))?;
-                for (c, e) in rows {
-                    if let Some(dd) = dofs.dof(*reference, c) {
+                let rows: Vec<(usize, Expr)> = rows
+                    .into_iter()
+                    .filter_map(|(c, e)| dofs.dof(*reference, c).map(|dd| (dd, e)))
+                    .collect();
+                if spec.independent_rbe3_reference.contains(reference) {
+                    let usable = |d: usize| !fixed[d];
+                    for (dd, e) in rbe3_solved_for_weighted(&rows, usable).map_err(|m| {
+                        err(format!(
+                            "RBE3 {id}: reference node {} cannot stay independent: {m}",
+                            model.nodes[*reference].id
+                        ))
+                    })? {
+                        add_dep(dd, e, *id)?;
+                    }
+                } else {
+                    for (dd, e) in rows {
                         add_dep(dd, e, *id)?;
                     }
                 }
@@ -443,6 +465,84 @@ fn rbe3_rows(
         out.push((c, e));
     }
     Ok(out)
+}
+
+/// The RBE3 relation q_c = Σ_s A_cs u_s (one row per reference dof q_c) solved for dofs u_m of
+/// the weighted nodes instead: u_m = A_m⁻¹ (q − A_o u_o). The m columns are picked by
+/// column-pivoted modified Gram–Schmidt on A among the `usable` dofs.
+fn rbe3_solved_for_weighted(
+    rows: &[(usize, Expr)],
+    usable: impl Fn(usize) -> bool,
+) -> Result<Vec<(usize, Expr)>, String> {
+    use faer::linalg::solvers::Solve;
+    let r = rows.len();
+    let mut cols: Vec<usize> = rows
+        .iter()
+        .flat_map(|(_, e)| e.iter().map(|t| t.0))
+        .collect();
+    cols.sort_unstable();
+    cols.dedup();
+    let col_of: HashMap<usize, usize> = cols.iter().enumerate().map(|(k, &d)| (d, k)).collect();
+    let mut a = Mat::<f64>::zeros(r, cols.len());
+    for (c, (_, e)) in rows.iter().enumerate() {
+        for &(d, v) in e {
+            a[(c, col_of[&d])] += v;
+        }
+    }
+    // Column-pivoted modified Gram–Schmidt: residual columns, pick the largest each step.
+    let mut res = a.clone();
+    let norm = |m: &Mat<f64>, j: usize| (0..r).map(|i| m[(i, j)].powi(2)).sum::<f64>().sqrt();
+    let first = (0..cols.len()).map(|j| norm(&a, j)).fold(0.0f64, f64::max);
+    let mut chosen: Vec<usize> = Vec::with_capacity(r);
+    for _ in 0..r {
+        let best = (0..cols.len())
+            .filter(|&j| usable(cols[j]) && !chosen.contains(&j))
+            .map(|j| (j, norm(&res, j)))
+            .max_by(|x, y| x.1.total_cmp(&y.1));
+        let Some((j, nj)) = best.filter(|b| b.1 > 1e-8 * first) else {
+            return Err(format!(
+                "its weighted nodes determine only {} of its {r} dofs (one node, collinear nodes or weights of zero)",
+                chosen.len()
+            ));
+        };
+        let qv: Vec<f64> = (0..r).map(|i| res[(i, j)] / nj).collect();
+        for k in 0..cols.len() {
+            let dot: f64 = (0..r).map(|i| qv[i] * res[(i, k)]).sum();
+            for (i, q) in qv.iter().enumerate() {
+                res[(i, k)] -= dot * q;
+            }
+        }
+        chosen.push(j);
+    }
+    // X = A_m⁻¹ [I | A], then u_m = X[:, q] q − X[:, o] u_o.
+    let am = Mat::from_fn(r, r, |i, k| a[(i, chosen[k])]);
+    let rhs = Mat::from_fn(r, r + cols.len(), |i, k| {
+        if k < r {
+            f64::from(u8::from(i == k))
+        } else {
+            a[(i, k - r)]
+        }
+    });
+    let x = am.as_ref().partial_piv_lu().solve(&rhs);
+    Ok(chosen
+        .iter()
+        .enumerate()
+        .map(|(k, &m)| {
+            let mut e: Expr = rows
+                .iter()
+                .enumerate()
+                .map(|(c, (q, _))| (*q, x[(k, c)]))
+                .chain(
+                    (0..cols.len())
+                        .filter(|o| !chosen.contains(o))
+                        .map(|o| (cols[o], -x[(k, r + o)])),
+                )
+                .filter(|t| t.1 != 0.0)
+                .collect();
+            e.sort_unstable_by_key(|t| t.0);
+            (cols[m], e)
+        })
+        .collect())
 }
 
 /// T from its rows and the products Tᵀ K T, Tᵀ M T (Gustavson, column by column in parallel).
