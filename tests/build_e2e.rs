@@ -52,7 +52,20 @@ fn write_and_read(body: &file::ReducedBody, name: &str) -> (PathBuf, file::Reduc
     let path = dir.join(name);
     flexbody::write::write_reduced_body(&path, body, &Default::default()).unwrap();
     let back = file::read(&path).unwrap();
+    assert_check_passes(&back, None);
     (path, back)
+}
+
+/// `flexbody check` (library form) passes every item on a file the suite built.
+fn assert_check_passes(body: &file::ReducedBody, model: Option<&ModelInput>) {
+    let report = check(body, model).unwrap();
+    for i in &report.items {
+        assert!(
+            i.pass,
+            "check `{}` failed: {} > {} ({})",
+            i.name, i.value, i.limit, i.detail
+        );
+    }
 }
 
 fn max_abs(v: impl Iterator<Item = f64>) -> f64 {
@@ -394,7 +407,18 @@ fn a_block_cb_on_rbe3_spiders_keeps_centres_independent_and_matches_calculix() {
     s.mass = MassKind::Consistent;
     s.fmax_hz = Some(3000.0);
     let out = build(&s, &mut |_| {}).unwrap();
-    let body = &out.body;
+    let (_, body) = write_and_read(&out.body, "a_block_rbe3.flexbody");
+    let body = &body;
+    assert_check_passes(
+        body,
+        Some(&ModelInput {
+            path: s.model.clone(),
+            format: None,
+            material: None,
+            interface: s.interface.clone(),
+            spider: SpiderKind::Rbe3,
+        }),
+    );
     assert_eq!(body.method.counts.constraint, 12);
     let ccx = [1043.155, 1043.155, 2724.445, 2724.445, 2981.727];
     let flex: Vec<f64> = body
@@ -447,4 +471,114 @@ fn a_block_cb_on_rbe3_spiders_keeps_centres_independent_and_matches_calculix() {
         &flex[..5]
     );
     assert!(worst < 1e-9, "centre vs face mean translation: {worst:e}");
+}
+
+/// The rod's CB file with every node kept: the stored invariants equal a fresh node-by-node
+/// evaluation of the spec's definitions (format-spec §5.6) from the stored nodes, nodal masses
+/// and mode shapes, to 1e-12 relative to each invariant's largest entry. (The rod has no point
+/// masses, so the stored nodes are all the mass points.)
+#[test]
+fn conrod_invariants_equal_node_by_node_recomputation_from_the_file() {
+    let mut s = spec(
+        conrod(),
+        BuildMethod::CraigBampton,
+        &["BIG_END", "SMALL_END"],
+    );
+    s.fmax_hz = Some(3000.0);
+    let out = build(&s, &mut |_| {}).unwrap();
+    let (_, body) = write_and_read(&out.body, "conrod_inv.flexbody");
+    let (n, m) = (body.node_count(), body.mode_count());
+    let skew = |a: [f64; 3]| [[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]];
+    let mul = |a: [[f64; 3]; 3], b: [[f64; 3]; 3]| -> [[f64; 3]; 3] {
+        std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+    };
+    let tr = |a: [[f64; 3]; 3]| -> [[f64; 3]; 3] {
+        std::array::from_fn(|i| std::array::from_fn(|j| a[j][i]))
+    };
+    let phi = |p: usize, j: usize| -> [f64; 3] {
+        std::array::from_fn(|c| body.modes.shapes[(j * n + p) * 6 + c])
+    };
+    let psi = |p: usize, j: usize| -> [f64; 3] {
+        std::array::from_fn(|c| body.modes.shapes[(j * n + p) * 6 + 3 + c])
+    };
+    let mut i1 = 0.0;
+    let mut i2 = [0.0; 3];
+    let mut i3 = vec![0.0; 3 * m];
+    let mut i4 = vec![0.0; 3 * m];
+    let mut i5 = vec![0.0; m * 3 * m];
+    let mut i6 = vec![0.0; m * m];
+    let mut i7 = [0.0; 9];
+    let mut i8 = vec![0.0; m * 9];
+    let mut i9 = vec![0.0; m * m * 9];
+    for p in 0..n {
+        let (mp, ip, sp) = (
+            body.nodal_mass[p].mass,
+            body.nodal_mass[p].inertia,
+            body.nodes[p].xyz,
+        );
+        let st = skew(sp);
+        i1 += mp;
+        for a in 0..3 {
+            i2[a] += mp * sp[a];
+        }
+        let stst = mul(tr(st), st);
+        for a in 0..3 {
+            for b in 0..3 {
+                i7[a * 3 + b] += mp * stst[a][b] + ip[a][b];
+            }
+        }
+        for j in 0..m {
+            let (fj, rj) = (phi(p, j), psi(p, j));
+            let fjt = skew(fj);
+            for a in 0..3 {
+                i3[a * m + j] += mp * fj[a];
+                i4[a * m + j] += (0..3)
+                    .map(|b| mp * st[a][b] * fj[b] + ip[a][b] * rj[b])
+                    .sum::<f64>();
+            }
+            let sf = mul(st, fjt);
+            for a in 0..3 {
+                for b in 0..3 {
+                    i8[(j * 3 + a) * 3 + b] += mp * sf[a][b];
+                }
+            }
+            for k in 0..m {
+                let (fk, rk) = (phi(p, k), psi(p, k));
+                for a in 0..3 {
+                    i5[(j * 3 + a) * m + k] += mp * (0..3).map(|b| fjt[a][b] * fk[b]).sum::<f64>();
+                }
+                i6[j * m + k] += mp * (0..3).map(|a| fj[a] * fk[a]).sum::<f64>()
+                    + (0..3)
+                        .map(|a| (0..3).map(|b| rj[a] * ip[a][b] * rk[b]).sum::<f64>())
+                        .sum::<f64>();
+                let ff = mul(fjt, skew(fk));
+                for a in 0..3 {
+                    for b in 0..3 {
+                        i9[((j * m + k) * 3 + a) * 3 + b] += mp * ff[a][b];
+                    }
+                }
+            }
+        }
+    }
+    let inv = &body.invariants;
+    let cases: [(&str, &[f64], &[f64]); 9] = [
+        ("I1", &inv.i1, &[i1]),
+        ("I2", &inv.i2, &i2),
+        ("I3", &inv.i3, &i3),
+        ("I4", &inv.i4, &i4),
+        ("I5", &inv.i5, &i5),
+        ("I6", &inv.i6, &i6),
+        ("I7", &inv.i7, &i7),
+        ("I8", &inv.i8, &i8),
+        ("I9", &inv.i9, &i9),
+    ];
+    for (name, stored, fresh) in cases {
+        assert_eq!(stored.len(), fresh.len(), "{name} length");
+        let scale = max_abs(fresh.iter().copied());
+        let err = max_abs(stored.iter().zip(fresh).map(|(a, b)| a - b));
+        assert!(
+            err <= 1e-12 * scale,
+            "{name}: max error {err:e} of {scale:e}"
+        );
+    }
 }

@@ -117,6 +117,8 @@ fn cantilever_tip_load_stress_from_cb_modes_matches_direct_static_solution() {
     flexbody::write::write_reduced_body(&path, &out.body, &Default::default()).unwrap();
     let body = file::read(&path).unwrap();
     assert_eq!(body, out.body, "the reader returns what build made");
+    let report = flexbody::check::check(&body, None).unwrap();
+    assert!(report.passed(), "check: {:?}", report.items);
     let stress = body.stress_shapes.as_ref().expect("stress shapes stored");
     let strain = body.strain_shapes.as_ref().expect("strain shapes stored");
     let (nn, nm) = (body.nodes.len(), body.mode_count());
