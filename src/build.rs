@@ -368,7 +368,11 @@ pub fn build_model(
     lap(&mut report, STAGES[4]);
 
     progress(STAGES[5]);
-    let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi)?;
+    // The lumped M of the reduction already holds the nodal masses unless point masses were
+    // added to it (they are separate mass points) or the reduction used consistent mass.
+    let reusable = (spec.mass == fe::MassKind::Lumped && model.point_masses.is_empty())
+        .then_some(&assembled);
+    let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi, reusable)?;
     let inv = compute_invariants(&points, point_shapes.as_ref(), spec.invariants, Par::Seq)?;
     lap(&mut report, STAGES[5]);
 
@@ -446,7 +450,7 @@ fn node_shape(dofs: &DofMap, phi: &Mat<f64>, p: NodeIndex, j: usize) -> [f64; 6]
 type NodalMass = Vec<(f64, [[f64; 3]; 3])>;
 
 /// Mass points for the invariants: every node with its lumped structural mass (a lumped assembly
-/// of the model without point masses), plus one point per point mass at its centre of gravity,
+/// of the model without point masses, or `lumped` when that is already it), plus one point per point mass at its centre of gravity,
 /// moving rigidly with its node (u + θ × d). Returns the points, their 6-row shapes, and the
 /// per-node mass (structure + point masses lumped to the node, inertia shifted to the node) that
 /// the file stores.
@@ -454,16 +458,24 @@ fn mass_points(
     model: &Model,
     dofs: &DofMap,
     phi: &Mat<f64>,
+    lumped: Option<&fe::Assembled>,
 ) -> Result<(Vec<MassPoint>, Mat<f64>, NodalMass), BuildError> {
-    let mut bare = model.clone();
-    bare.point_masses.clear();
-    let lumped = assemble(
-        &bare,
-        &AssemblySpec {
-            mass: fe::MassKind::Lumped,
-            ..Default::default()
-        },
-    )?;
+    let own;
+    let lumped = match lumped {
+        Some(l) => l,
+        None => {
+            let mut bare = model.clone();
+            bare.point_masses.clear();
+            own = assemble(
+                &bare,
+                &AssemblySpec {
+                    mass: fe::MassKind::Lumped,
+                    ..Default::default()
+                },
+            )?;
+            &own
+        }
+    };
     let (ld, lm) = (&lumped.dofs, lumped.m.as_ref());
     let entry = |row: usize, col: usize| -> f64 {
         lm.row_idx_of_col(col)
