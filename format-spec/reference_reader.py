@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference reader for flexbody reduced-body files, format v1, written from SPEC.md alone.
+"""Reference reader for flexbody reduced-body files, format v1 (1.0 and 1.1), written from SPEC.md alone.
 
 Standard library only (zipfile, json, hashlib, struct). Usage:
 
@@ -24,6 +24,7 @@ ENTRIES = [  # SPEC §2: name, required
     ("header.bin", True), ("nodes.bin", True), ("faces.bin", True), ("nodal_mass.bin", True),
     ("modes.bin", True), ("invariants.bin", True), ("method.bin", True),
     ("stress_shapes.bin", False), ("strain_shapes.bin", False), ("damping.bin", False),
+    ("lines.bin", False),  # format 1.1
 ]
 KNOWN = dict(ENTRIES)
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
@@ -178,10 +179,14 @@ def decode_damping(d):
     return dict(ratio=d.f64s())
 
 
+def decode_lines(d):
+    return d.vec(lambda: d.arr(d.u32, 2), 8)
+
+
 DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin": decode_faces,
             "nodal_mass.bin": decode_nodal_mass, "modes.bin": decode_modes,
             "invariants.bin": decode_invariants, "method.bin": decode_method,
-            "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field,
+            "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field, "lines.bin": decode_lines,
             "damping.bin": decode_damping}
 
 
@@ -374,6 +379,13 @@ def validate(b, m):
     for f, face in enumerate(faces):
         for k, v in enumerate(face):
             index("faces.bin", f"faces[{f}][{k}]", v, n)
+    lines = b.get("lines.bin")
+    if lines is not None:
+        if len(lines) > LIMITS["max_faces"]:
+            err("LimitExceeded", "lines.bin", "line count")
+        for li, line in enumerate(lines):
+            for k, v in enumerate(line):
+                index("lines.bin", f"lines[{li}][{k}]", v, n)
     masses = b["nodal_mass.bin"]
     count("nodal_mass.bin", "nodal masses", len(masses), n)
     for p, x in enumerate(masses):
@@ -485,11 +497,12 @@ def summarize(b, m):
         "invariant_set": h["request"]["invariant_set"],
         "invariants_present": [k + 1 for k in range(9) if b["invariants.bin"]["mask"][k]],
         "counts": {"nodes": len(b["nodes.bin"]), "interface_nodes": sum(1 for x in b["nodes.bin"] if x["interface"]),
-                   "faces": len(b["faces.bin"]), "modes": len(modes["omega2"])},
+                   "faces": len(b["faces.bin"]), "lines": len(b.get("lines.bin") or []),
+                   "modes": len(modes["omega2"])},
         "mass": mass_properties(b),
         "modes": [{"number": j + 1, "frequency_hz": modes["frequency_hz"][j], "omega2": modes["omega2"][j],
                    "label": modes["labels"][j]} for j in range(len(modes["omega2"]))],
-        "optional": [x in b for x in ("stress_shapes.bin", "strain_shapes.bin", "damping.bin")],
+        "optional": [x in b for x in ("stress_shapes.bin", "strain_shapes.bin", "damping.bin", "lines.bin")],
         "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
     }
 

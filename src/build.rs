@@ -298,6 +298,28 @@ pub fn build_model(
         reference.extend(node_dofs(node, mask, "reference-condition")?);
         reference_records.push((node, mask));
     }
+    // The model's own SPCs hold the body too: record them with the reference conditions, so the
+    // file (and `check`) say the modes are those of a supported body.
+    let mut held: std::collections::BTreeMap<NodeIndex, u8> = Default::default();
+    for s in &model.spcs {
+        let existing = (1u8 << dofs.count.get(s.node).copied().unwrap_or(0)) - 1;
+        if s.dofs.0 & existing != 0 {
+            *held.entry(s.node).or_default() |= s.dofs.0 & existing;
+        }
+    }
+    if !held.is_empty() {
+        report.warnings.push(format!(
+            "the model's SPCs hold {} dofs at {} nodes: the modes are those of the supported body, not free-free (recorded as reference conditions)",
+            held.values().map(|m| m.count_ones()).sum::<u32>(),
+            held.len()
+        ));
+        for (node, m) in held {
+            match reference_records.iter_mut().find(|r| r.0 == node) {
+                Some(r) => r.1 = DofMask(r.1 .0 | m),
+                None => reference_records.push((node, DofMask(m))),
+            }
+        }
+    }
     lap(&mut report, STAGES[3]);
 
     progress(STAGES[4]);
@@ -370,8 +392,8 @@ pub fn build_model(
     progress(STAGES[5]);
     // The lumped M of the reduction already holds the nodal masses unless point masses were
     // added to it (they are separate mass points) or the reduction used consistent mass.
-    let reusable = (spec.mass == fe::MassKind::Lumped && model.point_masses.is_empty())
-        .then_some(&assembled);
+    let reusable =
+        (spec.mass == fe::MassKind::Lumped && model.point_masses.is_empty()).then_some(&assembled);
     let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi, reusable)?;
     let inv = compute_invariants(&points, point_shapes.as_ref(), spec.invariants, Par::Seq)?;
     lap(&mut report, STAGES[5]);
@@ -664,8 +686,13 @@ fn assemble_body(
             4 => Some(file::Face::Quad(std::array::from_fn(|k| {
                 position[f.nodes[k]]
             }))),
-            _ => None, // beam/rod lines: not representable in v1 faces
+            _ => None, // beam/rod lines go to `lines`
         })
+        .collect();
+    let lines: Vec<[u32; 2]> = faces
+        .iter()
+        .filter(|f| f.nodes.len() == 2 && f.nodes.iter().all(|&n| position[n] != u32::MAX))
+        .map(|f| [position[f.nodes[0]], position[f.nodes[1]]])
         .collect();
     let nm = set.len();
     let ns = stored.len();
@@ -771,7 +798,7 @@ fn assemble_body(
         Some(select::Selection::Fmax { cutoff_hz, .. }) => Some(*cutoff_hz),
         _ => spec.fmax_hz.map(|f| select::FMAX_FACTOR * f),
     };
-    Ok(file::ReducedBody {
+    let mut body = file::ReducedBody {
         version: flexbody_reader::FORMAT_VERSION,
         generator: file::Generator {
             name: "flexbody".into(),
@@ -845,7 +872,10 @@ fn assemble_body(
         stress_shapes: fields.and_then(|f| field_shapes(f, f.stress.as_ref(), &position)),
         strain_shapes: fields.and_then(|f| field_shapes(f, f.strain.as_ref(), &position)),
         damping: None,
-    })
+        lines: (!lines.is_empty()).then_some(lines),
+    };
+    body.version = flexbody_reader::version_for(&body);
+    Ok(body)
 }
 
 /// Recovered fields → the file's entry: node indices become positions in the stored node list

@@ -15,6 +15,8 @@ pub struct Counts {
     pub interface_nodes: usize,
     /// Graphics faces.
     pub faces: usize,
+    /// Graphics lines (format 1.1; 0 when absent).
+    pub lines: usize,
     /// Modes.
     pub modes: usize,
 }
@@ -87,8 +89,8 @@ pub struct Summary {
     pub mass: MassProperties,
     /// Modes table.
     pub modes: Vec<ModeLine>,
-    /// Optional entries present: stress, strain, damping.
-    pub optional: [bool; 3],
+    /// Optional entries present: stress, strain, damping, lines.
+    pub optional: [bool; 4],
     /// Entries in container order.
     pub entries: Vec<EntryLine>,
 }
@@ -164,6 +166,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
             nodes: body.nodes.len(),
             interface_nodes: body.nodes.iter().filter(|n| n.interface).count(),
             faces: body.faces.len(),
+            lines: body.lines.as_ref().map_or(0, Vec::len),
             modes: body.mode_count(),
         },
         mass: mass_properties(body),
@@ -179,6 +182,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
             body.stress_shapes.is_some(),
             body.strain_shapes.is_some(),
             body.damping.is_some(),
+            body.lines.is_some(),
         ],
         entries: manifest
             .entries
@@ -224,8 +228,8 @@ pub fn render_text(s: &Summary) -> String {
     let c = &s.counts;
     let _ = writeln!(
         o,
-        "counts       {} nodes ({} interface), {} faces, {} modes",
-        c.nodes, c.interface_nodes, c.faces, c.modes
+        "counts       {} nodes ({} interface), {} faces, {} lines, {} modes",
+        c.nodes, c.interface_nodes, c.faces, c.lines, c.modes
     );
     let mp = &s.mass;
     let _ = writeln!(
@@ -254,7 +258,7 @@ pub fn render_text(s: &Summary) -> String {
             m.number, m.frequency_hz, m.label
         );
     }
-    let opt: Vec<&str> = ["stress shapes", "strain shapes", "damping"]
+    let opt: Vec<&str> = ["stress shapes", "strain shapes", "damping", "lines"]
         .iter()
         .zip(s.optional)
         .filter(|(_, p)| *p)

@@ -582,3 +582,33 @@ fn conrod_invariants_equal_node_by_node_recomputation_from_the_file() {
         );
     }
 }
+
+/// A beam model (Nastran `beam_modes`: 9 CBAR + 1 CBEAM, clamped at GRID 1) has no faces; its
+/// elements are stored as graphics lines (format 1.1 `lines.bin`), one per beam, and the file
+/// says version 1.1. Solid-only files stay 1.0 (see the other tests' read-backs).
+#[test]
+fn beam_model_is_drawn_with_lines_and_written_as_format_1_1() {
+    let model_path = shared("reference/nastran/beam_modes/beam_modes.dat");
+    let mut s = spec(model_path.clone(), BuildMethod::Normal, &[]);
+    s.modes = Some(4);
+    let out = build(&s, &mut |_| {}).unwrap();
+    let (_, body) = write_and_read(&out.body, "beam_lines.flexbody");
+    assert_eq!(body.version, file::Version { major: 1, minor: 1 });
+    assert!(body.faces.is_empty());
+    let model = read_model(&model_path, &ImportOptions::default()).unwrap();
+    let beams: Vec<[u64; 2]> = model
+        .elements
+        .iter()
+        .filter(|e| e.kind == flexbody::model::ElementKind::Beam2)
+        .map(|e| [model.nodes[e.nodes[0]].id, model.nodes[e.nodes[1]].id])
+        .collect();
+    assert_eq!(beams.len(), 10);
+    let lines: Vec<[u64; 2]> = body
+        .lines
+        .as_ref()
+        .expect("lines stored")
+        .iter()
+        .map(|l| [body.nodes[l[0] as usize].id, body.nodes[l[1] as usize].id])
+        .collect();
+    assert_eq!(lines, beams);
+}

@@ -22,7 +22,7 @@ fn inspect_prints_counts_units_mass_and_frequencies() {
     );
     let text = String::from_utf8(out.stdout).expect("utf8");
     assert!(
-        text.contains("3 nodes (2 interface), 1 faces, 3 modes"),
+        text.contains("3 nodes (2 interface), 1 faces, 0 lines, 3 modes"),
         "{text}"
     );
     assert!(

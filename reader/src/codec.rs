@@ -15,7 +15,7 @@ pub const FORMAT_NAME: &str = "flexbody-reduced-body";
 pub const MANIFEST: &str = "manifest.json";
 
 /// Payload entries known to v1, in the fixed container order, with their required flag.
-pub const ENTRIES: [(&str, bool); 10] = [
+pub const ENTRIES: [(&str, bool); 11] = [
     (HEADER, true),
     (NODES, true),
     (FACES, true),
@@ -26,6 +26,7 @@ pub const ENTRIES: [(&str, bool); 10] = [
     (STRESS_SHAPES, false),
     (STRAIN_SHAPES, false),
     (DAMPING, false),
+    (LINES, false),
 ];
 /// `header.bin`.
 pub const HEADER: &str = "header.bin";
@@ -47,6 +48,8 @@ pub const STRESS_SHAPES: &str = "stress_shapes.bin";
 pub const STRAIN_SHAPES: &str = "strain_shapes.bin";
 /// `damping.bin`.
 pub const DAMPING: &str = "damping.bin";
+/// `lines.bin` (format 1.1).
+pub const LINES: &str = "lines.bin";
 
 /// `manifest.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -32,8 +32,18 @@ pub use limits::ReadLimits;
 pub use types::*;
 pub use validate::{validate, FRAME_TOL, REL_TOL};
 
-/// The format version this crate writes and fully understands.
-pub const FORMAT_VERSION: Version = Version { major: 1, minor: 0 };
+/// The newest format version this crate writes and fully understands. A writer stamps the
+/// oldest version whose entries the file uses ([`version_for`]): 1.0 unless `lines.bin` is
+/// present.
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 1 };
+
+/// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`).
+pub fn version_for(body: &ReducedBody) -> Version {
+    Version {
+        major: 1,
+        minor: u32::from(body.lines.is_some()),
+    }
+}
 
 /// Reads and validates a file with the default [`ReadLimits`].
 pub fn read(path: impl AsRef<Path>) -> Result<ReducedBody, ReadError> {
@@ -97,6 +107,7 @@ pub fn from_bytes_with_manifest(
         stress_shapes: optional(&c, STRESS_SHAPES)?,
         strain_shapes: optional(&c, STRAIN_SHAPES)?,
         damping: optional(&c, DAMPING)?,
+        lines: optional(&c, LINES)?,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))
@@ -124,6 +135,9 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     if let Some(d) = &body.damping {
         out.push((DAMPING, false, encode(d)));
     }
+    if let Some(l) = &body.lines {
+        out.push((LINES, false, encode(l)));
+    }
     out
 }
 
@@ -131,7 +145,7 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
 pub fn manifest_for(body: &ReducedBody, entries: &[(&str, bool, Vec<u8>)]) -> codec::Manifest {
     codec::Manifest {
         format: codec::FORMAT_NAME.to_string(),
-        version: FORMAT_VERSION,
+        version: version_for(body),
         generator: body.generator.clone(),
         units: body.units.clone(),
         entries: entries

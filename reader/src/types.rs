@@ -359,6 +359,9 @@ pub struct ReducedBody {
     pub strain_shapes: Option<FieldShapes>,
     /// Optional `damping.bin`.
     pub damping: Option<Damping>,
+    /// Optional `lines.bin` (format 1.1): 2-node graphics lines (beams, rods) as 0-based node
+    /// indices.
+    pub lines: Option<Vec<[u32; 2]>>,
 }
 
 impl ReducedBody {

@@ -1,8 +1,8 @@
 //! Consistency rules of a decoded body (SPEC.md §6): counts, finiteness, index ranges,
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
-    DAMPING, FACES, HEADER, INVARIANTS, MANIFEST, METHOD, MODES, NODAL_MASS, NODES, STRAIN_SHAPES,
-    STRESS_SHAPES,
+    DAMPING, FACES, HEADER, INVARIANTS, LINES, MANIFEST, METHOD, MODES, NODAL_MASS, NODES,
+    STRAIN_SHAPES, STRESS_SHAPES,
 };
 use crate::error::ReadError;
 use crate::limits::ReadLimits;
@@ -175,6 +175,15 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
         };
         for (k, &v) in idx.iter().enumerate() {
             index(FACES, format!("faces[{f}][{k}]"), v, n)?;
+        }
+    }
+
+    if let Some(lines) = &body.lines {
+        limit(LINES, "line count", lines.len(), limits.max_faces)?;
+        for (l, line) in lines.iter().enumerate() {
+            for (k, &v) in line.iter().enumerate() {
+                index(LINES, format!("lines[{l}][{k}]"), v, n)?;
+            }
         }
     }
 

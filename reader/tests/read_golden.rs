@@ -3,15 +3,31 @@
 use std::path::Path;
 
 fn golden(name: &str) -> std::path::PathBuf {
+    golden_in("v1.0", name)
+}
+
+fn golden_in(version: &str, name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../fixtures/golden/v1.0")
+        .join("../fixtures/golden")
+        .join(version)
         .join(name)
+}
+
+/// Format 1.1 adds the optional `lines.bin`: the 3-node chain drawn as two lines.
+#[test]
+fn v1_1_golden_reads_with_its_lines() {
+    let b = flexbody_reader::read(golden_in("v1.1", "three_node_chain_lines.flexbody"))
+        .expect("golden file reads");
+    assert_eq!(b.version, flexbody_reader::Version { major: 1, minor: 1 });
+    assert_eq!(b.lines, Some(vec![[0, 1], [1, 2]]));
+    assert_eq!(b.modes.omega2, vec![0.0, 400.0, 1200.0]);
 }
 
 #[test]
 fn three_node_chain_reads_with_closed_form_content() {
     let b = flexbody_reader::read(golden("three_node_chain.flexbody")).expect("golden file reads");
-    assert_eq!(b.version, flexbody_reader::FORMAT_VERSION);
+    assert_eq!(b.version, flexbody_reader::Version { major: 1, minor: 0 });
+    assert_eq!(b.lines, None);
     assert_eq!(
         b.nodes.iter().map(|n| n.id).collect::<Vec<_>>(),
         vec![101, 102, 103]

@@ -263,6 +263,14 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         Some(("IndexOutOfRange", "faces.bin: faces[0][2] node index 7")),
     );
 
+    let mut b = base.clone();
+    b.lines = Some(vec![[0, 1], [2, 3]]);
+    add(
+        "line_index_out_of_range",
+        from_body(&b),
+        Some(("IndexOutOfRange", "lines.bin: lines[1][1] node index 3")),
+    );
+
     let mut e = good.clone();
     let mut nodes = e
         .iter()

@@ -284,7 +284,7 @@ pub fn body_3node() -> ReducedBody {
         mass_kind: MassKind::Lumped,
     };
     ReducedBody {
-        version: FORMAT_VERSION,
+        version: V1_0,
         generator: Generator {
             name: "flexbody-fixtures".into(),
             version: "1".into(),
@@ -335,6 +335,7 @@ pub fn body_3node() -> ReducedBody {
         damping: Some(Damping {
             ratio: vec![0.0, 0.02, 0.02],
         }),
+        lines: None,
     }
 }
 
@@ -466,7 +467,7 @@ pub fn body_20node() -> ReducedBody {
         },
     };
     ReducedBody {
-        version: FORMAT_VERSION,
+        version: V1_0,
         generator: Generator {
             name: "flexbody-fixtures".into(),
             version: "1".into(),
@@ -521,14 +522,28 @@ pub fn body_20node() -> ReducedBody {
             values: strain,
         }),
         damping: None,
+        lines: None,
     }
 }
 
-/// Golden files of v1.0: (file stem, body).
+/// Format version 1.0 (the golden files of v1.0 keep it: a body without v1.1 entries is written as
+/// 1.0).
+pub const V1_0: Version = Version { major: 1, minor: 0 };
+
+/// The 3-node chain drawn as two graphics lines (format 1.1 `lines.bin`).
+pub fn body_3node_lines() -> ReducedBody {
+    let mut b = body_3node();
+    b.lines = Some(vec![[0, 1], [1, 2]]);
+    b.version = flexbody_reader::version_for(&b);
+    b
+}
+
+/// Golden files: (file stem, body); each goes under `golden/v<its version>/`.
 pub fn golden() -> Vec<(&'static str, ReducedBody)> {
     vec![
         ("three_node_chain", body_3node()),
         ("twenty_node_chain", body_20node()),
+        ("three_node_chain_lines", body_3node_lines()),
     ]
 }
 
@@ -548,8 +563,9 @@ pub fn generate_all() -> Vec<(String, Vec<u8>)> {
     for (stem, body) in golden() {
         let bytes =
             flexbody::write::to_bytes(&body, &Default::default()).expect("golden body is valid");
-        out.push((format!("golden/v1.0/{stem}.json"), summary(&bytes)));
-        out.push((format!("golden/v1.0/{stem}.flexbody"), bytes));
+        let dir = format!("golden/v{}.{}", body.version.major, body.version.minor);
+        out.push((format!("{dir}/{stem}.json"), summary(&bytes)));
+        out.push((format!("{dir}/{stem}.flexbody"), bytes));
     }
     for case in broken::cases(&body_3node()) {
         match case.expect {
