@@ -4,11 +4,9 @@
 //!
 //! What Nastran does, as reproduced here: transverse shear flexibility with shear factor
 //! K = 0.9 for the ROD section (the importer gives no shear factors, so the test sets them), and
-//! CBAR lumped mass on the translations only (`BeamLumping::TranslationsOnly`). With these the
-//! eight bending and the axial frequencies agree to < 1e-6. The one torsion mode (3554.9 Hz)
-//! differs: Nastran's CBEAM (element 10, the last one) also lumps its torsional inertia
-//! ρI_pL/2 at its two nodes while CBAR lumps none, and our `Model` does not tell CBAR from
-//! CBEAM. Adding exactly that inertia as point masses reproduces the f06 value as well.
+//! lumped mass per element card (`BeamLumping::Nastran`): a CBAR lumps translations only, a
+//! CBEAM also its torsional inertia ρI_pL/2 at its two nodes. With these all ten frequencies
+//! agree to < 1e-6. With CBAR-type lumping everywhere the one torsion mode is 19% high.
 
 mod common;
 
@@ -17,7 +15,7 @@ use flexbody::fe::{
     assemble, eliminate, AssemblySpec, BeamLumping, BeamTheory, ConstraintSpec, MassKind,
 };
 use flexbody::import::{read_model, Format, ImportOptions};
-use flexbody::model::{Model, PointMass, Section};
+use flexbody::model::{Model, Section};
 use flexbody::solve::{lowest_modes, EigenSpec};
 
 fn f06_freqs() -> Vec<f64> {
@@ -53,11 +51,11 @@ fn deck() -> Model {
     model
 }
 
-fn freqs(model: &Model) -> Vec<f64> {
+fn freqs(model: &Model, beam_lumping: BeamLumping) -> Vec<f64> {
     let spec = AssemblySpec {
         mass: MassKind::Lumped,
         beam: BeamTheory::Timoshenko,
-        beam_lumping: BeamLumping::TranslationsOnly,
+        beam_lumping,
         ..Default::default()
     };
     let asm = assemble(model, &spec).unwrap();
@@ -76,18 +74,28 @@ fn freqs(model: &Model) -> Vec<f64> {
 }
 
 #[test]
-fn nastran_beam_modes_lumped_bending_and_axial_match_f06_and_torsion_is_explained() {
+fn nastran_beam_modes_lumped_per_element_card_match_f06() {
     let want = f06_freqs();
     let model = deck();
-    let ours = freqs(&model);
+    let ours = freqs(&model, BeamLumping::Nastran);
     for (i, (f, w)) in ours.iter().zip(&want).enumerate() {
+        let err = (f - w) / w;
         eprintln!(
-            "beam_modes mode {}: ours {f:.4} Hz, Nastran {w} Hz, rel {:+.2e}",
-            i + 1,
-            (f - w) / w
+            "beam_modes mode {}: ours {f:.4} Hz, Nastran {w} Hz, rel {err:+.2e}",
+            i + 1
         );
+        assert!(err.abs() < 1e-6, "mode {}: {f} vs {w}", i + 1);
     }
-    // Bending pairs 1-2, 3-4, 7-8, 9-10 and axial 6.
+}
+
+/// With CBAR-type lumping (no rotary inertia) on every element, bending and axial modes are
+/// unchanged and the torsion mode is the CONM2 inertia on the shaft's torsional spring,
+/// f = √(GJ/(L I_xx))/2π = 4226.5 Hz, 19% above Nastran's 3554.9 Hz.
+#[test]
+fn nastran_beam_modes_with_cbar_lumping_everywhere_give_the_closed_form_torsion() {
+    let want = f06_freqs();
+    let model = deck();
+    let ours = freqs(&model, BeamLumping::TranslationsOnly);
     for i in [0, 1, 2, 3, 5, 6, 7, 8, 9] {
         let err = (ours[i] - want[i]) / want[i];
         assert!(
@@ -98,8 +106,6 @@ fn nastran_beam_modes_lumped_bending_and_axial_match_f06_and_torsion_is_explaine
             want[i]
         );
     }
-    // Torsion with CBAR-type lumping everywhere: the CONM2 inertia on the shaft's torsional
-    // spring, f = √(GJ/(L I_xx))/2π, 4226.5 Hz (19% above Nastran's 3554.9 Hz).
     let mat = &model.materials[0];
     let j = std::f64::consts::PI / 2.0;
     let closed = (mat.g * j / (10.0 * 2.59e-3)).sqrt() / (2.0 * std::f64::consts::PI);
@@ -108,24 +114,4 @@ fn nastran_beam_modes_lumped_bending_and_axial_match_f06_and_torsion_is_explaine
         "torsion {} vs {closed}",
         ours[4]
     );
-    // Nastran's CBEAM torsional inertia ρ I_p L/2 at GRIDs 10 and 11 closes the gap.
-    let mut with_cbeam = model.clone();
-    let idx = with_cbeam.node_index_by_id();
-    let it = mat.rho * j * 1.0 / 2.0;
-    for id in [10u64, 11] {
-        with_cbeam.point_masses.push(PointMass {
-            id: 100 + id,
-            node: idx[&id],
-            mass: 0.0,
-            offset: [0.0; 3],
-            inertia: [[it, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
-        });
-    }
-    let ours2 = freqs(&with_cbeam);
-    let err = (ours2[4] - want[4]) / want[4];
-    eprintln!(
-        "torsion with CBEAM torsional inertia: {} Hz vs Nastran {} Hz, rel {err:+.2e}",
-        ours2[4], want[4]
-    );
-    assert!(err.abs() < 1e-6, "torsion {} vs {}", ours2[4], want[4]);
 }

@@ -66,7 +66,11 @@ pub struct ElementMatrices {
 
 /// Does the assembler form matrices for this element (solids, beams, rods with a property)?
 pub fn is_structural(kind: ElementKind) -> bool {
-    kind.is_solid() || matches!(kind, ElementKind::Beam2 | ElementKind::Rod2)
+    kind.is_solid()
+        || matches!(
+            kind,
+            ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2
+        )
 }
 
 fn coords<const N: usize>(model: &Model, nodes: &[usize]) -> [Xyz; N] {
@@ -182,7 +186,7 @@ pub fn element_matrices(
                 false,
             )
         }
-        ElementKind::Beam2 => {
+        ElementKind::Beam2 | ElementKind::Bar2 => {
             let Section::Beam(s) = &prop.section else {
                 return Err(fail(format!(
                     "beam element with non-beam property {}",
@@ -204,7 +208,7 @@ pub fn element_matrices(
                 },
                 nsm: s.nsm,
             };
-            let lumping = lumped.then_some(spec.beam_lumping);
+            let lumping = lumped.then_some(spec.beam_lumping.for_element(el.kind));
             let (k, m) = beam::matrices(&coords::<2>(model, n), el.orientation, &iso, &p, lumping)
                 .map_err(elem_err)?;
             ElementMatrices { dpn: 6, k, m }

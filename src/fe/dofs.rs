@@ -42,7 +42,7 @@ impl DofMap {
         for e in &model.elements {
             let n = match e.kind {
                 k if k.is_solid() => 3,
-                ElementKind::Beam2 | ElementKind::Rod2 => 6,
+                ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2 => 6,
                 _ => continue,
             };
             if e.property.is_none() {

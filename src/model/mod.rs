@@ -79,8 +79,11 @@ pub enum ElementKind {
     Prism6,
     /// 15-node wedge (C3D15, CPENTA 15).
     Prism15,
-    /// 2-node 3D beam (B31, CBAR, CBEAM): 6 dofs per node.
+    /// 2-node 3D beam (B31, CBEAM): 6 dofs per node.
     Beam2,
+    /// 2-node 3D bar (Nastran CBAR): the beam formulation of [`ElementKind::Beam2`]; kept apart
+    /// because Nastran lumps no rotary inertia on a CBAR but torsional inertia on a CBEAM.
+    Bar2,
     /// 2-node rod: axial + torsion (CROD, T3D2).
     Rod2,
     /// 3-node shell triangle (S3, CTRIA3) — imported, not yet assembled.
@@ -103,7 +106,7 @@ impl ElementKind {
             ElementKind::Hex20 | ElementKind::Hex20R => 20,
             ElementKind::Prism6 => 6,
             ElementKind::Prism15 => 15,
-            ElementKind::Beam2 | ElementKind::Rod2 => 2,
+            ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2 => 2,
             ElementKind::Tri3 => 3,
             ElementKind::Quad4 => 4,
             ElementKind::Tri6 => 6,

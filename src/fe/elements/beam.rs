@@ -149,6 +149,22 @@ pub enum BeamLumping {
     TorsionOnly,
     /// No rotational inertia at all (as Nastran CBAR lumped).
     TranslationsOnly,
+    /// As Nastran lumps each element: a bar (CBAR) none, a beam (CBEAM) torsion only. Resolved
+    /// per element by [`BeamLumping::for_element`]; on its own it means `TorsionOnly`.
+    Nastran,
+}
+
+impl BeamLumping {
+    /// The lumping of one element of this kind (resolves `Nastran`).
+    pub fn for_element(self, kind: crate::model::ElementKind) -> BeamLumping {
+        match (self, kind) {
+            (BeamLumping::Nastran, crate::model::ElementKind::Bar2) => {
+                BeamLumping::TranslationsOnly
+            }
+            (BeamLumping::Nastran, _) => BeamLumping::TorsionOnly,
+            (other, _) => other,
+        }
+    }
 }
 
 /// Local 12×12 lumped (diagonal) mass (module formula; rotational part per `lumping`).
@@ -163,7 +179,7 @@ pub fn lumped_mass_local(
     let r = 0.5 * mat.rho * l;
     let (tors, bend) = match lumping {
         BeamLumping::SectionRotary => (1.0, 1.0),
-        BeamLumping::TorsionOnly => (1.0, 0.0),
+        BeamLumping::TorsionOnly | BeamLumping::Nastran => (1.0, 0.0),
         BeamLumping::TranslationsOnly => (0.0, 0.0),
     };
     for n in [0, 6] {

@@ -436,7 +436,8 @@ fn element(g: &C) -> Result<(ElementKind, Vec<usize>, Option<Orientation>), Impo
         "CTETRA" => (10, &[(4, Tet4), (10, Tet10)]),
         "CHEXA" => (20, &[(8, Hex8), (20, Hex20)]),
         "CPENTA" => (15, &[(6, Prism6), (15, Prism15)]),
-        "CBAR" | "CBEAM" => (2, &[(2, Beam2)]),
+        "CBAR" => (2, &[(2, Bar2)]),
+        "CBEAM" => (2, &[(2, Beam2)]),
         "CROD" => (2, &[(2, Rod2)]),
         "CQUAD4" => (4, &[(4, Quad4)]),
         _ => (3, &[(3, Tri3)]),
@@ -475,7 +476,7 @@ fn element(g: &C) -> Result<(ElementKind, Vec<usize>, Option<Orientation>), Impo
     } else if kind == Prism15 {
         ids = [&ids[..9], &ids[12..15], &ids[9..12]].concat();
     }
-    let orientation = if kind == Beam2 {
+    let orientation = if kind == Beam2 || kind == Bar2 {
         let s = g.text(4);
         if s.is_empty() {
             return Err(g.err(
