@@ -271,6 +271,16 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
         reference.extend(node_dofs(node, mask, "reference-condition")?);
         reference_records.push((node, mask));
     }
+    // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
+    crate::precheck::before_reduction(
+        &model,
+        dofs,
+        &assembled.m,
+        spec.method,
+        &interface_nodes,
+        &reference_records,
+    )
+    .map_err(&request_err)?;
     lap(&mut report, STAGES[3]);
 
     progress(STAGES[4]);
