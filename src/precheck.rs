@@ -166,9 +166,7 @@ fn rigid_row(
             row[3 + k] = (0..3).map(|i| ax[i] * ed[i]).sum::<f64>() / len;
         }
     } else {
-        for k in 0..3 {
-            row[3 + k] = a[c - 3][k];
-        }
+        row[3..].copy_from_slice(&a[c - 3]);
     }
     row
 }
@@ -250,10 +248,33 @@ fn restrain(model: &Model, dofs: &DofMap, part: &Part, rows: &[(NodeIndex, usize
             }
             let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
             if norm > 1e-6 {
-                let u = std::array::from_fn(|i| v[i] / norm);
-                basis.push(u);
-                free.push(describe_motion(&u, x0, len));
+                basis.push(std::array::from_fn(|i| v[i] / norm));
             }
+        }
+        // name the free space by the coordinate motions it contains: greedily the unit
+        // translation/rotation (about the part's centre) with the largest projection onto it
+        let mut chosen: Vec<[f64; 6]> = Vec::new();
+        for _ in 0..basis.len() {
+            let mut best = ([0.0; 6], 0.0);
+            for e in 0..6 {
+                let mut v = [0.0; 6];
+                for b in &basis {
+                    (0..6).for_each(|i| v[i] += b[e] * b[i]);
+                }
+                for c in &chosen {
+                    let d: f64 = (0..6).map(|i| v[i] * c[i]).sum();
+                    (0..6).for_each(|i| v[i] -= d * c[i]);
+                }
+                let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if norm > best.1 + 1e-9 {
+                    best = (v.map(|x| x / norm), norm);
+                }
+            }
+            if best.1 <= 1e-6 {
+                break;
+            }
+            chosen.push(best.0);
+            free.push(describe_motion(&best.0, x0, len));
         }
     }
     Restraint { redundant, free }
@@ -332,7 +353,7 @@ pub fn before_reduction(
                 .filter_map(|pr| model.properties.get(pr))
                 .filter_map(|pr| model.materials.get(pr.material))
                 .filter(|mat| mat.rho == 0.0)
-                .map(|mat| format!("material {} '{}' (ρ = 0)", mat.id, mat.name))
+                .map(|mat| format!("material {} '{}'", mat.id, mat.name))
                 .collect();
             mats.sort();
             mats.dedup();
@@ -341,9 +362,9 @@ pub fn before_reduction(
                  give the material its density",
                 describe_part(model, &parts, k),
                 if mats.is_empty() {
-                    "mass matrix is zero on it".to_string()
+                    "its mass matrix is zero".to_string()
                 } else {
-                    mats.join(", ")
+                    format!("ρ = 0 in {}", mats.join(", "))
                 }
             ));
         }

@@ -774,7 +774,7 @@ fn row10_cli_massless_part_names_the_material() {
     model.materials[0].rho = 0.0;
     let inp = dir.write_inp("massless.inp", &model);
     let err = fail_run(&dir, &[&inp, "--interface", "X0", "--units", "si"], &[]);
-    assert_contains(&err, &["has no mass", "material 1 'STEEL' (ρ = 0)"]);
+    assert_contains(&err, &["has no mass", "ρ = 0 in material 1 'STEEL'"]);
     let err = fail_run(&dir, &[&inp, "--method", "normal", "--units", "si"], &[]);
     assert_contains(&err, &["has no mass"]);
 }

@@ -480,5 +480,6 @@ pub fn fail_run(dir: &TempDir, args: &[&str], env: &[(&str, &str)]) -> String {
         .collect();
     assert!(stray.is_empty(), "{args:?} left {stray:?}");
     assert!(!err.contains("panicked") && !err.contains("NaN"), "{err}");
+    println!("STDERR {args:?}\n{err}");
     err
 }
