@@ -61,7 +61,10 @@ pub enum SolveError {
     #[error("basis is not of full rank in the mass metric")]
     DependentBasis,
     /// A result failed its check.
-    #[error("result check failed: {what} = {value:e} > {limit:e}")]
+    #[error(
+        "result check failed: {what} = {value:e} > {limit:e} (an ill-conditioned model, e.g. a \
+         large stiffness contrast between materials, or an inaccurate solve: see docs/stability.md)"
+    )]
     CheckFailed {
         what: &'static str,
         value: f64,

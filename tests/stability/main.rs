@@ -45,6 +45,49 @@ fn row01_cb_single_translational_node_leaves_rotations_free() {
     assert!(cb.omega2.iter().all(|w| w.is_finite()));
 }
 
+/// A singular K_ii whose rounding leaves a tiny *positive* pivot (interior block [[1, 1], [1, 1 +
+/// δ]]): δ = 1e-15 is below the 1e-14 pivot threshold and reported as unrestrained, δ = 1e-12
+/// (an ill-conditioned but regular interior, like a 1e10 stiffness contrast) factors.
+#[test]
+fn row01_cb_tiny_positive_pivot_is_a_zero_pivot() {
+    let system3 = |delta: f64| {
+        let t = |i, j, v| flexbody::solve::Triplet::new(i, j, v);
+        let k = Sparse::try_new_from_triplets(
+            3,
+            3,
+            &[
+                t(0, 0, 2.0),
+                t(0, 1, -1.0),
+                t(1, 0, -1.0),
+                t(1, 1, 1.0),
+                t(1, 2, 1.0),
+                t(2, 1, 1.0),
+                t(2, 2, 1.0 + delta),
+            ],
+        )
+        .unwrap();
+        let m = Sparse::try_new_from_triplets(3, 3, &[t(0, 0, 1.0), t(1, 1, 1.0), t(2, 2, 1.0)])
+            .unwrap();
+        (k, m)
+    };
+    let (k, m) = system3(1e-15);
+    let e = craig_bampton(&k, &m, &[0], ModeCount::Count(0), &eig()).unwrap_err();
+    match &e {
+        ReduceError::UnrestrainedInterior {
+            pivot,
+            region,
+            connected,
+            ..
+        } => {
+            assert!(*pivot > 0.0 && *pivot < 1e-14, "{e}");
+            assert_eq!((*region, *connected), (2, true), "{e}");
+        }
+        other => panic!("expected UnrestrainedInterior, got {other}"),
+    }
+    let (k, m) = system3(1e-12);
+    assert!(craig_bampton(&k, &m, &[0], ModeCount::Count(0), &eig()).is_ok());
+}
+
 /// A second block not connected to the first: the interior region of the zero pivot is exactly
 /// the second block's dofs and it does not touch the interface.
 #[test]
