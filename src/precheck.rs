@@ -108,35 +108,202 @@ pub fn parts(model: &Model, dofs: &DofMap) -> Vec<Part> {
     out
 }
 
-/// "part 2 (120 elements, ids 501–620, element set INSERT; 180 nodes, e.g. node 733)".
+/// "part 2 of 3 (120 elements, ids 501–620, element sets INSERT; 180 nodes, e.g. node 733)".
 pub fn describe_part(model: &Model, parts: &[Part], k: usize) -> String {
     let p = &parts[k];
-    let mut s = format!("part {} of {} (", k + 1, parts.len());
-    if p.elements.is_empty() {
-        s.push_str("no elements");
-    } else {
-        let ids = p.elements.iter().map(|&e| model.elements[e].id);
-        let (lo, hi) = ids.fold((u64::MAX, 0), |(a, b), i| (a.min(i), b.max(i)));
-        s.push_str(&format!("{} elements, ids {lo}–{hi}", p.elements.len()));
-        let mut mark = vec![false; model.elements.len()];
-        p.elements.iter().for_each(|&e| mark[e] = true);
-        let sets: Vec<&str> = model
-            .element_sets
-            .iter()
-            .filter(|(_, v)| v.iter().any(|&e| e < mark.len() && mark[e]))
-            .map(|(k, _)| k.as_str())
-            .take(4)
-            .collect();
-        if !sets.is_empty() {
-            s.push_str(&format!(", element sets {}", sets.join(", ")));
-        }
-    }
-    s.push_str(&format!(
-        "; {} nodes, e.g. node {})",
+    format!(
+        "part {} of {} ({}; {} nodes, e.g. node {})",
+        k + 1,
+        parts.len(),
+        describe_elements(model, &p.elements),
         p.nodes.len(),
         model.nodes[p.nodes[0]].id
-    ));
+    )
+}
+
+/// "120 elements, ids 501–620, element sets INSERT" (or "no elements").
+fn describe_elements(model: &Model, elements: &[usize]) -> String {
+    if elements.is_empty() {
+        return "no elements".into();
+    }
+    let ids = elements.iter().map(|&e| model.elements[e].id);
+    let (lo, hi) = ids.fold((u64::MAX, 0), |(a, b), i| (a.min(i), b.max(i)));
+    let mut s = format!("{} elements, ids {lo}–{hi}", elements.len());
+    let mut mark = vec![false; model.elements.len()];
+    elements.iter().for_each(|&e| mark[e] = true);
+    let sets: Vec<&str> = model
+        .element_sets
+        .iter()
+        .filter(|(_, v)| v.iter().any(|&e| e < mark.len() && mark[e]))
+        .map(|(k, _)| k.as_str())
+        .take(4)
+        .collect();
+    if !sets.is_empty() {
+        s.push_str(&format!(", element sets {}", sets.join(", ")));
+    }
     s
+}
+
+/// Groups of the solid elements of a part bonded through shared faces (three non-collinear
+/// shared nodes), each with its nodes, and the nodes where groups meet. A rigid element joins
+/// the groups in which its nodes span a face (a spider over one face stays in its group and adds
+/// its centre node to it). `None` when the part also holds beams or rods, whose joints carry
+/// rotations. Solids meeting only at a node or along an edge are a mechanism (3 or 1 extra zero
+/// modes).
+pub fn solid_groups(model: &Model, part: &Part) -> Option<(Vec<Part>, Vec<NodeIndex>)> {
+    if part
+        .elements
+        .iter()
+        .any(|&e| !model.elements[e].kind.is_solid())
+    {
+        return None;
+    }
+    let els = &part.elements;
+    let mut node_els: std::collections::HashMap<NodeIndex, Vec<usize>> = Default::default();
+    for (a, &e) in els.iter().enumerate() {
+        for &n in &model.elements[e].nodes {
+            node_els.entry(n).or_default().push(a);
+        }
+    }
+    let mut parent: Vec<usize> = (0..els.len()).collect();
+    fn find(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for a in 0..els.len() {
+        let na = &model.elements[els[a]].nodes;
+        for &n in na {
+            for &b in &node_els[&n] {
+                if b <= a || find(&mut parent, a) == find(&mut parent, b) {
+                    continue;
+                }
+                let shared: Vec<[f64; 3]> = model.elements[els[b]]
+                    .nodes
+                    .iter()
+                    .filter(|m| na.contains(m))
+                    .map(|&m| model.nodes[m].x)
+                    .collect();
+                if spans_a_face(&shared) {
+                    let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+                    parent[rb] = ra;
+                }
+            }
+        }
+    }
+    // rigid elements: join every group in which their nodes span a face
+    let mut extra: Vec<(usize, Vec<NodeIndex>)> = Vec::new(); // (an element of the group, nodes)
+    for r in &model.rigid_elements {
+        let nodes: Vec<NodeIndex> = match r {
+            RigidElement::Rbe2 {
+                independent,
+                dependent,
+                ..
+            } => std::iter::once(*independent)
+                .chain(dependent.iter().copied())
+                .collect(),
+            RigidElement::Rbe3 {
+                reference,
+                independent,
+                ..
+            } => std::iter::once(*reference)
+                .chain(independent.iter().map(|x| x.0))
+                .collect(),
+        };
+        let mut by_root: std::collections::BTreeMap<usize, Vec<[f64; 3]>> = Default::default();
+        for &n in &nodes {
+            if let Some(v) = node_els.get(&n) {
+                let mut roots: Vec<usize> = v.iter().map(|&a| find(&mut parent, a)).collect();
+                roots.sort_unstable();
+                roots.dedup();
+                for r0 in roots {
+                    by_root.entry(r0).or_default().push(model.nodes[n].x);
+                }
+            }
+        }
+        let joined: Vec<usize> = by_root
+            .into_iter()
+            .filter(|(_, pts)| spans_a_face(pts))
+            .map(|(r0, _)| r0)
+            .collect();
+        if let Some(&first) = joined.first() {
+            for &other in &joined[1..] {
+                let (ra, rb) = (find(&mut parent, first), find(&mut parent, other));
+                parent[rb] = ra;
+            }
+            extra.push((first, nodes));
+        }
+    }
+    let mut index = std::collections::HashMap::new();
+    let mut groups: Vec<Part> = Vec::new();
+    let mut group_of = vec![0usize; els.len()];
+    for a in 0..els.len() {
+        let r = find(&mut parent, a);
+        let g = *index.entry(r).or_insert_with(|| {
+            groups.push(Part {
+                nodes: vec![],
+                elements: vec![],
+            });
+            groups.len() - 1
+        });
+        groups[g].elements.push(els[a]);
+        groups[g]
+            .nodes
+            .extend(model.elements[els[a]].nodes.iter().copied());
+        group_of[a] = g;
+    }
+    for (a, nodes) in extra {
+        let g = index[&find(&mut parent, a)];
+        groups[g].nodes.extend(nodes);
+    }
+    let mut count = vec![0u8; model.nodes.len()];
+    for g in &mut groups {
+        g.nodes.sort_unstable();
+        g.nodes.dedup();
+        g.nodes
+            .iter()
+            .for_each(|&n| count[n] = count[n].saturating_add(1));
+    }
+    let joints: Vec<NodeIndex> = (0..count.len()).filter(|&n| count[n] > 1).collect();
+    Some((groups, joints))
+}
+
+/// Whether points include three that are not collinear.
+fn spans_a_face(p: &[[f64; 3]]) -> bool {
+    if p.len() < 3 {
+        return false;
+    }
+    let d = |a: [f64; 3], b: [f64; 3]| [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let n2 = |v: [f64; 3]| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    let far = p.iter().copied().fold(p[0], |best, q| {
+        if n2(d(p[0], q)) > n2(d(p[0], best)) {
+            q
+        } else {
+            best
+        }
+    });
+    let u = d(p[0], far);
+    p.iter().any(|&q| {
+        let v = d(p[0], q);
+        let c = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        n2(c) > 1e-12 * n2(u) * n2(u)
+    })
+}
+
+fn node_ids(model: &Model, nodes: &[NodeIndex]) -> String {
+    let ids: Vec<String> = nodes
+        .iter()
+        .take(6)
+        .map(|&n| model.nodes[n].id.to_string())
+        .collect();
+    let more = if nodes.len() > 6 { ", …" } else { "" };
+    format!("{}{more}", ids.join(", "))
 }
 
 /// Rigid-body row of dof `c` of node `n`: its value under the six unit rigid motions about `x0`
@@ -437,6 +604,28 @@ pub fn before_reduction(
             ));
         }
     }
+    if free_free {
+        for (k, part) in parts.iter().enumerate() {
+            if let Some((groups, joints)) = solid_groups(model, part).filter(|g| g.0.len() > 1) {
+                let list: Vec<String> = groups
+                    .iter()
+                    .enumerate()
+                    .map(|(i, g)| {
+                        format!("group {}: {}", i + 1, describe_elements(model, &g.elements))
+                    })
+                    .collect();
+                return Err(format!(
+                    "free-free analysis: {} is a mechanism: its solid elements form {} groups that \
+                     share no face, only node(s) {} ({}), so they can turn against each other \
+                     (extra zero-frequency modes); merge or tie the groups over a face",
+                    describe_part(model, &parts, k),
+                    groups.len(),
+                    node_ids(model, &joints),
+                    list.join("; ")
+                ));
+            }
+        }
+    }
     if method == BuildMethod::CraigBampton {
         for k in 0..parts.len() {
             let mut rows = spc_rows(k);
@@ -447,6 +636,32 @@ pub fn before_reduction(
                     .flat_map(|&n| node_rows(dofs, n, DofMask::ALL)),
             );
             let r = restrain(model, dofs, &parts[k], &rows);
+            if r.free.is_empty() {
+                // a mechanism inside the part: every face-bonded group must be held on its own
+                if let Some((groups, joints)) = solid_groups(model, &parts[k]) {
+                    for (i, g) in groups.iter().enumerate().filter(|_| groups.len() > 1) {
+                        let mut mine = vec![false; model.nodes.len()];
+                        g.nodes.iter().for_each(|&n| mine[n] = true);
+                        let rows_g: Vec<(NodeIndex, usize)> =
+                            rows.iter().copied().filter(|&(n, _)| mine[n]).collect();
+                        let rg = restrain(model, dofs, g, &rows_g);
+                        if !rg.free.is_empty() {
+                            return Err(format!(
+                                "Craig–Bampton: in {}, group {} of {} solid groups ({}) shares no face \
+                                 with the others (only node(s) {}) and is not held by its interface \
+                                 dofs: {} left free, so K_ii is singular; tie the groups over a face \
+                                 or give this group interface nodes",
+                                describe_part(model, &parts, k),
+                                i + 1,
+                                groups.len(),
+                                describe_elements(model, &g.elements),
+                                node_ids(model, &joints),
+                                rg.free.join(", ")
+                            ));
+                        }
+                    }
+                }
+            }
             if !r.free.is_empty() {
                 let what = if rows.is_empty() {
                     "is not connected to any interface node".to_string()
