@@ -72,6 +72,25 @@ pub enum ReduceError {
     },
 }
 
+/// Errors when a set computed with dofs held (reference conditions) still has zero-frequency
+/// modes: the held dofs do not remove all rigid motion, or the model has mechanisms.
+pub(crate) fn check_held(set: &ModeSet) -> Result<(), ReduceError> {
+    let zero = set
+        .labels
+        .iter()
+        .filter(|l| **l == ModeLabel::Rigid)
+        .count();
+    if zero > 0 && !set.reference_dofs.is_empty() {
+        return Err(ReduceError::Rigid(format!(
+            "with the {} reference dofs held, {zero} zero-frequency mode(s) remain: the reference \
+             conditions do not remove all rigid motion, or the model has mechanisms; hold 6 \
+             independent dofs (e.g. all 6 dofs of one interface node)",
+            set.reference_dofs.len()
+        )));
+    }
+    Ok(())
+}
+
 /// Rigid-body modes of one free 3-D body.
 pub const FREE_BODY_RIGID_MODES: usize = 6;
 

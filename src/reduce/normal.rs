@@ -66,7 +66,7 @@ pub fn normal_modes(
     }
     // checked on the free-dof problem: rows of held dofs carry the reactions, not an error
     let diagnostics = diagnose(kr, mr, &s.vectors, &s.eigenvalues)?;
-    Ok(ModeSet {
+    let set = ModeSet {
         phi,
         omega2: s.eigenvalues,
         labels,
@@ -74,7 +74,9 @@ pub fn normal_modes(
         reference_dofs: fixed.to_vec(),
         selection: None,
         diagnostics,
-    })
+    };
+    super::check_held(&set)?;
+    Ok(set)
 }
 
 fn labels_zero(labels: &[ModeLabel]) -> usize {

@@ -12,8 +12,11 @@ use faer::Mat;
 /// (i.e. it is within angle ~1e-4 rad of their span), see [`orthonormalize`].
 pub const DEPENDENCY_TOL: f64 = 1e-8;
 
-/// ω² ≤ RIGID_REL · tr K / tr M counts as a rigid-body mode.
-pub const RIGID_REL: f64 = 1e-9;
+/// ω² ≤ RIGID_REL · scale (scale = [`trace_ratio`], the median K_ii/M_ii) counts as a rigid-body
+/// mode, besides the per-vector rounding floor of [`rigid_flags`]. Was 1e-9: on a free beam of
+/// 1000 elements the first bending pair lies at 4e-11 of the scale and was taken for two more
+/// rigid modes (docs/stability.md, row 2); computed rigid ω² are ~1e-16 of it.
+pub const RIGID_REL: f64 = 1e-12;
 
 /// Per column of Φ: is ω²_j a rigid-body (zero) eigenvalue? |ω²_j| ≤ RIGID_REL·scale (scale =
 /// [`trace_ratio`]), or within the rounding floor ROUNDING_FACTOR·ε·(|φ_j|ᵀ|K||φ_j|) that a stiff

@@ -237,6 +237,34 @@ fn row08_reference_conditions_under_and_over_constrained() {
     assert_contains(&err, &["do not remove all rigid motion"]);
 }
 
+/// The library backstop of row 8: with reference dofs that leave rigid motion free, normal
+/// modes and both improved CB methods return `ReduceError::Rigid` (zero modes remain) instead of
+/// a set with zero-frequency modes and no body frame.
+#[test]
+fn row08_library_reference_leaving_zero_modes_is_an_error() {
+    let (model, k, m) = system(&block([6, 2, 2], [0.3, 0.05, 0.05]));
+    let by_id = model.node_index_by_id();
+    let corners: Vec<usize> = corner_ids(&model).iter().map(|id| by_id[id]).collect();
+    let iface = node_dofs(&model, &corners, 3);
+    let reference = node_dofs(&model, &corners[..1], 3);
+    let check = |e: flexbody::reduce::ReduceError| {
+        let t = e.to_string();
+        assert!(matches!(e, flexbody::reduce::ReduceError::Rigid(_)), "{t}");
+        assert_contains(
+            &t,
+            &["3 reference dofs held, 3 zero-frequency mode(s) remain"],
+        );
+    };
+    check(normal_modes(&k, &m, ModeCount::Count(8), &reference, &eig()).unwrap_err());
+    use flexbody::reduce::reference::{improved_cb_method1, improved_cb_method2};
+    check(
+        improved_cb_method1(&k, &m, &iface, &reference, ModeCount::Count(4), &eig()).unwrap_err(),
+    );
+    check(
+        improved_cb_method2(&k, &m, &iface, &reference, ModeCount::Count(4), &eig()).unwrap_err(),
+    );
+}
+
 // ---------------------------------------------------------------------------------------------
 // Row 9 — mode requests the problem cannot meet.
 
