@@ -298,6 +298,16 @@ pub fn build_model(
         reference.extend(node_dofs(node, mask, "reference-condition")?);
         reference_records.push((node, mask));
     }
+    // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
+    crate::precheck::before_reduction(
+        &model,
+        dofs,
+        &assembled.m,
+        spec.method,
+        &interface_nodes,
+        &reference_records,
+    )
+    .map_err(&request_err)?;
     // The model's own SPCs hold the body too: record them with the reference conditions, so the
     // file (and `check`) say the modes are those of a supported body.
     let mut held: std::collections::BTreeMap<NodeIndex, u8> = Default::default();

@@ -29,6 +29,7 @@ pub mod interface;
 pub mod invariants;
 pub mod model;
 pub mod options;
+pub mod precheck;
 pub mod reduce;
 pub mod solve;
 pub mod stress;

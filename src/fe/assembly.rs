@@ -111,6 +111,15 @@ pub fn element_matrices(
         .materials
         .get(prop.material)
         .ok_or_else(|| fail(format!("property {} names a missing material", prop.id)))?;
+    // material constants are the material's fault: name it
+    let elem_err = |err: ElementError| {
+        elem_err(match err {
+            ElementError::BadConstants(s) => {
+                ElementError::BadConstants(format!("material {} '{}': {s}", mat.id, mat.name))
+            }
+            e => e,
+        })
+    };
     let iso = Isotropic {
         e: mat.e,
         nu: mat.nu,

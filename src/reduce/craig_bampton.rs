@@ -5,9 +5,10 @@
 use super::orthonormalize::orthonormalize;
 use super::select::{solve_count_with, ModeCount};
 use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
+use crate::solve::cholesky::SINGULAR_PIVOT;
 use crate::solve::{
-    lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, SparseColMat,
-    SparseLlt, DENSE_MAX,
+    lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, SolveError,
+    SparseColMat, SparseLlt, DENSE_MAX,
 };
 use faer::Mat;
 use std::time::Instant;
@@ -45,12 +46,15 @@ pub fn craig_bampton_basis(
     }
     let inner = complement(interface, n);
     let ni = inner.len();
+    if modes != ModeCount::Count(0) {
+        super::select::check_count(modes, ni, "the interior (non-interface dofs)")?;
+    }
     let nb = interface.len();
     let t0 = Instant::now();
     let kii = sparse_ops::submatrix(k.as_ref(), &inner, &inner)?;
     let mii = sparse_ops::submatrix(m.as_ref(), &inner, &inner)?;
     let kib = sparse_ops::submatrix(k.as_ref(), &inner, interface)?;
-    let llt = SparseLlt::factor(kii.as_ref(), eig.dofs_per_node, eig.par)?;
+    let llt = factor_kii(&kii, &kib, &inner, eig)?;
     let t_factor = t0.elapsed().as_secs_f64();
     // Ψ = −K_ii⁻¹ K_ib
     let t1 = Instant::now();
@@ -88,6 +92,52 @@ pub fn craig_bampton_basis(
             ("constraint modes", t_constraint),
             ("eigen", t_eigen),
         ],
+    })
+}
+
+/// LLᵀ of K_ii; a zero pivot (non-positive, or positive below [`SINGULAR_PIVOT`] of its
+/// diagonal) becomes [`ReduceError::UnrestrainedInterior`] naming the dof and its region.
+fn factor_kii(
+    kii: &SparseColMat<usize, f64>,
+    kib: &SparseColMat<usize, f64>,
+    inner: &[usize],
+    eig: &EigenSpec,
+) -> Result<SparseLlt, ReduceError> {
+    let (local, pivot, llt) = match SparseLlt::factor(kii.as_ref(), eig.dofs_per_node, eig.par) {
+        Err(SolveError::NonPositivePivot { dof }) => (dof, 0.0, None),
+        Err(e) => return Err(e.into()),
+        Ok(l) if l.min_pivot().0 <= SINGULAR_PIVOT => (l.min_pivot().1, l.min_pivot().0, None),
+        Ok(l) => (0, 1.0, Some(l)),
+    };
+    if let Some(l) = llt {
+        return Ok(l);
+    }
+    // the region of K_ii's graph around the zero pivot, and whether K_ib couples it to the interface
+    let ni = kii.nrows();
+    let mut seen = vec![false; ni];
+    let mut stack = vec![local];
+    seen[local] = true;
+    let mut region = 0;
+    while let Some(i) = stack.pop() {
+        region += 1;
+        for &r in kii.row_idx_of_col_raw(i) {
+            if !seen[r] {
+                seen[r] = true;
+                stack.push(r);
+            }
+        }
+    }
+    let connected = (0..kib.ncols()).any(|c| {
+        kib.row_idx_of_col_raw(c)
+            .iter()
+            .zip(kib.val_of_col(c))
+            .any(|(&r, &v)| seen[r] && v != 0.0)
+    });
+    Err(ReduceError::UnrestrainedInterior {
+        dof: inner[local],
+        pivot,
+        region,
+        connected,
     })
 }
 
@@ -143,6 +193,13 @@ pub fn craig_bampton(
     let mut diagnostics = o.diagnostics;
     for (name, s) in &basis.timings {
         diagnostics.notes.push(format!("time {name}: {s:.3} s"));
+    }
+    if nq == 0 && matches!(modes, ModeCount::BelowHz(_)) {
+        diagnostics.notes.push(
+            "no fixed-interface mode lies below the cutoff: the set holds the constraint (static) \
+             modes only, a Guyan reduction; raise --fmax for dynamic content"
+                .into(),
+        );
     }
     diagnostics.notes.push(format!(
         "time orthonormalization: {:.3} s",

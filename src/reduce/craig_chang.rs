@@ -6,7 +6,7 @@
 //! K̂ is formed as XᵀKX, which equals the documented [Dn, XnᵀFe; FeᵀXn, XaᵀFe] because the
 //! support reactions of an equilibrated load vanish.
 
-use super::orthonormalize::{orthonormalize, RIGID_REL};
+use super::orthonormalize::{orthonormalize, rigid_flags};
 use super::select::{solve_count, ModeCount};
 use super::{complement, Method, ModeLabel, ModeSet, ReduceError};
 use crate::solve::{sparse_ops, trace_ratio, EigenSolution, EigenSpec, SparseColMat, SparseLlt};
@@ -40,20 +40,34 @@ pub(crate) fn load_dof(f: &Mat<f64>, j: usize) -> usize {
     })
 }
 
-/// Free-free modes and the number of rigid ones (ω² ≤ RIGID_REL·tr K/tr M, leading).
+/// Free-free modes and the number of rigid ones (leading, by [`rigid_flags`]).
 pub(crate) fn free_free(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     modes: ModeCount,
     eig: &EigenSpec,
 ) -> Result<(EigenSolution, usize), ReduceError> {
+    super::select::check_count(modes, k.nrows(), "the model")?;
     let s = solve_count(k, m, modes, eig)?;
     let scale = trace_ratio(k, m);
-    let nr = s
-        .eigenvalues
-        .iter()
-        .take_while(|&&l| l.abs() <= RIGID_REL * scale)
+    let nr = rigid_flags(k, &s.vectors, &s.eigenvalues, scale)
+        .into_iter()
+        .take_while(|&r| r)
         .count();
+    if nr > super::FREE_BODY_RIGID_MODES {
+        return Err(ReduceError::Mechanism {
+            zero_modes: nr,
+            at_least: nr == s.eigenvalues.len(),
+        });
+    }
+    if let (ModeCount::BelowHz(cut), true) = (modes, nr == s.eigenvalues.len()) {
+        let next = solve_count(k, m, ModeCount::Count((nr + 1).min(k.nrows())), eig)?;
+        let first = next.eigenvalues.last().copied().unwrap_or(0.0);
+        return Err(super::select::cutoff_below_first(
+            cut,
+            first.max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
+        ));
+    }
     if nr == s.eigenvalues.len() {
         return Err(ReduceError::Rigid(format!(
             "all {nr} computed free-free modes are rigid; ask for more modes"

@@ -19,6 +19,33 @@ use faer::Mat;
 /// ℓ = DEFAULT_SHIFT_FRACTION · λ₁ (= (ω₁/2)², half the first flexible frequency).
 pub const DEFAULT_SHIFT_FRACTION: f64 = 0.25;
 
+/// Largest ℓ/λ₁ accepted: nearer to the first flexible eigenvalue, K − ℓM is nearly singular, the
+/// frequency-response vectors collapse onto the first mode (and are removed as dependent) and the
+/// static procedure's fixed point (rate ℓ/λ₁) needs ≥ 300 steps.
+pub const MAX_SHIFT_FRACTION: f64 = 0.9;
+
+/// Checks ℓ against the first flexible eigenvalue λ₁ (and λ₁ against nothing above it).
+fn check_shift(ell: f64, l1: f64) -> Result<(), ReduceError> {
+    if !(ell > 0.0 && ell.is_finite()) {
+        return Err(ReduceError::Dofs {
+            what: "Dietz shift",
+            detail: format!("l = {ell:e} must be positive (default: {DEFAULT_SHIFT_FRACTION} x the first flexible eigenvalue {l1:e})"),
+        });
+    }
+    if ell >= MAX_SHIFT_FRACTION * l1 {
+        return Err(ReduceError::Dofs {
+            what: "Dietz shift",
+            detail: format!(
+                "l = {ell:e} is {:.4} x the first flexible eigenvalue {l1:e}: K - l M is (nearly) \
+                 singular there; choose l below {MAX_SHIFT_FRACTION} x lambda1 (default \
+                 {DEFAULT_SHIFT_FRACTION} x lambda1, half the first frequency)",
+                ell / l1
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// Relative convergence of the static procedure's fixed point.
 const FIXED_POINT_TOL: f64 = 1e-13;
 
@@ -56,12 +83,7 @@ pub fn dietz(
     let (xn, nr) = free_free(k, m, modes, eig)?;
     let l1 = xn.eigenvalues[nr];
     let ell = shift.unwrap_or(DEFAULT_SHIFT_FRACTION * l1);
-    if !(ell > 0.0 && ell < l1) {
-        return Err(ReduceError::Dofs {
-            what: "Dietz shift",
-            detail: format!("l = {ell:e} must lie in (0, first flexible eigenvalue {l1:e})"),
-        });
-    }
+    check_shift(ell, l1)?;
     let xr = xn.vectors.as_ref().subcols(0, nr).to_owned();
     let ir = InertiaRelief::new(k, m, xr.clone(), eig)?;
     let fe = ir.equilibrate(fa);
@@ -131,12 +153,7 @@ pub fn dietz_modified(
     let (xe, nr) = free_free(k, m, ModeCount::Count(extended), eig)?;
     let l1 = xe.eigenvalues[nr];
     let ell = shift.unwrap_or(DEFAULT_SHIFT_FRACTION * l1);
-    if !(ell > 0.0 && ell < l1) {
-        return Err(ReduceError::Dofs {
-            what: "Dietz shift",
-            detail: format!("l = {ell:e} not in (0, {l1:e})"),
-        });
-    }
+    check_shift(ell, l1)?;
     let c = xe.vectors.transpose() * fa;
     let scaled = Mat::from_fn(c.nrows(), c.ncols(), |i, j| {
         c[(i, j)] / (xe.eigenvalues[i] - ell)

@@ -34,7 +34,65 @@ pub enum ReduceError {
     /// The rigid-body modes could not be found or supported.
     #[error("rigid-body modes: {0}")]
     Rigid(String),
+    /// Craig–Bampton: K_ii is singular, the interface does not hold the interior.
+    #[error(
+        "Craig–Bampton: the fixed-interface stiffness K_ii is singular at dof {dof} (pivot/diagonal \
+         {pivot:.1e}; its region has {region} dofs): {}",
+        if *connected {
+            "the interface dofs leave a rigid motion or mechanism of the interior free (e.g. one \
+             node with only translational dofs on a solid leaves the rotations free); add \
+             interface nodes or attach the interface through an RBE2 spider over a node set"
+        } else {
+            "this region is not connected to any interface dof; connect it to the rest of the \
+             model or put one of its nodes in the interface"
+        }
+    )]
+    UnrestrainedInterior {
+        /// The dof (model numbering) of the zero pivot.
+        dof: usize,
+        /// L_jj² / A_jj there (≤ 0 when the factorization stopped).
+        pivot: f64,
+        /// Dofs of the interior region (connected through K_ii) that contains it.
+        region: usize,
+        /// Whether that region touches an interface dof.
+        connected: bool,
+    },
+    /// A free-free analysis found more zero-frequency modes than a free body has.
+    #[error(
+        "free-free analysis found {zero_modes}{} zero-frequency modes where one free body has 6: \
+         the model has disconnected parts or mechanisms (parts joined at a single node or along a \
+         line, dofs without stiffness); connect them or build each part as its own body",
+        if *at_least { " or more" } else { "" }
+    )]
+    Mechanism {
+        /// Zero modes found.
+        zero_modes: usize,
+        /// Whether every computed mode was a zero mode (there may be more).
+        at_least: bool,
+    },
 }
+
+/// Errors when a set computed with dofs held (reference conditions) still has zero-frequency
+/// modes: the held dofs do not remove all rigid motion, or the model has mechanisms.
+pub(crate) fn check_held(set: &ModeSet) -> Result<(), ReduceError> {
+    let zero = set
+        .labels
+        .iter()
+        .filter(|l| **l == ModeLabel::Rigid)
+        .count();
+    if zero > 0 && !set.reference_dofs.is_empty() {
+        return Err(ReduceError::Rigid(format!(
+            "with the {} reference dofs held, {zero} zero-frequency mode(s) remain: the reference \
+             conditions do not remove all rigid motion, or the model has mechanisms; hold 6 \
+             independent dofs (e.g. all 6 dofs of one interface node)",
+            set.reference_dofs.len()
+        )));
+    }
+    Ok(())
+}
+
+/// Rigid-body modes of one free 3-D body.
+pub const FREE_BODY_RIGID_MODES: usize = 6;
 
 /// Where a basis vector (or, by its dominant component, a final mode) comes from.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,7 +1,7 @@
 //! Normal modes of the full model: free-free, or with dofs held at zero (constraints or the
 //! reference conditions of Wang, Niu & Feng 2023, which then define the body frame).
 
-use super::orthonormalize::{diagnose, RIGID_REL};
+use super::orthonormalize::{diagnose, rigid_flags};
 use super::select::{solve_count, ModeCount};
 use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
 use crate::solve::{sparse_ops, trace_ratio, EigenSpec, SparseColMat};
@@ -28,6 +28,7 @@ pub fn normal_modes(
         mf = sparse_ops::submatrix(m.as_ref(), &free, &free)?;
         (&kf, &mf)
     };
+    super::select::check_count(count, free.len(), "the model's free dofs")?;
     let s = solve_count(kr, mr, count, eig)?;
     let mut phi = Mat::<f64>::zeros(n, s.eigenvalues.len());
     for j in 0..phi.ncols() {
@@ -36,20 +37,36 @@ pub fn normal_modes(
         }
     }
     let scale = trace_ratio(k, m);
-    let labels = s
-        .eigenvalues
-        .iter()
-        .map(|&l| {
-            if l.abs() <= RIGID_REL * scale {
+    let labels: Vec<ModeLabel> = rigid_flags(kr, &s.vectors, &s.eigenvalues, scale)
+        .into_iter()
+        .map(|r| {
+            if r {
                 ModeLabel::Rigid
             } else {
                 ModeLabel::Normal
             }
         })
         .collect();
+    let nr = labels_zero(&labels);
+    if fixed.is_empty() && nr > super::FREE_BODY_RIGID_MODES {
+        return Err(ReduceError::Mechanism {
+            zero_modes: nr,
+            at_least: nr == labels.len(),
+        });
+    }
+    if let ModeCount::BelowHz(cut) = count {
+        if nr == labels.len() {
+            let next = solve_count(kr, mr, ModeCount::Count((nr + 1).min(free.len())), eig)?;
+            let first = next.eigenvalues.last().copied().unwrap_or(0.0);
+            return Err(super::select::cutoff_below_first(
+                cut,
+                first.max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
+            ));
+        }
+    }
     // checked on the free-dof problem: rows of held dofs carry the reactions, not an error
     let diagnostics = diagnose(kr, mr, &s.vectors, &s.eigenvalues)?;
-    Ok(ModeSet {
+    let set = ModeSet {
         phi,
         omega2: s.eigenvalues,
         labels,
@@ -57,5 +74,11 @@ pub fn normal_modes(
         reference_dofs: fixed.to_vec(),
         selection: None,
         diagnostics,
-    })
+    };
+    super::check_held(&set)?;
+    Ok(set)
+}
+
+fn labels_zero(labels: &[ModeLabel]) -> usize {
+    labels.iter().filter(|l| **l == ModeLabel::Rigid).count()
 }

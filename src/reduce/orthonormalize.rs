@@ -3,7 +3,7 @@
 //! pivoted Cholesky of the diagonally scaled M̂ that removes dependent basis vectors.
 
 use super::{Diagnostics, ModeLabel, ReduceError, RemovedVector};
-use crate::solve::{dense, sparse_ops::spmm, trace_ratio, SolveError};
+use crate::solve::{dense, sparse_ops::abs_energy, sparse_ops::spmm, trace_ratio, SolveError};
 use faer::sparse::SparseColMat;
 use faer::Mat;
 
@@ -12,8 +12,29 @@ use faer::Mat;
 /// (i.e. it is within angle ~1e-4 rad of their span), see [`orthonormalize`].
 pub const DEPENDENCY_TOL: f64 = 1e-8;
 
-/// ω² ≤ RIGID_REL · tr K / tr M counts as a rigid-body mode.
-pub const RIGID_REL: f64 = 1e-9;
+/// ω² ≤ RIGID_REL · scale (scale = [`trace_ratio`], the median K_ii/M_ii) counts as a rigid-body
+/// mode, besides the per-vector rounding floor of [`rigid_flags`]. Was 1e-9: on a free beam of
+/// 1000 elements the first bending pair lies at 4e-11 of the scale and was taken for two more
+/// rigid modes (docs/stability.md, row 2); computed rigid ω² are ~1e-16 of it.
+pub const RIGID_REL: f64 = 1e-12;
+
+/// Per column of Φ: is ω²_j a rigid-body (zero) eigenvalue? |ω²_j| ≤ RIGID_REL·scale (scale =
+/// [`trace_ratio`]), or within the rounding floor ROUNDING_FACTOR·ε·(|φ_j|ᵀ|K||φ_j|) that a stiff
+/// insert leaves on a rigid mode (a 1e10 contrast put rigid ω² at 1e-4 of the first flexible one,
+/// docs/stability.md row 7).
+pub fn rigid_flags(
+    k: &SparseColMat<usize, f64>,
+    phi: &Mat<f64>,
+    omega2: &[f64],
+    scale: f64,
+) -> Vec<bool> {
+    let (energy, _) = crate::solve::sparse_ops::abs_products(k.as_ref(), phi.as_ref());
+    omega2
+        .iter()
+        .zip(energy)
+        .map(|(&l, e)| l.abs() <= (RIGID_REL * scale).max(ROUNDING_FACTOR * f64::EPSILON * e))
+        .collect()
+}
 
 /// Limit enforced on ‖ΦᵀMΦ − I‖_max and ‖ΦᵀKΦ − diag‖_max/max ω² of every returned set.
 pub const CHECK_LIMIT: f64 = 1e-9;
@@ -75,8 +96,11 @@ fn pivoted_cholesky(a: &Mat<f64>, tol: f64) -> (Vec<usize>, Vec<f64>) {
     (piv, d)
 }
 
+pub use crate::solve::sparse_ops::ROUNDING_FACTOR;
+
 /// Full-model quality figures of Φ with ω²; errors when orthonormality or the stiffness diagonal
-/// exceed [`CHECK_LIMIT`].
+/// exceed [`CHECK_LIMIT`] (the stiffness one raised to the rounding floor of ΦᵀKΦ when that is
+/// higher, see [`ROUNDING_FACTOR`]).
 pub fn diagnose(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
@@ -114,17 +138,14 @@ pub fn diagnose(
             rn.sqrt()
         });
     }
-    for (what, value) in [
-        ("|PhiT M Phi - I|max", orth),
-        ("|PhiT K Phi - diag|max / max w2", kd),
+    let k_limit = CHECK_LIMIT
+        .max(ROUNDING_FACTOR * f64::EPSILON * abs_energy(k.as_ref(), phi.as_ref()) / lmax);
+    for (what, value, limit) in [
+        ("|PhiT M Phi - I|max", orth, CHECK_LIMIT),
+        ("|PhiT K Phi - diag|max / max w2", kd, k_limit),
     ] {
-        if value.is_nan() || value > CHECK_LIMIT {
-            return Err(SolveError::CheckFailed {
-                what,
-                value,
-                limit: CHECK_LIMIT,
-            }
-            .into());
+        if value.is_nan() || value > limit {
+            return Err(SolveError::CheckFailed { what, value, limit }.into());
         }
     }
     Ok(Diagnostics {
@@ -192,9 +213,10 @@ pub fn orthonormalize(
     let phi = &phi1 * &y2;
     let n = &y * &y2; // coefficients of Φ on the kept columns
     let scale = trace_ratio(k, m);
+    let rigid = rigid_flags(k, &phi, &omega2, scale);
     let labels_out = (0..q)
         .map(|j| {
-            if omega2[j].abs() <= RIGID_REL * scale {
+            if rigid[j] {
                 return ModeLabel::Rigid;
             }
             let mut best = (0, -1.0);

@@ -50,7 +50,7 @@ pub fn improved_cb_method1(
     let t = Mat::from_fn(n, keep.len(), |i, j| basis.t[(i, keep[j])]);
     let labels: Vec<ModeLabel> = keep.iter().map(|&c| basis.labels[c].clone()).collect();
     let o = orthonormalize(k, m, &t, &labels)?;
-    Ok(ModeSet {
+    let set = ModeSet {
         phi: o.phi,
         omega2: o.omega2,
         labels: o.labels,
@@ -61,7 +61,9 @@ pub fn improved_cb_method1(
         reference_dofs: reference.to_vec(),
         selection: None,
         diagnostics: o.diagnostics,
-    })
+    };
+    super::check_held(&set)?;
+    Ok(set)
 }
 
 /// Improved CB, method 2: reference dofs removed from K and M (B_frᵀ K B_fr), then CB.
@@ -115,7 +117,7 @@ pub fn improved_cb_method2(
     diagnostics.removed = set.diagnostics.removed;
     diagnostics.dependency_tol = set.diagnostics.dependency_tol;
     diagnostics.notes = set.diagnostics.notes;
-    Ok(ModeSet {
+    let out = ModeSet {
         phi,
         omega2: set.omega2,
         labels,
@@ -126,5 +128,7 @@ pub fn improved_cb_method2(
         reference_dofs: reference.to_vec(),
         selection: None,
         diagnostics,
-    })
+    };
+    super::check_held(&out)?;
+    Ok(out)
 }

@@ -106,6 +106,37 @@ pub fn solve_count_with(
     }
 }
 
+/// Rejects a mode request a problem of `n` dofs cannot satisfy: an explicit count of 0 or above
+/// `n` (`what` names the problem, e.g. "the interior"), with what to do instead.
+pub(crate) fn check_count(count: ModeCount, n: usize, what: &str) -> Result<(), ReduceError> {
+    match count {
+        ModeCount::Count(0) => Err(ReduceError::Dofs {
+            what: "mode count",
+            detail: format!("0 modes requested for {what}: ask for at least one (--modes) or give --fmax"),
+        }),
+        ModeCount::Count(c) if c > n => Err(ReduceError::Dofs {
+            what: "mode count",
+            detail: format!(
+                "{c} modes requested but {what} has only {n} dofs: ask for fewer (--modes) or give --fmax"
+            ),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// The error for a frequency cutoff with no flexible mode below it: `first_hz` is the first
+/// flexible mode found above it.
+pub(crate) fn cutoff_below_first(cutoff_hz: f64, first_hz: f64) -> ReduceError {
+    ReduceError::Dofs {
+        what: "mode cutoff",
+        detail: format!(
+            "no flexible mode below the cutoff {cutoff_hz:.6} Hz (3 x --fmax): the first one is at \
+             {first_hz:.6} Hz; raise --fmax above {:.6} Hz or give --modes",
+            first_hz / FMAX_FACTOR
+        ),
+    }
+}
+
 /// The first `keep` pairs of a solution.
 pub fn truncate(mut s: EigenSolution, keep: usize) -> EigenSolution {
     s.eigenvalues.truncate(keep);

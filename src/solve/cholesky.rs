@@ -1,5 +1,11 @@
 //! Sparse LLᵀ of a symmetric positive definite matrix on faer's supernodal Cholesky with a METIS
 //! ordering; typed errors (the dof of a non-positive pivot), fill/flop estimate, multi-RHS solves.
+//!
+//! Two guards for the stability matrix (docs/stability.md): the memory of the numeric factor is
+//! estimated from the symbolic analysis and checked against the available memory *before* any
+//! numeric work ([`memory_limit`]), and the smallest pivot relative to its diagonal entry is kept
+//! ([`SparseLlt::min_pivot`]) so that callers can tell a singular matrix whose rounding left a
+//! tiny positive pivot from a merely ill-conditioned one.
 
 use super::{ordering, SolveError};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -35,6 +41,90 @@ pub struct SparseLlt {
     /// Fill and cost of the factorization.
     pub stats: FactorStats,
     par: Par,
+    min_pivot: (f64, usize),
+}
+
+/// A pivot with L_jj² ≤ SINGULAR_PIVOT · A_jj is taken as a zero pivot: the matrix is singular
+/// and rounding left a tiny positive value (rounding alone leaves ~1e-16·growth of A_jj).
+/// Measured on K_ii of the stability rows: a stiff insert gives 1.3e-12 at contrast 1e10 and
+/// 1.1e-14 at 1e12 (which the build refuses, docs/stability.md row 7); the singular K_ii of rows
+/// 1 stopped at a non-positive pivot.
+pub const SINGULAR_PIVOT: f64 = 1e-14;
+
+/// Environment variable overriding the memory available to a factorization (bytes, or with a
+/// `K`, `M`, `G` suffix for KiB, MiB, GiB).
+pub const MEMORY_ENV: &str = "FLEXBODY_MAX_MEMORY";
+
+/// Bytes a numeric factorization may use and where that figure came from: [`MEMORY_ENV`] when
+/// set, else `MemAvailable` of `/proc/meminfo`; `None` when neither is known (no check).
+pub fn memory_limit() -> Result<Option<(u64, &'static str)>, SolveError> {
+    if let Ok(v) = std::env::var(MEMORY_ENV) {
+        return parse_bytes(&v)
+            .map(|b| Some((b, MEMORY_ENV)))
+            .ok_or_else(|| {
+                SolveError::Invalid(format!(
+                    "{MEMORY_ENV}={v}: expected bytes, optionally with a K, M or G suffix"
+                ))
+            });
+    }
+    let Ok(text) = std::fs::read_to_string("/proc/meminfo") else {
+        return Ok(None);
+    };
+    Ok(text
+        .lines()
+        .find_map(|l| l.strip_prefix("MemAvailable:"))
+        .and_then(|rest| rest.trim().strip_suffix("kB"))
+        .and_then(|kb| kb.trim().parse::<u64>().ok())
+        .map(|kb| (kb * 1024, "MemAvailable in /proc/meminfo")))
+}
+
+/// "123", "64K", "1.5G" → bytes (binary multiples).
+pub fn parse_bytes(s: &str) -> Option<u64> {
+    let s = s.trim();
+    let (num, mult) = match s.char_indices().last()? {
+        (i, 'k' | 'K') => (&s[..i], 1u64 << 10),
+        (i, 'm' | 'M') => (&s[..i], 1 << 20),
+        (i, 'g' | 'G') => (&s[..i], 1 << 30),
+        _ => (s, 1),
+    };
+    let v: f64 = num.trim().parse().ok()?;
+    (v.is_finite() && v >= 0.0).then_some((v * mult as f64) as u64)
+}
+
+/// Bytes as "1.50 GiB" / "12.0 MiB" / "16.0 KiB" / "900 B".
+pub fn format_bytes(b: u64) -> String {
+    let f = b as f64;
+    if f >= (1u64 << 30) as f64 {
+        format!("{:.2} GiB", f / (1u64 << 30) as f64)
+    } else if f >= (1u64 << 20) as f64 {
+        format!("{:.1} MiB", f / (1u64 << 20) as f64)
+    } else if f >= 1024.0 {
+        format!("{:.1} KiB", f / 1024.0)
+    } else {
+        format!("{b} B")
+    }
+}
+
+/// Bytes of a numeric factorization: the values of L plus faer's scratch, from the symbolic
+/// analysis alone.
+pub fn factor_memory(symbolic: &SymbolicCholesky<usize>, par: Par) -> usize {
+    let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+    symbolic.len_val() * std::mem::size_of::<f64>() + req.size_bytes()
+}
+
+/// Errors with [`SolveError::OutOfMemory`] when `needed` bytes exceed the [`memory_limit`].
+pub fn check_memory(needed: usize, n: usize) -> Result<(), SolveError> {
+    if let Some((limit, from)) = memory_limit()? {
+        if needed as u64 > limit {
+            return Err(SolveError::OutOfMemory {
+                n,
+                needed: needed as u64,
+                available: limit,
+                from,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Symbolic analysis with a METIS nested-dissection ordering (`block` = dofs per node, if known).
@@ -105,6 +195,57 @@ fn stats_of(symbolic: &SymbolicCholesky<usize>) -> FactorStats {
     }
 }
 
+/// min_j L_jj² / A_jj over the permuted order, with the original dof of j (A_jj ≤ 0 counts as 0).
+fn min_pivot(
+    symbolic: &SymbolicCholesky<usize>,
+    values: &[f64],
+    a: SparseColMatRef<'_, usize, f64>,
+) -> (f64, usize) {
+    let n = symbolic.nrows();
+    let fwd = |j: usize| symbolic.perm().map_or(j, |p| p.arrays().0[j]);
+    let diag_a = |i: usize| {
+        a.row_idx_of_col(i)
+            .zip(a.val_of_col(i))
+            .find(|(r, _)| *r == i)
+            .map_or(0.0, |(_, v)| *v)
+    };
+    let mut best = (f64::INFINITY, 0usize);
+    let mut visit = |j: usize, l: f64| {
+        let i = fwd(j);
+        let d = diag_a(i);
+        let r = if d > 0.0 { l * l / d } else { 0.0 };
+        if r < best.0 {
+            best = (r, i);
+        }
+    };
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            let (cp, ri) = (s.col_ptr(), s.row_idx());
+            for j in 0..n {
+                if let Some(p) = (cp[j]..cp[j + 1]).find(|&p| ri[p] == j) {
+                    visit(j, values[p]);
+                }
+            }
+        }
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let (beg, end, rp, vp) = (
+                s.supernode_begin(),
+                s.supernode_end(),
+                s.col_ptr_for_row_idx(),
+                s.col_ptr_for_val(),
+            );
+            for k in 0..s.n_supernodes() {
+                let w = end[k] - beg[k];
+                let rows = w + rp[k + 1] - rp[k];
+                for t in 0..w {
+                    visit(beg[k] + t, values[vp[k] + t * rows + t]);
+                }
+            }
+        }
+    }
+    best
+}
+
 impl SparseLlt {
     /// Orders, analyzes and factors the symmetric matrix `a` (both triangles stored, the lower one
     /// is read). A non-positive pivot is reported with its original dof index.
@@ -127,6 +268,7 @@ impl SparseLlt {
         if a.val().iter().any(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite("matrix to factor"));
         }
+        check_memory(factor_memory(&symbolic, par), a.nrows())?;
         let mut values = vec![0.0f64; symbolic.len_val()];
         let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
         let mut buf = MemBuffer::new(req);
@@ -152,12 +294,20 @@ impl SparseLlt {
                 .map_or(pos, |p| p.arrays().0[pos.min(p.arrays().0.len() - 1)]);
             return Err(SolveError::NonPositivePivot { dof });
         }
+        let min_pivot = min_pivot(&symbolic, &values, a);
         Ok(Self {
             symbolic,
             values,
             stats,
             par,
+            min_pivot,
         })
+    }
+
+    /// The smallest L_jj² / A_jj over all pivots and the (original) dof where it occurs: ≈ 1 for a
+    /// well-conditioned matrix, ≤ [`SINGULAR_PIVOT`] for a singular one.
+    pub fn min_pivot(&self) -> (f64, usize) {
+        self.min_pivot
     }
 
     /// Dimension.

@@ -61,7 +61,10 @@ pub enum SolveError {
     #[error("basis is not of full rank in the mass metric")]
     DependentBasis,
     /// A result failed its check.
-    #[error("result check failed: {what} = {value:e} > {limit:e}")]
+    #[error(
+        "result check failed: {what} = {value:e} > {limit:e} (an ill-conditioned model, e.g. a \
+         large stiffness contrast between materials, or an inaccurate solve: see docs/stability.md)"
+    )]
     CheckFailed {
         what: &'static str,
         value: f64,
@@ -70,6 +73,23 @@ pub enum SolveError {
     /// Bad input.
     #[error("invalid input: {0}")]
     Invalid(String),
+    /// The factor of an n × n matrix would not fit in memory (estimated before factoring).
+    #[error(
+        "factoring a {n} x {n} matrix needs about {} but only {} are available ({from}): \
+         stopped before factoring; use a coarser mesh or free memory (the limit can be set with \
+         FLEXBODY_MAX_MEMORY)",
+        cholesky::format_bytes(*needed), cholesky::format_bytes(*available)
+    )]
+    OutOfMemory {
+        /// Dimension.
+        n: usize,
+        /// Estimated bytes of the factor and its scratch.
+        needed: u64,
+        /// Bytes available.
+        available: u64,
+        /// Where `available` came from.
+        from: &'static str,
+    },
 }
 
 /// What to compute.
@@ -162,26 +182,47 @@ impl Drop for ParGuard {
     }
 }
 
-/// tr K / tr M: a stiffness-over-mass scale of the order of the highest eigenvalues.
+/// A stiffness-over-mass scale of the model: the median of K_ii / M_ii over the dofs with
+/// positive K_ii and M_ii (tr K / tr M when there are none). Used for the automatic shift and
+/// the rigid-mode threshold. The median, not tr K / tr M: a near-rigid insert (stiffness
+/// contrast 1e10) dominates the trace and pushed the shift and the rigid threshold above the
+/// body's flexible modes (docs/stability.md, row 7).
 pub fn trace_ratio(k: &SparseColMat<usize, f64>, m: &SparseColMat<usize, f64>) -> f64 {
-    let tr = |a: &SparseColMat<usize, f64>| {
-        let mut t = 0.0;
-        for j in 0..a.ncols() {
-            for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-                if i == j {
-                    t += v;
-                }
-            }
-        }
-        t
+    let diag = |a: &SparseColMat<usize, f64>| -> Vec<f64> {
+        (0..a.ncols())
+            .map(|j| {
+                a.row_idx_of_col_raw(j)
+                    .iter()
+                    .zip(a.val_of_col(j))
+                    .filter(|(&i, _)| i == j)
+                    .map(|(_, &v)| v)
+                    .sum()
+            })
+            .collect()
     };
-    ratio(tr(k), tr(m))
+    let (dk, dm) = (diag(k), diag(m));
+    scale_of(&dk, &dm)
 }
 
 pub(crate) fn trace_ratio_dense(k: MatRef<'_, f64>, m: MatRef<'_, f64>) -> f64 {
-    let tk: f64 = (0..k.nrows()).map(|i| k[(i, i)]).sum();
-    let tm: f64 = (0..m.nrows()).map(|i| m[(i, i)]).sum();
-    ratio(tk, tm)
+    let dk: Vec<f64> = (0..k.nrows()).map(|i| k[(i, i)]).collect();
+    let dm: Vec<f64> = (0..m.nrows()).map(|i| m[(i, i)]).collect();
+    scale_of(&dk, &dm)
+}
+
+fn scale_of(dk: &[f64], dm: &[f64]) -> f64 {
+    let mut r: Vec<f64> = dk
+        .iter()
+        .zip(dm)
+        .filter(|(&a, &b)| a > 0.0 && b > 0.0)
+        .map(|(&a, &b)| a / b)
+        .filter(|v| v.is_finite())
+        .collect();
+    if r.is_empty() {
+        return ratio(dk.iter().sum(), dm.iter().sum());
+    }
+    let mid = r.len() / 2;
+    *r.select_nth_unstable_by(mid, f64::total_cmp).1
 }
 
 fn ratio(tk: f64, tm: f64) -> f64 {
@@ -368,6 +409,9 @@ fn finish(
         }
     }
     let scale = trace_ratio(k, m);
+    // rounding scales of Kφ and φᵀKφ: the checks never ask for less than rounding leaves
+    // (stiffness contrasts, docs/stability.md row 7)
+    let (abs_e, abs_n) = sparse_ops::abs_products(k.as_ref(), x.as_ref());
     let mut residuals = Vec::with_capacity(c);
     for j in 0..c {
         let (mut rn, mut kn) = (0.0, 0.0);
@@ -383,7 +427,9 @@ fn finish(
         };
         residuals.push(res);
         let flexible = vals[j] > 1e-8 * scale;
-        let limit = (1e3 * tol).max(1e-8);
+        let floor = sparse_ops::ROUNDING_FACTOR * f64::EPSILON * abs_n[j]
+            / kn.sqrt().max(f64::MIN_POSITIVE);
+        let limit = (1e3 * tol).max(1e-8).max(floor);
         if flexible && (res.is_nan() || res > limit) {
             return Err(SolveError::CheckFailed {
                 what: "relative residual",
@@ -399,11 +445,16 @@ fn finish(
             limit: 1e-9,
         });
     }
-    if kd.is_nan() || kd > 1e-9 {
+    // raised to the rounding floor of ΦᵀKΦ for stiffness contrasts (docs/stability.md, row 7)
+    let k_limit = 1e-9f64.max(
+        sparse_ops::ROUNDING_FACTOR * f64::EPSILON * abs_e.iter().fold(0.0f64, |a, &b| a.max(b))
+            / lmax,
+    );
+    if kd.is_nan() || kd > k_limit {
         return Err(SolveError::CheckFailed {
             what: "|PhiT K Phi - diag|max/max w2",
             value: kd,
-            limit: 1e-9,
+            limit: k_limit,
         });
     }
     info.orthonormality = orth;

@@ -92,3 +92,41 @@ pub fn from_dense(d: MatRef<'_, f64>) -> SparseColMat<usize, f64> {
     // Cannot fail: every index is inside the declared shape.
     SparseColMat::try_new_from_triplets(d.nrows(), d.ncols(), &trips).expect("indices in range")
 }
+
+/// Multiple of ε·max_j (|Φ|ᵀ|K||Φ|)_jj / max ω² that rounding alone may leave in ΦᵀKΦ (the
+/// floating-point bound is γ_n·(|Φ|ᵀ|K||Φ|); 1e3 stands for the usual √n growth). Checks of
+/// ‖ΦᵀKΦ − diag‖/max ω² are raised to this floor when it exceeds their fixed limit.
+pub const ROUNDING_FACTOR: f64 = 1e3;
+
+/// max_j (|Φ|ᵀ|K||Φ|)_jj: the strain energy of each vector summed without cancellation. Equal to
+/// φᵀKφ up to a modest factor for a homogeneous body, but up to the stiffness contrast larger
+/// when a near-rigid part moves rigidly (its large entries cancel in Kφ) — the scale of the
+/// rounding error of ΦᵀKΦ (docs/stability.md, row 7).
+pub fn abs_energy(k: SparseColMatRef<'_, usize, f64>, phi: MatRef<'_, f64>) -> f64 {
+    abs_products(k, phi).0.into_iter().fold(0.0, f64::max)
+}
+
+/// Per column j of Φ: ((|Φ|ᵀ|K||Φ|)_jj, ‖|K||φ_j|‖₂) — the rounding scales of φᵀKφ and of Kφ.
+pub fn abs_products(
+    k: SparseColMatRef<'_, usize, f64>,
+    phi: MatRef<'_, f64>,
+) -> (Vec<f64>, Vec<f64>) {
+    let mut energy = vec![0.0; phi.ncols()];
+    let mut norm = vec![0.0; phi.ncols()];
+    let mut y = vec![0.0; k.nrows()];
+    for j in 0..phi.ncols() {
+        y.iter_mut().for_each(|v| *v = 0.0);
+        for c in 0..k.ncols() {
+            let pc = phi[(c, j)].abs();
+            if pc == 0.0 {
+                continue;
+            }
+            for (r, v) in k.row_idx_of_col(c).zip(k.val_of_col(c)) {
+                y[r] += v.abs() * pc;
+            }
+        }
+        energy[j] = (0..k.nrows()).map(|r| y[r] * phi[(r, j)].abs()).sum();
+        norm[j] = y.iter().map(|v| v * v).sum::<f64>().sqrt();
+    }
+    (energy, norm)
+}

@@ -228,10 +228,16 @@ fn mirror_upper_blocks(k: &mut [f64], n: usize, d: usize) {
 }
 
 fn check_solid_material(mat: &Isotropic) -> Result<(), ElementError> {
-    if !(mat.e > 0.0 && mat.nu > -1.0 && mat.nu < 0.5 && mat.e.is_finite()) {
+    let ok = mat.e > 0.0
+        && mat.e.is_finite()
+        && mat.nu > -1.0
+        && mat.nu < 0.5
+        && mat.rho >= 0.0
+        && mat.rho.is_finite();
+    if !ok {
         return Err(ElementError::BadConstants(format!(
-            "solid needs E > 0 and −1 < ν < 0.5 (E = {}, ν = {})",
-            mat.e, mat.nu
+            "solid needs E > 0, −1 < ν < 0.5 and ρ ≥ 0 (E = {}, ν = {}, ρ = {})",
+            mat.e, mat.nu, mat.rho
         )));
     }
     Ok(())
