@@ -92,6 +92,11 @@ struct BuildArgs {
     /// Costs 48·M bytes per kept node and field for M modes.
     #[arg(long, num_args = 0..=1, default_missing_value = "both", value_name = "FIELDS")]
     stress_modes: Option<String>,
+    /// Memory a sparse factorization may use, e.g. 8G (bytes, or with a K, M or G suffix);
+    /// default: MemAvailable. The factor size is estimated before factoring and the build stops
+    /// with a clear error instead of being killed. Same as the FLEXBODY_MAX_MEMORY variable.
+    #[arg(long, value_name = "SIZE")]
+    max_memory: Option<String>,
     /// No stress or strain shapes (the default; for scripts that want to say so).
     #[arg(long, conflicts_with = "stress_modes")]
     no_stress: bool,
@@ -206,6 +211,10 @@ fn utc_now() -> String {
 fn build(a: &BuildArgs) -> anyhow::Result<()> {
     use anyhow::Context;
     let spec = build_spec(a)?;
+    if let Some(limit) = &a.max_memory {
+        // Read by the solve layer right before each factorization; set before any thread starts.
+        std::env::set_var(flexbody::solve::cholesky::MEMORY_ENV, limit);
+    }
     let mut progress = StageProgress::new(a.quiet || a.json);
     let mut run = || -> anyhow::Result<flexbody::build::BuildOutput> {
         let out = flexbody::build::build(&spec, &mut |stage| progress.stage(stage))
@@ -236,6 +245,7 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
             "orthonormality": r.diagnostics.orthonormality,
             "removed_dependent": r.diagnostics.removed.len(),
             "warnings": r.warnings,
+            "notes": r.diagnostics.notes,
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
@@ -243,6 +253,9 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
     if !a.quiet {
         for w in &r.warnings {
             eprintln!("flexbody: warning: {w}");
+        }
+        for n in &r.diagnostics.notes {
+            eprintln!("flexbody: note: {n}");
         }
         for i in &r.interfaces {
             if let Some(s) = &i.spider {

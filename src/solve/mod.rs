@@ -77,7 +77,7 @@ pub enum SolveError {
     #[error(
         "factoring a {n} x {n} matrix needs about {} but only {} are available ({from}): \
          stopped before factoring; use a coarser mesh or free memory (the limit can be set with \
-         FLEXBODY_MAX_MEMORY)",
+         `flexbody build --max-memory` or FLEXBODY_MAX_MEMORY)",
         cholesky::format_bytes(*needed), cholesky::format_bytes(*available)
     )]
     OutOfMemory {

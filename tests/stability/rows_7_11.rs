@@ -479,6 +479,24 @@ fn row11_factor_memory_is_estimated_and_limited() {
             "stopped before factoring",
         ],
     );
+    // The same limit from the command line.
+    let err = fail_run(
+        &dir,
+        &[
+            &inp,
+            "--interface",
+            "X0",
+            "--units",
+            "si",
+            "--max-memory",
+            "16K",
+        ],
+        &[],
+    );
+    assert_contains(
+        &err,
+        &["16.0 KiB are available", "stopped before factoring"],
+    );
     let out = dir.path("ok.flexbody");
     let ok = run_cli(
         &[
