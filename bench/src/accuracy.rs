@@ -214,7 +214,10 @@ pub fn run(model_path: Option<&str>) -> Res<Value> {
         .map_or("model".into(), |s| s.to_string_lossy().to_string());
     let json = json!({
         "suite": "accuracy",
-        "model": path.display().to_string().replace(env!("CARGO_MANIFEST_DIR"), "bench"),
+        "model": path
+            .display()
+            .to_string()
+            .replace(concat!(env!("CARGO_MANIFEST_DIR"), "/../"), ""),
         "dofs": n,
         "interfaces": "RBE2 spiders on BIG_END and SMALL_END (12 dofs); reference conditions = the BIG_END node's 6 dofs",
         "mass": "lumped (the build default)",

@@ -108,7 +108,7 @@ fn ratios(ours: &Value, peer: &Value, modes: usize) -> Value {
 }
 
 /// The `eigen` suite.
-pub fn eigen(n: [usize; 3], modes: usize, with_ccx: bool) -> Res<Value> {
+pub fn eigen(n: [usize; 3], modes: usize, with_ccx: bool, with_superlu: bool) -> Res<Value> {
     let mut model = tet10_block(n);
     let fixed = node_set(&model, "X0")?;
     let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
@@ -136,7 +136,11 @@ pub fn eigen(n: [usize; 3], modes: usize, with_ccx: bool) -> Res<Value> {
     let ms_ = modes.to_string();
     let load_before = loadavg();
     let ours = run_self(&["ours-eigen".into(), ks.clone(), ms.clone(), ms_.clone()])?;
-    let superlu = run_peer(&["superlu".into(), ks.clone(), ms.clone(), ms_.clone()]);
+    let superlu = if with_superlu {
+        run_peer(&["superlu".into(), ks.clone(), ms.clone(), ms_.clone()])
+    } else {
+        json!({"skipped": "not asked (--no-superlu)"})
+    };
     let cholmod = run_peer(&["cholmod".into(), ks, ms, ms_]);
     let ccx = if with_ccx {
         run_peer(&["ccx".into(), deck.display().to_string()])

@@ -1,7 +1,7 @@
 //! Benchmark harness: `cargo run --release -p flexbody-bench --bin harness -- <suite> [args]`.
 //!
 //! Suites (results under `bench/results/`, generated inputs under /work/benchdata):
-//! * `eigen NX NY NZ [--modes 30] [--ccx]` — factorization + eigen phase vs SciPy/SuperLU,
+//! * `eigen NX NY NZ [--modes 30] [--ccx] [--no-superlu]` — factorization + eigen phase vs SciPy/SuperLU,
 //!   ARPACK/CHOLMOD (and ccx) on identical matrices;
 //! * `cb NX NY NZ [--modes 30] [--exudyn] [--ccx]` — whole CB build vs exudyn HCB and ccx;
 //! * `accuracy [MODEL.inp]` — every reduction method × mode counts on the bundled conrod;
@@ -11,7 +11,7 @@
 
 use flexbody_bench::{accuracy, chart, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] | accuracy [MODEL.inp] | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] | accuracy [MODEL.inp] | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -37,7 +37,7 @@ fn run(args: &[String]) -> Res<()> {
     let (suite, a) = args.split_first().ok_or(USAGE)?;
     let has = |f: &str| a.iter().any(|s| s == f);
     let out = match suite.as_str() {
-        "eigen" => suites::eigen(dims(a)?, modes(a)?, has("--ccx"))?,
+        "eigen" => suites::eigen(dims(a)?, modes(a)?, has("--ccx"), !has("--no-superlu"))?,
         "cb" => suites::cb(dims(a)?, modes(a)?, has("--exudyn"), has("--ccx"))?,
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
         "chart" => chart::run()?,
