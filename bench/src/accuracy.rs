@@ -86,18 +86,26 @@ fn full_compliance(k: &Sparse, held: &[usize], probe: &[usize]) -> Res<Mat<f64>>
 }
 
 /// The same compliance from the basis Φ restricted to Φ[held, :] y = 0.
-fn reduced_compliance(k: &Sparse, phi: &Mat<f64>, held: &[usize], probe: &[usize]) -> Res<Mat<f64>> {
+fn reduced_compliance(
+    k: &Sparse,
+    phi: &Mat<f64>,
+    held: &[usize],
+    probe: &[usize],
+) -> Res<Mat<f64>> {
     let m = phi.ncols();
     let c = Mat::from_fn(held.len(), m, |i, j| phi[(held[i], j)]);
     let ctc = c.transpose() * &c;
     let (s, u) = dense::eigh(ctc.as_ref()).map_err(|e| e.to_string())?;
     let top = s.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-    let null: Vec<usize> = (0..m).filter(|&i| s[i] <= 1e-12 * top.max(1e-300)).collect();
+    let null: Vec<usize> = (0..m)
+        .filter(|&i| s[i] <= 1e-12 * top.max(1e-300))
+        .collect();
     let nb = Mat::from_fn(m, null.len(), |i, j| u[(i, null[j])]);
     let phic = phi * &nb;
     let kphic = sparse_ops::spmm(k.as_ref(), phic.as_ref());
     let kr = phic.transpose() * &kphic;
-    let l = dense::cholesky(kr.as_ref()).ok_or("reduced constrained stiffness not positive definite")?;
+    let l = dense::cholesky(kr.as_ref())
+        .ok_or("reduced constrained stiffness not positive definite")?;
     // G_red = P (L Lᵀ)⁻¹ Pᵀ with P = Φ_c[probe, :]: solve L Z = Pᵀ, G = Zᵀ Z
     let p = Mat::from_fn(probe.len(), phic.ncols(), |i, j| phic[(probe[i], j)]);
     let mut z = p.transpose().to_owned();
@@ -122,7 +130,8 @@ fn static_error(g: &Mat<f64>, gr: &Mat<f64>) -> f64 {
 
 /// Runs the suite on `model` (default: the bundled conrod).
 pub fn run(model_path: Option<&str>) -> Res<Value> {
-    let default = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/models/conrod/conrod.inp");
+    let default =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/models/conrod/conrod.inp");
     let path = model_path.map_or(default, |p| Path::new(p).to_path_buf());
     let mut model = read_model(&path, &ImportOptions::default()).map_err(|e| e.to_string())?;
     let itf = resolve_interfaces(
@@ -132,15 +141,20 @@ pub fn run(model_path: Option<&str>) -> Res<Value> {
     )
     .map_err(|e| e.to_string())?;
     let asm = assemble(&model, &AssemblySpec::default()).map_err(|e| e.to_string())?;
-    let red = eliminate(&model, &asm.dofs, &asm.k, &asm.m, &ConstraintSpec::default())
-        .map_err(|e| e.to_string())?;
+    let red = eliminate(
+        &model,
+        &asm.dofs,
+        &asm.k,
+        &asm.m,
+        &ConstraintSpec::default(),
+    )
+    .map_err(|e| e.to_string())?;
     let mut pos = vec![usize::MAX; asm.dofs.n_dofs];
     for (i, &p) in red.retained.iter().enumerate() {
         pos[p] = i;
     }
-    let node_dofs = |node: usize| -> Vec<usize> {
-        (0..6).map(|c| pos[asm.dofs.first[node] + c]).collect()
-    };
+    let node_dofs =
+        |node: usize| -> Vec<usize> { (0..6).map(|c| pos[asm.dofs.first[node] + c]).collect() };
     let big = node_dofs(itf[0].nodes[0]);
     let small = node_dofs(itf[1].nodes[0]);
     let interface: Vec<usize> = big.iter().chain(&small).copied().collect();
@@ -170,12 +184,40 @@ pub fn run(model_path: Option<&str>) -> Res<Value> {
     let fa = craig_chang::unit_loads(n, &interface).map_err(|e| e.to_string())?;
     type Runner<'a> = Box<dyn Fn(usize) -> Result<ModeSet, flexbody::reduce::ReduceError> + 'a>;
     let methods: Vec<(&str, bool, Runner)> = vec![
-        ("normal modes", false, Box::new(|c| normal::normal_modes(k, m, ModeCount::Count(c + 6), &[], &eig))),
-        ("Craig-Bampton", false, Box::new(|c| craig_bampton::craig_bampton(k, m, &interface, ModeCount::Count(c), &eig))),
-        ("Craig-Chang", false, Box::new(|c| craig_chang::craig_chang(k, m, &fa, ModeCount::Count(c + 6), &eig))),
-        ("Dietz", false, Box::new(|c| dietz::dietz(k, m, &fa, ModeCount::Count(c + 6), None, &eig))),
-        ("improved CB 1", true, Box::new(|c| reference::improved_cb_method1(k, m, &interface, &big, ModeCount::Count(c), &eig))),
-        ("improved CB 2", true, Box::new(|c| reference::improved_cb_method2(k, m, &interface, &big, ModeCount::Count(c), &eig))),
+        (
+            "normal modes",
+            false,
+            Box::new(|c| normal::normal_modes(k, m, ModeCount::Count(c + 6), &[], &eig)),
+        ),
+        (
+            "Craig-Bampton",
+            false,
+            Box::new(|c| craig_bampton::craig_bampton(k, m, &interface, ModeCount::Count(c), &eig)),
+        ),
+        (
+            "Craig-Chang",
+            false,
+            Box::new(|c| craig_chang::craig_chang(k, m, &fa, ModeCount::Count(c + 6), &eig)),
+        ),
+        (
+            "Dietz",
+            false,
+            Box::new(|c| dietz::dietz(k, m, &fa, ModeCount::Count(c + 6), None, &eig)),
+        ),
+        (
+            "improved CB 1",
+            true,
+            Box::new(|c| {
+                reference::improved_cb_method1(k, m, &interface, &big, ModeCount::Count(c), &eig)
+            }),
+        ),
+        (
+            "improved CB 2",
+            true,
+            Box::new(|c| {
+                reference::improved_cb_method2(k, m, &interface, &big, ModeCount::Count(c), &eig)
+            }),
+        ),
     ];
     let mut series = Vec::new();
     for (name, with_reference, f) in &methods {
@@ -190,7 +232,11 @@ pub fn run(model_path: Option<&str>) -> Res<Value> {
                 }
             };
             let secs = t.elapsed().as_secs_f64();
-            let reference = if *with_reference { &ref_held } else { &ref_free };
+            let reference = if *with_reference {
+                &ref_held
+            } else {
+                &ref_free
+            };
             let fe = freq_error(&flexible_hz(&set.omega2), reference);
             let se = reduced_compliance(k, &set.phi, &big, &small)
                 .map(|gr| static_error(&g, &gr))
@@ -207,7 +253,9 @@ pub fn run(model_path: Option<&str>) -> Res<Value> {
                 "removed_dependent": set.diagnostics.removed.len(),
             }));
         }
-        series.push(json!({"method": name, "reference_conditions": with_reference, "points": points}));
+        series.push(
+            json!({"method": name, "reference_conditions": with_reference, "points": points}),
+        );
     }
     let stem = path
         .file_stem()

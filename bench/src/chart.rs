@@ -28,8 +28,7 @@ fn load(prefix: &str) -> Res<Vec<Value>> {
         let name = e.file_name().to_string_lossy().to_string();
         if name.starts_with(prefix) && name.ends_with(".json") {
             let text = std::fs::read_to_string(e.path()).map_err(|e| e.to_string())?;
-            let v: Value =
-                serde_json::from_str(&text).map_err(|err| format!("{name}: {err}"))?;
+            let v: Value = serde_json::from_str(&text).map_err(|err| format!("{name}: {err}"))?;
             out.push(v);
         }
     }
@@ -138,10 +137,13 @@ fn panel(
             .draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))
             .map_err(err)?;
         chart
-            .draw_series(
-                pts.iter()
-                    .map(|(x, y, l)| Text::new(l.clone(), (*x, *y), ("sans-serif", 11).into_font().color(&c))),
-            )
+            .draw_series(pts.iter().map(|(x, y, l)| {
+                Text::new(
+                    l.clone(),
+                    (*x, *y),
+                    ("sans-serif", 11).into_font().color(&c),
+                )
+            }))
             .map_err(err)?;
     }
     chart
@@ -223,7 +225,11 @@ fn scaling_series(eigen: &[Value], cb: &[Value], what: &str) -> Vec<Series> {
         }
     };
     add("eigen: flexbody", eigen, &get("ours", false));
-    add("eigen: ARPACK + CHOLMOD", eigen, &get("arpack_cholmod", true));
+    add(
+        "eigen: ARPACK + CHOLMOD",
+        eigen,
+        &get("arpack_cholmod", true),
+    );
     add("eigen: eigsh + SuperLU", eigen, &get("scipy_superlu", true));
     add("eigen: ccx", eigen, &get("ccx", true));
     add("CB build: flexbody", cb, &get("ours", false));
@@ -263,60 +269,116 @@ fn f(v: &Value) -> String {
 
 fn tables(eigen: &[Value], cb: &[Value], acc: &[Value]) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "## Eigen phase on identical matrices (`harness eigen`)\n");
+    let _ = writeln!(
+        s,
+        "## Eigen phase on identical matrices (`harness eigen`)\n"
+    );
     let _ = writeln!(s, "Clamped tet10 block, consistent mass, lowest modes at σ = 0. Times in s (analyse+factor / eigen / total), peak memory in MB; ratio = ours / peer; agreement = max relative eigenvalue difference.\n");
     let _ = writeln!(s, "| dofs | modes | peer | analyse+factor | eigen | total | peak MB | ratio factor | ratio eigen | ratio total | agreement | load (1 min) |");
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|");
     for r in eigen {
         let rows = [
             ("flexbody", &r["ours"], &Value::Null),
-            ("ARPACK + CHOLMOD", &r["peers"]["arpack_cholmod"], &r["ratios_ours_over"]["arpack_cholmod"]),
-            ("eigsh + SuperLU", &r["peers"]["scipy_superlu"], &r["ratios_ours_over"]["scipy_superlu"]),
-            ("ccx *FREQUENCY", &r["peers"]["ccx"], &r["ratios_ours_over"]["ccx"]),
+            (
+                "ARPACK + CHOLMOD",
+                &r["peers"]["arpack_cholmod"],
+                &r["ratios_ours_over"]["arpack_cholmod"],
+            ),
+            (
+                "eigsh + SuperLU",
+                &r["peers"]["scipy_superlu"],
+                &r["ratios_ours_over"]["scipy_superlu"],
+            ),
+            (
+                "ccx *FREQUENCY",
+                &r["peers"]["ccx"],
+                &r["ratios_ours_over"]["ccx"],
+            ),
         ];
         for (name, p, q) in rows {
             let note = p["error"].as_str().or(p["skipped"].as_str());
             if let Some(n) = note {
-                let _ = writeln!(s, "| {} | {} | {name} | {n} | | | | | | | | |", r["dofs"], r["modes"]);
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {name} | {n} | | | | | | | | |",
+                    r["dofs"], r["modes"]
+                );
                 continue;
             }
             let _ = writeln!(
                 s,
                 "| {} | {} | {name} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                r["dofs"], r["modes"],
-                f(&p["phases_s"]["analyse_factor"]), f(&p["phases_s"]["eigen"]), f(&p["phases_s"]["total"]),
+                r["dofs"],
+                r["modes"],
+                f(&p["phases_s"]["analyse_factor"]),
+                f(&p["phases_s"]["eigen"]),
+                f(&p["phases_s"]["total"]),
                 f(&p["peak_rss_mb"]),
-                f(&q["analyse_factor"]), f(&q["eigen"]), f(&q["total"]), f(&q["eigenvalue_max_rel_diff"]),
+                f(&q["analyse_factor"]),
+                f(&q["eigen"]),
+                f(&q["total"]),
+                f(&q["eigenvalue_max_rel_diff"]),
                 f(&r["loadavg_before"][0]),
             );
         }
     }
     let _ = writeln!(s, "\n## Whole Craig–Bampton build (`harness cb`)\n");
     let _ = writeln!(s, "Ours: generate → RBE2 spiders (2 interface nodes) → assembly → elimination → CB → orthonormalization. exudyn: `ComputeHurtyCraigBamptonModes` (RBE2) on our assembled K, M (reading excluded). ccx: frequency-only run, both end faces clamped, same mode count. Agreement: fixed-interface eigenvalues.\n");
-    let _ = writeln!(s, "| dofs | modes | who | total s | peak MB | ours / peer | agreement | load (1 min) |");
+    let _ = writeln!(
+        s,
+        "| dofs | modes | who | total s | peak MB | ours / peer | agreement | load (1 min) |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
     for r in cb {
         let rows = [
             ("flexbody CB build", &r["ours"], &Value::Null),
-            ("exudyn HCB", &r["peers"]["exudyn_hcb"], &r["ratios_ours_over"]["exudyn_hcb"]),
-            ("ccx frequency only", &r["peers"]["ccx"], &r["ratios_ours_over"]["ccx"]),
+            (
+                "exudyn HCB",
+                &r["peers"]["exudyn_hcb"],
+                &r["ratios_ours_over"]["exudyn_hcb"],
+            ),
+            (
+                "ccx frequency only",
+                &r["peers"]["ccx"],
+                &r["ratios_ours_over"]["ccx"],
+            ),
         ];
         for (name, p, q) in rows {
             if let Some(n) = p["error"].as_str().or(p["skipped"].as_str()) {
-                let _ = writeln!(s, "| {} | {} | {name} | {n} | | | | |", r["dofs"], r["modes"]);
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {name} | {n} | | | | |",
+                    r["dofs"], r["modes"]
+                );
                 continue;
             }
             let _ = writeln!(
                 s,
                 "| {} | {} | {name} | {} | {} | {} | {} | {} |",
-                r["dofs"], r["modes"], f(&p["phases_s"]["total"]), f(&p["peak_rss_mb"]),
-                f(&q["total"]), f(&q["eigenvalue_max_rel_diff"]), f(&r["loadavg_before"][0]),
+                r["dofs"],
+                r["modes"],
+                f(&p["phases_s"]["total"]),
+                f(&p["peak_rss_mb"]),
+                f(&q["total"]),
+                f(&q["eigenvalue_max_rel_diff"]),
+                f(&r["loadavg_before"][0]),
             );
         }
     }
     for a in acc {
-        let _ = writeln!(s, "\n## Accuracy by method (`harness accuracy`, {}, {} dofs)\n", a["model"].as_str().unwrap_or("?"), a["dofs"]);
-        let _ = writeln!(s, "fmax = {} Hz (10th flexible free-free mode). {}. Mode count = {}.\n", f(&a["fmax_hz"]), a["interfaces"].as_str().unwrap_or(""), a["mode_counts"].as_str().unwrap_or(""));
+        let _ = writeln!(
+            s,
+            "\n## Accuracy by method (`harness accuracy`, {}, {} dofs)\n",
+            a["model"].as_str().unwrap_or("?"),
+            a["dofs"]
+        );
+        let _ = writeln!(
+            s,
+            "fmax = {} Hz (10th flexible free-free mode). {}. Mode count = {}.\n",
+            f(&a["fmax_hz"]),
+            a["interfaces"].as_str().unwrap_or(""),
+            a["mode_counts"].as_str().unwrap_or("")
+        );
         let _ = writeln!(s, "| method | modes | basis | time s | frequency error | static error | ‖ΦᵀMΦ−I‖ | ‖ΦᵀKΦ−Λ‖/‖Λ‖ |");
         let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
         for m in a["series"].as_array().into_iter().flatten() {
@@ -324,8 +386,14 @@ fn tables(eigen: &[Value], cb: &[Value], acc: &[Value]) -> String {
                 let _ = writeln!(
                     s,
                     "| {} | {} | {} | {} | {} | {} | {} | {} |",
-                    m["method"].as_str().unwrap_or("?"), p["modes"], p["basis_size"], f(&p["seconds"]),
-                    f(&p["freq_error"]), f(&p["static_error"]), f(&p["orthonormality"]), f(&p["stiffness_diag"]),
+                    m["method"].as_str().unwrap_or("?"),
+                    p["modes"],
+                    p["basis_size"],
+                    f(&p["seconds"]),
+                    f(&p["freq_error"]),
+                    f(&p["static_error"]),
+                    f(&p["orthonormality"]),
+                    f(&p["stiffness_diag"]),
                 );
             }
         }
@@ -353,9 +421,13 @@ pub fn run() -> Res<Value> {
     );
     let path = docs.join("benchmarks.md");
     std::fs::write(&path, md).map_err(|e| format!("{}: {e}", path.display()))?;
-    let written: Vec<String> = [docs.join("accuracy_vs_time.svg"), docs.join("scaling.svg"), path]
-        .iter()
-        .map(|p| p.display().to_string())
-        .collect();
+    let written: Vec<String> = [
+        docs.join("accuracy_vs_time.svg"),
+        docs.join("scaling.svg"),
+        path,
+    ]
+    .iter()
+    .map(|p| p.display().to_string())
+    .collect();
     Ok(json!({ "written": written }))
 }

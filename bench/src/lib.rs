@@ -172,8 +172,9 @@ pub fn run_peer(args: &[String]) -> serde_json::Value {
         Ok(o) if o.status.success() => {
             let text = String::from_utf8_lossy(&o.stdout);
             let last = text.lines().last().unwrap_or("");
-            serde_json::from_str(last)
-                .unwrap_or_else(|e| serde_json::json!({ "error": format!("bad JSON from peer: {e}") }))
+            serde_json::from_str(last).unwrap_or_else(
+                |e| serde_json::json!({ "error": format!("bad JSON from peer: {e}") }),
+            )
         }
         Ok(o) => {
             let err = String::from_utf8_lossy(&o.stderr);

@@ -43,8 +43,15 @@ fn node_set(model: &flexbody::model::Model, name: &str) -> Res<Vec<usize>> {
         .ok_or_else(|| format!("generated block has no node set {name}"))
 }
 
-/// `ours-eigen K.mtx M.mtx MODES`: our solver on the files (prints one JSON line).
-pub fn ours_eigen(kp: &str, mp: &str, modes: usize) -> Res<Value> {
+/// `ours-eigen K.mtx M.mtx MODES [BLOCK [TOL]]`: our solver on the files (prints one JSON line);
+/// BLOCK and TOL override the defaults (for tuning).
+pub fn ours_eigen(
+    kp: &str,
+    mp: &str,
+    modes: usize,
+    block: Option<usize>,
+    tol: Option<f64>,
+) -> Res<Value> {
     let t = Instant::now();
     let read = |p: &str| -> Res<SparseColMat<usize, f64>> {
         let s = flexbody::import::matrix_market::read_matrix(std::path::Path::new(p))
@@ -63,6 +70,8 @@ pub fn ours_eigen(kp: &str, mp: &str, modes: usize) -> Res<Value> {
         count: modes,
         shift: Some(0.0),
         dofs_per_node: Some(3),
+        block,
+        tol: tol.unwrap_or(EigenSpec::default().tol),
         ..Default::default()
     };
     let s = lowest_modes_iterative(&k, &m, &spec).map_err(|e| e.to_string())?;
@@ -75,6 +84,7 @@ pub fn ours_eigen(kp: &str, mp: &str, modes: usize) -> Res<Value> {
                      "eigen": s.info.seconds_eigen, "total": total},
         "solves": s.info.solves, "steps": s.info.steps, "restarts": s.info.restarts,
         "block": spec.block.unwrap_or(modes.min(flexbody::solve::DEFAULT_BLOCK)),
+        "tol": spec.tol,
         "nnz_l": f.as_ref().map(|f| f.nnz_l), "factor_flops": f.as_ref().map(|f| f.flops),
         "orthonormality": num(s.info.orthonormality),
         "max_residual": num(s.residuals.iter().copied().fold(0.0, f64::max)),
@@ -88,10 +98,7 @@ pub fn ours_eigen(kp: &str, mp: &str, modes: usize) -> Res<Value> {
 fn ratios(ours: &Value, peer: &Value, modes: usize) -> Value {
     let mut r = serde_json::Map::new();
     for ph in ["analyse_factor", "eigen", "total"] {
-        if let (Some(a), Some(b)) = (
-            ours["phases_s"][ph].as_f64(),
-            peer["phases_s"][ph].as_f64(),
-        ) {
+        if let (Some(a), Some(b)) = (ours["phases_s"][ph].as_f64(), peer["phases_s"][ph].as_f64()) {
             r.insert(ph.into(), num(a / b));
         }
     }
@@ -262,8 +269,14 @@ pub fn cb(n: [usize; 3], modes: usize, with_exudyn: bool, with_ccx: bool) -> Res
             .collect();
         let iface = format!(
             "{}\n{}\n",
-            x0.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" "),
-            xl.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" ")
+            x0.iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(" "),
+            xl.iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
         );
         let (xp, ip) = (dir.join("nodes.xyz"), dir.join("interfaces.txt"));
         std::fs::write(&xp, xyz).map_err(|e| e.to_string())?;
