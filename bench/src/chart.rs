@@ -29,7 +29,10 @@ fn load(prefix: &str) -> Res<Vec<Value>> {
         if name.starts_with(prefix) && name.ends_with(".json") {
             let text = std::fs::read_to_string(e.path()).map_err(|e| e.to_string())?;
             let v: Value = serde_json::from_str(&text).map_err(|err| format!("{name}: {err}"))?;
-            out.push(v);
+            // other benchmarks' files share prefixes (cb_pipeline_*): only this suite's
+            if v["suite"].as_str() == Some(prefix.trim_end_matches('_')) {
+                out.push(v);
+            }
         }
     }
     out.sort_by_key(|v| v["dofs"].as_u64().unwrap_or(0));

@@ -63,6 +63,9 @@ fn gs(v: &Mat<f64>, mv: &Mat<f64>, mut w: Mat<f64>) -> (Mat<f64>, Mat<f64>) {
     (c, w)
 }
 
+/// (Q, M Q, R) of an M-QR.
+type Mqr = (Mat<f64>, Mat<f64>, Mat<f64>);
+
 /// M-QR of a block already M-orthogonal to `v` (`mv` = M v): w ≈ Q R with Q M-orthonormal;
 /// returns (Q, M Q, R) with one product with M. Directions of relative M-norm² below 1e-24 are
 /// replaced by fresh random directions (rows of R zero).
@@ -76,7 +79,7 @@ fn mqr(
     scale2: f64,
     seed: &mut u64,
     solves: &mut usize,
-) -> Result<(Mat<f64>, Mat<f64>, Mat<f64>), SolveError> {
+) -> Result<Mqr, SolveError> {
     let (n, b) = (w.nrows(), w.ncols());
     let mw = spmm(m, w.as_ref());
     let g = w.transpose() * &mw;
