@@ -47,34 +47,39 @@ pub struct BlockResult {
     pub restarts: usize,
 }
 
-/// M-orthonormalization of `w` against the M-orthonormal `v` (classical Gram–Schmidt twice):
-/// returns (coefficients C with w = vC + rest, rest).
-fn gs(m: SparseColMatRef<'_, usize, f64>, v: &Mat<f64>, mut w: Mat<f64>) -> (Mat<f64>, Mat<f64>) {
+/// M-orthonormalization of `w` against the M-orthonormal `v` with `mv` = M v (classical
+/// Gram–Schmidt twice, w ← w − v (Mv)ᵀw, no product with M): returns (coefficients C with
+/// w = vC + rest, rest).
+fn gs(v: &Mat<f64>, mv: &Mat<f64>, mut w: Mat<f64>) -> (Mat<f64>, Mat<f64>) {
     let mut c = Mat::<f64>::zeros(v.ncols(), w.ncols());
     if v.ncols() == 0 {
         return (c, w);
     }
     for _ in 0..2 {
-        let mw = spmm(m, w.as_ref());
-        let d = v.transpose() * &mw;
+        let d = mv.transpose() * &w;
         w -= v * &d;
         c += &d;
     }
     (c, w)
 }
 
-/// M-QR of a block already M-orthogonal to `v`: w ≈ Q R with Q M-orthonormal. Directions of
-/// relative M-norm² below 1e-24 are replaced by fresh random directions (rows of R zero).
+/// (Q, M Q, R) of an M-QR.
+type Mqr = (Mat<f64>, Mat<f64>, Mat<f64>);
+
+/// M-QR of a block already M-orthogonal to `v` (`mv` = M v): w ≈ Q R with Q M-orthonormal;
+/// returns (Q, M Q, R) with one product with M. Directions of relative M-norm² below 1e-24 are
+/// replaced by fresh random directions (rows of R zero).
 #[allow(clippy::too_many_arguments)]
 fn mqr(
     m: SparseColMatRef<'_, usize, f64>,
     llt: &SparseLlt,
     v: &Mat<f64>,
+    mv: &Mat<f64>,
     w: Mat<f64>,
     scale2: f64,
     seed: &mut u64,
     solves: &mut usize,
-) -> Result<(Mat<f64>, Mat<f64>), SolveError> {
+) -> Result<Mqr, SolveError> {
     let (n, b) = (w.nrows(), w.ncols());
     let mw = spmm(m, w.as_ref());
     let g = w.transpose() * &mw;
@@ -83,11 +88,15 @@ fn mqr(
         .filter(|&i| s[i] > 1e-24 * scale2.max(f64::MIN_POSITIVE))
         .collect();
     let mut q = Mat::<f64>::zeros(n, b);
+    let mut mq = Mat::<f64>::zeros(n, b);
     let mut r = Mat::<f64>::zeros(b, b);
     let tk = Mat::from_fn(b, keep.len(), |t, c| u[(t, keep[c])] / s[keep[c]].sqrt());
     q.as_mut()
         .subcols_mut(0, keep.len())
         .copy_from((&w * &tk).as_ref());
+    mq.as_mut()
+        .subcols_mut(0, keep.len())
+        .copy_from((&mw * &tk).as_ref());
     for (c, &i) in keep.iter().enumerate() {
         let sq = s[i].sqrt();
         for t in 0..b {
@@ -102,6 +111,7 @@ fn mqr(
         llt.solve_in_place(pz.as_mut());
         *solves += b - kq;
         let mut basis = Mat::<f64>::zeros(n, v.ncols() + kq);
+        let mut mbasis = Mat::<f64>::zeros(n, v.ncols() + kq);
         basis
             .as_mut()
             .subcols_mut(0, v.ncols())
@@ -110,7 +120,15 @@ fn mqr(
             .as_mut()
             .subcols_mut(v.ncols(), kq)
             .copy_from(q.as_ref().subcols(0, kq));
-        let (_, pz) = gs(m, &basis, pz);
+        mbasis
+            .as_mut()
+            .subcols_mut(0, v.ncols())
+            .copy_from(mv.as_ref());
+        mbasis
+            .as_mut()
+            .subcols_mut(v.ncols(), kq)
+            .copy_from(mq.as_ref().subcols(0, kq));
+        let (_, pz) = gs(&basis, &mbasis, pz);
         let mpz = spmm(m, pz.as_ref());
         let g = pz.transpose() * &mpz;
         let (s2, u2) = dense::eigh(g.as_ref())?;
@@ -121,10 +139,14 @@ fn mqr(
             });
         }
         let t = Mat::from_fn(b - kq, b - kq, |i, j| u2[(i, j)] / s2[j].sqrt());
-        let pq = &pz * &t;
-        q.as_mut().subcols_mut(kq, b - kq).copy_from(pq.as_ref());
+        q.as_mut()
+            .subcols_mut(kq, b - kq)
+            .copy_from((&pz * &t).as_ref());
+        mq.as_mut()
+            .subcols_mut(kq, b - kq)
+            .copy_from((&mpz * &t).as_ref());
     }
-    Ok((q, r))
+    Ok((q, mq, r))
 }
 
 /// Deterministic pseudo-random block (xorshift), entries in (−1, 1).
@@ -163,20 +185,22 @@ pub fn block_shift_invert(
     let mut seed = 0x9E37_79B9_7F4A_7C15u64;
     let mut solves = 0usize;
     let mut restarts = 0usize;
-    let apply = |x: &Mat<f64>, solves: &mut usize| {
-        let mut w = spmm(m, x.as_ref());
+    // A x from M x: every block's M-image is kept (MV beside V), so a step costs one product
+    // with M (in the M-QR) instead of four.
+    let apply = |mx: &Mat<f64>, solves: &mut usize| {
+        let mut w = mx.clone();
         llt.solve_in_place(w.as_mut());
-        *solves += x.ncols();
+        *solves += mx.ncols();
         w
     };
     // start: V = MQR(A Z), then A V = V T + F Eᵀ
     let z = random_block(n, b, &mut seed);
-    let w0 = apply(&z, &mut solves);
+    let w0 = apply(&spmm(m, z.as_ref()), &mut solves);
     let empty = Mat::<f64>::zeros(n, 0);
     let s0 = w0.norm_max().powi(2);
-    let (mut v, _) = mqr(m, llt, &empty, w0, s0, &mut seed, &mut solves)?;
-    let w = apply(&v, &mut solves);
-    let (c, mut f) = gs(m, &v, w);
+    let (mut v, mut mv, _) = mqr(m, llt, &empty, &empty, w0, s0, &mut seed, &mut solves)?;
+    let w = apply(&mv, &mut solves);
+    let (c, mut f) = gs(&v, &mv, w);
     let mut t = c;
     let mut e = Mat::<f64>::identity(b, b);
     for step in 0..prm.max_steps {
@@ -185,7 +209,7 @@ pub fn block_shift_invert(
         // was formed, and V only shrinks to V·Y_k at a restart)
         let f2 = f;
         let fscale = t.norm_max().powi(2);
-        let (q, rf) = mqr(m, llt, &v, f2, fscale, &mut seed, &mut solves)?;
+        let (q, mq, rf) = mqr(m, llt, &v, &mv, f2, fscale, &mut seed, &mut solves)?;
         let ts = dense::sym(t.as_ref());
         let (theta_asc, y_asc) = dense::eigh(ts.as_ref())?;
         // descending θ = ascending λ
@@ -214,15 +238,17 @@ pub fn block_shift_invert(
         if p + b > max_basis {
             let yk = y.as_ref().subcols(0, keep);
             v = &v * yk;
+            mv = &mv * yk;
             t = Mat::from_fn(keep, keep, |i, j| if i == j { theta[i] } else { 0.0 });
             e = yk.transpose() * &e;
             restarts += 1;
         }
         // expand with Q: A Q = [V Q] C + F'
         let p = v.ncols();
-        let aq = apply(&q, &mut solves);
+        let aq = apply(&mq, &mut solves);
         let vq = hcat(&v, &q);
-        let (c, fnew) = gs(m, &vq, aq);
+        let mvq = hcat(&mv, &mq);
+        let (c, fnew) = gs(&vq, &mvq, aq);
         let mut tn = Mat::<f64>::zeros(p + b, p + b);
         tn.as_mut().submatrix_mut(0, 0, p, p).copy_from(t.as_ref());
         tn.as_mut()
@@ -233,6 +259,7 @@ pub fn block_shift_invert(
         t = tn;
         e = Mat::from_fn(p + b, b, |i, j| if i == p + j { 1.0 } else { 0.0 });
         v = vq;
+        mv = mvq;
         f = fnew;
     }
     Err(SolveError::NotConverged {

@@ -12,17 +12,55 @@ pub fn spmm(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> 
     y
 }
 
-/// Y = A X into an existing matrix (overwritten), faer's sparse × dense kernel.
-pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, y: MatMut<'_, f64>) {
-    faer::sparse::linalg::matmul::sparse_dense_matmul(
-        y,
-        faer::Accum::Replace,
-        a,
-        x,
-        1.0,
-        faer::Par::Seq,
-    );
+/// Y = A X into an existing matrix (overwritten). One pass over A for all columns of X: X is
+/// copied to row-major blocks of up to [`SPMM_CHUNK`] columns so that every stored a_ij updates a
+/// contiguous row of Y (faer's kernel passes over A once per column of X: 2.5× slower on a 20k-dof
+/// tet10 mass matrix with 6 columns).
+pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, mut y: MatMut<'_, f64>) {
+    let (n, b) = (a.nrows(), x.ncols());
+    if b == 1 {
+        faer::sparse::linalg::matmul::sparse_dense_matmul(
+            y,
+            faer::Accum::Replace,
+            a,
+            x,
+            1.0,
+            faer::Par::Seq,
+        );
+        return;
+    }
+    let mut c0 = 0;
+    while c0 < b {
+        let w = (b - c0).min(SPMM_CHUNK);
+        let mut xr = vec![0.0; a.ncols() * w];
+        for c in 0..w {
+            for (j, &v) in x.col(c0 + c).iter().enumerate() {
+                xr[j * w + c] = v;
+            }
+        }
+        let mut yr = vec![0.0; n * w];
+        for j in 0..a.ncols() {
+            let xj = &xr[j * w..j * w + w];
+            if xj.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+                for (yi, &xv) in yr[i * w..i * w + w].iter_mut().zip(xj) {
+                    *yi += v * xv;
+                }
+            }
+        }
+        for c in 0..w {
+            for (i, yv) in y.as_mut().col_mut(c0 + c).iter_mut().enumerate() {
+                *yv = yr[i * w + c];
+            }
+        }
+        c0 += w;
+    }
 }
+
+/// Columns of X per pass of [`spmm_into`] (row-major copies of n × 16 stay small).
+pub const SPMM_CHUNK: usize = 16;
 
 /// A = K + s·M on the union of both patterns.
 pub fn add_scaled(

@@ -1,0 +1,66 @@
+//! Benchmark harness: `cargo run --release -p flexbody-bench --bin harness -- <suite> [args]`.
+//!
+//! Suites (results under `bench/results/`, generated inputs under /work/benchdata):
+//! * `eigen NX NY NZ [--modes 30] [--ccx] [--no-superlu]` — factorization + eigen phase vs SciPy/SuperLU,
+//!   ARPACK/CHOLMOD (and ccx) on identical matrices;
+//! * `cb NX NY NZ [--modes 30] [--exudyn] [--ccx]` — whole CB build vs exudyn HCB and ccx;
+//! * `accuracy [MODEL.inp]` — every reduction method × mode counts on the bundled conrod;
+//! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
+//!
+//! `ours-eigen` and `ours-cb` are the suites' own child processes.
+
+use flexbody_bench::{accuracy, chart, suites, Res};
+
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] | accuracy [MODEL.inp] | chart";
+
+fn dims(a: &[String]) -> Res<[usize; 3]> {
+    let p = |i: usize| -> Res<usize> {
+        a.get(i)
+            .and_then(|s| s.parse().ok())
+            .filter(|&v| v > 0)
+            .ok_or_else(|| format!("expected three positive brick counts NX NY NZ\n{USAGE}"))
+    };
+    Ok([p(0)?, p(1)?, p(2)?])
+}
+
+fn modes(a: &[String]) -> Res<usize> {
+    match a.iter().position(|s| s == "--modes") {
+        Some(i) => a
+            .get(i + 1)
+            .and_then(|s| s.parse().ok())
+            .ok_or_else(|| "--modes N".to_string()),
+        None => Ok(30),
+    }
+}
+
+fn run(args: &[String]) -> Res<()> {
+    let (suite, a) = args.split_first().ok_or(USAGE)?;
+    let has = |f: &str| a.iter().any(|s| s == f);
+    let out = match suite.as_str() {
+        "eigen" => suites::eigen(dims(a)?, modes(a)?, has("--ccx"), !has("--no-superlu"))?,
+        "cb" => suites::cb(dims(a)?, modes(a)?, has("--exudyn"), has("--ccx"))?,
+        "accuracy" => accuracy::run(a.first().map(String::as_str))?,
+        "chart" => chart::run()?,
+        "ours-eigen" if (3..=5).contains(&a.len()) => {
+            let m = a[2].parse().map_err(|_| "MODES".to_string())?;
+            let block = a.get(3).and_then(|s| s.parse().ok());
+            let tol = a.get(4).and_then(|s| s.parse().ok());
+            suites::ours_eigen(&a[0], &a[1], m, block, tol)?
+        }
+        "ours-cb" if a.len() == 4 => {
+            let m = a[3].parse().map_err(|_| "MODES".to_string())?;
+            suites::ours_cb(dims(a)?, m)?
+        }
+        _ => return Err(USAGE.into()),
+    };
+    println!("{out}");
+    Ok(())
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let Err(e) = run(&args) {
+        eprintln!("harness: {e}");
+        std::process::exit(1);
+    }
+}

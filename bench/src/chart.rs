@@ -1,0 +1,436 @@
+//! `harness chart`: regenerates, from the JSON in `bench/results/`, the two charts under `docs/`
+//! and the tables of `docs/benchmarks.md`:
+//!
+//! * `docs/accuracy_vs_time.svg` — wall time (x, log) against frequency error and interface
+//!   static error (y, log), one series per method, points labelled by mode count;
+//! * `docs/scaling.svg` — time and peak memory against dofs (log–log), ours and the peers.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use plotters::prelude::*;
+use serde_json::{json, Value};
+
+use crate::{results_dir, Res};
+
+/// Errors below this are drawn on this floor (exact to rounding).
+const FLOOR: f64 = 1e-15;
+
+fn docs_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs")
+}
+
+fn load(prefix: &str) -> Res<Vec<Value>> {
+    let mut out = Vec::new();
+    let dir = results_dir();
+    let rd = std::fs::read_dir(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    for e in rd.flatten() {
+        let name = e.file_name().to_string_lossy().to_string();
+        if name.starts_with(prefix) && name.ends_with(".json") {
+            let text = std::fs::read_to_string(e.path()).map_err(|e| e.to_string())?;
+            let v: Value = serde_json::from_str(&text).map_err(|err| format!("{name}: {err}"))?;
+            // other benchmarks' files share prefixes (cb_pipeline_*): only this suite's
+            if v["suite"].as_str() == Some(prefix.trim_end_matches('_')) {
+                out.push(v);
+            }
+        }
+    }
+    out.sort_by_key(|v| v["dofs"].as_u64().unwrap_or(0));
+    Ok(out)
+}
+
+fn err<E: std::fmt::Debug>(e: E) -> String {
+    format!("chart: {e:?}")
+}
+
+fn color(i: usize) -> RGBColor {
+    const C: [RGBColor; 7] = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(255, 127, 14),
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+        RGBColor(23, 190, 207),
+    ];
+    C[i % C.len()]
+}
+
+type Series = (String, Vec<(f64, f64, String)>);
+
+fn bounds(series: &[Series]) -> ((f64, f64), (f64, f64)) {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for (_, pts) in series {
+        for &(x, y, _) in pts {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+    }
+    if x0 > x1 {
+        return ((0.1, 10.0), (0.1, 10.0));
+    }
+    ((x0 / 1.5, x1 * 1.5), (y0 / 3.0, y1 * 3.0))
+}
+
+/// 1-2-5 ticks per decade inside [a, b].
+fn key_points(a: f64, b: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut d = 10f64.powf(a.log10().floor());
+    while d <= b {
+        for m in [1.0, 2.0, 5.0] {
+            let v = m * d;
+            if v >= a && v <= b {
+                out.push(v);
+            }
+        }
+        d *= 10.0;
+    }
+    out
+}
+
+/// 20000 → "20k", 0.5 → "0.5".
+fn short(v: f64) -> String {
+    if v >= 1e6 {
+        format!("{}M", v / 1e6)
+    } else if v >= 1e3 {
+        format!("{}k", v / 1e3)
+    } else {
+        format!("{}", (v * 1e3).round() / 1e3)
+    }
+}
+
+fn panel(
+    area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    title: &str,
+    xdesc: &str,
+    ydesc: &str,
+    series: &[Series],
+) -> Res<()> {
+    let ((x0, x1), (y0, y1)) = bounds(series);
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(
+            (x0..x1).log_scale().with_key_points(key_points(x0, x1)),
+            (y0..y1).log_scale(),
+        )
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc(xdesc)
+        .y_desc(ydesc)
+        .light_line_style(RGBColor(235, 235, 235))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| short(*v))
+        .draw()
+        .map_err(err)?;
+    for (i, (name, pts)) in series.iter().enumerate() {
+        let c = color(i);
+        let xy: Vec<(f64, f64)> = pts.iter().map(|p| (p.0, p.1)).collect();
+        chart
+            .draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))
+            .map_err(err)?
+            .label(name.as_str())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+        chart
+            .draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))
+            .map_err(err)?;
+        chart
+            .draw_series(pts.iter().map(|(x, y, l)| {
+                Text::new(
+                    l.clone(),
+                    (*x, *y),
+                    ("sans-serif", 11).into_font().color(&c),
+                )
+            }))
+            .map_err(err)?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)?;
+    Ok(())
+}
+
+fn accuracy_chart(acc: &Value, path: &Path) -> Res<()> {
+    let mut freq: Vec<Series> = Vec::new();
+    let mut stat: Vec<Series> = Vec::new();
+    for s in acc["series"].as_array().into_iter().flatten() {
+        let name = s["method"].as_str().unwrap_or("?").to_string();
+        let pick = |key: &str| -> Vec<(f64, f64, String)> {
+            s["points"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|p| {
+                    Some((
+                        p["seconds"].as_f64()?,
+                        p[key].as_f64()?.max(FLOOR),
+                        p["modes"].as_u64()?.to_string(),
+                    ))
+                })
+                .collect()
+        };
+        freq.push((name.clone(), pick("freq_error")));
+        stat.push((name, pick("static_error")));
+    }
+    let root = SVGBackend::new(path, (1400, 620)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let areas = root.split_evenly((1, 2));
+    let model = acc["model"]
+        .as_str()
+        .unwrap_or("model")
+        .rsplit('/')
+        .next()
+        .unwrap_or("model");
+    panel(
+        &areas[0],
+        &format!("frequency error up to fmax ({model})"),
+        "wall time of the reduction (s)",
+        "max relative frequency error",
+        &freq,
+    )?;
+    panel(
+        &areas[1],
+        "static error at the interface (unit loads)",
+        "wall time of the reduction (s)",
+        "max |dG_ij| / sqrt(G_ii G_jj)",
+        &stat,
+    )?;
+    root.present().map_err(err)
+}
+
+fn scaling_series(eigen: &[Value], cb: &[Value], what: &str) -> Vec<Series> {
+    let mut out: Vec<Series> = Vec::new();
+    let mut add = |name: &str, runs: &[Value], pick: &dyn Fn(&Value) -> Option<f64>| {
+        let pts: Vec<(f64, f64, String)> = runs
+            .iter()
+            .filter_map(|r| Some((r["dofs"].as_f64()?, pick(r)?, String::new())))
+            .collect();
+        if !pts.is_empty() {
+            out.push((name.to_string(), pts));
+        }
+    };
+    let get = |who: &'static str, peer: bool| {
+        move |r: &Value| -> Option<f64> {
+            let v = if peer { &r["peers"][who] } else { &r[who] };
+            match what {
+                "time" => v["phases_s"]["total"].as_f64(),
+                _ => v["peak_rss_mb"].as_f64(),
+            }
+        }
+    };
+    add("eigen: flexbody", eigen, &get("ours", false));
+    add(
+        "eigen: ARPACK + CHOLMOD",
+        eigen,
+        &get("arpack_cholmod", true),
+    );
+    add("eigen: eigsh + SuperLU", eigen, &get("scipy_superlu", true));
+    add("eigen: ccx", eigen, &get("ccx", true));
+    add("CB build: flexbody", cb, &get("ours", false));
+    add("CB: exudyn HCB", cb, &get("exudyn_hcb", true));
+    add("CB: ccx frequency only", cb, &get("ccx", true));
+    out
+}
+
+fn scaling_chart(eigen: &[Value], cb: &[Value], path: &Path) -> Res<()> {
+    let root = SVGBackend::new(path, (1400, 620)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let areas = root.split_evenly((1, 2));
+    panel(
+        &areas[0],
+        "wall time vs size",
+        "dofs",
+        "seconds",
+        &scaling_series(eigen, cb, "time"),
+    )?;
+    panel(
+        &areas[1],
+        "peak memory vs size",
+        "dofs",
+        "MB",
+        &scaling_series(eigen, cb, "memory"),
+    )?;
+    root.present().map_err(err)
+}
+
+fn f(v: &Value) -> String {
+    match v.as_f64() {
+        Some(x) if x != 0.0 && (x.abs() < 1e-2 || x.abs() >= 1e5) => format!("{x:.2e}"),
+        Some(x) => format!("{x:.3}"),
+        None => "–".into(),
+    }
+}
+
+fn tables(eigen: &[Value], cb: &[Value], acc: &[Value]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "## Eigen phase on identical matrices (`harness eigen`)\n"
+    );
+    let _ = writeln!(s, "Clamped tet10 block, consistent mass, lowest modes at σ = 0. Times in s (analyse+factor / eigen / total), peak memory in MB; ratio = ours / peer; agreement = max relative eigenvalue difference.\n");
+    let _ = writeln!(s, "| dofs | modes | peer | analyse+factor | eigen | total | peak MB | ratio factor | ratio eigen | ratio total | agreement | load (1 min) |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for r in eigen {
+        let rows = [
+            ("flexbody", &r["ours"], &Value::Null),
+            (
+                "ARPACK + CHOLMOD",
+                &r["peers"]["arpack_cholmod"],
+                &r["ratios_ours_over"]["arpack_cholmod"],
+            ),
+            (
+                "eigsh + SuperLU",
+                &r["peers"]["scipy_superlu"],
+                &r["ratios_ours_over"]["scipy_superlu"],
+            ),
+            (
+                "ccx *FREQUENCY",
+                &r["peers"]["ccx"],
+                &r["ratios_ours_over"]["ccx"],
+            ),
+        ];
+        for (name, p, q) in rows {
+            let note = p["error"].as_str().or(p["skipped"].as_str());
+            if let Some(n) = note {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {name} | {n} | | | | | | | | |",
+                    r["dofs"], r["modes"]
+                );
+                continue;
+            }
+            let _ = writeln!(
+                s,
+                "| {} | {} | {name} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                r["dofs"],
+                r["modes"],
+                f(&p["phases_s"]["analyse_factor"]),
+                f(&p["phases_s"]["eigen"]),
+                f(&p["phases_s"]["total"]),
+                f(&p["peak_rss_mb"]),
+                f(&q["analyse_factor"]),
+                f(&q["eigen"]),
+                f(&q["total"]),
+                f(&q["eigenvalue_max_rel_diff"]),
+                f(&r["loadavg_before"][0]),
+            );
+        }
+    }
+    let _ = writeln!(s, "\n## Whole Craig–Bampton build (`harness cb`)\n");
+    let _ = writeln!(s, "Ours: generate → RBE2 spiders (2 interface nodes) → assembly → elimination → CB → orthonormalization. exudyn: `ComputeHurtyCraigBamptonModes` (RBE2) on our assembled K, M (reading excluded). ccx: frequency-only run, both end faces clamped, same mode count. Agreement: fixed-interface eigenvalues.\n");
+    let _ = writeln!(
+        s,
+        "| dofs | modes | who | total s | peak MB | ours / peer | agreement | load (1 min) |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    for r in cb {
+        let rows = [
+            ("flexbody CB build", &r["ours"], &Value::Null),
+            (
+                "exudyn HCB",
+                &r["peers"]["exudyn_hcb"],
+                &r["ratios_ours_over"]["exudyn_hcb"],
+            ),
+            (
+                "ccx frequency only",
+                &r["peers"]["ccx"],
+                &r["ratios_ours_over"]["ccx"],
+            ),
+        ];
+        for (name, p, q) in rows {
+            if let Some(n) = p["error"].as_str().or(p["skipped"].as_str()) {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {name} | {n} | | | | |",
+                    r["dofs"], r["modes"]
+                );
+                continue;
+            }
+            let _ = writeln!(
+                s,
+                "| {} | {} | {name} | {} | {} | {} | {} | {} |",
+                r["dofs"],
+                r["modes"],
+                f(&p["phases_s"]["total"]),
+                f(&p["peak_rss_mb"]),
+                f(&q["total"]),
+                f(&q["eigenvalue_max_rel_diff"]),
+                f(&r["loadavg_before"][0]),
+            );
+        }
+    }
+    for a in acc {
+        let _ = writeln!(
+            s,
+            "\n## Accuracy by method (`harness accuracy`, {}, {} dofs)\n",
+            a["model"].as_str().unwrap_or("?"),
+            a["dofs"]
+        );
+        let _ = writeln!(
+            s,
+            "fmax = {} Hz (10th flexible free-free mode). {}. Mode count = {}.\n",
+            f(&a["fmax_hz"]),
+            a["interfaces"].as_str().unwrap_or(""),
+            a["mode_counts"].as_str().unwrap_or("")
+        );
+        let _ = writeln!(s, "| method | modes | basis | time s | frequency error | static error | ‖ΦᵀMΦ−I‖ | ‖ΦᵀKΦ−Λ‖/‖Λ‖ |");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+        for m in a["series"].as_array().into_iter().flatten() {
+            for p in m["points"].as_array().into_iter().flatten() {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {} | {} | {} | {} | {} |",
+                    m["method"].as_str().unwrap_or("?"),
+                    p["modes"],
+                    p["basis_size"],
+                    f(&p["seconds"]),
+                    f(&p["freq_error"]),
+                    f(&p["static_error"]),
+                    f(&p["orthonormality"]),
+                    f(&p["stiffness_diag"]),
+                );
+            }
+        }
+    }
+    s
+}
+
+/// Draws both charts and writes `docs/benchmarks.md`.
+pub fn run() -> Res<Value> {
+    let docs = docs_dir();
+    std::fs::create_dir_all(&docs).map_err(|e| e.to_string())?;
+    let eigen = load("eigen_")?;
+    let cb = load("cb_")?;
+    let acc = load("accuracy_")?;
+    if let Some(a) = acc.first() {
+        accuracy_chart(a, &docs.join("accuracy_vs_time.svg"))?;
+    }
+    scaling_chart(&eigen, &cb, &docs.join("scaling.svg"))?;
+    let head = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
+        .unwrap_or_default();
+    let md = format!(
+        "# Benchmarks\n\n<!-- generated by `cargo run --release -p flexbody-bench --bin harness -- chart` from bench/results/*.json; edit bench/README.md instead -->\n\n{head}\n\
+         ![accuracy vs time](accuracy_vs_time.svg)\n\n![time and memory vs dofs](scaling.svg)\n\n{}",
+        tables(&eigen, &cb, &acc)
+    );
+    let path = docs.join("benchmarks.md");
+    std::fs::write(&path, md).map_err(|e| format!("{}: {e}", path.display()))?;
+    let written: Vec<String> = [
+        docs.join("accuracy_vs_time.svg"),
+        docs.join("scaling.svg"),
+        path,
+    ]
+    .iter()
+    .map(|p| p.display().to_string())
+    .collect();
+    Ok(json!({ "written": written }))
+}

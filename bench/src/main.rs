@@ -1,3 +1,0 @@
-fn main() {
-    println!("flexbody-bench: no suites yet");
-}

@@ -1,0 +1,320 @@
+//! Speed suites against the peers, on identical inputs, in the same run:
+//!
+//! * `eigen NX NY NZ [--modes N]`: the tet10 block clamped at x = 0, consistent mass. We write
+//!   K and M as Matrix Market; ours (`ours-eigen`, own process) and the peers (SciPy eigsh with
+//!   SuperLU, ARPACK with CHOLMOD) read the same files and find the lowest N eigenpairs with a
+//!   factorization at σ = 0; ccx solves the same mesh and clamp from a deck. Ratios ours/peer per
+//!   phase (analyse+factor, eigen, total) and eigenvalue agreement.
+//! * `cb NX NY NZ [--modes N]`: the whole Craig–Bampton build (generate, RBE2 spiders on both
+//!   end faces = 2 interface nodes, assembly, elimination, CB with N fixed-interface modes,
+//!   orthonormalization) against exudyn's HCB (RBE2 interfaces on the same end-face nodes, our
+//!   assembled K, M) and ccx's frequency-only run of N modes with both end faces clamped.
+//!
+//! Results: `bench/results/eigen_<dofs>.json`, `bench/results/cb_<dofs>.json`.
+
+use std::time::Instant;
+
+use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
+use flexbody::interface::{resolve_interfaces, SpiderKind};
+use flexbody::model::DofMask;
+use flexbody::reduce::craig_bampton::craig_bampton_basis;
+use flexbody::reduce::orthonormalize::orthonormalize;
+use flexbody::reduce::select::ModeCount;
+use flexbody::solve::{lowest_modes_iterative, EigenSpec, SparseColMat, Triplet};
+use serde_json::{json, Value};
+
+use crate::{
+    data_dir, loadavg, max_rel_diff, num, peak_rss_mb, run_peer, run_self, tet10_block,
+    write_ccx_deck, write_mtx, write_result, Res,
+};
+
+fn consistent() -> AssemblySpec {
+    AssemblySpec {
+        mass: MassKind::Consistent,
+        ..Default::default()
+    }
+}
+
+fn node_set(model: &flexbody::model::Model, name: &str) -> Res<Vec<usize>> {
+    model
+        .node_sets
+        .get(name)
+        .cloned()
+        .ok_or_else(|| format!("generated block has no node set {name}"))
+}
+
+/// `ours-eigen K.mtx M.mtx MODES [BLOCK [TOL]]`: our solver on the files (prints one JSON line);
+/// BLOCK and TOL override the defaults (for tuning).
+pub fn ours_eigen(
+    kp: &str,
+    mp: &str,
+    modes: usize,
+    block: Option<usize>,
+    tol: Option<f64>,
+) -> Res<Value> {
+    let t = Instant::now();
+    let read = |p: &str| -> Res<SparseColMat<usize, f64>> {
+        let s = flexbody::import::matrix_market::read_matrix(std::path::Path::new(p))
+            .map_err(|e| e.to_string())?;
+        let v: Vec<_> = s
+            .full()
+            .into_iter()
+            .map(|(i, j, x)| Triplet::new(i, j, x))
+            .collect();
+        SparseColMat::try_new_from_triplets(s.n, s.n, &v).map_err(|e| format!("{p}: {e:?}"))
+    };
+    let (k, m) = (read(kp)?, read(mp)?);
+    let t_read = t.elapsed().as_secs_f64();
+    let t0 = Instant::now();
+    let spec = EigenSpec {
+        count: modes,
+        shift: Some(0.0),
+        dofs_per_node: Some(3),
+        block,
+        tol: tol.unwrap_or(EigenSpec::default().tol),
+        ..Default::default()
+    };
+    let s = lowest_modes_iterative(&k, &m, &spec).map_err(|e| e.to_string())?;
+    let total = t0.elapsed().as_secs_f64();
+    let f = s.info.factor.clone();
+    Ok(json!({
+        "peer": "flexbody (faer supernodal LLT, METIS NodeND; block Krylov-Schur shift-invert)",
+        "n": k.nrows(),
+        "phases_s": {"read": t_read, "analyse_factor": s.info.seconds_factor,
+                     "eigen": s.info.seconds_eigen, "total": total},
+        "solves": s.info.solves, "steps": s.info.steps, "restarts": s.info.restarts,
+        "block": spec.block.unwrap_or(modes.min(flexbody::solve::DEFAULT_BLOCK)),
+        "tol": spec.tol,
+        "nnz_l": f.as_ref().map(|f| f.nnz_l), "factor_flops": f.as_ref().map(|f| f.flops),
+        "orthonormality": num(s.info.orthonormality),
+        "max_residual": num(s.residuals.iter().copied().fold(0.0, f64::max)),
+        "peak_rss_mb": peak_rss_mb(),
+        "eigenvalues": s.eigenvalues,
+        "threads": "faer Par::Seq",
+        "loadavg": loadavg(),
+    }))
+}
+
+fn ratios(ours: &Value, peer: &Value, modes: usize) -> Value {
+    let mut r = serde_json::Map::new();
+    for ph in ["analyse_factor", "eigen", "total"] {
+        if let (Some(a), Some(b)) = (ours["phases_s"][ph].as_f64(), peer["phases_s"][ph].as_f64()) {
+            r.insert(ph.into(), num(a / b));
+        }
+    }
+    let ev = |v: &Value| -> Vec<f64> {
+        v["eigenvalues"]
+            .as_array()
+            .map(|a| a.iter().filter_map(Value::as_f64).collect())
+            .unwrap_or_default()
+    };
+    if let Some(d) = max_rel_diff(&ev(ours), &ev(peer), modes) {
+        r.insert("eigenvalue_max_rel_diff".into(), num(d));
+    }
+    Value::Object(r)
+}
+
+/// The `eigen` suite.
+pub fn eigen(n: [usize; 3], modes: usize, with_ccx: bool, with_superlu: bool) -> Res<Value> {
+    let mut model = tet10_block(n);
+    let fixed = node_set(&model, "X0")?;
+    let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
+    let red = eliminate(
+        &model,
+        &asm.dofs,
+        &asm.k,
+        &asm.m,
+        &ConstraintSpec {
+            fixed: fixed.iter().map(|&i| (i, DofMask::ALL)).collect(),
+            ..Default::default()
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let dofs = red.k.nrows();
+    let dir = data_dir(&format!("eigen_{dofs}"))?;
+    let (kp, mp) = (dir.join("K.mtx"), dir.join("M.mtx"));
+    write_mtx(&kp, &red.k)?;
+    write_mtx(&mp, &red.m)?;
+    let deck = dir.join("freq.inp");
+    write_ccx_deck(&deck, &model, &fixed, modes)?;
+    model.node_sets.clear();
+    drop((asm, red, model));
+    let (ks, ms) = (kp.display().to_string(), mp.display().to_string());
+    let ms_ = modes.to_string();
+    let load_before = loadavg();
+    let ours = run_self(&["ours-eigen".into(), ks.clone(), ms.clone(), ms_.clone()])?;
+    let superlu = if with_superlu {
+        run_peer(&["superlu".into(), ks.clone(), ms.clone(), ms_.clone()])
+    } else {
+        json!({"skipped": "not asked (--no-superlu)"})
+    };
+    let cholmod = run_peer(&["cholmod".into(), ks, ms, ms_]);
+    let ccx = if with_ccx {
+        run_peer(&["ccx".into(), deck.display().to_string()])
+    } else {
+        json!({"skipped": "not asked (--ccx)"})
+    };
+    let json = json!({
+        "suite": "eigen",
+        "model": format!("tet10 block {}x{}x{} bricks (6 tets each), 0.5x0.1x0.1 m steel, clamped at x=0, consistent mass", n[0], n[1], n[2]),
+        "dofs": dofs,
+        "modes": modes,
+        "loadavg_before": load_before,
+        "loadavg_after": loadavg(),
+        "ours": ours,
+        "peers": {"scipy_superlu": superlu, "arpack_cholmod": cholmod, "ccx": ccx},
+        "ratios_ours_over": {
+            "scipy_superlu": ratios(&ours, &superlu, modes),
+            "arpack_cholmod": ratios(&ours, &cholmod, modes),
+            "ccx": ratios(&ours, &ccx, modes),
+        },
+    });
+    write_result(&format!("eigen_{dofs}.json"), &json)?;
+    Ok(json)
+}
+
+/// `ours-cb NX NY NZ MODES`: our whole CB build on the generated block (prints one JSON line).
+pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
+    let mut phases = serde_json::Map::new();
+    let t_all = Instant::now();
+    let mut t = Instant::now();
+    let mut lap = |name: &str, phases: &mut serde_json::Map<String, Value>| {
+        let s = t.elapsed().as_secs_f64();
+        eprintln!("  {name}: {s:.2} s (peak {:.0} MB)", peak_rss_mb());
+        phases.insert(name.into(), num(s));
+        t = Instant::now();
+    };
+    let mut model = tet10_block(n);
+    lap("generate", &mut phases);
+    let itf = resolve_interfaces(&mut model, &["X0".into(), "XL".into()], SpiderKind::Rbe2)
+        .map_err(|e| e.to_string())?;
+    lap("interfaces", &mut phases);
+    let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
+    lap("assembly", &mut phases);
+    let red = eliminate(
+        &model,
+        &asm.dofs,
+        &asm.k,
+        &asm.m,
+        &ConstraintSpec::default(),
+    )
+    .map_err(|e| e.to_string())?;
+    lap("elimination", &mut phases);
+    let mut pos = vec![usize::MAX; asm.dofs.n_dofs];
+    for (i, &p) in red.retained.iter().enumerate() {
+        pos[p] = i;
+    }
+    let interface: Vec<usize> = itf
+        .iter()
+        .flat_map(|r| r.nodes.iter())
+        .flat_map(|&node| (0..6).map(move |c| (node, c)))
+        .map(|(node, c)| pos[asm.dofs.first[node] + c])
+        .collect();
+    drop(asm);
+    let eig = EigenSpec {
+        dofs_per_node: Some(3),
+        ..Default::default()
+    };
+    let basis = craig_bampton_basis(&red.k, &red.m, &interface, ModeCount::Count(modes), &eig)
+        .map_err(|e| e.to_string())?;
+    for (name, s) in &basis.timings {
+        phases.insert(format!("cb {name}"), num(*s));
+    }
+    lap("craig-bampton basis", &mut phases);
+    let o = orthonormalize(&red.k, &red.m, &basis.t, &basis.labels).map_err(|e| e.to_string())?;
+    lap("orthonormalization", &mut phases);
+    phases.insert("total".into(), num(t_all.elapsed().as_secs_f64()));
+    Ok(json!({
+        "peer": "flexbody CB build (generate, RBE2 spiders, assembly, elimination, CB, orthonormalization)",
+        "n": red.k.nrows(),
+        "nodes": model.nodes.len(),
+        "interface_dofs": interface.len(),
+        "phases_s": phases,
+        "modes": o.omega2.len(),
+        "orthonormality": num(o.diagnostics.orthonormality),
+        "peak_rss_mb": peak_rss_mb(),
+        "eigenvalues": basis.fixed_omega2,
+        "threads": "faer Par::Seq",
+        "loadavg": loadavg(),
+    }))
+}
+
+/// The `cb` suite.
+pub fn cb(n: [usize; 3], modes: usize, with_exudyn: bool, with_ccx: bool) -> Res<Value> {
+    let load_before = loadavg();
+    let ms = modes.to_string();
+    let ours = run_self(&[
+        "ours-cb".into(),
+        n[0].to_string(),
+        n[1].to_string(),
+        n[2].to_string(),
+        ms.clone(),
+    ])?;
+    let dofs = ours["n"].as_u64().unwrap_or(0);
+    let dir = data_dir(&format!("cb_{dofs}"))?;
+    let model = tet10_block(n);
+    let (x0, xl) = (node_set(&model, "X0")?, node_set(&model, "XL")?);
+    let exudyn = if with_exudyn {
+        let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
+        if (0..model.nodes.len()).any(|i| asm.dofs.first[i] != 3 * i || asm.dofs.count[i] != 3) {
+            return Err("generated block: dofs are not 3 per node in node order".into());
+        }
+        let (kp, mp) = (dir.join("K_free.mtx"), dir.join("M_free.mtx"));
+        write_mtx(&kp, &asm.k)?;
+        write_mtx(&mp, &asm.m)?;
+        let xyz: String = model
+            .nodes
+            .iter()
+            .map(|p| format!("{:.17e} {:.17e} {:.17e}\n", p.x[0], p.x[1], p.x[2]))
+            .collect();
+        let iface = format!(
+            "{}\n{}\n",
+            x0.iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(" "),
+            xl.iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+        let (xp, ip) = (dir.join("nodes.xyz"), dir.join("interfaces.txt"));
+        std::fs::write(&xp, xyz).map_err(|e| e.to_string())?;
+        std::fs::write(&ip, iface).map_err(|e| e.to_string())?;
+        drop(asm);
+        run_peer(&[
+            "hcb".into(),
+            kp.display().to_string(),
+            mp.display().to_string(),
+            xp.display().to_string(),
+            ip.display().to_string(),
+            ms.clone(),
+        ])
+    } else {
+        json!({"skipped": "not asked (--exudyn)"})
+    };
+    let ccx = if with_ccx {
+        let deck = dir.join("freq_clamped.inp");
+        let both: Vec<usize> = x0.iter().chain(&xl).copied().collect();
+        write_ccx_deck(&deck, &model, &both, modes)?;
+        run_peer(&["ccx".into(), deck.display().to_string()])
+    } else {
+        json!({"skipped": "not asked (--ccx)"})
+    };
+    let json = json!({
+        "suite": "cb",
+        "model": format!("tet10 block {}x{}x{} bricks (6 tets each), 0.5x0.1x0.1 m steel, RBE2 spiders on x=0 and x=L (exudyn: RBE2 interfaces on the same nodes; ccx: both faces clamped, frequency only), consistent mass", n[0], n[1], n[2]),
+        "dofs": dofs,
+        "modes": modes,
+        "loadavg_before": load_before,
+        "loadavg_after": loadavg(),
+        "ours": ours,
+        "peers": {"exudyn_hcb": exudyn, "ccx": ccx},
+        "ratios_ours_over": {
+            "exudyn_hcb": ratios(&ours, &exudyn, modes),
+            "ccx": ratios(&ours, &ccx, modes),
+        },
+    });
+    write_result(&format!("cb_{dofs}.json"), &json)?;
+    Ok(json)
+}
