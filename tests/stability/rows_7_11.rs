@@ -123,39 +123,48 @@ fn row07_stiffness_contrast_meets_the_engine_bounds() {
         worst_ratio,
     );
 
-    let mut big = block([12, 3, 3], [0.4, 0.05, 0.05]);
-    big.materials.push(insert_block(1e4).materials[1].clone());
-    big.properties.push(insert_block(1e4).properties[1].clone());
-    for e in 0..big.elements.len() {
-        let xc = big.elements[e]
-            .nodes
-            .iter()
-            .map(|&n| big.nodes[n].x[0])
-            .sum::<f64>()
-            / 8.0;
-        if xc > 0.15 && xc < 0.25 {
-            big.elements[e].property = Some(1);
+    // The sparse iterative path (1872 dofs) against a dense reference: exact to 1e-8 at 1e4;
+    // at 1e8 (the build's limit) the residual needs the subspace-iteration refinement of
+    // `lowest_modes_factored` and the agreement is what rounding leaves.
+    for (contrast, bound) in [(1e4, 1e-8), (1e8, 1e-4)] {
+        let mut big = block([12, 3, 3], [0.4, 0.05, 0.05]);
+        big.materials
+            .push(insert_block(contrast).materials[1].clone());
+        big.properties
+            .push(insert_block(contrast).properties[1].clone());
+        for e in 0..big.elements.len() {
+            let xc = big.elements[e]
+                .nodes
+                .iter()
+                .map(|&n| big.nodes[n].x[0])
+                .sum::<f64>()
+                / 8.0;
+            if xc > 0.15 && xc < 0.25 {
+                big.elements[e].property = Some(1);
+            }
         }
+        let (_, k, m) = system(&big);
+        let s = normal_modes(&k, &m, ModeCount::Count(12), &[], &eig()).unwrap();
+        let (vals, _) = dense_reference(&k, &m);
+        let d = (6..12)
+            .map(|j| (s.omega2[j] / vals[j] - 1.0).abs())
+            .fold(0.0, f64::max);
+        assert!(d < bound, "sparse path, contrast {contrast:e}: {d:e}");
+        record(
+            "7",
+            &format!(
+                "contrast {contrast:.0e} (sparse path, 1872 dofs): ω² vs dense reference (rel.)"
+            ),
+            d,
+        );
     }
-    let (_, k, m) = system(&big);
-    let s = normal_modes(&k, &m, ModeCount::Count(12), &[], &eig()).unwrap();
-    let (vals, _) = dense_reference(&k, &m);
-    let d = (6..12)
-        .map(|j| (s.omega2[j] / vals[j] - 1.0).abs())
-        .fold(0.0, f64::max);
-    assert!(d < 1e-8, "sparse path, contrast 1e4: {d:e}");
-    record(
-        "7",
-        "contrast 1e4 (sparse path, 1872 dofs): ω² vs dense reference (rel.)",
-        d,
-    );
 
     let dir = TempDir::new("row07");
-    let inp = dir.write_inp("insert.inp", &insert_block(1e12));
+    let inp = dir.write_inp("insert.inp", &insert_block(1e10));
     let err = fail_run(&dir, &[&inp, "--interface", "X0", "--units", "si"], &[]);
     assert_contains(
         &err,
-        &["stiffness contrast 1.0e12", "material 2 'INSERT'", "RBE2"],
+        &["stiffness contrast 1.0e10", "material 2 'INSERT'", "RBE2"],
     );
 }
 
