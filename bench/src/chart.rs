@@ -107,6 +107,7 @@ fn panel(
     xdesc: &str,
     ydesc: &str,
     series: &[Series],
+    legend: SeriesLabelPosition,
 ) -> Res<()> {
     let ((x0, x1), (y0, y1)) = bounds(series);
     let mut chart = ChartBuilder::on(area)
@@ -151,7 +152,7 @@ fn panel(
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(legend)
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
@@ -196,6 +197,7 @@ fn accuracy_chart(acc: &Value, path: &Path) -> Res<()> {
         "wall time of the reduction (s)",
         "max relative frequency error",
         &freq,
+        SeriesLabelPosition::UpperRight,
     )?;
     panel(
         &areas[1],
@@ -203,6 +205,7 @@ fn accuracy_chart(acc: &Value, path: &Path) -> Res<()> {
         "wall time of the reduction (s)",
         "max |dG_ij| / sqrt(G_ii G_jj)",
         &stat,
+        SeriesLabelPosition::UpperRight,
     )?;
     root.present().map_err(err)
 }
@@ -251,6 +254,7 @@ fn scaling_chart(eigen: &[Value], cb: &[Value], path: &Path) -> Res<()> {
         "dofs",
         "seconds",
         &scaling_series(eigen, cb, "time"),
+        SeriesLabelPosition::UpperLeft,
     )?;
     panel(
         &areas[1],
@@ -258,6 +262,7 @@ fn scaling_chart(eigen: &[Value], cb: &[Value], path: &Path) -> Res<()> {
         "dofs",
         "MB",
         &scaling_series(eigen, cb, "memory"),
+        SeriesLabelPosition::UpperLeft,
     )?;
     root.present().map_err(err)
 }
