@@ -93,6 +93,32 @@ pub struct BuildSpec {
     pub created_utc: Option<String>,
 }
 
+impl BuildSpec {
+    /// A spec with the CLI's defaults (Craig–Bampton on RBE2 spiders, lumped mass, every node
+    /// kept, full invariants, no stress shapes) for `model` in `units` with these interfaces.
+    pub fn new(model: PathBuf, units: file::Units, interface: &[&str]) -> BuildSpec {
+        BuildSpec {
+            model,
+            format: None,
+            material: None,
+            interface: interface.iter().map(|s| s.to_string()).collect(),
+            spider: SpiderKind::Rbe2,
+            method: BuildMethod::CraigBampton,
+            modes: None,
+            fmax_hz: None,
+            reference_conditions: Vec::new(),
+            reference_method: 1,
+            mass: fe::MassKind::Lumped,
+            units,
+            keep_nodes: KeepNodes::All,
+            invariants: file::InvariantSet::Full,
+            fields: FieldRequest::default(),
+            title: None,
+            created_utc: None,
+        }
+    }
+}
+
 /// Default number of modes when neither `modes` nor `fmax_hz` is given.
 pub const DEFAULT_MODES: usize = 20;
 

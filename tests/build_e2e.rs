@@ -26,23 +26,8 @@ fn conrod() -> PathBuf {
 
 fn spec(model: PathBuf, method: BuildMethod, interface: &[&str]) -> BuildSpec {
     BuildSpec {
-        model,
-        format: None,
-        material: None,
-        interface: interface.iter().map(|s| s.to_string()).collect(),
-        spider: SpiderKind::Rbe2,
         method,
-        modes: None,
-        fmax_hz: None,
-        reference_conditions: vec![],
-        reference_method: 1,
-        mass: MassKind::Lumped,
-        units: file::Units::si(),
-        keep_nodes: KeepNodes::All,
-        invariants: file::InvariantSet::Full,
-        fields: Default::default(),
-        title: None,
-        created_utc: None,
+        ..BuildSpec::new(model, file::Units::si(), interface)
     }
 }
 

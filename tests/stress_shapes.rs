@@ -8,8 +8,8 @@ use std::path::PathBuf;
 
 use faer::linalg::solvers::Solve;
 use faer::Mat;
-use flexbody::build::{build_model, BuildMethod, BuildSpec, KeepNodes};
-use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
+use flexbody::build::{build_model, BuildSpec};
+use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec};
 use flexbody::interface::{resolve_interfaces, SpiderKind};
 use flexbody::model::generate::{block, BlockElement, BlockSpec};
 use flexbody::model::{Material, Model, NodeIndex};
@@ -32,26 +32,17 @@ fn cantilever() -> Model {
 
 fn spec() -> BuildSpec {
     BuildSpec {
-        model: PathBuf::from("cantilever (generated)"),
-        format: None,
-        material: None,
-        interface: vec!["X0".into(), "XL".into()],
-        spider: SpiderKind::Rbe2,
-        method: BuildMethod::CraigBampton,
         modes: Some(6),
-        fmax_hz: None,
-        reference_conditions: vec![],
-        reference_method: 1,
-        mass: MassKind::Lumped,
-        units: file::Units::si(),
-        keep_nodes: KeepNodes::All,
         invariants: file::InvariantSet::Rigid,
         fields: FieldRequest {
             stress: true,
             strain: true,
         },
-        title: None,
-        created_utc: None,
+        ..BuildSpec::new(
+            PathBuf::from("cantilever (generated)"),
+            file::Units::si(),
+            &["X0", "XL"],
+        )
     }
 }
 

@@ -8,9 +8,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use faer::sparse::SparseColMat;
 use faer::Mat;
-use flexbody::build::{BuildMethod, BuildSpec, KeepNodes};
+use flexbody::build::{BuildMethod, BuildSpec};
 use flexbody::fe::{assemble, AssemblySpec, DofMap, MassKind};
-use flexbody::interface::SpiderKind;
 use flexbody::model::generate::{block as gen_block, BlockElement, BlockSpec};
 use flexbody::model::{
     BeamSection, Element, ElementKind, Material, Model, Node, Property, Section,
@@ -325,24 +324,10 @@ pub fn assert_contains(text: &str, parts: &[&str]) {
 }
 
 pub fn build_spec(model: &str, method: BuildMethod, interface: &[String]) -> BuildSpec {
+    let names: Vec<&str> = interface.iter().map(String::as_str).collect();
     BuildSpec {
-        model: PathBuf::from(model),
-        format: None,
-        material: None,
-        interface: interface.to_vec(),
-        spider: SpiderKind::Rbe2,
         method,
-        modes: None,
-        fmax_hz: None,
-        reference_conditions: vec![],
-        reference_method: 1,
-        mass: MassKind::Lumped,
-        units: file::Units::si(),
-        keep_nodes: KeepNodes::All,
-        invariants: file::InvariantSet::Full,
-        fields: Default::default(),
-        title: None,
-        created_utc: None,
+        ..BuildSpec::new(PathBuf::from(model), file::Units::si(), &names)
     }
 }
 
