@@ -155,11 +155,13 @@ pub fn write_ccx_deck(path: &Path, model: &Model, fixed: &[usize], modes: usize)
     w.flush().map_err(io_err(path))
 }
 
-/// Runs `python3 bench/peers/peers.py ARGS` (one thread for OpenMP/OpenBLAS unless
-/// `FLEXBODY_PEER_THREADS` is set) and parses its JSON; an error is recorded, not fatal.
+/// Runs `python3 bench/peers/peers.py ARGS` (OpenMP/OpenBLAS threads: `FLEXBODY_PEER_THREADS`,
+/// else `FLEXBODY_THREADS` as ours, else one) and parses its JSON; an error is recorded, not fatal.
 pub fn run_peer(args: &[String]) -> serde_json::Value {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("peers/peers.py");
-    let threads = std::env::var("FLEXBODY_PEER_THREADS").unwrap_or_else(|_| "1".into());
+    let threads = std::env::var("FLEXBODY_PEER_THREADS")
+        .or_else(|_| std::env::var("FLEXBODY_THREADS"))
+        .unwrap_or_else(|_| "1".into());
     eprintln!("peer: {}", args.join(" "));
     let out = std::process::Command::new("python3")
         .arg(&script)

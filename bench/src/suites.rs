@@ -43,14 +43,15 @@ fn node_set(model: &flexbody::model::Model, name: &str) -> Res<Vec<usize>> {
         .ok_or_else(|| format!("generated block has no node set {name}"))
 }
 
-/// `ours-eigen K.mtx M.mtx MODES [BLOCK [TOL]]`: our solver on the files (prints one JSON line);
-/// BLOCK and TOL override the defaults (for tuning).
+/// `ours-eigen K.mtx M.mtx MODES [BLOCK [TOL [BASIS]]]`: our solver on the files (prints one JSON
+/// line); BLOCK, TOL and BASIS (largest Krylov basis) override the defaults (for tuning).
 pub fn ours_eigen(
     kp: &str,
     mp: &str,
     modes: usize,
     block: Option<usize>,
     tol: Option<f64>,
+    max_basis: Option<usize>,
 ) -> Res<Value> {
     let t = Instant::now();
     let read = |p: &str| -> Res<SparseColMat<usize, f64>> {
@@ -71,8 +72,9 @@ pub fn ours_eigen(
         shift: Some(0.0),
         dofs_per_node: Some(3),
         block,
+        max_basis,
         tol: tol.unwrap_or(EigenSpec::default().tol),
-        ..Default::default()
+        par: threads(),
     };
     let s = lowest_modes_iterative(&k, &m, &spec).map_err(|e| e.to_string())?;
     let total = t0.elapsed().as_secs_f64();
@@ -81,18 +83,35 @@ pub fn ours_eigen(
         "peer": "flexbody (faer supernodal LLT, METIS NodeND; block Krylov-Schur shift-invert)",
         "n": k.nrows(),
         "phases_s": {"read": t_read, "analyse_factor": s.info.seconds_factor,
-                     "eigen": s.info.seconds_eigen, "total": total},
+                     "eigen": s.info.seconds_eigen, "total": total,
+                     "eigen_solves": s.info.seconds_solve},
         "solves": s.info.solves, "steps": s.info.steps, "restarts": s.info.restarts,
         "block": spec.block.unwrap_or(modes.min(flexbody::solve::DEFAULT_BLOCK)),
+        "max_basis": spec.max_basis.unwrap_or_else(|| flexbody::solve::default_basis(
+            modes,
+            spec.block.unwrap_or(modes.min(flexbody::solve::DEFAULT_BLOCK)),
+        )),
         "tol": spec.tol,
         "nnz_l": f.as_ref().map(|f| f.nnz_l), "factor_flops": f.as_ref().map(|f| f.flops),
         "orthonormality": num(s.info.orthonormality),
         "max_residual": num(s.residuals.iter().copied().fold(0.0, f64::max)),
         "peak_rss_mb": peak_rss_mb(),
         "eigenvalues": s.eigenvalues,
-        "threads": "faer Par::Seq",
+        "threads": format!("faer {:?}", threads()),
         "loadavg": loadavg(),
     }))
+}
+
+/// Threads of our solver: `FLEXBODY_THREADS` (default 1, `Par::Seq`; the peers get the same
+/// count through `FLEXBODY_PEER_THREADS`).
+pub fn threads() -> flexbody::solve::faer::Par {
+    match std::env::var("FLEXBODY_THREADS")
+        .ok()
+        .and_then(|s| s.parse::<usize>().ok())
+    {
+        Some(t) if t > 1 => flexbody::solve::faer::Par::rayon(t),
+        _ => flexbody::solve::faer::Par::Seq,
+    }
 }
 
 fn ratios(ours: &Value, peer: &Value, modes: usize) -> Value {

@@ -315,14 +315,37 @@ impl SparseLlt {
         self.symbolic.nrows()
     }
 
-    /// Solves A X = B in place for all columns of `rhs` at once.
-    pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+    /// Solves A X = B in place for all columns of `rhs` at once. With a parallel factorization
+    /// (`par` of degree t > 1) the columns are split into t groups solved on t threads, each with
+    /// sequential kernels: a block of a few columns is too small for faer's parallel kernels, and
+    /// the groups share the factor read-only (20k-dof tet10, 6 columns, 2 threads: 0.64 s vs
+    /// 0.77 s for 180 vectors; memory bandwidth, not arithmetic, bounds the gain).
+    pub fn solve_in_place(&self, mut rhs: MatMut<'_, f64>) {
+        let threads = self.par.degree();
+        let nc = rhs.ncols();
+        if threads > 1 && nc >= 2 {
+            let per = nc.div_ceil(threads);
+            std::thread::scope(|sc| {
+                let mut rest = rhs.as_mut();
+                while rest.ncols() > 0 {
+                    let w = per.min(rest.ncols());
+                    let (a, b) = rest.split_at_col_mut(w);
+                    sc.spawn(move || self.solve_with(a, Par::Seq));
+                    rest = b;
+                }
+            });
+            return;
+        }
+        self.solve_with(rhs, self.par);
+    }
+
+    fn solve_with(&self, rhs: MatMut<'_, f64>, par: Par) {
         let llt = LltRef::new(&self.symbolic, &self.values);
         let req = self
             .symbolic
-            .solve_in_place_scratch::<f64>(rhs.ncols(), self.par);
+            .solve_in_place_scratch::<f64>(rhs.ncols(), par);
         let mut buf = MemBuffer::new(req);
-        llt.solve_in_place_with_conj(Conj::No, rhs, self.par, MemStack::new(&mut buf));
+        llt.solve_in_place_with_conj(Conj::No, rhs, par, MemStack::new(&mut buf));
     }
 
     /// Returns A⁻¹ B.

@@ -15,7 +15,7 @@ use super::dense;
 use super::sparse_ops::spmm;
 use super::SolveError;
 use faer::sparse::SparseColMatRef;
-use faer::Mat;
+use faer::{Mat, MatRef};
 
 /// Settings of one run.
 #[derive(Clone, Debug)]
@@ -45,12 +45,14 @@ pub struct BlockResult {
     pub steps: usize,
     /// Number of thick restarts.
     pub restarts: usize,
+    /// Wall time in the triangular solves (s).
+    pub seconds_solve: f64,
 }
 
 /// M-orthonormalization of `w` against the M-orthonormal `v` with `mv` = M v (classical
 /// Gram–Schmidt twice, w ← w − v (Mv)ᵀw, no product with M): returns (coefficients C with
 /// w = vC + rest, rest).
-fn gs(v: &Mat<f64>, mv: &Mat<f64>, mut w: Mat<f64>) -> (Mat<f64>, Mat<f64>) {
+fn gs(v: MatRef<'_, f64>, mv: MatRef<'_, f64>, mut w: Mat<f64>) -> (Mat<f64>, Mat<f64>) {
     let mut c = Mat::<f64>::zeros(v.ncols(), w.ncols());
     if v.ncols() == 0 {
         return (c, w);
@@ -73,8 +75,8 @@ type Mqr = (Mat<f64>, Mat<f64>, Mat<f64>);
 fn mqr(
     m: SparseColMatRef<'_, usize, f64>,
     llt: &SparseLlt,
-    v: &Mat<f64>,
-    mv: &Mat<f64>,
+    v: MatRef<'_, f64>,
+    mv: MatRef<'_, f64>,
     w: Mat<f64>,
     scale2: f64,
     seed: &mut u64,
@@ -112,23 +114,17 @@ fn mqr(
         *solves += b - kq;
         let mut basis = Mat::<f64>::zeros(n, v.ncols() + kq);
         let mut mbasis = Mat::<f64>::zeros(n, v.ncols() + kq);
-        basis
-            .as_mut()
-            .subcols_mut(0, v.ncols())
-            .copy_from(v.as_ref());
+        basis.as_mut().subcols_mut(0, v.ncols()).copy_from(v);
         basis
             .as_mut()
             .subcols_mut(v.ncols(), kq)
             .copy_from(q.as_ref().subcols(0, kq));
-        mbasis
-            .as_mut()
-            .subcols_mut(0, v.ncols())
-            .copy_from(mv.as_ref());
+        mbasis.as_mut().subcols_mut(0, v.ncols()).copy_from(mv);
         mbasis
             .as_mut()
             .subcols_mut(v.ncols(), kq)
             .copy_from(mq.as_ref().subcols(0, kq));
-        let (_, pz) = gs(&basis, &mbasis, pz);
+        let (_, pz) = gs(basis.as_ref(), mbasis.as_ref(), pz);
         let mpz = spmm(m, pz.as_ref());
         let g = pz.transpose() * &mpz;
         let (s2, u2) = dense::eigh(g.as_ref())?;
@@ -159,15 +155,6 @@ fn random_block(n: usize, b: usize, seed: &mut u64) -> Mat<f64> {
     })
 }
 
-fn hcat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
-    let mut out = Mat::<f64>::zeros(a.nrows(), a.ncols() + b.ncols());
-    out.as_mut().subcols_mut(0, a.ncols()).copy_from(a.as_ref());
-    out.as_mut()
-        .subcols_mut(a.ncols(), b.ncols())
-        .copy_from(b.as_ref());
-    out
-}
-
 /// Lowest `count` eigenpairs of (K, M) with the factorization `llt` of K − σM.
 pub fn block_shift_invert(
     k: SparseColMatRef<'_, usize, f64>,
@@ -187,29 +174,56 @@ pub fn block_shift_invert(
     let mut restarts = 0usize;
     // A x from M x: every block's M-image is kept (MV beside V), so a step costs one product
     // with M (in the M-QR) instead of four.
+    let seconds_solve = std::cell::Cell::new(0.0);
     let apply = |mx: &Mat<f64>, solves: &mut usize| {
+        let t = std::time::Instant::now();
         let mut w = mx.clone();
         llt.solve_in_place(w.as_mut());
         *solves += mx.ncols();
+        seconds_solve.set(seconds_solve.get() + t.elapsed().as_secs_f64());
         w
     };
+    // V and M·V live in preallocated n × max_basis buffers: the basis grows by writing b columns
+    // and shrinks at a restart, never by copying the whole basis into a new matrix (that copy
+    // cost as much as the Gram–Schmidt passes).
+    let mut vbuf = Mat::<f64>::zeros(n, max_basis);
+    let mut mvbuf = Mat::<f64>::zeros(n, max_basis);
     // start: V = MQR(A Z), then A V = V T + F Eᵀ
     let z = random_block(n, b, &mut seed);
     let w0 = apply(&spmm(m, z.as_ref()), &mut solves);
     let empty = Mat::<f64>::zeros(n, 0);
     let s0 = w0.norm_max().powi(2);
-    let (mut v, mut mv, _) = mqr(m, llt, &empty, &empty, w0, s0, &mut seed, &mut solves)?;
-    let w = apply(&mv, &mut solves);
-    let (c, mut f) = gs(&v, &mv, w);
+    let (q0, mq0, _) = mqr(
+        m,
+        llt,
+        empty.as_ref(),
+        empty.as_ref(),
+        w0,
+        s0,
+        &mut seed,
+        &mut solves,
+    )?;
+    vbuf.as_mut().subcols_mut(0, b).copy_from(&q0);
+    mvbuf.as_mut().subcols_mut(0, b).copy_from(&mq0);
+    let mut p = b;
+    let w = apply(&mq0, &mut solves);
+    let (c, mut f) = gs(vbuf.as_ref().subcols(0, p), mvbuf.as_ref().subcols(0, p), w);
     let mut t = c;
     let mut e = Mat::<f64>::identity(b, b);
     for step in 0..prm.max_steps {
-        let p = v.ncols();
         // M-QR of the residual block (already M-orthogonal to V: two Gram–Schmidt passes when it
         // was formed, and V only shrinks to V·Y_k at a restart)
-        let f2 = f;
         let fscale = t.norm_max().powi(2);
-        let (q, mq, rf) = mqr(m, llt, &v, &mv, f2, fscale, &mut seed, &mut solves)?;
+        let (q, mq, rf) = mqr(
+            m,
+            llt,
+            vbuf.as_ref().subcols(0, p),
+            mvbuf.as_ref().subcols(0, p),
+            f,
+            fscale,
+            &mut seed,
+            &mut solves,
+        )?;
         let ts = dense::sym(t.as_ref());
         let (theta_asc, y_asc) = dense::eigh(ts.as_ref())?;
         // descending θ = ascending λ
@@ -225,7 +239,7 @@ pub fn block_shift_invert(
             })
             .count();
         if p >= count && nconv == count {
-            let x = &v * y.as_ref().subcols(0, count);
+            let x = vbuf.as_ref().subcols(0, p) * y.as_ref().subcols(0, count);
             let values = theta[..count].iter().map(|&th| sigma + 1.0 / th).collect();
             return Ok(BlockResult {
                 values,
@@ -233,22 +247,31 @@ pub fn block_shift_invert(
                 solves,
                 steps: step,
                 restarts,
+                seconds_solve: seconds_solve.get(),
             });
         }
         if p + b > max_basis {
             let yk = y.as_ref().subcols(0, keep);
-            v = &v * yk;
-            mv = &mv * yk;
+            let vk = vbuf.as_ref().subcols(0, p) * yk;
+            vbuf.as_mut().subcols_mut(0, keep).copy_from(&vk);
+            drop(vk);
+            let mvk = mvbuf.as_ref().subcols(0, p) * yk;
+            mvbuf.as_mut().subcols_mut(0, keep).copy_from(&mvk);
+            drop(mvk);
             t = Mat::from_fn(keep, keep, |i, j| if i == j { theta[i] } else { 0.0 });
             e = yk.transpose() * &e;
+            p = keep;
             restarts += 1;
         }
         // expand with Q: A Q = [V Q] C + F'
-        let p = v.ncols();
         let aq = apply(&mq, &mut solves);
-        let vq = hcat(&v, &q);
-        let mvq = hcat(&mv, &mq);
-        let (c, fnew) = gs(&vq, &mvq, aq);
+        vbuf.as_mut().subcols_mut(p, b).copy_from(&q);
+        mvbuf.as_mut().subcols_mut(p, b).copy_from(&mq);
+        let (c, fnew) = gs(
+            vbuf.as_ref().subcols(0, p + b),
+            mvbuf.as_ref().subcols(0, p + b),
+            aq,
+        );
         let mut tn = Mat::<f64>::zeros(p + b, p + b);
         tn.as_mut().submatrix_mut(0, 0, p, p).copy_from(t.as_ref());
         tn.as_mut()
@@ -258,8 +281,7 @@ pub fn block_shift_invert(
         tn.as_mut().submatrix_mut(p, 0, b, p).copy_from(re.as_ref());
         t = tn;
         e = Mat::from_fn(p + b, b, |i, j| if i == p + j { 1.0 } else { 0.0 });
-        v = vq;
-        mv = mvq;
+        p += b;
         f = fnew;
     }
     Err(SolveError::NotConverged {

@@ -41,11 +41,12 @@ fn run(args: &[String]) -> Res<()> {
         "cb" => suites::cb(dims(a)?, modes(a)?, has("--exudyn"), has("--ccx"))?,
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
         "chart" => chart::run()?,
-        "ours-eigen" if (3..=5).contains(&a.len()) => {
+        "ours-eigen" if (3..=6).contains(&a.len()) => {
             let m = a[2].parse().map_err(|_| "MODES".to_string())?;
             let block = a.get(3).and_then(|s| s.parse().ok());
             let tol = a.get(4).and_then(|s| s.parse().ok());
-            suites::ours_eigen(&a[0], &a[1], m, block, tol)?
+            let basis = a.get(5).and_then(|s| s.parse().ok());
+            suites::ours_eigen(&a[0], &a[1], m, block, tol, basis)?
         }
         "ours-cb" if a.len() == 4 => {
             let m = a[3].parse().map_err(|_| "MODES".to_string())?;
