@@ -13,10 +13,10 @@ pub fn spmm(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> 
 }
 
 /// Y = A X into an existing matrix (overwritten). One pass over A for up to [`SPMM_CHUNK`]
-/// columns of X: they are copied to row-major rows of 4-wide lanes (zero-padded) so that every
-/// stored a_ij updates one contiguous, SIMD-friendly row of Y (faer's kernel passes over A once
-/// per column of X: 2.5× slower on a 20k-dof tet10 mass matrix with 6 columns; the lanes gave
-/// another 2–3× over a plain row-major loop of variable width).
+/// columns of X: they are copied to row-major rows zero-padded to a width of 4, 8, 12 or 16, so
+/// that every stored a_ij updates one contiguous, SIMD-friendly row of Y (faer's kernel passes
+/// over A once per column of X: 2.5× slower on a 20k-dof tet10 mass matrix with 6 columns; the
+/// vectorized rows took the kernel's share of a 20k-dof eigen run from 8.4 % to 4.6 %).
 pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, mut y: MatMut<'_, f64>) {
     let b = x.ncols();
     if b == 1 {
