@@ -18,7 +18,7 @@ use faer::{Mat, Par};
 use flexbody_reader as file;
 
 use crate::faces::graphics_faces;
-use crate::fe::{self, assemble, eliminate, AssemblySpec, ConstraintSpec, DofMap};
+use crate::fe::{self, assemble, eliminate, AssemblySpec, BeamLumping, ConstraintSpec, DofMap};
 use crate::import::{self, Format, ImportOptions};
 use crate::interface::{resolve_interfaces, InterfaceReport, SpiderKind};
 use crate::invariants::{compute_invariants, MassPoint};
@@ -91,6 +91,11 @@ pub struct BuildSpec {
     pub title: Option<String>,
     /// Creation time to record (only when the user asks; default output is deterministic).
     pub created_utc: Option<String>,
+    /// Threads for the factorization, the block solves and the dense kernels (1: sequential).
+    pub threads: usize,
+    /// Rotational inertia of lumped beam masses; `None` = automatic: as Nastran lumps each card
+    /// (CBAR none, CBEAM torsion) for Nastran decks, the section's rotary inertia otherwise.
+    pub beam_mass: Option<BeamLumping>,
 }
 
 impl BuildSpec {
@@ -115,6 +120,28 @@ impl BuildSpec {
             fields: FieldRequest::default(),
             title: None,
             created_utc: None,
+            threads: 1,
+            beam_mass: None,
+        }
+    }
+
+    /// The beam lumping of the build: `beam_mass`, or for `None` Nastran's per-card lumping
+    /// when the model is a Nastran deck (by `format` or the file extension), else the section's.
+    pub fn beam_lumping(&self) -> BeamLumping {
+        self.beam_mass.unwrap_or_else(|| {
+            match self.format.or_else(|| Format::from_extension(&self.model)) {
+                Some(Format::Nastran) => BeamLumping::Nastran,
+                _ => BeamLumping::SectionRotary,
+            }
+        })
+    }
+
+    /// The parallelism of the solver stages: `Par::Seq` for one thread.
+    pub fn par(&self) -> Par {
+        if self.threads > 1 {
+            Par::rayon(self.threads)
+        } else {
+            Par::Seq
         }
     }
 }
@@ -201,7 +228,11 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
         },
     )?;
     let import_s = clock.elapsed().as_secs_f64();
-    let mut out = build_model(spec, model, progress)?;
+    let resolved = BuildSpec {
+        beam_mass: Some(spec.beam_lumping()),
+        ..spec.clone()
+    };
+    let mut out = build_model(&resolved, model, progress)?;
     out.report
         .stages
         .insert(0, (STAGES[0].to_string(), import_s));
@@ -261,6 +292,7 @@ pub fn build_model(
         &model,
         &AssemblySpec {
             mass: spec.mass,
+            beam_lumping: spec.beam_mass.unwrap_or_default(),
             ..Default::default()
         },
     )?;
@@ -371,7 +403,7 @@ pub fn build_model(
     };
     let eig = EigenSpec {
         dofs_per_node: Some(3),
-        par: Par::Seq,
+        par: spec.par(),
         ..Default::default()
     };
     let (k_r, m_r) = (&reduced.k, &reduced.m);
@@ -430,8 +462,9 @@ pub fn build_model(
     // added to it (they are separate mass points) or the reduction used consistent mass.
     let reusable =
         (spec.mass == fe::MassKind::Lumped && model.point_masses.is_empty()).then_some(&assembled);
-    let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi, reusable)?;
-    let inv = compute_invariants(&points, point_shapes.as_ref(), spec.invariants, Par::Seq)?;
+    let beam_lumping = spec.beam_mass.unwrap_or_default();
+    let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi, reusable, beam_lumping)?;
+    let inv = compute_invariants(&points, point_shapes.as_ref(), spec.invariants, spec.par())?;
     lap(&mut report, STAGES[5]);
 
     let faces = graphics_faces(&model);
@@ -517,6 +550,7 @@ fn mass_points(
     dofs: &DofMap,
     phi: &Mat<f64>,
     lumped: Option<&fe::Assembled>,
+    beam_lumping: BeamLumping,
 ) -> Result<(Vec<MassPoint>, Mat<f64>, NodalMass), BuildError> {
     let own;
     let lumped = match lumped {
@@ -528,6 +562,7 @@ fn mass_points(
                 &bare,
                 &AssemblySpec {
                     mass: fe::MassKind::Lumped,
+                    beam_lumping,
                     ..Default::default()
                 },
             )?;

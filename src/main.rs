@@ -76,6 +76,11 @@ struct BuildArgs {
     /// Mass matrix: lumped (default; what multibody invariants need) or consistent.
     #[arg(long, default_value = "lumped")]
     mass: String,
+    /// Rotational inertia of lumped beam masses: auto (default: as Nastran lumps each card for
+    /// Nastran decks, CBAR none and CBEAM torsion only; the section's rotary inertia otherwise),
+    /// section, torsion, none or nastran.
+    #[arg(long, default_value = "auto", value_name = "KIND")]
+    beam_mass: String,
     /// The model's consistent unit system (recorded in the file, never guessed): si (kg m s N),
     /// mm-t-s (t mm s N), mm-kg-ms (kg mm ms kN), cm-g-s (g cm s dyn), in-lbf-s (lbf·s²/in in s lbf).
     #[arg(long)]
@@ -92,6 +97,11 @@ struct BuildArgs {
     /// Costs 48·M bytes per kept node and field for M modes.
     #[arg(long, num_args = 0..=1, default_missing_value = "both", value_name = "FIELDS")]
     stress_modes: Option<String>,
+    /// Threads for the sparse factorization, the block solves and the dense kernels (default 1,
+    /// like CalculiX's and Nastran's default; 2 on this project's 2-core machine: see
+    /// docs/benchmarks.md).
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    threads: usize,
     /// Memory a sparse factorization may use, e.g. 8G (bytes, or with a K, M or G suffix);
     /// default: MemAvailable. The factor size is estimated before factoring and the build stops
     /// with a clear error instead of being killed. Same as the FLEXBODY_MAX_MEMORY variable.
@@ -182,6 +192,8 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
         })?,
         title: a.title.clone(),
         created_utc: a.timestamp.then(utc_now),
+        threads: a.threads.max(1),
+        beam_mass: parse_beam_mass(&a.beam_mass)?,
     })
 }
 

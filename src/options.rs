@@ -5,7 +5,7 @@
 use flexbody_reader as file;
 
 use crate::build::{BuildMethod, KeepNodes};
-use crate::fe::MassKind;
+use crate::fe::{BeamLumping, MassKind};
 use crate::interface::SpiderKind;
 use crate::model::{DofMask, Material};
 
@@ -152,6 +152,22 @@ pub fn parse_mass(s: &str) -> Result<MassKind, OptionError> {
         "lumped" => Ok(MassKind::Lumped),
         "consistent" => Ok(MassKind::Consistent),
         _ => Err(bad("mass", s, "lumped or consistent")),
+    }
+}
+
+/// `--beam-mass`: `None` for auto.
+pub fn parse_beam_mass(s: &str) -> Result<Option<BeamLumping>, OptionError> {
+    match s.to_ascii_lowercase().as_str() {
+        "auto" => Ok(None),
+        "section" => Ok(Some(BeamLumping::SectionRotary)),
+        "torsion" => Ok(Some(BeamLumping::TorsionOnly)),
+        "none" => Ok(Some(BeamLumping::TranslationsOnly)),
+        "nastran" => Ok(Some(BeamLumping::Nastran)),
+        _ => Err(bad(
+            "beam-mass",
+            s,
+            "auto, section, torsion, none or nastran",
+        )),
     }
 }
 

@@ -594,3 +594,54 @@ fn beam_model_is_drawn_with_lines_and_written_as_format_1_1() {
         .collect();
     assert_eq!(lines, beams);
 }
+
+/// `--threads 2` (parallel factorization, column-split block solves, parallel dense kernels)
+/// builds the same body as one thread: frequencies, mass and inertia to 1e-10 relative.
+#[test]
+fn conrod_cb_with_two_threads_equals_one_thread() {
+    let mut s = spec(
+        conrod(),
+        BuildMethod::CraigBampton,
+        &["BIG_END", "SMALL_END"],
+    );
+    s.modes = Some(10);
+    let one = build(&s, &mut |_| {}).unwrap().body;
+    s.threads = 2;
+    let two = build(&s, &mut |_| {}).unwrap().body;
+    let (f1, f2) = (flexible_hz(&one), flexible_hz(&two));
+    assert_eq!(f1.len(), 10 + 12 - 6);
+    assert_eq!(f1.len(), f2.len());
+    for (a, b) in f1.iter().zip(&f2) {
+        assert!((a - b).abs() <= 1e-10 * a, "{a} vs {b}");
+    }
+    // mass and inertia tensor (sign-free invariants: mode signs may differ between runs)
+    for (a, b) in [
+        (&one.invariants.i1, &two.invariants.i1),
+        (&one.invariants.i7, &two.invariants.i7),
+    ] {
+        let scale = max_abs(a.iter().copied());
+        assert!(scale > 0.0);
+        let d = max_abs(a.iter().zip(b).map(|(x, y)| x - y));
+        assert!(d <= 1e-10 * scale, "{d:e}");
+    }
+}
+
+/// `--beam-mass`: a Nastran deck (9 CBAR + 1 CBEAM, CONM2 tip, GRID 1 clamped) built with the
+/// automatic lumping has Nastran's torsion mode (f06: 3554.9230 Hz; the torsion mode does not
+/// depend on the beam theory the CLI uses), and with `none` (no rotational inertia on any
+/// element) the closed form √(GJ/(L·I_xx))/2π of the CONM2 on the shaft, 4226.5 Hz.
+#[test]
+fn nastran_deck_beam_mass_auto_is_nastran_lumping_and_none_is_the_closed_form() {
+    let path = shared("reference/nastran/beam_modes/beam_modes.dat");
+    let mut s = spec(path, BuildMethod::Normal, &[]);
+    s.modes = Some(10);
+    assert_eq!(s.beam_lumping(), flexbody::fe::BeamLumping::Nastran);
+    let auto = flexible_hz(&build(&s, &mut |_| {}).unwrap().body);
+    let torsion = 3554.9230;
+    let near = |f: &[f64], x: f64| f.iter().map(|v| (v - x).abs() / x).fold(1.0, f64::min);
+    assert!(near(&auto, torsion) < 1e-6, "{auto:?}");
+    s.beam_mass = Some(flexbody::fe::BeamLumping::TranslationsOnly);
+    let none = flexible_hz(&build(&s, &mut |_| {}).unwrap().body);
+    assert!(near(&none, torsion) > 0.1, "{none:?}");
+    assert!(near(&none, 4226.5) < 1e-4, "{none:?}");
+}
