@@ -116,3 +116,108 @@ fn spmm_lanes_abs_products_and_threaded_solve() {
     let r = sparse_ops::spmm(kf.as_ref(), xp.as_ref()) - &b;
     assert!(r.norm_max() < 1e-8 * b.norm_max(), "{:e}", r.norm_max());
 }
+
+/// K + s·M by merging sorted columns equals the dense sum, for M on a smaller pattern (lumped,
+/// diagonal) and on the same pattern, for s = 0 (K itself) and when M's columns are unsorted
+/// (the triplet path).
+#[test]
+fn add_scaled_merges_patterns() {
+    let k = tet10_free_k();
+    let n = k.nrows();
+    let kd = sparse_ops::to_dense(k.as_ref());
+    let diag: Vec<_> = (0..n)
+        .map(|i| Triplet::new(i, i, 1.0 + (i % 7) as f64))
+        .collect();
+    let lumped = SparseColMat::try_new_from_triplets(n, n, &diag).unwrap();
+    let same = SparseColMat::try_new_from_triplets(
+        n,
+        n,
+        &(0..n)
+            .flat_map(|j| {
+                k.row_idx_of_col_raw(j)
+                    .iter()
+                    .map(move |&i| Triplet::new(i, j, ((i + 2 * j) % 5) as f64 - 2.0))
+            })
+            .collect::<Vec<_>>(),
+    )
+    .unwrap();
+    for m in [&lumped, &same] {
+        let md = sparse_ops::to_dense(m.as_ref());
+        for s in [0.0, -3.5e4, 2.0] {
+            let a = sparse_ops::add_scaled(k.as_ref(), m.as_ref(), s).unwrap();
+            let want = &kd + &md * faer::Scale(s);
+            let got = sparse_ops::to_dense(a.as_ref());
+            assert!((&got - &want).norm_max() == 0.0, "s = {s}");
+            let union = (0..n)
+                .map(|j| {
+                    let mut r: Vec<usize> = k.row_idx_of_col_raw(j).to_vec();
+                    if s != 0.0 {
+                        r.extend_from_slice(m.row_idx_of_col_raw(j));
+                    }
+                    r.sort_unstable();
+                    r.dedup();
+                    r.len()
+                })
+                .sum::<usize>();
+            assert_eq!(a.compute_nnz(), union, "s = {s}: stored entries");
+        }
+    }
+    // unsorted columns (reversed rows) go through triplets and give the same sum
+    let col_ptr: Vec<usize> = (0..=n).collect();
+    let rows: Vec<usize> = (0..n).collect();
+    let mut cp = vec![0usize];
+    let mut ri = Vec::new();
+    let mut vals = Vec::new();
+    for j in 0..n {
+        for (&i, &v) in k.row_idx_of_col_raw(j).iter().zip(k.val_of_col(j)).rev() {
+            ri.push(i);
+            vals.push(v);
+        }
+        cp.push(ri.len());
+    }
+    let sym = faer::sparse::SymbolicSparseColMat::new_unsorted_checked(n, n, cp, None, ri);
+    let unsorted = SparseColMat::new(sym, vals);
+    let eye = SparseColMat::new(
+        faer::sparse::SymbolicSparseColMat::new_checked(n, n, col_ptr, None, rows),
+        vec![1.0; n],
+    );
+    let a = sparse_ops::add_scaled(unsorted.as_ref(), eye.as_ref(), 3.0).unwrap();
+    let want = &kd + Mat::<f64>::identity(n, n) * faer::Scale(3.0);
+    assert!((sparse_ops::to_dense(a.as_ref()) - want).norm_max() == 0.0);
+}
+
+/// Sub-matrices for increasing and for shuffled index lists equal the dense selection, and an
+/// index out of range is an error, not a panic.
+#[test]
+fn submatrix_equals_dense_selection() {
+    let k = tet10_free_k();
+    let n = k.nrows();
+    let kd = sparse_ops::to_dense(k.as_ref());
+    let inner: Vec<usize> = (0..n).filter(|i| i % 5 != 2).collect();
+    let iface: Vec<usize> = (0..n).filter(|i| i % 5 == 2).rev().collect();
+    let shuffled: Vec<usize> = (0..n).map(|i| (i * 7919) % n).collect();
+    for (rows, cols) in [
+        (&inner, &inner),
+        (&inner, &iface),
+        (&shuffled, &inner),
+        (&iface, &shuffled),
+    ] {
+        let s = sparse_ops::submatrix(k.as_ref(), rows, cols).unwrap();
+        let want = Mat::from_fn(rows.len(), cols.len(), |r, c| kd[(rows[r], cols[c])]);
+        assert_eq!(sparse_ops::to_dense(s.as_ref()), want);
+        let stored = (0..cols.len())
+            .map(|c| s.row_idx_of_col_raw(c).len())
+            .sum::<usize>();
+        let nonzero = (0..cols.len())
+            .map(|c| {
+                k.row_idx_of_col_raw(cols[c])
+                    .iter()
+                    .filter(|i| rows.contains(i))
+                    .count()
+            })
+            .sum::<usize>();
+        assert_eq!(stored, nonzero);
+    }
+    assert!(sparse_ops::submatrix(k.as_ref(), &[n], &[0]).is_err());
+    assert!(sparse_ops::submatrix(k.as_ref(), &[0], &[n + 3]).is_err());
+}

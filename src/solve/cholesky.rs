@@ -7,7 +7,7 @@
 //! ([`SparseLlt::min_pivot`]) so that callers can tell a singular matrix whose rounding left a
 //! tiny positive pivot from a merely ill-conditioned one.
 
-use super::{ordering, SolveError};
+use super::{ordering, supernodal, SolveError};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
@@ -310,6 +310,18 @@ impl SparseLlt {
         self.min_pivot
     }
 
+    /// The symbolic analysis (ordering and structure of L).
+    #[cfg(test)]
+    pub(crate) fn symbolic(&self) -> &SymbolicCholesky<usize> {
+        &self.symbolic
+    }
+
+    /// The stored values of L.
+    #[cfg(test)]
+    pub(crate) fn values(&self) -> &[f64] {
+        &self.values
+    }
+
     /// Dimension.
     pub fn n(&self) -> usize {
         self.symbolic.nrows()
@@ -339,7 +351,29 @@ impl SparseLlt {
         self.solve_with(rhs, self.par);
     }
 
-    fn solve_with(&self, rhs: MatMut<'_, f64>, par: Par) {
+    fn solve_with(&self, mut rhs: MatMut<'_, f64>, par: Par) {
+        if let SymbolicCholeskyRaw::Supernodal(s) = self.symbolic.raw() {
+            let f = supernodal::Supernodal::new(s, &self.values);
+            let perm = self.symbolic.perm().map(|p| p.arrays().0);
+            let mut rest = rhs.as_mut();
+            while rest.ncols() > 0 {
+                let w = rest.ncols().min(supernodal::MAX_LANES);
+                let (a, b) = rest.split_at_col_mut(w);
+                supernodal::solve_in_place(&f, perm, a);
+                rest = b;
+            }
+            return;
+        }
+        self.solve_with_faer(rhs, par);
+    }
+
+    /// faer's own multi-RHS solve (column by column of B): the reference the row-wise supernodal
+    /// kernel is tested and benchmarked against.
+    pub fn solve_in_place_faer(&self, rhs: MatMut<'_, f64>) {
+        self.solve_with_faer(rhs, self.par);
+    }
+
+    fn solve_with_faer(&self, rhs: MatMut<'_, f64>, par: Par) {
         let llt = LltRef::new(&self.symbolic, &self.values);
         let req = self
             .symbolic

@@ -13,6 +13,7 @@
 use super::cholesky::SparseLlt;
 use super::dense;
 use super::sparse_ops::spmm;
+use super::thin_ops;
 use super::SolveError;
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, MatRef};
@@ -47,6 +48,8 @@ pub struct BlockResult {
     pub restarts: usize,
     /// Wall time in the triangular solves (s).
     pub seconds_solve: f64,
+    /// Wall time in the Gram–Schmidt passes and M-QRs, M products included (s).
+    pub seconds_orth: f64,
 }
 
 /// M-orthonormalization of `w` against the M-orthonormal `v` with `mv` = M v (classical
@@ -58,8 +61,8 @@ fn gs(v: MatRef<'_, f64>, mv: MatRef<'_, f64>, mut w: Mat<f64>) -> (Mat<f64>, Ma
         return (c, w);
     }
     for _ in 0..2 {
-        let d = mv.transpose() * &w;
-        w -= v * &d;
+        let d = thin_ops::at_b(mv, w.as_ref());
+        thin_ops::add_a_d(w.as_mut(), v, d.as_ref(), -1.0);
         c += &d;
     }
     (c, w)
@@ -84,7 +87,7 @@ fn mqr(
 ) -> Result<Mqr, SolveError> {
     let (n, b) = (w.nrows(), w.ncols());
     let mw = spmm(m, w.as_ref());
-    let g = w.transpose() * &mw;
+    let g = thin_ops::at_b(w.as_ref(), mw.as_ref());
     let (s, u) = dense::eigh(g.as_ref())?;
     let keep: Vec<usize> = (0..b)
         .filter(|&i| s[i] > 1e-24 * scale2.max(f64::MIN_POSITIVE))
@@ -93,12 +96,18 @@ fn mqr(
     let mut mq = Mat::<f64>::zeros(n, b);
     let mut r = Mat::<f64>::zeros(b, b);
     let tk = Mat::from_fn(b, keep.len(), |t, c| u[(t, keep[c])] / s[keep[c]].sqrt());
-    q.as_mut()
-        .subcols_mut(0, keep.len())
-        .copy_from((&w * &tk).as_ref());
-    mq.as_mut()
-        .subcols_mut(0, keep.len())
-        .copy_from((&mw * &tk).as_ref());
+    thin_ops::add_a_d(
+        q.as_mut().subcols_mut(0, keep.len()),
+        w.as_ref(),
+        tk.as_ref(),
+        1.0,
+    );
+    thin_ops::add_a_d(
+        mq.as_mut().subcols_mut(0, keep.len()),
+        mw.as_ref(),
+        tk.as_ref(),
+        1.0,
+    );
     for (c, &i) in keep.iter().enumerate() {
         let sq = s[i].sqrt();
         for t in 0..b {
@@ -175,6 +184,7 @@ pub fn block_shift_invert(
     // A x from M x: every block's M-image is kept (MV beside V), so a step costs one product
     // with M (in the M-QR) instead of four.
     let seconds_solve = std::cell::Cell::new(0.0);
+    let mut seconds_orth = 0.0;
     let apply = |mx: &Mat<f64>, solves: &mut usize| {
         let t = std::time::Instant::now();
         let mut w = mx.clone();
@@ -214,6 +224,7 @@ pub fn block_shift_invert(
         // M-QR of the residual block (already M-orthogonal to V: two Gram–Schmidt passes when it
         // was formed, and V only shrinks to V·Y_k at a restart)
         let fscale = t.norm_max().powi(2);
+        let clock = std::time::Instant::now();
         let (q, mq, rf) = mqr(
             m,
             llt,
@@ -224,6 +235,7 @@ pub fn block_shift_invert(
             &mut seed,
             &mut solves,
         )?;
+        seconds_orth += clock.elapsed().as_secs_f64();
         let ts = dense::sym(t.as_ref());
         let (theta_asc, y_asc) = dense::eigh(ts.as_ref())?;
         // descending θ = ascending λ
@@ -248,6 +260,7 @@ pub fn block_shift_invert(
                 steps: step,
                 restarts,
                 seconds_solve: seconds_solve.get(),
+                seconds_orth,
             });
         }
         if p + b > max_basis {
@@ -267,11 +280,13 @@ pub fn block_shift_invert(
         let aq = apply(&mq, &mut solves);
         vbuf.as_mut().subcols_mut(p, b).copy_from(&q);
         mvbuf.as_mut().subcols_mut(p, b).copy_from(&mq);
+        let clock = std::time::Instant::now();
         let (c, fnew) = gs(
             vbuf.as_ref().subcols(0, p + b),
             mvbuf.as_ref().subcols(0, p + b),
             aq,
         );
+        seconds_orth += clock.elapsed().as_secs_f64();
         let mut tn = Mat::<f64>::zeros(p + b, p + b);
         tn.as_mut().submatrix_mut(0, 0, p, p).copy_from(t.as_ref());
         tn.as_mut()

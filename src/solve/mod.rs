@@ -9,7 +9,10 @@ pub mod cholesky;
 pub mod dense;
 pub mod eigen;
 pub mod ordering;
+mod rows;
 pub mod sparse_ops;
+mod supernodal;
+pub mod thin_ops;
 
 pub use cholesky::{FactorStats, SparseLlt};
 pub use faer;
@@ -18,10 +21,12 @@ pub use faer::Mat;
 use faer::{MatRef, Par};
 use thiserror::Error;
 
-/// Default block size of the eigensolver. Measured on the tet10 block (1356 dofs): 20 modes took
-/// 68/84/112/144/216 solved vectors with blocks of 4/6/8/12/24 (60 modes: 212/252/296/372/648),
-/// while a block solve costs ~1/3 per vector of single solves; 6 also covers the six-fold rigid
-/// eigenvalue of a free body.
+/// Default block size of the eigensolver. Block Krylov–Schur needs about 55 + 21·b solved
+/// vectors for 30 modes (20k-dof tet10 block: 108/144/180/208 with b = 2/4/6/8), while a block
+/// solve costs the same for every b that pads to the same lanes (`solve::supernodal`: 4, 8, 12
+/// or 16): 6 and 8 both take 30 block solves at 69k dofs (180 and 240 vectors), and 6 orthogonalizes
+/// fewer vectors. 4 would solve ~9 % faster but cannot hold the six-fold zero eigenvalue of a free
+/// body in one block.
 pub const DEFAULT_BLOCK: usize = 6;
 
 /// Problems up to this size are solved densely.
@@ -151,6 +156,8 @@ pub struct EigenInfo {
     pub seconds_eigen: f64,
     /// Part of `seconds_eigen` spent in the triangular solves (s).
     pub seconds_solve: f64,
+    /// Part of `seconds_eigen` spent orthogonalizing (Gram–Schmidt, M-QR with its M products).
+    pub seconds_orth: f64,
 }
 
 /// Lowest eigenpairs.
@@ -379,6 +386,7 @@ pub fn lowest_modes_factored(
         factor: Some(llt.stats.clone()),
         seconds_eigen: t1.elapsed().as_secs_f64(),
         seconds_solve: r.seconds_solve,
+        seconds_orth: r.seconds_orth,
         ..Default::default()
     };
     // When the Krylov basis met its own test but the true residual misses the bound (stiffness

@@ -1,23 +1,31 @@
 //! Small sparse kernels the solvers need: Y = A·X for a full symmetric CSC matrix, the combination
 //! K − σM on the union pattern, sub-matrices by index lists, and dense conversions.
 
+use super::rows::{self, Row};
 use super::SolveError;
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Mat, MatMut, MatRef};
 
-/// Y = A X (A stored in full, column by column).
+/// Y = A X for a symmetric A stored in full (both triangles), as K and M always are here.
 pub fn spmm(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
     let mut y = Mat::<f64>::zeros(a.nrows(), x.ncols());
     spmm_into(a, x, y.as_mut());
     y
 }
 
-/// Y = A X into an existing matrix (overwritten). One pass over A for up to [`SPMM_CHUNK`]
-/// columns of X: they are copied to row-major rows zero-padded to a width of 4, 8, 12 or 16, so
-/// that every stored a_ij updates one contiguous, SIMD-friendly row of Y (faer's kernel passes
-/// over A once per column of X: 2.5× slower on a 20k-dof tet10 mass matrix with 6 columns; the
-/// vectorized rows took the kernel's share of a 20k-dof eigen run from 8.4 % to 4.6 %).
+/// Y = A X into an existing matrix (overwritten), A symmetric and stored in full.
+///
+/// Up to [`SPMM_CHUNK`] columns of X per pass over A, copied to aligned rows of 4, 8, 12 or 16
+/// lanes. By symmetry column j of A is row j, so y_j = Σ_i a_ij x_i is gathered in registers and
+/// stored once: no scattered read-modify-write of Y (the scatter form, y_i += a_ij x_j, took
+/// 33 ms for 6 columns of a 69k-dof tet10 matrix with 5.4M entries here, the gather form
+/// about a third of that). A single column goes to faer's product.
 pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, mut y: MatMut<'_, f64>) {
+    debug_assert_eq!(
+        a.nrows(),
+        a.ncols(),
+        "spmm needs a square (symmetric) matrix"
+    );
     let b = x.ncols();
     if b == 1 {
         faer::sparse::linalg::matmul::sparse_dense_matmul(
@@ -40,90 +48,103 @@ pub fn spmm_into(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>, mut y: 
     }
 }
 
-/// [`spmm_lanes`] for the lane count `x` needs, compiled for AVX2+FMA when the CPU has them
-/// (the default x86-64 target only allows SSE2, which left the lanes scalar).
+/// The gather product for the lane count `x` needs (or |A| |X| when `ABS`).
 fn lanes_dispatch<const ABS: bool>(
     a: SparseColMatRef<'_, usize, f64>,
     x: MatRef<'_, f64>,
     y: MatMut<'_, f64>,
 ) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
-            // SAFETY: the CPU supports the features `spmm_lanes_avx2` is compiled for (checked
-            // just above); the function is otherwise plain safe Rust.
-            unsafe {
-                match x.ncols().div_ceil(4) {
-                    1 => spmm_lanes_avx2::<4, ABS>(a, x, y),
-                    2 => spmm_lanes_avx2::<8, ABS>(a, x, y),
-                    3 => spmm_lanes_avx2::<12, ABS>(a, x, y),
-                    _ => spmm_lanes_avx2::<16, ABS>(a, x, y),
-                }
-            }
-            return;
-        }
-    }
-    match x.ncols().div_ceil(4) {
-        1 => spmm_lanes::<4, ABS>(a, x, y),
-        2 => spmm_lanes::<8, ABS>(a, x, y),
-        3 => spmm_lanes::<12, ABS>(a, x, y),
-        _ => spmm_lanes::<16, ABS>(a, x, y),
+    match x.ncols() {
+        0..=4 => gather_lanes::<4, 1, ABS>(a, x, y),
+        5..=8 => gather_lanes::<8, 2, ABS>(a, x, y),
+        9..=12 => gather_lanes::<12, 3, ABS>(a, x, y),
+        _ => gather_lanes::<16, 4, ABS>(a, x, y),
     }
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn spmm_lanes_avx2<const W: usize, const ABS: bool>(
+/// `W = 4·Q` lanes: rows of X in, rows of Y out.
+fn gather_lanes<const W: usize, const Q: usize, const ABS: bool>(
     a: SparseColMatRef<'_, usize, f64>,
     x: MatRef<'_, f64>,
     y: MatMut<'_, f64>,
 ) {
-    spmm_lanes::<W, ABS>(a, x, y)
+    let mut xr = rows::to_rows::<W>(x, None);
+    if ABS {
+        for r in xr.iter_mut() {
+            r.0 = r.0.map(f64::abs);
+        }
+    }
+    let mut yr = vec![Row::<W>::ZERO; a.ncols()];
+    #[cfg(target_arch = "x86_64")]
+    {
+        if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
+            // SAFETY: the CPU has AVX2 and FMA (checked just above); `xr` has one row per row of
+            // A and `yr` one per column, which is what the kernel indexes.
+            unsafe { gather_avx2::<W, Q, ABS>(a, &xr, &mut yr) };
+            rows::from_rows(&yr, y, None);
+            return;
+        }
+    }
+    for (j, yj) in yr.iter_mut().enumerate() {
+        for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+            let v = if ABS { v.abs() } else { v };
+            for t in 0..W {
+                yj.0[t] += v * xr[i].0[t];
+            }
+        }
+    }
+    rows::from_rows(&yr, y, None);
 }
 
-/// Y = A X (or |A| |X| when `ABS`) for at most W columns, rows of X and Y held as zero-padded
-/// arrays of W (flat arrays: LLVM vectorizes them, nested lanes it left scalar).
-#[inline(always)]
-fn spmm_lanes<const W: usize, const ABS: bool>(
+/// y_j = Σ_i a_ij x_i over the stored entries of column j, two independent accumulators (the
+/// FMA latency, not the loads, bounded a single chain).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[allow(clippy::needless_range_loop)] // lanes of two accumulators indexed in lockstep
+unsafe fn gather_avx2<const W: usize, const Q: usize, const ABS: bool>(
     a: SparseColMatRef<'_, usize, f64>,
-    x: MatRef<'_, f64>,
-    mut y: MatMut<'_, f64>,
+    xr: &[Row<W>],
+    yr: &mut [Row<W>],
 ) {
-    let w = x.ncols();
-    let mut xr = vec![[0.0f64; W]; a.ncols()];
-    for c in 0..w {
-        for (row, &v) in xr.iter_mut().zip(x.col(c).iter()) {
-            row[c] = if ABS { v.abs() } else { v };
+    use std::arch::x86_64::*;
+    assert!(xr.len() == a.nrows() && yr.len() == a.ncols());
+    let sign = _mm256_set1_pd(-0.0);
+    let xp = xr.as_ptr() as *const f64;
+    for (j, yj) in yr.iter_mut().enumerate() {
+        let rows = a.row_idx_of_col_raw(j);
+        let vals = a.val_of_col(j);
+        let nz = rows.len().min(vals.len());
+        assert!(rows.iter().all(|&i| i < xr.len()));
+        let mut acc0 = [_mm256_setzero_pd(); Q];
+        let mut acc1 = [_mm256_setzero_pd(); Q];
+        let mut t = 0;
+        while t + 2 <= nz {
+            let (i0, i1) = (*rows.get_unchecked(t), *rows.get_unchecked(t + 1));
+            let mut v0 = _mm256_broadcast_sd(vals.get_unchecked(t));
+            let mut v1 = _mm256_broadcast_sd(vals.get_unchecked(t + 1));
+            if ABS {
+                v0 = _mm256_andnot_pd(sign, v0);
+                v1 = _mm256_andnot_pd(sign, v1);
+            }
+            for q in 0..Q {
+                acc0[q] = _mm256_fmadd_pd(v0, _mm256_load_pd(xp.add(W * i0 + 4 * q)), acc0[q]);
+                acc1[q] = _mm256_fmadd_pd(v1, _mm256_load_pd(xp.add(W * i1 + 4 * q)), acc1[q]);
+            }
+            t += 2;
         }
-    }
-    let mut yr = vec![[0.0f64; W]; a.nrows()];
-    for (j, xj) in xr.iter().enumerate() {
-        if xj.iter().all(|&v| v == 0.0) {
-            continue;
+        if t < nz {
+            let i0 = *rows.get_unchecked(t);
+            let mut v0 = _mm256_broadcast_sd(vals.get_unchecked(t));
+            if ABS {
+                v0 = _mm256_andnot_pd(sign, v0);
+            }
+            for q in 0..Q {
+                acc0[q] = _mm256_fmadd_pd(v0, _mm256_load_pd(xp.add(W * i0 + 4 * q)), acc0[q]);
+            }
         }
-        column_update::<W, ABS>(a.row_idx_of_col_raw(j), a.val_of_col(j), xj, &mut yr);
-    }
-    for c in 0..w {
-        for (yv, row) in y.as_mut().col_mut(c).iter_mut().zip(&yr) {
-            *yv = row[c];
-        }
-    }
-}
-
-/// y_i += a_ij x_j over the stored entries of one column (separate arguments, so that LLVM knows
-/// `xj` and `yr` do not alias and vectorizes the row update).
-#[inline(always)]
-fn column_update<const W: usize, const ABS: bool>(
-    rows: &[usize],
-    vals: &[f64],
-    xj: &[f64; W],
-    yr: &mut [[f64; W]],
-) {
-    for (&i, &v) in rows.iter().zip(vals) {
-        let v = if ABS { v.abs() } else { v };
-        let yi = &mut yr[i];
-        for t in 0..W {
-            yi[t] += v * xj[t];
+        let out = yj.0.as_mut_ptr();
+        for q in 0..Q {
+            _mm256_store_pd(out.add(4 * q), _mm256_add_pd(acc0[q], acc1[q]));
         }
     }
 }
@@ -131,8 +152,73 @@ fn column_update<const W: usize, const ABS: bool>(
 /// Columns of X per pass of [`spmm_into`] (row-major copies of n × 16 stay small).
 pub const SPMM_CHUNK: usize = 16;
 
-/// A = K + s·M on the union of both patterns.
+/// A = K + s·M on the union of both patterns (K itself for s = 0).
+///
+/// Each column is a merge of the two sorted row lists (faer keeps rows sorted); building through
+/// triplets instead sorted every entry again and took longer than METIS and the symbolic analysis
+/// together on a 69k-dof tet10 model (5.4M entries).
 pub fn add_scaled(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    s: f64,
+) -> Result<SparseColMat<usize, f64>, SolveError> {
+    let n = k.nrows();
+    if m.nrows() != n || k.ncols() != n || m.ncols() != n {
+        return Err(SolveError::Dimension(format!(
+            "K + sM: K is {}x{}, M is {}x{}",
+            k.nrows(),
+            k.ncols(),
+            m.nrows(),
+            m.ncols()
+        )));
+    }
+    let sorted = |a: SparseColMatRef<'_, usize, f64>| {
+        (0..n).all(|j| a.row_idx_of_col_raw(j).windows(2).all(|w| w[0] < w[1]))
+    };
+    if !sorted(k) || !sorted(m) {
+        return add_scaled_triplets(k, m, s);
+    }
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    let mut row_idx = Vec::with_capacity(k.compute_nnz().max(m.compute_nnz()));
+    let mut val = Vec::with_capacity(row_idx.capacity());
+    col_ptr.push(0usize);
+    for j in 0..n {
+        let (kr, kv) = (k.row_idx_of_col_raw(j), k.val_of_col(j));
+        let (mr, mv) = if s == 0.0 {
+            (&[][..], &[][..])
+        } else {
+            (m.row_idx_of_col_raw(j), m.val_of_col(j))
+        };
+        let (mut a, mut b) = (0, 0);
+        while a < kr.len() || b < mr.len() {
+            let ra = kr.get(a).copied().unwrap_or(usize::MAX);
+            let rb = mr.get(b).copied().unwrap_or(usize::MAX);
+            let (r, v) = match ra.cmp(&rb) {
+                std::cmp::Ordering::Less => {
+                    a += 1;
+                    (ra, kv[a - 1])
+                }
+                std::cmp::Ordering::Greater => {
+                    b += 1;
+                    (rb, s * mv[b - 1])
+                }
+                std::cmp::Ordering::Equal => {
+                    a += 1;
+                    b += 1;
+                    (ra, kv[a - 1] + s * mv[b - 1])
+                }
+            };
+            row_idx.push(r);
+            val.push(v);
+        }
+        col_ptr.push(row_idx.len());
+    }
+    let symbolic = faer::sparse::SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+    Ok(SparseColMat::new(symbolic, val))
+}
+
+/// [`add_scaled`] for matrices whose columns are not sorted: through triplets.
+fn add_scaled_triplets(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     s: f64,
@@ -153,7 +239,12 @@ pub fn add_scaled(
         .map_err(|e| SolveError::Dimension(format!("K + sM: {e:?}")))
 }
 
-/// The symmetric sub-matrix A[rows, cols] as a sparse matrix (`rows`, `cols` are index lists).
+/// The symmetric sub-matrix A[rows, cols] as a sparse matrix (`rows`, `cols` are index lists;
+/// a row listed twice keeps its last position).
+///
+/// Built column by column (each column's entries sorted by their new row, which is a no-op for
+/// increasing `rows` such as an interior complement); through triplets it sorted every entry
+/// again, over a second on a 69k-dof model for K_ii, M_ii and K_ib.
 pub fn submatrix(
     a: SparseColMatRef<'_, usize, f64>,
     rows: &[usize],
@@ -161,18 +252,55 @@ pub fn submatrix(
 ) -> Result<SparseColMat<usize, f64>, SolveError> {
     let mut pos = vec![usize::MAX; a.nrows()];
     for (r, &i) in rows.iter().enumerate() {
-        pos[i] = r;
+        *pos.get_mut(i).ok_or_else(|| {
+            SolveError::Dimension(format!("sub-matrix: row {i} of a {}-row matrix", a.nrows()))
+        })? = r;
     }
-    let mut trips = Vec::new();
-    for (c, &j) in cols.iter().enumerate() {
-        for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-            if pos[i] != usize::MAX {
-                trips.push(Triplet::new(pos[i], c, v));
+    let mut col_ptr = Vec::with_capacity(cols.len() + 1);
+    let mut row_idx = Vec::new();
+    let mut val = Vec::new();
+    let mut col: Vec<(usize, f64)> = Vec::new();
+    col_ptr.push(0usize);
+    for &j in cols {
+        if j >= a.ncols() {
+            return Err(SolveError::Dimension(format!(
+                "sub-matrix: column {j} of a {}-column matrix",
+                a.ncols()
+            )));
+        }
+        col.clear();
+        col.extend(
+            a.row_idx_of_col_raw(j)
+                .iter()
+                .zip(a.val_of_col(j))
+                .filter(|(&i, _)| pos[i] != usize::MAX)
+                .map(|(&i, &v)| (pos[i], v)),
+        );
+        if !col.windows(2).all(|w| w[0].0 < w[1].0) {
+            col.sort_by_key(|e| e.0);
+        }
+        let start = row_idx.len();
+        for &(r, v) in &col {
+            if row_idx.len() > start && row_idx.last() == Some(&r) {
+                // a duplicate stored entry: summed, as a triplet build would
+                if let Some(last) = val.last_mut() {
+                    *last += v;
+                }
+            } else {
+                row_idx.push(r);
+                val.push(v);
             }
         }
+        col_ptr.push(row_idx.len());
     }
-    SparseColMat::try_new_from_triplets(rows.len(), cols.len(), &trips)
-        .map_err(|e| SolveError::Dimension(format!("sub-matrix: {e:?}")))
+    let symbolic = faer::sparse::SymbolicSparseColMat::new_checked(
+        rows.len(),
+        cols.len(),
+        col_ptr,
+        None,
+        row_idx,
+    );
+    Ok(SparseColMat::new(symbolic, val))
 }
 
 /// Dense copy of a sparse matrix.
