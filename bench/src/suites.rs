@@ -84,7 +84,8 @@ pub fn ours_eigen(
         "n": k.nrows(),
         "phases_s": {"read": t_read, "analyse_factor": s.info.seconds_factor,
                      "eigen": s.info.seconds_eigen, "total": total,
-                     "eigen_solves": s.info.seconds_solve},
+                     "eigen_solves": s.info.seconds_solve,
+                     "eigen_orthogonalization": s.info.seconds_orth},
         "solves": s.info.solves, "steps": s.info.steps, "restarts": s.info.restarts,
         "block": spec.block.unwrap_or(modes.min(flexbody::solve::DEFAULT_BLOCK)),
         "max_basis": spec.max_basis.unwrap_or_else(|| flexbody::solve::default_basis(
@@ -100,6 +101,93 @@ pub fn ours_eigen(
         "threads": format!("faer {:?}", threads()),
         "loadavg": loadavg(),
     }))
+}
+
+/// `solve-kernel K.mtx [B ...]`: times the ordering, the symbolic and the numeric factorization of
+/// K, then for blocks of B random columns (default 1 4 6 8 12 16) faer's multi-RHS solve against
+/// ours (ms per solved vector, GFlop/s = 4·nnz(L)·B per block, largest relative difference) and
+/// the product K·X; best of 5 each. A tuning tool: prints to stderr, JSON to stdout.
+pub fn solve_kernel(kp: &str, blocks: &[usize]) -> Res<Value> {
+    let s = flexbody::import::matrix_market::read_matrix(std::path::Path::new(kp))
+        .map_err(|e| e.to_string())?;
+    let v: Vec<_> = s
+        .full()
+        .into_iter()
+        .map(|(i, j, x)| Triplet::new(i, j, x))
+        .collect();
+    let k = SparseColMat::try_new_from_triplets(s.n, s.n, &v).map_err(|e| format!("{e:?}"))?;
+    // faer's kernels under the same global parallelism as in the eigensolver
+    let _par = flexbody::solve::ParGuard::new(threads());
+    let t = Instant::now();
+    let ord = flexbody::solve::ordering::nested_dissection(k.symbolic(), Some(3))
+        .map_err(|e| e.to_string())?;
+    let t_order = t.elapsed().as_secs_f64();
+    drop(ord);
+    let t = Instant::now();
+    let (sym, stats) =
+        flexbody::solve::cholesky::analyze(k.as_ref(), Some(3)).map_err(|e| e.to_string())?;
+    let t_analyse = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let llt = flexbody::solve::SparseLlt::factor_with(sym, stats, k.as_ref(), threads())
+        .map_err(|e| e.to_string())?;
+    let t_factor = t.elapsed().as_secs_f64();
+    eprintln!(
+        "ordering {t_order:.2} s, analyse (ordering + symbolic) {t_analyse:.2} s, numeric {t_factor:.2} s, nnz(L) {}, flops {:.3e}",
+        llt.stats.nnz_l, llt.stats.flops
+    );
+    let nnz_l = llt.stats.nnz_l as f64;
+    let blocks = if blocks.is_empty() {
+        vec![1, 4, 6, 8, 12, 16]
+    } else {
+        blocks.to_vec()
+    };
+    let mut rows = Vec::new();
+    for &b in &blocks {
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let rhs = flexbody::solve::Mat::<f64>::from_fn(s.n, b, |_, _| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        });
+        let time =
+            |f: &dyn Fn(&mut flexbody::solve::Mat<f64>)| -> (f64, flexbody::solve::Mat<f64>) {
+                let mut best = f64::INFINITY;
+                let mut x = rhs.clone();
+                for _ in 0..5 {
+                    x = rhs.clone();
+                    let t = Instant::now();
+                    f(&mut x);
+                    best = best.min(t.elapsed().as_secs_f64());
+                }
+                (best, x)
+            };
+        let (t_spmm, _) = time(&|x| {
+            let y = flexbody::solve::sparse_ops::spmm(k.as_ref(), x.as_ref());
+            x[(0, 0)] = y[(0, 0)];
+        });
+        let (t_faer, x_faer) = time(&|x| llt.solve_in_place_faer(x.as_mut()));
+        let (t_ours, x_ours) = time(&|x| llt.solve_in_place(x.as_mut()));
+        let diff = (&x_faer - &x_ours).norm_max() / x_faer.norm_max();
+        let gf = |t: f64| 4.0 * nnz_l * b as f64 / t / 1e9;
+        eprintln!(
+            "b={b:2}: faer {:7.3} ms/vec {:5.2} GFlop/s | ours {:7.3} ms/vec {:5.2} GFlop/s | x{:.2} | diff {diff:.1e} | K·X {:.2} ms",
+            1e3 * t_faer / b as f64,
+            gf(t_faer),
+            1e3 * t_ours / b as f64,
+            gf(t_ours),
+            t_faer / t_ours,
+            1e3 * t_spmm
+        );
+        rows.push(json!({"block": b, "faer_s": t_faer, "ours_s": t_ours,
+            "faer_gflops": gf(t_faer), "ours_gflops": gf(t_ours), "max_rel_diff": diff,
+            "spmm_s": t_spmm}));
+    }
+    Ok(
+        json!({"n": s.n, "nnz_l": llt.stats.nnz_l, "ordering_s": t_order,
+        "analyse_s": t_analyse, "factor_s": t_factor,
+        "threads": format!("faer {:?}", threads()), "loadavg": loadavg(), "blocks": rows}),
+    )
 }
 
 /// Threads of our solver: `FLEXBODY_THREADS` (default 1, `Par::Seq`; the peers get the same
@@ -232,6 +320,7 @@ pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
     drop(asm);
     let eig = EigenSpec {
         dofs_per_node: Some(3),
+        par: threads(),
         ..Default::default()
     };
     let basis = craig_bampton_basis(&red.k, &red.m, &interface, ModeCount::Count(modes), &eig)
@@ -240,7 +329,10 @@ pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
         phases.insert(format!("cb {name}"), num(*s));
     }
     lap("craig-bampton basis", &mut phases);
-    let o = orthonormalize(&red.k, &red.m, &basis.t, &basis.labels).map_err(|e| e.to_string())?;
+    let o = {
+        let _par = flexbody::solve::ParGuard::new(threads());
+        orthonormalize(&red.k, &red.m, &basis.t, &basis.labels).map_err(|e| e.to_string())?
+    };
     lap("orthonormalization", &mut phases);
     phases.insert("total".into(), num(t_all.elapsed().as_secs_f64()));
     Ok(json!({
@@ -253,7 +345,7 @@ pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
         "orthonormality": num(o.diagnostics.orthonormality),
         "peak_rss_mb": peak_rss_mb(),
         "eigenvalues": basis.fixed_omega2,
-        "threads": "faer Par::Seq",
+        "threads": format!("faer {:?}", threads()),
         "loadavg": loadavg(),
     }))
 }

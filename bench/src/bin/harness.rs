@@ -7,7 +7,8 @@
 //! * `accuracy [MODEL.inp]` — every reduction method × mode counts on the bundled conrod;
 //! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
 //!
-//! `ours-eigen` and `ours-cb` are the suites' own child processes.
+//! `ours-eigen` and `ours-cb` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
+//! times faer's multi-RHS solve against ours on one factorization (for tuning).
 
 use flexbody_bench::{accuracy, chart, suites, Res};
 
@@ -47,6 +48,10 @@ fn run(args: &[String]) -> Res<()> {
             let tol = a.get(4).and_then(|s| s.parse().ok());
             let basis = a.get(5).and_then(|s| s.parse().ok());
             suites::ours_eigen(&a[0], &a[1], m, block, tol, basis)?
+        }
+        "solve-kernel" if !a.is_empty() => {
+            let blocks: Vec<usize> = a[1..].iter().filter_map(|s| s.parse().ok()).collect();
+            suites::solve_kernel(&a[0], &blocks)?
         }
         "ours-cb" if a.len() == 4 => {
             let m = a[3].parse().map_err(|_| "MODES".to_string())?;
