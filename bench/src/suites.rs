@@ -328,6 +328,11 @@ pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
     for (name, s) in &basis.timings {
         phases.insert(format!("cb {name}"), num(*s));
     }
+    phases.insert("cb eigen solves".into(), num(basis.eigen.seconds_solve));
+    phases.insert(
+        "cb eigen orthogonalization".into(),
+        num(basis.eigen.seconds_orth),
+    );
     lap("craig-bampton basis", &mut phases);
     let o = {
         let _par = flexbody::solve::ParGuard::new(threads());
@@ -345,6 +350,10 @@ pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
         "orthonormality": num(o.diagnostics.orthonormality),
         "peak_rss_mb": peak_rss_mb(),
         "eigenvalues": basis.fixed_omega2,
+        "eigen_solved_vectors": basis.eigen.solves,
+        "eigen_steps": basis.eigen.steps,
+        "eigen_restarts": basis.eigen.restarts,
+        "nnz_l": basis.eigen.factor.as_ref().map(|f| f.nnz_l),
         "threads": format!("faer {:?}", threads()),
         "loadavg": loadavg(),
     }))

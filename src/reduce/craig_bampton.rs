@@ -25,6 +25,8 @@ pub struct CbBasis {
     pub fixed_omega2: Vec<f64>,
     /// Phase timings (s): ordering+factorization, constraint modes, eigen.
     pub timings: Vec<(&'static str, f64)>,
+    /// How the fixed-interface eigenproblem was solved (vectors, steps, factor size, times).
+    pub eigen: crate::solve::EigenInfo,
 }
 
 /// Builds the Craig–Bampton basis for the interface dofs `interface`.
@@ -65,6 +67,7 @@ pub fn craig_bampton_basis(
     let fixed = fixed_interface_modes(&kii, &mii, &llt, modes, eig)?;
     let t_eigen = t2.elapsed().as_secs_f64();
     let nq = fixed.eigenvalues.len();
+    let eigen = fixed.info.clone();
     let mut t = Mat::<f64>::zeros(n, nb + nq);
     for (c, &d) in interface.iter().enumerate() {
         t[(d, c)] = 1.0;
@@ -92,6 +95,7 @@ pub fn craig_bampton_basis(
             ("constraint modes", t_constraint),
             ("eigen", t_eigen),
         ],
+        eigen,
     })
 }
 
