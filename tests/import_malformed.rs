@@ -120,6 +120,38 @@ fn malformed_matrix_market_and_node_table() {
         .unwrap_err()
         .to_string()
         .contains("not symmetric"));
+    // the later of two equal entries is named, by line
+    let p = write(
+        "dup.mtx",
+        "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n2 1 1.0\n1 1 4.0\n2 1 1.0\n",
+    );
+    let e = matrix_market::read_matrix(&p).unwrap_err();
+    assert_eq!((e.line(), e.entity()), (Some(5), Some("entry (2,1)")));
+    assert!(e.to_string().contains("duplicate"));
+    let p = write(
+        "both.mtx",
+        "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n1 2 1.0\n1 1 4.0\n2 1 1.0\n",
+    );
+    let e = matrix_market::read_matrix(&p).unwrap_err();
+    assert_eq!((e.line(), e.entity()), (Some(5), Some("entry (2,1)")));
+    assert!(e.to_string().contains("both triangles"));
+    // a general file with both triangles equal gives the upper triangle, column by column
+    let p = write(
+        "general.mtx",
+        "%%MatrixMarket matrix coordinate real general\n3 3 6\n3 1 2.0\n1 1 4.0\n1 3 2.0\n\
+         2 2 5.0\n3 3 6.0\n2 3 0.0\n",
+    );
+    let t = matrix_market::read_matrix(&p).unwrap();
+    assert_eq!(
+        t.upper,
+        vec![
+            (0, 0, 4.0),
+            (1, 1, 5.0),
+            (0, 2, 2.0),
+            (1, 2, 0.0),
+            (2, 2, 6.0)
+        ]
+    );
     let p = write("nodes.txt", "1 0 0 0 3\n2 0 0 x 3\n");
     let e = matrix_market::read_node_table(&p).unwrap_err();
     assert_eq!((e.line(), e.entity()), (Some(2), Some("node 2")));

@@ -143,60 +143,69 @@ pub fn read_matrix(path: &Path) -> Result<SymmetricTriplets, ImportError> {
         o => return Err(err(1, "header", format!("symmetry `{o}` not supported"))),
     };
     let mut size = None;
-    let mut entries: HashMap<(usize, usize), (f64, usize)> = HashMap::new();
-    let mut count = 0usize;
+    let mut entries: Vec<Entry> = Vec::new();
     for (i, raw) in lines {
         let s = raw.trim();
         if s.is_empty() || s.starts_with('%') {
             continue;
         }
-        let f: Vec<&str> = s.split_whitespace().collect();
+        let mut f = s.split_whitespace();
+        let fields = [f.next(), f.next(), f.next(), f.next()];
         let Some((n, nnz)) = size else {
-            let (r, c, z) = match f.as_slice() {
-                [r, c, z] => (parse_u64(r), parse_u64(c), parse_u64(z)),
+            let parsed = match fields {
+                [Some(r), Some(c), Some(z), None] => (parse_u64(r), parse_u64(c), parse_u64(z)),
                 _ => (None, None, None),
             };
-            match (r, c, z) {
-                (Some(r), Some(c), Some(z)) if r == c => size = Some((r as usize, z as usize)),
+            match parsed {
+                (Some(r), Some(c), Some(z)) if r == c && r <= u64::from(u32::MAX) => {
+                    size = Some((r as usize, z as usize));
+                    entries.reserve_exact(z.min(1 << 28) as usize);
+                }
                 _ => {
                     return Err(err(
                         i + 1,
                         "size",
-                        format!("expected `n n nnz` of a square matrix, found `{s}`"),
+                        format!("expected `n n nnz` of a square matrix (n < 2³²), found `{s}`"),
                     ))
                 }
             }
             continue;
         };
-        let ent = format!("entry {}", count + 1);
-        let [r, c, v] = f.as_slice() else {
+        let ent = || format!("entry {}", entries.len() + 1);
+        let [Some(r), Some(c), Some(v), None] = fields else {
             return Err(err(
                 i + 1,
-                &ent,
+                &ent(),
                 format!("expected `row col value`, found `{s}`"),
             ));
         };
         let (Some(r), Some(c)) = (parse_u64(r), parse_u64(c)) else {
-            return Err(err(i + 1, &ent, format!("bad index in `{s}`")));
+            return Err(err(i + 1, &ent(), format!("bad index in `{s}`")));
         };
         let v = parse_f64(v)
             .filter(|v| v.is_finite())
-            .ok_or_else(|| err(i + 1, &ent, format!("bad value '{v}'")))?;
-        let (r, c) = (r as usize, c as usize);
-        if r == 0 || c == 0 || r > n || c > n {
-            return Err(err(i + 1, &ent, format!("index ({r},{c}) outside 1..{n}")));
-        }
-        count += 1;
-        if count > nnz {
+            .ok_or_else(|| err(i + 1, &ent(), format!("bad value '{v}'")))?;
+        if r == 0 || c == 0 || r > n as u64 || c > n as u64 {
             return Err(err(
                 i + 1,
-                &ent,
+                &ent(),
+                format!("index ({r},{c}) outside 1..{n}"),
+            ));
+        }
+        if entries.len() == nnz {
+            return Err(err(
+                i + 1,
+                &ent(),
                 format!("more entries than the {nnz} announced"),
             ));
         }
-        if entries.insert((r - 1, c - 1), (v, i + 1)).is_some() {
-            return Err(err(i + 1, &ent, format!("duplicate entry ({r},{c})")));
-        }
+        // r, c ≤ n < 2³² (checked on the size line), so the casts are exact.
+        entries.push(Entry {
+            row: (r - 1) as u32,
+            col: (c - 1) as u32,
+            value: v,
+            line: i + 1,
+        });
     }
     let Some((n, nnz)) = size else {
         return Err(err(
@@ -205,33 +214,48 @@ pub fn read_matrix(path: &Path) -> Result<SymmetricTriplets, ImportError> {
             "missing size line".into(),
         ));
     };
-    if count != nnz {
+    if entries.len() != nnz {
         return Err(err(
             text.lines().count(),
             "size",
-            format!("{count} entries, {nnz} announced"),
+            format!("{} entries, {nnz} announced", entries.len()),
         ));
     }
+    // One sort puts both triangles' entries of a pair side by side (upper first) and the
+    // result in column-major upper-triangle order; no hashing (13 M entries at 180k dofs).
+    entries.sort_unstable_by_key(|e| (e.row.max(e.col), e.row.min(e.col), e.row > e.col));
+    let entity = |e: &Entry| format!("entry ({},{})", e.row + 1, e.col + 1);
     let mut upper = Vec::with_capacity(entries.len());
-    for (&(r, c), &(v, line)) in &entries {
-        let mirror = entries.get(&(c, r));
+    for group in entries.chunk_by(|a, b| {
+        (a.row.max(a.col), a.row.min(a.col)) == (b.row.max(b.col), b.row.min(b.col))
+    }) {
+        if let Some(w) = group.windows(2).find(|w| w[0].row == w[1].row) {
+            let later = if w[0].line > w[1].line { &w[0] } else { &w[1] };
+            return Err(err(later.line, &entity(later), "duplicate entry".into()));
+        }
+        // Now at most two entries: the upper (row ≤ col) one first, then its mirror.
+        let first = &group[0];
+        let (r, c) = (first.row as usize, first.col as usize);
+        let mirror = group.get(1);
         if r == c {
-            upper.push((r, c, v));
+            upper.push((r, c, first.value));
         } else if symmetric {
-            if mirror.is_some() {
+            if let Some(m) = mirror {
+                let later = if m.line > first.line { m } else { first };
                 return Err(err(
-                    line,
-                    &format!("entry ({},{})", r + 1, c + 1),
+                    later.line,
+                    &entity(later),
                     "both triangles stored in a symmetric file".into(),
                 ));
             }
-            upper.push((r.min(c), r.max(c), v));
+            upper.push((r.min(c), r.max(c), first.value));
         } else {
-            let w = mirror.map_or(0.0, |m| m.0);
+            let w = mirror.map_or(0.0, |m| m.value);
+            let v = first.value;
             if (v - w).abs() > 1e-12 * v.abs().max(w.abs()) {
                 return Err(err(
-                    line,
-                    &format!("entry ({},{})", r + 1, c + 1),
+                    first.line,
+                    &entity(first),
                     format!("general matrix is not symmetric: {v} vs {w}"),
                 ));
             }
@@ -240,8 +264,15 @@ pub fn read_matrix(path: &Path) -> Result<SymmetricTriplets, ImportError> {
             }
         }
     }
-    upper.sort_by_key(|e| (e.1, e.0));
     Ok(SymmetricTriplets { n, upper })
+}
+
+/// One stored entry of a Matrix Market file (0-based indices, 1-based line).
+struct Entry {
+    row: u32,
+    col: u32,
+    value: f64,
+    line: usize,
 }
 
 /// A [`MatrixModel`] from a CalculiX matrix dump (`STEM.sti/.mas/.dof`, see
