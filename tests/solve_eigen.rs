@@ -5,7 +5,10 @@
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 use flexbody::import::ccx_matrices::read_ccx_matrices;
-use flexbody::solve::{lowest_modes, lowest_modes_iterative, sparse_ops, EigenSpec, SolveError};
+use flexbody::solve::{
+    lowest_modes, lowest_modes_iterative, lowest_modes_iterative_below, sparse_ops, EigenSpec,
+    SolveError,
+};
 use std::path::{Path, PathBuf};
 
 fn case(name: &str) -> PathBuf {
@@ -139,6 +142,51 @@ fn hex8_free_iterative_matches_ccx() {
 #[test]
 fn tet10_free_consistent_singular_mass_matches_ccx() {
     check_free("tet10_block_coarse", true);
+}
+
+/// Band mode (`--fmax`): starting from 6 modes, one iteration grows its count (6 → 12 → 24, capped
+/// at n/6) until a converged mode lies above the limit, and returns exactly the modes below it
+/// plus that one; they equal the numpy spectrum of the same matrices.
+#[test]
+fn band_mode_grows_to_every_mode_below_the_limit() {
+    for name in ["hex8_block_coarse", "tet10_block_coarse"] {
+        let dir = case(name);
+        let (k, m, _) = load(&dir.join("ccx_matrix_free"));
+        let np = numpy_freqs(&dir);
+        assert!(k.nrows() / 6 >= 17, "{name}: n = {}", k.nrows());
+        let band = |f_cut: f64| {
+            let upper = (2.0 * std::f64::consts::PI * f_cut).powi(2);
+            let s = lowest_modes_iterative_below(&k, &m, &spec(6), Some(upper)).unwrap();
+            let f: Vec<f64> = s.eigenvalues.iter().map(|&l| hz(l)).collect();
+            (s, f)
+        };
+        // the limit halfway between numpy modes 15 and 16 (0-based): 16 modes lie below it
+        let f_cut = 0.5 * (np[15] + np[16]);
+        let (s, f) = band(f_cut);
+        assert_eq!(f.len(), 17, "{name}: {f:?}");
+        assert!(f[15] <= f_cut && f[16] > f_cut, "{name}: {f:?}");
+        for i in 6..17 {
+            assert!(
+                (f[i] - np[i]).abs() <= 1e-9 * np[i],
+                "{name} mode {i}: {} vs numpy {}",
+                f[i],
+                np[i]
+            );
+        }
+        // one factorization, and fewer solved vectors than runs of 6, 12 and 24 modes would need
+        let counted: usize = [6, 12, 24]
+            .iter()
+            .map(|&c| lowest_modes_iterative(&k, &m, &spec(c)).unwrap().info.solves)
+            .sum();
+        assert!(s.info.solves < counted, "{name}: {} vs {counted}", s.info.solves);
+        // a limit between the rigid modes and the first flexible one: the 6 rigid + that one
+        let (_, f) = band(0.5 * np[6]);
+        assert_eq!(f.len(), 7, "{name}: {f:?}");
+        assert!((f[6] - np[6]).abs() <= 1e-9 * np[6], "{name}: {f:?}");
+        // without a limit the same call returns just the 6 asked for
+        let six = lowest_modes_iterative_below(&k, &m, &spec(6), None).unwrap();
+        assert_eq!(six.eigenvalues.len(), 6);
+    }
 }
 
 /// Constrained run: K, M restricted to the equations of the fixed dump equal ccx_fixed.dat.

@@ -2,7 +2,7 @@
 //! frequency of the scene, `cutoff = FMAX_FACTOR · f_scene`. Rigid-body modes are always kept.
 
 use super::{ModeLabel, ModeSet, ReduceError};
-use crate::solve::{lowest_modes, EigenSolution, EigenSpec, SparseColMat};
+use crate::solve::{lowest_modes_below, EigenSolution, EigenSpec, SparseColMat};
 
 /// Cutoff factor on the scene's highest frequency. A mode well above the excitation responds
 /// quasi-statically; keeping modes to 3× the highest frequency of interest (the common rule of
@@ -39,39 +39,44 @@ fn hz(l: f64) -> f64 {
     l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
 }
 
-/// Lowest eigenpairs by [`ModeCount`]; `BelowHz` doubles the count until a mode above the limit
-/// is found (or all are computed), then truncates.
+/// Lowest eigenpairs by [`ModeCount`]; `BelowHz` runs the solver in band mode (one iteration
+/// that grows its count until a converged mode lies above the limit), doubles the count and asks
+/// again only when a run came back with every mode below the limit (the dense path, or a band
+/// past the sparse path's size limit), then truncates.
 pub fn solve_count(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     count: ModeCount,
     eig: &EigenSpec,
 ) -> Result<EigenSolution, ReduceError> {
-    let run = |c: usize| -> Result<EigenSolution, ReduceError> {
-        Ok(lowest_modes(
+    let run = |c: usize, upper: Option<f64>| -> Result<EigenSolution, ReduceError> {
+        Ok(lowest_modes_below(
             k,
             m,
             &EigenSpec {
                 count: c,
                 ..eig.clone()
             },
+            upper,
         )?)
     };
     solve_count_with(k, m, count, eig.shift, &run)
 }
 
-/// [`solve_count`] with the solver of a given count supplied by the caller (e.g. one reusing an
-/// existing factorization); `shift` is used for the dense `All` path.
+/// [`solve_count`] with the solver supplied by the caller (e.g. one reusing an existing
+/// factorization): `run(count, upper)` returns the lowest `count` eigenpairs, or with `upper`
+/// given may return more, up to the first eigenvalue above `upper`; `shift` is used for the
+/// dense `All` path.
 pub fn solve_count_with(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     count: ModeCount,
     shift: Option<f64>,
-    run: &dyn Fn(usize) -> Result<EigenSolution, ReduceError>,
+    run: &dyn Fn(usize, Option<f64>) -> Result<EigenSolution, ReduceError>,
 ) -> Result<EigenSolution, ReduceError> {
     let n = k.nrows();
     match count {
-        ModeCount::Count(c) => run(c.min(n)),
+        ModeCount::Count(c) => run(c.min(n), None),
         ModeCount::All => {
             let kd = crate::solve::sparse_ops::to_dense(k.as_ref());
             let md = crate::solve::sparse_ops::to_dense(m.as_ref());
@@ -92,15 +97,17 @@ pub fn solve_count_with(
             })
         }
         ModeCount::BelowHz(f) => {
+            let upper = (2.0 * std::f64::consts::PI * f).powi(2);
             let mut c = 12usize.min(n);
             loop {
-                let s = run(c)?;
+                let s = run(c, Some(upper))?;
                 let last = *s.eigenvalues.last().unwrap_or(&0.0);
-                if hz(last) > f || c == n {
+                let got = s.eigenvalues.len();
+                if hz(last) > f || got >= n {
                     let keep = s.eigenvalues.iter().filter(|&&l| hz(l) <= f).count();
                     return Ok(truncate(s, keep));
                 }
-                c = (2 * c).min(n);
+                c = (2 * c.max(got)).min(n);
             }
         }
     }

@@ -29,8 +29,16 @@ pub struct BlockParams {
     pub max_basis: usize,
     /// Relative residual tolerance.
     pub tol: f64,
-    /// Maximal number of block steps.
+    /// Maximal number of block steps (for `count`; grown with it).
     pub max_steps: usize,
+    /// Band mode: every eigenvalue ≤ `upper` is wanted, `count` is only the first guess. When
+    /// the converged Ritz values fill `count` and all lie at or below `upper`, the iteration
+    /// goes on with twice the count (up to `max_count`) on a larger basis instead of stopping;
+    /// it returns the converged values up to the first one above `upper` (or `max_count` values
+    /// all below it, for the caller to go on another way).
+    pub upper: Option<f64>,
+    /// Largest count band mode may grow to.
+    pub max_count: usize,
 }
 
 /// Result of one run, before the final checks.
@@ -175,9 +183,10 @@ pub fn block_shift_invert(
     let _ = k;
     let n = m.nrows();
     let b = prm.block.max(1);
-    let count = prm.count;
-    let max_basis = prm.max_basis.max(count + 3 * b).min(n);
-    let keep = (count + b).max(max_basis / 2).min(max_basis - b);
+    let mut count = prm.count;
+    let mut max_basis = prm.max_basis.max(count + 3 * b).min(n);
+    let mut keep = (count + b).max(max_basis / 2).min(max_basis - b);
+    let mut max_steps = prm.max_steps;
     let mut seed = 0x9E37_79B9_7F4A_7C15u64;
     let mut solves = 0usize;
     let mut restarts = 0usize;
@@ -220,7 +229,9 @@ pub fn block_shift_invert(
     let (c, mut f) = gs(vbuf.as_ref().subcols(0, p), mvbuf.as_ref().subcols(0, p), w);
     let mut t = c;
     let mut e = Mat::<f64>::identity(b, b);
-    for step in 0..prm.max_steps {
+    let mut step = 0;
+    while step < max_steps {
+        step += 1;
         // M-QR of the residual block (already M-orthogonal to V: two Gram–Schmidt passes when it
         // was formed, and V only shrinks to V·Y_k at a restart)
         let fscale = t.norm_max().powi(2);
@@ -250,14 +261,43 @@ pub fn block_shift_invert(
                 theta[j] > 0.0 && r <= prm.tol * theta[j].abs()
             })
             .count();
-        if p >= count && nconv == count {
-            let x = vbuf.as_ref().subcols(0, p) * y.as_ref().subcols(0, count);
-            let values = theta[..count].iter().map(|&th| sigma + 1.0 / th).collect();
+        // band mode: done at the first converged value above `upper`, or grow the count
+        let lambda = |j: usize| sigma + 1.0 / theta[j];
+        let done = match prm.upper {
+            None => (p >= count && nconv == count).then_some(count),
+            Some(u) => match (0..nconv).find(|&j| lambda(j) > u) {
+                Some(j) => Some(j + 1),
+                None if p >= count && nconv == count && count >= prm.max_count => Some(count),
+                None if p >= count && nconv == count => {
+                    let grown = (2 * count).min(prm.max_count);
+                    max_steps += 20 * (grown - count).div_ceil(b);
+                    count = grown;
+                    let basis = max_basis.max(super::default_basis(count, b)).min(n);
+                    if basis > max_basis {
+                        let mut v = Mat::<f64>::zeros(n, basis);
+                        let mut mv = Mat::<f64>::zeros(n, basis);
+                        v.as_mut()
+                            .subcols_mut(0, p)
+                            .copy_from(vbuf.as_ref().subcols(0, p));
+                        mv.as_mut()
+                            .subcols_mut(0, p)
+                            .copy_from(mvbuf.as_ref().subcols(0, p));
+                        (vbuf, mvbuf, max_basis) = (v, mv, basis);
+                    }
+                    keep = (count + b).max(max_basis / 2).min(max_basis - b);
+                    None
+                }
+                None => None,
+            },
+        };
+        if let Some(c) = done {
+            let x = vbuf.as_ref().subcols(0, p) * y.as_ref().subcols(0, c);
+            let values = theta[..c].iter().map(|&th| sigma + 1.0 / th).collect();
             return Ok(BlockResult {
                 values,
                 vectors: x,
                 solves,
-                steps: step,
+                steps: step - 1,
                 restarts,
                 seconds_solve: seconds_solve.get(),
                 seconds_orth,
@@ -301,6 +341,6 @@ pub fn block_shift_invert(
     }
     Err(SolveError::NotConverged {
         requested: count,
-        steps: prm.max_steps,
+        steps: max_steps,
     })
 }

@@ -281,6 +281,19 @@ pub fn lowest_modes(
     m: &SparseColMat<usize, f64>,
     spec: &EigenSpec,
 ) -> Result<EigenSolution, SolveError> {
+    lowest_modes_below(k, m, spec, None)
+}
+
+/// [`lowest_modes`] in band mode when `upper` is given: every eigenvalue ≤ `upper` plus the
+/// first one above it, from one iteration whose count starts at `spec.count` and grows as
+/// needed (see [`eigen::BlockParams::upper`]). The dense path and a band that outgrows the
+/// sparse path's limit return `spec.count` values all ≤ `upper`: ask again with more.
+pub fn lowest_modes_below(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    spec: &EigenSpec,
+    upper: Option<f64>,
+) -> Result<EigenSolution, SolveError> {
     let _par = ParGuard::new(spec.par);
     validate(k, m, spec.count)?;
     let n = k.nrows();
@@ -299,7 +312,7 @@ pub fn lowest_modes(
         };
         return finish(k, m, vals, vecs, info, spec.tol);
     }
-    lowest_modes_iterative(k, m, spec)
+    lowest_modes_iterative_below(k, m, spec, upper)
 }
 
 /// [`lowest_modes`] always on the sparse path (factorization + block shift-invert iteration),
@@ -308,6 +321,16 @@ pub fn lowest_modes_iterative(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     spec: &EigenSpec,
+) -> Result<EigenSolution, SolveError> {
+    lowest_modes_iterative_below(k, m, spec, None)
+}
+
+/// [`lowest_modes_iterative`] with the band mode of [`lowest_modes_below`].
+pub fn lowest_modes_iterative_below(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    spec: &EigenSpec,
+    upper: Option<f64>,
 ) -> Result<EigenSolution, SolveError> {
     let _par = ParGuard::new(spec.par);
     validate(k, m, spec.count)?;
@@ -338,7 +361,7 @@ pub fn lowest_modes_iterative(
             Err(e) => return Err(e),
         };
         let seconds_factor = t0.elapsed().as_secs_f64();
-        let mut sol = lowest_modes_factored(k, m, &llt, sigma, spec)?;
+        let mut sol = lowest_modes_factored_below(k, m, &llt, sigma, spec, upper)?;
         sol.info.seconds_factor = seconds_factor;
         return Ok(sol);
     }
@@ -353,6 +376,18 @@ pub fn lowest_modes_factored(
     llt: &SparseLlt,
     sigma: f64,
     spec: &EigenSpec,
+) -> Result<EigenSolution, SolveError> {
+    lowest_modes_factored_below(k, m, llt, sigma, spec, None)
+}
+
+/// [`lowest_modes_factored`] with the band mode of [`lowest_modes_below`].
+pub fn lowest_modes_factored_below(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    llt: &SparseLlt,
+    sigma: f64,
+    spec: &EigenSpec,
+    upper: Option<f64>,
 ) -> Result<EigenSolution, SolveError> {
     let _par = ParGuard::new(spec.par);
     validate(k, m, spec.count)?;
@@ -375,6 +410,9 @@ pub fn lowest_modes_factored(
             .min(n),
         tol: spec.tol,
         max_steps: 200 + 20 * count.div_ceil(b),
+        upper,
+        // the basis (3 × count) stays within half the problem; beyond, the dense path
+        max_count: count.max(n / 6),
     };
     let r = eigen::block_shift_invert(k.as_ref(), m.as_ref(), llt, sigma, &prm)?;
     let mut info = EigenInfo {
