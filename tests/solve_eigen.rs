@@ -176,9 +176,18 @@ fn band_mode_grows_to_every_mode_below_the_limit() {
         // one factorization, and fewer solved vectors than runs of 6, 12 and 24 modes would need
         let counted: usize = [6, 12, 24]
             .iter()
-            .map(|&c| lowest_modes_iterative(&k, &m, &spec(c)).unwrap().info.solves)
+            .map(|&c| {
+                lowest_modes_iterative(&k, &m, &spec(c))
+                    .unwrap()
+                    .info
+                    .solves
+            })
             .sum();
-        assert!(s.info.solves < counted, "{name}: {} vs {counted}", s.info.solves);
+        assert!(
+            s.info.solves < counted,
+            "{name}: {} vs {counted}",
+            s.info.solves
+        );
         // a limit between the rigid modes and the first flexible one: the 6 rigid + that one
         let (_, f) = band(0.5 * np[6]);
         assert_eq!(f.len(), 7, "{name}: {f:?}");
