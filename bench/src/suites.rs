@@ -43,6 +43,18 @@ fn node_set(model: &flexbody::model::Model, name: &str) -> Res<Vec<usize>> {
         .ok_or_else(|| format!("generated block has no node set {name}"))
 }
 
+/// A symmetric Matrix Market file as a full (both triangles) sparse matrix.
+fn read_full_mtx(p: &str) -> Res<SparseColMat<usize, f64>> {
+    let s = flexbody::import::matrix_market::read_matrix(std::path::Path::new(p))
+        .map_err(|e| e.to_string())?;
+    let v: Vec<_> = s
+        .full()
+        .into_iter()
+        .map(|(i, j, x)| Triplet::new(i, j, x))
+        .collect();
+    SparseColMat::try_new_from_triplets(s.n, s.n, &v).map_err(|e| format!("{p}: {e:?}"))
+}
+
 /// `ours-eigen K.mtx M.mtx MODES [BLOCK [TOL [BASIS]]]`: our solver on the files (prints one JSON
 /// line); BLOCK, TOL and BASIS (largest Krylov basis) override the defaults (for tuning).
 pub fn ours_eigen(
@@ -54,17 +66,7 @@ pub fn ours_eigen(
     max_basis: Option<usize>,
 ) -> Res<Value> {
     let t = Instant::now();
-    let read = |p: &str| -> Res<SparseColMat<usize, f64>> {
-        let s = flexbody::import::matrix_market::read_matrix(std::path::Path::new(p))
-            .map_err(|e| e.to_string())?;
-        let v: Vec<_> = s
-            .full()
-            .into_iter()
-            .map(|(i, j, x)| Triplet::new(i, j, x))
-            .collect();
-        SparseColMat::try_new_from_triplets(s.n, s.n, &v).map_err(|e| format!("{p}: {e:?}"))
-    };
-    let (k, m) = (read(kp)?, read(mp)?);
+    let (k, m) = (read_full_mtx(kp)?, read_full_mtx(mp)?);
     let t_read = t.elapsed().as_secs_f64();
     let t0 = Instant::now();
     let spec = EigenSpec {
@@ -108,14 +110,7 @@ pub fn ours_eigen(
 /// ours (ms per solved vector, GFlop/s = 4·nnz(L)·B per block, largest relative difference) and
 /// the product K·X; best of 5 each. A tuning tool: prints to stderr, JSON to stdout.
 pub fn solve_kernel(kp: &str, blocks: &[usize]) -> Res<Value> {
-    let s = flexbody::import::matrix_market::read_matrix(std::path::Path::new(kp))
-        .map_err(|e| e.to_string())?;
-    let v: Vec<_> = s
-        .full()
-        .into_iter()
-        .map(|(i, j, x)| Triplet::new(i, j, x))
-        .collect();
-    let k = SparseColMat::try_new_from_triplets(s.n, s.n, &v).map_err(|e| format!("{e:?}"))?;
+    let k = read_full_mtx(kp)?;
     // faer's kernels under the same global parallelism as in the eigensolver
     let _par = flexbody::solve::ParGuard::new(threads());
     let t = Instant::now();
@@ -144,7 +139,7 @@ pub fn solve_kernel(kp: &str, blocks: &[usize]) -> Res<Value> {
     let mut rows = Vec::new();
     for &b in &blocks {
         let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let rhs = flexbody::solve::Mat::<f64>::from_fn(s.n, b, |_, _| {
+        let rhs = flexbody::solve::Mat::<f64>::from_fn(k.nrows(), b, |_, _| {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
@@ -184,7 +179,7 @@ pub fn solve_kernel(kp: &str, blocks: &[usize]) -> Res<Value> {
             "spmm_s": t_spmm}));
     }
     Ok(
-        json!({"n": s.n, "nnz_l": llt.stats.nnz_l, "ordering_s": t_order,
+        json!({"n": k.nrows(), "nnz_l": llt.stats.nnz_l, "ordering_s": t_order,
         "analyse_s": t_analyse, "factor_s": t_factor,
         "threads": format!("faer {:?}", threads()), "loadavg": loadavg(), "blocks": rows}),
     )
