@@ -77,6 +77,7 @@ pub fn ours_eigen(
         max_basis,
         tol: tol.unwrap_or(EigenSpec::default().tol),
         par: threads(),
+        upper: None,
     };
     let s = lowest_modes_iterative(&k, &m, &spec).map_err(|e| e.to_string())?;
     let total = t0.elapsed().as_secs_f64();

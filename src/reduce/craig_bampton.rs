@@ -7,7 +7,7 @@ use super::select::{solve_count_with, ModeCount};
 use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
 use crate::solve::cholesky::SINGULAR_PIVOT;
 use crate::solve::{
-    lowest_modes, lowest_modes_factored_below, sparse_ops, EigenSolution, EigenSpec, SolveError,
+    lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, SolveError,
     SparseColMat, SparseLlt, DENSE_MAX,
 };
 use faer::Mat;
@@ -158,6 +158,7 @@ fn fixed_interface_modes(
         let spec = EigenSpec {
             count: c,
             shift: Some(0.0),
+            upper,
             ..eig.clone()
         };
         let b = spec
@@ -167,9 +168,7 @@ fn fixed_interface_modes(
         if ni <= DENSE_MAX || c + 4 * b > ni / 2 {
             Ok(lowest_modes(kii, mii, &spec)?)
         } else {
-            Ok(lowest_modes_factored_below(
-                kii, mii, llt, 0.0, &spec, upper,
-            )?)
+            Ok(lowest_modes_factored(kii, mii, llt, 0.0, &spec)?)
         }
     };
     if modes == ModeCount::Count(0) {

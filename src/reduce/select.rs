@@ -2,7 +2,7 @@
 //! frequency of the scene, `cutoff = FMAX_FACTOR · f_scene`. Rigid-body modes are always kept.
 
 use super::{ModeLabel, ModeSet, ReduceError};
-use crate::solve::{lowest_modes_below, EigenSolution, EigenSpec, SparseColMat};
+use crate::solve::{lowest_modes, EigenSolution, EigenSpec, SparseColMat};
 
 /// Cutoff factor on the scene's highest frequency. A mode well above the excitation responds
 /// quasi-statically; keeping modes to 3× the highest frequency of interest (the common rule of
@@ -50,14 +50,14 @@ pub fn solve_count(
     eig: &EigenSpec,
 ) -> Result<EigenSolution, ReduceError> {
     let run = |c: usize, upper: Option<f64>| -> Result<EigenSolution, ReduceError> {
-        Ok(lowest_modes_below(
+        Ok(lowest_modes(
             k,
             m,
             &EigenSpec {
                 count: c,
+                upper,
                 ..eig.clone()
             },
-            upper,
         )?)
     };
     solve_count_with(k, m, count, eig.shift, &run)

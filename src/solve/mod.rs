@@ -115,6 +115,11 @@ pub struct EigenSpec {
     pub dofs_per_node: Option<usize>,
     /// Parallelism of the dense kernels inside the factorization and solves.
     pub par: Par,
+    /// Band mode (an eigenvalue ω², e.g. from `--fmax`): every eigenvalue ≤ `upper` plus the
+    /// first one above it, from one iteration whose count starts at `count` and grows as needed
+    /// (see [`eigen::BlockParams::upper`]). The dense path, and a band that outgrows the sparse
+    /// path's limit, return `count` values all ≤ `upper`: ask again with more.
+    pub upper: Option<f64>,
 }
 
 impl Default for EigenSpec {
@@ -127,6 +132,7 @@ impl Default for EigenSpec {
             max_basis: None,
             dofs_per_node: None,
             par: Par::Seq,
+            upper: None,
         }
     }
 }
@@ -275,24 +281,12 @@ fn validate(
     Ok(())
 }
 
-/// The lowest `spec.count` eigenpairs of K φ = ω² M φ (K, M full symmetric, same size).
+/// The lowest `spec.count` eigenpairs of K φ = ω² M φ (K, M full symmetric, same size), or with
+/// `spec.upper` the band below it.
 pub fn lowest_modes(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     spec: &EigenSpec,
-) -> Result<EigenSolution, SolveError> {
-    lowest_modes_below(k, m, spec, None)
-}
-
-/// [`lowest_modes`] in band mode when `upper` is given: every eigenvalue ≤ `upper` plus the
-/// first one above it, from one iteration whose count starts at `spec.count` and grows as
-/// needed (see [`eigen::BlockParams::upper`]). The dense path and a band that outgrows the
-/// sparse path's limit return `spec.count` values all ≤ `upper`: ask again with more.
-pub fn lowest_modes_below(
-    k: &SparseColMat<usize, f64>,
-    m: &SparseColMat<usize, f64>,
-    spec: &EigenSpec,
-    upper: Option<f64>,
 ) -> Result<EigenSolution, SolveError> {
     let _par = ParGuard::new(spec.par);
     validate(k, m, spec.count)?;
@@ -312,7 +306,7 @@ pub fn lowest_modes_below(
         };
         return finish(k, m, vals, vecs, info, spec.tol);
     }
-    lowest_modes_iterative_below(k, m, spec, upper)
+    lowest_modes_iterative(k, m, spec)
 }
 
 /// [`lowest_modes`] always on the sparse path (factorization + block shift-invert iteration),
@@ -321,16 +315,6 @@ pub fn lowest_modes_iterative(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     spec: &EigenSpec,
-) -> Result<EigenSolution, SolveError> {
-    lowest_modes_iterative_below(k, m, spec, None)
-}
-
-/// [`lowest_modes_iterative`] with the band mode of [`lowest_modes_below`].
-pub fn lowest_modes_iterative_below(
-    k: &SparseColMat<usize, f64>,
-    m: &SparseColMat<usize, f64>,
-    spec: &EigenSpec,
-    upper: Option<f64>,
 ) -> Result<EigenSolution, SolveError> {
     let _par = ParGuard::new(spec.par);
     validate(k, m, spec.count)?;
@@ -361,7 +345,7 @@ pub fn lowest_modes_iterative_below(
             Err(e) => return Err(e),
         };
         let seconds_factor = t0.elapsed().as_secs_f64();
-        let mut sol = lowest_modes_factored_below(k, m, &llt, sigma, spec, upper)?;
+        let mut sol = lowest_modes_factored(k, m, &llt, sigma, spec)?;
         sol.info.seconds_factor = seconds_factor;
         return Ok(sol);
     }
@@ -376,18 +360,6 @@ pub fn lowest_modes_factored(
     llt: &SparseLlt,
     sigma: f64,
     spec: &EigenSpec,
-) -> Result<EigenSolution, SolveError> {
-    lowest_modes_factored_below(k, m, llt, sigma, spec, None)
-}
-
-/// [`lowest_modes_factored`] with the band mode of [`lowest_modes_below`].
-pub fn lowest_modes_factored_below(
-    k: &SparseColMat<usize, f64>,
-    m: &SparseColMat<usize, f64>,
-    llt: &SparseLlt,
-    sigma: f64,
-    spec: &EigenSpec,
-    upper: Option<f64>,
 ) -> Result<EigenSolution, SolveError> {
     let _par = ParGuard::new(spec.par);
     validate(k, m, spec.count)?;
@@ -410,7 +382,7 @@ pub fn lowest_modes_factored_below(
             .min(n),
         tol: spec.tol,
         max_steps: 200 + 20 * count.div_ceil(b),
-        upper,
+        upper: spec.upper,
         // the basis (3 × count) stays within half the problem; beyond, the dense path
         max_count: count.max(n / 6),
     };
