@@ -140,12 +140,7 @@ pub fn solve_kernel(kp: &str, blocks: &[usize]) -> Res<Value> {
     let mut rows = Vec::new();
     for &b in &blocks {
         let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let rhs = flexbody::solve::Mat::<f64>::from_fn(k.nrows(), b, |_, _| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        });
+        let rhs = flexbody::solve::eigen::random_block(k.nrows(), b, &mut seed);
         let time =
             |f: &dyn Fn(&mut flexbody::solve::Mat<f64>)| -> (f64, flexbody::solve::Mat<f64>) {
                 let mut best = f64::INFINITY;

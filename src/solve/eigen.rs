@@ -162,8 +162,9 @@ fn mqr(
     Ok((q, mq, r))
 }
 
-/// Deterministic pseudo-random block (xorshift), entries in (−1, 1).
-fn random_block(n: usize, b: usize, seed: &mut u64) -> Mat<f64> {
+/// Deterministic pseudo-random block (xorshift; `seed` must be non-zero and is advanced),
+/// entries in (−1, 1).
+pub fn random_block(n: usize, b: usize, seed: &mut u64) -> Mat<f64> {
     Mat::from_fn(n, b, |_, _| {
         *seed ^= *seed << 13;
         *seed ^= *seed >> 7;

@@ -251,21 +251,32 @@ fn ratio(tk: f64, tm: f64) -> f64 {
     }
 }
 
-fn validate(
-    k: &SparseColMat<usize, f64>,
-    m: &SparseColMat<usize, f64>,
-    count: usize,
+/// K and M square and of one size, else an error naming both shapes (after `context`).
+pub(crate) fn check_pair(
+    k: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    m: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    context: &str,
 ) -> Result<(), SolveError> {
     let n = k.nrows();
     if k.ncols() != n || m.nrows() != n || m.ncols() != n {
         return Err(SolveError::Dimension(format!(
-            "K is {}x{}, M is {}x{}",
+            "{context}K is {}x{}, M is {}x{}",
             k.nrows(),
             k.ncols(),
             m.nrows(),
             m.ncols()
         )));
     }
+    Ok(())
+}
+
+fn validate(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    count: usize,
+) -> Result<(), SolveError> {
+    let n = k.nrows();
+    check_pair(k.as_ref(), m.as_ref(), "")?;
     if k.val().iter().any(|v| !v.is_finite()) {
         return Err(SolveError::NonFinite("K"));
     }

@@ -465,7 +465,7 @@ mod tests {
     use crate::solve::sparse_ops;
     use crate::solve::SparseLlt;
     use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
-    use faer::{Mat, Par};
+    use faer::Par;
 
     /// A 3D Laplacian-like SPD matrix on an nx × ny × nz grid with 3 dofs per node (coupled),
     /// big enough for faer to choose the supernodal factor with wide supernodes.
@@ -508,16 +508,6 @@ mod tests {
         faer::sparse::SparseColMat::try_new_from_triplets(3 * nn, 3 * nn, &trips).unwrap()
     }
 
-    fn rhs(n: usize, b: usize) -> Mat<f64> {
-        let mut s = 0x9E37_79B9_7F4A_7C15u64;
-        Mat::from_fn(n, b, |_, _| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        })
-    }
-
     /// Every lane width, the SIMD and the portable kernels, against faer's solve and by the
     /// residual ‖A X − B‖ (supernodes wider than a panel included).
     #[test]
@@ -533,7 +523,7 @@ mod tests {
         let perm = llt.symbolic().perm().map(|p| p.arrays().0);
         let n = a.nrows();
         for b in [1, 3, 4, 6, 8, 11, 12, 16] {
-            let bm = rhs(n, b);
+            let bm = crate::solve::eigen::random_block(n, b, &mut 0x9E37_79B9_7F4A_7C15u64);
             let mut reference = bm.clone();
             llt.solve_in_place_faer(reference.as_mut());
             for simd in [true, false] {

@@ -60,13 +60,6 @@ pub fn add_a_d(mut w: MatMut<'_, f64>, a: MatRef<'_, f64>, d: MatRef<'_, f64>, a
     faer::linalg::matmul::matmul(w, Accum::Add, a, d, alpha, Par::Seq);
 }
 
-/// A D (A n × p, D p × k) as a new matrix.
-pub fn a_d(a: MatRef<'_, f64>, d: MatRef<'_, f64>) -> Mat<f64> {
-    let mut w = Mat::<f64>::zeros(a.nrows(), d.ncols());
-    add_a_d(w.as_mut(), a, d, 1.0);
-    w
-}
-
 /// AVX2/FMA present and all matrices stored with contiguous columns.
 #[cfg(target_arch = "x86_64")]
 fn simd_ok(ms: &[MatRef<'_, f64>]) -> bool {
@@ -265,13 +258,7 @@ mod tests {
     use super::*;
 
     fn mat(n: usize, k: usize, seed: u64) -> Mat<f64> {
-        let mut s = seed;
-        Mat::from_fn(n, k, |_, _| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        })
+        crate::solve::eigen::random_block(n, k, &mut { seed })
     }
 
     /// Both kernels against faer's products, for thin widths 1…13 (two passes above 8), row
