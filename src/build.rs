@@ -194,6 +194,14 @@ pub enum BuildError {
     /// Stress/strain shapes could not be recovered.
     #[error(transparent)]
     Fields(#[from] crate::stress::StressError),
+    /// The built body failed its own verification (nothing was written).
+    #[error("{file}: {source}")]
+    Verify {
+        /// Model file.
+        file: String,
+        /// The failed checks.
+        source: crate::verify::VerifyError,
+    },
     /// The request does not fit the model.
     #[error("{file}: {message}")]
     Request {
@@ -205,7 +213,7 @@ pub enum BuildError {
 }
 
 /// Stages reported to the progress callback, in order.
-pub const STAGES: [&str; 8] = [
+pub const STAGES: [&str; 9] = [
     "import",
     "interfaces",
     "assembly",
@@ -214,6 +222,7 @@ pub const STAGES: [&str; 8] = [
     "invariants",
     "stress shapes",
     "assemble file",
+    "verify",
 ];
 
 /// Run the pipeline. `progress(stage)` is called as each stage starts.
@@ -244,8 +253,20 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
 /// called as each stage starts.
 pub fn build_model(
     spec: &BuildSpec,
+    model: Model,
+    progress: &mut dyn FnMut(&str),
+) -> Result<BuildOutput, BuildError> {
+    build_model_with_hook(spec, model, progress, &mut |_| {})
+}
+
+/// [`build_model`] with `hook` applied to the mode set (over the independent dofs) right after
+/// the reduction, before the body is assembled and verified: for tests of the verification
+/// (a corrupted basis must be refused) and for programs that post-process a set.
+pub fn build_model_with_hook(
+    spec: &BuildSpec,
     mut model: Model,
     progress: &mut dyn FnMut(&str),
+    hook: &mut dyn FnMut(&mut ModeSet),
 ) -> Result<BuildOutput, BuildError> {
     let mut report = BuildReport::default();
     let mut clock = Instant::now();
@@ -407,8 +428,27 @@ pub fn build_model(
         ..Default::default()
     };
     let (k_r, m_r) = (&reduced.k, &reduced.m);
+    // massless dofs: motions with neither mass nor stiffness are held (reduce::massless)
+    let massless = match spec.method {
+        BuildMethod::CraigBampton => reduce::massless::MasslessDofs {
+            massless: reduce::massless::massless_dofs(m_r),
+            held: vec![],
+        },
+        BuildMethod::Normal => reduce::massless::analyse(k_r, m_r, &reference, &[], eig.par)?,
+        _ => reduce::massless::analyse(k_r, m_r, &[], &interface_dofs, eig.par)?,
+    };
+    let unit_loads_at = |map: &[usize], k: &crate::solve::SparseColMat<usize, f64>| {
+        let dofs: Vec<usize> = interface_dofs
+            .iter()
+            .filter_map(|&d| Some(map[d]).filter(|&r| r != usize::MAX))
+            .collect();
+        reduce::craig_chang::unit_loads(k.nrows(), &dofs)
+    };
     let mut set: ModeSet = match spec.method {
-        BuildMethod::Normal => reduce::normal::normal_modes(k_r, m_r, count, &reference, &eig)?,
+        BuildMethod::Normal => reduce::massless::on_held(k_r, m_r, &massless, |k, m, map| {
+            let fixed = reduce::massless::map_dofs(map, &reference, "reference dofs")?;
+            reduce::normal::normal_modes(k, m, count, &fixed, &eig)
+        })?,
         BuildMethod::CraigBampton if reference.is_empty() => {
             reduce::craig_bampton::craig_bampton(k_r, m_r, &interface_dofs, count, &eig)?
         }
@@ -435,15 +475,25 @@ pub fn build_model(
                 )))
             }
         },
-        BuildMethod::CraigChang => {
-            let fa = reduce::craig_chang::unit_loads(k_r.nrows(), &interface_dofs)?;
-            reduce::craig_chang::craig_chang(k_r, m_r, &fa, count, &eig)?
-        }
-        BuildMethod::Dietz => {
-            let fa = reduce::craig_chang::unit_loads(k_r.nrows(), &interface_dofs)?;
-            reduce::dietz::dietz(k_r, m_r, &fa, count, None, &eig)?
-        }
+        BuildMethod::CraigChang => reduce::massless::on_held(k_r, m_r, &massless, |k, m, map| {
+            let fa = unit_loads_at(map, k)?;
+            reduce::craig_chang::craig_chang(k, m, &fa, count, &eig)
+        })?,
+        BuildMethod::Dietz => reduce::massless::on_held(k_r, m_r, &massless, |k, m, map| {
+            let fa = unit_loads_at(map, k)?;
+            reduce::dietz::dietz(k, m, &fa, count, None, &eig)
+        })?,
     };
+    if spec.method == BuildMethod::CraigBampton {
+        set.diagnostics.massless_dofs = massless.massless.len();
+        if !massless.massless.is_empty() {
+            set.diagnostics.notes.push(format!(
+                "{} massless dofs (zero mass row and column): condensed statically by the \
+                 constraint-mode and fixed-interface solves",
+                massless.massless.len()
+            ));
+        }
+    }
     if let (Some(n), Some(_)) = (spec.modes, spec.fmax_hz) {
         // Both given: the count caps the band (CB keeps its constraint-derived modes on top).
         let extra = if spec.method == BuildMethod::Normal {
@@ -453,6 +503,7 @@ pub fn build_model(
         };
         set = select::by_count(set, n + extra);
     }
+    hook(&mut set);
     report.diagnostics = set.diagnostics.clone();
     let phi = reduced.expand(set.phi.as_ref());
     lap(&mut report, STAGES[4]);
@@ -514,6 +565,15 @@ pub fn build_model(
         fields.as_ref(),
     )?;
     lap(&mut report, STAGES[7]);
+
+    progress(STAGES[8]);
+    crate::verify::verify_body(&body, Some((k_r, m_r, &set.phi))).map_err(|source| {
+        BuildError::Verify {
+            file: file_name.clone(),
+            source,
+        }
+    })?;
+    lap(&mut report, STAGES[8]);
     Ok(BuildOutput { body, report })
 }
 

@@ -33,4 +33,5 @@ pub mod precheck;
 pub mod reduce;
 pub mod solve;
 pub mod stress;
+pub mod verify;
 pub mod write;

@@ -8,6 +8,7 @@
 pub mod craig_bampton;
 pub mod craig_chang;
 pub mod dietz;
+pub mod massless;
 pub mod normal;
 pub mod orthonormalize;
 pub mod reference;
@@ -136,6 +137,14 @@ pub struct Diagnostics {
     pub removed: Vec<RemovedVector>,
     /// Relative pivot tolerance of the rank-revealing step.
     pub dependency_tol: f64,
+    /// Massless basis directions (stiffness without mass) condensed statically by the
+    /// orthonormalization (not counted in `removed`).
+    pub massless_directions: usize,
+    /// Massless dofs of the model (zero mass row and column), see [`massless`].
+    pub massless_dofs: usize,
+    /// Dofs held because a motion of the massless dofs has neither mass nor stiffness (one per
+    /// such motion, e.g. the rotation about a line of point masses), see [`massless`].
+    pub held_massless: Vec<usize>,
     /// Free-text notes (choices made automatically, e.g. the support dofs).
     pub notes: Vec<String>,
 }

@@ -200,18 +200,36 @@ pub fn orthonormalize(
             remaining: rem[c].max(0.0),
         })
         .collect();
+    // Columns left out of the M-independent set are either dependent (T x ≈ 0) or carry a
+    // massless direction (M T x = 0 with stiffness): the latter are condensed statically.
     let q = kept.len();
-    let ks = Mat::from_fn(q, q, |i, j| kh[(kept[i], kept[j])]);
-    let mss = Mat::from_fn(q, q, |i, j| mh[(kept[i], kept[j])]);
+    let cond = condense_massless(&kh, &mh, &kept, &removed)?;
+    let g = &cond.g;
+    let removed: Vec<RemovedVector> = removed
+        .into_iter()
+        .filter(|r| !cond.massless.contains(&r.column))
+        .collect();
+    let (ks, mss, ts) = if cond.massless.is_empty() {
+        (
+            Mat::from_fn(q, q, |i, j| kh[(kept[i], kept[j])]),
+            Mat::from_fn(q, q, |i, j| mh[(kept[i], kept[j])]),
+            Mat::from_fn(t.nrows(), q, |i, j| t[(i, kept[j])]),
+        )
+    } else {
+        (
+            dense::sym((g.transpose() * &kh * g).as_ref()),
+            dense::sym((g.transpose() * &mh * g).as_ref()),
+            t * g,
+        )
+    };
     let (_, y) = dense::projected(ks.as_ref(), mss.as_ref())?;
-    let ts = Mat::from_fn(t.nrows(), q, |i, j| t[(i, kept[j])]);
     let phi1 = &ts * &y;
     // second pass on the (now well-conditioned) Φ
     let k1 = phi1.transpose() * spmm(k.as_ref(), phi1.as_ref());
     let m1 = phi1.transpose() * spmm(m.as_ref(), phi1.as_ref());
     let (omega2, y2) = dense::projected(k1.as_ref(), m1.as_ref())?;
     let phi = &phi1 * &y2;
-    let n = &y * &y2; // coefficients of Φ on the kept columns
+    let n = g * (&y * &y2); // coefficients of Φ on the columns of T
     let scale = trace_ratio(k, m);
     let rigid = rigid_flags(k, &phi, &omega2, scale);
     let labels_out = (0..q)
@@ -220,18 +238,40 @@ pub fn orthonormalize(
                 return ModeLabel::Rigid;
             }
             let mut best = (0, -1.0);
-            for (r, &c) in kept.iter().enumerate() {
-                let w = n[(r, j)].abs() * mh[(c, c)].max(0.0).sqrt();
+            // a flexible mode is never labelled rigid, whatever its rigid-column content
+            for &c in kept.iter().filter(|&&c| labels[c] != ModeLabel::Rigid) {
+                let w = n[(c, j)].abs() * mh[(c, c)].max(0.0).sqrt();
                 if w > best.1 {
                     best = (c, w);
                 }
             }
-            labels[best.0].clone()
+            if best.1 < 0.0 {
+                ModeLabel::Normal
+            } else {
+                labels[best.0].clone()
+            }
         })
         .collect();
     let mut diagnostics = diagnose(k, m, &phi, &omega2)?;
     diagnostics.removed = removed;
     diagnostics.dependency_tol = DEPENDENCY_TOL;
+    if !cond.massless.is_empty() {
+        diagnostics.massless_directions = cond.massless.len();
+        diagnostics.notes.push(format!(
+            "{} massless basis direction(s) (stiffness without mass, e.g. rotations of a lumped \
+             beam without rotary inertia) condensed statically{}",
+            cond.massless.len(),
+            if cond.zero_energy > 0 {
+                format!(
+                    "; {} of them with neither mass nor stiffness (e.g. the rotation about a \
+                     line of point masses) dropped",
+                    cond.zero_energy
+                )
+            } else {
+                String::new()
+            }
+        ));
+    }
     Ok(Orthonormalized {
         phi,
         omega2,
@@ -240,3 +280,118 @@ pub fn orthonormalize(
         diagnostics,
     })
 }
+
+/// A removed column counts as massless (to be condensed) when the stiffness energy left after
+/// M-projecting out the kept columns exceeds this fraction of its own: a dependent column leaves
+/// (near) nothing in either norm, a massless direction its stiffness.
+pub const MASSLESS_ENERGY_TOL: f64 = 1e-6;
+
+/// Static condensation of the massless directions of a basis, in the coefficient space of T.
+struct Condensation {
+    /// p × q: column j is kept column j with its massless directions condensed,
+    /// e_kept − Z K_zz⁺ K_z,kept (Z: the massless residual directions).
+    g: Mat<f64>,
+    /// Removed columns whose residual is a massless direction.
+    massless: Vec<usize>,
+    /// Directions of the massless set with no stiffness either (dropped by the pseudo-inverse).
+    zero_energy: usize,
+}
+
+/// The condensed coefficients G: x = G x_kept with the massless residuals z_j = e_j − kept·C_j
+/// (C = M̂_kk⁻¹M̂_kj, so M̂z ≈ 0) at their static optimum z-part = −K_zz⁺K_zk (Guyan on the
+/// massless set: exact for it, since it carries no inertia).
+fn condense_massless(
+    kh: &Mat<f64>,
+    mh: &Mat<f64>,
+    kept: &[usize],
+    removed: &[RemovedVector],
+) -> Result<Condensation, ReduceError> {
+    let (p, q) = (kh.nrows(), kept.len());
+    let mut g = Mat::<f64>::zeros(p, q);
+    for (r, &c) in kept.iter().enumerate() {
+        g[(c, r)] = 1.0;
+    }
+    if removed.is_empty() {
+        return Ok(Condensation {
+            g,
+            massless: vec![],
+            zero_energy: 0,
+        });
+    }
+    let mkk = Mat::from_fn(q, q, |i, j| mh[(kept[i], kept[j])]);
+    let l = dense::cholesky(mkk.as_ref()).ok_or(SolveError::DependentBasis)?;
+    // residual coefficient vectors of every removed column
+    let s_all = removed.len();
+    let mut rhs = Mat::from_fn(q, s_all, |i, j| mh[(kept[i], removed[j].column)]);
+    faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+        l.as_ref(),
+        rhs.as_mut(),
+        faer::Par::Seq,
+    );
+    faer::linalg::triangular_solve::solve_upper_triangular_in_place(
+        l.transpose(),
+        rhs.as_mut(),
+        faer::Par::Seq,
+    );
+    let mut z_all = Mat::<f64>::zeros(p, s_all);
+    for j in 0..s_all {
+        z_all[(removed[j].column, j)] = 1.0;
+        for (r, &c) in kept.iter().enumerate() {
+            z_all[(c, j)] -= rhs[(r, j)];
+        }
+    }
+    let kz = kh * &z_all;
+    let massless_idx: Vec<usize> = (0..s_all)
+        .filter(|&j| {
+            let c = removed[j].column;
+            let own = kh[(c, c)];
+            let left: f64 = (0..p).map(|i| z_all[(i, j)] * kz[(i, j)]).sum();
+            own > 0.0 && left > MASSLESS_ENERGY_TOL * own
+        })
+        .collect();
+    if massless_idx.is_empty() {
+        return Ok(Condensation {
+            g,
+            massless: vec![],
+            zero_energy: 0,
+        });
+    }
+    let s = massless_idx.len();
+    let z = Mat::from_fn(p, s, |i, j| z_all[(i, massless_idx[j])]);
+    let kzz = dense::sym((z.transpose() * kh * &z).as_ref());
+    // pseudo-inverse of K_zz on the unit-diagonal scaling: directions with no stiffness either
+    // (rigid motions without mass) are dropped
+    let d: Vec<f64> = (0..s)
+        .map(|i| 1.0 / kzz[(i, i)].max(f64::MIN_POSITIVE).sqrt())
+        .collect();
+    let kzs = Mat::from_fn(s, s, |i, j| kzz[(i, j)] * d[i] * d[j]);
+    let (vals, vecs) = dense::eigh(kzs.as_ref())?;
+    let top = vals.iter().fold(0.0f64, |a, &b| a.max(b));
+    let zero_energy = vals.iter().filter(|&&v| v <= ZERO_ENERGY_TOL * top).count();
+    let kzk = Mat::from_fn(s, q, |i, j| {
+        (0..p).map(|r| z[(r, i)] * kh[(r, kept[j])]).sum::<f64>() * d[i]
+    });
+    // X = D V Λ⁺ Vᵀ D K_zk (D applied to K_zk above)
+    let mut x = Mat::<f64>::zeros(s, q);
+    for (e, &lam) in vals.iter().enumerate() {
+        if lam <= ZERO_ENERGY_TOL * top {
+            continue;
+        }
+        for j in 0..q {
+            let proj: f64 = (0..s).map(|i| vecs[(i, e)] * kzk[(i, j)]).sum::<f64>() / lam;
+            for i in 0..s {
+                x[(i, j)] += d[i] * vecs[(i, e)] * proj;
+            }
+        }
+    }
+    let g = g - &z * &x;
+    Ok(Condensation {
+        g,
+        massless: massless_idx.iter().map(|&j| removed[j].column).collect(),
+        zero_energy,
+    })
+}
+
+/// Relative eigenvalue of the scaled massless stiffness below which a massless direction has no
+/// stiffness either (a zero-energy, zero-mass motion).
+const ZERO_ENERGY_TOL: f64 = 1e-10;

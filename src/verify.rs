@@ -1,0 +1,173 @@
+//! The build's own verification before anything is written: the assembled body must pass the
+//! checks `flexbody check` runs on the file (same items, same limits, [`crate::check`]) plus the
+//! identities against the assembled, constrained model it was reduced from:
+//!
+//! * ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²) against that model's K and M ([`identities`]); together they
+//!   also guarantee the Rayleigh–Ritz bound ω²_j ≥ λ_j(full) of a reduced basis (Courant–Fischer:
+//!   each ω²_j is a max–min of Rayleigh quotients over M-orthonormal vectors of the model space),
+//!   so a reduced basis that passes cannot undercut the full model's frequencies;
+//! * eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖ of normal modes;
+//! * the rigid-mode count and the stored-data identities of the file (generalized mass and
+//!   stiffness, invariants recomputed from the stored shapes), by [`crate::check::check`].
+//!
+//! A violation is [`VerifyError`], naming every failed item; `flexbody build` then writes nothing.
+//! The cost is a few sparse products per mode (timed as the build's "verify" stage).
+
+use faer::Mat;
+use flexbody_reader as file;
+
+use crate::check::{self, CheckItem, CheckReport, ORTHO_LIMIT};
+use crate::solve::{sparse_ops, SparseColMat};
+
+/// Limit on the eigen residual of a normal mode against the model (as `check`).
+pub const RESIDUAL_LIMIT: f64 = 1e-6;
+
+/// Quality figures of Φ against a model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Identities {
+    /// max |ΦᵀMΦ − I|.
+    pub orthonormality: f64,
+    /// max |ΦᵀKΦ − diag(ω²)| / max ω².
+    pub stiffness: f64,
+    /// ‖Kφ − ω²Mφ‖/‖Kφ‖ per mode.
+    pub residuals: Vec<f64>,
+}
+
+/// ΦᵀMΦ − I, ΦᵀKΦ − diag(ω²) and the eigen residuals of Φ (n × modes) against (K, M).
+pub fn identities(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    phi: &Mat<f64>,
+    omega2: &[f64],
+) -> Identities {
+    let nm = phi.ncols();
+    let mphi = sparse_ops::spmm(m.as_ref(), phi.as_ref());
+    let kphi = sparse_ops::spmm(k.as_ref(), phi.as_ref());
+    let g = phi.transpose() * &mphi;
+    let h = phi.transpose() * &kphi;
+    let max_w2 = omega2
+        .iter()
+        .fold(0.0f64, |x, &y| x.max(y.abs()))
+        .max(f64::MIN_POSITIVE);
+    let mut orthonormality: f64 = 0.0;
+    let mut stiffness: f64 = 0.0;
+    for j in 0..nm {
+        for i in 0..nm {
+            let id = if i == j { 1.0 } else { 0.0 };
+            orthonormality = orthonormality.max((g[(i, j)] - id).abs());
+            stiffness = stiffness.max((h[(i, j)] - id * omega2[j]).abs() / max_w2);
+        }
+    }
+    let residuals = (0..nm)
+        .map(|j| {
+            let (mut rn, mut kn) = (0.0, 0.0);
+            for i in 0..phi.nrows() {
+                rn += (kphi[(i, j)] - omega2[j] * mphi[(i, j)]).powi(2);
+                kn += kphi[(i, j)].powi(2);
+            }
+            (rn / kn.max(f64::MIN_POSITIVE)).sqrt()
+        })
+        .collect();
+    Identities {
+        orthonormality,
+        stiffness,
+        residuals,
+    }
+}
+
+/// The build refused its own result.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "the built body fails its own verification, no file written: {}",
+    failed.iter().map(|i| format!("{} = {:.3e} > {:.1e} ({})", i.name, i.value, i.limit, i.detail)).collect::<Vec<_>>().join("; ")
+)]
+pub struct VerifyError {
+    /// The failed items.
+    pub failed: Vec<CheckItem>,
+}
+
+/// Verifies `body` (as it will be written) and Φ over the independent dofs of the model (K, M)
+/// it was reduced from; `None` for Φ skips the model identities. Returns the full report.
+pub fn verify_body(
+    body: &file::ReducedBody,
+    model: Option<(
+        &SparseColMat<usize, f64>,
+        &SparseColMat<usize, f64>,
+        &Mat<f64>,
+    )>,
+) -> Result<CheckReport, VerifyError> {
+    let mut report = match check::check(body, None) {
+        Ok(r) => r,
+        Err(e) => {
+            return Err(VerifyError {
+                failed: vec![CheckItem {
+                    name: "file checks".into(),
+                    value: f64::NAN,
+                    limit: 0.0,
+                    pass: false,
+                    detail: e.to_string(),
+                }],
+            })
+        }
+    };
+    if let Some((k, m, phi)) = model {
+        push_identities(
+            &mut report,
+            &identities(k, m, phi, &body.modes.omega2),
+            &body.modes.labels,
+            body.method.method == file::Method::NormalModes,
+            k.nrows(),
+        );
+    }
+    let failed: Vec<CheckItem> = report.items.iter().filter(|i| !i.pass).cloned().collect();
+    if failed.is_empty() {
+        Ok(report)
+    } else {
+        Err(VerifyError { failed })
+    }
+}
+
+/// The model-identity rows of a report (shared by `check --model` and the build).
+pub fn push_identities(
+    report: &mut CheckReport,
+    f: &Identities,
+    labels: &[file::ModeLabel],
+    normal_modes: bool,
+    dofs: usize,
+) {
+    let m = labels.len();
+    report.push(
+        "Φᵀ M Φ = I against the model",
+        f.orthonormality,
+        ORTHO_LIMIT,
+        format!("{m} modes, {dofs} independent dofs"),
+    );
+    report.push(
+        "Φᵀ K Φ = diag(ω²) against the model",
+        f.stiffness,
+        ORTHO_LIMIT,
+        "relative to max ω²".into(),
+    );
+    let worst = f
+        .residuals
+        .iter()
+        .zip(labels)
+        .filter(|(_, l)| **l != file::ModeLabel::Rigid)
+        .fold(0.0f64, |a, (&r, _)| a.max(r));
+    if normal_modes {
+        report.push(
+            "eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖",
+            worst,
+            RESIDUAL_LIMIT,
+            "normal modes are eigenvectors of the model".into(),
+        );
+    } else {
+        report.push(
+            "eigen residuals (reduced basis, for information)",
+            worst,
+            f64::INFINITY,
+            "a reduced basis is not an eigenbasis of the full model: this measures truncation"
+                .into(),
+        );
+    }
+}
