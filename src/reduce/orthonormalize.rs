@@ -173,9 +173,25 @@ pub fn orthonormalize(
     let mt = spmm(m.as_ref(), t.as_ref());
     let kh = dense::sym((t.transpose() * &kt).as_ref());
     let mh = dense::sym((t.transpose() * &mt).as_ref());
+    // a column whose M-norm² is rounding (≤ MASSLESS_COLUMN_TOL of ‖t‖²·max M_ii: a rotation
+    // field of a lumped beam without rotary inertia) is massless: kept out of the pivoting, it
+    // is condensed below instead of lending its rounding noise a direction
+    let m_diag_max = (0..m.ncols())
+        .flat_map(|j| {
+            m.row_idx_of_col_raw(j)
+                .iter()
+                .zip(m.val_of_col(j))
+                .filter(move |(&i, _)| i == j)
+                .map(|(_, &v)| v.abs())
+        })
+        .fold(0.0f64, f64::max);
+    let massless_column = |j: usize| -> bool {
+        let norm2: f64 = (0..t.nrows()).map(|i| t[(i, j)] * t[(i, j)]).sum();
+        mh[(j, j)] <= MASSLESS_COLUMN_TOL * norm2 * m_diag_max
+    };
     let dscale: Vec<f64> = (0..p)
         .map(|j| {
-            if mh[(j, j)] > 0.0 {
+            if mh[(j, j)] > 0.0 && !massless_column(j) {
                 1.0 / mh[(j, j)].sqrt()
             } else {
                 0.0
@@ -286,6 +302,11 @@ pub fn orthonormalize(
 /// (near) nothing in either norm, a massless direction its stiffness.
 pub const MASSLESS_ENERGY_TOL: f64 = 1e-6;
 
+/// A basis column t is massless when tᵀMt ≤ MASSLESS_COLUMN_TOL · ‖t‖² · max M_ii: its mass is
+/// rounding (a rotation field of a lumped beam without rotary inertia has translations of ~1e-16
+/// of its rotations, i.e. ~1e-32 here), not the ≥ 1e-6 of a column that moves any mass.
+pub const MASSLESS_COLUMN_TOL: f64 = 1e-20;
+
 /// Static condensation of the massless directions of a basis, in the coefficient space of T.
 struct Condensation {
     /// p × q: column j is kept column j with its massless directions condensed,
@@ -318,11 +339,17 @@ fn condense_massless(
             zero_energy: 0,
         });
     }
-    let mkk = Mat::from_fn(q, q, |i, j| mh[(kept[i], kept[j])]);
+    // C = M̂_kk⁻¹ M̂_kj on the unit-diagonal scaling D M̂_kk D (columns differ by orders of
+    // magnitude in M-norm; unscaled, C was measured to lose every digit)
+    let dk: Vec<f64> = kept
+        .iter()
+        .map(|&c| 1.0 / mh[(c, c)].max(f64::MIN_POSITIVE).sqrt())
+        .collect();
+    let mkk = Mat::from_fn(q, q, |i, j| mh[(kept[i], kept[j])] * dk[i] * dk[j]);
     let l = dense::cholesky(mkk.as_ref()).ok_or(SolveError::DependentBasis)?;
     // residual coefficient vectors of every removed column
     let s_all = removed.len();
-    let mut rhs = Mat::from_fn(q, s_all, |i, j| mh[(kept[i], removed[j].column)]);
+    let mut rhs = Mat::from_fn(q, s_all, |i, j| mh[(kept[i], removed[j].column)] * dk[i]);
     faer::linalg::triangular_solve::solve_lower_triangular_in_place(
         l.as_ref(),
         rhs.as_mut(),
@@ -337,7 +364,7 @@ fn condense_massless(
     for j in 0..s_all {
         z_all[(removed[j].column, j)] = 1.0;
         for (r, &c) in kept.iter().enumerate() {
-            z_all[(c, j)] -= rhs[(r, j)];
+            z_all[(c, j)] -= rhs[(r, j)] * dk[r];
         }
     }
     let kz = kh * &z_all;
