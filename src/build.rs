@@ -195,12 +195,12 @@ pub enum BuildError {
     #[error(transparent)]
     Fields(#[from] crate::stress::StressError),
     /// The built body failed its own verification (nothing was written).
-    #[error("{file}: {source}")]
+    #[error("{file}: {failures}")]
     Verify {
         /// Model file.
         file: String,
         /// The failed checks.
-        source: crate::verify::VerifyError,
+        failures: crate::verify::VerifyError,
     },
     /// The request does not fit the model.
     #[error("{file}: {message}")]
@@ -567,10 +567,10 @@ pub fn build_model_with_hook(
     lap(&mut report, STAGES[7]);
 
     progress(STAGES[8]);
-    crate::verify::verify_body(&body, Some((k_r, m_r, &set.phi))).map_err(|source| {
+    crate::verify::verify_body(&body, Some((k_r, m_r, &set.phi))).map_err(|failures| {
         BuildError::Verify {
             file: file_name.clone(),
-            source,
+            failures,
         }
     })?;
     lap(&mut report, STAGES[8]);

@@ -270,13 +270,13 @@ fn corrupted_basis_is_refused_before_anything_is_written() {
         }
     });
     match out {
-        Err(BuildError::Verify { source, .. }) => {
-            let names: Vec<&str> = source.failed.iter().map(|i| i.name.as_str()).collect();
+        Err(BuildError::Verify { failures, .. }) => {
+            let names: Vec<&str> = failures.failed.iter().map(|i| i.name.as_str()).collect();
             assert!(
                 names.contains(&"Φᵀ M Φ = I against the model"),
                 "failed: {names:?}"
             );
-            let msg = source.to_string();
+            let msg = failures.to_string();
             assert!(msg.contains("no file written"), "{msg}");
         }
         other => panic!(

@@ -397,7 +397,31 @@ pub fn lowest_modes_factored(
         // the basis (3 × count) stays within half the problem; beyond, the dense path
         max_count: count.max(n / 6),
     };
-    let r = eigen::block_shift_invert(k.as_ref(), m.as_ref(), llt, sigma, &prm)?;
+    // A small basis can stall (measured: a free 1000-element lumped CBAR line, whose rotations
+    // are all massless, did not converge to 6 or 12 modes in 240 steps but did to 20): retry
+    // with twice the count, up to the band mode's own limit n/6, and keep the lowest `count`.
+    let mut r = eigen::block_shift_invert(k.as_ref(), m.as_ref(), llt, sigma, &prm);
+    let mut wider = count;
+    while matches!(r, Err(SolveError::NotConverged { .. }))
+        && spec.upper.is_none()
+        && 2 * wider <= prm.max_count
+        && 2 * wider + 2 * b <= n
+    {
+        wider *= 2;
+        let p2 = eigen::BlockParams {
+            count: wider,
+            max_basis: default_basis(wider, b).min(n),
+            max_steps: 200 + 20 * wider.div_ceil(b),
+            max_count: wider,
+            ..prm.clone()
+        };
+        r = eigen::block_shift_invert(k.as_ref(), m.as_ref(), llt, sigma, &p2).map(|mut r| {
+            r.values.truncate(count);
+            r.vectors = r.vectors.as_ref().subcols(0, count).to_owned();
+            r
+        });
+    }
+    let r = r?;
     let mut info = EigenInfo {
         shift: sigma,
         dense: false,
