@@ -277,7 +277,7 @@ fn corrupted_basis_is_refused_before_anything_is_written() {
                 "failed: {names:?}"
             );
             let msg = failures.to_string();
-            assert!(msg.contains("no file written"), "{msg}");
+            assert!(msg.contains("no file was written"), "{msg}");
         }
         other => panic!(
             "corrupted basis accepted: {:?}",
