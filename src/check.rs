@@ -345,7 +345,7 @@ pub const ZERO_INERTIA: f64 = 1e-10;
 pub fn zero_inertia_axes(body: &file::ReducedBody) -> usize {
     let inv = &body.invariants;
     let i1 = inv.i1.first().copied().unwrap_or(0.0);
-    if !(i1 > 0.0) || inv.i2.len() != 3 || inv.i7.len() != 9 {
+    if i1.is_nan() || i1 <= 0.0 || inv.i2.len() != 3 || inv.i7.len() != 9 {
         return 0;
     }
     let c: Vec<f64> = inv.i2.iter().map(|v| v / i1).collect();

@@ -106,15 +106,18 @@ pub struct VerifyError {
     pub failed: Vec<CheckItem>,
 }
 
+/// (K, M, Φ) over the independent dofs of the model a body was reduced from.
+pub type ModelPhi<'a> = (
+    &'a SparseColMat<usize, f64>,
+    &'a SparseColMat<usize, f64>,
+    &'a Mat<f64>,
+);
+
 /// Verifies `body` (as it will be written) and Φ over the independent dofs of the model (K, M)
 /// it was reduced from; `None` for Φ skips the model identities. Returns the full report.
 pub fn verify_body(
     body: &file::ReducedBody,
-    model: Option<(
-        &SparseColMat<usize, f64>,
-        &SparseColMat<usize, f64>,
-        &Mat<f64>,
-    )>,
+    model: Option<ModelPhi<'_>>,
 ) -> Result<CheckReport, VerifyError> {
     let mut report = match check::check(body, None) {
         Ok(r) => r,
