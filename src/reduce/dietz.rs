@@ -49,6 +49,10 @@ fn check_shift(ell: f64, l1: f64) -> Result<(), ReduceError> {
 /// Relative convergence of the static procedure's fixed point.
 const FIXED_POINT_TOL: f64 = 1e-13;
 
+/// A fixed point whose step stops shrinking below this relative size has reached the rounding
+/// of its solves and is accepted (the build's verification checks the set against the model).
+const FIXED_POINT_STALL: f64 = 1e-9;
+
 fn finish(o: super::Orthonormalized, method: Method, note: String) -> ModeSet {
     let mut diagnostics = o.diagnostics;
     diagnostics.notes.push(note);
@@ -89,6 +93,7 @@ pub fn dietz(
     let fe = ir.equilibrate(fa);
     let mut y = ir.solve_equilibrated(&fe);
     let mut iters = 0;
+    let mut last_d = f64::INFINITY;
     loop {
         let my = sparse_ops::spmm(m.as_ref(), y.as_ref());
         let rhs = &fe + &my * faer::Scale(ell);
@@ -97,9 +102,13 @@ pub fn dietz(
         let s = y2.norm_max();
         y = y2;
         iters += 1;
-        if d <= FIXED_POINT_TOL * s {
+        // converged, or stalled at the rounding of the solves (the step no longer shrinks by
+        // the contraction rate ℓ/λ₁ ≤ 0.9, MAX_SHIFT_FRACTION; measured on a free 1000-element
+        // lumped CBAR line: the steps stop falling at ~1e-12 of the solution)
+        if d <= FIXED_POINT_TOL * s || (d <= FIXED_POINT_STALL * s && d >= 0.95 * last_d) {
             break;
         }
+        last_d = d;
         if iters > 2000 {
             return Err(ReduceError::Dofs {
                 what: "Dietz shift",
