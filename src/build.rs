@@ -96,6 +96,11 @@ pub struct BuildSpec {
     /// Rotational inertia of lumped beam masses; `None` = automatic: as Nastran lumps each card
     /// (CBAR none, CBEAM torsion) for Nastran decks, the section's rotary inertia otherwise.
     pub beam_mass: Option<BeamLumping>,
+    /// Nastran: the case-control subcase whose SPC and METHOD selections apply.
+    pub subcase: Option<u64>,
+    /// `mass` was chosen by the user (`--mass`); when false a deck's PARAM,COUPMASS > 0 selects
+    /// consistent mass (see [`crate::deck`]).
+    pub mass_explicit: bool,
 }
 
 impl BuildSpec {
@@ -122,6 +127,8 @@ impl BuildSpec {
             created_utc: None,
             threads: 1,
             beam_mass: None,
+            subcase: None,
+            mass_explicit: false,
         }
     }
 
@@ -162,6 +169,11 @@ pub struct BuildReport {
     pub dofs: (usize, usize),
     /// Checked diagnostics of the mode set.
     pub diagnostics: reduce::Diagnostics,
+    /// What the build took from the deck (mass, mode count, interface, subcase), and
+    /// constraint components dropped from interface/reference nodes.
+    pub notes: Vec<String>,
+    /// Every applied constraint: card, line, set, dofs held.
+    pub constraints: Vec<crate::deck::ConstraintSummary>,
 }
 
 /// A built body with its report.
@@ -225,6 +237,7 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
         &ImportOptions {
             format: spec.format,
             material: spec.material.clone(),
+            subcase: spec.subcase,
         },
     )?;
     let import_s = clock.elapsed().as_secs_f64();
@@ -248,6 +261,10 @@ pub fn build_model(
     progress: &mut dyn FnMut(&str),
 ) -> Result<BuildOutput, BuildError> {
     let mut report = BuildReport::default();
+    // The deck's own requests (COUPMASS, METHOD, ASET, TITLE) fill the choices left open.
+    let defaults = crate::deck::deck_defaults(spec, &model);
+    let spec = &defaults.spec;
+    report.notes = defaults.notes.clone();
     let mut clock = Instant::now();
     let mut lap = |report: &mut BuildReport, name: &str| {
         report
@@ -296,6 +313,7 @@ pub fn build_model(
             ..Default::default()
         },
     )?;
+    report.constraints = crate::deck::constraint_summary(&model, &assembled.dofs);
     lap(&mut report, STAGES[2]);
 
     progress(STAGES[3]);
@@ -342,9 +360,26 @@ pub fn build_model(
             })
             .collect()
     };
+    // Interface and reference dofs: the free components (held ones drop out of plain ids; a
+    // held component given explicitly is an error naming its constraint).
     let mut interface_dofs = Vec::new();
-    for &n in &interface_nodes {
-        interface_dofs.extend(node_dofs(n, DofMask::ALL, "interface")?);
+    let mut interface_masks = Vec::new();
+    let mut dropped: Vec<String> = Vec::new();
+    for r in &report.interfaces {
+        for &n in &r.nodes {
+            let count = usize::from(dofs.count[n]);
+            let (mask, held) = crate::deck::node_mask(&model, n, count, r.dofs, "interface")
+                .map_err(&request_err)?;
+            if held.0 != 0 {
+                dropped.push(format!(
+                    "interface node {} ({})",
+                    model.nodes[n].id,
+                    held.digits()
+                ));
+            }
+            interface_dofs.extend(node_dofs(n, mask, "interface")?);
+            interface_masks.push(mask);
+        }
     }
     let by_id = model.node_index_by_id();
     let mut reference = Vec::new();
@@ -353,8 +388,23 @@ pub fn build_model(
         let node = *by_id
             .get(&id)
             .ok_or_else(|| request_err(format!("reference-condition node {id} does not exist")))?;
+        // All six digits mean "the node": its free components.
+        let explicit = (mask != DofMask::ALL).then_some(mask);
+        let count = usize::from(dofs.count[node]);
+        let (mask, held) =
+            crate::deck::node_mask(&model, node, count, explicit, "reference-condition")
+                .map_err(&request_err)?;
+        if held.0 != 0 {
+            dropped.push(format!("reference node {id} ({})", held.digits()));
+        }
         reference.extend(node_dofs(node, mask, "reference-condition")?);
         reference_records.push((node, mask));
+    }
+    if !dropped.is_empty() {
+        report.notes.push(format!(
+            "held components (GRID PS / GRDSET / selected SPC) are not interface or reference dofs: {}",
+            dropped.join(", ")
+        ));
     }
     // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
     crate::precheck::before_reduction(
@@ -391,15 +441,16 @@ pub fn build_model(
     lap(&mut report, STAGES[3]);
 
     progress(STAGES[4]);
-    let count = match (spec.modes, spec.fmax_hz) {
-        (_, Some(f)) if !(f.is_finite() && f > 0.0) => {
+    let count = match (spec.modes, spec.fmax_hz, defaults.band) {
+        (_, Some(f), _) if !(f.is_finite() && f > 0.0) => {
             return Err(request_err(format!(
                 "--fmax {f} must be a positive frequency in Hz"
             )))
         }
-        (_, Some(f)) => ModeCount::BelowHz(select::FMAX_FACTOR * f),
-        (Some(n), None) => ModeCount::Count(n),
-        (None, None) => ModeCount::Count(DEFAULT_MODES),
+        (_, Some(f), _) => ModeCount::BelowHz(select::FMAX_FACTOR * f),
+        (_, None, Some(band)) => band,
+        (Some(n), None, None) => ModeCount::Count(n),
+        (None, None, None) => ModeCount::Count(DEFAULT_MODES),
     };
     let eig = EigenSpec {
         dofs_per_node: Some(3),
@@ -444,7 +495,10 @@ pub fn build_model(
             reduce::dietz::dietz(k_r, m_r, &fa, count, None, &eig)?
         }
     };
-    if let (Some(n), Some(_)) = (spec.modes, spec.fmax_hz) {
+    if let (Some(n), true) = (
+        spec.modes,
+        spec.fmax_hz.is_some() || defaults.band.is_some(),
+    ) {
         // Both given: the count caps the band (CB keeps its constraint-derived modes on top).
         let extra = if spec.method == BuildMethod::Normal {
             0
@@ -507,6 +561,7 @@ pub fn build_model(
         &set,
         &stored,
         &interface_nodes,
+        &interface_masks,
         &reference_records,
         &faces,
         &nodal,
@@ -728,6 +783,7 @@ fn assemble_body(
     set: &ModeSet,
     stored: &[NodeIndex],
     interface: &[NodeIndex],
+    interface_masks: &[DofMask],
     reference: &[(NodeIndex, DofMask)],
     faces: &[crate::faces::GraphicsFace],
     nodal: &NodalMass,
@@ -818,9 +874,10 @@ fn assemble_body(
     let identity3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let interface_records = interface
         .iter()
-        .map(|&n| file::InterfaceNode {
+        .zip(interface_masks)
+        .map(|(&n, m)| file::InterfaceNode {
             node: position[n],
-            dofs: std::array::from_fn(|k| k < usize::from(dofs.count[n])),
+            dofs: std::array::from_fn(|k| k < usize::from(dofs.count[n]) && m.contains(k)),
             frame: dofs.frames[n].unwrap_or(identity3),
         })
         .collect();
