@@ -137,11 +137,16 @@ pub fn held_components(model: &Model, node: NodeIndex) -> Vec<(usize, String)> {
             }
             for c in s.dofs.dofs() {
                 if !out.iter().any(|(k, _)| *k == c) {
-                    let set = src.set.as_ref().map_or(String::new(), |s| format!(" {s}"));
-                    out.push((
-                        c,
-                        format!("{} {}{set} ({}:{})", src.card, src.id, src.file, src.line),
-                    ));
+                    let at = format!("{}:{}", src.file, src.line);
+                    let by = match (src.permanent, src.card.strip_prefix("GRID ")) {
+                        (true, Some(ps)) => format!("the PS field of {} ({ps}, {at})", src.id),
+                        (true, None) => format!("{} ({at}), the default of {}", src.card, src.id),
+                        (false, _) => {
+                            let set = src.set.as_ref().map_or(String::new(), |s| format!(", {s}"));
+                            format!("{} {} ({at}{set})", src.card, src.id)
+                        }
+                    };
+                    out.push((c, by));
                 }
             }
         }
@@ -173,8 +178,13 @@ pub fn node_mask(
     match explicit {
         Some(m) => {
             if let Some((c, by)) = held.iter().find(|(c, _)| m.contains(*c)) {
+                let article = if what.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                    "an"
+                } else {
+                    "a"
+                };
                 return Err(format!(
-                    "{what} {id}:{}: component {} of node {id} is held by {by}; a held dof is not free to be an {what} dof (Nastran: an s-set dof is not in the a-set) — leave it out, or give the node as a plain id to take its free components",
+                    "{what} {id}:{}: component {} of node {id} is held by {by}; a held dof cannot be {article} {what} dof (Nastran: a dof of the s-set is in no other set) — leave it out, or give the node as a plain id to take its free components",
                     m.digits(),
                     c + 1
                 ));
@@ -293,13 +303,13 @@ impl std::fmt::Display for ConstraintSummary {
             .as_ref()
             .map_or(String::new(), |s| format!(" ({s})"));
         let first = if self.cards > 1 {
-            format!("{} cards from {}", self.cards, self.id)
+            format!("({} cards, the first {})", self.cards, self.id)
         } else {
             self.id.clone()
         };
         write!(
             f,
-            "{} {first}{set} at {}:{}: {} dofs at {} nodes{}",
+            "{} {first}{set} at {}:{}: holds {} dofs at {} nodes{}",
             self.card,
             self.file,
             self.line,

@@ -255,3 +255,163 @@ fn spcadd_selects_its_members() {
         "{err}"
     );
 }
+
+fn planar(deck: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/models/planar_beam")
+        .join(deck)
+}
+
+fn flexible(body: &file::ReducedBody) -> Vec<f64> {
+    body.modes
+        .frequency_hz
+        .iter()
+        .zip(&body.modes.labels)
+        .filter(|(_, l)| **l != file::ModeLabel::Rigid)
+        .map(|(f, _)| *f)
+        .collect()
+}
+
+/// The planar beam of Wang, Niu & Feng 2023 as a Nastran deck (PS = 345 on every grid, PBAR,
+/// COUPMASS 1) with the paper's own case `--interface 1,9 --reference-conditions 1:12,9:2`:
+/// plain CB, improved CB methods 1 and 2 build through the CLI; the held components drop out of
+/// the plain interface ids with one note; methods 1 and 2 agree to 1e-8 and give the extended
+/// beam of tests/reduce_paper.rs (88.62, 209.38, 606.18 Hz with consistent mass).
+#[test]
+fn planar_beam_deck_reduces_with_the_papers_interface_and_reference_conditions() {
+    let deck = planar("planar_beam.bdf");
+    let (o, cb) = build(&deck, &["--interface", "1,9"], "planar-cb.flexbody");
+    let cb = cb.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    let r = report(&o);
+    let notes = r["deck"].to_string();
+    assert!(
+        notes.contains("interface node 1 (345), interface node 9 (345)"),
+        "{notes}"
+    );
+    let c = r["constraints"].as_array().unwrap();
+    assert_eq!(c.len(), 1, "{c:?}");
+    assert_eq!(
+        (
+            c[0]["card"].as_str(),
+            c[0]["cards"].as_u64(),
+            c[0]["dofs"].as_u64()
+        ),
+        (Some("GRID PS=345"), Some(13), Some(39))
+    );
+    assert_eq!(cb.method.mass_kind, file::MassKind::Consistent);
+    // The interface records hold the free components 1, 2, 6 only.
+    for i in &cb.method.interface {
+        assert_eq!(i.dofs, [true, true, false, false, false, true]);
+    }
+    // Free-free planar beam: 3 in-plane rigid modes, then the paper's 138.91 Hz (Table 2).
+    assert_eq!(cb.method.counts.rigid, 3);
+    assert!(
+        (flexible(&cb)[0] - 138.91).abs() < 0.04,
+        "{:?}",
+        flexible(&cb)
+    );
+
+    let rc = ["--interface", "1,9", "--reference-conditions", "1:12,9:2"];
+    let mut sets = Vec::new();
+    for m in ["1", "2"] {
+        let args = [&rc[..], &["--reference-method", m]].concat();
+        let (o, body) = build(&deck, &args, &format!("planar-m{m}.flexbody"));
+        let body = body.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+        sets.push(body.modes.frequency_hz.clone());
+    }
+    let top = sets[0].last().copied().unwrap();
+    for (a, b) in sets[0].iter().zip(&sets[1]) {
+        assert!((a - b).abs() <= 1e-8 * top, "methods 1 and 2: {a} vs {b}");
+    }
+    for (got, want) in sets[0].iter().zip([88.62, 209.38, 606.18]) {
+        assert!((got - want).abs() < 0.005, "{:?}", &sets[0][..3]);
+    }
+}
+
+/// A held component given explicitly is an error naming the GRID, its PS field and line; the
+/// same for a reference condition.
+#[test]
+fn held_components_given_explicitly_are_errors() {
+    let deck = planar("planar_beam.bdf");
+    for (args, what) in [
+        (
+            vec!["--interface", "1:123,9"],
+            "interface 1:123: component 3",
+        ),
+        (
+            vec!["--interface", "1,9", "--reference-conditions", "1:14"],
+            "reference-condition 1:14: component 4",
+        ),
+    ] {
+        let (o, body) = build(&deck, &args, "held.flexbody");
+        assert!(body.is_none());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(what)
+                && err.contains("the PS field of GRID 1 (PS=345, ")
+                && err.contains("beam.blk:8"),
+            "{err}"
+        );
+    }
+    let (o, _) = build(&deck, &["--interface", "1:7"], "bad.flexbody");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("NODE:DOFS"));
+}
+
+/// ASET1 and BSET1 decks are the interface when `--interface` is absent: byte-identical files to
+/// `--interface 1,9` and `--interface 1:126,9:126` on the deck without them; the report says so.
+#[test]
+fn aset1_and_bset1_decks_equal_the_equivalent_interface_option() {
+    let read = |p: &str| std::fs::read(tmp(p)).unwrap();
+    let (o, _) = build(
+        &planar("planar_beam.bdf"),
+        &["--interface", "1,9"],
+        "i.flexbody",
+    );
+    assert!(o.status.success());
+    let (o, _) = build(
+        &planar("planar_beam.bdf"),
+        &["--interface", "1:126,9:126"],
+        "i2.flexbody",
+    );
+    assert!(o.status.success());
+    assert_eq!(read("i.flexbody"), read("i2.flexbody"));
+    for (deck, card) in [
+        ("planar_beam_aset1.bdf", "1 ASET1"),
+        ("planar_beam_bset1.bdf", "1 BSET1"),
+    ] {
+        let (o, _) = build(&planar(deck), &[], "set.flexbody");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let notes = report(&o)["deck"].to_string();
+        assert!(
+            notes.contains(&format!("interface: the deck's {card}")),
+            "{notes}"
+        );
+        assert!(read("set.flexbody") == read("i.flexbody"), "{deck}");
+    }
+}
+
+/// `nastran/beam_modes` (9 CBAR on PBARL ROD + 1 CBEAM on PBEAML ROD, CONM2 tip, `SPC = 1`,
+/// `METHOD = 1` → EIGRL ND = 10, lumped mass) through the CLI as shipped: the importer derives
+/// Nastran's shear factor 0.9 for ROD, the build bends shear-flexibly as Nastran's elements do,
+/// and all ten frequencies equal the f06's to 1e-6.
+#[test]
+fn nastran_beam_modes_deck_through_the_cli_equals_the_f06() {
+    let deck = shared("nastran/beam_modes/beam_modes.dat");
+    let (o, body) = build(&deck, &["--method", "normal"], "beam_modes.flexbody");
+    let body = body.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    let text = std::fs::read_to_string(shared("nastran/beam_modes/case.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let want: Vec<f64> = v["freq_hz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(want.len(), 10);
+    assert_eq!(body.mode_count(), 10, "EIGRL ND = 10");
+    assert_eq!(body.method.mass_kind, file::MassKind::Lumped);
+    assert_hz(&body.modes.frequency_hz, &want, 1e-6, "beam_modes");
+    let c = report(&o)["constraints"].clone();
+    assert_eq!(c[0]["card"], "SPC", "{c}");
+    assert_eq!(c[0]["dofs"], 6, "{c}");
+}

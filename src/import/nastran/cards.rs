@@ -147,6 +147,7 @@ pub(crate) fn build(
     let mut qset: Vec<(usize, DofMask)> = Vec::new();
     let mut qset_cards: BTreeMap<&str, usize> = BTreeMap::new();
     let mut wtmass = 1.0;
+    let mut shear_rigid: Vec<String> = Vec::new();
     for card in others {
         let g = cc(card, &files);
         let name = card.name.as_str();
@@ -168,7 +169,18 @@ pub(crate) fn build(
             "PSOLID" | "PSHELL" | "PROD" | "PBAR" | "PBARL" | "PBEAM" | "PBEAML" => {
                 let pid = g.id(0, "PID")?;
                 let mid = g.id(1, "MID")?;
-                props.push((pid, mid, property(&g)?, card));
+                let section = property(&g)?;
+                if let (true, Section::Beam(bs)) = (matches!(name, "PBARL" | "PBEAML"), &section) {
+                    if bs.shear_factors.is_none() {
+                        shear_rigid.push(format!(
+                            "{name} {pid} TYPE {} ({}:{})",
+                            g.text(3),
+                            g.file,
+                            card.loc.line
+                        ));
+                    }
+                }
+                props.push((pid, mid, section, card));
             }
             "PCOMP" | "PCOMPG" | "PELAS" | "PBUSH" | "PSHEAR" | "PDAMP" | "PGAP" | "PMASS"
             | "PVISC" => {
@@ -636,6 +648,15 @@ pub(crate) fn build(
         let q = per_node.values().map(|m| m.count_ones() as usize).sum();
         b.model.deck.qset_modes = Some((q, cards.join(", ")));
     }
+    if !shear_rigid.is_empty() {
+        b.model.warnings.push(ImportWarning {
+            file: files[0].clone(),
+            message: format!(
+                "{}: the shear factors Nastran derives for these cross-section shapes are not implemented here (only ROD's 0.9): shear-rigid bending, stiffer than Nastran's shear-flexible element",
+                shear_rigid.join(", ")
+            ),
+        });
+    }
     b.model.node_sets = node_sets;
     b.model.element_sets = element_sets;
     b.model.params.wtmass = wtmass;
@@ -859,10 +880,8 @@ fn property(g: &C) -> Result<Section, ImportError> {
             while so(k) {
                 k += 16;
             }
-            let kf = match (g.real(k)?, g.real(k + 1)?) {
-                (None, None) => None,
-                (k1, k2) => Some([k1.unwrap_or(1.0), k2.unwrap_or(1.0)]),
-            };
+            // Nastran PBEAM: K1, K2 default 1.0 (shear flexible); 0.0 means shear-rigid.
+            let kf = Some([g.real(k)?.unwrap_or(1.0), g.real(k + 1)?.unwrap_or(1.0)]);
             beam(g, [2, 3, 4, 5, 6, 7], kf)?
         }
         _ => {
@@ -883,6 +902,8 @@ fn property(g: &C) -> Result<Section, ImportError> {
                 .to_section()
                 .ok_or_else(|| g.err(3, "unsupported shape"))?;
             s.nsm = nsm;
+            // The shear factors Nastran derives for the shape (its equivalent PBAR/PBEAM).
+            s.shear_factors = shape.nastran_shear_factors();
             Section::Beam(s)
         }
     })
