@@ -67,7 +67,7 @@ pub fn deck_defaults(spec: &BuildSpec, model: &Model) -> DeckDefaults {
                     "the modes below {} Hz, at most {n}",
                     e.upper_hz.unwrap_or(0.0)
                 ),
-                (Some(n), None) => format!("{n} modes (ND)"),
+                (Some(n), None) => format!("{n} modes"),
                 (None, _) => format!("the modes below {} Hz", e.upper_hz.unwrap_or(0.0)),
             };
             notes.push(format!(

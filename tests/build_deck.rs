@@ -415,3 +415,86 @@ fn nastran_beam_modes_deck_through_the_cli_equals_the_f06() {
     assert_eq!(c[0]["card"], "SPC", "{c}");
     assert_eq!(c[0]["dofs"], 6, "{c}");
 }
+
+/// An Abaqus/CalculiX deck of the a_block mesh with its boundary conditions in steps.
+fn abaqus_steps_deck(name: &str, history: &str) -> PathBuf {
+    let deck = format!(
+        "*INCLUDE, INPUT={}\n*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*DENSITY\n7850\n*SOLID SECTION, ELSET=SOLID, MATERIAL=STEEL\n{history}",
+        shared("a_block_hex8/mesh.inp").display()
+    );
+    let path = tmp(name);
+    std::fs::write(&path, deck).unwrap();
+    path
+}
+
+/// `*BOUNDARY` inside a `*STEP` belongs to that step: the `*FREQUENCY` step's conditions hold
+/// the body (CalculiX's fixed frequencies to 2e-6 with consistent mass); a `*STATIC` step's are
+/// ignored with a warning naming the step and line — after the frequency step, removed by
+/// OP=NEW, or in a deck with no frequency step at all (then the body is free-free).
+#[test]
+fn abaqus_step_boundaries_belong_to_their_step() {
+    let want = ccx_hz("a_block_hex8", "fixed");
+    let cases = [
+        (
+            "freq_then_static.inp",
+            "*STEP\n*FREQUENCY\n6\n*BOUNDARY\nFIXED, 1, 3\n*END STEP\n*STEP, NAME=pull\n*STATIC\n*BOUNDARY\nTIP, 1, 1\n*END STEP\n",
+            "freq_then_static.inp: line 17: *BOUNDARY of step 2 (pull, *STATIC) (1 lines) ignored: it comes after the *FREQUENCY step 1",
+        ),
+        (
+            "static_then_new.inp",
+            "*STEP\n*STATIC\n*BOUNDARY\nTIP, 1, 3\n*END STEP\n*STEP\n*FREQUENCY\n6\n*BOUNDARY, OP=NEW\nFIXED, 1, 3\n*END STEP\n",
+            "static_then_new.inp: line 11: *BOUNDARY of step 1 (*STATIC) (1 lines) ignored: the *FREQUENCY step 2 removes it with *BOUNDARY, OP=NEW",
+        ),
+    ];
+    for (name, history, warning) in cases {
+        let deck = abaqus_steps_deck(name, history);
+        let (o, body) = build(
+            &deck,
+            &["--method", "normal", "--mass", "consistent"],
+            "steps.flexbody",
+        );
+        let body = body.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+        let r = report(&o);
+        assert!(
+            r["warnings"].to_string().contains(warning),
+            "{name}: {}",
+            r["warnings"]
+        );
+        assert_eq!(body.mode_count(), 6, "{name}: *FREQUENCY asks for 6");
+        let c = r["constraints"].as_array().unwrap();
+        assert_eq!(c.len(), 1, "{c:?}");
+        assert_eq!(c[0]["set"], "FIXED");
+        assert_hz(&body.modes.frequency_hz, &want, 2e-6, name);
+    }
+    // A *STATIC step's propagated conditions hold a later *FREQUENCY step (Abaqus propagates
+    // boundary conditions from step to step).
+    let deck = abaqus_steps_deck(
+        "static_then_freq.inp",
+        "*STEP\n*STATIC\n*BOUNDARY\nFIXED, 1, 3\n*END STEP\n*STEP\n*FREQUENCY\n6\n*END STEP\n",
+    );
+    let (o, body) = build(
+        &deck,
+        &["--method", "normal", "--mass", "consistent"],
+        "s.flexbody",
+    );
+    let body = body.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    assert_hz(&body.modes.frequency_hz, &want, 2e-6, "propagated");
+    // No *FREQUENCY step: the static step's support is ignored, the body is free-free.
+    let deck = abaqus_steps_deck(
+        "static_only.inp",
+        "*STEP\n*STATIC\n*BOUNDARY\nFIXED, 1, 3\n*END STEP\n",
+    );
+    let (o, body) = build(
+        &deck,
+        &["--method", "normal", "--modes", "8"],
+        "so.flexbody",
+    );
+    let body = body.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    assert_eq!(body.method.counts.rigid, 6);
+    let w = report(&o)["warnings"].to_string();
+    assert!(
+        w.contains("static_only.inp: line 11: *BOUNDARY of step 1 (*STATIC)")
+            && w.contains("the deck has no *FREQUENCY step"),
+        "{w}"
+    );
+}
