@@ -75,6 +75,9 @@ pub struct BuildSpec {
     pub fmax_hz: Option<f64>,
     /// Reference conditions: (external node id, dofs).
     pub reference_conditions: Vec<(u64, DofMask)>,
+    /// Reference conditions by name: plain node ids (free components), node-set names, or a
+    /// deck's constraint set (`SPC_1`: the components it holds) — see [`crate::deck`].
+    pub reference_sets: Vec<String>,
     /// Improved-CB method (1 or 2) for reference conditions.
     pub reference_method: u8,
     /// Mass matrix of the reduction.
@@ -117,6 +120,7 @@ impl BuildSpec {
             modes: None,
             fmax_hz: None,
             reference_conditions: Vec::new(),
+            reference_sets: Vec::new(),
             reference_method: 1,
             mass: fe::MassKind::Lumped,
             units,
@@ -399,6 +403,30 @@ pub fn build_model(
         }
         reference.extend(node_dofs(node, mask, "reference-condition")?);
         reference_records.push((node, mask));
+    }
+    for (node, explicit, entry) in
+        crate::deck::reference_entries(&model, &spec.reference_sets).map_err(&request_err)?
+    {
+        let count = usize::from(dofs.count[node]);
+        let (mask, held) = crate::deck::node_mask(&model, node, count, None, "reference-condition")
+            .map_err(&request_err)?;
+        // A constraint set's components, less the held ones (they are held already).
+        let mask = DofMask(mask.0 & explicit.map_or(0x3f, |m| m.0));
+        if held.0 != 0 && explicit.is_none_or(|m| m.0 & held.0 != 0) {
+            dropped.push(format!(
+                "reference {entry} node {} ({})",
+                model.nodes[node].id,
+                held.digits()
+            ));
+        }
+        if mask.0 == 0 {
+            continue;
+        }
+        reference.extend(node_dofs(node, mask, "reference-condition")?);
+        match reference_records.iter_mut().find(|r| r.0 == node) {
+            Some(r) => r.1 = DofMask(r.1 .0 | mask.0),
+            None => reference_records.push((node, mask)),
+        }
     }
     if !dropped.is_empty() {
         report.notes.push(format!(

@@ -319,3 +319,46 @@ impl std::fmt::Display for ConstraintSummary {
         )
     }
 }
+
+/// `--reference-conditions` entries by name → (node, components or `None` for every free one,
+/// entry): a deck's constraint set (`SPC_1`, its components per node), a node set (each node),
+/// or a plain node id.
+pub fn reference_entries(
+    model: &Model,
+    entries: &[String],
+) -> Result<Vec<(NodeIndex, Option<DofMask>, String)>, String> {
+    let by_id = model.node_index_by_id();
+    let mut out = Vec::new();
+    for e in entries {
+        let find = |mut names: std::collections::btree_map::Keys<'_, String, _>| {
+            names.find(|k| k.eq_ignore_ascii_case(e)).cloned()
+        };
+        if let Some(k) = find(model.deck.spc_sets.keys()) {
+            let mut per_node: BTreeMap<NodeIndex, u8> = BTreeMap::new();
+            for &(n, m) in &model.deck.spc_sets[&k] {
+                *per_node.entry(n).or_default() |= m.0;
+            }
+            out.extend(
+                per_node
+                    .into_iter()
+                    .map(|(n, m)| (n, Some(DofMask(m)), k.clone())),
+            );
+        } else if let Some(k) = model
+            .node_sets
+            .keys()
+            .find(|k| k.eq_ignore_ascii_case(e))
+            .cloned()
+        {
+            out.extend(model.node_sets[&k].iter().map(|&n| (n, None, k.clone())));
+        } else if let Some(&n) = e.parse::<u64>().ok().and_then(|id| by_id.get(&id)) {
+            out.push((n, None, e.clone()));
+        } else {
+            let sets: Vec<&str> = model.node_sets.keys().map(String::as_str).collect();
+            return Err(format!(
+                "--reference-conditions {e}: neither NODE:DOFS, a node id nor a set name of the model (sets: {})",
+                if sets.is_empty() { "none".to_owned() } else { sets.join(", ") }
+            ));
+        }
+    }
+    Ok(out)
+}

@@ -68,7 +68,9 @@ struct BuildArgs {
     /// Highest frequency of the scene in Hz: modes are kept up to 3× it.
     #[arg(long)]
     fmax: Option<f64>,
-    /// Reference conditions NODE:DOFS (Nastran dof digits), e.g. 1:12,9:2.
+    /// Reference conditions NODE:DOFS (Nastran dof digits), e.g. 1:12,9:2; a plain node id (its
+    /// free components) or a set name (a node set, or a deck's constraint set such as SPC_1
+    /// with the components it holds).
     #[arg(long, value_delimiter = ',')]
     reference_conditions: Vec<String>,
     /// Improved Craig–Bampton method for reference conditions: 1 or 2.
@@ -185,7 +187,8 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
         method: parse_method(&a.method)?,
         modes: a.modes,
         fmax_hz: a.fmax,
-        reference_conditions: parse_reference_conditions(&a.reference_conditions)?,
+        reference_conditions: parse_reference_entries(&a.reference_conditions)?.0,
+        reference_sets: parse_reference_entries(&a.reference_conditions)?.1,
         reference_method: a.reference_method,
         mass: parse_mass(a.mass.as_deref().unwrap_or("lumped"))?,
         mass_explicit: a.mass.is_some(),

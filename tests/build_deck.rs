@@ -498,3 +498,45 @@ fn abaqus_step_boundaries_belong_to_their_step() {
         "{w}"
     );
 }
+
+/// An SPC set the case control does not select is not applied but stays available by name: the
+/// paper's reference conditions written as SPC1 set 7 and given as `--reference-conditions
+/// SPC_7` give the same file as `1:12,9:2`.
+#[test]
+fn unselected_spc_set_serves_as_reference_conditions_by_name() {
+    let deck = format!(
+        "SOL 103\nCEND\nTITLE = Wang, Niu & Feng 2023 planar beam\nMETHOD = 1\nBEGIN BULK\nPARAM,COUPMASS,1\nEIGRL,1,,,20\nSPC1,7,12,1\nSPC1,7,2,9\nINCLUDE '{}'\nENDDATA\n",
+        planar("beam.blk").display()
+    );
+    let path = tmp("planar_spc7.bdf");
+    std::fs::write(&path, deck).unwrap();
+    let (o, _) = build(
+        &path,
+        &["--interface", "1,9", "--reference-conditions", "SPC_7"],
+        "by_name.flexbody",
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let notes = report(&o)["deck"].to_string();
+    assert!(
+        notes.contains("SPC sets SPC_7") && notes.contains("not applied"),
+        "{notes}"
+    );
+    let (o, _) = build(
+        &path,
+        &["--interface", "1,9", "--reference-conditions", "1:12,9:2"],
+        "by_digits.flexbody",
+    );
+    assert!(o.status.success());
+    let read = |p: &str| std::fs::read(tmp(p)).unwrap();
+    assert!(read("by_name.flexbody") == read("by_digits.flexbody"));
+    let (o, _) = build(
+        &path,
+        &["--interface", "1,9", "--reference-conditions", "SPC_9"],
+        "x.flexbody",
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("SPC_9: neither NODE:DOFS") && err.contains("SPC_7"),
+        "{err}"
+    );
+}

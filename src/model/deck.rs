@@ -32,6 +32,10 @@ pub struct DeckRequest {
     pub qset_modes: Option<(usize, String)>,
     /// Notes for the build report (e.g. SPC sets present but not selected).
     pub notes: Vec<String>,
+    /// Every constraint set of the deck by name (`SPC_1`), selected or not, with the components
+    /// it holds per node: usable as reference conditions by name.
+    pub spc_sets:
+        std::collections::BTreeMap<String, Vec<(crate::model::NodeIndex, crate::model::DofMask)>>,
 }
 
 /// Where a group of [`crate::model::Spc`] records came from.

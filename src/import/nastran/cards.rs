@@ -499,6 +499,19 @@ pub(crate) fn build(
         ns.dedup();
         node_sets.insert(format!("SPC_{sid}"), ns);
     }
+    for (sid, list) in &spc_sets {
+        b.model.deck.spc_sets.insert(
+            format!("SPC_{sid}"),
+            list.iter().map(|&(n, m, _)| (n, m)).collect(),
+        );
+    }
+    for (sid, (members, _)) in &spcadd_members {
+        let all = members
+            .iter()
+            .flat_map(|s| spc_sets[s].iter().map(|&(n, m, _)| (n, m)))
+            .collect();
+        b.model.deck.spc_sets.insert(format!("SPC_{sid}"), all);
+    }
     let mut applied: Vec<u64> = Vec::new();
     if let Some(sel) = effective.scope.spc {
         let members = match spcadd_members.get(&sel.id) {
