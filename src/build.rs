@@ -453,12 +453,28 @@ pub fn build_model(
             *held.entry(s.node).or_default() |= s.dofs.0 & existing;
         }
     }
-    if !held.is_empty() {
+    // Permanent constraints only (GRID PS / GRDSET: a planar or restricted model) are a note.
+    let only_permanent = model.constraint_sources.iter().all(|c| c.permanent)
+        && model
+            .constraint_sources
+            .iter()
+            .map(|c| c.spcs.len())
+            .sum::<usize>()
+            == model.spcs.len();
+    if !held.is_empty() && only_permanent {
+        report.notes.push(format!(
+            "the deck's permanent constraints (GRID PS / GRDSET) hold {} dofs at {} nodes: the body moves only in its free components (recorded as reference conditions)",
+            held.values().map(|m| m.count_ones()).sum::<u32>(),
+            held.len()
+        ));
+    } else if !held.is_empty() {
         report.warnings.push(format!(
             "the model's SPCs hold {} dofs at {} nodes: the modes are those of the supported body, not free-free (recorded as reference conditions)",
             held.values().map(|m| m.count_ones()).sum::<u32>(),
             held.len()
         ));
+    }
+    if !held.is_empty() {
         for (node, m) in held {
             match reference_records.iter_mut().find(|r| r.0 == node) {
                 Some(r) => r.1 = DofMask(r.1 .0 | m),

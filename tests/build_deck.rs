@@ -540,3 +540,24 @@ fn unselected_spc_set_serves_as_reference_conditions_by_name() {
         "{err}"
     );
 }
+
+/// `INCLUDE` in the case control is followed: the selection inside the included file holds.
+#[test]
+fn case_control_include_is_followed() {
+    std::fs::write(tmp("cases.inc"), "$ the support\nSPC = 1\n").unwrap();
+    let deck = format!(
+        "SOL 103\nCEND\nMETHOD = 1\nINCLUDE 'cases.inc'\nBEGIN BULK\nPARAM,COUPMASS,1\nEIGRL,1,,,4\nINCLUDE '{}'\nENDDATA\n",
+        shared("a_block_hex8/mesh.bdf").display()
+    );
+    let path = tmp("cc_include.bdf");
+    std::fs::write(&path, deck).unwrap();
+    let (o, body) = build(&path, &["--method", "normal"], "cc_include.flexbody");
+    let body = body.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    assert_eq!(report(&o)["constraints"][0]["set"], "SPC_1");
+    assert_hz(
+        &body.modes.frequency_hz,
+        &ccx_hz("a_block_hex8", "fixed"),
+        2e-6,
+        "include",
+    );
+}
