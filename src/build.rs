@@ -75,6 +75,9 @@ pub struct BuildSpec {
     pub fmax_hz: Option<f64>,
     /// Reference conditions: (external node id, dofs).
     pub reference_conditions: Vec<(u64, DofMask)>,
+    /// Reference conditions by name: plain node ids (free components), node-set names, or a
+    /// deck's constraint set (`SPC_1`: the components it holds) — see [`crate::deck`].
+    pub reference_sets: Vec<String>,
     /// Improved-CB method (1 or 2) for reference conditions.
     pub reference_method: u8,
     /// Mass matrix of the reduction.
@@ -96,6 +99,11 @@ pub struct BuildSpec {
     /// Rotational inertia of lumped beam masses; `None` = automatic: as Nastran lumps each card
     /// (CBAR none, CBEAM torsion) for Nastran decks, the section's rotary inertia otherwise.
     pub beam_mass: Option<BeamLumping>,
+    /// Nastran: the case-control subcase whose SPC and METHOD selections apply.
+    pub subcase: Option<u64>,
+    /// `mass` was chosen by the user (`--mass`); when false a deck's PARAM,COUPMASS > 0 selects
+    /// consistent mass (see [`crate::deck`]).
+    pub mass_explicit: bool,
 }
 
 impl BuildSpec {
@@ -112,6 +120,7 @@ impl BuildSpec {
             modes: None,
             fmax_hz: None,
             reference_conditions: Vec::new(),
+            reference_sets: Vec::new(),
             reference_method: 1,
             mass: fe::MassKind::Lumped,
             units,
@@ -122,6 +131,8 @@ impl BuildSpec {
             created_utc: None,
             threads: 1,
             beam_mass: None,
+            subcase: None,
+            mass_explicit: false,
         }
     }
 
@@ -162,6 +173,11 @@ pub struct BuildReport {
     pub dofs: (usize, usize),
     /// Checked diagnostics of the mode set.
     pub diagnostics: reduce::Diagnostics,
+    /// What the build took from the deck (mass, mode count, interface, subcase), and
+    /// constraint components dropped from interface/reference nodes.
+    pub notes: Vec<String>,
+    /// Every applied constraint: card, line, set, dofs held.
+    pub constraints: Vec<crate::deck::ConstraintSummary>,
 }
 
 /// A built body with its report.
@@ -234,6 +250,7 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
         &ImportOptions {
             format: spec.format,
             material: spec.material.clone(),
+            subcase: spec.subcase,
         },
     )?;
     let import_s = clock.elapsed().as_secs_f64();
@@ -269,6 +286,10 @@ pub fn build_model_with_hook(
     hook: &mut dyn FnMut(&mut ModeSet),
 ) -> Result<BuildOutput, BuildError> {
     let mut report = BuildReport::default();
+    // The deck's own requests (COUPMASS, METHOD, ASET, TITLE) fill the choices left open.
+    let defaults = crate::deck::deck_defaults(spec, &model);
+    let spec = &defaults.spec;
+    report.notes = defaults.notes.clone();
     let mut clock = Instant::now();
     let mut lap = |report: &mut BuildReport, name: &str| {
         report
@@ -317,6 +338,7 @@ pub fn build_model_with_hook(
             ..Default::default()
         },
     )?;
+    report.constraints = crate::deck::constraint_summary(&model, &assembled.dofs);
     lap(&mut report, STAGES[2]);
 
     progress(STAGES[3]);
@@ -363,9 +385,26 @@ pub fn build_model_with_hook(
             })
             .collect()
     };
+    // Interface and reference dofs: the free components (held ones drop out of plain ids; a
+    // held component given explicitly is an error naming its constraint).
     let mut interface_dofs = Vec::new();
-    for &n in &interface_nodes {
-        interface_dofs.extend(node_dofs(n, DofMask::ALL, "interface")?);
+    let mut interface_masks = Vec::new();
+    let mut dropped: Vec<String> = Vec::new();
+    for r in &report.interfaces {
+        for &n in &r.nodes {
+            let count = usize::from(dofs.count[n]);
+            let (mask, held) = crate::deck::node_mask(&model, n, count, r.dofs, "interface")
+                .map_err(&request_err)?;
+            if held.0 != 0 {
+                dropped.push(format!(
+                    "interface node {} ({})",
+                    model.nodes[n].id,
+                    held.digits()
+                ));
+            }
+            interface_dofs.extend(node_dofs(n, mask, "interface")?);
+            interface_masks.push(mask);
+        }
     }
     let by_id = model.node_index_by_id();
     let mut reference = Vec::new();
@@ -374,8 +413,47 @@ pub fn build_model_with_hook(
         let node = *by_id
             .get(&id)
             .ok_or_else(|| request_err(format!("reference-condition node {id} does not exist")))?;
+        // All six digits mean "the node": its free components.
+        let explicit = (mask != DofMask::ALL).then_some(mask);
+        let count = usize::from(dofs.count[node]);
+        let (mask, held) =
+            crate::deck::node_mask(&model, node, count, explicit, "reference-condition")
+                .map_err(&request_err)?;
+        if held.0 != 0 {
+            dropped.push(format!("reference node {id} ({})", held.digits()));
+        }
         reference.extend(node_dofs(node, mask, "reference-condition")?);
         reference_records.push((node, mask));
+    }
+    for (node, explicit, entry) in
+        crate::deck::reference_entries(&model, &spec.reference_sets).map_err(&request_err)?
+    {
+        let count = usize::from(dofs.count[node]);
+        let (mask, held) = crate::deck::node_mask(&model, node, count, None, "reference-condition")
+            .map_err(&request_err)?;
+        // A constraint set's components, less the held ones (they are held already).
+        let mask = DofMask(mask.0 & explicit.map_or(0x3f, |m| m.0));
+        if held.0 != 0 && explicit.is_none_or(|m| m.0 & held.0 != 0) {
+            dropped.push(format!(
+                "reference {entry} node {} ({})",
+                model.nodes[node].id,
+                held.digits()
+            ));
+        }
+        if mask.0 == 0 {
+            continue;
+        }
+        reference.extend(node_dofs(node, mask, "reference-condition")?);
+        match reference_records.iter_mut().find(|r| r.0 == node) {
+            Some(r) => r.1 = DofMask(r.1 .0 | mask.0),
+            None => reference_records.push((node, mask)),
+        }
+    }
+    if !dropped.is_empty() {
+        report.notes.push(format!(
+            "held components (GRID PS / GRDSET / selected SPC) are not interface or reference dofs: {}",
+            dropped.join(", ")
+        ));
     }
     // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
     crate::precheck::before_reduction(
@@ -396,12 +474,28 @@ pub fn build_model_with_hook(
             *held.entry(s.node).or_default() |= s.dofs.0 & existing;
         }
     }
-    if !held.is_empty() {
+    // Permanent constraints only (GRID PS / GRDSET: a planar or restricted model) are a note.
+    let only_permanent = model.constraint_sources.iter().all(|c| c.permanent)
+        && model
+            .constraint_sources
+            .iter()
+            .map(|c| c.spcs.len())
+            .sum::<usize>()
+            == model.spcs.len();
+    if !held.is_empty() && only_permanent {
+        report.notes.push(format!(
+            "the deck's permanent constraints (GRID PS / GRDSET) hold {} dofs at {} nodes: the body moves only in its free components (recorded as reference conditions)",
+            held.values().map(|m| m.count_ones()).sum::<u32>(),
+            held.len()
+        ));
+    } else if !held.is_empty() {
         report.warnings.push(format!(
             "the model's SPCs hold {} dofs at {} nodes: the modes are those of the supported body, not free-free (recorded as reference conditions)",
             held.values().map(|m| m.count_ones()).sum::<u32>(),
             held.len()
         ));
+    }
+    if !held.is_empty() {
         for (node, m) in held {
             match reference_records.iter_mut().find(|r| r.0 == node) {
                 Some(r) => r.1 = DofMask(r.1 .0 | m),
@@ -412,15 +506,16 @@ pub fn build_model_with_hook(
     lap(&mut report, STAGES[3]);
 
     progress(STAGES[4]);
-    let count = match (spec.modes, spec.fmax_hz) {
-        (_, Some(f)) if !(f.is_finite() && f > 0.0) => {
+    let count = match (spec.modes, spec.fmax_hz, defaults.band) {
+        (_, Some(f), _) if !(f.is_finite() && f > 0.0) => {
             return Err(request_err(format!(
                 "--fmax {f} must be a positive frequency in Hz"
             )))
         }
-        (_, Some(f)) => ModeCount::BelowHz(select::FMAX_FACTOR * f),
-        (Some(n), None) => ModeCount::Count(n),
-        (None, None) => ModeCount::Count(DEFAULT_MODES),
+        (_, Some(f), _) => ModeCount::BelowHz(select::FMAX_FACTOR * f),
+        (_, None, Some(band)) => band,
+        (Some(n), None, None) => ModeCount::Count(n),
+        (None, None, None) => ModeCount::Count(DEFAULT_MODES),
     };
     let eig = EigenSpec {
         dofs_per_node: Some(3),
@@ -494,7 +589,10 @@ pub fn build_model_with_hook(
             ));
         }
     }
-    if let (Some(n), Some(_)) = (spec.modes, spec.fmax_hz) {
+    if let (Some(n), true) = (
+        spec.modes,
+        spec.fmax_hz.is_some() || defaults.band.is_some(),
+    ) {
         // Both given: the count caps the band (CB keeps its constraint-derived modes on top).
         let extra = if spec.method == BuildMethod::Normal {
             0
@@ -558,6 +656,7 @@ pub fn build_model_with_hook(
         &set,
         &stored,
         &interface_nodes,
+        &interface_masks,
         &reference_records,
         &faces,
         &nodal,
@@ -788,6 +887,7 @@ fn assemble_body(
     set: &ModeSet,
     stored: &[NodeIndex],
     interface: &[NodeIndex],
+    interface_masks: &[DofMask],
     reference: &[(NodeIndex, DofMask)],
     faces: &[crate::faces::GraphicsFace],
     nodal: &NodalMass,
@@ -878,9 +978,10 @@ fn assemble_body(
     let identity3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let interface_records = interface
         .iter()
-        .map(|&n| file::InterfaceNode {
+        .zip(interface_masks)
+        .map(|(&n, m)| file::InterfaceNode {
             node: position[n],
-            dofs: std::array::from_fn(|k| k < usize::from(dofs.count[n])),
+            dofs: std::array::from_fn(|k| k < usize::from(dofs.count[n]) && m.contains(k)),
             frame: dofs.frames[n].unwrap_or(identity3),
         })
         .collect();

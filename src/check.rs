@@ -430,6 +430,7 @@ fn model_checks(
         &ImportOptions {
             format: input.format,
             material: input.material.clone(),
+            ..Default::default()
         },
     )
     .map_err(BuildError::from)?;

@@ -1,4 +1,5 @@
-//! Interface definition: turn the user's `--interface` list (node ids and node-set names) into
+//! Interface definition: turn the user's `--interface` list (node ids, `NODE:DOFS` with Nastran
+//! component digits, and node-set names) into
 //! interface nodes, building a spider for each node set the way engineers attach joints to solid
 //! meshes (DESIGN.md §3 "Interface spiders").
 //!
@@ -53,6 +54,8 @@ pub struct InterfaceReport {
     pub entry: String,
     /// Interface node(s) it produced (dense indices into the model's nodes).
     pub nodes: Vec<NodeIndex>,
+    /// Components given explicitly (`NODE:DOFS`, Nastran digits); `None` = every free component.
+    pub dofs: Option<DofMask>,
     /// For a spider: the centre, how it was found, and how far it is from the plain node average.
     pub spider: Option<SpiderReport>,
 }
@@ -88,6 +91,9 @@ pub enum InterfaceError {
     /// A set with no nodes.
     #[error("interface node set `{0}` is empty")]
     EmptySet(String),
+    /// `NODE:DOFS` with something other than a node id and Nastran component digits.
+    #[error("interface `{0}`: expected NODE:DOFS with a node id and Nastran component digits 1–6, e.g. 1:126")]
+    BadComponents(String),
     /// The same node is an interface node twice.
     #[error(
         "node {node_id} is named twice in the interface list (entries `{first}` and `{second}`)"
@@ -115,6 +121,39 @@ pub fn resolve_interfaces(
     let mut faces = None;
     for entry in entries {
         let entry = entry.trim().to_string();
+        // NODE:DOFS — a node with explicit components.
+        if let Some((n, d)) = entry.split_once(':') {
+            let mask = DofMask::from_digits(d).filter(|m| m.0 != 0);
+            let index = n
+                .trim()
+                .parse::<u64>()
+                .ok()
+                .and_then(|id| by_id.get(&id).copied());
+            let (Some(mask), Some(index)) = (mask, index) else {
+                if mask.is_some() && n.trim().parse::<u64>().is_ok() {
+                    return Err(InterfaceError::Unknown {
+                        entry,
+                        source_file: model.source.clone(),
+                        known: "node ids only before ':'".into(),
+                    });
+                }
+                return Err(InterfaceError::BadComponents(entry));
+            };
+            if let Some(first) = seen.insert(index, entry.clone()) {
+                return Err(InterfaceError::Duplicate {
+                    node_id: model.nodes[index].id,
+                    first,
+                    second: entry,
+                });
+            }
+            reports.push(InterfaceReport {
+                entry,
+                nodes: vec![index],
+                dofs: Some(mask),
+                spider: None,
+            });
+            continue;
+        }
         let set = model
             .node_sets
             .iter()
@@ -135,6 +174,7 @@ pub fn resolve_interfaces(
                     InterfaceReport {
                         entry: entry.clone(),
                         nodes: set,
+                        dofs: None,
                         spider: None,
                     }
                 } else {
@@ -173,6 +213,7 @@ pub fn resolve_interfaces(
                     InterfaceReport {
                         entry: entry.clone(),
                         nodes: vec![centre_index],
+                        dofs: None,
                         spider: Some(SpiderReport {
                             centre_node_id,
                             centre,
@@ -186,6 +227,7 @@ pub fn resolve_interfaces(
             (None, Some(index)) => InterfaceReport {
                 entry: entry.clone(),
                 nodes: vec![index],
+                dofs: None,
                 spider: None,
             },
             (None, None) => {

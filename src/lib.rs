@@ -21,6 +21,7 @@
 
 pub mod build;
 pub mod check;
+pub mod deck;
 pub mod faces;
 pub mod fe;
 pub mod import;

@@ -39,7 +39,8 @@ struct ModelArgs {
     /// Material for elements without a section (Gmsh meshes): E=…,nu=…,rho=…
     #[arg(long)]
     material: Option<String>,
-    /// Interface nodes: node ids and/or node-set names, comma separated.
+    /// Interface nodes: node ids (every free component), NODE:DOFS with Nastran component digits
+    /// (e.g. 1:126) and/or node-set names, comma separated. Default: the deck's ASET/BSET.
     #[arg(long, value_delimiter = ',')]
     interface: Vec<String>,
     /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
@@ -67,15 +68,22 @@ struct BuildArgs {
     /// Highest frequency of the scene in Hz: modes are kept up to 3× it.
     #[arg(long)]
     fmax: Option<f64>,
-    /// Reference conditions NODE:DOFS (Nastran dof digits), e.g. 1:12,9:2.
+    /// Reference conditions NODE:DOFS (Nastran dof digits), e.g. 1:12,9:2; a plain node id (its
+    /// free components) or a set name (a node set, or a deck's constraint set such as SPC_1
+    /// with the components it holds).
     #[arg(long, value_delimiter = ',')]
     reference_conditions: Vec<String>,
     /// Improved Craig–Bampton method for reference conditions: 1 or 2.
     #[arg(long, default_value_t = 1)]
     reference_method: u8,
-    /// Mass matrix: lumped (default; what multibody invariants need) or consistent.
-    #[arg(long, default_value = "lumped")]
-    mass: String,
+    /// Mass matrix: lumped (default; what multibody invariants need) or consistent. Default for
+    /// a Nastran deck with PARAM,COUPMASS > 0: consistent, as the deck asks.
+    #[arg(long)]
+    mass: Option<String>,
+    /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when
+    /// the deck's subcases select different sets).
+    #[arg(long, value_name = "N")]
+    subcase: Option<u64>,
     /// Rotational inertia of lumped beam masses: auto (default: as Nastran lumps each card for
     /// Nastran decks, CBAR none and CBEAM torsion only; the section's rotary inertia otherwise),
     /// section, torsion, none or nastran.
@@ -179,9 +187,12 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
         method: parse_method(&a.method)?,
         modes: a.modes,
         fmax_hz: a.fmax,
-        reference_conditions: parse_reference_conditions(&a.reference_conditions)?,
+        reference_conditions: parse_reference_entries(&a.reference_conditions)?.0,
+        reference_sets: parse_reference_entries(&a.reference_conditions)?.1,
         reference_method: a.reference_method,
-        mass: parse_mass(&a.mass)?,
+        mass: parse_mass(a.mass.as_deref().unwrap_or("lumped"))?,
+        mass_explicit: a.mass.is_some(),
+        subcase: a.subcase,
         units: parse_units(&a.units)?,
         keep_nodes: parse_keep_nodes(&a.keep_nodes),
         invariants: parse_invariants(&a.invariants)?,
@@ -258,6 +269,8 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
             "removed_dependent": r.diagnostics.removed.len(),
             "warnings": r.warnings,
             "notes": r.diagnostics.notes,
+            "deck": r.notes,
+            "constraints": r.constraints,
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
@@ -266,8 +279,11 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
         for w in &r.warnings {
             eprintln!("flexbody: warning: {w}");
         }
-        for n in &r.diagnostics.notes {
+        for n in r.notes.iter().chain(&r.diagnostics.notes) {
             eprintln!("flexbody: note: {n}");
+        }
+        for c in &r.constraints {
+            eprintln!("flexbody: constraint: {c}");
         }
         for i in &r.interfaces {
             if let Some(s) = &i.spider {

@@ -135,6 +135,21 @@ pub fn parse_reference_conditions(items: &[String]) -> Result<Vec<(u64, DofMask)
         .collect()
 }
 
+/// Reference conditions as given: (`NODE:DOFS` pairs, entries by name or plain id).
+pub type ReferenceEntries = (Vec<(u64, DofMask)>, Vec<String>);
+
+/// `--reference-conditions`: `NODE:DOFS` items (see [`parse_reference_conditions`]), and the
+/// other items — plain node ids (every free component) and set names (a node set, or a deck's
+/// constraint set such as `SPC_1` with the components it holds) — as given.
+pub fn parse_reference_entries(items: &[String]) -> Result<ReferenceEntries, OptionError> {
+    let (with_dofs, other): (Vec<String>, Vec<String>) = items
+        .iter()
+        .map(|s| s.trim().to_owned())
+        .filter(|s| !s.is_empty())
+        .partition(|s| s.contains(':'));
+    Ok((parse_reference_conditions(&with_dofs)?, other))
+}
+
 /// `--method`.
 pub fn parse_method(s: &str) -> Result<BuildMethod, OptionError> {
     match s.to_ascii_lowercase().as_str() {
@@ -240,6 +255,10 @@ mod tests {
         let rc = parse_reference_conditions(&["1:12".into(), "9:2".into()]).unwrap();
         assert_eq!(rc, vec![(1, DofMask(0b11)), (9, DofMask(0b10))]);
         assert!(parse_reference_conditions(&["1:7".into()]).is_err());
+        let (rc, named) =
+            parse_reference_entries(&["1:12".into(), "SPC_1".into(), " 9 ".into()]).unwrap();
+        assert_eq!(rc, vec![(1, DofMask::from_digits("12").unwrap())]);
+        assert_eq!(named, vec!["SPC_1".to_owned(), "9".to_owned()]);
         assert!(parse_reference_conditions(&["x:1".into()]).is_err());
     }
 

@@ -21,11 +21,12 @@ use crate::model::{ElementKind, Model, Section};
 /// Bending theory of beam elements.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum BeamTheory {
-    /// Euler–Bernoulli (shear-rigid); the default.
-    #[default]
+    /// Euler–Bernoulli (shear-rigid) everywhere, whatever the sections say.
     EulerBernoulli,
     /// Timoshenko: shear flexibility from the section's shear factors (Euler–Bernoulli where a
-    /// section has none).
+    /// section has none). The default: the section says what its card means (Nastran PBEAM and
+    /// PBARL shear flexible, PBAR without K1/K2 shear-rigid; see the importers).
+    #[default]
     Timoshenko,
 }
 

@@ -62,6 +62,9 @@ pub struct ImportOptions {
     /// `.msh`; also for a bare Abaqus mesh without *SOLID SECTION). From the command line or
     /// a side file ([`read_material_file`]).
     pub material: Option<Material>,
+    /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when the
+    /// deck's subcases differ; `None` otherwise).
+    pub subcase: Option<u64>,
 }
 
 /// Read a model file in any supported format.
@@ -74,7 +77,7 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
         })?;
     let mut model = match format {
         Format::Abaqus => abaqus::read(path)?,
-        Format::Nastran => nastran::read(path)?,
+        Format::Nastran => nastran::read_subcase(path, opts.subcase)?.0,
         Format::Gmsh => gmsh::read(path, None)?,
     };
     if let Some(m) = &opts.material {

@@ -13,8 +13,11 @@
 
 use std::collections::BTreeMap;
 
+pub mod deck;
 pub mod generate;
 pub mod section;
+
+pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
 
 /// Dense 0-based index of a node in [`Model::nodes`].
 pub type NodeIndex = usize;
@@ -426,6 +429,10 @@ pub struct Model {
     pub params: ModelParams,
     /// Non-fatal findings.
     pub warnings: Vec<ImportWarning>,
+    /// The deck's analysis choices (case control, eigenvalue request, a-set, q-set).
+    pub deck: DeckRequest,
+    /// Where the records of `spcs` came from (card, line, set).
+    pub constraint_sources: Vec<ConstraintSource>,
 }
 
 impl Model {

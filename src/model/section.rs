@@ -83,6 +83,19 @@ impl SectionShape {
         }
     }
 
+    /// The transverse shear factors (K1, K2) Nastran's beam library gives this shape in the
+    /// equivalent PBAR/PBEAM it derives from a PBARL/PBEAML. ROD: K1 = K2 = 0.9, as Simcenter
+    /// Nastran 2019.2 prints it (User Information Message 4379 of
+    /// `../shared/reference/nastran/beam_modes/beam_modes.f06`). `None` for the shapes whose
+    /// library values are not established here (TUBE, BAR, BOX, I): those stay shear-rigid and
+    /// the importer says so.
+    pub fn nastran_shear_factors(&self) -> Option<[f64; 2]> {
+        match self {
+            SectionShape::Circle { .. } => Some([0.9, 0.9]),
+            _ => None,
+        }
+    }
+
     /// A [`BeamSection`] from this shape (no shear factors, no NSM); `None` for `Other`.
     pub fn to_section(&self) -> Option<BeamSection> {
         let (area, i1, i2, j) = self.constants()?;

@@ -17,6 +17,7 @@
 
 mod defs;
 mod resolve;
+mod steps;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -99,6 +100,8 @@ enum Block {
     Surface(String),
     Coupling(usize),
     Transform(String, bool),
+    /// `*FREQUENCY` data: the number of eigenvalues.
+    Frequency,
 }
 
 struct Parser {
@@ -111,6 +114,8 @@ struct Parser {
     materials: Vec<RawMaterial>,
     sections: Vec<RawSection>,
     boundaries: Vec<(Target, DofMask, Loc)>,
+    /// `*STEP` blocks and their boundary conditions (steps.rs).
+    steps: steps::Steps,
     /// MASS / ROTARYI elements: id → (node id, loc).
     mass_elems: HashMap<u64, (u64, Loc)>,
     masses: Vec<(String, f64, Loc)>,
@@ -175,6 +180,7 @@ impl Parser {
             materials: Vec::new(),
             sections: Vec::new(),
             boundaries: Vec::new(),
+            steps: steps::Steps::default(),
             mass_elems: HashMap::new(),
             masses: Vec::new(),
             rotary: Vec::new(),
@@ -250,6 +256,14 @@ impl Parser {
             }
         }
         self.check_pending()
+    }
+
+    /// A `*BOUNDARY` line: model data, or the current step's.
+    fn push_boundary(&mut self, b: steps::Boundary) {
+        match &mut self.steps.current {
+            Some(step) => step.boundaries.push(b),
+            None => self.boundaries.push(b),
+        }
     }
 
     fn check_pending(&mut self) -> Result<(), ImportError> {
@@ -378,9 +392,36 @@ impl Parser {
             }
             "BOUNDARY" => {
                 if param(params, "OP").is_some_and(|v| v.eq_ignore_ascii_case("NEW")) {
-                    self.boundaries.clear();
+                    match &mut self.steps.current {
+                        Some(step) => {
+                            step.op_new = true;
+                            step.boundaries.clear();
+                        }
+                        None => self.boundaries.clear(),
+                    }
                 }
                 Block::Boundary
+            }
+            "STEP" => {
+                self.steps
+                    .begin(loc, param(params, "NAME").map(str::to_owned));
+                Block::Skip
+            }
+            "END STEP" => {
+                self.steps.finish_current();
+                Block::Skip
+            }
+            p if self.steps.current.is_some() && steps::PROCEDURES.contains(&p) => {
+                if let Some(step) = &mut self.steps.current {
+                    if step.procedure.is_none() {
+                        step.procedure = Some((p.to_owned(), loc));
+                    }
+                }
+                if p == "FREQUENCY" {
+                    Block::Frequency
+                } else {
+                    Block::Skip
+                }
             }
             "MASS" => Block::Mass(need("ELSET")?),
             "ROTARY INERTIA" => Block::RotaryInertia(need("ELSET")?),
@@ -455,6 +496,13 @@ impl Parser {
         };
         match &self.block {
             Block::Skip => {}
+            Block::Frequency => {
+                let n = fields(line).next().and_then(parse_u64);
+                if let Some(step) = &mut self.steps.current {
+                    step.eigenvalues = n.filter(|n| *n > 0).map(|n| n as usize);
+                }
+                self.block = Block::Skip;
+            }
             Block::Node(nset) => {
                 let mut f = fields(line);
                 let s = f.next().unwrap_or("");
@@ -638,7 +686,7 @@ impl Parser {
                         _ => None,
                     });
                 if let Some(mask) = named {
-                    self.boundaries.push((target(v[0]), mask, loc));
+                    self.push_boundary((target(v[0]), mask, loc));
                     return Ok(());
                 }
                 let first = v.get(1).and_then(|s| parse_u64(s));
@@ -662,7 +710,7 @@ impl Parser {
                         ));
                     }
                 }
-                self.boundaries.push((target(v[0]), mask, loc));
+                self.push_boundary((target(v[0]), mask, loc));
             }
             Block::Mass(set) | Block::RotaryInertia(set) => {
                 let set = set.clone();

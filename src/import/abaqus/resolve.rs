@@ -7,8 +7,8 @@ use super::{CouplingKind, Parser, Target};
 use crate::import::error::ImportError;
 use crate::import::text::Loc;
 use crate::model::{
-    DofMask, ImportWarning, Material, Model, PointMass, Property, RigidElement, Section,
-    SectionShape, Spc,
+    ConstraintSource, DofMask, EigenRequest, ImportWarning, Material, Model, PointMass, Property,
+    RigidElement, Section, SectionShape, Spc,
 };
 
 impl Parser {
@@ -156,7 +156,25 @@ impl Parser {
                         .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node set {s}"))),
                 }
             };
-        for (t, dofs, loc) in &self.boundaries {
+        // *BOUNDARY: the model data's, and those of the *FREQUENCY step (steps.rs).
+        self.steps.finish_current();
+        let at = |loc: Loc| format!("{}:{}", self.b.file_name(loc), loc.line);
+        let applied = self.steps.applied(&at);
+        let mut bcs: Vec<(Target, DofMask, Loc, String)> = self
+            .boundaries
+            .iter()
+            .map(|(t, d, l)| (t.clone(), *d, *l, "model data".to_owned()))
+            .collect();
+        bcs.extend(
+            applied
+                .boundaries
+                .iter()
+                .map(|(b, what)| (b.0.clone(), b.1, b.2, what.clone())),
+        );
+        let ignored = applied.ignored;
+        let frequency = applied.frequency;
+        for (t, dofs, loc, what) in &bcs {
+            let first = self.b.model.spcs.len();
             for node in resolve_target(t, *loc, "*BOUNDARY", &self)? {
                 self.b.model.spcs.push(Spc {
                     node,
@@ -164,6 +182,33 @@ impl Parser {
                     set_id: 0,
                 });
             }
+            let (name, set) = match t {
+                Target::Node(id) => (format!("node {id}"), None),
+                Target::Set(s) => (s.clone(), Some(s.clone())),
+            };
+            self.b.model.constraint_sources.push(ConstraintSource {
+                card: "*BOUNDARY".into(),
+                id: format!("{name} dofs {} ({what})", dofs.digits()),
+                file: self.b.file_name(*loc).to_owned(),
+                line: loc.line as usize,
+                set,
+                spcs: first..self.b.model.spcs.len(),
+                permanent: false,
+            });
+        }
+        for (loc, message) in ignored {
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.file_name(loc).to_owned(),
+                message,
+            });
+        }
+        if let Some((what, count)) = frequency {
+            self.b.model.deck.eigen = count.map(|n| EigenRequest {
+                source: format!("*FREQUENCY of {what}"),
+                count: Some(n),
+                lower_hz: None,
+                upper_hz: None,
+            });
         }
         // Point masses from MASS / ROTARYI elements.
         let mut pm: BTreeMap<u64, PointMass> = BTreeMap::new();

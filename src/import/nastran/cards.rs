@@ -10,32 +10,69 @@ use super::CardCounts;
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::{Builder, IdMap, Loc};
 use crate::model::{
-    BeamSection, CoordKind, CoordSystem, DofMask, ElementKind, ImportWarning, InterfaceDofs,
-    Material, Model, PointMass, Property, RigidElement, Section, SectionShape, Spc,
+    BeamSection, ConstraintSource, CoordKind, CoordSystem, DofMask, EigenRequest, ElementKind,
+    ImportWarning, InterfaceDofs, Material, Model, PointMass, Property, RigidElement, Section,
+    SectionShape, Spc,
 };
 
 /// SPCADD: (SID, [(set id, field index)], card).
 type SpcAdd<'a> = (u64, Vec<(u64, usize)>, &'a Card);
 
-/// Build the model from lexed cards.
-pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
+/// Build the model from lexed cards; `subcase` picks the case-control subcase whose SPC and
+/// METHOD selections apply.
+pub(crate) fn build(
+    lexer: Lexer,
+    subcase: Option<u64>,
+) -> Result<(Model, CardCounts), ImportError> {
     let mut counts = CardCounts::new();
     let mut unsupported: BTreeMap<String, usize> = BTreeMap::new();
     let files = lexer.files;
+    let case = super::case_control::parse(&lexer.case_lines, lexer.has_case_control, &files)?;
+    let effective = case.effective(subcase, &files, &files[0])?;
     let mut b = Builder::new(&files[0]);
     b.files = files.clone();
+    b.model.deck.title = case.title.clone();
+    b.model.deck.subcase = effective.subcase;
     // Gather by kind first: coordinate systems must be known before grids are placed.
     let mut grids = Vec::new();
     let mut coords = Vec::new();
     let mut others = Vec::new();
+    let mut grdset: Option<&Card> = None;
     for card in &lexer.cards {
         *counts.entry(card.name.clone()).or_default() += 1;
         match card.name.as_str() {
             "GRID" => grids.push(card),
             "CORD2R" | "CORD2C" | "CORD2S" => coords.push(card),
+            "GRDSET" => {
+                if let Some(first) = grdset {
+                    return Err(cc(card, &files).err_card(format!(
+                        "second GRDSET card (the first is on line {})",
+                        first.loc.line
+                    )));
+                }
+                grdset = Some(card);
+            }
             _ => others.push(card),
         }
     }
+    // GRDSET: defaults for the blank CP, CD and PS fields of every GRID.
+    let defaults = match grdset {
+        Some(card) => {
+            let g = cc(card, &files);
+            let ps = if g.text(6).is_empty() {
+                None
+            } else {
+                Some(DofMask::from_digits(g.text(6)).ok_or_else(|| g.err(6, "bad PS dof digits"))?)
+            };
+            (
+                g.int(1)?.unwrap_or(0),
+                g.int(5)?.unwrap_or(0),
+                ps,
+                Some(card),
+            )
+        }
+        None => (0, 0, None, None),
+    };
     // Coordinate systems.
     let coord_index = resolve_coords(&coords, &files, &mut b.model.coord_systems)?;
     // Grids.
@@ -44,7 +81,7 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
     for card in &grids {
         let g = cc(card, &files);
         let id = g.id(0, "ID")?;
-        let cp = g.int(1)?.unwrap_or(0);
+        let cp = g.int(1)?.unwrap_or(defaults.0);
         let mut x = [g.real_or(2, 0.0)?, g.real_or(3, 0.0)?, g.real_or(4, 0.0)?];
         if cp != 0 {
             let cs = coord_index
@@ -52,7 +89,7 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
                 .ok_or_else(|| g.err(1, format!("unknown coordinate system CP {cp}")))?;
             x = to_basic(&b.model.coord_systems[*cs], x);
         }
-        let cd = g.int(5)?.unwrap_or(0);
+        let cd = g.int(5)?.unwrap_or(defaults.1);
         if cd > 0 {
             let cs = coord_index
                 .get(&cd)
@@ -61,7 +98,9 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
         }
         if !g.text(6).is_empty() {
             let m = DofMask::from_digits(g.text(6)).ok_or_else(|| g.err(6, "bad PS dof digits"))?;
-            perm_spc.push((b.model.nodes.len(), m));
+            perm_spc.push((b.model.nodes.len(), m, *card));
+        } else if let (Some(m), Some(gs)) = (defaults.2, defaults.3) {
+            perm_spc.push((b.model.nodes.len(), m, gs));
         }
         b.add_node(id, x, card.loc);
     }
@@ -74,11 +113,24 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
             .get(id)
             .ok_or_else(|| g.err(k, format!("references unknown node {id}")))
     };
-    for (n, m) in perm_spc {
+    for (n, m, card) in perm_spc {
+        if m.0 == 0 {
+            continue;
+        }
+        let at = b.model.spcs.len();
         b.model.spcs.push(Spc {
             node: n,
             dofs: m,
             set_id: 0,
+        });
+        b.model.constraint_sources.push(ConstraintSource {
+            card: format!("{} PS={}", card.name, m.digits()),
+            id: format!("GRID {}", b.model.nodes[n].id),
+            file: files[card.loc.file as usize].clone(),
+            line: card.loc.line as usize,
+            set: None,
+            spcs: at..at + 1,
+            permanent: true,
         });
     }
     // Everything else.
@@ -88,9 +140,14 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
     let mut elem_pid: Vec<(u64, Loc)> = Vec::new();
     let mut orient: Vec<(usize, Orientation, Loc)> = Vec::new();
     let mut masses: Vec<(PointMass, i64, &Card)> = Vec::new();
-    let mut spc_sets: BTreeMap<u64, Vec<(usize, DofMask)>> = BTreeMap::new();
+    let mut spc_sets: BTreeMap<u64, Vec<(usize, DofMask, &Card)>> = BTreeMap::new();
     let mut spcadd: Vec<SpcAdd> = Vec::new();
+    let mut eigen_cards: BTreeMap<u64, &Card> = BTreeMap::new();
+    let mut aset_cards: BTreeMap<&str, usize> = BTreeMap::new();
+    let mut qset: Vec<(usize, DofMask)> = Vec::new();
+    let mut qset_cards: BTreeMap<&str, usize> = BTreeMap::new();
     let mut wtmass = 1.0;
+    let mut shear_rigid: Vec<String> = Vec::new();
     for card in others {
         let g = cc(card, &files);
         let name = card.name.as_str();
@@ -112,7 +169,18 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
             "PSOLID" | "PSHELL" | "PROD" | "PBAR" | "PBARL" | "PBEAM" | "PBEAML" => {
                 let pid = g.id(0, "PID")?;
                 let mid = g.id(1, "MID")?;
-                props.push((pid, mid, property(&g)?, card));
+                let section = property(&g)?;
+                if let (true, Section::Beam(bs)) = (matches!(name, "PBARL" | "PBEAML"), &section) {
+                    if bs.shear_factors.is_none() {
+                        shear_rigid.push(format!(
+                            "{name} {pid} TYPE {} ({}:{})",
+                            g.text(3),
+                            g.file,
+                            card.loc.line
+                        ));
+                    }
+                }
+                props.push((pid, mid, section, card));
             }
             "PCOMP" | "PCOMPG" | "PELAS" | "PBUSH" | "PSHEAR" | "PDAMP" | "PGAP" | "PMASS"
             | "PVISC" => {
@@ -181,7 +249,7 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
                     if g.real_or(k + 2, 0.0)? != 0.0 {
                         return Err(g.err(k + 2, "enforced displacement not supported"));
                     }
-                    spc_sets.entry(sid).or_default().push((n, m));
+                    spc_sets.entry(sid).or_default().push((n, m, card));
                 }
             }
             "SPC1" => {
@@ -191,31 +259,70 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
                 let thru = (2..card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
                 for (id, k) in g.id_list(2)? {
                     match nodes.get(id) {
-                        Some(n) => spc_sets.entry(sid).or_default().push((n, m)),
+                        Some(n) => spc_sets.entry(sid).or_default().push((n, m, card)),
                         None if thru => {}
                         None => return Err(g.err(k, format!("references unknown node {id}"))),
                     }
                 }
             }
             "SPCADD" => spcadd.push((g.id(0, "SID")?, g.id_list(1)?, card)),
-            "ASET" => {
+            "ASET" | "BSET" | "QSET" => {
                 let mut k = 0;
                 while !g.text(k).is_empty() {
                     let n = node(&g, k, g.id(k, "G")?)?;
                     let m = DofMask::from_digits(g.text(k + 1))
+                        .filter(|m| m.0 != 0)
                         .ok_or_else(|| g.err(k + 1, "bad dof digits"))?;
-                    b.model.interface.push(InterfaceDofs { node: n, dofs: m });
+                    if name == "QSET" {
+                        qset.push((n, m));
+                    } else {
+                        b.model.interface.push(InterfaceDofs { node: n, dofs: m });
+                    }
                     k += 2;
                 }
+                if name == "QSET" {
+                    *qset_cards.entry("QSET").or_default() += 1;
+                } else {
+                    *aset_cards
+                        .entry(if name == "ASET" { "ASET" } else { "BSET" })
+                        .or_default() += 1;
+                }
             }
-            "ASET1" => {
-                let m =
-                    DofMask::from_digits(g.text(0)).ok_or_else(|| g.err(0, "bad dof digits"))?;
+            "ASET1" | "BSET1" | "QSET1" => {
+                let m = DofMask::from_digits(g.text(0))
+                    .filter(|m| m.0 != 0)
+                    .ok_or_else(|| g.err(0, "bad dof digits"))?;
+                let thru = (1..card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
                 for (id, k) in g.id_list(1)? {
-                    b.model.interface.push(InterfaceDofs {
-                        node: node(&g, k, id)?,
-                        dofs: m,
-                    });
+                    let n = match nodes.get(id) {
+                        Some(n) => n,
+                        None if thru => continue,
+                        None => return Err(g.err(k, format!("references unknown node {id}"))),
+                    };
+                    if name == "QSET1" {
+                        qset.push((n, m));
+                    } else {
+                        b.model.interface.push(InterfaceDofs { node: n, dofs: m });
+                    }
+                }
+                if name == "QSET1" {
+                    *qset_cards.entry("QSET1").or_default() += 1;
+                } else {
+                    *aset_cards
+                        .entry(if name == "ASET1" { "ASET1" } else { "BSET1" })
+                        .or_default() += 1;
+                }
+            }
+            "EIGRL" | "EIGR" => {
+                let sid = g.id(0, "SID")?;
+                if let Some(prev) = eigen_cards.insert(sid, card) {
+                    return Err(g.err(
+                        0,
+                        format!(
+                            "duplicate eigenvalue method id {sid} (also {} on line {})",
+                            prev.name, prev.loc.line
+                        ),
+                    ));
                 }
             }
             "PARAM" => {
@@ -366,30 +473,202 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
         pm.inertia = pm.inertia.map(|r| r.map(|v| v * wtmass));
         b.model.point_masses.push(pm);
     }
-    // SPC sets (node sets SPC_<sid>), then SPCADD combinations.
+    // SPC sets: every set is a node set SPC_<sid>; only the one the case control selects holds.
     let mut node_sets = BTreeMap::new();
     for (sid, list) in &spc_sets {
         let mut ns: Vec<usize> = list.iter().map(|p| p.0).collect();
         ns.sort_unstable();
         ns.dedup();
         node_sets.insert(format!("SPC_{sid}"), ns);
-        b.model.spcs.extend(list.iter().map(|&(node, dofs)| Spc {
-            node,
-            dofs,
-            set_id: *sid,
-        }));
     }
-    for (sid, sets, card) in spcadd {
-        for (s, k) in sets {
-            let list = spc_sets.get(&s).ok_or_else(|| {
-                cc(card, &files).err(k, format!("references unknown SPC set {s}"))
-            })?;
-            b.model.spcs.extend(list.iter().map(|&(node, dofs)| Spc {
-                node,
-                dofs,
-                set_id: sid,
-            }));
+    let mut spcadd_members: BTreeMap<u64, (Vec<u64>, &Card)> = BTreeMap::new();
+    for (sid, sets, card) in &spcadd {
+        let entry = spcadd_members.entry(*sid).or_insert((Vec::new(), card));
+        for &(s, k) in sets {
+            if !spc_sets.contains_key(&s) {
+                return Err(cc(card, &files).err(k, format!("references unknown SPC set {s}")));
+            }
+            entry.0.push(s);
         }
+        let mut ns: Vec<usize> = entry
+            .0
+            .iter()
+            .flat_map(|s| spc_sets[s].iter().map(|p| p.0))
+            .collect();
+        ns.sort_unstable();
+        ns.dedup();
+        node_sets.insert(format!("SPC_{sid}"), ns);
+    }
+    for (sid, list) in &spc_sets {
+        b.model.deck.spc_sets.insert(
+            format!("SPC_{sid}"),
+            list.iter().map(|&(n, m, _)| (n, m)).collect(),
+        );
+    }
+    for (sid, (members, _)) in &spcadd_members {
+        let all = members
+            .iter()
+            .flat_map(|s| spc_sets[s].iter().map(|&(n, m, _)| (n, m)))
+            .collect();
+        b.model.deck.spc_sets.insert(format!("SPC_{sid}"), all);
+    }
+    let mut applied: Vec<u64> = Vec::new();
+    if let Some(sel) = effective.scope.spc {
+        let members = match spcadd_members.get(&sel.id) {
+            Some((m, _)) => m.clone(),
+            None if spc_sets.contains_key(&sel.id) => vec![sel.id],
+            None => {
+                return Err(parse_err(
+                    &files[sel.loc.file as usize],
+                    sel.loc.line as usize,
+                    format!("SPC = {}", sel.id),
+                    format!(
+                        "the case control selects SPC set {}, but the bulk data has no SPC, SPC1 or SPCADD with that id",
+                        sel.id
+                    ),
+                ))
+            }
+        };
+        for s in members {
+            applied.push(s);
+            for &(node, dofs, card) in &spc_sets[&s] {
+                let at = b.model.spcs.len();
+                b.model.spcs.push(Spc {
+                    node,
+                    dofs,
+                    set_id: sel.id,
+                });
+                match b.model.constraint_sources.last_mut() {
+                    Some(last)
+                        if !last.permanent
+                            && last.spcs.end == at
+                            && last.line == card.loc.line as usize
+                            && last.file == files[card.loc.file as usize] =>
+                    {
+                        last.spcs.end = at + 1;
+                    }
+                    _ => b.model.constraint_sources.push(ConstraintSource {
+                        card: card.name.clone(),
+                        id: if s == sel.id {
+                            format!("set {s}")
+                        } else {
+                            format!("set {s} (SPCADD {})", sel.id)
+                        },
+                        file: files[card.loc.file as usize].clone(),
+                        line: card.loc.line as usize,
+                        set: Some(format!("SPC_{s}")),
+                        spcs: at..at + 1,
+                        permanent: false,
+                    }),
+                }
+            }
+        }
+    }
+    let unselected: Vec<String> = spc_sets
+        .keys()
+        .chain(spcadd_members.keys())
+        .filter(|s| !applied.contains(s) && effective.scope.spc.is_none_or(|x| x.id != **s))
+        .map(|s| format!("SPC_{s}"))
+        .collect();
+    if !unselected.is_empty() {
+        let why = if !case.present {
+            "the file has no case control (bare bulk data), so no SPC set is selected".to_owned()
+        } else {
+            match effective.scope.spc {
+                None => "the case control selects no SPC set (free-free)".to_owned(),
+                Some(s) => format!("the case control selects SPC = {}", s.id),
+            }
+        };
+        b.model.deck.notes.push(format!(
+            "{}: SPC sets {} in the bulk data are not applied: {why}; their nodes are node sets of these names (for --interface / --reference-conditions)",
+            files[0],
+            unselected.join(", ")
+        ));
+    }
+    // METHOD → EIGRL/EIGR: the default mode count or band.
+    if let Some(sel) = effective.scope.method {
+        let card = eigen_cards.get(&sel.id).ok_or_else(|| {
+            parse_err(
+                &files[sel.loc.file as usize],
+                sel.loc.line as usize,
+                format!("METHOD = {}", sel.id),
+                format!(
+                    "the case control selects eigenvalue method {}, but the bulk data has no EIGRL or EIGR with that id",
+                    sel.id
+                ),
+            )
+        })?;
+        let g = cc(card, &files);
+        // EIGRL: SID V1 V2 ND; EIGR: SID METHOD F1 F2 NE ND.
+        let (lo, hi, nd) = if card.name == "EIGRL" {
+            (g.real(1)?, g.real(2)?, g.int(3)?)
+        } else {
+            (g.real(2)?, g.real(3)?, g.int(5)?)
+        };
+        let count = match nd {
+            Some(n) if n > 0 => Some(n as usize),
+            Some(n) => {
+                return Err(g.err(
+                    if card.name == "EIGRL" { 3 } else { 5 },
+                    format!("ND = {n} must be > 0"),
+                ))
+            }
+            None => None,
+        };
+        if count.is_none() && hi.is_none() {
+            return Err(
+                g.err_card("neither ND nor an upper frequency V2/F2 is given: no mode count")
+            );
+        }
+        b.model.deck.eigen = Some(EigenRequest {
+            source: format!(
+                "METHOD = {} ({}:{}) → {} {} ({}:{})",
+                sel.id,
+                files[sel.loc.file as usize],
+                sel.loc.line,
+                card.name,
+                sel.id,
+                files[card.loc.file as usize],
+                card.loc.line
+            ),
+            count,
+            lower_hz: lo,
+            upper_hz: hi,
+        });
+    }
+    if !aset_cards.is_empty() {
+        let cards: Vec<String> = aset_cards.iter().map(|(c, n)| format!("{n} {c}")).collect();
+        let mut ns: Vec<usize> = b.model.interface.iter().map(|i| i.node).collect();
+        ns.sort_unstable();
+        ns.dedup();
+        b.model.deck.interface_source = Some(format!(
+            "{} ({} dofs at {} nodes)",
+            cards.join(", "),
+            b.model
+                .interface
+                .iter()
+                .map(|i| i.dofs.0.count_ones() as usize)
+                .sum::<usize>(),
+            ns.len()
+        ));
+    }
+    if !qset.is_empty() {
+        let cards: Vec<String> = qset_cards.iter().map(|(c, n)| format!("{n} {c}")).collect();
+        let mut per_node: BTreeMap<usize, u8> = BTreeMap::new();
+        for (n, m) in &qset {
+            *per_node.entry(*n).or_default() |= m.0;
+        }
+        let q = per_node.values().map(|m| m.count_ones() as usize).sum();
+        b.model.deck.qset_modes = Some((q, cards.join(", ")));
+    }
+    if !shear_rigid.is_empty() {
+        b.model.warnings.push(ImportWarning {
+            file: files[0].clone(),
+            message: format!(
+                "{}: the shear factors Nastran derives for these cross-section shapes are not implemented here (only ROD's 0.9): shear-rigid bending, stiffer than Nastran's shear-flexible element",
+                shear_rigid.join(", ")
+            ),
+        });
     }
     b.model.node_sets = node_sets;
     b.model.element_sets = element_sets;
@@ -614,10 +893,8 @@ fn property(g: &C) -> Result<Section, ImportError> {
             while so(k) {
                 k += 16;
             }
-            let kf = match (g.real(k)?, g.real(k + 1)?) {
-                (None, None) => None,
-                (k1, k2) => Some([k1.unwrap_or(1.0), k2.unwrap_or(1.0)]),
-            };
+            // Nastran PBEAM: K1, K2 default 1.0 (shear flexible); 0.0 means shear-rigid.
+            let kf = Some([g.real(k)?.unwrap_or(1.0), g.real(k + 1)?.unwrap_or(1.0)]);
             beam(g, [2, 3, 4, 5, 6, 7], kf)?
         }
         _ => {
@@ -638,6 +915,8 @@ fn property(g: &C) -> Result<Section, ImportError> {
                 .to_section()
                 .ok_or_else(|| g.err(3, "unsupported shape"))?;
             s.nsm = nsm;
+            // The shear factors Nastran derives for the shape (its equivalent PBAR/PBEAM).
+            s.shear_factors = shape.nastran_shear_factors();
             Section::Beam(s)
         }
     })

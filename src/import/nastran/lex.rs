@@ -61,6 +61,11 @@ fn fixed_fields(s: &str, start: usize, w: usize, n: usize, line: u32, out: &mut 
 pub(crate) struct Lexer {
     pub files: Vec<String>,
     pub cards: Vec<Card>,
+    /// Lines of the main file before `BEGIN BULK` (executive and case control), comments
+    /// stripped, with files named by `INCLUDE` there read in place.
+    pub case_lines: Vec<(String, Loc)>,
+    /// The main file has a `BEGIN BULK` line (so it is a whole deck, not bare bulk data).
+    pub has_case_control: bool,
 }
 
 impl Lexer {
@@ -68,6 +73,8 @@ impl Lexer {
         Lexer {
             files: vec![main.to_owned()],
             cards: Vec::new(),
+            case_lines: Vec::new(),
+            has_case_control: false,
         }
     }
 
@@ -78,6 +85,52 @@ impl Lexer {
             entity,
             msg,
         )
+    }
+
+    /// `INCLUDE 'file'` in the executive or case control: the file's lines are case control.
+    fn case_include(
+        &mut self,
+        parent: &Path,
+        t: &str,
+        loc: Loc,
+        depth: usize,
+    ) -> Result<(), ImportError> {
+        let name = t[7..].trim().trim_matches('\'').trim_matches('"').trim();
+        if name.is_empty() {
+            return Err(self.err(loc, "INCLUDE", "missing file name".into()));
+        }
+        if depth >= 16 {
+            return Err(self.err(
+                loc,
+                "INCLUDE",
+                "includes nested deeper than 16 (cycle?)".into(),
+            ));
+        }
+        let full = parent.parent().unwrap_or(Path::new(".")).join(name);
+        let text = read_text(&full).map_err(|e| match e {
+            ImportError::Io { file, source } => {
+                self.err(loc, "INCLUDE", format!("cannot read {file}: {source}"))
+            }
+            e => e,
+        })?;
+        self.files.push(full.display().to_string());
+        let file = self.files.len() as u32 - 1;
+        for (i, raw) in text.lines().enumerate() {
+            let line = raw.split('$').next().unwrap_or("");
+            let sub = Loc {
+                file,
+                line: i as u32 + 1,
+            };
+            let t = line.trim_start();
+            if t.get(..7)
+                .is_some_and(|h| h.eq_ignore_ascii_case("INCLUDE"))
+            {
+                self.case_include(&full, t, sub, depth + 1)?;
+            } else if !t.is_empty() {
+                self.case_lines.push((line.trim_end().to_owned(), sub));
+            }
+        }
+        Ok(())
     }
 
     /// Lex `path` (file index `file`). In the main file, text before `BEGIN BULK` is skipped
@@ -96,6 +149,9 @@ impl Lexer {
                 upper_starts(l.trim_start(), "BEGIN BULK")
                     || upper_starts(l.trim_start(), "BEGIN SUPER")
             });
+        if depth == 0 && !in_bulk {
+            self.has_case_control = true;
+        }
         let lines: Vec<&str> = text.split('\n').collect();
         let mut i = 0;
         while i < lines.len() {
@@ -123,6 +179,10 @@ impl Lexer {
             if !in_bulk {
                 if upper_starts(t, "BEGIN BULK") || upper_starts(t, "BEGIN SUPER") {
                     in_bulk = true;
+                } else if upper_starts(t, "INCLUDE") {
+                    self.case_include(path, t, loc, 0)?;
+                } else {
+                    self.case_lines.push((line.trim_end().to_owned(), loc));
                 }
                 continue;
             }

@@ -2,16 +2,21 @@
 //!
 //! Cards: GRID (CP/CD), CORD2R/CORD2C/CORD2S (chained), CTETRA (4/10), CHEXA (8/20),
 //! CPENTA (6/15), CBAR, CBEAM, CROD, CQUAD4, CTRIA3, PSOLID, PBAR, PBARL, PBEAM, PBEAML, PROD,
-//! PSHELL, MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, ASET, ASET1, PARAM WTMASS/COUPMASS.
+//! PSHELL, MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, GRDSET, ASET, ASET1, BSET, BSET1, QSET,
+//! QSET1, EIGRL, EIGR, PARAM WTMASS/COUPMASS; the case control's TITLE, SUBCASE, SPC and METHOD
+//! (`case_control`).
 //! Every other card is counted and reported once per card type as a warning; elements that
 //! reference a property of an unsupported type (e.g. PCOMP) get no property and a warning.
 //!
-//! Node sets: `SPC_<sid>` holds the nodes of SPC/SPC1 set `sid` (the reference `.bdf` files
-//! write one SPC1 per named node set). Element sets: `PID_<pid>` per property.
+//! Constraints as Nastran applies them: GRID PS / GRDSET always; an SPC/SPC1/SPCADD set only
+//! when the case control selects it (`SPC = n`, global or in the one or chosen subcase; bare
+//! bulk data selects none). Node sets: `SPC_<sid>` holds the nodes of SPC/SPC1/SPCADD set `sid`,
+//! selected or not (the reference `.bdf` files write one SPC1 per named node set). Element sets: `PID_<pid>` per property.
 //! CHEXA20/CPENTA15 mid-side nodes are permuted to Abaqus order (Nastran lists the vertical
 //! edges before the top edges).
 
 mod cards;
+mod case_control;
 mod coord;
 mod fields;
 mod lex;
@@ -32,7 +37,13 @@ pub fn read(path: &Path) -> Result<Model, ImportError> {
 
 /// [`read`], also returning how many cards of each type the deck holds.
 pub fn read_with_counts(path: &Path) -> Result<(Model, CardCounts), ImportError> {
+    read_subcase(path, None)
+}
+
+/// [`read_with_counts`] with the SPC and METHOD selections of case-control subcase `subcase`
+/// (needed when the deck's subcases select different sets).
+pub fn read_subcase(path: &Path, subcase: Option<u64>) -> Result<(Model, CardCounts), ImportError> {
     let mut lexer = lex::Lexer::new(&path.display().to_string());
     lexer.lex_file(path, 0, 0)?;
-    cards::build(lexer)
+    cards::build(lexer, subcase)
 }

@@ -1,0 +1,286 @@
+//! Nastran case control: the part of a deck between `CEND` and `BEGIN BULK` that says which
+//! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC` and `METHOD` (global, i.e.
+//! above the first subcase, or inside a subcase, which overrides the global value). Every other
+//! command is output or solution control this tool has no use for and is skipped.
+//!
+//! Nastran's rule (MSC QRG, "Case Control Commands"): a bulk-data SPC set is applied only when
+//! `SPC = n` selects it; no `SPC` command means no SPC set. A deck whose subcases select
+//! different constraint or eigenvalue sets describes several analyses; the build needs one.
+
+use crate::import::error::{parse_err, ImportError};
+use crate::import::text::Loc;
+
+/// A `NAME = n` selection and where it was written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Select {
+    pub id: u64,
+    pub loc: Loc,
+}
+
+/// The selections of one scope (the global part or one subcase).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct Scope {
+    pub spc: Option<Select>,
+    pub method: Option<Select>,
+}
+
+/// One `SUBCASE n` block.
+#[derive(Debug, Clone)]
+pub(crate) struct Subcase {
+    pub id: u64,
+    pub loc: Loc,
+    pub scope: Scope,
+}
+
+/// The parsed case control.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct CaseControl {
+    /// The deck has a case control section (a `BEGIN BULK` line); bare bulk data has none.
+    pub present: bool,
+    pub title: Option<String>,
+    pub global: Scope,
+    pub subcases: Vec<Subcase>,
+}
+
+/// The selections the build uses: of the one (or the chosen) subcase, global values filled in.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Effective {
+    pub subcase: Option<u64>,
+    pub scope: Scope,
+}
+
+fn err(files: &[String], loc: Loc, entity: &str, msg: String) -> ImportError {
+    parse_err(&files[loc.file as usize], loc.line as usize, entity, msg)
+}
+
+/// Parse the lines before `BEGIN BULK` (executive control up to `CEND`, then case control).
+pub(crate) fn parse(
+    lines: &[(String, Loc)],
+    present: bool,
+    files: &[String],
+) -> Result<CaseControl, ImportError> {
+    let mut cc = CaseControl {
+        present,
+        ..Default::default()
+    };
+    let start = lines
+        .iter()
+        .position(|(l, _)| l.trim().eq_ignore_ascii_case("CEND"))
+        .map_or(0, |k| k + 1);
+    // Logical lines: a trailing comma continues a command on the next line.
+    let mut logical: Vec<(String, Loc)> = Vec::new();
+    let mut open = false;
+    for (l, loc) in &lines[start..] {
+        let t = l.trim();
+        if t.is_empty() {
+            continue;
+        }
+        match logical.last_mut() {
+            Some(last) if open => last.0.push_str(t),
+            _ => logical.push((t.to_owned(), *loc)),
+        }
+        open = t.ends_with(',');
+    }
+    let mut current: Option<usize> = None;
+    for (text, loc) in logical {
+        let upper = text.to_ascii_uppercase();
+        let word = upper
+            .split(|c: char| c.is_whitespace() || c == '=' || c == '(')
+            .next()
+            .unwrap_or("");
+        if word == "SUBCASE" {
+            let id = upper[7..]
+                .trim()
+                .parse::<u64>()
+                .map_err(|_| err(files, loc, "SUBCASE", format!("bad subcase id in '{text}'")))?;
+            if let Some(prev) = cc.subcases.iter().find(|s| s.id == id) {
+                return Err(err(
+                    files,
+                    loc,
+                    &format!("SUBCASE {id}"),
+                    format!(
+                        "subcase {id} defined twice (also on line {})",
+                        prev.loc.line
+                    ),
+                ));
+            }
+            cc.subcases.push(Subcase {
+                id,
+                loc,
+                scope: Scope::default(),
+            });
+            current = Some(cc.subcases.len() - 1);
+            continue;
+        }
+        let Some((key, value)) = text.split_once('=') else {
+            continue;
+        };
+        let value = value.trim();
+        if word == "TITLE" && current.is_none() {
+            cc.title = Some(value.to_owned());
+            continue;
+        }
+        let describer = key.trim().to_ascii_uppercase();
+        let slot = match word {
+            "SPC" => 0,
+            "METHOD" | "METH" if !describer.contains("FLUID") => 1,
+            _ => continue,
+        };
+        let id = value.parse::<u64>().map_err(|_| {
+            err(
+                files,
+                loc,
+                word,
+                format!("{word} = '{value}': expected a set id (a positive integer)"),
+            )
+        })?;
+        let scope = match current {
+            Some(k) => &mut cc.subcases[k].scope,
+            None => &mut cc.global,
+        };
+        let s = Some(Select { id, loc });
+        if slot == 0 {
+            scope.spc = s;
+        } else {
+            scope.method = s;
+        }
+    }
+    Ok(cc)
+}
+
+impl CaseControl {
+    /// The selections of subcase `k` with the global ones filled in.
+    fn scope_of(&self, k: usize) -> Scope {
+        let s = self.subcases[k].scope;
+        Scope {
+            spc: s.spc.or(self.global.spc),
+            method: s.method.or(self.global.method),
+        }
+    }
+
+    /// The selections the build uses. `choice` picks a subcase; without it every subcase must
+    /// select the same SPC and METHOD sets.
+    pub(crate) fn effective(
+        &self,
+        choice: Option<u64>,
+        files: &[String],
+        main_file: &str,
+    ) -> Result<Effective, ImportError> {
+        let show = |s: Option<Select>| s.map_or("none".to_owned(), |s| s.id.to_string());
+        if let Some(n) = choice {
+            if self.subcases.is_empty() {
+                if n == 1 {
+                    return Ok(Effective {
+                        subcase: None,
+                        scope: self.global,
+                    });
+                }
+                return Err(parse_err(
+                    main_file,
+                    1,
+                    "SUBCASE",
+                    format!("subcase {n} asked for, but the deck has no SUBCASE (its one case is subcase 1)"),
+                ));
+            }
+            let k = self
+                .subcases
+                .iter()
+                .position(|s| s.id == n)
+                .ok_or_else(|| {
+                    let ids: Vec<String> = self.subcases.iter().map(|s| s.id.to_string()).collect();
+                    parse_err(
+                        main_file,
+                        self.subcases[0].loc.line as usize,
+                        "SUBCASE",
+                        format!(
+                            "subcase {n} asked for, but the deck has subcases {}",
+                            ids.join(", ")
+                        ),
+                    )
+                })?;
+            return Ok(Effective {
+                subcase: Some(n),
+                scope: self.scope_of(k),
+            });
+        }
+        let Some(first) = self.subcases.first() else {
+            return Ok(Effective {
+                subcase: None,
+                scope: self.global,
+            });
+        };
+        let s0 = self.scope_of(0);
+        for (k, sc) in self.subcases.iter().enumerate().skip(1) {
+            let s = self.scope_of(k);
+            let ids = |s: Scope| (s.spc.map(|x| x.id), s.method.map(|x| x.id));
+            if ids(s) != ids(s0) {
+                return Err(err(
+                    files,
+                    sc.loc,
+                    &format!("SUBCASE {}", sc.id),
+                    format!(
+                        "subcases {} (SPC = {}, METHOD = {}) and {} (SPC = {}, METHOD = {}) describe different analyses; pick one with --subcase {} or --subcase {}",
+                        first.id,
+                        show(s0.spc),
+                        show(s0.method),
+                        sc.id,
+                        show(s.spc),
+                        show(s.method),
+                        first.id,
+                        sc.id
+                    ),
+                ));
+            }
+        }
+        Ok(Effective {
+            subcase: (self.subcases.len() == 1).then_some(first.id),
+            scope: s0,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lines(text: &str) -> Vec<(String, Loc)> {
+        text.lines()
+            .enumerate()
+            .map(|(i, l)| {
+                (
+                    l.to_owned(),
+                    Loc {
+                        file: 0,
+                        line: i as u32 + 1,
+                    },
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn global_and_subcase_selections() {
+        let files = vec!["d.bdf".to_owned()];
+        let text = "SOL 103\nCEND\nTITLE = Two cases\nMETHOD = 1\nSPCFORCES = ALL\nSUBCASE 1\n  SPC = 1\nSUBCASE 2\n  SPC=2\n  METHOD(STRUCTURE) = 3\n";
+        let cc = parse(&lines(text), true, &files).unwrap();
+        assert_eq!(cc.title.as_deref(), Some("Two cases"));
+        assert_eq!(cc.global.method.unwrap().id, 1);
+        assert_eq!(cc.subcases.len(), 2);
+        let e = cc.effective(None, &files, "d.bdf").unwrap_err().to_string();
+        assert!(
+            e.contains("d.bdf:8: SUBCASE 2") && e.contains("SPC = 1") && e.contains("SPC = 2"),
+            "{e}"
+        );
+        let one = cc.effective(Some(1), &files, "d.bdf").unwrap();
+        assert_eq!(
+            (one.scope.spc.unwrap().id, one.scope.method.unwrap().id),
+            (1, 1)
+        );
+        let two = cc.effective(Some(2), &files, "d.bdf").unwrap();
+        assert_eq!(
+            (two.scope.spc.unwrap().id, two.scope.method.unwrap().id),
+            (2, 3)
+        );
+        assert!(cc.effective(Some(7), &files, "d.bdf").is_err());
+    }
+}
