@@ -2,9 +2,9 @@
 //!
 //! Cards: GRID (CP/CD), CORD2R/CORD2C/CORD2S (chained), CTETRA (4/10), CHEXA (8/20),
 //! CPENTA (6/15), CBAR, CBEAM, CROD, CQUAD4, CTRIA3, PSOLID, PBAR, PBARL, PBEAM, PBEAML, PROD,
-//! PSHELL, MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, ASET, ASET1, PARAM WTMASS/COUPMASS.
+//! PSHELL, PCOMP (one isotropic material), MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, ASET, ASET1, PARAM WTMASS/COUPMASS.
 //! Every other card is counted and reported once per card type as a warning; elements that
-//! reference a property of an unsupported type (e.g. PCOMP) get no property and a warning.
+//! reference a property of an unsupported type (e.g. PCOMPG) get no property and a warning.
 //!
 //! Node sets: `SPC_<sid>` holds the nodes of SPC/SPC1 set `sid` (the reference `.bdf` files
 //! write one SPC1 per named node set). Element sets: `PID_<pid>` per property.
@@ -15,6 +15,7 @@ mod cards;
 mod coord;
 mod fields;
 mod lex;
+mod shell;
 
 use std::collections::BTreeMap;
 use std::path::Path;
