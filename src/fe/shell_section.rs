@@ -37,5 +37,6 @@ pub fn shell_props(model: &Model, prop: &Property, s: &ShellSection) -> Result<S
         shear,
         rho: primary.rho,
         nsm: s.nsm,
+        drill_factor: super::elements::shell::DRILL_FACTOR,
     })
 }

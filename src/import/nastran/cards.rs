@@ -127,9 +127,11 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
                 let (mid, section) = super::shell::pcomp(&g)?;
                 props.push((pid, mid, section, card));
             }
-            "CQUAD8" | "CTRIA6" | "CQUADR" | "CTRIAR" => return Err(g.err_card(format!(
+            "CQUAD8" | "CTRIA6" | "CQUADR" | "CTRIAR" => {
+                return Err(g.err_card(format!(
                 "{name}: quadratic and CQUADR/CTRIAR shells are not supported (use CQUAD4/CTRIA3)"
-            ))),
+            )))
+            }
             "PCOMPG" | "PELAS" | "PBUSH" | "PSHEAR" | "PDAMP" | "PGAP" | "PMASS" | "PVISC" => {
                 unsupported_props.insert(g.id(0, "PID")?, name.to_owned());
                 *unsupported.entry(name.to_owned()).or_default() += 1;
