@@ -275,7 +275,7 @@ pub fn matrices(
     let mut k = local_stiffness(&f, props)?;
     shell::apply_warping(&mut k, &f.h);
     let k = shell::to_basic(&k, 4, &f.axes);
-    let m = shell::mass_matrix(&area_products(&f), 4, props, lumped);
+    let m = shell::mass_matrix(&area_products(&f), 4, props, lumped, &f.axes[2]);
     Ok((k, m))
 }
 
@@ -380,9 +380,13 @@ mod tests {
                 .sum();
             let want = a * (7850.0 * 0.01 + 0.5);
             assert!((tx - want).abs() < 1e-12 * want);
+            // element in the x–y plane: θx, θy carry ρt³/12, θz (drilling) 10⁻⁴ of it
+            let rx: f64 = (0..4).map(|i| m[(6 * i + 3) * 24 + 6 * i + 3]).sum::<f64>();
             let rz: f64 = (0..4).map(|i| m[(6 * i + 5) * 24 + 6 * i + 5]).sum::<f64>();
             if lumped {
-                assert!((rz - a * 7850.0 * 1e-6 / 12.0).abs() < 1e-12 * rz);
+                let want = a * 7850.0 * 1e-6 / 12.0;
+                assert!((rx - want).abs() < 1e-12 * want);
+                assert!((rz - 1e-4 * want).abs() < 1e-12 * want);
             }
         }
     }

@@ -164,7 +164,7 @@ pub fn matrices(
     let s: Vec<f64> = (0..9)
         .map(|i| a / 12.0 * if i % 4 == 0 { 2.0 } else { 1.0 })
         .collect();
-    let m = shell::mass_matrix(&s, 3, props, lumped);
+    let m = shell::mass_matrix(&s, 3, props, lumped, &f.axes[2]);
     Ok((k, m))
 }
 
