@@ -20,7 +20,7 @@ fn plate_with_two_holes(n: usize, m: usize) -> String {
         })
     };
     let mut quads = Vec::new();
-    let mut holes = vec![Vec::new(), Vec::new()];
+    let mut holes = [Vec::new(), Vec::new()];
     for (c, cx) in [0.05, 0.15].into_iter().enumerate() {
         let cy = 0.05;
         let boundary = |k: usize| -> [f64; 2] {
