@@ -124,5 +124,23 @@ fn shell_plate_with_two_holes_cb_on_hole_spiders_passes_check() {
         "{text}\n{}",
         String::from_utf8_lossy(&check.stderr)
     );
+    // stress shapes are for solids: asking for them on shells says so instead of writing nothing
+    let stress = Command::new(exe)
+        .args(["build", inp.to_str().unwrap()])
+        .args([
+            "--interface",
+            "HOLE1,HOLE2",
+            "--modes",
+            "4",
+            "--units",
+            "si",
+        ])
+        .args(["--stress-modes", "-q", "--json", "-o"])
+        .arg(dir.join("stress.flexbody"))
+        .output()
+        .unwrap();
+    let report = String::from_utf8_lossy(&stress.stdout);
+    assert!(stress.status.success(), "{report}");
+    assert!(report.contains("shell elements have none"), "{report}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -427,3 +427,109 @@ fn shell_gmsh_quadrangles_with_thickness_option_are_shells() {
     let got = frequencies(&model, 1, MassKind::Lumped)[0];
     assert!(((got - want) / want).abs() < 0.01, "{got} vs {want}");
 }
+
+/// MacNeal–Harder patch (0.24 × 0.12 with four distorted interior nodes; MacNeal & Harder,
+/// *Finite Elem. Anal. Des.* 1 (1985) 3, Fig. 2): boundary nodes driven by a constant membrane
+/// strain and a constant curvature field (w = 10⁻³(x² + xy + y²)/2, θx = w,y, θy = −w,x,
+/// θz = ω); the solved interior nodes reproduce the exact field (quads, and triangles made by
+/// splitting them).
+#[test]
+fn shell_macneal_harder_patch_reproduces_constant_strain_and_curvature() {
+    let xy = [
+        [0.0, 0.0],
+        [0.24, 0.0],
+        [0.24, 0.12],
+        [0.0, 0.12],
+        [0.04, 0.02],
+        [0.18, 0.03],
+        [0.16, 0.08],
+        [0.08, 0.08],
+    ];
+    let quads = [
+        [0, 1, 5, 4],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 0, 4, 7],
+        [4, 5, 6, 7],
+    ];
+    let exact = |p: [f64; 2]| -> [f64; 6] {
+        let [x, y] = p;
+        let u = 1e-3 * (x + y / 2.0);
+        let v = 1e-3 * (y + x / 2.0);
+        let w = 1e-3 * (x * x + x * y + y * y) / 2.0;
+        let (wx, wy) = (1e-3 * (x + y / 2.0), 1e-3 * (y + x / 2.0));
+        // ω = ½(v,x − u,y) = 0
+        [u, v, w, wy, -wx, 0.0]
+    };
+    for tris in [false, true] {
+        let mut model = Model {
+            source: "patch".into(),
+            ..Model::default()
+        };
+        for (i, p) in xy.iter().enumerate() {
+            model.nodes.push(Node {
+                id: i as u64 + 1,
+                x: [p[0], p[1], 0.0],
+                displacement_frame: None,
+            });
+        }
+        model.materials.push(steel());
+        model.properties.push(Property {
+            id: 1,
+            name: "P".into(),
+            material: 0,
+            section: Section::Shell(ShellSection::homogeneous(0.001, 0)),
+        });
+        for q in quads {
+            let parts: Vec<(ElementKind, Vec<usize>)> = if tris {
+                vec![
+                    (ElementKind::Tri3, vec![q[0], q[1], q[2]]),
+                    (ElementKind::Tri3, vec![q[0], q[2], q[3]]),
+                ]
+            } else {
+                vec![(ElementKind::Quad4, q.to_vec())]
+            };
+            for (kind, nodes) in parts {
+                let id = model.elements.len() as u64 + 1;
+                model.elements.push(Element {
+                    id,
+                    kind,
+                    nodes,
+                    property: Some(0),
+                    orientation: None,
+                });
+            }
+        }
+        let asm = assemble(&model, &AssemblySpec::default()).unwrap();
+        let k = dense(&asm.k);
+        let n = asm.dofs.n_dofs;
+        let u_exact: Vec<f64> = (0..n)
+            .map(|d| {
+                let (node, c) = asm.dofs.node_of(d).unwrap();
+                exact(xy[node])[c]
+            })
+            .collect();
+        let free: Vec<usize> = (24..n).collect(); // nodes 4..7 are interior
+        let fixed: Vec<usize> = (0..24).collect();
+        let kff = Mat::from_fn(free.len(), free.len(), |a, b| k[(free[a], free[b])]);
+        let rhs = Mat::from_fn(free.len(), 1, |a, _| {
+            -fixed
+                .iter()
+                .map(|&j| k[(free[a], j)] * u_exact[j])
+                .sum::<f64>()
+        });
+        let llt = kff.llt(faer::Side::Lower).unwrap();
+        let u = faer::linalg::solvers::Solve::solve(&llt, &rhs);
+        let mut worst = 0.0f64;
+        for (a, &d) in free.iter().enumerate() {
+            let scale = if d % 6 < 2 {
+                1e-3 * 0.24
+            } else {
+                1e-3 * 0.24 * 0.24
+            };
+            worst = worst.max((u[(a, 0)] - u_exact[d]).abs() / scale);
+        }
+        eprintln!("patch tris={tris}: max relative interior error {worst:.2e}");
+        assert!(worst < 1e-8, "tris={tris}: {worst}");
+    }
+}
