@@ -1,5 +1,6 @@
 //! `DofMap`: node ↔ global dof index, node-major, 3 dofs per solid-only node and 6 where beams,
-//! rods, shells (with a property), rigid elements or point masses with inertia attach; nodes that nothing uses get none.
+//! rods, shells (with a property), rigid elements or point masses with inertia attach; nodes
+//! that nothing uses get none.
 //!
 //! Dofs are expressed in each node's displacement frame (Nastran GRID CD): for a node with a
 //! frame, `frames[node]` holds R whose rows are the local unit axes at the node in the basic
