@@ -114,6 +114,19 @@ ENDDATA
     );
     let e = read("mid4.bdf", &mid4).unwrap_err();
     assert!(e.contains("MID4"), "{e}");
+    // T blank on the PSHELL and none on the element: the assembler names both
+    let blank_t = base.replace(
+        "PSHELL  7       1       .002    1",
+        "PSHELL  7       1               1",
+    );
+    let m = read("blank_t.bdf", &blank_t).unwrap();
+    let e = flexbody::fe::assemble(&m, &Default::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("element 10") && e.contains("PSHELL T blank"),
+        "{e}"
+    );
     let q8 = base.replace(
         "CQUAD4  10      7       1       2       3       4",
         "CQUAD8  10      7       1       2       3       4",

@@ -21,6 +21,12 @@ fn iso(model: &Model, m: usize) -> Result<Isotropic, String> {
 /// section has one (Nastran MID1), bending and shear from their own materials; density from
 /// the property's material.
 pub fn shell_props(model: &Model, prop: &Property, s: &ShellSection) -> Result<ShellProps, String> {
+    if s.thickness.is_nan() {
+        return Err(format!(
+            "property {} has no thickness (PSHELL T blank) and the element gives none (T1..T4)",
+            prop.id
+        ));
+    }
     let primary = iso(model, prop.material)?;
     let bending = match s.bending {
         Some((m, r)) => Some((iso(model, m)?, r)),
