@@ -63,6 +63,9 @@ pub struct BuildSpec {
     pub format: Option<Format>,
     /// Material for elements without a section (Gmsh meshes).
     pub material: Option<Material>,
+    /// Thickness of shell elements without a section (Gmsh triangles/quadrangles), with
+    /// `material`.
+    pub thickness: Option<f64>,
     /// Interface entries: node ids or node-set names.
     pub interface: Vec<String>,
     /// How node sets are attached.
@@ -114,6 +117,7 @@ impl BuildSpec {
             model,
             format: None,
             material: None,
+            thickness: None,
             interface: interface.iter().map(|s| s.to_string()).collect(),
             spider: SpiderKind::Rbe2,
             method: BuildMethod::CraigBampton,
@@ -251,6 +255,7 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
             format: spec.format,
             material: spec.material.clone(),
             subcase: spec.subcase,
+            shell_thickness: spec.thickness,
         },
     )?;
     let import_s = clock.elapsed().as_secs_f64();
@@ -632,6 +637,22 @@ pub fn build_model_with_hook(
             [s[0], s[1], s[2]]
         };
         let f = modal_fields(&model, &stored, phi.ncols(), &u, spec.fields)?;
+        let shells = model
+            .elements
+            .iter()
+            .filter(|e| {
+                e.property.is_some()
+                    && matches!(
+                        e.kind,
+                        crate::model::ElementKind::Quad4 | crate::model::ElementKind::Tri3
+                    )
+            })
+            .count();
+        if shells > 0 {
+            report.warnings.push(format!(
+                "stress/strain shapes are computed for solid elements only: the {shells} shell elements have none (shell fibre stresses are not implemented; use --no-stress to silence)"
+            ));
+        }
         if f.nodes.is_empty() {
             report.warnings.push(
                 "stress/strain shapes asked for, but no stored node belongs to a solid element: none written".into(),

@@ -80,6 +80,8 @@ pub struct ModelInput {
     pub format: Option<Format>,
     /// Material for elements without a section.
     pub material: Option<Material>,
+    /// Shell thickness for 2D elements without a section.
+    pub thickness: Option<f64>,
     /// The interface entries given to `build`.
     pub interface: Vec<String>,
     /// The spider kind given to `build`.
@@ -430,6 +432,7 @@ fn model_checks(
         &ImportOptions {
             format: input.format,
             material: input.material.clone(),
+            shell_thickness: input.thickness,
             ..Default::default()
         },
     )

@@ -39,6 +39,10 @@ struct ModelArgs {
     /// Material for elements without a section (Gmsh meshes): E=…,nu=…,rho=…
     #[arg(long)]
     material: Option<String>,
+    /// Thickness of shell elements without a section (Gmsh triangles/quadrangles), with
+    /// --material.
+    #[arg(long)]
+    thickness: Option<f64>,
     /// Interface nodes: node ids (every free component), NODE:DOFS with Nastran component digits
     /// (e.g. 1:126) and/or node-set names, comma separated. Default: the deck's ASET/BSET.
     #[arg(long, value_delimiter = ',')]
@@ -182,6 +186,7 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
             .as_deref()
             .map(parse_material)
             .transpose()?,
+        thickness: a.model_args.thickness,
         interface: a.model_args.interface.clone(),
         spider: parse_spider(&a.model_args.spider)?,
         method: parse_method(&a.method)?,
@@ -390,6 +395,7 @@ fn check(a: &CheckArgs) -> anyhow::Result<bool> {
                 .as_deref()
                 .map(flexbody::options::parse_material)
                 .transpose()?,
+            thickness: a.model_args.thickness,
             interface: a.model_args.interface.clone(),
             spider: flexbody::options::parse_spider(&a.model_args.spider)?,
         }),

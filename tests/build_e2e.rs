@@ -204,6 +204,7 @@ fn a_block_cb_on_end_faces_is_rayleigh_ritz_and_within_1pc_below_fmax() {
         path: model_path,
         format: None,
         material: None,
+        thickness: None,
         interface: s.interface.clone(),
         spider: SpiderKind::Rbe2,
     };
@@ -404,6 +405,7 @@ fn a_block_cb_on_rbe3_spiders_keeps_centres_independent_and_matches_calculix() {
             path: s.model.clone(),
             format: None,
             material: None,
+            thickness: None,
             interface: s.interface.clone(),
             spider: SpiderKind::Rbe3,
         }),

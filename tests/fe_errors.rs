@@ -92,16 +92,18 @@ fn shells_beams_without_orientation_and_bad_materials_are_errors() {
         id: 2,
         name: "SH".into(),
         material: 0,
-        section: Section::Shell { thickness: 0.01 },
+        section: Section::Shell(flexbody::model::ShellSection::homogeneous(0.01, 0)),
     });
     m.elements.push(Element {
         id: 5,
         kind: ElementKind::Quad4,
         nodes: vec![0, 1, 2, 3],
-        property: Some(1),
+        // a shell on a solid section (e.g. an Abaqus CPS4 with *SOLID SECTION)
+        property: Some(0),
         orientation: None,
     });
     let e = assemble(&m, &AssemblySpec::default()).unwrap_err();
+    assert!(e.to_string().contains("non-shell property"), "{e}");
     assert!(
         matches!(
             &e,

@@ -14,11 +14,11 @@ fn reference(rel: &str) -> PathBuf {
 }
 
 /// Supported card types; every other card type read must show up in a warning.
-const SUPPORTED: [&str; 37] = [
+const SUPPORTED: [&str; 38] = [
     "GRID", "CORD2R", "CORD2C", "CORD2S", "CTETRA", "CHEXA", "CPENTA", "CBAR", "CBEAM", "CROD",
     "CQUAD4", "CTRIA3", "PSOLID", "PBAR", "PBARL", "PBEAM", "PBEAML", "PROD", "PSHELL", "MAT1",
     "CONM2", "RBE2", "RBE3", "SPC", "SPC1", "SPCADD", "ASET", "ASET1", "PARAM", "INCLUDE", "EIGRL",
-    "EIGR", "GRDSET", "BSET", "BSET1", "QSET", "QSET1",
+    "EIGR", "GRDSET", "BSET", "BSET1", "QSET", "QSET1", "PCOMP",
 ];
 
 fn check_counts(rel: &str, expected: &[(&str, usize)]) -> Model {
@@ -128,24 +128,20 @@ fn mode_solid_shell_bar_deck_msc() {
         ],
     );
     assert_eq!(m.elements.len(), 21);
-    // Elements on PCOMP get no property; one warning per element card type with its count.
-    assert_eq!(
-        m.elements.iter().filter(|e| e.property.is_none()).count(),
-        6
-    );
-    let msgs: Vec<&str> = m
-        .warnings
-        .iter()
-        .map(|w| w.message.as_str())
-        .filter(|w| w.contains("PCOMP properties"))
-        .collect();
-    assert_eq!(
-        msgs,
-        vec![
-            "2 CQUAD4 elements (first: 16) reference PCOMP properties (unsupported): no property",
-            "4 CTRIA3 elements (first: 18) reference PCOMP properties (unsupported): no property",
-        ]
-    );
+    // PCOMP 6 and 7 (plies of MAT1 1 only) are read as homogeneous shells of their total
+    // thickness: every element has a property.
+    assert!(m.elements.iter().all(|e| e.property.is_some()));
+    for (pid, t) in [(6, 1.0), (7, 1.5)] {
+        let p = m.properties.iter().find(|p| p.id == pid).unwrap();
+        let Section::Shell(s) = &p.section else {
+            panic!("shell")
+        };
+        assert!(
+            (s.thickness - t).abs() < 1e-12,
+            "PCOMP {pid}: {}",
+            s.thickness
+        );
+    }
     let pbeam = m.properties.iter().find(|p| p.id == 5).unwrap();
     let Section::Beam(b) = &pbeam.section else {
         panic!("beam")

@@ -63,6 +63,7 @@ fn assert_check_passes(body: &file::ReducedBody, model: &Path, method: BuildMeth
         path: model.to_path_buf(),
         format: None,
         material: None,
+        thickness: None,
         interface: if method == BuildMethod::Normal {
             vec![]
         } else {

@@ -12,7 +12,10 @@ use rayon::prelude::*;
 use super::dofs::DofMap;
 use super::elements::beam::{BeamLumping, BeamProps};
 use super::elements::tet10::Tet10MassRule;
-use super::elements::{beam, hex20, hex8, prism6, rod, tet10, tet4, ElementError, Isotropic, Xyz};
+use super::elements::{
+    beam, hex20, hex8, prism6, quad4_shell, rod, tet10, tet4, tri3_shell, ElementError, Isotropic,
+    Xyz,
+};
 use super::mass::{self, MassKind};
 use super::pattern::Pattern;
 use super::FeError;
@@ -57,7 +60,7 @@ pub struct Assembled {
 /// One element's matrices in the basic frame, node-major with `dpn` dofs per node.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ElementMatrices {
-    /// Dofs per element node (3 solids, 6 beams and rods).
+    /// Dofs per element node (3 solids, 6 beams, rods and shells).
     pub dpn: usize,
     /// Stiffness, row-major.
     pub k: Vec<f64>,
@@ -236,6 +239,30 @@ pub fn element_matrices(
             let (k, m) = rod::matrices(&coords::<2>(model, n), &iso, area, j, nsm, lumped)
                 .map_err(elem_err)?;
             ElementMatrices { dpn: 6, k, m }
+        }
+        ElementKind::Quad4 | ElementKind::Tri3 => {
+            let Section::Shell(s) = &prop.section else {
+                return Err(fail(format!(
+                    "shell element with non-shell property {} (plane-stress/strain CPS/CPE \
+                     elements are not supported)",
+                    prop.id
+                )));
+            };
+            let p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;
+            let (k, m) = if el.kind == ElementKind::Quad4 {
+                quad4_shell::matrices(&coords::<4>(model, n), &p, lumped)
+            } else {
+                tri3_shell::matrices(&coords::<3>(model, n), &p, lumped)
+            }
+            .map_err(elem_err)?;
+            ElementMatrices { dpn: 6, k, m }
+        }
+        ElementKind::Quad8 | ElementKind::Tri6 => {
+            return Err(fail(
+                "quadratic shells (S8R/S6/CQUAD8/CTRIA6) are not supported: mesh with linear \
+                 shells (S4/S3, CQUAD4/CTRIA3)"
+                    .into(),
+            ))
         }
         other => {
             return Err(fail(format!(

@@ -1,5 +1,6 @@
 //! `DofMap`: node ↔ global dof index, node-major, 3 dofs per solid-only node and 6 where beams,
-//! rods, rigid elements or point masses with inertia attach; nodes that nothing uses get none.
+//! rods, shells (with a property), rigid elements or point masses with inertia attach; nodes
+//! that nothing uses get none.
 //!
 //! Dofs are expressed in each node's displacement frame (Nastran GRID CD): for a node with a
 //! frame, `frames[node]` holds R whose rows are the local unit axes at the node in the basic
@@ -42,7 +43,11 @@ impl DofMap {
         for e in &model.elements {
             let n = match e.kind {
                 k if k.is_solid() => 3,
-                ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2 => 6,
+                ElementKind::Beam2
+                | ElementKind::Bar2
+                | ElementKind::Rod2
+                | ElementKind::Quad4
+                | ElementKind::Tri3 => 6,
                 _ => continue,
             };
             if e.property.is_none() {

@@ -9,6 +9,7 @@
 //! * [`elements`] — one file per element kind: shape functions, quadrature, formulas.
 //! * [`dofs::DofMap`] — node ↔ dof numbering (3 or 6 per node, node-major, CD frames).
 //! * [`mass`] — lumping (row-sum, HRZ) and point masses.
+//! * [`shell_section`] — shell section + materials → element shell constants.
 //! * [`assembly::assemble`] — parallel assembly into faer `SparseColMat` (full symmetric).
 //! * [`constraints::eliminate`] — RBE2/RBE3/SPC elimination, keeps T for shape recovery.
 
@@ -22,6 +23,7 @@ pub mod elements;
 pub mod mass;
 pub mod pattern;
 pub mod quadrature;
+pub mod shell_section;
 
 pub use assembly::{assemble, Assembled, AssemblySpec, BeamTheory};
 pub use constraints::{eliminate, ConstraintSpec, Reduced};

@@ -17,7 +17,7 @@ pub use material_file::read_material_file;
 
 use std::path::Path;
 
-use crate::model::{Material, Model, Property, Section};
+use crate::model::{ElementKind, ImportWarning, Material, Model, Property, Section};
 
 /// Input formats with a model reader.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -65,6 +65,9 @@ pub struct ImportOptions {
     /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when the
     /// deck's subcases differ; `None` otherwise).
     pub subcase: Option<u64>,
+    /// Thickness of shell elements (S3/S4-type 2D elements, Gmsh triangles and quadrangles)
+    /// without a section: with `material`, they become homogeneous shells of that material.
+    pub shell_thickness: Option<f64>,
 }
 
 /// Read a model file in any supported format.
@@ -83,7 +86,48 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
     if let Some(m) = &opts.material {
         apply_default_material(&mut model, m);
     }
+    match (opts.shell_thickness, &opts.material) {
+        (Some(t), Some(m)) => apply_default_shell(&mut model, m, t),
+        (Some(_), None) => model.warnings.push(ImportWarning {
+            file: path.display().to_string(),
+            message: "a shell thickness was given without a material: shells without a section stay unassembled".into(),
+        }),
+        _ => {}
+    }
     Ok(model)
+}
+
+/// Give every 3- and 4-node surface element without a property a homogeneous shell section of
+/// material `m` and thickness `t` (a new material and property named `DEFAULT_SHELL`).
+pub fn apply_default_shell(model: &mut Model, m: &Material, t: f64) {
+    let is_bare_shell = |e: &crate::model::Element| {
+        e.property.is_none() && matches!(e.kind, ElementKind::Tri3 | ElementKind::Quad4)
+    };
+    if !model.elements.iter().any(is_bare_shell) {
+        return;
+    }
+    model.materials.push(Material {
+        name: if m.name.is_empty() {
+            "DEFAULT".into()
+        } else {
+            m.name.clone()
+        },
+        ..m.clone()
+    });
+    let mat = model.materials.len() - 1;
+    let pid = model.properties.iter().map(|p| p.id).max().unwrap_or(0) + 1;
+    model.properties.push(Property {
+        id: pid,
+        name: "DEFAULT_SHELL".into(),
+        material: mat,
+        section: Section::Shell(crate::model::ShellSection::homogeneous(t, mat)),
+    });
+    let prop = model.properties.len() - 1;
+    for e in &mut model.elements {
+        if is_bare_shell(e) {
+            e.property = Some(prop);
+        }
+    }
 }
 
 /// Give every solid element without a property a solid section of material `m`

@@ -18,6 +18,7 @@ pub mod generate;
 pub mod section;
 
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
+pub use section::ShellSection;
 
 /// Dense 0-based index of a node in [`Model::nodes`].
 pub type NodeIndex = usize;
@@ -89,9 +90,11 @@ pub enum ElementKind {
     Bar2,
     /// 2-node rod: axial + torsion (CROD, T3D2).
     Rod2,
-    /// 3-node shell triangle (S3, CTRIA3) — imported, not yet assembled.
+    /// 3-node shell triangle (S3, CTRIA3): DKT bending + CST membrane, 6 dofs per node; without
+    /// a property (e.g. Gmsh surface elements without `--thickness`) graphics/sets only.
     Tri3,
-    /// 4-node shell quadrilateral (S4, CQUAD4) — imported, not yet assembled.
+    /// 4-node shell quadrilateral (S4, CQUAD4): MITC4 bending/shear + QM6 membrane, 6 dofs per
+    /// node; without a property graphics/sets only.
     Quad4,
     /// 6-node triangle (surface element, e.g. gmsh tri6) — graphics/sets only.
     Tri6,
@@ -210,8 +213,8 @@ pub enum Section {
     Beam(BeamSection),
     /// Rod: axial + torsion (PROD).
     Rod { area: f64, j: f64, nsm: f64 },
-    /// Shell (PSHELL, *SHELL SECTION).
-    Shell { thickness: f64 },
+    /// Shell (PSHELL, *SHELL SECTION, Gmsh 2D elements with `--thickness`).
+    Shell(ShellSection),
 }
 
 /// A property: a section plus its material.

@@ -1,5 +1,5 @@
 //! Section constants (A, I1, I2, J) of the standard beam cross-section shapes shared by the
-//! Nastran PBARL/PBEAML and Abaqus *BEAM SECTION importers.
+//! Nastran PBARL/PBEAML and Abaqus *BEAM SECTION importers, and the shell section type.
 //!
 //! Convention (Nastran): local y is the first section axis, z the second; I1 = ∫y² dA (bending
 //! in the x–y plane), I2 = ∫z² dA.
@@ -109,6 +109,41 @@ impl SectionShape {
             nsm: 0.0,
             shape: Some(self.clone()),
         })
+    }
+}
+
+/// Section of a shell element (Nastran PSHELL, Abaqus *SHELL SECTION, Gmsh `--thickness`).
+///
+/// The property's `material` is the membrane material (Nastran MID1) when `membrane` is true,
+/// else the bending material; its density gives the structural mass ρt. PSHELL:
+/// `PID MID1 T MID2 12I/T³ MID3 TS/T NSM`; a single-material section (Abaqus, Gmsh) has MID1 =
+/// MID2 = MID3, 12I/T³ = 1 and TS/T = 5/6.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShellSection {
+    /// Thickness t (an element's own thickness, Nastran CQUAD4 T1..T4, gets its own property).
+    pub thickness: f64,
+    /// Membrane stiffness from the property's material (Nastran MID1 given).
+    pub membrane: bool,
+    /// Bending material (index into `Model::materials`, Nastran MID2) and 12I/t³; `None` = no
+    /// bending stiffness.
+    pub bending: Option<(usize, f64)>,
+    /// Transverse shear material (MID3) and t_s/t; `None` = shear-rigid (Nastran MID3 blank).
+    pub shear: Option<(usize, f64)>,
+    /// Non-structural mass per unit area.
+    pub nsm: f64,
+}
+
+impl ShellSection {
+    /// A homogeneous shell of one material (index `material`): membrane, bending (12I/t³ = 1)
+    /// and transverse shear (t_s/t = 5/6).
+    pub fn homogeneous(thickness: f64, material: usize) -> ShellSection {
+        ShellSection {
+            thickness,
+            membrane: true,
+            bending: Some((material, 1.0)),
+            shear: Some((material, 5.0 / 6.0)),
+            nsm: 0.0,
+        }
     }
 }
 

@@ -3,7 +3,8 @@
 //!
 //! Solid elements share the isoparametric kernels below; each element file supplies its shape
 //! functions, reference nodes and integration rules. Matrices are dense, row-major, with the dofs
-//! node-major (`[u1x u1y u1z u2x …]` for solids, `[ux uy uz rx ry rz]` per node for beams).
+//! node-major (`[u1x u1y u1z u2x …]` for solids, `[ux uy uz rx ry rz]` per node for beams and
+//! shells; the shells' shared parts are in [`shell`]).
 //!
 //! Isotropic linear elasticity in index form (Hughes, *The Finite Element Method* (1987) §2.7):
 //! K_{ai,bj} = ∫ λ ∂_i N_a ∂_j N_b + μ ∂_j N_a ∂_i N_b + μ δ_ij ∇N_a·∇N_b dV, λ = Eν/((1+ν)(1−2ν)),
@@ -14,9 +15,12 @@ pub mod hex20;
 pub mod hex8;
 pub mod planar_frame;
 pub mod prism6;
+pub mod quad4_shell;
 pub mod rod;
+pub mod shell;
 pub mod tet10;
 pub mod tet4;
+pub mod tri3_shell;
 
 use super::quadrature::QuadPoint;
 

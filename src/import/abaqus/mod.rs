@@ -132,6 +132,8 @@ struct Parser {
     substituted: BTreeMap<String, usize>,
     /// Elements that listed more node ids than their type takes, by type.
     extra_nodes: BTreeMap<&'static str, usize>,
+    /// *SHELL SECTION lines that gave a number of section points (ignored, noted).
+    shell_point_notes: Vec<String>,
 }
 
 fn upper_norm(s: &str) -> String {
@@ -187,6 +189,7 @@ impl Parser {
             rigid: Vec::new(),
             transforms: Vec::new(),
             nset_from_elset: Vec::new(),
+            shell_point_notes: Vec::new(),
             surfaces: HashMap::new(),
             couplings: Vec::new(),
             skipped: BTreeMap::new(),
@@ -363,7 +366,22 @@ impl Parser {
                 let material = need("MATERIAL")?;
                 let section = match name {
                     "SOLID SECTION" => Section::Solid,
-                    "SHELL SECTION" => Section::Shell { thickness: 0.0 },
+                    "SHELL SECTION" => {
+                        // OFFSET= moves the reference surface off the mid-surface: not modelled.
+                        if let Some(o) = param(params, "OFFSET") {
+                            let zero = o.eq_ignore_ascii_case("SMID")
+                                || o.trim().parse::<f64>().is_ok_and(|v| v == 0.0);
+                            if !zero {
+                                return Err(self.err(
+                                    loc,
+                                    format!("*SHELL SECTION ELSET={elset}"),
+                                    format!("OFFSET={o} not supported (mid-surface shells only)"),
+                                ));
+                            }
+                        }
+                        // Material indices are set when the material names are resolved.
+                        Section::Shell(crate::model::ShellSection::homogeneous(f64::NAN, 0))
+                    }
                     _ => {
                         let s = need("SECTION")?;
                         Section::Beam(crate::model::BeamSection {
@@ -643,10 +661,15 @@ impl Parser {
                 let sec = &mut self.sections[k];
                 match &mut sec.section {
                     Section::Solid => {}
-                    Section::Shell { thickness } if n == 0 => {
-                        *thickness = *v
+                    Section::Shell(sh) if n == 0 => {
+                        sh.thickness = *v
                             .first()
-                            .ok_or_else(|| self.b.err(loc, ent.clone(), "missing thickness"))?
+                            .ok_or_else(|| self.b.err(loc, ent.clone(), "missing thickness"))?;
+                        if v.len() > 1 {
+                            // Section points only matter for plasticity output: linear elastic
+                            // stiffness is integrated exactly through the thickness.
+                            self.shell_point_notes.push(ent.clone());
+                        }
                     }
                     Section::Beam(bs) if n == 0 => {
                         let Some(SectionShape::Other { name, .. }) = &bs.shape else {

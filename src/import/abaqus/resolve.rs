@@ -123,11 +123,18 @@ impl Parser {
                     return Err(self.err(s.loc, ent, "missing section dimensions line"));
                 }
             }
+            let mut section = s.section.clone();
+            if let Section::Shell(sh) = &mut section {
+                if sh.thickness.is_nan() {
+                    return Err(self.err(s.loc, ent, "missing thickness line"));
+                }
+                *sh = crate::model::ShellSection::homogeneous(sh.thickness, material);
+            }
             self.b.model.properties.push(Property {
                 id: k as u64 + 1,
                 name: s.elset.clone(),
                 material,
-                section: s.section.clone(),
+                section,
             });
             for &e in members {
                 let el = &self.b.model.elements[e];
@@ -323,6 +330,14 @@ impl Parser {
                 file: self.b.files[0].clone(),
                 message: format!(
                     "{count} {card} elements list more node ids than the type takes; the extra ids were ignored (as CalculiX does)"
+                ),
+            });
+        }
+        for ent in &self.shell_point_notes {
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!(
+                    "{ent}: the number of section points is ignored (linear elastic shells are integrated exactly through the thickness)"
                 ),
             });
         }

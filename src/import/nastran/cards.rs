@@ -138,6 +138,7 @@ pub(crate) fn build(
     let mut unsupported_props: HashMap<u64, String> = HashMap::new();
     let mut mats: Vec<(u64, Material, &Card)> = Vec::new();
     let mut elem_pid: Vec<(u64, Loc)> = Vec::new();
+    let mut shell_t: Vec<super::shell::ElementThickness> = Vec::new();
     let mut orient: Vec<(usize, Orientation, Loc)> = Vec::new();
     let mut masses: Vec<(PointMass, i64, &Card)> = Vec::new();
     let mut spc_sets: BTreeMap<u64, Vec<(usize, DofMask, &Card)>> = BTreeMap::new();
@@ -163,13 +164,19 @@ pub(crate) fn build(
                 if let Some(o) = o {
                     orient.push((b.model.elements.len(), o, card.loc));
                 }
+                if matches!(name, "CQUAD4" | "CTRIA3") {
+                    let k = b.model.elements.len();
+                    shell_t.extend(super::shell::element_fields(&g, k)?);
+                }
                 b.add_element(eid, kind, ids, None, card_name(name), card.loc);
                 elem_pid.push((pid, card.loc));
             }
             "PSOLID" | "PSHELL" | "PROD" | "PBAR" | "PBARL" | "PBEAM" | "PBEAML" => {
                 let pid = g.id(0, "PID")?;
-                let mid = g.id(1, "MID")?;
-                let section = property(&g)?;
+                let (mid, section) = match name {
+                    "PSHELL" => super::shell::pshell(&g)?,
+                    _ => (g.id(1, "MID")?, property(&g)?),
+                };
                 if let (true, Section::Beam(bs)) = (matches!(name, "PBARL" | "PBEAML"), &section) {
                     if bs.shear_factors.is_none() {
                         shear_rigid.push(format!(
@@ -182,8 +189,17 @@ pub(crate) fn build(
                 }
                 props.push((pid, mid, section, card));
             }
-            "PCOMP" | "PCOMPG" | "PELAS" | "PBUSH" | "PSHEAR" | "PDAMP" | "PGAP" | "PMASS"
-            | "PVISC" => {
+            "PCOMP" => {
+                let pid = g.id(0, "PID")?;
+                let (mid, section) = super::shell::pcomp(&g)?;
+                props.push((pid, mid, section, card));
+            }
+            "CQUAD8" | "CTRIA6" | "CQUADR" | "CTRIAR" => {
+                return Err(g.err_card(format!(
+                "{name}: quadratic and CQUADR/CTRIAR shells are not supported (use CQUAD4/CTRIA3)"
+            )))
+            }
+            "PCOMPG" | "PELAS" | "PBUSH" | "PSHEAR" | "PDAMP" | "PGAP" | "PMASS" | "PVISC" => {
                 unsupported_props.insert(g.id(0, "PID")?, name.to_owned());
                 *unsupported.entry(name.to_owned()).or_default() += 1;
             }
@@ -361,6 +377,10 @@ pub(crate) fn build(
         match &mut section {
             Section::Beam(s) => s.nsm *= wtmass,
             Section::Rod { nsm, .. } => *nsm *= wtmass,
+            Section::Shell(s) => {
+                s.nsm *= wtmass;
+                super::shell::resolve_mids(s, &mids, &cc(card, &files))?;
+            }
             _ => {}
         }
         b.model.properties.push(Property {
@@ -400,6 +420,7 @@ pub(crate) fn build(
             },
         }
     }
+    super::shell::apply_thickness(&mut b.model, &shell_t)?;
     for ((elem, card), (n, first)) in no_prop {
         b.model.warnings.push(ImportWarning {
             file: files[0].clone(),
@@ -863,9 +884,6 @@ fn nastran_shape(ty: &str, d: &[f64]) -> Option<(SectionShape, usize)> {
 fn property(g: &C) -> Result<Section, ImportError> {
     Ok(match g.card.name.as_str() {
         "PSOLID" => Section::Solid,
-        "PSHELL" => Section::Shell {
-            thickness: g.real(2)?.ok_or_else(|| g.err(2, "thickness T is blank"))?,
-        },
         "PROD" => Section::Rod {
             area: g.real_or(2, 0.0)?,
             j: g.real_or(3, 0.0)?,

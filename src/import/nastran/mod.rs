@@ -2,11 +2,11 @@
 //!
 //! Cards: GRID (CP/CD), CORD2R/CORD2C/CORD2S (chained), CTETRA (4/10), CHEXA (8/20),
 //! CPENTA (6/15), CBAR, CBEAM, CROD, CQUAD4, CTRIA3, PSOLID, PBAR, PBARL, PBEAM, PBEAML, PROD,
-//! PSHELL, MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, GRDSET, ASET, ASET1, BSET, BSET1, QSET,
+//! PSHELL, PCOMP (one isotropic material), MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, GRDSET, ASET, ASET1, BSET, BSET1, QSET,
 //! QSET1, EIGRL, EIGR, PARAM WTMASS/COUPMASS; the case control's TITLE, SUBCASE, SPC and METHOD
 //! (`case_control`).
 //! Every other card is counted and reported once per card type as a warning; elements that
-//! reference a property of an unsupported type (e.g. PCOMP) get no property and a warning.
+//! reference a property of an unsupported type (e.g. PCOMPG) get no property and a warning.
 //!
 //! Constraints as Nastran applies them: GRID PS / GRDSET always; an SPC/SPC1/SPCADD set only
 //! when the case control selects it (`SPC = n`, global or in the one or chosen subcase; bare
@@ -20,6 +20,7 @@ mod case_control;
 mod coord;
 mod fields;
 mod lex;
+mod shell;
 
 use std::collections::BTreeMap;
 use std::path::Path;

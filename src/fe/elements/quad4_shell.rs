@@ -1,0 +1,393 @@
+//! 4-node flat shell quadrilateral (CQUAD4, S4, S4R): MITC4 plate bending and transverse shear
+//! with an incompatible-mode membrane and a drilling penalty; 6 dofs per node.
+//!
+//! ```text
+//!  4 ─────── 3      η        local frame (shell.rs): e₃ ∥ (x₃ − x₁) × (x₄ − x₂), e₁ along the
+//!  │    D    │      ↑        mean of edges 1→2 and 4→3; nodes projected onto the mean plane,
+//!  C         A      └─► ξ    warping heights h_a carried by rigid links (shell::apply_warping).
+//!  │    B    │               A, B, C, D: MITC4 tying points of the transverse shear.
+//!  1 ─────── 2
+//! ```
+//! * Bending/shear: MITC4, Dvorkin & Bathe, *Eng. Comput.* 1 (1984) 77; Bathe & Dvorkin,
+//!   *IJNME* 21 (1985) 367 — bilinear w and β (βx = θy, βy = −θx), curvatures at 2×2 Gauss
+//!   points; covariant shear strains e_ξ = w,ξ + β·x,ξ tied at B (0,−1), D (0,1) and
+//!   e_η = w,η + β·x,η at C (−1,0), A (1,0), interpolated e_ξ = ½(1−η)e_ξᴮ + ½(1+η)e_ξᴰ,
+//!   e_η = ½(1−ξ)e_ηᶜ + ½(1+ξ)e_ηᴬ, and γ = J⁻¹ e (J rows x,ξ and x,η). Free of shear
+//!   locking; passes the constant-curvature patch test on distorted meshes.
+//! * Membrane: bilinear u, v plus the incompatible modes 1−ξ², 1−η² (Wilson's Q6) with Taylor's
+//!   correction (QM6: mode derivatives through J₀ at the centre, scaled by det J₀/det J; Taylor,
+//!   Beresford & Wilson, *IJNME* 10 (1976) 1211), condensed statically; passes the membrane
+//!   patch test on any quadrilateral and is free of in-plane shear locking in bending.
+//! * Drilling: γ_d (θz − ω)² at the 2×2 points (shell.rs), ω from the bilinear u, v.
+//! * Warped elements: the flat projected element with rigid links to the real nodes (shell.rs);
+//!   exact for rigid motions, approximate (as every flat-facet shell) for strong warping.
+//! * Mass: 2×2 Gauss ∫N_aN_b dA (exact for a parallelogram), shell.rs.
+
+use super::shell::{self, add_btdb, add_outer, ShellFrame, ShellProps};
+use super::{ElementError, Xyz};
+
+const G: f64 = 0.577_350_269_189_625_8; // 1/√3
+const GAUSS: [[f64; 2]; 4] = [[-G, -G], [G, -G], [G, G], [-G, G]];
+const REF: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+
+/// Bilinear shape functions and their ξ, η derivatives.
+fn shape(xi: f64, eta: f64) -> ([f64; 4], [[f64; 2]; 4]) {
+    let mut n = [0.0; 4];
+    let mut d = [[0.0; 2]; 4];
+    for a in 0..4 {
+        let (sa, ta) = (REF[a][0], REF[a][1]);
+        n[a] = 0.25 * (1.0 + sa * xi) * (1.0 + ta * eta);
+        d[a] = [0.25 * sa * (1.0 + ta * eta), 0.25 * ta * (1.0 + sa * xi)];
+    }
+    (n, d)
+}
+
+/// Jacobian J (rows x,ξ and x,η), its determinant and inverse at (ξ, η).
+fn jacobian(p: &[[f64; 2]; 4], d: &[[f64; 2]; 4]) -> ([[f64; 2]; 2], f64, [[f64; 2]; 2]) {
+    let mut j = [[0.0; 2]; 2];
+    for a in 0..4 {
+        for k in 0..2 {
+            for i in 0..2 {
+                j[k][i] += d[a][k] * p[a][i];
+            }
+        }
+    }
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    let inv = [
+        [j[1][1] / det, -j[0][1] / det],
+        [-j[1][0] / det, j[0][0] / det],
+    ];
+    (j, det, inv)
+}
+
+/// Physical derivatives [N,x N,y] = J⁻¹ [N,ξ N,η].
+fn grad(inv: &[[f64; 2]; 2], d: &[f64; 2]) -> [f64; 2] {
+    [
+        inv[0][0] * d[0] + inv[0][1] * d[1],
+        inv[1][0] * d[0] + inv[1][1] * d[1],
+    ]
+}
+
+/// Covariant transverse shear strain e_k = w,k + βx x,k + βy y,k (k = ξ or η) at a tying point,
+/// as a row on the 12 plate dofs [w θx θy] per node.
+fn covariant_shear(p: &[[f64; 2]; 4], xi: f64, eta: f64, k: usize) -> [f64; 12] {
+    let (n, d) = shape(xi, eta);
+    let (j, _, _) = jacobian(p, &d);
+    let (xk, yk) = (j[k][0], j[k][1]);
+    let mut row = [0.0; 12];
+    for a in 0..4 {
+        row[3 * a] = d[a][k];
+        // βx = θy, βy = −θx
+        row[3 * a + 1] = -n[a] * yk;
+        row[3 * a + 2] = n[a] * xk;
+    }
+    row
+}
+
+/// Local 24×24 stiffness of the flat element (before warping links and rotation).
+fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, ElementError> {
+    const ND: usize = 24;
+    let mut k = vec![0.0; ND * ND];
+    let p = &f.p;
+    let dm = props.d_membrane();
+    let db = props.d_bending();
+    let ds = props.shear_modulus();
+    let gd = props.drill();
+    let (_, d0) = shape(0.0, 0.0);
+    let (_, det0, inv0) = jacobian(p, &d0);
+    // Membrane: compatible (8) + incompatible (4) modes, then condensation.
+    let mem_dofs: Vec<usize> = (0..4).flat_map(|a| [6 * a, 6 * a + 1]).collect();
+    let mut kcc = vec![0.0; 64];
+    let mut kci = vec![0.0; 32];
+    let mut kii = vec![0.0; 16];
+    let plate_dofs: Vec<usize> = (0..4)
+        .flat_map(|a| [6 * a + 2, 6 * a + 3, 6 * a + 4])
+        .collect();
+    // Shear tying rows.
+    let eb = covariant_shear(p, 0.0, -1.0, 0);
+    let ed = covariant_shear(p, 0.0, 1.0, 0);
+    let ec = covariant_shear(p, -1.0, 0.0, 1);
+    let ea = covariant_shear(p, 1.0, 0.0, 1);
+    for (gp, &[xi, eta]) in GAUSS.iter().enumerate() {
+        let (n, d) = shape(xi, eta);
+        let (_, det, inv) = jacobian(p, &d);
+        if det.is_nan() || det <= 0.0 {
+            return Err(ElementError::NonPositiveJacobian { det, point: gp });
+        }
+        let g: [[f64; 2]; 4] = std::array::from_fn(|a| grad(&inv, &d[a]));
+        // Membrane B (compatible part) on [u1 v1 u2 v2 …].
+        let mut bc = [vec![0.0; 8], vec![0.0; 8], vec![0.0; 8]];
+        for a in 0..4 {
+            bc[0][2 * a] = g[a][0];
+            bc[1][2 * a + 1] = g[a][1];
+            bc[2][2 * a] = g[a][1];
+            bc[2][2 * a + 1] = g[a][0];
+        }
+        // Incompatible modes P1 = 1 − ξ², P2 = 1 − η² on [a1u a1v a2u a2v] via J₀ (QM6).
+        let s = det0 / det;
+        let pg = [
+            grad(&inv0, &[-2.0 * xi, 0.0]),
+            grad(&inv0, &[0.0, -2.0 * eta]),
+        ];
+        let mut bi = [vec![0.0; 4], vec![0.0; 4], vec![0.0; 4]];
+        for m in 0..2 {
+            bi[0][2 * m] = s * pg[m][0];
+            bi[1][2 * m + 1] = s * pg[m][1];
+            bi[2][2 * m] = s * pg[m][1];
+            bi[2][2 * m + 1] = s * pg[m][0];
+        }
+        let w = det; // Gauss weights are 1
+        for r in 0..3 {
+            let dbc: Vec<f64> = (0..8)
+                .map(|j| (0..3).map(|l| dm[r][l] * bc[l][j]).sum())
+                .collect();
+            let dbi: Vec<f64> = (0..4)
+                .map(|j| (0..3).map(|l| dm[r][l] * bi[l][j]).sum())
+                .collect();
+            for i in 0..8 {
+                for j in 0..8 {
+                    kcc[i * 8 + j] += w * bc[r][i] * dbc[j];
+                }
+                for j in 0..4 {
+                    kci[i * 4 + j] += w * bc[r][i] * dbi[j];
+                }
+            }
+            for i in 0..4 {
+                for j in 0..4 {
+                    kii[i * 4 + j] += w * bi[r][i] * dbi[j];
+                }
+            }
+        }
+        // Bending: κ = (βx,x, βy,y, βx,y + βy,x) on [w θx θy] per node.
+        let mut bb = [vec![0.0; 12], vec![0.0; 12], vec![0.0; 12]];
+        for a in 0..4 {
+            bb[0][3 * a + 2] = g[a][0];
+            bb[1][3 * a + 1] = -g[a][1];
+            bb[2][3 * a + 1] = -g[a][0];
+            bb[2][3 * a + 2] = g[a][1];
+        }
+        add_btdb(&mut k, ND, &bb, &plate_dofs, &db, w);
+        // MITC4 shear: e_ξ, e_η interpolated from the tying points, γ = J⁻¹ e.
+        if ds > 0.0 {
+            let exi: Vec<f64> = (0..12)
+                .map(|j| 0.5 * (1.0 - eta) * eb[j] + 0.5 * (1.0 + eta) * ed[j])
+                .collect();
+            let eeta: Vec<f64> = (0..12)
+                .map(|j| 0.5 * (1.0 - xi) * ec[j] + 0.5 * (1.0 + xi) * ea[j])
+                .collect();
+            for r in 0..2 {
+                let gam: Vec<f64> = (0..12)
+                    .map(|j| inv[r][0] * exi[j] + inv[r][1] * eeta[j])
+                    .collect();
+                add_outer(&mut k, ND, &gam, &plate_dofs, ds * w);
+            }
+        }
+        // Drilling: (θz − ω), ω = ½(v,x − u,y), on [u v θz] per node.
+        if gd > 0.0 {
+            let drill_dofs: Vec<usize> =
+                (0..4).flat_map(|a| [6 * a, 6 * a + 1, 6 * a + 5]).collect();
+            let row: Vec<f64> = (0..4)
+                .flat_map(|a| [0.5 * g[a][1], -0.5 * g[a][0], n[a]])
+                .collect();
+            add_outer(&mut k, ND, &row, &drill_dofs, gd * w);
+        }
+    }
+    // Condense the incompatible modes: K_m = Kcc − Kci Kii⁻¹ Kic.
+    if props.membrane.is_some() {
+        let x = solve4(&kii, &kci)?; // Kii⁻¹ Kic (4×8), from rows of Kci
+        for i in 0..8 {
+            for j in 0..8 {
+                let corr: f64 = (0..4).map(|m| kci[i * 4 + m] * x[m * 8 + j]).sum();
+                k[mem_dofs[i] * ND + mem_dofs[j]] += kcc[i * 8 + j] - corr;
+            }
+        }
+    }
+    Ok(k)
+}
+
+/// Kii⁻¹ Kciᵀ (4×8) by Gaussian elimination with partial pivoting.
+fn solve4(kii: &[f64], kci: &[f64]) -> Result<Vec<f64>, ElementError> {
+    let mut a = kii.to_vec();
+    let mut b = vec![0.0; 32];
+    for m in 0..4 {
+        for j in 0..8 {
+            b[m * 8 + j] = kci[j * 4 + m];
+        }
+    }
+    let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    for c in 0..4 {
+        let piv = (c..4)
+            .max_by(|&i, &j| a[i * 4 + c].abs().total_cmp(&a[j * 4 + c].abs()))
+            .unwrap_or(c);
+        if a[piv * 4 + c].abs() <= 1e-14 * scale || !a[piv * 4 + c].is_finite() {
+            return Err(ElementError::BadConstants(
+                "singular incompatible-mode membrane matrix (degenerate quadrilateral)".into(),
+            ));
+        }
+        for j in 0..4 {
+            a.swap(c * 4 + j, piv * 4 + j);
+        }
+        for j in 0..8 {
+            b.swap(c * 8 + j, piv * 8 + j);
+        }
+        for r in c + 1..4 {
+            let f = a[r * 4 + c] / a[c * 4 + c];
+            for j in c..4 {
+                a[r * 4 + j] -= f * a[c * 4 + j];
+            }
+            for j in 0..8 {
+                b[r * 8 + j] -= f * b[c * 8 + j];
+            }
+        }
+    }
+    for c in (0..4).rev() {
+        for j in 0..8 {
+            let s: f64 = (c + 1..4).map(|m| a[c * 4 + m] * b[m * 8 + j]).sum();
+            b[c * 8 + j] = (b[c * 8 + j] - s) / a[c * 4 + c];
+        }
+    }
+    Ok(b)
+}
+
+/// Area integrals s_ab = ∫ N_a N_b dA (2×2 Gauss) of the projected element.
+fn area_products(f: &ShellFrame<4>) -> Vec<f64> {
+    let mut s = vec![0.0; 16];
+    for &[xi, eta] in &GAUSS {
+        let (n, d) = shape(xi, eta);
+        let (_, det, _) = jacobian(&f.p, &d);
+        for a in 0..4 {
+            for b in 0..4 {
+                s[a * 4 + b] += det * n[a] * n[b];
+            }
+        }
+    }
+    s
+}
+
+/// Basic-frame stiffness and mass (24×24 each, node-major `[u v w θx θy θz]`).
+pub fn matrices(
+    x: &[Xyz; 4],
+    props: &ShellProps,
+    lumped: bool,
+) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
+    props.check()?;
+    let f = ShellFrame::new(x)?;
+    let mut k = local_stiffness(&f, props)?;
+    shell::apply_warping(&mut k, &f.h);
+    let k = shell::to_basic(&k, 4, &f.axes);
+    let m = shell::mass_matrix(&area_products(&f), 4, props, lumped, &f.axes[2]);
+    Ok((k, m))
+}
+
+/// Area of the projected element.
+pub fn area(x: &[Xyz; 4]) -> Result<f64, ElementError> {
+    let f = ShellFrame::new(x)?;
+    Ok(area_products(&f).iter().sum())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::shell::test_util::*;
+    use super::super::Isotropic;
+    use super::*;
+
+    fn steel_plate(t: f64) -> ShellProps {
+        ShellProps::isotropic(t, Isotropic::new(210e9, 0.3, 7850.0))
+    }
+
+    const DISTORTED: [Xyz; 4] = [
+        [0.0, 0.0, 0.0],
+        [2.0, 0.3, 0.0],
+        [2.4, 1.9, 0.0],
+        [0.2, 1.2, 0.0],
+    ];
+
+    #[test]
+    fn quad4_shell_rigid_motions_cost_no_energy_even_warped() {
+        let warped = [
+            [0.1, 0.0, 0.02],
+            [2.0, 0.3, -0.05],
+            [2.4, 1.9, 0.1],
+            [0.2, 1.2, -0.03],
+        ];
+        let (k, _) = matrices(&warped, &steel_plate(0.01), false).unwrap();
+        for mode in 0..6 {
+            let u = rigid(&warped, mode);
+            assert!(
+                residual(&k, &u) < 1e-12,
+                "mode {mode}: {}",
+                residual(&k, &u)
+            );
+        }
+    }
+
+    /// Constant membrane strain and constant curvature: uᵀKu = A (εᵀD_mε + κᵀD_bκ) exactly on a
+    /// distorted element (the incompatible modes and the MITC shear stay silent).
+    #[test]
+    fn quad4_shell_patch_test_constant_strain_and_curvature_on_distorted_element() {
+        let props = steel_plate(0.02);
+        let (k, _) = matrices(&DISTORTED, &props, false).unwrap();
+        let a = area(&DISTORTED).unwrap();
+        let (dm, db) = (props.d_membrane(), props.d_bending());
+        let q = |d: &[[f64; 3]; 3], e: [f64; 3]| -> f64 {
+            (0..3)
+                .map(|i| (0..3).map(|j| e[i] * d[i][j] * e[j]).sum::<f64>())
+                .sum()
+        };
+        for (eps, kap) in [
+            ([1e-3, 0.0, 0.0], [0.0; 3]),
+            ([0.0, -2e-3, 0.0], [0.0; 3]),
+            ([0.0, 0.0, 3e-3], [0.0; 3]),
+            ([0.0; 3], [0.5, 0.0, 0.0]),
+            ([0.0; 3], [0.0, 0.3, 0.0]),
+            ([0.0; 3], [0.0, 0.0, 0.7]),
+            ([1e-3, 2e-3, -1e-3], [0.2, -0.4, 0.1]),
+        ] {
+            let u = constant_field(&DISTORTED, eps, kap);
+            let want = a * (q(&dm, eps) + q(&db, kap));
+            let got = form(&k, &u, &u);
+            assert!(
+                (got - want).abs() < 1e-10 * want,
+                "{eps:?} {kap:?}: {got} vs {want}"
+            );
+        }
+    }
+
+    /// A free element has exactly 6 zero eigenvalues (no spurious drilling or hourglass modes).
+    #[test]
+    fn quad4_shell_single_element_has_six_zero_modes() {
+        let (k, _) = matrices(&DISTORTED, &steel_plate(0.01), false).unwrap();
+        let n = 24;
+        let mat = faer::Mat::<f64>::from_fn(n, n, |i, j| k[i * n + j]);
+        let ev = mat.self_adjoint_eigenvalues(faer::Side::Lower).unwrap();
+        let top = ev.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let zeros = ev.iter().filter(|v| v.abs() < 1e-10 * top).count();
+        assert_eq!(zeros, 6, "{ev:?}");
+    }
+
+    #[test]
+    fn quad4_shell_mass_totals() {
+        let props = ShellProps {
+            nsm: 0.5,
+            ..steel_plate(0.01)
+        };
+        let a = area(&DISTORTED).unwrap();
+        for lumped in [false, true] {
+            let (_, m) = matrices(&DISTORTED, &props, lumped).unwrap();
+            let tx: f64 = (0..4)
+                .flat_map(|i| (0..4).map(move |j| (i, j)))
+                .map(|(i, j)| m[(6 * i) * 24 + 6 * j])
+                .sum();
+            let want = a * (7850.0 * 0.01 + 0.5);
+            assert!((tx - want).abs() < 1e-12 * want);
+            // element in the x–y plane: θx, θy carry ρt³/12, θz (drilling) 10⁻⁴ of it
+            let rx: f64 = (0..4).map(|i| m[(6 * i + 3) * 24 + 6 * i + 3]).sum::<f64>();
+            let rz: f64 = (0..4).map(|i| m[(6 * i + 5) * 24 + 6 * i + 5]).sum::<f64>();
+            if lumped {
+                let want = a * 7850.0 * 1e-6 / 12.0;
+                assert!((rx - want).abs() < 1e-12 * want);
+                assert!((rz - 1e-4 * want).abs() < 1e-12 * want);
+            }
+        }
+    }
+}

@@ -1,0 +1,48 @@
+//! Model shell section ([`ShellSection`]) + materials → the element's [`ShellProps`].
+
+use super::elements::shell::ShellProps;
+use super::elements::Isotropic;
+use crate::model::{Model, Property, ShellSection};
+
+fn iso(model: &Model, m: usize) -> Result<Isotropic, String> {
+    let mat = model
+        .materials
+        .get(m)
+        .ok_or_else(|| format!("shell section names material index {m}, which does not exist"))?;
+    Ok(Isotropic {
+        e: mat.e,
+        nu: mat.nu,
+        g: mat.g,
+        rho: mat.rho,
+    })
+}
+
+/// Element constants of a shell property: membrane from the property's material when the
+/// section has one (Nastran MID1), bending and shear from their own materials; density from
+/// the property's material.
+pub fn shell_props(model: &Model, prop: &Property, s: &ShellSection) -> Result<ShellProps, String> {
+    if s.thickness.is_nan() {
+        return Err(format!(
+            "property {} has no thickness (PSHELL T blank) and the element gives none (T1..T4)",
+            prop.id
+        ));
+    }
+    let primary = iso(model, prop.material)?;
+    let bending = match s.bending {
+        Some((m, r)) => Some((iso(model, m)?, r)),
+        None => None,
+    };
+    let shear = match s.shear {
+        Some((m, r)) => Some((iso(model, m)?, r)),
+        None => None,
+    };
+    Ok(ShellProps {
+        t: s.thickness,
+        membrane: s.membrane.then_some(primary),
+        bending,
+        shear,
+        rho: primary.rho,
+        nsm: s.nsm,
+        drill_factor: super::elements::shell::DRILL_FACTOR,
+    })
+}

@@ -1,0 +1,252 @@
+//! Nastran shell cards: PSHELL, PCOMP (isotropic single-material laminates only), and the
+//! element-level thickness and offset fields of CQUAD4/CTRIA3.
+//!
+//! * PSHELL `PID MID1 T MID2 12I/T³ MID3 TS/T NSM / Z1 Z2 MID4`: MID1 membrane, MID2 bending
+//!   with 12I/T³ (default 1), MID3 transverse shear with TS/T (default 5/6), NSM per area.
+//!   Z1/Z2 are stress-recovery fibres only. MID4 (membrane–bending coupling) is an error.
+//! * PCOMP `PID Z0 NSM SB FT TREF GE LAM / MIDi Ti THETAi SOUTi …`: a laminate whose plies
+//!   all use the same isotropic MAT1, with the default Z0 = −T/2 (no offset), is exactly a
+//!   homogeneous shell of the total thickness (A, D and B = 0 of one isotropic material; the
+//!   ply angles do not matter): it is read as that PSHELL. Plies of different materials or an
+//!   offset laminate are an error (a classical-lamination section is not implemented).
+//! * CQUAD4 `EID PID G1-G4 THETA ZOFFS / – TFLAG T1-T4`, CTRIA3 `EID PID G1-G3 THETA ZOFFS /
+//!   – – TFLAG T1-T3`: corner thicknesses override the property's T (TFLAG = 1: relative to
+//!   it). The element gets its own copy of the property with the mean corner thickness (a
+//!   warning when the corners differ). A non-zero ZOFFS is an error (offsets not modelled).
+
+use super::fields::C;
+use crate::import::error::ImportError;
+use crate::import::text::IdMap;
+use crate::model::{ImportWarning, Model, Property, Section, ShellSection};
+
+/// PSHELL → (primary material id: MID1, else MID2; section with *external* material ids in
+/// `bending`/`shear`, replaced by indices in [`resolve_mids`]).
+pub(super) fn pshell(g: &C) -> Result<(u64, Section), ImportError> {
+    let mid = |k: usize| -> Result<Option<u64>, ImportError> {
+        match g.int(k)? {
+            None | Some(0) => Ok(None),
+            Some(v) if v > 0 => Ok(Some(v as u64)),
+            Some(v) => Err(g.err(k, format!("bad material id {v}"))),
+        }
+    };
+    let (mid1, mid2, mid3) = (mid(1)?, mid(3)?, mid(5)?);
+    if let Some(m4) = mid(10)? {
+        return Err(g.err(
+            10,
+            format!("MID4 {m4} (membrane–bending coupling) is not supported"),
+        ));
+    }
+    let primary = mid1
+        .or(mid2)
+        .ok_or_else(|| g.err(1, "neither MID1 nor MID2 is given"))?;
+    // T blank: every element must give its own (checked when the thickness is resolved).
+    let thickness = g.real(2)?.unwrap_or(f64::NAN);
+    let ratio = g.real_or(4, 1.0)?;
+    let ts = g.real_or(6, 5.0 / 6.0)?;
+    Ok((
+        primary,
+        Section::Shell(ShellSection {
+            thickness,
+            membrane: mid1.is_some(),
+            bending: mid2.map(|m| (m as usize, ratio)),
+            shear: mid3.filter(|_| mid2.is_some()).map(|m| (m as usize, ts)),
+            nsm: g.real_or(7, 0.0)?,
+        }),
+    ))
+}
+
+/// PCOMP of plies of one isotropic material without offset → (material id, homogeneous
+/// shell section of the total thickness) (module doc).
+pub(super) fn pcomp(g: &C) -> Result<(u64, Section), ImportError> {
+    let n = g.card.fields.len();
+    let mut plies: Vec<(u64, f64)> = Vec::new();
+    let mut k = 8;
+    while k < n {
+        let m = g.int(k)?;
+        let t = g.real(k + 1)?;
+        if m.is_none() && t.is_none() {
+            k += 4;
+            continue;
+        }
+        let prev = plies.last().copied();
+        let m = match m {
+            Some(v) if v > 0 => v as u64,
+            Some(v) => return Err(g.err(k, format!("bad ply material id {v}"))),
+            None => prev.ok_or_else(|| g.err(k, "first ply has no MID"))?.0,
+        };
+        let t = match t {
+            Some(v) if v > 0.0 => v,
+            Some(v) => return Err(g.err(k + 1, format!("ply thickness {v} ≤ 0"))),
+            None => {
+                prev.ok_or_else(|| g.err(k + 1, "first ply has no thickness"))?
+                    .1
+            }
+        };
+        plies.push((m, t));
+        k += 4;
+    }
+    let &(mid, _) = plies
+        .first()
+        .ok_or_else(|| g.err_card("PCOMP without plies"))?;
+    if let Some(&(other, _)) = plies.iter().find(|p| p.0 != mid) {
+        return Err(g.err_card(format!(
+            "plies of different materials ({mid}, {other}): laminated sections are not supported \
+             (only a PCOMP of one isotropic material, read as a PSHELL)"
+        )));
+    }
+    let mut total: f64 = plies.iter().map(|p| p.1).sum();
+    match g.text(7).to_ascii_uppercase().as_str() {
+        "" => {}
+        "SYM" => total *= 2.0,
+        lam => {
+            return Err(g.err(7, format!("LAM = {lam} not supported (blank or SYM)")));
+        }
+    }
+    if let Some(z0) = g.real(1)? {
+        if (z0 + total / 2.0).abs() > 1e-9 * total {
+            return Err(g.err(
+                1,
+                format!(
+                    "Z0 = {z0} offsets the laminate (mid-plane at Z0 = −T/2 = {}); offsets are not supported",
+                    -total / 2.0
+                ),
+            ));
+        }
+    }
+    let mut s = ShellSection::homogeneous(total, mid as usize);
+    s.nsm = g.real_or(2, 0.0)?;
+    Ok((mid, Section::Shell(s)))
+}
+
+/// Replace the external MID2/MID3 of a parsed PSHELL by material indices.
+pub(super) fn resolve_mids(s: &mut ShellSection, mids: &IdMap, g: &C) -> Result<(), ImportError> {
+    let get = |ext: usize, k: usize| {
+        mids.get(ext as u64)
+            .ok_or_else(|| g.err(k, format!("references unknown material {ext}")))
+    };
+    if let Some((m, r)) = s.bending {
+        s.bending = Some((get(m, 3)?, r));
+    }
+    if let Some((m, r)) = s.shear {
+        s.shear = Some((get(m, 5)?, r));
+    }
+    Ok(())
+}
+
+/// Corner thicknesses of one shell element card.
+#[derive(Debug, Clone)]
+pub(super) struct ElementThickness {
+    /// Index of the element in the model.
+    pub elem: usize,
+    /// T1..Tn as given (blank = the property's T).
+    pub corners: Vec<Option<f64>>,
+    /// TFLAG = 1: corners are relative to the property's T.
+    pub relative: bool,
+    /// File and line, for messages.
+    pub file: String,
+    pub line: usize,
+}
+
+/// ZOFFS check and corner thicknesses of a CQUAD4/CTRIA3 card (`elem` = its model index).
+pub(super) fn element_fields(g: &C, elem: usize) -> Result<Option<ElementThickness>, ImportError> {
+    let quad = g.card.name == "CQUAD4";
+    let (nn, zoffs) = if quad { (4, 7) } else { (3, 6) };
+    if let Some(z) = g.real(zoffs)? {
+        if z != 0.0 {
+            return Err(g.err(
+                zoffs,
+                format!("ZOFFS = {z}: shell offsets are not supported (mid-surface shells only)"),
+            ));
+        }
+    }
+    let relative = match g.int(9)? {
+        None | Some(0) => false,
+        Some(1) => true,
+        Some(v) => return Err(g.err(9, format!("TFLAG = {v} (0 or 1)"))),
+    };
+    let corners: Vec<Option<f64>> = (0..nn).map(|i| g.real(10 + i)).collect::<Result<_, _>>()?;
+    if corners.iter().all(Option::is_none) {
+        return Ok(None);
+    }
+    Ok(Some(ElementThickness {
+        elem,
+        corners,
+        relative,
+        file: g.file.to_owned(),
+        line: g.line(10),
+    }))
+}
+
+/// Give each element with corner thicknesses its own copy of its shell property with the mean
+/// thickness (module doc). Elements without a shell property are left to the assembler.
+pub(super) fn apply_thickness(
+    model: &mut Model,
+    list: &[ElementThickness],
+) -> Result<(), ImportError> {
+    let mut varying = 0usize;
+    let mut first_varying = None;
+    let mut derived_of: std::collections::HashMap<(usize, u64), usize> = Default::default();
+    for et in list {
+        let Some(p) = model.elements[et.elem].property else {
+            continue;
+        };
+        let prop = &model.properties[p];
+        let Section::Shell(sh) = &prop.section else {
+            continue;
+        };
+        let base = sh.thickness;
+        let ts: Vec<f64> = et
+            .corners
+            .iter()
+            .map(|c| match (c, et.relative) {
+                (Some(t), false) => *t,
+                (Some(f), true) => f * base,
+                (None, _) => base,
+            })
+            .collect();
+        let eid = model.elements[et.elem].id;
+        if ts.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
+            return Err(crate::import::error::parse_err(
+                &et.file,
+                et.line,
+                format!("element {eid}"),
+                format!("corner thicknesses {ts:?}: each must be > 0 (PSHELL T blank?)"),
+            ));
+        }
+        let mean = ts.iter().sum::<f64>() / ts.len() as f64;
+        if ts.iter().any(|t| (t - mean).abs() > 1e-9 * mean) {
+            varying += 1;
+            first_varying.get_or_insert(eid);
+        }
+        if (mean - base).abs() <= 1e-12 * mean {
+            continue;
+        }
+        let key = (p, mean.to_bits());
+        if let Some(&d) = derived_of.get(&key) {
+            model.elements[et.elem].property = Some(d);
+            continue;
+        }
+        let mut section = sh.clone();
+        section.thickness = mean;
+        let derived = Property {
+            id: prop.id,
+            name: format!("{} (element T = {mean})", prop.name),
+            material: prop.material,
+            section: Section::Shell(section),
+        };
+        model.properties.push(derived);
+        let d = model.properties.len() - 1;
+        derived_of.insert(key, d);
+        model.elements[et.elem].property = Some(d);
+    }
+    if let Some(first) = first_varying {
+        model.warnings.push(ImportWarning {
+            file: list[0].file.clone(),
+            message: format!(
+                "{varying} shell elements (first: {first}) have different corner thicknesses: \
+                 each uses the mean of its corners"
+            ),
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,181 @@
+//! Shell sections through the importers: PSHELL fields, element thickness overrides, PCOMP of
+//! one material, and the inputs that are errors (offsets, quadratic shells, mixed laminates).
+
+use flexbody::import::{read_model, ImportOptions};
+use flexbody::model::{Model, Section, ShellSection};
+
+fn read(name: &str, text: &str) -> Result<Model, String> {
+    let dir = std::env::temp_dir().join(format!("flexbody-import-shells-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    read_model(&path, &ImportOptions::default()).map_err(|e| e.to_string())
+}
+
+const GRIDS: &str = "GRID    1               0.      0.      0.
+GRID    2               1.      0.      0.
+GRID    3               1.      1.      0.
+GRID    4               0.      1.      0.
+MAT1    1       2.1+11          .3      7850.
+MAT1    2       7.0+10          .33     2700.
+";
+
+fn shell(m: &Model, elem: usize) -> &ShellSection {
+    let p = m.elements[elem].property.unwrap();
+    match &m.properties[p].section {
+        Section::Shell(s) => s,
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn pshell_fields_and_element_thickness_override() {
+    // PSHELL PID MID1 T MID2 12I/T3 MID3 TS/T NSM
+    let deck = format!(
+        "BEGIN BULK
+{GRIDS}PSHELL  7       1       .002    2       .8      2       .7      1.5
+CQUAD4  10      7       1       2       3       4
+CTRIA3  11      7       1       2       3
+CQUAD4  12      7       1       2       3       4
+                        .003    .003    .003    .005
+CTRIA3  13      7       1       2       3
+                1       .5      .5      .5
+ENDDATA
+"
+    );
+    let m = read("pshell.bdf", &deck).unwrap();
+    let s = shell(&m, 0);
+    assert_eq!(s.thickness, 0.002);
+    assert!(s.membrane);
+    assert_eq!(s.bending, Some((1, 0.8)));
+    assert_eq!(s.shear, Some((1, 0.7)));
+    assert_eq!(s.nsm, 1.5);
+    assert_eq!(m.properties[m.elements[0].property.unwrap()].material, 0);
+    assert_eq!(shell(&m, 1).thickness, 0.002);
+    // corner thicknesses: the mean, with a warning for unequal corners; TFLAG = 1 relative
+    assert!((shell(&m, 2).thickness - 0.0035).abs() < 1e-15);
+    assert!((shell(&m, 3).thickness - 0.001).abs() < 1e-15);
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.message.contains("different corner thicknesses")),
+        "{:?}",
+        m.warnings
+    );
+}
+
+#[test]
+fn pcomp_of_one_material_is_a_homogeneous_shell_and_mixed_plies_are_an_error() {
+    let deck = format!(
+        "BEGIN BULK
+{GRIDS}PCOMP,6,,0.25,,,,,
+,1,0.1,45.
+,1,0.2,-45.
+CQUAD4  10      6       1       2       3       4
+ENDDATA
+"
+    );
+    let m = read("pcomp.bdf", &deck).unwrap();
+    let s = shell(&m, 0);
+    assert!((s.thickness - 0.3).abs() < 1e-15);
+    assert_eq!((s.bending, s.nsm), (Some((0, 1.0)), 0.25));
+    let sym = deck.replace("PCOMP,6,,0.25,,,,,", "PCOMP,6,,0.25,,,,,SYM");
+    assert!((shell(&read("sym.bdf", &sym).unwrap(), 0).thickness - 0.6).abs() < 1e-15);
+    let mixed = deck.replace(",1,0.2,-45.", ",2,0.2,-45.");
+    let e = read("mixed.bdf", &mixed).unwrap_err();
+    assert!(
+        e.contains("PCOMP 6") && e.contains("different materials"),
+        "{e}"
+    );
+    let offset = deck.replace("PCOMP,6,,0.25", "PCOMP,6,0.,0.25");
+    let e = read("z0.bdf", &offset).unwrap_err();
+    assert!(e.contains("Z0") && e.contains("offset"), "{e}");
+}
+
+#[test]
+fn shell_offsets_mid4_and_quadratic_shells_are_errors() {
+    let base = format!(
+        "BEGIN BULK
+{GRIDS}PSHELL  7       1       .002    1
+CQUAD4  10      7       1       2       3       4
+ENDDATA
+"
+    );
+    assert!(read("ok.bdf", &base).is_ok());
+    let z = base.replace(
+        "CQUAD4  10      7       1       2       3       4",
+        "CQUAD4  10      7       1       2       3       4       0.      .001",
+    );
+    let e = read("zoffs.bdf", &z).unwrap_err();
+    assert!(e.contains("CQUAD4 10") && e.contains("ZOFFS"), "{e}");
+    let mid4 = base.replace(
+        "PSHELL  7       1       .002    1",
+        "PSHELL  7       1       .002    1\n                        2",
+    );
+    let e = read("mid4.bdf", &mid4).unwrap_err();
+    assert!(e.contains("MID4"), "{e}");
+    // T blank on the PSHELL and none on the element: the assembler names both
+    let blank_t = base.replace(
+        "PSHELL  7       1       .002    1",
+        "PSHELL  7       1               1",
+    );
+    let m = read("blank_t.bdf", &blank_t).unwrap();
+    let e = flexbody::fe::assemble(&m, &Default::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("element 10") && e.contains("PSHELL T blank"),
+        "{e}"
+    );
+    let q8 = base.replace(
+        "CQUAD4  10      7       1       2       3       4",
+        "CQUAD8  10      7       1       2       3       4",
+    );
+    let e = read("q8.bdf", &q8).unwrap_err();
+    assert!(e.contains("CQUAD8") && e.contains("not supported"), "{e}");
+}
+
+const INP: &str = "*NODE
+1, 0., 0., 0.
+2, 1., 0., 0.
+3, 1., 1., 0.
+4, 0., 1., 0.
+*ELEMENT, TYPE=S4R, ELSET=P
+1, 1, 2, 3, 4
+*SHELL SECTION, ELSET=P, MATERIAL=AL
+0.003, 5
+*MATERIAL, NAME=AL
+*ELASTIC
+7e10, 0.33
+*DENSITY
+2700.
+";
+
+#[test]
+fn abaqus_shell_section_thickness_points_note_and_offset_error() {
+    let m = read("s.inp", INP).unwrap();
+    let s = shell(&m, 0);
+    assert_eq!(*s, ShellSection::homogeneous(0.003, 0));
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.message.contains("section points")),
+        "{:?}",
+        m.warnings
+    );
+    let off = INP.replace("MATERIAL=AL\n", "MATERIAL=AL, OFFSET=SPOS\n");
+    let e = read("off.inp", &off).unwrap_err();
+    assert!(e.contains("OFFSET=SPOS"), "{e}");
+    let s8 = INP
+        .replace("TYPE=S4R", "TYPE=S8R")
+        .replace("1, 1, 2, 3, 4\n", "1, 1, 2, 3, 4, 5, 6, 7, 8\n")
+        .replace(
+            "*ELEMENT",
+            "5, .5, 0., 0.\n6, 1., .5, 0.\n7, .5, 1., 0.\n8, 0., .5, 0.\n*ELEMENT",
+        );
+    let m = read("s8.inp", &s8).unwrap();
+    let e = flexbody::fe::assemble(&m, &Default::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("quadratic shells") && e.contains("S8R"), "{e}");
+}
