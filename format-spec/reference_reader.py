@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference reader for flexbody reduced-body files, format v1 (1.0 and 1.1), written from SPEC.md alone.
+"""Reference reader for flexbody reduced-body files, format v1 (1.0, 1.1 and 1.2), written from SPEC.md alone.
 
 Standard library only (zipfile, json, hashlib, struct). Usage:
 
@@ -25,6 +25,7 @@ ENTRIES = [  # SPEC §2: name, required
     ("modes.bin", True), ("invariants.bin", True), ("method.bin", True),
     ("stress_shapes.bin", False), ("strain_shapes.bin", False), ("damping.bin", False),
     ("lines.bin", False),  # format 1.1
+    ("recipe.json", False),  # format 1.2
 ]
 KNOWN = dict(ENTRIES)
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
@@ -190,6 +191,79 @@ DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin":
             "damping.bin": decode_damping}
 
 
+# SPEC §5.11: recipe.json member types. ("opt", T) may be null or absent; ("list", T); a dict is
+# an object with those members (unknown members ignored); ("arr", T, k) a fixed-length array.
+U64, U8, F64, STR = ("uint", 64), ("uint", 8), "number", "string"
+UNITS_T = {k: {"name": STR, "si": F64} for k in UNIT_KEYS}
+RECIPE_T = {
+    "tool": {"name": STR, "version": STR},
+    "model_files": ("list", {"path": STR, "role": STR, "size": U64, "sha256": STR}),
+    "options": {"format": ("opt", STR), "material": ("opt", STR), "method": STR, "modes": ("opt", U64),
+                "fmax_hz": ("opt", F64), "mass": STR, "beam_mass": STR, "units": UNITS_T,
+                "interface": ("list", STR), "spider": STR, "reference_conditions": ("list", STR),
+                "reference_method": U8, "keep_nodes": STR, "invariants": STR, "stress_fields": STR},
+    "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
+        "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
+        "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),
+    "accuracy_band": {"fmax_hz": F64, "rule": STR},
+}
+RECIPE_KEYS = list(RECIPE_T)  # member order of the summary
+
+
+def typed(v, t, at):
+    """Checks v against the type t of RECIPE_T; returns v with unknown members dropped."""
+    def bad(what):
+        raise ReadError("Decode", f"recipe.json: cannot decode (not a valid recipe: {at} must be {what})")
+    if isinstance(t, dict):
+        if not isinstance(v, dict):
+            bad("an object")
+        out = {}
+        for k, tk in t.items():
+            if k not in v and not (isinstance(tk, tuple) and tk[0] == "opt"):
+                bad(f"an object with member {k}")
+            out[k] = typed(v.get(k), tk, f"{at}.{k}")
+        return out
+    if t == STR:
+        if not isinstance(v, str):
+            bad("a string")
+        return v
+    if t == F64:
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            bad("a number")
+        return float(v)
+    if t[0] == "uint":
+        if isinstance(v, bool) or not isinstance(v, int) or not 0 <= v < 1 << t[1]:
+            bad(f"an integer in 0..2^{t[1]}-1")
+        return v
+    if t[0] == "opt":
+        return None if v is None else typed(v, t[1], at)
+    if t[0] == "list" or t[0] == "arr":
+        if not isinstance(v, list) or (t[0] == "arr" and len(v) != t[2]):
+            bad("an array" if t[0] == "list" else f"an array of {t[2]}")
+        return [typed(x, t[1], f"{at}[{i}]") for i, x in enumerate(v)]
+    raise AssertionError(t)
+
+
+def decode_recipe(data):
+    """SPEC §5.11: UTF-8 JSON, at most 16 MiB, members of RECIPE_T (unknown ones ignored)."""
+    def fail(msg):
+        raise ReadError("Decode", f"recipe.json: cannot decode ({msg})")
+    if len(data) > STRING_LIMIT:
+        fail("exceeds the 16 MiB record limit")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        fail(f"not UTF-8: {e}")
+
+    def no_constants(c):
+        raise ValueError(f"{c} is not JSON")
+    try:
+        v = json.loads(text, parse_constant=no_constants)
+    except (ValueError, RecursionError) as e:
+        fail(f"not a valid recipe: {e}")
+    return typed(v, RECIPE_T, "recipe")
+
+
 def read_entry(zf, info, declared):
     if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
         raise ReadError("Compression", f"{info.filename}: compression method {info.compress_type} not supported")
@@ -326,6 +400,8 @@ def read_bytes(data):
             d = Decoder(name, blobs[name])
             body[name] = fn(d)
             d.end()
+    if "recipe.json" in blobs:
+        body["recipe.json"] = decode_recipe(blobs["recipe.json"])
     validate(body, m)
     return body, m
 
@@ -458,6 +534,38 @@ def validate(b, m):
         finite("damping.bin", "ratio", dmp["ratio"])
         if any(r < 0 for r in dmp["ratio"]):
             err("Inconsistent", "damping.bin", "negative ratio")
+    rc = b.get("recipe.json")
+    if rc is not None:
+        validate_recipe(rc, b, m, err, finite)
+
+
+def validate_recipe(rc, b, m, err, finite):
+    """SPEC §6 rule 11, in order."""
+    for q, f in enumerate(rc["model_files"]):
+        if len(f["sha256"]) != 64 or any(c not in "0123456789abcdef" for c in f["sha256"]):
+            err("Inconsistent", "recipe.json", f"model_files[{q}].sha256 must be 64 lowercase hex digits")
+        if f["role"] != ("main" if q == 0 else "include"):
+            err("Inconsistent", "recipe.json", f"model_files[{q}].role is wrong")
+    if rc["options"]["units"] != {k: {"name": m["units"][k]["name"], "si": m["units"][k]["si"]} for k in UNIT_KEYS}:
+        err("Inconsistent", "recipe.json", "options.units differ from the manifest's units")
+    f = rc["options"]["fmax_hz"]
+    if f is not None:
+        finite("recipe.json", "options.fmax_hz", [f])
+        if f <= 0:
+            err("Inconsistent", "recipe.json", "options.fmax_hz must be > 0")
+    stored = {x["id"] for x in b["nodes.bin"] if x["interface"]}
+    for q, itf in enumerate(rc["interfaces"]):
+        for nid in itf["nodes"]:
+            if nid not in stored:
+                err("Inconsistent", "recipe.json", f"interfaces[{q}] names node {nid}, not a stored interface node")
+        s = itf["spider"]
+        if s is not None:
+            finite("recipe.json", f"interfaces[{q}].spider.centre", s["centre"])
+            finite("recipe.json", f"interfaces[{q}].spider.offset_from_node_average", [s["offset_from_node_average"]])
+    band = rc["accuracy_band"]["fmax_hz"]
+    finite("recipe.json", "accuracy_band.fmax_hz", [band])
+    if band <= 0:
+        err("Inconsistent", "recipe.json", "accuracy_band.fmax_hz must be > 0")
 
 
 def mass_properties(b):
@@ -504,6 +612,7 @@ def summarize(b, m):
                    "label": modes["labels"][j]} for j in range(len(modes["omega2"]))],
         "optional": [x in b for x in ("stress_shapes.bin", "strain_shapes.bin", "damping.bin", "lines.bin")],
         "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
+        "recipe": b.get("recipe.json"),
     }
 
 

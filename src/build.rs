@@ -499,7 +499,7 @@ pub fn build_model(
     };
 
     progress(STAGES[7]);
-    let body = assemble_body(
+    let mut body = assemble_body(
         spec,
         &model,
         dofs,
@@ -513,6 +513,11 @@ pub fn build_model(
         &inv,
         fields.as_ref(),
     )?;
+    let band = crate::recipe::accuracy_band(spec, &set);
+    let recipe =
+        crate::recipe::recipe(spec, &model, &report.interfaces, band).map_err(request_err)?;
+    body.recipe = Some(recipe);
+    body.version = file::version_for(&body);
     lap(&mut report, STAGES[7]);
     Ok(BuildOutput { body, report })
 }
@@ -944,6 +949,7 @@ fn assemble_body(
         strain_shapes: fields.and_then(|f| field_shapes(f, f.strain.as_ref(), &position)),
         damping: None,
         lines: (!lines.is_empty()).then_some(lines),
+        recipe: None,
     };
     body.version = flexbody_reader::version_for(&body);
     Ok(body)

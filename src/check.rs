@@ -12,11 +12,15 @@
 //!   masses and shapes equal the stored ones, and (lumped mass) I6 equals the generalized mass —
 //!   a corrupted mode shape breaks these.
 //!
-//! With the FE model (`--model`, rebuilt with the same interface spiders as `build`):
+//! With the FE model (`--model`, rebuilt from the file's recipe — interface spiders, beam
+//! lumping, format, material — unless given explicitly):
+//! * the model files are the ones the body was built from (SHA-256 of the recipe); a changed
+//!   file fails the check and stops the model checks;
 //! * ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²) against the model's own K and M (all nodes stored);
 //! * eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖ (normal modes: must be small; reduced bases: reported);
 //! * frequencies against a full normal-mode solve: Rayleigh–Ritz bound (reduced ≥ full) and
-//!   relative error ≤ 1% for the flexible modes below the scene's fmax (or the lower half).
+//!   relative error ≤ 1% for the flexible modes inside the recipe's accuracy band (files
+//!   without a recipe: below the requested fmax, else the lower half of the modes).
 
 use std::path::PathBuf;
 
@@ -84,6 +88,8 @@ pub struct ModelInput {
     pub interface: Vec<String>,
     /// The spider kind given to `build`.
     pub spider: SpiderKind,
+    /// Rotational inertia of lumped beam masses (`None`: as `build` resolves it by default).
+    pub beam_mass: Option<crate::fe::BeamLumping>,
 }
 
 /// Errors that stop the check from running at all (a failed check is not an error).
@@ -361,6 +367,25 @@ fn model_checks(
     r: &mut CheckReport,
 ) -> Result<(), CheckError> {
     use crate::build::BuildError;
+    if let Some(recipe) = &body.recipe {
+        let changed = crate::recipe::changed_model_files(recipe, &input.path);
+        r.push(
+            "model files as built (recipe SHA-256)",
+            changed.len() as f64,
+            0.0,
+            if changed.is_empty() {
+                format!(
+                    "{} file(s) unchanged since the build",
+                    recipe.model_files.len()
+                )
+            } else {
+                changed.join("; ")
+            },
+        );
+        if !changed.is_empty() {
+            return Ok(());
+        }
+    }
     let mut model = import::read_model(
         &input.path,
         &ImportOptions {
@@ -369,7 +394,17 @@ fn model_checks(
         },
     )
     .map_err(BuildError::from)?;
-    resolve_interfaces(&mut model, &input.interface, input.spider).map_err(BuildError::from)?;
+    let interfaces =
+        resolve_interfaces(&mut model, &input.interface, input.spider).map_err(BuildError::from)?;
+    let interface_nodes: Vec<usize> = interfaces
+        .iter()
+        .flat_map(|i| i.nodes.iter().copied())
+        .collect();
+    let beam_lumping = input.beam_mass.unwrap_or_else(|| {
+        let mut spec = crate::build::BuildSpec::new(input.path.clone(), file::Units::si(), &[]);
+        spec.format = input.format;
+        spec.beam_lumping()
+    });
     let mass = match body.method.mass_kind {
         file::MassKind::Lumped => fe::MassKind::Lumped,
         file::MassKind::Consistent => fe::MassKind::Consistent,
@@ -378,12 +413,23 @@ fn model_checks(
         &model,
         &AssemblySpec {
             mass,
+            beam_lumping,
             ..Default::default()
         },
     )
     .map_err(BuildError::from)?;
-    let red = eliminate(&model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default())
-        .map_err(BuildError::from)?;
+    let red = eliminate(
+        &model,
+        &a.dofs,
+        &a.k,
+        &a.m,
+        &ConstraintSpec {
+            // as `build`: RBE3 spiders at interface nodes keep their centre independent
+            independent_rbe3_reference: interface_nodes,
+            ..Default::default()
+        },
+    )
+    .map_err(BuildError::from)?;
     let m = body.mode_count();
     let n_r = red.retained.len();
     let by_id = model.node_index_by_id();
@@ -441,7 +487,13 @@ fn model_checks(
         .filter(|(_, l)| **l != crate::reduce::ModeLabel::Rigid)
         .map(|(f, _)| f)
         .collect();
-    let band = body.header.request.fmax_hz.unwrap_or(f64::INFINITY);
+    let (band, band_rule) = match &body.recipe {
+        Some(rc) => (rc.accuracy_band.fmax_hz, rc.accuracy_band.rule.clone()),
+        None => (
+            body.header.request.fmax_hz.unwrap_or(f64::INFINITY),
+            "fmax".to_string(),
+        ),
+    };
     let mut worst_err: f64 = 0.0;
     let mut worst_bound: f64 = 0.0;
     let mut compared = 0;
@@ -476,7 +528,7 @@ fn model_checks(
         format!(
             "max relative error over the {compared} flexible modes {}",
             if band.is_finite() {
-                format!("below fmax = {band} Hz")
+                format!("below fmax = {band} Hz (accuracy band, rule {band_rule})")
             } else {
                 "in the lower half".into()
             }

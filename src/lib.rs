@@ -30,6 +30,7 @@ pub mod invariants;
 pub mod model;
 pub mod options;
 pub mod precheck;
+pub mod recipe;
 pub mod reduce;
 pub mod solve;
 pub mod stress;

@@ -43,9 +43,10 @@ struct ModelArgs {
     #[arg(long, value_delimiter = ',')]
     interface: Vec<String>,
     /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
-    /// (weighted average) or none (every node of the set is an interface node).
-    #[arg(long, default_value = "rbe2")]
-    spider: String,
+    /// (weighted average) or none (every node of the set is an interface node). `check`: default
+    /// from the file's recipe.
+    #[arg(long)]
+    spider: Option<String>,
 }
 
 #[derive(clap::Args)]
@@ -128,7 +129,9 @@ struct BuildArgs {
 struct CheckArgs {
     /// The .flexbody file.
     file: PathBuf,
-    /// The FE model the file was built from (give the same --interface/--spider as to build).
+    /// The FE model the file was built from. The model is rebuilt with the options recorded in
+    /// the file's recipe (interfaces, spiders, format, material, beam mass); options given here
+    /// override them. A model file changed since the build fails the check.
     #[arg(long)]
     model: Option<PathBuf>,
     #[command(flatten)]
@@ -175,7 +178,7 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
             .map(parse_material)
             .transpose()?,
         interface: a.model_args.interface.clone(),
-        spider: parse_spider(&a.model_args.spider)?,
+        spider: parse_spider(a.model_args.spider.as_deref().unwrap_or("rbe2"))?,
         method: parse_method(&a.method)?,
         modes: a.modes,
         fmax_hz: a.fmax,
@@ -365,18 +368,26 @@ fn check(a: &CheckArgs) -> anyhow::Result<bool> {
         .with_context(|| format!("{} is not a valid flexbody file", a.file.display()))?;
     let model = match &a.model {
         None => None,
-        Some(path) => Some(flexbody::check::ModelInput {
-            path: path.clone(),
-            format: import_format(&a.model_args.format)?,
-            material: a
-                .model_args
-                .material
-                .as_deref()
-                .map(flexbody::options::parse_material)
-                .transpose()?,
-            interface: a.model_args.interface.clone(),
-            spider: flexbody::options::parse_spider(&a.model_args.spider)?,
-        }),
+        Some(path) => Some(flexbody::recipe::model_input(
+            body.recipe.as_ref(),
+            path.clone(),
+            flexbody::recipe::ModelOverrides {
+                format: import_format(&a.model_args.format)?,
+                material: a
+                    .model_args
+                    .material
+                    .as_deref()
+                    .map(flexbody::options::parse_material)
+                    .transpose()?,
+                interface: a.model_args.interface.clone(),
+                spider: a
+                    .model_args
+                    .spider
+                    .as_deref()
+                    .map(flexbody::options::parse_spider)
+                    .transpose()?,
+            },
+        )?),
     };
     let report = flexbody::check::check(&body, model.as_ref())?;
     if a.json {

@@ -362,6 +362,8 @@ pub struct ReducedBody {
     /// Optional `lines.bin` (format 1.1): 2-node graphics lines (beams, rods) as 0-based node
     /// indices.
     pub lines: Option<Vec<[u32; 2]>>,
+    /// Optional `recipe.json` (format 1.2): how the body was built.
+    pub recipe: Option<crate::Recipe>,
 }
 
 impl ReducedBody {

@@ -1,7 +1,7 @@
 //! Consistency rules of a decoded body (SPEC.md §6): counts, finiteness, index ranges,
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
-    DAMPING, FACES, HEADER, INVARIANTS, LINES, MANIFEST, METHOD, MODES, NODAL_MASS, NODES,
+    DAMPING, FACES, HEADER, INVARIANTS, LINES, MANIFEST, METHOD, MODES, NODAL_MASS, NODES, RECIPE,
     STRAIN_SHAPES, STRESS_SHAPES,
 };
 use crate::error::ReadError;
@@ -409,6 +409,77 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
                 format!("ratio[{j}] is negative ({r})"),
             ));
         }
+    }
+    if let Some(r) = &body.recipe {
+        recipe(r, body)?;
+    }
+    Ok(())
+}
+
+/// Rule 11 (SPEC.md §6): `recipe.json` agrees with itself and with the rest of the file.
+fn recipe(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
+    for (q, f) in r.model_files.iter().enumerate() {
+        let hex_ok = f.sha256.len() == 64
+            && f.sha256
+                .bytes()
+                .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b));
+        if !hex_ok {
+            return Err(inconsistent(
+                RECIPE,
+                format!("model_files[{q}].sha256 must be 64 lowercase hex digits"),
+            ));
+        }
+        let want = if q == 0 { "main" } else { "include" };
+        if f.role != want {
+            return Err(inconsistent(
+                RECIPE,
+                format!("model_files[{q}].role is {:?}, must be {want:?}", f.role),
+            ));
+        }
+    }
+    if r.options.units != body.units {
+        return Err(inconsistent(
+            RECIPE,
+            "options.units differ from the manifest's units".into(),
+        ));
+    }
+    if let Some(f) = r.options.fmax_hz {
+        finite(RECIPE, "options.fmax_hz", [&f])?;
+        if f <= 0.0 {
+            return Err(inconsistent(
+                RECIPE,
+                format!("options.fmax_hz {f} must be > 0"),
+            ));
+        }
+    }
+    for (q, itf) in r.interfaces.iter().enumerate() {
+        for &id in &itf.nodes {
+            if !body.nodes.iter().any(|p| p.id == id && p.interface) {
+                return Err(inconsistent(
+                    RECIPE,
+                    format!(
+                        "interfaces[{q}] ({}) names node {id}, which is not a stored interface node",
+                        itf.entry
+                    ),
+                ));
+            }
+        }
+        if let Some(s) = &itf.spider {
+            finite(RECIPE, &format!("interfaces[{q}].spider.centre"), &s.centre)?;
+            finite(
+                RECIPE,
+                &format!("interfaces[{q}].spider.offset_from_node_average"),
+                [&s.offset_from_node_average],
+            )?;
+        }
+    }
+    let band = r.accuracy_band.fmax_hz;
+    finite(RECIPE, "accuracy_band.fmax_hz", [&band])?;
+    if band <= 0.0 {
+        return Err(inconsistent(
+            RECIPE,
+            format!("accuracy_band.fmax_hz {band} must be > 0"),
+        ));
     }
     Ok(())
 }

@@ -77,6 +77,9 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
         Format::Nastran => nastran::read(path)?,
         Format::Gmsh => gmsh::read(path, None)?,
     };
+    if model.files.is_empty() {
+        model.files.push(path.display().to_string());
+    }
     if let Some(m) = &opts.material {
         apply_default_material(&mut model, m);
     }

@@ -426,6 +426,9 @@ pub struct Model {
     pub params: ModelParams,
     /// Non-fatal findings.
     pub warnings: Vec<ImportWarning>,
+    /// Every file the importer read, as opened: the main file first, then includes in the order
+    /// read (empty for models built in memory). The build records their SHA-256 (recipe).
+    pub files: Vec<String>,
 }
 
 impl Model {

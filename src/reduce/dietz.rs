@@ -49,9 +49,15 @@ fn check_shift(ell: f64, l1: f64) -> Result<(), ReduceError> {
 /// Relative convergence of the static procedure's fixed point.
 const FIXED_POINT_TOL: f64 = 1e-13;
 
-fn finish(o: super::Orthonormalized, method: Method, note: String) -> ModeSet {
+fn finish_with_top(
+    o: super::Orthonormalized,
+    method: Method,
+    note: String,
+    top: Option<f64>,
+) -> ModeSet {
     let mut diagnostics = o.diagnostics;
     diagnostics.notes.push(note);
+    diagnostics.basis_top_omega2 = top;
     ModeSet {
         phi: o.phi,
         omega2: o.omega2,
@@ -121,13 +127,15 @@ pub fn dietz(
         ir.support
     );
     let attachment = (0..fa.ncols()).map(|j| load_dof(fa, j)).collect();
-    Ok(finish(
+    let top = xn.eigenvalues.last().copied();
+    Ok(finish_with_top(
         o,
         Method::Dietz {
             attachment,
             shift: ell,
         },
         note,
+        top,
     ))
 }
 
@@ -169,7 +177,10 @@ pub fn dietz_modified(
     })?;
     let note = format!("Dietz modified procedure: l = {ell:e}, extended set of {extended} modes");
     let attachment = (0..fa.ncols()).map(|j| load_dof(fa, j)).collect();
-    Ok(finish(
+    let top = xe.eigenvalues[..modes.min(xe.eigenvalues.len())]
+        .last()
+        .copied();
+    Ok(finish_with_top(
         o,
         Method::DietzModified {
             attachment,
@@ -177,5 +188,6 @@ pub fn dietz_modified(
             extended,
         },
         note,
+        top,
     ))
 }

@@ -138,6 +138,10 @@ pub struct Diagnostics {
     pub dependency_tol: f64,
     /// Free-text notes (choices made automatically, e.g. the support dofs).
     pub notes: Vec<String>,
+    /// ω² of the highest mode of the method's own eigenproblem: the last fixed-interface mode
+    /// (Craig–Bampton) or free-free mode (Craig–Chang, Dietz) in the basis; `None` for normal
+    /// modes (their own ω² are exact). Defines the accuracy band of a `--modes N` build.
+    pub basis_top_omega2: Option<f64>,
 }
 
 /// Which method produced a mode set.

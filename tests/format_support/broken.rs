@@ -426,6 +426,29 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         patch_method(pack(&good_manifest, &good), codec::DAMPING, 12),
         Some(("Compression", "damping.bin: compression method")),
     );
+
+    // recipe.json (format 1.2): JSON that is not a recipe, and a recipe naming a node that is not
+    // a stored interface node.
+    let mut b = base.clone();
+    b.recipe = Some(super::recipe_3node());
+    let recipe_bytes = codec::encode_recipe(&super::recipe_3node());
+    let cut = recipe_bytes[..recipe_bytes.len() / 2].to_vec();
+    add(
+        "recipe_not_json",
+        with_entry(&b, codec::RECIPE, cut),
+        Some(("Decode", "recipe.json: cannot decode")),
+    );
+    if let Some(r) = b.recipe.as_mut() {
+        r.interfaces[0].nodes = vec![102];
+    }
+    add(
+        "recipe_interface_node_not_stored",
+        from_body(&b),
+        Some((
+            "Inconsistent",
+            "recipe.json: interfaces[0] (101) names node 102",
+        )),
+    );
     out
 }
 

@@ -400,6 +400,7 @@ pub(crate) fn build(lexer: Lexer) -> Result<(Model, CardCounts), ImportError> {
             message: format!("unsupported card {name} ignored ({n} cards)"),
         });
     }
+    b.model.files = b.files.clone();
     Ok((b.model, counts))
 }
 
