@@ -26,6 +26,7 @@ ENTRIES = [  # SPEC §2: name, required
     ("stress_shapes.bin", False), ("strain_shapes.bin", False), ("damping.bin", False),
     ("lines.bin", False),  # format 1.1
     ("recipe.json", False),  # format 1.2
+    ("label_shares.bin", False),  # format 1.2
 ]
 KNOWN = dict(ENTRIES)
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
@@ -188,6 +189,7 @@ DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin":
             "nodal_mass.bin": decode_nodal_mass, "modes.bin": decode_modes,
             "invariants.bin": decode_invariants, "method.bin": decode_method,
             "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field, "lines.bin": decode_lines,
+            "label_shares.bin": lambda d: d.f64s(),
             "damping.bin": decode_damping}
 
 
@@ -534,6 +536,12 @@ def validate(b, m):
         finite("damping.bin", "ratio", dmp["ratio"])
         if any(r < 0 for r in dmp["ratio"]):
             err("Inconsistent", "damping.bin", "negative ratio")
+    sh = b.get("label_shares.bin")
+    if sh is not None:
+        count("label_shares.bin", "shares", len(sh), nm)
+        finite("label_shares.bin", "shares", sh)
+        if any(not 0.0 <= v <= 1.0 for v in sh):
+            err("Inconsistent", "label_shares.bin", "share outside 0..1")
     rc = b.get("recipe.json")
     if rc is not None:
         validate_recipe(rc, b, m, err, finite)
@@ -609,7 +617,9 @@ def summarize(b, m):
                    "modes": len(modes["omega2"])},
         "mass": mass_properties(b),
         "modes": [{"number": j + 1, "frequency_hz": modes["frequency_hz"][j], "omega2": modes["omega2"][j],
-                   "label": modes["labels"][j]} for j in range(len(modes["omega2"]))],
+                   "label": modes["labels"][j],
+                   "label_share": b["label_shares.bin"][j] if "label_shares.bin" in b else None}
+                  for j in range(len(modes["omega2"]))],
         "optional": [x in b for x in ("stress_shapes.bin", "strain_shapes.bin", "damping.bin", "lines.bin")],
         "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
         "recipe": b.get("recipe.json"),

@@ -950,6 +950,11 @@ fn assemble_body(
         damping: None,
         lines: (!lines.is_empty()).then_some(lines),
         recipe: None,
+        label_shares: Some(if set.diagnostics.label_shares.len() == nm {
+            set.diagnostics.label_shares.clone()
+        } else {
+            vec![1.0; nm]
+        }),
     };
     body.version = flexbody_reader::version_for(&body);
     Ok(body)

@@ -32,6 +32,8 @@ pub struct ModeLine {
     pub omega2: f64,
     /// Label (`Rigid`, `Normal`, …).
     pub label: String,
+    /// Share of the labelled origin in the mode (`label_shares.bin`, format 1.2), or null.
+    pub label_share: Option<f64>,
 }
 
 /// One container entry.
@@ -178,6 +180,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
                 frequency_hz: body.modes.frequency_hz[j],
                 omega2: body.modes.omega2[j],
                 label: format!("{:?}", body.modes.labels[j]),
+                label_share: body.label_shares.as_ref().map(|s| s[j]),
             })
             .collect(),
         optional: [
@@ -255,9 +258,13 @@ pub fn render_text(s: &Summary) -> String {
     }
     let _ = writeln!(o, "modes        #      frequency [Hz]   label");
     for m in &s.modes {
+        let share = match m.label_share {
+            Some(v) if v < 0.995 => format!(" ({:.0} %)", 100.0 * v),
+            _ => String::new(),
+        };
         let _ = writeln!(
             o,
-            "             {:<6} {:>15.6}   {}",
+            "             {:<6} {:>15.6}   {}{share}",
             m.number, m.frequency_hz, m.label
         );
     }

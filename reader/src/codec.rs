@@ -15,7 +15,7 @@ pub const FORMAT_NAME: &str = "flexbody-reduced-body";
 pub const MANIFEST: &str = "manifest.json";
 
 /// Payload entries known to v1, in the fixed container order, with their required flag.
-pub const ENTRIES: [(&str, bool); 12] = [
+pub const ENTRIES: [(&str, bool); 13] = [
     (HEADER, true),
     (NODES, true),
     (FACES, true),
@@ -28,6 +28,7 @@ pub const ENTRIES: [(&str, bool); 12] = [
     (DAMPING, false),
     (LINES, false),
     (RECIPE, false),
+    (LABEL_SHARES, false),
 ];
 /// `header.bin`.
 pub const HEADER: &str = "header.bin";
@@ -53,6 +54,8 @@ pub const DAMPING: &str = "damping.bin";
 pub const LINES: &str = "lines.bin";
 /// `recipe.json` (format 1.2): UTF-8 JSON, not a bincode record.
 pub const RECIPE: &str = "recipe.json";
+/// `label_shares.bin` (format 1.2).
+pub const LABEL_SHARES: &str = "label_shares.bin";
 
 /// `manifest.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

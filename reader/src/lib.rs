@@ -40,9 +40,9 @@ pub use validate::{validate, FRAME_TOL, REL_TOL};
 pub const FORMAT_VERSION: Version = Version { major: 1, minor: 2 };
 
 /// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`, 1.2
-/// `recipe.json`).
+/// `recipe.json` and `label_shares.bin`).
 pub fn version_for(body: &ReducedBody) -> Version {
-    let minor = if body.recipe.is_some() {
+    let minor = if body.recipe.is_some() || body.label_shares.is_some() {
         2
     } else {
         u32::from(body.lines.is_some())
@@ -118,6 +118,7 @@ pub fn from_bytes_with_manifest(
             .get(RECIPE)
             .map(|b| decode_recipe(b))
             .transpose()?,
+        label_shares: optional(&c, LABEL_SHARES)?,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))
@@ -150,6 +151,9 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     }
     if let Some(r) = &body.recipe {
         out.push((RECIPE, false, encode_recipe(r)));
+    }
+    if let Some(s) = &body.label_shares {
+        out.push((LABEL_SHARES, false, encode(s)));
     }
     out
 }

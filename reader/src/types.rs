@@ -364,6 +364,9 @@ pub struct ReducedBody {
     pub lines: Option<Vec<[u32; 2]>>,
     /// Optional `recipe.json` (format 1.2): how the body was built.
     pub recipe: Option<crate::Recipe>,
+    /// Optional `label_shares.bin` (format 1.2): per mode, the participation share (0…1) of the
+    /// origin its label names; 1 for `Rigid` and for modes of a single-stage basis.
+    pub label_shares: Option<Vec<f64>>,
 }
 
 impl ReducedBody {

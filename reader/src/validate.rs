@@ -1,8 +1,8 @@
 //! Consistency rules of a decoded body (SPEC.md §6): counts, finiteness, index ranges,
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
-    DAMPING, FACES, HEADER, INVARIANTS, LINES, MANIFEST, METHOD, MODES, NODAL_MASS, NODES, RECIPE,
-    STRAIN_SHAPES, STRESS_SHAPES,
+    DAMPING, FACES, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD, MODES, NODAL_MASS,
+    NODES, RECIPE, STRAIN_SHAPES, STRESS_SHAPES,
 };
 use crate::error::ReadError;
 use crate::limits::ReadLimits;
@@ -407,6 +407,20 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
             return Err(inconsistent(
                 DAMPING,
                 format!("ratio[{j}] is negative ({r})"),
+            ));
+        }
+    }
+    if let Some(s) = &body.label_shares {
+        count(LABEL_SHARES, "shares", s.len(), m, "one per mode")?;
+        finite(LABEL_SHARES, "shares", s)?;
+        if let Some((j, v)) = s
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(0.0..=1.0).contains(*v))
+        {
+            return Err(inconsistent(
+                LABEL_SHARES,
+                format!("share[{j}] = {v} is outside 0…1"),
             ));
         }
     }

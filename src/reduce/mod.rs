@@ -142,6 +142,9 @@ pub struct Diagnostics {
     /// (Craig–Bampton) or free-free mode (Craig–Chang, Dietz) in the basis; `None` for normal
     /// modes (their own ω² are exact). Defines the accuracy band of a `--modes N` build.
     pub basis_top_omega2: Option<f64>,
+    /// Per mode: the participation share of the origin its label names (see
+    /// [`orthonormalize::origin_labels`]); empty = every mode is pure (share 1).
+    pub label_shares: Vec<f64>,
 }
 
 /// Which method produced a mode set.

@@ -438,6 +438,13 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         with_entry(&b, codec::RECIPE, cut),
         Some(("Decode", "recipe.json: cannot decode")),
     );
+    let mut s = base.clone();
+    s.label_shares = Some(vec![1.0, 1.5, 1.0]);
+    add(
+        "label_share_above_one",
+        from_body(&s),
+        Some(("Inconsistent", "label_shares.bin: share[1] = 1.5")),
+    );
     if let Some(r) = b.recipe.as_mut() {
         r.interfaces[0].nodes = vec![102];
     }

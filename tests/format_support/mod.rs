@@ -337,6 +337,7 @@ pub fn body_3node() -> ReducedBody {
         }),
         lines: None,
         recipe: None,
+        label_shares: None,
     }
 }
 
@@ -525,6 +526,7 @@ pub fn body_20node() -> ReducedBody {
         damping: None,
         lines: None,
         recipe: None,
+        label_shares: None,
     }
 }
 
@@ -610,6 +612,7 @@ pub fn recipe_3node() -> Recipe {
 pub fn body_3node_recipe() -> ReducedBody {
     let mut b = body_3node();
     b.recipe = Some(recipe_3node());
+    b.label_shares = Some(vec![1.0, 1.0, 1.0]);
     b.version = flexbody_reader::version_for(&b);
     b
 }
