@@ -207,7 +207,7 @@ RECIPE_T = {
     "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
         "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
         "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),
-    "accuracy_band": {"fmax_hz": F64, "rule": STR},
+    "accuracy_band": {"fmax_hz": F64, "rule": STR, "basis_cutoff_hz": ("opt", F64)},
 }
 RECIPE_KEYS = list(RECIPE_T)  # member order of the summary
 
@@ -520,6 +520,7 @@ def validate(b, m):
     for q, rc in enumerate(me["reference_conditions"]):
         index("method.bin", f"reference_conditions[{q}].node", rc["node"], n)
     finite("method.bin", "cutoffs", [c for c in me["cutoffs"] if c is not None])
+    counts_and_cutoffs(me, modes, req, err)
     for entry in ["stress_shapes.bin", "strain_shapes.bin"]:
         s = b.get(entry)
         if s is None:
@@ -545,6 +546,39 @@ def validate(b, m):
     rc = b.get("recipe.json")
     if rc is not None:
         validate_recipe(rc, b, m, err, finite)
+
+
+def counts_and_cutoffs(me, modes, req, err):
+    """SPEC §6 rule 8, second part (§5.7): counts add up, cutoffs are the method's."""
+    rigid, normal, constraint, fixed, attachment, removed = me["counts"]
+    nm = len(modes["omega2"])
+    labelled = sum(1 for x in modes["labels"] if x == "Rigid")
+    if rigid != labelled:
+        err("Inconsistent", "method.bin", f"counts.rigid = {rigid} but {labelled} modes are labelled Rigid")
+    method = me["method"]
+    if method == "NormalModes":
+        zero = [("constraint", constraint), ("fixed_interface", fixed), ("attachment", attachment),
+                ("removed_dependent", removed)]
+        basis = rigid + normal
+    elif method == "CraigBampton":
+        zero, basis = [("normal", normal), ("attachment", attachment)], constraint + fixed
+    else:
+        zero, basis = [("constraint", constraint), ("fixed_interface", fixed)], rigid + normal + attachment
+    for name, v in zero:
+        if v != 0:
+            err("Inconsistent", "method.bin", f"counts.{name} = {v} must be 0 for {method}")
+    ok = basis == nm if method == "NormalModes" else basis >= removed and basis - removed >= nm
+    if not ok:
+        err("Inconsistent", "method.bin", f"counts give {basis} basis vectors ({removed} removed) for {nm} modes")
+    fmax, shift, dep = me["cutoffs"]
+    if fmax != req["fmax_hz"]:
+        err("Inconsistent", "method.bin", "cutoffs.fmax_hz differs from the requested fmax")
+    for name, v, wanted in [("shift_fraction", shift, method == "Dietz"),
+                            ("dependency_tolerance", dep, method != "NormalModes")]:
+        if (v is None) == wanted:
+            err("Inconsistent", "method.bin", f"cutoffs.{name} {'missing' if wanted else 'present'} for {method}")
+        if v is not None and not 0 < v < 1:
+            err("Inconsistent", "method.bin", f"cutoffs.{name} must lie in (0, 1)")
 
 
 def validate_recipe(rc, b, m, err, finite):

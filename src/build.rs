@@ -794,13 +794,19 @@ fn assemble_body(
         .collect();
     let labels: Vec<file::ModeLabel> = set.labels.iter().map(file_label).collect();
     let count_of = |l: file::ModeLabel| labels.iter().filter(|x| **x == l).count() as u64;
+    // Constraint columns: one per interface dof, less the reference dofs (improved CB).
+    let held = set.reference_dofs.len() as u64;
     let (method, interface_count, fixed_count) = match &set.method {
         reduce::Method::NormalModes => (file::Method::NormalModes, 0, 0),
         reduce::Method::CraigBampton {
             interface,
             fixed_interface_modes,
-        }
-        | reduce::Method::ImprovedCraigBampton1 {
+        } => (
+            file::Method::CraigBampton,
+            interface.len() as u64,
+            *fixed_interface_modes as u64,
+        ),
+        reduce::Method::ImprovedCraigBampton1 {
             interface,
             fixed_interface_modes,
         }
@@ -809,7 +815,7 @@ fn assemble_body(
             fixed_interface_modes,
         } => (
             file::Method::CraigBampton,
-            interface.len() as u64,
+            (interface.len() as u64).saturating_sub(held),
             *fixed_interface_modes as u64,
         ),
         reduce::Method::CraigChang { attachment, .. } => {
@@ -870,10 +876,11 @@ fn assemble_body(
             .unwrap_or_default(),
     };
     let removed = set.diagnostics.removed.len() as u64;
-    let fmax_hz = match &set.selection {
-        Some(select::Selection::Fmax { cutoff_hz, .. }) => Some(*cutoff_hz),
-        _ => spec.fmax_hz.map(|f| select::FMAX_FACTOR * f),
-    };
+    let shift_fraction = matches!(
+        set.method,
+        reduce::Method::Dietz { .. } | reduce::Method::DietzModified { .. }
+    )
+    .then_some(reduce::dietz::DEFAULT_SHIFT_FRACTION);
     let mut body = file::ReducedBody {
         version: flexbody_reader::FORMAT_VERSION,
         generator: file::Generator {
@@ -927,22 +934,33 @@ fn assemble_body(
                     dofs: mask_bools(m),
                 })
                 .collect(),
-            counts: file::ModeCounts {
-                rigid: count_of(file::ModeLabel::Rigid),
-                normal: count_of(file::ModeLabel::Normal),
-                constraint: interface_count,
-                fixed_interface: fixed_count,
-                attachment: if matches!(method, file::Method::CraigChang | file::Method::Dietz) {
-                    interface_count
-                } else {
-                    0
+            // SPEC §5.7: rigid = modes labelled Rigid; the others count basis vectors by origin.
+            counts: match method {
+                file::Method::NormalModes => file::ModeCounts {
+                    rigid: count_of(file::ModeLabel::Rigid),
+                    normal: nm as u64 - count_of(file::ModeLabel::Rigid),
+                    ..Default::default()
                 },
-                removed_dependent: removed,
+                file::Method::CraigBampton => file::ModeCounts {
+                    rigid: count_of(file::ModeLabel::Rigid),
+                    constraint: interface_count,
+                    fixed_interface: fixed_count,
+                    removed_dependent: removed,
+                    ..Default::default()
+                },
+                file::Method::CraigChang | file::Method::Dietz => file::ModeCounts {
+                    rigid: count_of(file::ModeLabel::Rigid),
+                    normal: set.diagnostics.basis_normal_modes.unwrap_or(0) as u64,
+                    attachment: interface_count,
+                    removed_dependent: removed,
+                    ..Default::default()
+                },
             },
             cutoffs: file::Cutoffs {
-                fmax_hz,
-                shift_fraction: None,
-                dependency_tolerance: Some(set.diagnostics.dependency_tol),
+                fmax_hz: spec.fmax_hz,
+                shift_fraction,
+                dependency_tolerance: (method != file::Method::NormalModes)
+                    .then_some(set.diagnostics.dependency_tol),
             },
         },
         stress_shapes: fields.and_then(|f| field_shapes(f, f.stress.as_ref(), &position)),

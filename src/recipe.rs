@@ -43,6 +43,7 @@ pub fn accuracy_band(spec: &BuildSpec, set: &ModeSet) -> file::AccuracyBand {
         return file::AccuracyBand {
             fmax_hz: f,
             rule: BAND_FMAX.into(),
+            basis_cutoff_hz: Some(FMAX_FACTOR * f),
         };
     }
     let top_kept = set.omega2.iter().copied().fold(0.0f64, f64::max);
@@ -59,6 +60,7 @@ pub fn accuracy_band(spec: &BuildSpec, set: &ModeSet) -> file::AccuracyBand {
     file::AccuracyBand {
         fmax_hz: hz(w2) / divisor,
         rule: rule.into(),
+        basis_cutoff_hz: None,
     }
 }
 

@@ -1,4 +1,4 @@
-//! Issue 16, labels that are true: `Rigid` only for zero-frequency rigid-body modes by one test
+//! Issue 16, labels that are true (and counts and cutoffs with one definition each): `Rigid` only for zero-frequency rigid-body modes by one test
 //! for every method, and an orthonormalized multi-stage basis labels each mode by the origin
 //! with the largest participation share, the share stored in `label_shares.bin` (SPEC §5.5).
 
@@ -83,6 +83,36 @@ fn only_zero_frequency_modes_are_rigid_for_every_method() {
                 .filter(|l| **l == file::ModeLabel::Rigid)
                 .count(),
             6
+        );
+        // method.bin counts (SPEC §5.7): rigid = modes labelled Rigid, the rest basis vectors by
+        // origin; 2 spiders × 6 dofs = 12 interface dofs; 20 free-free modes = 6 rigid + 14.
+        let c = body.method.counts;
+        let cut = body.method.cutoffs;
+        let want = match method {
+            BuildMethod::Normal => (6, 14, 0, 0, 0),
+            BuildMethod::CraigBampton => (6, 0, 12, 20, 0),
+            _ => (6, 14, 0, 0, 12),
+        };
+        assert_eq!(
+            (
+                c.rigid,
+                c.normal,
+                c.constraint,
+                c.fixed_interface,
+                c.attachment
+            ),
+            want,
+            "{method:?}"
+        );
+        assert_eq!(c.removed_dependent, 0, "{method:?}");
+        assert_eq!(cut.fmax_hz, None, "no --fmax given");
+        assert_eq!(
+            cut.shift_fraction,
+            (method == BuildMethod::Dietz).then_some(0.25)
+        );
+        assert_eq!(
+            cut.dependency_tolerance,
+            (method != BuildMethod::Normal).then_some(1e-8)
         );
         let mixed = shares.iter().filter(|&&s| s < 0.99).count();
         if method == BuildMethod::Normal {

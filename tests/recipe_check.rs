@@ -207,6 +207,8 @@ fn explicit_options_override_the_recipe() {
         (r.accuracy_band.rule.as_str(), r.accuracy_band.fmax_hz),
         ("fmax", 3000.0)
     );
+    assert_eq!(r.accuracy_band.basis_cutoff_hz, Some(9000.0));
+    assert_eq!(body.method.cutoffs.fmax_hz, Some(3000.0), "the user's fmax");
     let from_recipe =
         flexbody::recipe::model_input(body.recipe.as_ref(), model.clone(), Default::default())
             .unwrap();

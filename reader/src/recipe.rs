@@ -107,4 +107,6 @@ pub struct AccuracyBand {
     pub fmax_hz: f64,
     /// `fmax`, `fixed-interface`, `free-free` or `normal-modes`.
     pub rule: String,
+    /// The frequency the basis was selected to (3 × `--fmax`); `null` for a `--modes N` build.
+    pub basis_cutoff_hz: Option<f64>,
 }

@@ -393,6 +393,7 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
             }
         }
     }
+    counts_and_cutoffs(body)?;
 
     if let Some(s) = &body.stress_shapes {
         field_shapes(STRESS_SHAPES, s, n, m)?;
@@ -426,6 +427,97 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
     }
     if let Some(r) = &body.recipe {
         recipe(r, body)?;
+    }
+    Ok(())
+}
+
+/// Rule 8, second part (SPEC.md §5.7): the counts add up and the cutoffs are the method's.
+fn counts_and_cutoffs(body: &ReducedBody) -> Result<(), ReadError> {
+    use crate::types::{Method, ModeLabel};
+    let me = &body.method;
+    let c = &me.counts;
+    let m = body.modes.omega2.len() as u64;
+    let rigid = body
+        .modes
+        .labels
+        .iter()
+        .filter(|l| **l == ModeLabel::Rigid)
+        .count() as u64;
+    let bad = |rule: String| Err(inconsistent(METHOD, rule));
+    if c.rigid != rigid {
+        return bad(format!(
+            "counts.rigid = {} but {rigid} modes are labelled Rigid",
+            c.rigid
+        ));
+    }
+    let (zero, basis): (&[(&str, u64)], u64) = match me.method {
+        Method::NormalModes => (
+            &[
+                ("constraint", c.constraint),
+                ("fixed_interface", c.fixed_interface),
+                ("attachment", c.attachment),
+                ("removed_dependent", c.removed_dependent),
+            ],
+            c.rigid.saturating_add(c.normal),
+        ),
+        Method::CraigBampton => (
+            &[("normal", c.normal), ("attachment", c.attachment)],
+            c.constraint.saturating_add(c.fixed_interface),
+        ),
+        Method::CraigChang | Method::Dietz => (
+            &[
+                ("constraint", c.constraint),
+                ("fixed_interface", c.fixed_interface),
+            ],
+            c.rigid
+                .saturating_add(c.normal)
+                .saturating_add(c.attachment),
+        ),
+    };
+    if let Some((name, v)) = zero.iter().find(|(_, v)| *v != 0) {
+        return bad(format!("counts.{name} = {v} must be 0 for {:?}", me.method));
+    }
+    let kept = basis.saturating_sub(c.removed_dependent);
+    let ok = if me.method == Method::NormalModes {
+        basis == m
+    } else {
+        basis >= c.removed_dependent && kept >= m
+    };
+    if !ok {
+        return bad(format!(
+            "counts give {kept} basis vectors (after {} removed) for {m} modes",
+            c.removed_dependent
+        ));
+    }
+    let cut = &me.cutoffs;
+    if cut.fmax_hz != body.header.request.fmax_hz {
+        return bad(format!(
+            "cutoffs.fmax_hz {:?} differs from the requested fmax {:?}",
+            cut.fmax_hz, body.header.request.fmax_hz
+        ));
+    }
+    for (name, value, wanted) in [
+        (
+            "shift_fraction",
+            cut.shift_fraction,
+            me.method == Method::Dietz,
+        ),
+        (
+            "dependency_tolerance",
+            cut.dependency_tolerance,
+            me.method != Method::NormalModes,
+        ),
+    ] {
+        match value {
+            None if wanted => return bad(format!("cutoffs.{name} missing for {:?}", me.method)),
+            Some(_) if !wanted => {
+                return bad(format!("cutoffs.{name} present for {:?}", me.method))
+            }
+            Some(v) if !(v > 0.0 && v < 1.0) => {
+                return bad(format!("cutoffs.{name} = {v} must lie in (0, 1)"))
+            }
+            _ => {}
+        }
     }
     Ok(())
 }

@@ -53,11 +53,12 @@ fn finish_with_top(
     o: super::Orthonormalized,
     method: Method,
     note: String,
-    top: Option<f64>,
+    (top, basis_normal): (Option<f64>, usize),
 ) -> ModeSet {
     let mut diagnostics = o.diagnostics;
     diagnostics.notes.push(note);
     diagnostics.basis_top_omega2 = top;
+    diagnostics.basis_normal_modes = Some(basis_normal);
     ModeSet {
         phi: o.phi,
         omega2: o.omega2,
@@ -128,6 +129,7 @@ pub fn dietz(
     );
     let attachment = (0..fa.ncols()).map(|j| load_dof(fa, j)).collect();
     let top = xn.eigenvalues.last().copied();
+    let basis_normal = xn.eigenvalues.len() - nr;
     Ok(finish_with_top(
         o,
         Method::Dietz {
@@ -135,7 +137,7 @@ pub fn dietz(
             shift: ell,
         },
         note,
-        top,
+        (top, basis_normal),
     ))
 }
 
@@ -180,6 +182,7 @@ pub fn dietz_modified(
     let top = xe.eigenvalues[..modes.min(xe.eigenvalues.len())]
         .last()
         .copied();
+    let basis_normal = modes.min(xe.eigenvalues.len()).saturating_sub(nr);
     Ok(finish_with_top(
         o,
         Method::DietzModified {
@@ -188,6 +191,6 @@ pub fn dietz_modified(
             extended,
         },
         note,
-        top,
+        (top, basis_normal),
     ))
 }

@@ -145,6 +145,8 @@ pub struct Diagnostics {
     /// Per mode: the participation share of the origin its label names (see
     /// [`orthonormalize::origin_labels`]); empty = every mode is pure (share 1).
     pub label_shares: Vec<f64>,
+    /// Elastic free-free normal modes in the basis (Craig–Chang, Dietz); `None` otherwise.
+    pub basis_normal_modes: Option<usize>,
 }
 
 /// Which method produced a mode set.

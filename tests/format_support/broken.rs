@@ -438,6 +438,26 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         with_entry(&b, codec::RECIPE, cut),
         Some(("Decode", "recipe.json: cannot decode")),
     );
+    let mut c = base.clone();
+    c.method.counts.normal = 5;
+    add(
+        "counts_do_not_add_up",
+        from_body(&c),
+        Some((
+            "Inconsistent",
+            "method.bin: counts give 6 basis vectors (after 0 removed) for 3 modes",
+        )),
+    );
+    let mut c = base.clone();
+    c.method.cutoffs.fmax_hz = Some(300.0);
+    add(
+        "cutoff_fmax_not_the_request",
+        from_body(&c),
+        Some((
+            "Inconsistent",
+            "method.bin: cutoffs.fmax_hz Some(300.0) differs",
+        )),
+    );
     let mut s = base.clone();
     s.label_shares = Some(vec![1.0, 1.5, 1.0]);
     add(

@@ -604,6 +604,7 @@ pub fn recipe_3node() -> Recipe {
         accuracy_band: AccuracyBand {
             fmax_hz: hz(3.0 * K3 / M3),
             rule: "normal-modes".into(),
+            basis_cutoff_hz: None,
         },
     }
 }
