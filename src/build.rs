@@ -464,7 +464,24 @@ pub fn build_model(
         (spec.mass == fe::MassKind::Lumped && model.point_masses.is_empty()).then_some(&assembled);
     let beam_lumping = spec.beam_mass.unwrap_or_default();
     let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi, reusable, beam_lumping)?;
-    let inv = compute_invariants(&points, point_shapes.as_ref(), spec.invariants, spec.par())?;
+    let inv = if spec.mass == fe::MassKind::Consistent {
+        // SPEC §5.6: the invariants use the mass the modes are orthonormal in.
+        let x: Vec<[f64; 3]> = model.nodes.iter().map(|n| n.x).collect();
+        let shape = |p: NodeIndex, j: usize| -> [f64; 3] {
+            let s = node_shape(dofs, &phi, p, j);
+            [s[0], s[1], s[2]]
+        };
+        crate::invariants_consistent::consistent_invariants(
+            &assembled.m,
+            dofs,
+            &x,
+            &phi,
+            &shape,
+            spec.invariants,
+        )
+    } else {
+        compute_invariants(&points, point_shapes.as_ref(), spec.invariants, spec.par())?
+    };
     lap(&mut report, STAGES[5]);
 
     let faces = graphics_faces(&model);

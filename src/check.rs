@@ -8,9 +8,10 @@
 //!   bounding box, I7 symmetric positive definite;
 //! * the number of rigid-body modes against the expectation (6 for a free body, 0 with
 //!   reference conditions);
-//! * when every node is stored: invariants I1, I2, I3, I6, I7 recomputed from the stored nodal
-//!   masses and shapes equal the stored ones, and (lumped mass) I6 equals the generalized mass —
-//!   a corrupted mode shape breaks these.
+//! * lumped mass, every node stored: invariants I1, I2, I6, I7 recomputed from the stored nodal
+//!   masses and shapes equal the stored ones, and I6 equals the generalized mass — a corrupted
+//!   mode shape breaks these; consistent mass: I6 equals the generalized mass (the invariants
+//!   come from the consistent M, not from the lumped nodal masses).
 //!
 //! With the FE model (`--model`, rebuilt from the file's recipe — interface spiders, beam
 //! lumping, format, material — unless given explicitly):
@@ -240,7 +241,21 @@ pub fn check(
 
     // Invariants recomputed from the stored nodes (only meaningful when every node is stored).
     let all_nodes = body.header.request.keep_nodes == file::KeepNodes::All;
-    if all_nodes {
+    let consistent = body.method.mass_kind == file::MassKind::Consistent;
+    if consistent && inv.i6.len() == m * m {
+        // Consistent mass: the invariants come from the consistent M (SPEC §5.6), not from the
+        // lumped nodal masses, so they cannot be recomputed from the file; I6 is Φᵀ M Φ itself.
+        let e = (0..m * m)
+            .map(|i| (inv.i6[i] - md.generalized_mass[i]).abs())
+            .fold(0.0, f64::max);
+        r.push(
+            "I6 = generalized mass (consistent M)",
+            e,
+            1e-9,
+            "the invariants use the mass the modes are orthonormal in".into(),
+        );
+    }
+    if all_nodes && !consistent {
         let points: Vec<MassPoint> = body
             .nodes
             .iter()

@@ -27,6 +27,7 @@ pub mod import;
 pub mod inspect;
 pub mod interface;
 pub mod invariants;
+pub mod invariants_consistent;
 pub mod model;
 pub mod options;
 pub mod precheck;
