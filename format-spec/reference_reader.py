@@ -203,7 +203,8 @@ RECIPE_T = {
     "options": {"format": ("opt", STR), "material": ("opt", STR), "method": STR, "modes": ("opt", U64),
                 "fmax_hz": ("opt", F64), "mass": STR, "beam_mass": STR, "units": UNITS_T,
                 "interface": ("list", STR), "spider": STR, "reference_conditions": ("list", STR),
-                "reference_method": U8, "keep_nodes": STR, "invariants": STR, "stress_fields": STR},
+                "reference_method": U8, "keep_nodes": STR, "invariants": STR, "stress_fields": STR,
+                "damping": ("opt", STR)},
     "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
         "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
         "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),
@@ -652,7 +653,8 @@ def summarize(b, m):
         "mass": mass_properties(b),
         "modes": [{"number": j + 1, "frequency_hz": modes["frequency_hz"][j], "omega2": modes["omega2"][j],
                    "label": modes["labels"][j],
-                   "label_share": b["label_shares.bin"][j] if "label_shares.bin" in b else None}
+                   "label_share": b["label_shares.bin"][j] if "label_shares.bin" in b else None,
+                   "damping_ratio": b["damping.bin"]["ratio"][j] if "damping.bin" in b else None}
                   for j in range(len(modes["omega2"]))],
         "optional": [x in b for x in ("stress_shapes.bin", "strain_shapes.bin", "damping.bin", "lines.bin")],
         "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],

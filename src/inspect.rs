@@ -34,6 +34,8 @@ pub struct ModeLine {
     pub label: String,
     /// Share of the labelled origin in the mode (`label_shares.bin`, format 1.2), or null.
     pub label_share: Option<f64>,
+    /// Modal damping ratio (`damping.bin`), or null.
+    pub damping_ratio: Option<f64>,
 }
 
 /// One container entry.
@@ -181,6 +183,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
                 omega2: body.modes.omega2[j],
                 label: format!("{:?}", body.modes.labels[j]),
                 label_share: body.label_shares.as_ref().map(|s| s[j]),
+                damping_ratio: body.damping.as_ref().map(|d| d.ratio[j]),
             })
             .collect(),
         optional: [
@@ -262,9 +265,12 @@ pub fn render_text(s: &Summary) -> String {
             Some(v) if v < 0.995 => format!(" ({:.0} %)", 100.0 * v),
             _ => String::new(),
         };
+        let damping = m
+            .damping_ratio
+            .map_or(String::new(), |z| format!("  ζ = {:.4} %", 100.0 * z));
         let _ = writeln!(
             o,
-            "             {:<6} {:>15.6}   {}{share}",
+            "             {:<6} {:>15.6}   {}{share}{damping}",
             m.number, m.frequency_hz, m.label
         );
     }

@@ -21,6 +21,7 @@
 
 pub mod build;
 pub mod check;
+pub mod damping;
 pub mod faces;
 pub mod fe;
 pub mod import;

@@ -108,6 +108,11 @@ struct BuildArgs {
     /// with a clear error instead of being killed. Same as the FLEXBODY_MAX_MEMORY variable.
     #[arg(long, value_name = "SIZE")]
     max_memory: Option<String>,
+    /// Modal damping stored in the file: one ratio (2% or 0.02), ratios by frequency band
+    /// (0-1000:1%,1000-:3%, Hz, [lo, hi), empty hi = open), or rayleigh:ALPHA,BETA
+    /// (ζ = α/2ω + βω/2). Rigid-body modes get 0.
+    #[arg(long, value_name = "SPEC")]
+    damping: Option<String>,
     /// No stress or strain shapes (the default; for scripts that want to say so).
     #[arg(long, conflicts_with = "stress_modes")]
     no_stress: bool,
@@ -226,6 +231,9 @@ fn utc_now() -> String {
 fn build(a: &BuildArgs) -> anyhow::Result<()> {
     use anyhow::Context;
     let spec = build_spec(a)?;
+    if let Some(d) = &a.damping {
+        flexbody::damping::parse_damping(d)?; // refuse a bad value before the build
+    }
     if let Some(limit) = &a.max_memory {
         // Read by the solve layer right before each factorization; set before any thread starts.
         std::env::set_var(flexbody::solve::cholesky::MEMORY_ENV, limit);
@@ -234,6 +242,10 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
     let mut run = || -> anyhow::Result<flexbody::build::BuildOutput> {
         let out = flexbody::build::build(&spec, &mut |stage| progress.stage(stage))
             .with_context(|| format!("cannot build {}", a.model.display()))?;
+        let mut out = out;
+        if let Some(d) = &a.damping {
+            flexbody::damping::apply(&mut out.body, d)?;
+        }
         progress.stage("write");
         flexbody::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
         Ok(out)

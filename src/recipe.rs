@@ -195,6 +195,7 @@ pub fn recipe(
             (true, true) => "both",
         }
         .into(),
+        damping: None,
     };
     let interfaces = interfaces
         .iter()

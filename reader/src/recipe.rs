@@ -69,6 +69,8 @@ pub struct RecipeOptions {
     pub invariants: String,
     /// Stress fields: `none`, `stress`, `strain` or `both`.
     pub stress_fields: String,
+    /// `--damping` as given (`null`: no damping entry).
+    pub damping: Option<String>,
 }
 
 /// One `--interface` entry as resolved.

@@ -581,6 +581,7 @@ pub fn recipe_3node() -> Recipe {
             keep_nodes: "all".into(),
             invariants: "full".into(),
             stress_fields: "none".into(),
+            damping: Some("0-1:0%,1-:2%".into()),
         },
         interfaces: vec![
             RecipeInterface {
