@@ -268,6 +268,8 @@ def decode_recipe(data):
 
 
 def read_entry(zf, info, declared):
+    if info.flag_bits & 0x1:
+        raise ReadError("Container", f"{info.filename}: damaged zip data (encrypted entry; encryption has no meaning in v1)")
     if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
         raise ReadError("Compression", f"{info.filename}: compression method {info.compress_type} not supported")
     try:
@@ -304,6 +306,17 @@ def parse_manifest(text):
         m = json.loads(text, parse_constant=no_constants)
     except ValueError as e:
         raise ReadError("Manifest", f"not valid manifest JSON: {e}")
+    # SPEC §7.1 step 3: format and version first, before the other members (a newer major
+    # version may change them).
+    if isinstance(m, dict):
+        f, v = m.get("format"), m.get("version")
+        if isinstance(f, str) and f != FORMAT_NAME:
+            raise ReadError("WrongFormat", f"format is {f!r}")
+        if isinstance(v, dict):
+            major, minor = v.get("major"), v.get("minor")
+            ok = all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 1 << 32 for x in (major, minor))
+            if ok and major > SUPPORTED_MAJOR:
+                raise ReadError("UnsupportedVersion", f"format version {major}.{minor} is newer than {SUPPORTED_MAJOR}.x")
     exact(m, ["format", "version", "generator", "units", "entries"], "manifest")
     text_(m["format"], "format")
     exact(m["version"], ["major", "minor"], "version")
