@@ -255,6 +255,18 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         pack(&good_manifest, &e),
         Some(("UnlistedEntry", "stray.txt")),
     );
+    // A folder entry is an entry like any other (SPEC §2): not listed → UnlistedEntry.
+    let mut e = good.clone();
+    e.push(("extras/".into(), false, Vec::new()));
+    add(
+        "folder_entry",
+        pack(&good_manifest, &e),
+        Some(("UnlistedEntry", "extras/")),
+    );
+    // Bytes before the first entry are not looked at (SPEC §2): the file is accepted.
+    let mut prefixed = b"#!self-extracting stub\n".to_vec();
+    prefixed.extend(pack(&good_manifest, &good));
+    add("data_before_first_entry", prefixed, None);
 
     let e: Entries = good
         .iter()
