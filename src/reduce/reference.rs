@@ -119,6 +119,7 @@ pub fn improved_cb_method2(
     diagnostics.dependency_tol = set.diagnostics.dependency_tol;
     diagnostics.notes = set.diagnostics.notes;
     diagnostics.basis_top_omega2 = set.diagnostics.basis_top_omega2;
+    diagnostics.label_shares = set.diagnostics.label_shares;
     let out = ModeSet {
         phi,
         omega2: set.omega2,
