@@ -24,8 +24,8 @@ use crate::reduce::ModeSet;
 /// `fixed-interface`: a `--modes N` Craig–Bampton build is accurate below its highest retained
 /// fixed-interface frequency divided by [`FMAX_FACTOR`].
 pub const BAND_FIXED_INTERFACE: &str = "fixed-interface";
-/// `free-free`: a `--modes N` Craig–Chang or Dietz build is accurate below its highest retained
-/// free-free frequency divided by [`FMAX_FACTOR`].
+/// `free-free`: a `--modes N` Craig–Chang or Dietz build holds its free-free modes exactly, so
+/// it is accurate up to its highest retained free-free frequency.
 pub const BAND_FREE_FREE: &str = "free-free";
 /// `normal-modes`: normal modes are exact eigenpairs through the highest one kept.
 pub const BAND_NORMAL_MODES: &str = "normal-modes";
@@ -33,10 +33,11 @@ pub const BAND_NORMAL_MODES: &str = "normal-modes";
 pub const BAND_FMAX: &str = "fmax";
 
 /// The band in which the body is meant to be accurate, by one rule per build (SPEC.md §5.11):
-/// the user's `--fmax` when given (the basis then reaches [`FMAX_FACTOR`]× it); otherwise the
-/// same factor read backwards — the highest frequency of the method's own eigenproblem in the
-/// basis (CB: fixed-interface, Craig–Chang/Dietz: free-free) divided by [`FMAX_FACTOR`] — or,
-/// for normal modes, which are exact eigenpairs, the highest mode kept.
+/// the user's `--fmax` when given (the basis then reaches [`FMAX_FACTOR`]× it); otherwise, for
+/// Craig–Bampton, the same factor read backwards (the highest retained fixed-interface frequency
+/// divided by [`FMAX_FACTOR`]); for Craig–Chang and Dietz, whose basis holds the free-free modes
+/// exactly, the highest retained free-free frequency; for normal modes, which are exact
+/// eigenpairs, the highest mode kept.
 pub fn accuracy_band(spec: &BuildSpec, set: &ModeSet) -> file::AccuracyBand {
     let hz = |w2: f64| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI);
     if let Some(f) = spec.fmax_hz {
@@ -52,10 +53,10 @@ pub fn accuracy_band(spec: &BuildSpec, set: &ModeSet) -> file::AccuracyBand {
         (BuildMethod::CraigBampton, Some(w2)) => (w2, BAND_FIXED_INTERFACE),
         (_, Some(w2)) => (w2, BAND_FREE_FREE),
     };
-    let divisor = if rule == BAND_NORMAL_MODES {
-        1.0
-    } else {
+    let divisor = if rule == BAND_FIXED_INTERFACE {
         FMAX_FACTOR
+    } else {
+        1.0
     };
     file::AccuracyBand {
         fmax_hz: hz(w2) / divisor,

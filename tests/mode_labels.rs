@@ -44,18 +44,16 @@ fn origin_label_is_the_largest_non_rigid_share() {
 #[test]
 fn only_zero_frequency_modes_are_rigid_for_every_method() {
     let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp");
+    let mut bands = Vec::new();
     for method in [
         BuildMethod::Dietz,
         BuildMethod::CraigChang,
         BuildMethod::CraigBampton,
         BuildMethod::Normal,
     ] {
-        let interface: &[&str] = if method == BuildMethod::Normal {
-            &[]
-        } else {
-            &["BIG_END", "SMALL_END"]
-        };
-        let mut spec = BuildSpec::new(model.clone(), file::Units::si(), interface);
+        // The same spiders for every method (normal modes too), so all see one model.
+        let interface = ["BIG_END", "SMALL_END"];
+        let mut spec = BuildSpec::new(model.clone(), file::Units::si(), &interface);
         spec.method = method;
         spec.modes = Some(20);
         let body = build(&spec, &mut |_| {}).unwrap().body;
@@ -114,6 +112,8 @@ fn only_zero_frequency_modes_are_rigid_for_every_method() {
             cut.dependency_tolerance,
             (method != BuildMethod::Normal).then_some(1e-8)
         );
+        let band = body.recipe.as_ref().unwrap().accuracy_band.clone();
+        bands.push((method, band.rule, band.fmax_hz, f_max));
         let mixed = shares.iter().filter(|&&s| s < 0.99).count();
         if method == BuildMethod::Normal {
             assert_eq!(mixed, 0, "normal modes are pure");
@@ -122,6 +122,22 @@ fn only_zero_frequency_modes_are_rigid_for_every_method() {
                 mixed > 0,
                 "{method:?}: an orthonormalized basis mixes its origins"
             );
+        }
+    }
+    // Accuracy bands of these `--modes 20` builds (SPEC §5.11): normal modes up to their highest
+    // mode; Craig–Chang and Dietz up to their highest free-free mode — the same 20 free-free
+    // modes, so the same frequency; CB a third of its highest fixed-interface frequency.
+    let normal = bands.iter().find(|b| b.0 == BuildMethod::Normal).unwrap();
+    assert_eq!(normal.1, "normal-modes");
+    assert!((normal.2 / normal.3 - 1.0).abs() < 1e-12);
+    for b in &bands {
+        match b.0 {
+            BuildMethod::CraigChang | BuildMethod::Dietz => {
+                assert_eq!(b.1, "free-free");
+                assert!((b.2 / normal.2 - 1.0).abs() < 1e-9, "{b:?} vs {normal:?}");
+            }
+            BuildMethod::CraigBampton => assert_eq!(b.1, "fixed-interface"),
+            BuildMethod::Normal => {}
         }
     }
 }
