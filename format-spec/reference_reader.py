@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference reader for flexbody reduced-body files, format v1 (1.0 and 1.1), written from SPEC.md alone.
+"""Reference reader for flexbody reduced-body files, format v1 (1.0, 1.1 and 1.2), written from SPEC.md alone.
 
 Standard library only (zipfile, json, hashlib, struct). Usage:
 
@@ -25,6 +25,8 @@ ENTRIES = [  # SPEC §2: name, required
     ("modes.bin", True), ("invariants.bin", True), ("method.bin", True),
     ("stress_shapes.bin", False), ("strain_shapes.bin", False), ("damping.bin", False),
     ("lines.bin", False),  # format 1.1
+    ("recipe.json", False),  # format 1.2
+    ("label_shares.bin", False),  # format 1.2
 ]
 KNOWN = dict(ENTRIES)
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
@@ -187,10 +189,92 @@ DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin":
             "nodal_mass.bin": decode_nodal_mass, "modes.bin": decode_modes,
             "invariants.bin": decode_invariants, "method.bin": decode_method,
             "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field, "lines.bin": decode_lines,
+            "label_shares.bin": lambda d: d.f64s(),
             "damping.bin": decode_damping}
 
 
+# SPEC §5.11: recipe.json member types. ("opt", T) may be null or absent; ("omit", T) may be
+# absent (left out of the summary when absent or null); ("list", T); a dict is
+# an object with those members (unknown members ignored); ("arr", T, k) a fixed-length array.
+U64, U8, F64, STR = ("uint", 64), ("uint", 8), "number", "string"
+UNITS_T = {k: {"name": STR, "si": F64} for k in UNIT_KEYS}
+RECIPE_T = {
+    "tool": {"name": STR, "version": STR},
+    "model_files": ("list", {"path": STR, "role": STR, "size": U64, "sha256": STR}),
+    "options": {"format": ("opt", STR), "material": ("opt", STR), "method": STR, "modes": ("opt", U64),
+                "fmax_hz": ("opt", F64), "mass": STR, "beam_mass": STR, "units": UNITS_T,
+                "interface": ("list", STR), "spider": STR, "reference_conditions": ("list", STR),
+                "reference_method": U8, "keep_nodes": STR, "invariants": STR, "stress_fields": STR,
+                "damping": ("opt", STR), "thickness": ("omit", F64), "subcase": ("omit", U64)},
+    "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
+        "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
+        "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),
+    "accuracy_band": {"fmax_hz": F64, "rule": STR, "basis_cutoff_hz": ("opt", F64)},
+}
+RECIPE_KEYS = list(RECIPE_T)  # member order of the summary
+
+
+def typed(v, t, at):
+    """Checks v against the type t of RECIPE_T; returns v with unknown members dropped."""
+    def bad(what):
+        raise ReadError("Decode", f"recipe.json: cannot decode (not a valid recipe: {at} must be {what})")
+    if isinstance(t, dict):
+        if not isinstance(v, dict):
+            bad("an object")
+        out = {}
+        for k, tk in t.items():
+            if isinstance(tk, tuple) and tk[0] == "omit":
+                if v.get(k) is not None:  # absent or null: left out of the summary
+                    out[k] = typed(v[k], tk[1], f"{at}.{k}")
+                continue
+            if k not in v and not (isinstance(tk, tuple) and tk[0] == "opt"):
+                bad(f"an object with member {k}")
+            out[k] = typed(v.get(k), tk, f"{at}.{k}")
+        return out
+    if t == STR:
+        if not isinstance(v, str):
+            bad("a string")
+        return v
+    if t == F64:
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            bad("a number")
+        return float(v)
+    if t[0] == "uint":
+        if isinstance(v, bool) or not isinstance(v, int) or not 0 <= v < 1 << t[1]:
+            bad(f"an integer in 0..2^{t[1]}-1")
+        return v
+    if t[0] == "opt":
+        return None if v is None else typed(v, t[1], at)
+    if t[0] == "list" or t[0] == "arr":
+        if not isinstance(v, list) or (t[0] == "arr" and len(v) != t[2]):
+            bad("an array" if t[0] == "list" else f"an array of {t[2]}")
+        return [typed(x, t[1], f"{at}[{i}]") for i, x in enumerate(v)]
+    raise AssertionError(t)
+
+
+def decode_recipe(data):
+    """SPEC §5.11: UTF-8 JSON, at most 16 MiB, members of RECIPE_T (unknown ones ignored)."""
+    def fail(msg):
+        raise ReadError("Decode", f"recipe.json: cannot decode ({msg})")
+    if len(data) > STRING_LIMIT:
+        fail("exceeds the 16 MiB record limit")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        fail(f"not UTF-8: {e}")
+
+    def no_constants(c):
+        raise ValueError(f"{c} is not JSON")
+    try:
+        v = json.loads(text, parse_constant=no_constants)
+    except (ValueError, RecursionError) as e:
+        fail(f"not a valid recipe: {e}")
+    return typed(v, RECIPE_T, "recipe")
+
+
 def read_entry(zf, info, declared):
+    if info.flag_bits & 0x1:
+        raise ReadError("Container", f"{info.filename}: damaged zip data (encrypted entry; encryption has no meaning in v1)")
     if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
         raise ReadError("Compression", f"{info.filename}: compression method {info.compress_type} not supported")
     try:
@@ -227,6 +311,17 @@ def parse_manifest(text):
         m = json.loads(text, parse_constant=no_constants)
     except ValueError as e:
         raise ReadError("Manifest", f"not valid manifest JSON: {e}")
+    # SPEC §7.1 step 3: format and version first, before the other members (a newer major
+    # version may change them).
+    if isinstance(m, dict):
+        f, v = m.get("format"), m.get("version")
+        if isinstance(f, str) and f != FORMAT_NAME:
+            raise ReadError("WrongFormat", f"format is {f!r}")
+        if isinstance(v, dict):
+            major, minor = v.get("major"), v.get("minor")
+            ok = all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 1 << 32 for x in (major, minor))
+            if ok and major > SUPPORTED_MAJOR:
+                raise ReadError("UnsupportedVersion", f"format version {major}.{minor} is newer than {SUPPORTED_MAJOR}.x")
     exact(m, ["format", "version", "generator", "units", "entries"], "manifest")
     text_(m["format"], "format")
     exact(m["version"], ["major", "minor"], "version")
@@ -326,6 +421,8 @@ def read_bytes(data):
             d = Decoder(name, blobs[name])
             body[name] = fn(d)
             d.end()
+    if "recipe.json" in blobs:
+        body["recipe.json"] = decode_recipe(blobs["recipe.json"])
     validate(body, m)
     return body, m
 
@@ -442,6 +539,7 @@ def validate(b, m):
     for q, rc in enumerate(me["reference_conditions"]):
         index("method.bin", f"reference_conditions[{q}].node", rc["node"], n)
     finite("method.bin", "cutoffs", [c for c in me["cutoffs"] if c is not None])
+    counts_and_cutoffs(me, modes, req, err)
     for entry in ["stress_shapes.bin", "strain_shapes.bin"]:
         s = b.get(entry)
         if s is None:
@@ -458,6 +556,77 @@ def validate(b, m):
         finite("damping.bin", "ratio", dmp["ratio"])
         if any(r < 0 for r in dmp["ratio"]):
             err("Inconsistent", "damping.bin", "negative ratio")
+    sh = b.get("label_shares.bin")
+    if sh is not None:
+        count("label_shares.bin", "shares", len(sh), nm)
+        finite("label_shares.bin", "shares", sh)
+        if any(not 0.0 <= v <= 1.0 for v in sh):
+            err("Inconsistent", "label_shares.bin", "share outside 0..1")
+    rc = b.get("recipe.json")
+    if rc is not None:
+        validate_recipe(rc, b, m, err, finite)
+
+
+def counts_and_cutoffs(me, modes, req, err):
+    """SPEC §6 rule 8, second part (§5.7): counts add up, cutoffs are the method's."""
+    rigid, normal, constraint, fixed, attachment, removed = me["counts"]
+    nm = len(modes["omega2"])
+    labelled = sum(1 for x in modes["labels"] if x == "Rigid")
+    if rigid != labelled:
+        err("Inconsistent", "method.bin", f"counts.rigid = {rigid} but {labelled} modes are labelled Rigid")
+    method = me["method"]
+    if method == "NormalModes":
+        zero = [("constraint", constraint), ("fixed_interface", fixed), ("attachment", attachment),
+                ("removed_dependent", removed)]
+        basis = rigid + normal
+    elif method == "CraigBampton":
+        zero, basis = [("normal", normal), ("attachment", attachment)], constraint + fixed
+    else:
+        zero, basis = [("constraint", constraint), ("fixed_interface", fixed)], rigid + normal + attachment
+    for name, v in zero:
+        if v != 0:
+            err("Inconsistent", "method.bin", f"counts.{name} = {v} must be 0 for {method}")
+    ok = basis == nm if method == "NormalModes" else basis >= removed and basis - removed >= nm
+    if not ok:
+        err("Inconsistent", "method.bin", f"counts give {basis} basis vectors ({removed} removed) for {nm} modes")
+    fmax, shift, dep = me["cutoffs"]
+    if fmax != req["fmax_hz"]:
+        err("Inconsistent", "method.bin", "cutoffs.fmax_hz differs from the requested fmax")
+    for name, v, wanted in [("shift_fraction", shift, method == "Dietz"),
+                            ("dependency_tolerance", dep, method != "NormalModes")]:
+        if (v is None) == wanted:
+            err("Inconsistent", "method.bin", f"cutoffs.{name} {'missing' if wanted else 'present'} for {method}")
+        if v is not None and not 0 < v < 1:
+            err("Inconsistent", "method.bin", f"cutoffs.{name} must lie in (0, 1)")
+
+
+def validate_recipe(rc, b, m, err, finite):
+    """SPEC §6 rule 11, in order."""
+    for q, f in enumerate(rc["model_files"]):
+        if len(f["sha256"]) != 64 or any(c not in "0123456789abcdef" for c in f["sha256"]):
+            err("Inconsistent", "recipe.json", f"model_files[{q}].sha256 must be 64 lowercase hex digits")
+        if f["role"] != ("main" if q == 0 else "include"):
+            err("Inconsistent", "recipe.json", f"model_files[{q}].role is wrong")
+    if rc["options"]["units"] != {k: {"name": m["units"][k]["name"], "si": m["units"][k]["si"]} for k in UNIT_KEYS}:
+        err("Inconsistent", "recipe.json", "options.units differ from the manifest's units")
+    f = rc["options"]["fmax_hz"]
+    if f is not None:
+        finite("recipe.json", "options.fmax_hz", [f])
+        if f <= 0:
+            err("Inconsistent", "recipe.json", "options.fmax_hz must be > 0")
+    stored = {x["id"] for x in b["nodes.bin"] if x["interface"]}
+    for q, itf in enumerate(rc["interfaces"]):
+        for nid in itf["nodes"]:
+            if nid not in stored:
+                err("Inconsistent", "recipe.json", f"interfaces[{q}] names node {nid}, not a stored interface node")
+        s = itf["spider"]
+        if s is not None:
+            finite("recipe.json", f"interfaces[{q}].spider.centre", s["centre"])
+            finite("recipe.json", f"interfaces[{q}].spider.offset_from_node_average", [s["offset_from_node_average"]])
+    band = rc["accuracy_band"]["fmax_hz"]
+    finite("recipe.json", "accuracy_band.fmax_hz", [band])
+    if band <= 0:
+        err("Inconsistent", "recipe.json", "accuracy_band.fmax_hz must be > 0")
 
 
 def mass_properties(b):
@@ -501,9 +670,13 @@ def summarize(b, m):
                    "modes": len(modes["omega2"])},
         "mass": mass_properties(b),
         "modes": [{"number": j + 1, "frequency_hz": modes["frequency_hz"][j], "omega2": modes["omega2"][j],
-                   "label": modes["labels"][j]} for j in range(len(modes["omega2"]))],
+                   "label": modes["labels"][j],
+                   "label_share": b["label_shares.bin"][j] if "label_shares.bin" in b else None,
+                   "damping_ratio": b["damping.bin"]["ratio"][j] if "damping.bin" in b else None}
+                  for j in range(len(modes["omega2"]))],
         "optional": [x in b for x in ("stress_shapes.bin", "strain_shapes.bin", "damping.bin", "lines.bin")],
         "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
+        "recipe": b.get("recipe.json"),
     }
 
 

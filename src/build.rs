@@ -618,7 +618,24 @@ pub fn build_model_with_hook(
         (spec.mass == fe::MassKind::Lumped && model.point_masses.is_empty()).then_some(&assembled);
     let beam_lumping = spec.beam_mass.unwrap_or_default();
     let (points, point_shapes, nodal) = mass_points(&model, dofs, &phi, reusable, beam_lumping)?;
-    let inv = compute_invariants(&points, point_shapes.as_ref(), spec.invariants, spec.par())?;
+    let inv = if spec.mass == fe::MassKind::Consistent {
+        // SPEC §5.6: the invariants use the mass the modes are orthonormal in.
+        let x: Vec<[f64; 3]> = model.nodes.iter().map(|n| n.x).collect();
+        let shape = |p: NodeIndex, j: usize| -> [f64; 3] {
+            let s = node_shape(dofs, &phi, p, j);
+            [s[0], s[1], s[2]]
+        };
+        crate::invariants_consistent::consistent_invariants(
+            &assembled.m,
+            dofs,
+            &x,
+            &phi,
+            &shape,
+            spec.invariants,
+        )
+    } else {
+        compute_invariants(&points, point_shapes.as_ref(), spec.invariants, spec.par())?
+    };
     lap(&mut report, STAGES[5]);
 
     let faces = graphics_faces(&model);
@@ -669,7 +686,7 @@ pub fn build_model_with_hook(
     };
 
     progress(STAGES[7]);
-    let body = assemble_body(
+    let mut body = assemble_body(
         spec,
         &model,
         dofs,
@@ -684,6 +701,11 @@ pub fn build_model_with_hook(
         &inv,
         fields.as_ref(),
     )?;
+    let band = crate::recipe::accuracy_band(spec, &set);
+    let recipe =
+        crate::recipe::recipe(spec, &model, &report.interfaces, band).map_err(request_err)?;
+    body.recipe = Some(recipe);
+    body.version = file::version_for(&body);
     lap(&mut report, STAGES[7]);
 
     progress(STAGES[8]);
@@ -970,13 +992,19 @@ fn assemble_body(
         .collect();
     let labels: Vec<file::ModeLabel> = set.labels.iter().map(file_label).collect();
     let count_of = |l: file::ModeLabel| labels.iter().filter(|x| **x == l).count() as u64;
+    // Constraint columns: one per interface dof, less the reference dofs (improved CB).
+    let held = set.reference_dofs.len() as u64;
     let (method, interface_count, fixed_count) = match &set.method {
         reduce::Method::NormalModes => (file::Method::NormalModes, 0, 0),
         reduce::Method::CraigBampton {
             interface,
             fixed_interface_modes,
-        }
-        | reduce::Method::ImprovedCraigBampton1 {
+        } => (
+            file::Method::CraigBampton,
+            interface.len() as u64,
+            *fixed_interface_modes as u64,
+        ),
+        reduce::Method::ImprovedCraigBampton1 {
             interface,
             fixed_interface_modes,
         }
@@ -985,7 +1013,7 @@ fn assemble_body(
             fixed_interface_modes,
         } => (
             file::Method::CraigBampton,
-            interface.len() as u64,
+            (interface.len() as u64).saturating_sub(held),
             *fixed_interface_modes as u64,
         ),
         reduce::Method::CraigChang { attachment, .. } => {
@@ -1047,10 +1075,11 @@ fn assemble_body(
             .unwrap_or_default(),
     };
     let removed = set.diagnostics.removed.len() as u64;
-    let fmax_hz = match &set.selection {
-        Some(select::Selection::Fmax { cutoff_hz, .. }) => Some(*cutoff_hz),
-        _ => spec.fmax_hz.map(|f| select::FMAX_FACTOR * f),
-    };
+    let shift_fraction = matches!(
+        set.method,
+        reduce::Method::Dietz { .. } | reduce::Method::DietzModified { .. }
+    )
+    .then_some(reduce::dietz::DEFAULT_SHIFT_FRACTION);
     let mut body = file::ReducedBody {
         version: flexbody_reader::FORMAT_VERSION,
         generator: file::Generator {
@@ -1104,28 +1133,45 @@ fn assemble_body(
                     dofs: mask_bools(m),
                 })
                 .collect(),
-            counts: file::ModeCounts {
-                rigid: count_of(file::ModeLabel::Rigid),
-                normal: count_of(file::ModeLabel::Normal),
-                constraint: interface_count,
-                fixed_interface: fixed_count,
-                attachment: if matches!(method, file::Method::CraigChang | file::Method::Dietz) {
-                    interface_count
-                } else {
-                    0
+            // SPEC §5.7: rigid = modes labelled Rigid; the others count basis vectors by origin.
+            counts: match method {
+                file::Method::NormalModes => file::ModeCounts {
+                    rigid: count_of(file::ModeLabel::Rigid),
+                    normal: nm as u64 - count_of(file::ModeLabel::Rigid),
+                    ..Default::default()
                 },
-                removed_dependent: removed,
+                file::Method::CraigBampton => file::ModeCounts {
+                    rigid: count_of(file::ModeLabel::Rigid),
+                    constraint: interface_count,
+                    fixed_interface: fixed_count,
+                    removed_dependent: removed,
+                    ..Default::default()
+                },
+                file::Method::CraigChang | file::Method::Dietz => file::ModeCounts {
+                    rigid: count_of(file::ModeLabel::Rigid),
+                    normal: set.diagnostics.basis_normal_modes.unwrap_or(0) as u64,
+                    attachment: interface_count,
+                    removed_dependent: removed,
+                    ..Default::default()
+                },
             },
             cutoffs: file::Cutoffs {
-                fmax_hz,
-                shift_fraction: None,
-                dependency_tolerance: Some(set.diagnostics.dependency_tol),
+                fmax_hz: spec.fmax_hz,
+                shift_fraction,
+                dependency_tolerance: (method != file::Method::NormalModes)
+                    .then_some(set.diagnostics.dependency_tol),
             },
         },
         stress_shapes: fields.and_then(|f| field_shapes(f, f.stress.as_ref(), &position)),
         strain_shapes: fields.and_then(|f| field_shapes(f, f.strain.as_ref(), &position)),
         damping: None,
         lines: (!lines.is_empty()).then_some(lines),
+        recipe: None,
+        label_shares: Some(if set.diagnostics.label_shares.len() == nm {
+            set.diagnostics.label_shares.clone()
+        } else {
+            vec![1.0; nm]
+        }),
     };
     body.version = flexbody_reader::version_for(&body);
     Ok(body)

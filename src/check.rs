@@ -8,15 +8,20 @@
 //!   bounding box, I7 symmetric positive definite;
 //! * the number of rigid-body modes against the expectation (6 for a free body, 0 with
 //!   reference conditions);
-//! * when every node is stored: invariants I1, I2, I3, I6, I7 recomputed from the stored nodal
-//!   masses and shapes equal the stored ones, and (lumped mass) I6 equals the generalized mass —
-//!   a corrupted mode shape breaks these.
+//! * lumped mass, every node stored: invariants I1, I2, I6, I7 recomputed from the stored nodal
+//!   masses and shapes equal the stored ones, and I6 equals the generalized mass — a corrupted
+//!   mode shape breaks these; consistent mass: I6 equals the generalized mass (the invariants
+//!   come from the consistent M, not from the lumped nodal masses).
 //!
-//! With the FE model (`--model`, rebuilt with the same interface spiders as `build`):
+//! With the FE model (`--model`, rebuilt from the file's recipe — interface spiders, beam
+//! lumping, format, material — unless given explicitly):
+//! * the model files are the ones the body was built from (SHA-256 of the recipe); a changed
+//!   file fails the check and stops the model checks;
 //! * ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²) against the model's own K and M (all nodes stored);
 //! * eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖ (normal modes: must be small; reduced bases: reported);
 //! * frequencies against a full normal-mode solve: Rayleigh–Ritz bound (reduced ≥ full) and
-//!   relative error ≤ 1% for the flexible modes below the scene's fmax (or the lower half).
+//!   relative error ≤ 1% for the flexible modes inside the recipe's accuracy band (files
+//!   without a recipe: below the requested fmax, else the lower half of the modes).
 
 use std::path::PathBuf;
 
@@ -82,10 +87,14 @@ pub struct ModelInput {
     pub material: Option<Material>,
     /// Shell thickness for 2D elements without a section.
     pub thickness: Option<f64>,
+    /// Nastran subcase whose SPC and METHOD selections apply.
+    pub subcase: Option<u64>,
     /// The interface entries given to `build`.
     pub interface: Vec<String>,
     /// The spider kind given to `build`.
     pub spider: SpiderKind,
+    /// Rotational inertia of lumped beam masses (`None`: as `build` resolves it by default).
+    pub beam_mass: Option<crate::fe::BeamLumping>,
 }
 
 /// Errors that stop the check from running at all (a failed check is not an error).
@@ -271,7 +280,21 @@ pub fn check(
 
     // Invariants recomputed from the stored nodes (only meaningful when every node is stored).
     let all_nodes = body.header.request.keep_nodes == file::KeepNodes::All;
-    if all_nodes {
+    let consistent = body.method.mass_kind == file::MassKind::Consistent;
+    if consistent && inv.i6.len() == m * m {
+        // Consistent mass: the invariants come from the consistent M (SPEC §5.6), not from the
+        // lumped nodal masses, so they cannot be recomputed from the file; I6 is Φᵀ M Φ itself.
+        let e = (0..m * m)
+            .map(|i| (inv.i6[i] - md.generalized_mass[i]).abs())
+            .fold(0.0, f64::max);
+        r.push(
+            "I6 = generalized mass (consistent M)",
+            e,
+            1e-9,
+            "the invariants use the mass the modes are orthonormal in".into(),
+        );
+    }
+    if all_nodes && !consistent {
         let points: Vec<MassPoint> = body
             .nodes
             .iter()
@@ -427,28 +450,51 @@ fn model_checks(
     r: &mut CheckReport,
 ) -> Result<(), CheckError> {
     use crate::build::BuildError;
+    if let Some(recipe) = &body.recipe {
+        let changed = crate::recipe::changed_model_files(recipe, &input.path);
+        r.push(
+            "model files as built (recipe SHA-256)",
+            changed.len() as f64,
+            0.0,
+            if changed.is_empty() {
+                format!(
+                    "{} file(s) unchanged since the build",
+                    recipe.model_files.len()
+                )
+            } else {
+                changed.join("; ")
+            },
+        );
+        if !changed.is_empty() {
+            return Ok(());
+        }
+    }
     let mut model = import::read_model(
         &input.path,
         &ImportOptions {
             format: input.format,
             material: input.material.clone(),
             shell_thickness: input.thickness,
+            subcase: input.subcase,
             ..Default::default()
         },
     )
     .map_err(BuildError::from)?;
-    resolve_interfaces(&mut model, &input.interface, input.spider).map_err(BuildError::from)?;
+    let interfaces =
+        resolve_interfaces(&mut model, &input.interface, input.spider).map_err(BuildError::from)?;
+    let interface_nodes: Vec<usize> = interfaces
+        .iter()
+        .flat_map(|i| i.nodes.iter().copied())
+        .collect();
+    let beam_lumping = input.beam_mass.unwrap_or_else(|| {
+        let mut spec = crate::build::BuildSpec::new(input.path.clone(), file::Units::si(), &[]);
+        spec.format = input.format;
+        spec.beam_lumping()
+    });
     let mass = match body.method.mass_kind {
         file::MassKind::Lumped => fe::MassKind::Lumped,
         file::MassKind::Consistent => fe::MassKind::Consistent,
     };
-    // the beam lumping `build` uses by default (Nastran's per card for Nastran decks)
-    let beam_lumping = crate::build::BuildSpec {
-        format: input.format,
-        beam_mass: None,
-        ..crate::build::BuildSpec::new(input.path.clone(), file::Units::si(), &[])
-    }
-    .beam_lumping();
     let a = assemble(
         &model,
         &AssemblySpec {
@@ -458,8 +504,18 @@ fn model_checks(
         },
     )
     .map_err(BuildError::from)?;
-    let red = eliminate(&model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default())
-        .map_err(BuildError::from)?;
+    let red = eliminate(
+        &model,
+        &a.dofs,
+        &a.k,
+        &a.m,
+        &ConstraintSpec {
+            // as `build`: RBE3 spiders at interface nodes keep their centre independent
+            independent_rbe3_reference: interface_nodes,
+            ..Default::default()
+        },
+    )
+    .map_err(BuildError::from)?;
     let m = body.mode_count();
     let n_r = red.retained.len();
     let by_id = model.node_index_by_id();
@@ -521,7 +577,13 @@ fn model_checks(
         .filter(|(_, l)| **l != crate::reduce::ModeLabel::Rigid)
         .map(|(f, _)| f)
         .collect();
-    let band = body.header.request.fmax_hz.unwrap_or(f64::INFINITY);
+    let (band, band_rule) = match &body.recipe {
+        Some(rc) => (rc.accuracy_band.fmax_hz, rc.accuracy_band.rule.clone()),
+        None => (
+            body.header.request.fmax_hz.unwrap_or(f64::INFINITY),
+            "fmax".to_string(),
+        ),
+    };
     let mut worst_err: f64 = 0.0;
     let mut worst_bound: f64 = 0.0;
     let mut compared = 0;
@@ -556,7 +618,7 @@ fn model_checks(
         format!(
             "max relative error over the {compared} flexible modes {}",
             if band.is_finite() {
-                format!("below fmax = {band} Hz")
+                format!("below fmax = {band} Hz (accuracy band, rule {band_rule})")
             } else {
                 "in the lower half".into()
             }

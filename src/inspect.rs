@@ -32,6 +32,10 @@ pub struct ModeLine {
     pub omega2: f64,
     /// Label (`Rigid`, `Normal`, …).
     pub label: String,
+    /// Share of the labelled origin in the mode (`label_shares.bin`, format 1.2), or null.
+    pub label_share: Option<f64>,
+    /// Modal damping ratio (`damping.bin`), or null.
+    pub damping_ratio: Option<f64>,
 }
 
 /// One container entry.
@@ -93,6 +97,8 @@ pub struct Summary {
     pub optional: [bool; 4],
     /// Entries in container order.
     pub entries: Vec<EntryLine>,
+    /// The build recipe (`recipe.json`, format 1.2), `null` when the file has none.
+    pub recipe: Option<flexbody_reader::Recipe>,
 }
 
 /// Mass properties from I1, I2, I7 when present, else from the stored nodal masses.
@@ -176,6 +182,8 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
                 frequency_hz: body.modes.frequency_hz[j],
                 omega2: body.modes.omega2[j],
                 label: format!("{:?}", body.modes.labels[j]),
+                label_share: body.label_shares.as_ref().map(|s| s[j]),
+                damping_ratio: body.damping.as_ref().map(|d| d.ratio[j]),
             })
             .collect(),
         optional: [
@@ -194,6 +202,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
                 required: e.required,
             })
             .collect(),
+        recipe: body.recipe.clone(),
     }
 }
 
@@ -252,9 +261,16 @@ pub fn render_text(s: &Summary) -> String {
     }
     let _ = writeln!(o, "modes        #      frequency [Hz]   label");
     for m in &s.modes {
+        let share = match m.label_share {
+            Some(v) if v < 0.995 => format!(" ({:.0} %)", 100.0 * v),
+            _ => String::new(),
+        };
+        let damping = m
+            .damping_ratio
+            .map_or(String::new(), |z| format!("  ζ = {:.4} %", 100.0 * z));
         let _ = writeln!(
             o,
-            "             {:<6} {:>15.6}   {}",
+            "             {:<6} {:>15.6}   {}{share}{damping}",
             m.number, m.frequency_hz, m.label
         );
     }
@@ -283,5 +299,88 @@ pub fn render_text(s: &Summary) -> String {
             if e.required { "yes" } else { "no" }
         );
     }
+    if let Some(r) = &s.recipe {
+        render_recipe(&mut o, r);
+    }
     o
+}
+
+/// The recipe block of the text summary.
+fn render_recipe(o: &mut String, r: &flexbody_reader::Recipe) {
+    use std::fmt::Write;
+    let p = &r.options;
+    let _ = writeln!(
+        o,
+        "recipe       built by {} {}",
+        r.tool.name, r.tool.version
+    );
+    for f in &r.model_files {
+        let _ = writeln!(
+            o,
+            "  model file {} ({}, {} bytes, SHA-256 {})",
+            f.path, f.role, f.size, f.sha256
+        );
+    }
+    let opt = |v: &Option<String>| v.clone().unwrap_or_else(|| "-".into());
+    let _ = writeln!(
+        o,
+        "  options    --method {} --modes {} --fmax {} --mass {} --beam-mass {} --units {}/{}/{}/{}",
+        p.method,
+        p.modes.map_or("-".into(), |n| n.to_string()),
+        p.fmax_hz.map_or("-".into(), |f| f.to_string()),
+        p.mass,
+        p.beam_mass,
+        p.units.mass.name,
+        p.units.length.name,
+        p.units.time.name,
+        p.units.force.name
+    );
+    let _ = writeln!(
+        o,
+        "             --interface {} --spider {} --reference-conditions {} --reference-method {}",
+        if p.interface.is_empty() {
+            "-".into()
+        } else {
+            p.interface.join(",")
+        },
+        p.spider,
+        if p.reference_conditions.is_empty() {
+            "-".into()
+        } else {
+            p.reference_conditions.join(",")
+        },
+        p.reference_method
+    );
+    let _ = writeln!(
+        o,
+        "             --keep-nodes {} --invariants {} --stress-modes {} --format {} --material {}",
+        p.keep_nodes,
+        p.invariants,
+        p.stress_fields,
+        opt(&p.format),
+        opt(&p.material)
+    );
+    for i in &r.interfaces {
+        let nodes: Vec<String> = i.nodes.iter().map(u64::to_string).collect();
+        let _ = write!(o, "  interface  {} → node(s) {}", i.entry, nodes.join(","));
+        if let Some(s) = &i.spider {
+            let _ = write!(
+                o,
+                " ({} spider over {} nodes, centre ({:.6e}, {:.6e}, {:.6e}) by {}, {:.3e} from the node average)",
+                s.kind,
+                s.set_nodes.len(),
+                s.centre[0],
+                s.centre[1],
+                s.centre[2],
+                s.fit,
+                s.offset_from_node_average
+            );
+        }
+        let _ = writeln!(o);
+    }
+    let _ = writeln!(
+        o,
+        "  accurate   0 – {:.6} Hz (rule {})",
+        r.accuracy_band.fmax_hz, r.accuracy_band.rule
+    );
 }

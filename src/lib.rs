@@ -21,6 +21,7 @@
 
 pub mod build;
 pub mod check;
+pub mod damping;
 pub mod deck;
 pub mod faces;
 pub mod fe;
@@ -28,9 +29,11 @@ pub mod import;
 pub mod inspect;
 pub mod interface;
 pub mod invariants;
+pub mod invariants_consistent;
 pub mod model;
 pub mod options;
 pub mod precheck;
+pub mod recipe;
 pub mod reduce;
 pub mod solve;
 pub mod stress;

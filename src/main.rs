@@ -48,9 +48,15 @@ struct ModelArgs {
     #[arg(long, value_delimiter = ',')]
     interface: Vec<String>,
     /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
-    /// (weighted average) or none (every node of the set is an interface node).
-    #[arg(long, default_value = "rbe2")]
-    spider: String,
+    /// (weighted average) or none (every node of the set is an interface node). `check`: default
+    /// from the file's recipe.
+    #[arg(long)]
+    spider: Option<String>,
+    /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when
+    /// the deck's subcases select different sets). `check`: default
+    /// from the file's recipe.
+    #[arg(long, value_name = "N")]
+    subcase: Option<u64>,
 }
 
 #[derive(clap::Args)]
@@ -84,10 +90,6 @@ struct BuildArgs {
     /// a Nastran deck with PARAM,COUPMASS > 0: consistent, as the deck asks.
     #[arg(long)]
     mass: Option<String>,
-    /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when
-    /// the deck's subcases select different sets).
-    #[arg(long, value_name = "N")]
-    subcase: Option<u64>,
     /// Rotational inertia of lumped beam masses: auto (default: as Nastran lumps each card for
     /// Nastran decks, CBAR none and CBEAM torsion only; the section's rotary inertia otherwise),
     /// section, torsion, none or nastran.
@@ -119,6 +121,11 @@ struct BuildArgs {
     /// with a clear error instead of being killed. Same as the FLEXBODY_MAX_MEMORY variable.
     #[arg(long, value_name = "SIZE")]
     max_memory: Option<String>,
+    /// Modal damping stored in the file: one ratio (2% or 0.02), ratios by frequency band
+    /// (0-1000:1%,1000-:3%, Hz, [lo, hi), empty hi = open), or rayleigh:ALPHA,BETA
+    /// (ζ = α/2ω + βω/2). Rigid-body modes get 0.
+    #[arg(long, value_name = "SPEC")]
+    damping: Option<String>,
     /// No stress or strain shapes (the default; for scripts that want to say so).
     #[arg(long, conflicts_with = "stress_modes")]
     no_stress: bool,
@@ -140,7 +147,9 @@ struct BuildArgs {
 struct CheckArgs {
     /// The .flexbody file.
     file: PathBuf,
-    /// The FE model the file was built from (give the same --interface/--spider as to build).
+    /// The FE model the file was built from. The model is rebuilt with the options recorded in
+    /// the file's recipe (interfaces, spiders, format, material, beam mass); options given here
+    /// override them. A model file changed since the build fails the check.
     #[arg(long)]
     model: Option<PathBuf>,
     #[command(flatten)]
@@ -188,7 +197,7 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
             .transpose()?,
         thickness: a.model_args.thickness,
         interface: a.model_args.interface.clone(),
-        spider: parse_spider(&a.model_args.spider)?,
+        spider: parse_spider(a.model_args.spider.as_deref().unwrap_or("rbe2"))?,
         method: parse_method(&a.method)?,
         modes: a.modes,
         fmax_hz: a.fmax,
@@ -197,7 +206,7 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
         reference_method: a.reference_method,
         mass: parse_mass(a.mass.as_deref().unwrap_or("lumped"))?,
         mass_explicit: a.mass.is_some(),
-        subcase: a.subcase,
+        subcase: a.model_args.subcase,
         units: parse_units(&a.units)?,
         keep_nodes: parse_keep_nodes(&a.keep_nodes),
         invariants: parse_invariants(&a.invariants)?,
@@ -239,6 +248,9 @@ fn utc_now() -> String {
 fn build(a: &BuildArgs) -> anyhow::Result<()> {
     use anyhow::Context;
     let spec = build_spec(a)?;
+    if let Some(d) = &a.damping {
+        flexbody::damping::parse_damping(d)?; // refuse a bad value before the build
+    }
     if let Some(limit) = &a.max_memory {
         // Read by the solve layer right before each factorization; set before any thread starts.
         std::env::set_var(flexbody::solve::cholesky::MEMORY_ENV, limit);
@@ -247,6 +259,10 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
     let mut run = || -> anyhow::Result<flexbody::build::BuildOutput> {
         let out = flexbody::build::build(&spec, &mut |stage| progress.stage(stage))
             .with_context(|| format!("cannot build {}", a.model.display()))?;
+        let mut out = out;
+        if let Some(d) = &a.damping {
+            flexbody::damping::apply(&mut out.body, d)?;
+        }
         progress.stage("write");
         flexbody::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
         Ok(out)
@@ -386,19 +402,28 @@ fn check(a: &CheckArgs) -> anyhow::Result<bool> {
         .with_context(|| format!("{} is not a valid flexbody file", a.file.display()))?;
     let model = match &a.model {
         None => None,
-        Some(path) => Some(flexbody::check::ModelInput {
-            path: path.clone(),
-            format: import_format(&a.model_args.format)?,
-            material: a
-                .model_args
-                .material
-                .as_deref()
-                .map(flexbody::options::parse_material)
-                .transpose()?,
-            thickness: a.model_args.thickness,
-            interface: a.model_args.interface.clone(),
-            spider: flexbody::options::parse_spider(&a.model_args.spider)?,
-        }),
+        Some(path) => Some(flexbody::recipe::model_input(
+            body.recipe.as_ref(),
+            path.clone(),
+            flexbody::recipe::ModelOverrides {
+                format: import_format(&a.model_args.format)?,
+                material: a
+                    .model_args
+                    .material
+                    .as_deref()
+                    .map(flexbody::options::parse_material)
+                    .transpose()?,
+                interface: a.model_args.interface.clone(),
+                spider: a
+                    .model_args
+                    .spider
+                    .as_deref()
+                    .map(flexbody::options::parse_spider)
+                    .transpose()?,
+                thickness: a.model_args.thickness,
+                subcase: a.model_args.subcase,
+            },
+        )?),
     };
     let report = flexbody::check::check(&body, model.as_ref())?;
     if a.json {

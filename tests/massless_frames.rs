@@ -70,6 +70,8 @@ fn assert_check_passes(body: &file::ReducedBody, model: &Path, method: BuildMeth
             vec!["1".into(), "13".into()]
         },
         spider: SpiderKind::Rbe2,
+        beam_mass: None,
+        subcase: None,
     };
     let report = check(body, Some(&input)).unwrap();
     for i in &report.items {

@@ -15,7 +15,7 @@ pub const FORMAT_NAME: &str = "flexbody-reduced-body";
 pub const MANIFEST: &str = "manifest.json";
 
 /// Payload entries known to v1, in the fixed container order, with their required flag.
-pub const ENTRIES: [(&str, bool); 11] = [
+pub const ENTRIES: [(&str, bool); 13] = [
     (HEADER, true),
     (NODES, true),
     (FACES, true),
@@ -27,6 +27,8 @@ pub const ENTRIES: [(&str, bool); 11] = [
     (STRAIN_SHAPES, false),
     (DAMPING, false),
     (LINES, false),
+    (RECIPE, false),
+    (LABEL_SHARES, false),
 ];
 /// `header.bin`.
 pub const HEADER: &str = "header.bin";
@@ -50,6 +52,10 @@ pub const STRAIN_SHAPES: &str = "strain_shapes.bin";
 pub const DAMPING: &str = "damping.bin";
 /// `lines.bin` (format 1.1).
 pub const LINES: &str = "lines.bin";
+/// `recipe.json` (format 1.2): UTF-8 JSON, not a bincode record.
+pub const RECIPE: &str = "recipe.json";
+/// `label_shares.bin` (format 1.2).
+pub const LABEL_SHARES: &str = "label_shares.bin";
 
 /// `manifest.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -100,6 +106,33 @@ fn config() -> bincode::config::Configuration<bincode::config::LittleEndian, bin
 /// Byte limit for records that hold strings (only `header.bin` in v1): bincode allocates a string's
 /// buffer from its length prefix before reading it, so this bounds that allocation.
 pub const STRING_RECORD_LIMIT: usize = 16 << 20;
+
+/// Decodes `recipe.json`: UTF-8 JSON with the members of SPEC.md §5.11 (unknown members
+/// ignored), at most [`STRING_RECORD_LIMIT`] bytes; anything else is `Decode`.
+pub fn decode_recipe(bytes: &[u8]) -> Result<crate::Recipe, ReadError> {
+    let fail = |detail: String| ReadError::Decode {
+        entry: RECIPE.to_string(),
+        detail,
+    };
+    if bytes.len() > STRING_RECORD_LIMIT {
+        return Err(fail(format!(
+            "{} bytes exceed the {STRING_RECORD_LIMIT}-byte record limit",
+            bytes.len()
+        )));
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8: {e}")))?;
+    serde_json::from_str(text).map_err(|e| fail(format!("not a valid recipe: {e}")))
+}
+
+/// Encodes `recipe.json`: pretty JSON (two-space indent, members in declaration order) and a
+/// final newline.
+pub fn encode_recipe(recipe: &crate::Recipe) -> Vec<u8> {
+    // Cannot fail: plain structs of strings, numbers and vectors (non-finite numbers become
+    // `null`, which the validation refuses before writing).
+    let mut v = serde_json::to_vec_pretty(recipe).expect("recipe JSON into Vec is infallible");
+    v.push(b'\n');
+    v
+}
 
 /// Encodes a payload record with the v1 layout.
 pub fn encode<T: Serialize>(value: &T) -> Vec<u8> {

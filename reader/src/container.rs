@@ -67,6 +67,34 @@ fn read_entry(
     Ok(buf)
 }
 
+/// SPEC §7.1 step 3: `format` and a newer major `version` are judged before any other member
+/// is looked at (a newer major version may change them).
+fn format_and_version_first(v: &serde_json::Value) -> Result<(), ReadError> {
+    if let Some(f) = v.get("format").and_then(|f| f.as_str()) {
+        if f != FORMAT_NAME {
+            return Err(ReadError::WrongFormat {
+                found: f.to_string(),
+            });
+        }
+    }
+    let part = |k: &str| {
+        v.get("version")
+            .and_then(|x| x.get(k))
+            .and_then(|x| x.as_u64())
+            .and_then(|x| u32::try_from(x).ok())
+    };
+    if let (Some(major), Some(minor)) = (part("major"), part("minor")) {
+        if major > FORMAT_VERSION.major {
+            return Err(ReadError::UnsupportedVersion {
+                major,
+                minor,
+                supported: FORMAT_VERSION.major,
+            });
+        }
+    }
+    Ok(())
+}
+
 fn check_manifest(m: &Manifest, limits: &ReadLimits) -> Result<(), ReadError> {
     if m.format != FORMAT_NAME {
         return Err(ReadError::WrongFormat {
@@ -155,6 +183,39 @@ fn check_manifest(m: &Manifest, limits: &ReadLimits) -> Result<(), ReadError> {
     Ok(())
 }
 
+/// The first entry name that occurs twice in the central directory (APPNOTE 4.3.12, 4.3.16),
+/// read from the raw bytes: the zip layer keeps one entry per name, so duplicates would
+/// otherwise pass unseen. `None` when there is none or the directory cannot be walked (the zip
+/// layer then reports the damage itself).
+fn duplicate_in_central_directory(bytes: &[u8]) -> Option<String> {
+    let u16_at = |i: usize| -> Option<usize> {
+        Some(u16::from_le_bytes(bytes.get(i..i + 2)?.try_into().ok()?) as usize)
+    };
+    let u32_at = |i: usize| -> Option<usize> {
+        Some(u32::from_le_bytes(bytes.get(i..i + 4)?.try_into().ok()?) as usize)
+    };
+    // End of central directory: the last signature within 22 + 65535 bytes of the end.
+    let lo = bytes.len().saturating_sub(22 + 65_535);
+    let eocd = (lo..bytes.len().saturating_sub(21))
+        .rev()
+        .find(|&i| bytes[i..i + 4] == [0x50, 0x4b, 0x05, 0x06])?;
+    let count = u16_at(eocd + 10)?;
+    let mut at = u32_at(eocd + 16)?;
+    let mut seen = std::collections::BTreeSet::new();
+    for _ in 0..count {
+        if bytes.get(at..at + 4)? != [0x50, 0x4b, 0x01, 0x02] {
+            return None;
+        }
+        let (n, extra, comment) = (u16_at(at + 28)?, u16_at(at + 30)?, u16_at(at + 32)?);
+        let name = String::from_utf8_lossy(bytes.get(at + 46..at + 46 + n)?).into_owned();
+        if !seen.insert(name.clone()) {
+            return Some(name);
+        }
+        at += 46 + n + extra + comment;
+    }
+    None
+}
+
 /// Opens the container, checks the manifest, reads and verifies every listed entry.
 pub fn open(bytes: &[u8], limits: &ReadLimits) -> Result<Container, ReadError> {
     let mut zip = ZipArchive::new(Cursor::new(bytes)).map_err(|e| ReadError::NotZip {
@@ -167,6 +228,9 @@ pub fn open(bytes: &[u8], limits: &ReadLimits) -> Result<Container, ReadError> {
             zip.len() as u64,
             limits.max_entries + 1,
         ));
+    }
+    if let Some(entry) = duplicate_in_central_directory(bytes) {
+        return Err(ReadError::DuplicateEntry { entry });
     }
     let mut index_of: BTreeMap<String, usize> = BTreeMap::new();
     for i in 0..zip.len() {
@@ -207,7 +271,11 @@ pub fn open(bytes: &[u8], limits: &ReadLimits) -> Result<Container, ReadError> {
     let text = std::str::from_utf8(&raw).map_err(|e| ReadError::Manifest {
         detail: format!("not UTF-8: {e}"),
     })?;
-    let manifest: Manifest = serde_json::from_str(text).map_err(|e| ReadError::Manifest {
+    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| ReadError::Manifest {
+        detail: format!("not valid manifest JSON: {e}"),
+    })?;
+    format_and_version_first(&value)?;
+    let manifest: Manifest = serde_json::from_value(value).map_err(|e| ReadError::Manifest {
         detail: format!("not valid manifest JSON: {e}"),
     })?;
     check_manifest(&manifest, limits)?;

@@ -22,6 +22,7 @@ pub mod codec;
 mod container;
 mod error;
 mod limits;
+mod recipe;
 mod types;
 mod validate;
 
@@ -29,20 +30,24 @@ use std::path::Path;
 
 pub use error::ReadError;
 pub use limits::ReadLimits;
+pub use recipe::*;
 pub use types::*;
 pub use validate::{validate, FRAME_TOL, REL_TOL};
 
 /// The newest format version this crate writes and fully understands. A writer stamps the
 /// oldest version whose entries the file uses ([`version_for`]): 1.0 unless `lines.bin` is
 /// present.
-pub const FORMAT_VERSION: Version = Version { major: 1, minor: 1 };
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 2 };
 
-/// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`).
+/// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`, 1.2
+/// `recipe.json` and `label_shares.bin`).
 pub fn version_for(body: &ReducedBody) -> Version {
-    Version {
-        major: 1,
-        minor: u32::from(body.lines.is_some()),
-    }
+    let minor = if body.recipe.is_some() || body.label_shares.is_some() {
+        2
+    } else {
+        u32::from(body.lines.is_some())
+    };
+    Version { major: 1, minor }
 }
 
 /// Reads and validates a file with the default [`ReadLimits`].
@@ -108,6 +113,12 @@ pub fn from_bytes_with_manifest(
         strain_shapes: optional(&c, STRAIN_SHAPES)?,
         damping: optional(&c, DAMPING)?,
         lines: optional(&c, LINES)?,
+        recipe: c
+            .entries
+            .get(RECIPE)
+            .map(|b| decode_recipe(b))
+            .transpose()?,
+        label_shares: optional(&c, LABEL_SHARES)?,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))
@@ -137,6 +148,12 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     }
     if let Some(l) = &body.lines {
         out.push((LINES, false, encode(l)));
+    }
+    if let Some(r) = &body.recipe {
+        out.push((RECIPE, false, encode_recipe(r)));
+    }
+    if let Some(s) = &body.label_shares {
+        out.push((LABEL_SHARES, false, encode(s)));
     }
     out
 }

@@ -362,6 +362,11 @@ pub struct ReducedBody {
     /// Optional `lines.bin` (format 1.1): 2-node graphics lines (beams, rods) as 0-based node
     /// indices.
     pub lines: Option<Vec<[u32; 2]>>,
+    /// Optional `recipe.json` (format 1.2): how the body was built.
+    pub recipe: Option<crate::Recipe>,
+    /// Optional `label_shares.bin` (format 1.2): per mode, the participation share (0…1) of the
+    /// origin its label names; 1 for `Rigid` and for modes of a single-stage basis.
+    pub label_shares: Option<Vec<f64>>,
 }
 
 impl ReducedBody {

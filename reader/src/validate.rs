@@ -1,8 +1,8 @@
 //! Consistency rules of a decoded body (SPEC.md §6): counts, finiteness, index ranges,
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
-    DAMPING, FACES, HEADER, INVARIANTS, LINES, MANIFEST, METHOD, MODES, NODAL_MASS, NODES,
-    STRAIN_SHAPES, STRESS_SHAPES,
+    DAMPING, FACES, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD, MODES, NODAL_MASS,
+    NODES, RECIPE, STRAIN_SHAPES, STRESS_SHAPES,
 };
 use crate::error::ReadError;
 use crate::limits::ReadLimits;
@@ -393,6 +393,7 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
             }
         }
     }
+    counts_and_cutoffs(body)?;
 
     if let Some(s) = &body.stress_shapes {
         field_shapes(STRESS_SHAPES, s, n, m)?;
@@ -409,6 +410,182 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
                 format!("ratio[{j}] is negative ({r})"),
             ));
         }
+    }
+    if let Some(s) = &body.label_shares {
+        count(LABEL_SHARES, "shares", s.len(), m, "one per mode")?;
+        finite(LABEL_SHARES, "shares", s)?;
+        if let Some((j, v)) = s
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(0.0..=1.0).contains(*v))
+        {
+            return Err(inconsistent(
+                LABEL_SHARES,
+                format!("share[{j}] = {v} is outside 0…1"),
+            ));
+        }
+    }
+    if let Some(r) = &body.recipe {
+        recipe(r, body)?;
+    }
+    Ok(())
+}
+
+/// Rule 8, second part (SPEC.md §5.7): the counts add up and the cutoffs are the method's.
+fn counts_and_cutoffs(body: &ReducedBody) -> Result<(), ReadError> {
+    use crate::types::{Method, ModeLabel};
+    let me = &body.method;
+    let c = &me.counts;
+    let m = body.modes.omega2.len() as u64;
+    let rigid = body
+        .modes
+        .labels
+        .iter()
+        .filter(|l| **l == ModeLabel::Rigid)
+        .count() as u64;
+    let bad = |rule: String| Err(inconsistent(METHOD, rule));
+    if c.rigid != rigid {
+        return bad(format!(
+            "counts.rigid = {} but {rigid} modes are labelled Rigid",
+            c.rigid
+        ));
+    }
+    let (zero, basis): (&[(&str, u64)], u64) = match me.method {
+        Method::NormalModes => (
+            &[
+                ("constraint", c.constraint),
+                ("fixed_interface", c.fixed_interface),
+                ("attachment", c.attachment),
+                ("removed_dependent", c.removed_dependent),
+            ],
+            c.rigid.saturating_add(c.normal),
+        ),
+        Method::CraigBampton => (
+            &[("normal", c.normal), ("attachment", c.attachment)],
+            c.constraint.saturating_add(c.fixed_interface),
+        ),
+        Method::CraigChang | Method::Dietz => (
+            &[
+                ("constraint", c.constraint),
+                ("fixed_interface", c.fixed_interface),
+            ],
+            c.rigid
+                .saturating_add(c.normal)
+                .saturating_add(c.attachment),
+        ),
+    };
+    if let Some((name, v)) = zero.iter().find(|(_, v)| *v != 0) {
+        return bad(format!("counts.{name} = {v} must be 0 for {:?}", me.method));
+    }
+    let kept = basis.saturating_sub(c.removed_dependent);
+    let ok = if me.method == Method::NormalModes {
+        basis == m
+    } else {
+        basis >= c.removed_dependent && kept >= m
+    };
+    if !ok {
+        return bad(format!(
+            "counts give {kept} basis vectors (after {} removed) for {m} modes",
+            c.removed_dependent
+        ));
+    }
+    let cut = &me.cutoffs;
+    if cut.fmax_hz != body.header.request.fmax_hz {
+        return bad(format!(
+            "cutoffs.fmax_hz {:?} differs from the requested fmax {:?}",
+            cut.fmax_hz, body.header.request.fmax_hz
+        ));
+    }
+    for (name, value, wanted) in [
+        (
+            "shift_fraction",
+            cut.shift_fraction,
+            me.method == Method::Dietz,
+        ),
+        (
+            "dependency_tolerance",
+            cut.dependency_tolerance,
+            me.method != Method::NormalModes,
+        ),
+    ] {
+        match value {
+            None if wanted => return bad(format!("cutoffs.{name} missing for {:?}", me.method)),
+            Some(_) if !wanted => {
+                return bad(format!("cutoffs.{name} present for {:?}", me.method))
+            }
+            Some(v) if !(v > 0.0 && v < 1.0) => {
+                return bad(format!("cutoffs.{name} = {v} must lie in (0, 1)"))
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Rule 11 (SPEC.md §6): `recipe.json` agrees with itself and with the rest of the file.
+fn recipe(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
+    for (q, f) in r.model_files.iter().enumerate() {
+        let hex_ok = f.sha256.len() == 64
+            && f.sha256
+                .bytes()
+                .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b));
+        if !hex_ok {
+            return Err(inconsistent(
+                RECIPE,
+                format!("model_files[{q}].sha256 must be 64 lowercase hex digits"),
+            ));
+        }
+        let want = if q == 0 { "main" } else { "include" };
+        if f.role != want {
+            return Err(inconsistent(
+                RECIPE,
+                format!("model_files[{q}].role is {:?}, must be {want:?}", f.role),
+            ));
+        }
+    }
+    if r.options.units != body.units {
+        return Err(inconsistent(
+            RECIPE,
+            "options.units differ from the manifest's units".into(),
+        ));
+    }
+    if let Some(f) = r.options.fmax_hz {
+        finite(RECIPE, "options.fmax_hz", [&f])?;
+        if f <= 0.0 {
+            return Err(inconsistent(
+                RECIPE,
+                format!("options.fmax_hz {f} must be > 0"),
+            ));
+        }
+    }
+    for (q, itf) in r.interfaces.iter().enumerate() {
+        for &id in &itf.nodes {
+            if !body.nodes.iter().any(|p| p.id == id && p.interface) {
+                return Err(inconsistent(
+                    RECIPE,
+                    format!(
+                        "interfaces[{q}] ({}) names node {id}, which is not a stored interface node",
+                        itf.entry
+                    ),
+                ));
+            }
+        }
+        if let Some(s) = &itf.spider {
+            finite(RECIPE, &format!("interfaces[{q}].spider.centre"), &s.centre)?;
+            finite(
+                RECIPE,
+                &format!("interfaces[{q}].spider.offset_from_node_average"),
+                [&s.offset_from_node_average],
+            )?;
+        }
+    }
+    let band = r.accuracy_band.fmax_hz;
+    finite(RECIPE, "accuracy_band.fmax_hz", [&band])?;
+    if band <= 0.0 {
+        return Err(inconsistent(
+            RECIPE,
+            format!("accuracy_band.fmax_hz {band} must be > 0"),
+        ));
     }
     Ok(())
 }

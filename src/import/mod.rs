@@ -83,6 +83,9 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
         Format::Nastran => nastran::read_subcase(path, opts.subcase)?.0,
         Format::Gmsh => gmsh::read(path, None)?,
     };
+    if model.files.is_empty() {
+        model.files.push(path.display().to_string());
+    }
     if let Some(m) = &opts.material {
         apply_default_material(&mut model, m);
     }

@@ -436,6 +436,9 @@ pub struct Model {
     pub deck: DeckRequest,
     /// Where the records of `spcs` came from (card, line, set).
     pub constraint_sources: Vec<ConstraintSource>,
+    /// Every file the importer read, as opened: the main file first, then includes in the order
+    /// read (empty for models built in memory). The build records their SHA-256 (recipe).
+    pub files: Vec<String>,
 }
 
 impl Model {

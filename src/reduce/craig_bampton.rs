@@ -196,6 +196,7 @@ pub fn craig_bampton(
     let t3 = Instant::now();
     let o = orthonormalize(k, m, &basis.t, &basis.labels)?;
     let mut diagnostics = o.diagnostics;
+    diagnostics.basis_top_omega2 = basis.fixed_omega2.last().copied();
     for (name, s) in &basis.timings {
         diagnostics.notes.push(format!("time {name}: {s:.3} s"));
     }

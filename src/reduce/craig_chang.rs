@@ -237,6 +237,8 @@ pub fn craig_chang(
         ModeLabel::Attachment { dof }
     })?;
     let mut diagnostics = o.diagnostics;
+    diagnostics.basis_top_omega2 = xn.eigenvalues.last().copied();
+    diagnostics.basis_normal_modes = Some(xn.eigenvalues.len() - nr);
     diagnostics.notes.push(format!(
         "statically determinate support (automatic): dofs {:?}",
         ir.support

@@ -53,9 +53,16 @@ const FIXED_POINT_TOL: f64 = 1e-13;
 /// of its solves and is accepted (the build's verification checks the set against the model).
 const FIXED_POINT_STALL: f64 = 1e-9;
 
-fn finish(o: super::Orthonormalized, method: Method, note: String) -> ModeSet {
+fn finish_with_top(
+    o: super::Orthonormalized,
+    method: Method,
+    note: String,
+    (top, basis_normal): (Option<f64>, usize),
+) -> ModeSet {
     let mut diagnostics = o.diagnostics;
     diagnostics.notes.push(note);
+    diagnostics.basis_top_omega2 = top;
+    diagnostics.basis_normal_modes = Some(basis_normal);
     ModeSet {
         phi: o.phi,
         omega2: o.omega2,
@@ -130,13 +137,16 @@ pub fn dietz(
         ir.support
     );
     let attachment = (0..fa.ncols()).map(|j| load_dof(fa, j)).collect();
-    Ok(finish(
+    let top = xn.eigenvalues.last().copied();
+    let basis_normal = xn.eigenvalues.len() - nr;
+    Ok(finish_with_top(
         o,
         Method::Dietz {
             attachment,
             shift: ell,
         },
         note,
+        (top, basis_normal),
     ))
 }
 
@@ -178,7 +188,11 @@ pub fn dietz_modified(
     })?;
     let note = format!("Dietz modified procedure: l = {ell:e}, extended set of {extended} modes");
     let attachment = (0..fa.ncols()).map(|j| load_dof(fa, j)).collect();
-    Ok(finish(
+    let top = xe.eigenvalues[..modes.min(xe.eigenvalues.len())]
+        .last()
+        .copied();
+    let basis_normal = modes.min(xe.eigenvalues.len()).saturating_sub(nr);
+    Ok(finish_with_top(
         o,
         Method::DietzModified {
             attachment,
@@ -186,5 +200,6 @@ pub fn dietz_modified(
             extended,
         },
         note,
+        (top, basis_normal),
     ))
 }

@@ -147,6 +147,15 @@ pub struct Diagnostics {
     pub held_massless: Vec<usize>,
     /// Free-text notes (choices made automatically, e.g. the support dofs).
     pub notes: Vec<String>,
+    /// ω² of the highest mode of the method's own eigenproblem: the last fixed-interface mode
+    /// (Craig–Bampton) or free-free mode (Craig–Chang, Dietz) in the basis; `None` for normal
+    /// modes (their own ω² are exact). Defines the accuracy band of a `--modes N` build.
+    pub basis_top_omega2: Option<f64>,
+    /// Per mode: the participation share of the origin its label names (see
+    /// [`orthonormalize::origin_labels`]); empty = every mode is pure (share 1).
+    pub label_shares: Vec<f64>,
+    /// Elastic free-free normal modes in the basis (Craig–Chang, Dietz); `None` otherwise.
+    pub basis_normal_modes: Option<usize>,
 }
 
 /// Which method produced a mode set.

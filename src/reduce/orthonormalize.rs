@@ -36,6 +36,57 @@ pub fn rigid_flags(
         .collect()
 }
 
+/// Kind of a label (its variant, without the dof or index it carries).
+fn kind(l: &ModeLabel) -> usize {
+    match l {
+        ModeLabel::Rigid => 0,
+        ModeLabel::Normal => 1,
+        ModeLabel::Constraint { .. } => 2,
+        ModeLabel::FixedInterface { .. } => 3,
+        ModeLabel::Attachment { .. } => 4,
+        ModeLabel::FrequencyResponse { .. } => 5,
+    }
+}
+
+/// Labels of the modes φ_j = Σ_c T_c N_cj of an orthonormalized multi-stage basis, and the share
+/// of the origin each label names (SPEC.md §5.5). With w_cj = N_cj·√(T_cᵀMT_c) (`weights`, row c
+/// = basis column `basis[c]`), the share of origin kind k in mode j is Σ_{c∈k} w_cj² / Σ_c w_cj².
+/// `Rigid` only where `rigid[j]` (the zero-frequency test of [`rigid_flags`], the same for every
+/// method; share 1); any other mode gets the non-rigid kind with the largest share, named by its
+/// column of largest |w_cj|.
+pub fn origin_labels(
+    rigid: &[bool],
+    weights: &Mat<f64>,
+    basis: &[ModeLabel],
+) -> (Vec<ModeLabel>, Vec<f64>) {
+    let q = basis.len();
+    (0..rigid.len())
+        .map(|j| {
+            if rigid[j] {
+                return (ModeLabel::Rigid, 1.0);
+            }
+            let mut by_kind = [0.0f64; 6];
+            let mut total = 0.0;
+            for (c, l) in basis.iter().enumerate().take(q) {
+                let w2 = weights[(c, j)].powi(2);
+                by_kind[kind(l)] += w2;
+                total += w2;
+            }
+            let best_kind = (1..6).fold(1, |b, k| if by_kind[k] > by_kind[b] { k } else { b });
+            let column = (0..q)
+                .filter(|&c| kind(&basis[c]) == best_kind)
+                .max_by(|&a, &b| weights[(a, j)].abs().total_cmp(&weights[(b, j)].abs()));
+            let label = column.map_or(ModeLabel::Normal, |c| basis[c].clone());
+            let share = if total > 0.0 {
+                by_kind[best_kind] / total
+            } else {
+                0.0
+            };
+            (label, share)
+        })
+        .unzip()
+}
+
 /// Limit enforced on ‖ΦᵀMΦ − I‖_max and ‖ΦᵀKΦ − diag‖_max/max ω² of every returned set.
 pub const CHECK_LIMIT: f64 = 1e-9;
 
@@ -248,29 +299,14 @@ pub fn orthonormalize(
     let n = g * (&y * &y2); // coefficients of Φ on the columns of T
     let scale = trace_ratio(k, m);
     let rigid = rigid_flags(k, &phi, &omega2, scale);
-    let labels_out = (0..q)
-        .map(|j| {
-            if rigid[j] {
-                return ModeLabel::Rigid;
-            }
-            let mut best = (0, -1.0);
-            // a flexible mode is never labelled rigid, whatever its rigid-column content
-            for &c in kept.iter().filter(|&&c| labels[c] != ModeLabel::Rigid) {
-                let w = n[(c, j)].abs() * mh[(c, c)].max(0.0).sqrt();
-                if w > best.1 {
-                    best = (c, w);
-                }
-            }
-            if best.1 < 0.0 {
-                ModeLabel::Normal
-            } else {
-                labels[best.0].clone()
-            }
-        })
-        .collect();
+    let weights = Mat::from_fn(labels.len(), q, |c, j| {
+        n[(c, j)] * mh[(c, c)].max(0.0).sqrt()
+    });
+    let (labels_out, shares) = origin_labels(&rigid, &weights, labels);
     let mut diagnostics = diagnose(k, m, &phi, &omega2)?;
     diagnostics.removed = removed;
     diagnostics.dependency_tol = DEPENDENCY_TOL;
+    diagnostics.label_shares = shares;
     if !cond.massless.is_empty() {
         diagnostics.massless_directions = cond.massless.len();
         diagnostics.notes.push(format!(

@@ -49,7 +49,8 @@ pub fn improved_cb_method1(
         .collect();
     let t = Mat::from_fn(n, keep.len(), |i, j| basis.t[(i, keep[j])]);
     let labels: Vec<ModeLabel> = keep.iter().map(|&c| basis.labels[c].clone()).collect();
-    let o = orthonormalize(k, m, &t, &labels)?;
+    let mut o = orthonormalize(k, m, &t, &labels)?;
+    o.diagnostics.basis_top_omega2 = basis.fixed_omega2.last().copied();
     let set = ModeSet {
         phi: o.phi,
         omega2: o.omega2,
@@ -117,6 +118,8 @@ pub fn improved_cb_method2(
     diagnostics.removed = set.diagnostics.removed;
     diagnostics.dependency_tol = set.diagnostics.dependency_tol;
     diagnostics.notes = set.diagnostics.notes;
+    diagnostics.basis_top_omega2 = set.diagnostics.basis_top_omega2;
+    diagnostics.label_shares = set.diagnostics.label_shares;
     let out = ModeSet {
         phi,
         omega2: set.omega2,

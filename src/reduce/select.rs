@@ -182,6 +182,10 @@ fn pick(mut set: ModeSet, keep: &[usize], sel: Selection) -> ModeSet {
     if r.len() >= keep.iter().max().map_or(0, |&x| x + 1) {
         set.diagnostics.residuals = keep.iter().map(|&j| r[j]).collect();
     }
+    let s = &set.diagnostics.label_shares;
+    if s.len() >= keep.iter().max().map_or(0, |&x| x + 1) {
+        set.diagnostics.label_shares = keep.iter().map(|&j| s[j]).collect();
+    }
     set.selection = Some(sel);
     set
 }

@@ -88,6 +88,36 @@ fn patch_crc(mut zip: Vec<u8>, name: &str) -> Vec<u8> {
     zip
 }
 
+/// Renames every occurrence of entry name `from` to `to` (same length) in the local and
+/// central-directory headers: the zip writer refuses duplicate names, so a file with two
+/// entries of one name is made by renaming a uniquely named one (APPNOTE 4.3.7 / 4.3.12).
+fn patch_name(mut zip: Vec<u8>, from: &str, to: &str) -> Vec<u8> {
+    assert_eq!(from.len(), to.len());
+    let (f, t) = (from.as_bytes(), to.as_bytes());
+    for (sig, name_at) in [(0x04034b50u32, 30usize), (0x02014b50, 46)] {
+        let sig = sig.to_le_bytes();
+        let pos = (0..zip.len().saturating_sub(name_at + f.len()))
+            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + f.len()] == f)
+            .expect("entry header present");
+        zip[pos + name_at..pos + name_at + f.len()].copy_from_slice(t);
+    }
+    zip
+}
+
+/// Sets the general-purpose "encrypted" flag (bit 0) of entry `name` in its local header
+/// (offset 6) and central-directory header (offset 8) — APPNOTE 4.4.4.
+fn patch_encrypted(mut zip: Vec<u8>, name: &str) -> Vec<u8> {
+    let n = name.as_bytes();
+    for (sig, at, name_at) in [(0x04034b50u32, 6usize, 30usize), (0x02014b50, 8, 46)] {
+        let sig = sig.to_le_bytes();
+        let pos = (0..zip.len().saturating_sub(name_at + n.len()))
+            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + n.len()] == n)
+            .expect("entry header present");
+        zip[pos + at] |= 1;
+    }
+    zip
+}
+
 /// Every case, in a fixed order.
 pub fn cases(base: &ReducedBody) -> Vec<Case> {
     let mut out = Vec::new();
@@ -164,6 +194,15 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         pack(&m, &good),
         Some(("UnsupportedVersion", "format version 2.0 is newer")),
     );
+    // A 2.0 manifest whose other members changed shape: still UnsupportedVersion (the version
+    // is judged before the rest of the manifest, SPEC §7.1 step 3).
+    m["entries"] = json!({"payload": "a later layout"});
+    m.as_object_mut().expect("object").remove("units");
+    add(
+        "newer_major_version_other_manifest",
+        pack(&m, &good),
+        Some(("UnsupportedVersion", "format version 2.0 is newer")),
+    );
 
     let mut e = good.clone();
     e.push((
@@ -216,6 +255,18 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         pack(&good_manifest, &e),
         Some(("UnlistedEntry", "stray.txt")),
     );
+    // A folder entry is an entry like any other (SPEC §2): not listed → UnlistedEntry.
+    let mut e = good.clone();
+    e.push(("extras/".into(), false, Vec::new()));
+    add(
+        "folder_entry",
+        pack(&good_manifest, &e),
+        Some(("UnlistedEntry", "extras/")),
+    );
+    // Bytes before the first entry are not looked at (SPEC §2): the file is accepted.
+    let mut prefixed = b"#!self-extracting stub\n".to_vec();
+    prefixed.extend(pack(&good_manifest, &good));
+    add("data_before_first_entry", prefixed, None);
 
     let e: Entries = good
         .iter()
@@ -425,6 +476,75 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         "unsupported_compression",
         patch_method(pack(&good_manifest, &good), codec::DAMPING, 12),
         Some(("Compression", "damping.bin: compression method")),
+    );
+
+    add(
+        "encrypted_entry",
+        patch_encrypted(pack(&good_manifest, &good), codec::DAMPING),
+        Some(("Container", "damping.bin")),
+    );
+    // Two zip entries named damping.bin (SPEC §7.1 step 1): the second is a renamed copy.
+    let mut dup = good.clone();
+    let copy = dup
+        .iter()
+        .find(|e| e.0 == codec::DAMPING)
+        .expect("base has damping")
+        .clone();
+    dup.push(("damping.bix".to_string(), false, copy.2));
+    add(
+        "duplicate_zip_entry",
+        patch_name(pack(&good_manifest, &dup), "damping.bix", codec::DAMPING),
+        Some(("DuplicateEntry", "damping.bin")),
+    );
+
+    // recipe.json (format 1.2): JSON that is not a recipe, and a recipe naming a node that is not
+    // a stored interface node.
+    let mut b = base.clone();
+    b.recipe = Some(super::recipe_3node());
+    let recipe_bytes = codec::encode_recipe(&super::recipe_3node());
+    let cut = recipe_bytes[..recipe_bytes.len() / 2].to_vec();
+    add(
+        "recipe_not_json",
+        with_entry(&b, codec::RECIPE, cut),
+        Some(("Decode", "recipe.json: cannot decode")),
+    );
+    let mut c = base.clone();
+    c.method.counts.normal = 5;
+    add(
+        "counts_do_not_add_up",
+        from_body(&c),
+        Some((
+            "Inconsistent",
+            "method.bin: counts give 6 basis vectors (after 0 removed) for 3 modes",
+        )),
+    );
+    let mut c = base.clone();
+    c.method.cutoffs.fmax_hz = Some(300.0);
+    add(
+        "cutoff_fmax_not_the_request",
+        from_body(&c),
+        Some((
+            "Inconsistent",
+            "method.bin: cutoffs.fmax_hz Some(300.0) differs",
+        )),
+    );
+    let mut s = base.clone();
+    s.label_shares = Some(vec![1.0, 1.5, 1.0]);
+    add(
+        "label_share_above_one",
+        from_body(&s),
+        Some(("Inconsistent", "label_shares.bin: share[1] = 1.5")),
+    );
+    if let Some(r) = b.recipe.as_mut() {
+        r.interfaces[0].nodes = vec![102];
+    }
+    add(
+        "recipe_interface_node_not_stored",
+        from_body(&b),
+        Some((
+            "Inconsistent",
+            "recipe.json: interfaces[0] (101) names node 102",
+        )),
     );
     out
 }

@@ -336,6 +336,8 @@ pub fn body_3node() -> ReducedBody {
             ratio: vec![0.0, 0.02, 0.02],
         }),
         lines: None,
+        recipe: None,
+        label_shares: None,
     }
 }
 
@@ -523,6 +525,8 @@ pub fn body_20node() -> ReducedBody {
         }),
         damping: None,
         lines: None,
+        recipe: None,
+        label_shares: None,
     }
 }
 
@@ -538,12 +542,92 @@ pub fn body_3node_lines() -> ReducedBody {
     b
 }
 
+/// A recipe for the 3-node chain (format 1.2 `recipe.json`): a normal-mode build of a made-up
+/// deck with one include, node 101 named directly and node 103 the centre of an RBE2 spider.
+pub fn recipe_3node() -> Recipe {
+    let hex = |c: char| std::iter::repeat_n(c, 64).collect::<String>();
+    Recipe {
+        tool: Generator {
+            name: "flexbody".into(),
+            version: "0.1.0".into(),
+        },
+        model_files: vec![
+            ModelFile {
+                path: "chain.inp".into(),
+                role: "main".into(),
+                size: 240,
+                sha256: hex('a'),
+            },
+            ModelFile {
+                path: "mesh/chain_mesh.inp".into(),
+                role: "include".into(),
+                size: 1024,
+                sha256: hex('0'),
+            },
+        ],
+        options: RecipeOptions {
+            format: None,
+            material: Some("E=210000000000,nu=0.3,rho=7850".into()),
+            method: "normal".into(),
+            modes: Some(3),
+            fmax_hz: None,
+            mass: "lumped".into(),
+            beam_mass: "section".into(),
+            units: Units::si(),
+            interface: vec!["101".into(), "RIGHT_END".into()],
+            spider: "rbe2".into(),
+            reference_conditions: vec![],
+            reference_method: 1,
+            keep_nodes: "all".into(),
+            invariants: "full".into(),
+            stress_fields: "none".into(),
+            damping: Some("0-1:0%,1-:2%".into()),
+            thickness: None,
+            subcase: None,
+        },
+        interfaces: vec![
+            RecipeInterface {
+                entry: "101".into(),
+                nodes: vec![101],
+                spider: None,
+            },
+            RecipeInterface {
+                entry: "RIGHT_END".into(),
+                nodes: vec![103],
+                spider: Some(RecipeSpider {
+                    kind: "rbe2".into(),
+                    centre_node: 103,
+                    centre: [2.0, 0.0, 0.0],
+                    fit: "NodeAverage".into(),
+                    offset_from_node_average: 0.0,
+                    set_nodes: vec![7, 8, 9],
+                }),
+            },
+        ],
+        accuracy_band: AccuracyBand {
+            fmax_hz: hz(3.0 * K3 / M3),
+            rule: "normal-modes".into(),
+            basis_cutoff_hz: None,
+        },
+    }
+}
+
+/// The 3-node chain with its build recipe (format 1.2 `recipe.json`).
+pub fn body_3node_recipe() -> ReducedBody {
+    let mut b = body_3node();
+    b.recipe = Some(recipe_3node());
+    b.label_shares = Some(vec![1.0, 1.0, 1.0]);
+    b.version = flexbody_reader::version_for(&b);
+    b
+}
+
 /// Golden files: (file stem, body); each goes under `golden/v<its version>/`.
 pub fn golden() -> Vec<(&'static str, ReducedBody)> {
     vec![
         ("three_node_chain", body_3node()),
         ("twenty_node_chain", body_20node()),
         ("three_node_chain_lines", body_3node_lines()),
+        ("three_node_chain_recipe", body_3node_recipe()),
     ]
 }
 

@@ -349,6 +349,7 @@ impl Parser {
         }
         self.b.model.node_sets = node_sets;
         self.b.model.element_sets = element_sets;
+        self.b.model.files = self.b.files.clone();
         Ok(self.b.model)
     }
 }

@@ -700,6 +700,7 @@ pub(crate) fn build(
             message: format!("unsupported card {name} ignored ({n} cards)"),
         });
     }
+    b.model.files = b.files.clone();
     Ok((b.model, counts))
 }
 
