@@ -571,11 +571,12 @@ impl Parser {
                         self.b.add_element(id, kind, nodes, None, card, start);
                     }
                     None => {
-                        if self.mass_elems.insert(id, (vals[1], start)).is_some() {
+                        if let Some((_, first)) = self.mass_elems.insert(id, (vals[1], start)) {
+                            let at = format!("{}:{}", self.b.file_name(first), first.line);
                             return Err(self.err(
                                 start,
                                 format!("*ELEMENT {id}"),
-                                "duplicate element id",
+                                format!("duplicate element id (first defined at {at})"),
                             ));
                         }
                     }

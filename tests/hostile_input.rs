@@ -1,0 +1,183 @@
+//! Hostile and careless input (issue 20): duplicate ids, non-finite numbers and memory bombs.
+//! Every case must end in an error naming file, line and card/keyword — never a panic, a silent
+//! double count, or an allocation the file's size cannot justify.
+
+use std::path::PathBuf;
+
+use flexbody::import::{read_model, ImportError, ImportOptions};
+
+fn dir() -> PathBuf {
+    let d = std::env::temp_dir().join(format!("flexbody_hostile_{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(name: &str, text: &[u8]) -> PathBuf {
+    let p = dir().join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn read(name: &str, text: &[u8]) -> Result<flexbody::model::Model, ImportError> {
+    read_model(&write(name, text), &ImportOptions::default())
+}
+
+/// The deck must fail at `line` on `entity`, and the message must hold every `parts`.
+fn fails(name: &str, text: &[u8], line: usize, entity: &str, parts: &[&str]) {
+    let e = match read(name, text) {
+        Ok(_) => panic!("{name}: accepted"),
+        Err(e) => e,
+    };
+    let msg = e.to_string();
+    assert!(e.file().is_some_and(|f| f.ends_with(name)), "{name}: {msg}");
+    assert_eq!(
+        (e.line(), e.entity()),
+        (Some(line), Some(entity)),
+        "{name}: {msg}"
+    );
+    for p in parts {
+        assert!(msg.contains(p), "{name}: '{p}' not in: {msg}");
+    }
+}
+
+const BDF_BASE: &str = "MAT1,1,2.1e11,,.3,7850.\nPBAR,2,1,1.e-4,1.e-9,1.e-9,2.e-9\n\
+GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,2.,0.,0.\nCBAR,10,2,1,2,0.,1.,0.\n";
+
+#[test]
+fn nastran_distinct_ids_are_accepted_and_mass_counted_once() {
+    let deck = format!("{BDF_BASE}CONM2,20,2,,1.5\nCONM2,21,3,,2.5\nRBE2,30,1,123456,3\n");
+    let m = read("ok.bdf", deck.as_bytes()).unwrap();
+    let total: f64 = m.point_masses.iter().map(|p| p.mass).sum();
+    assert_eq!((m.point_masses.len(), total), (2, 4.0));
+}
+
+#[test]
+fn nastran_duplicate_conm2_ids_name_both_lines() {
+    let deck = format!("{BDF_BASE}CONM2,20,2,,1.5\nCONM2,20,3,,2.5\n");
+    fails(
+        "dup_conm2.bdf",
+        deck.as_bytes(),
+        8,
+        "CONM2 20",
+        &["duplicate element id 20", "CONM2 20 at ", "dup_conm2.bdf:7"],
+    );
+}
+
+#[test]
+fn nastran_conm2_with_a_cbar_id_is_a_duplicate() {
+    let deck = format!("{BDF_BASE}CONM2,10,2,,1.5\n");
+    fails(
+        "dup_conm2_cbar.bdf",
+        deck.as_bytes(),
+        7,
+        "CONM2 10",
+        &["CBAR 10 at ", "dup_conm2_cbar.bdf:6", "one id space"],
+    );
+}
+
+#[test]
+fn nastran_duplicate_rigid_element_ids() {
+    let deck = format!("{BDF_BASE}RBE2,30,1,123456,3\nRBE3,30,,2,123456,1.,123,1,3\n");
+    fails(
+        "dup_rbe.bdf",
+        deck.as_bytes(),
+        8,
+        "RBE3 30",
+        &["RBE2 30 at ", "dup_rbe.bdf:7"],
+    );
+    let deck = format!("{BDF_BASE}RBE2,10,1,123456,3\n");
+    fails(
+        "dup_rbe_cbar.bdf",
+        deck.as_bytes(),
+        7,
+        "RBE2 10",
+        &["CBAR 10 at ", ":6"],
+    );
+}
+
+#[test]
+fn nastran_duplicate_grids_properties_materials() {
+    let deck = format!("{BDF_BASE}GRID,2,,5.,0.,0.\n");
+    fails(
+        "dup_grid.bdf",
+        deck.as_bytes(),
+        7,
+        "GRID 2",
+        &["duplicate node id", "dup_grid.bdf:4"],
+    );
+    let deck = format!("{BDF_BASE}PROD,2,1,1.e-4\n");
+    fails(
+        "dup_prop.bdf",
+        deck.as_bytes(),
+        7,
+        "PROD 2",
+        &["duplicate property id 2", "PBAR 2 at ", ":2"],
+    );
+    // An unsupported property type still owns its id.
+    let deck = format!("{BDF_BASE}PELAS,2,1.e3\n");
+    fails(
+        "dup_prop_pelas.bdf",
+        deck.as_bytes(),
+        7,
+        "PELAS 2",
+        &["PBAR 2 at ", ":2"],
+    );
+    let deck = format!("{BDF_BASE}MAT1,1,7.e10,,.33,2700.\n");
+    fails(
+        "dup_mat.bdf",
+        deck.as_bytes(),
+        7,
+        "MAT1 1",
+        &["duplicate material id 1", "MAT1 1 at ", "dup_mat.bdf:1"],
+    );
+}
+
+#[test]
+fn nastran_mat4_may_share_a_mat1_id() {
+    // Nastran's rule: MAT4 (thermal) carries the thermal data of the MAT1 of the same MID.
+    let deck = format!("{BDF_BASE}MAT4,1,50.\n");
+    let m = read("mat4.bdf", deck.as_bytes()).unwrap();
+    assert_eq!(m.materials.len(), 1);
+}
+
+const INP_NODES: &str = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n";
+
+#[test]
+fn abaqus_duplicate_nodes_and_elements_name_both_lines() {
+    let deck = format!("{INP_NODES}3, 5, 5, 5\n");
+    fails(
+        "dup_node.inp",
+        deck.as_bytes(),
+        6,
+        "*NODE 3",
+        &["duplicate node id", "dup_node.inp:4"],
+    );
+    let deck = format!(
+        "{INP_NODES}*ELEMENT, TYPE=C3D4\n7, 1, 2, 3, 4\n*ELEMENT, TYPE=C3D4\n7, 1, 2, 4, 3\n"
+    );
+    fails(
+        "dup_elem.inp",
+        deck.as_bytes(),
+        9,
+        "C3D4 7",
+        &["duplicate element id", "dup_elem.inp:7"],
+    );
+    let deck = format!(
+        "{INP_NODES}*ELEMENT, TYPE=C3D4\n7, 1, 2, 3, 4\n*ELEMENT, TYPE=MASS, ELSET=M\n7, 2\n"
+    );
+    fails(
+        "dup_mass.inp",
+        deck.as_bytes(),
+        9,
+        "*ELEMENT 7",
+        &["duplicate element id", "dup_mass.inp:7"],
+    );
+    let deck = format!("{INP_NODES}*ELEMENT, TYPE=MASS, ELSET=M\n7, 2\n8, 3\n7, 4\n");
+    fails(
+        "dup_mass2.inp",
+        deck.as_bytes(),
+        9,
+        "*ELEMENT 7",
+        &["duplicate element id", "dup_mass2.inp:7"],
+    );
+}
