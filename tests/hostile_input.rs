@@ -181,3 +181,114 @@ fn abaqus_duplicate_nodes_and_elements_name_both_lines() {
         &["duplicate element id", "dup_mass2.inp:7"],
     );
 }
+
+// ---- non-finite and out-of-range numbers ----
+
+#[test]
+fn nastran_overflowing_and_nan_reals_are_errors_with_field() {
+    let deck = BDF_BASE.replace("GRID,2,,1.,0.,0.", "GRID,2,,0.1e400,0.,0.");
+    fails(
+        "inf_grid.bdf",
+        deck.as_bytes(),
+        4,
+        "GRID 2",
+        &["field 4", "'0.1e400'", "infinite"],
+    );
+    let deck = BDF_BASE.replace("2.1e11", "1.+200");
+    fails(
+        "big_mat.bdf",
+        deck.as_bytes(),
+        1,
+        "MAT1 1",
+        &["field 3", "out of range", "1e150"],
+    );
+    let deck = BDF_BASE.replace("7850.", "NaN");
+    fails(
+        "nan_mat.bdf",
+        deck.as_bytes(),
+        1,
+        "MAT1 1",
+        &["field 6", "bad number 'NaN'"],
+    );
+    let deck = format!("{BDF_BASE}CONM2,20,2,,1.e160\n");
+    fails(
+        "big_conm2.bdf",
+        deck.as_bytes(),
+        7,
+        "CONM2 20",
+        &["field 5", "out of range"],
+    );
+}
+
+#[test]
+fn abaqus_nan_inf_and_huge_reals_are_errors() {
+    let deck = INP_NODES.replace("2, 1, 0, 0", "2, NaN, 0, 0");
+    fails(
+        "nan_node.inp",
+        deck.as_bytes(),
+        3,
+        "*NODE 2",
+        &["'NaN'", "not a number"],
+    );
+    let deck = INP_NODES.replace("2, 1, 0, 0", "2, 1, inf, 0");
+    fails("inf_node.inp", deck.as_bytes(), 3, "*NODE 2", &["infinite"]);
+    let deck = format!("{INP_NODES}*MATERIAL, NAME=M\n*ELASTIC\n1e308, 0.3\n");
+    fails(
+        "big_e.inp",
+        deck.as_bytes(),
+        8,
+        "*MATERIAL M",
+        &["'1e308'", "out of range"],
+    );
+    let deck = format!("{INP_NODES}*MATERIAL, NAME=M\n*DENSITY\n1.0D400\n");
+    fails(
+        "big_rho.inp",
+        deck.as_bytes(),
+        8,
+        "*MATERIAL M",
+        &["'1.0D400'", "infinite"],
+    );
+}
+
+#[test]
+fn gmsh_non_finite_coordinates_are_errors() {
+    let msh = b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n3 1 0 2\n1\n2\n0 0 0\n1 nan 0\n$EndNodes\n";
+    fails("nan.msh", msh, 10, "$Nodes", &["'nan'", "not a number"]);
+    let msh = b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n3 1 0 2\n1\n2\n0 0 0\n1 1e300 0\n$EndNodes\n";
+    fails("big.msh", msh, 10, "$Nodes", &["out of range"]);
+}
+
+#[test]
+fn matrix_market_non_finite_values_are_errors() {
+    use flexbody::import::matrix_market::read_matrix;
+    let p = write(
+        "k_inf.mtx",
+        b"%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 1.0\n2 2 inf\n",
+    );
+    let e = read_matrix(&p).unwrap_err();
+    assert_eq!(e.line(), Some(4), "{e}");
+    assert!(e.to_string().contains("infinite"), "{e}");
+    let p = write(
+        "k_big.mtx",
+        b"%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 1e151\n2 2 1.0\n",
+    );
+    let e = read_matrix(&p).unwrap_err();
+    assert_eq!(e.line(), Some(3), "{e}");
+    assert!(e.to_string().contains("out of range"), "{e}");
+}
+
+#[test]
+fn implausible_material_is_a_warning_not_an_error() {
+    // E in Pa with ρ in t/mm³: wave speed 5.2e9 length/time, a unit mix-up; the deck still reads.
+    let deck = BDF_BASE.replace("7850.", "7.85e-9");
+    let m = read("units.bdf", deck.as_bytes()).unwrap();
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.message.contains("material MAT1 1") && w.message.contains("wave speed")),
+        "{:?}",
+        m.warnings
+    );
+    let m = read("units_ok.bdf", BDF_BASE.as_bytes()).unwrap();
+    assert!(!m.warnings.iter().any(|w| w.message.contains("wave speed")));
+}

@@ -21,10 +21,7 @@ use crate::model::{ElementKind, Material, Model};
 /// Read a Gmsh 4.1 mesh; solid elements get a solid section of `material` when given.
 pub fn read(path: &Path, material: Option<&Material>) -> Result<Model, ImportError> {
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| ImportError::Io {
-        file: file.clone(),
-        source,
-    })?;
+    let bytes = super::budget::read_bounded(path, super::budget::Content::Mesh)?;
     let mut model = parse(&file, &bytes)?;
     if let Some(m) = material {
         super::apply_default_material(&mut model, m);
@@ -169,11 +166,15 @@ impl<'a> Cur<'a> {
     }
 
     fn dbl(&mut self) -> Result<f64, ImportError> {
-        if self.binary {
-            return Ok(f64::from_le_bytes(self.raw::<8>()?));
-        }
-        let t = self.token()?;
-        t.parse().map_err(|_| self.err(format!("bad number '{t}'")))
+        let (v, t) = if self.binary {
+            let v = f64::from_le_bytes(self.raw::<8>()?);
+            (Some(v), format!("{v:e}"))
+        } else {
+            let t = self.token()?;
+            (t.parse::<f64>().ok(), t.to_owned())
+        };
+        v.and_then(super::budget::in_range)
+            .ok_or_else(|| self.err(super::budget::bad_number(&t, v)))
     }
 
     /// Skip to the line `$End<name>`.

@@ -13,7 +13,7 @@ use std::path::Path;
 
 use super::ccx_matrices::{EquationDof, SymmetricTriplets};
 use super::error::{parse_err, ImportError};
-use super::text::{parse_f64, parse_u64, read_text};
+use super::text::{bad_number, parse_f64, parse_u64, read_text};
 use crate::model::Node;
 
 /// A body given only by its matrices.
@@ -92,8 +92,7 @@ pub fn read_node_table(path: &Path) -> Result<(Vec<Node>, Vec<u8>), ImportError>
         let ent = format!("node {id}");
         let mut x = [0.0; 3];
         for d in 0..3 {
-            x[d] = parse_f64(f[1 + d])
-                .ok_or_else(|| err(ent.clone(), format!("bad number '{}'", f[1 + d])))?;
+            x[d] = parse_f64(f[1 + d]).ok_or_else(|| err(ent.clone(), bad_number(f[1 + d])))?;
         }
         let nd = match f[4] {
             "3" => 3,
@@ -182,9 +181,7 @@ pub fn read_matrix(path: &Path) -> Result<SymmetricTriplets, ImportError> {
         let (Some(r), Some(c)) = (parse_u64(r), parse_u64(c)) else {
             return Err(err(i + 1, &ent(), format!("bad index in `{s}`")));
         };
-        let v = parse_f64(v)
-            .filter(|v| v.is_finite())
-            .ok_or_else(|| err(i + 1, &ent(), format!("bad value '{v}'")))?;
+        let v = parse_f64(v).ok_or_else(|| err(i + 1, &ent(), bad_number(v)))?;
         if r == 0 || c == 0 || r > n as u64 || c > n as u64 {
             return Err(err(
                 i + 1,

@@ -23,7 +23,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
 use super::error::ImportError;
-use super::text::{parse_f64, parse_u64, read_text, Builder, Loc};
+use super::text::{bad_number, parse_f64, parse_u64, read_text, Builder, Loc};
 use defs::{abaqus_shape, element_kind, transform_frame};
 
 use crate::model::{CoordSystem, DofMask, ElementKind, Model, Section, SectionShape};
@@ -510,7 +510,7 @@ impl Parser {
 
     fn data_line(&mut self, line: &str, loc: Loc) -> Result<(), ImportError> {
         let num = |s: &str, ent: &str, p: &Parser| -> Result<f64, ImportError> {
-            parse_f64(s).ok_or_else(|| p.err(loc, ent.to_owned(), format!("bad number '{s}'")))
+            parse_f64(s).ok_or_else(|| p.err(loc, ent.to_owned(), bad_number(s)))
         };
         match &self.block {
             Block::Skip => {}
@@ -529,9 +529,8 @@ impl Parser {
                 let mut x = [0.0; 3];
                 for (k, s) in f.enumerate() {
                     if k < 3 && !s.is_empty() {
-                        x[k] = parse_f64(s).ok_or_else(|| {
-                            self.err(loc, format!("*NODE {id}"), format!("bad number '{s}'"))
-                        })?;
+                        x[k] = parse_f64(s)
+                            .ok_or_else(|| self.err(loc, format!("*NODE {id}"), bad_number(s)))?;
                     }
                 }
                 if let Some(n) = nset {

@@ -3,8 +3,13 @@
 use super::lex::Card;
 use crate::import::error::{parse_err, ImportError};
 
-/// Nastran real: `1.5`, `1.5E3`, `1.5+3` (implicit exponent), `1.5D3`, `.5`, `1.`.
+/// Nastran real: `1.5`, `1.5E3`, `1.5+3` (implicit exponent), `1.5D3`, `.5`, `1.`; `None`
+/// also when out of [`crate::import::budget::MAX_ABS_REAL`] (e.g. `0.1e400`, which overflows).
 pub(crate) fn nastran_real(s: &str) -> Option<f64> {
+    nastran_real_unbounded(s).and_then(crate::import::budget::in_range)
+}
+
+fn nastran_real_unbounded(s: &str) -> Option<f64> {
     let s = s.trim();
     if s.is_empty() || !s.bytes().any(|b| b.is_ascii_digit()) {
         return None;
@@ -93,9 +98,10 @@ impl<'a> C<'a> {
         if s.is_empty() {
             return Ok(None);
         }
-        nastran_real(s)
-            .map(Some)
-            .ok_or_else(|| self.err(k, format!("field {}: bad number '{s}'", k + 2)))
+        nastran_real(s).map(Some).ok_or_else(|| {
+            let why = crate::import::budget::bad_number(s, nastran_real_unbounded(s));
+            self.err(k, format!("field {}: {why}", k + 2))
+        })
     }
 
     /// Real field with a default for blank.
@@ -130,7 +136,8 @@ impl<'a> C<'a> {
             match s.parse::<u64>() {
                 Ok(v) => out.push((v, k)),
                 Err(_)
-                    if nastran_real(s).is_some() || s.chars().all(|c| c.is_ascii_alphabetic()) =>
+                    if nastran_real_unbounded(s).is_some()
+                        || s.chars().all(|c| c.is_ascii_alphabetic()) =>
                 {
                     break
                 }
@@ -158,5 +165,10 @@ mod tests {
         assert_eq!(nastran_real("nan"), None);
         assert_eq!(nastran_real("1.2.3"), None);
         assert_eq!(nastran_real("abc"), None);
+        assert_eq!(
+            (nastran_real("0.1e400"), nastran_real("1.+200")),
+            (None, None)
+        );
+        assert_eq!(nastran_real("1.-200"), Some(1e-200));
     }
 }
