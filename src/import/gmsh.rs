@@ -156,11 +156,31 @@ impl<'a> Cur<'a> {
             .map_err(|_| self.err(format!("bad non-negative integer '{t}'")))
     }
 
-    /// A count, bounded by what the remaining file could possibly hold.
+    /// A count of items taking at least one tag each, bounded by the bytes that remain.
     fn count(&mut self) -> Result<usize, ImportError> {
+        let tag = self.tag_bytes();
+        self.count_of(tag, "items")
+    }
+
+    /// Smallest encoding of one tag: a digit and a separator, or a binary int.
+    fn tag_bytes(&self) -> u64 {
+        if self.binary {
+            4
+        } else {
+            2
+        }
+    }
+
+    /// A count of `what`, each taking at least `per_item` bytes: it must fit in the bytes that
+    /// remain, checked before anything is reserved for it (the input budget, `import::budget`).
+    fn count_of(&mut self, per_item: u64, what: &str) -> Result<usize, ImportError> {
         let n = self.size()?;
-        if n > self.data.len() as u64 {
-            return Err(self.err(format!("count {n} larger than the file")));
+        let remaining = (self.data.len() - self.pos.min(self.data.len())) as u64;
+        if n.saturating_mul(per_item) > remaining {
+            return Err(self.err(format!(
+                "the file claims {n} {what} (at least {} bytes), but only {remaining} bytes remain",
+                n.saturating_mul(per_item)
+            )));
         }
         Ok(n as usize)
     }
@@ -295,7 +315,9 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
             }
             "$Nodes" => {
                 c.section = "$Nodes";
-                let (blocks, total) = (c.count()?, c.count()?);
+                // A node takes at least a tag and three coordinates.
+                let per_node = if c.binary { c.size_t as u64 + 24 } else { 8 };
+                let (blocks, total) = (c.count()?, c.count_of(per_node, "nodes")?);
                 c.size()?;
                 c.size()?;
                 b.model.nodes.reserve(total);
@@ -303,7 +325,7 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                     let dim = c.int()?;
                     c.int()?;
                     let parametric = c.int()? != 0;
-                    let n = c.count()?;
+                    let n = c.count_of(per_node, "nodes")?;
                     let start = b.model.nodes.len();
                     let loc = Loc {
                         file: 0,
@@ -343,9 +365,11 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                     let dim = c.int()?;
                     let ent = c.int()?;
                     let ty = c.int()?;
-                    let n = c.count()?;
                     let (tdim, nn, kind, perm) = element_type(ty as i32)
                         .ok_or_else(|| c.err(format!("unsupported element type {ty}")))?;
+                    // An element takes at least its tag and its node tags.
+                    let per_elem = (nn as u64 + 1) * if c.binary { c.size_t as u64 } else { 2 };
+                    let n = c.count_of(per_elem, "elements")?;
                     if dim != tdim as i64 {
                         return Err(
                             c.err(format!("element type {ty} in an entity of dimension {dim}"))

@@ -36,7 +36,8 @@ pub fn read(k_path: &Path, m_path: &Path, nodes_path: &Path) -> Result<MatrixMod
     let (nodes, ndof) = read_node_table(nodes_path)?;
     let k = read_matrix(k_path)?;
     let m = read_matrix(m_path)?;
-    let mut dofs = Vec::with_capacity(k.n);
+    // Sized by the node table (read in full), not by a count a matrix header claims.
+    let mut dofs = Vec::with_capacity(ndof.iter().map(|&d| d as usize).sum());
     for (n, &nd) in nodes.iter().zip(&ndof) {
         dofs.extend((0..nd).map(|d| EquationDof { node: n.id, dir: d }));
     }
@@ -157,8 +158,19 @@ pub fn read_matrix(path: &Path) -> Result<SymmetricTriplets, ImportError> {
             };
             match parsed {
                 (Some(r), Some(c), Some(z)) if r == c && r <= u64::from(u32::MAX) => {
+                    // The input budget (import::budget): an entry `i j v` takes at least 6
+                    // bytes, so the count must fit in what remains before it is reserved.
+                    let at = raw.as_ptr() as usize - text.as_ptr() as usize + raw.len();
+                    let remaining = (text.len() - at) as u64;
+                    if z.saturating_mul(6) > remaining {
+                        return Err(err(
+                            i + 1,
+                            "size",
+                            format!("the size line claims {z} entries (at least {} bytes), but only {remaining} bytes remain", z.saturating_mul(6)),
+                        ));
+                    }
                     size = Some((r as usize, z as usize));
-                    entries.reserve_exact(z.min(1 << 28) as usize);
+                    entries.reserve_exact(z as usize);
                 }
                 _ => {
                     return Err(err(

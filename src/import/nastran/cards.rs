@@ -4,7 +4,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use super::coord::{dir_to_basic, from_points, to_basic};
-use super::fields::C;
+use super::fields::{ThruBudget, C};
 use super::lex::{Card, Lexer};
 use super::CardCounts;
 use crate::import::error::{parse_err, ImportError};
@@ -27,6 +27,7 @@ pub(crate) fn build(
     let mut counts = CardCounts::new();
     let mut unsupported: BTreeMap<String, usize> = BTreeMap::new();
     let files = lexer.files;
+    let thru_budget = ThruBudget::for_bytes(lexer.bytes);
     let case = super::case_control::parse(&lexer.case_lines, lexer.has_case_control, &files)?;
     let effective = case.effective(subcase, &files, &files[0])?;
     let mut b = Builder::new(&files[0]);
@@ -247,7 +248,7 @@ pub(crate) fn build(
                     .filter(|m| m.0 != 0)
                     .ok_or_else(|| g.err(2, "bad CM dof digits"))?;
                 let mut dep = Vec::new();
-                for (id, k) in g.id_list(3)? {
+                for (id, k) in g.id_list(3, &thru_budget)? {
                     dep.push(node(&g, k, id)?);
                 }
                 if dep.is_empty() {
@@ -284,7 +285,7 @@ pub(crate) fn build(
                 let m =
                     DofMask::from_digits(g.text(1)).ok_or_else(|| g.err(1, "bad dof digits"))?;
                 let thru = (2..card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
-                for (id, k) in g.id_list(2)? {
+                for (id, k) in g.id_list(2, &thru_budget)? {
                     match nodes.get(id) {
                         Some(n) => spc_sets.entry(sid).or_default().push((n, m, card)),
                         None if thru => {}
@@ -292,7 +293,7 @@ pub(crate) fn build(
                     }
                 }
             }
-            "SPCADD" => spcadd.push((g.id(0, "SID")?, g.id_list(1)?, card)),
+            "SPCADD" => spcadd.push((g.id(0, "SID")?, g.id_list(1, &thru_budget)?, card)),
             "ASET" | "BSET" | "QSET" => {
                 let mut k = 0;
                 while !g.text(k).is_empty() {
@@ -320,7 +321,7 @@ pub(crate) fn build(
                     .filter(|m| m.0 != 0)
                     .ok_or_else(|| g.err(0, "bad dof digits"))?;
                 let thru = (1..card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
-                for (id, k) in g.id_list(1)? {
+                for (id, k) in g.id_list(1, &thru_budget)? {
                     let n = match nodes.get(id) {
                         Some(n) => n,
                         None if thru => continue,
@@ -547,7 +548,9 @@ pub(crate) fn build(
             if !spc_sets.contains_key(&s) {
                 return Err(cc(card, &files).err(k, format!("references unknown SPC set {s}")));
             }
-            entry.0.push(s);
+            if !entry.0.contains(&s) {
+                entry.0.push(s);
+            }
         }
         let mut ns: Vec<usize> = entry
             .0

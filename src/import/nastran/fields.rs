@@ -34,6 +34,23 @@ fn nastran_real_unbounded(s: &str) -> Option<f64> {
     format!("{}E{}", &s[..pos], &s[pos..]).parse().ok()
 }
 
+/// How many ids `THRU` ranges may expand to: per card, and over all cards of the deck (what is
+/// left). See `import::budget`.
+pub(crate) struct ThruBudget {
+    pub per_card: u64,
+    pub left: std::cell::Cell<u64>,
+}
+
+impl ThruBudget {
+    /// The budget of a deck of `bytes` bytes.
+    pub(crate) fn for_bytes(bytes: u64) -> ThruBudget {
+        ThruBudget {
+            per_card: crate::import::budget::expansion_limit(bytes),
+            left: std::cell::Cell::new(crate::import::budget::total_expansion_limit(bytes)),
+        }
+    }
+}
+
 /// A card plus the name of its file, for messages.
 pub(crate) struct C<'a> {
     pub card: &'a Card,
@@ -111,7 +128,12 @@ impl<'a> C<'a> {
 
     /// Integer ids from field `start` on, expanding `a THRU b`; blank fields are skipped; stops
     /// at the first real number (e.g. RBE2 ALPHA) or keyword other than THRU.
-    pub(crate) fn id_list(&self, start: usize) -> Result<Vec<(u64, usize)>, ImportError> {
+    /// Expansion is bounded by `budget`, checked before the ids are materialized.
+    pub(crate) fn id_list(
+        &self,
+        start: usize,
+        budget: &ThruBudget,
+    ) -> Result<Vec<(u64, usize)>, ImportError> {
         let mut out = Vec::new();
         let mut k = start;
         let n = self.card.fields.len();
@@ -126,9 +148,22 @@ impl<'a> C<'a> {
                     return Err(self.err(k, "THRU without a start id"));
                 };
                 let b = self.id(k + 1, "THRU end")?;
-                if b < a || b - a > 20_000_000 {
+                if b < a {
                     return Err(self.err(k, format!("bad THRU range {a}..{b}")));
                 }
+                let more = b - a;
+                let card_total = (out.len() as u64).saturating_add(more);
+                if card_total > budget.per_card || more > budget.left.get() {
+                    return Err(self.err(
+                        k,
+                        format!(
+                            "THRU range {a}..{b} would expand the card to {card_total} ids: more than the input budget allows ({} per card, {} left for the deck; see flexbody::import::budget)",
+                            budget.per_card,
+                            budget.left.get()
+                        ),
+                    ));
+                }
+                budget.left.set(budget.left.get() - more);
                 out.extend((a + 1..=b).map(|i| (i, k)));
                 k += 2;
                 continue;
