@@ -420,3 +420,67 @@ fn bombs_through_the_cli_stay_within_one_gigabyte() {
         assert!(!out_file.exists(), "{path}: wrote an output");
     }
 }
+
+// ---- output path ----
+
+fn cli_build(out: &std::path::Path) -> std::process::Output {
+    let deck = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/models/planar_beam/planar_beam.bdf");
+    std::process::Command::new(env!("CARGO_BIN_EXE_flexbody"))
+        .args([
+            "build",
+            &deck.display().to_string(),
+            "--interface",
+            "1,9",
+            "--units",
+            "si",
+            "-o",
+        ])
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn output_folder_or_missing_folder_is_refused_before_the_build() {
+    let folder = dir().join("a_folder.flexbody");
+    std::fs::create_dir_all(&folder).unwrap();
+    let missing = dir().join("no/such/x.flexbody");
+    for out in [folder.clone(), missing.clone()] {
+        let o = cli_build(&out);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{err}");
+        assert!(
+            err.contains(&out.display().to_string()),
+            "-o path not named: {err}"
+        );
+        assert!(!err.contains(".tmp-"), "temp file named: {err}");
+        let first_line = err.lines().next().unwrap_or("");
+        let tail = first_line.rsplit(": ").next().unwrap_or("");
+        assert_eq!(first_line.matches(tail).count(), 1, "doubled text: {err}");
+        // Refused before the build: no import stage ran.
+        assert!(!err.contains("import "), "build ran first: {err}");
+    }
+    assert!(String::from_utf8_lossy(&cli_build(&folder).stderr).contains("it is a folder"));
+    assert!(String::from_utf8_lossy(&cli_build(&missing).stderr).contains("does not exist"));
+}
+
+#[test]
+fn a_stale_temp_file_of_a_killed_run_is_removed_by_the_next_run() {
+    let d = dir().join("stale");
+    std::fs::create_dir_all(&d).unwrap();
+    let out = d.join("body.flexbody");
+    // A pid that runs no process (as after `kill -9`), and another output's temp file.
+    let dead = (400_000u32..)
+        .find(|p| !std::path::Path::new(&format!("/proc/{p}")).exists())
+        .unwrap();
+    let stale = d.join(format!(".body.flexbody.tmp-{dead}"));
+    let other = d.join(format!(".other.flexbody.tmp-{dead}"));
+    std::fs::write(&stale, b"partial").unwrap();
+    std::fs::write(&other, b"partial").unwrap();
+    let o = cli_build(&out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.exists());
+    assert!(!stale.exists(), "stale temp file left");
+    assert!(other.exists(), "another output's temp file was touched");
+}
