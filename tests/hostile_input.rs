@@ -484,3 +484,25 @@ fn a_stale_temp_file_of_a_killed_run_is_removed_by_the_next_run() {
     assert!(!stale.exists(), "stale temp file left");
     assert!(other.exists(), "another output's temp file was touched");
 }
+
+#[test]
+fn gmsh_entity_bounding_boxes_may_hold_dbl_max() {
+    // Gmsh writes ±DBL_MAX for an empty bounding box; boxes are not model data.
+    let m = "1.797693134862316e+308";
+    let msh = format!(
+        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 0 1\n1 -{m} -{m} -{m} {m} {m} {m} 0 0\n$EndEntities\n\
+$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n\
+$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n"
+    );
+    let model = read("dblmax_box.msh", msh.as_bytes()).unwrap();
+    assert_eq!((model.nodes.len(), model.elements.len()), (4, 1));
+    // The same value as a node coordinate is an error.
+    let bad = msh.replace("\n1 0 0\n", &format!("\n{m} 0 0\n"));
+    fails(
+        "dblmax_node.msh",
+        bad.as_bytes(),
+        16,
+        "$Nodes",
+        &["'1.797693134862316e+308'", "every real must be finite"],
+    );
+}

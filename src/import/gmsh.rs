@@ -185,6 +185,16 @@ impl<'a> Cur<'a> {
         Ok(n as usize)
     }
 
+    /// A real that is skipped (any value, NaN included).
+    fn dbl_any(&mut self) -> Result<f64, ImportError> {
+        if self.binary {
+            return Ok(f64::from_le_bytes(self.raw::<8>()?));
+        }
+        let t = self.token()?;
+        t.parse().map_err(|_| self.err(format!("bad number '{t}'")))
+    }
+
+    /// A real used by the model: finite and within the input budget's range.
     fn dbl(&mut self) -> Result<f64, ImportError> {
         let (v, t) = if self.binary {
             let v = f64::from_le_bytes(self.raw::<8>()?);
@@ -294,8 +304,10 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                     for _ in 0..n {
                         let tag = c.int()?;
                         let nbox = if dim == 0 { 3 } else { 6 };
+                        // Bounding boxes are ignored, and Gmsh may write ±DBL_MAX for an
+                        // empty one: parsed, not range-checked.
                         for _ in 0..nbox {
-                            c.dbl()?;
+                            c.dbl_any()?;
                         }
                         let np = c.count()?;
                         let mut phys = Vec::with_capacity(np);
@@ -343,7 +355,7 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                     for k in 0..n {
                         let x = [c.dbl()?, c.dbl()?, c.dbl()?];
                         for _ in 0..extra {
-                            c.dbl()?;
+                            c.dbl_any()?;
                         }
                         b.model.nodes[start + k].x = x;
                         b.node_loc[start + k] = Loc {
