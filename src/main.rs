@@ -255,6 +255,8 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
         // Read by the solve layer right before each factorization; set before any thread starts.
         std::env::set_var(flexbody::solve::cholesky::MEMORY_ENV, limit);
     }
+    // Refuse an unusable -o (a folder, a missing folder, no permission) before the build.
+    flexbody::write::check_output_path(&a.output)?;
     let mut progress = StageProgress::new(a.quiet || a.json);
     let mut run = || -> anyhow::Result<flexbody::build::BuildOutput> {
         let out = flexbody::build::build(&spec, &mut |stage| progress.stage(stage))
@@ -461,7 +463,19 @@ fn main() -> ExitCode {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::from(1),
         Err(e) => {
-            eprintln!("flexbody: {e:#}");
+            // The chain, each cause once: errors whose text already holds their cause (most
+            // `thiserror` types) would otherwise print it twice ("X: X").
+            let mut msg = String::new();
+            for cause in e.chain() {
+                let text = cause.to_string();
+                if !msg.contains(&text) {
+                    if !msg.is_empty() {
+                        msg.push_str(": ");
+                    }
+                    msg.push_str(&text);
+                }
+            }
+            eprintln!("flexbody: {msg}");
             ExitCode::from(2)
         }
     }

@@ -56,7 +56,7 @@ pub enum WriteError {
     /// Creating, writing or renaming failed.
     #[error("{path}: {action} failed: {source}")]
     Io {
-        /// The path concerned (temp file or target).
+        /// The output path (`-o`), also when its temp file failed.
         path: PathBuf,
         /// What was being done.
         action: &'static str,
@@ -149,15 +149,8 @@ fn to_bytes_at(
     })
 }
 
-/// Writes `body` to `path`: validate, encode, write `path`'s folder/.name.tmp-PID, fsync,
-/// rename over `path`. On any error the temp file is removed and `path` is untouched.
-pub fn write_reduced_body(
-    path: impl AsRef<Path>,
-    body: &ReducedBody,
-    opts: &WriteOptions,
-) -> Result<(), WriteError> {
-    let path = path.as_ref();
-    let bytes = to_bytes_at(path, body, opts)?;
+/// The folder `path` goes into, its file name and the temp-file prefix `.NAME.tmp-`.
+fn output_parts(path: &Path) -> (PathBuf, String, String) {
     let file_name = path
         .file_name()
         .map(|s| s.to_string_lossy().into_owned())
@@ -165,20 +158,94 @@ pub fn write_reduced_body(
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let tmp = dir.join(format!(".{file_name}.tmp-{}", std::process::id()));
-    fn io<'a>(p: &'a Path, action: &'static str) -> impl FnOnce(std::io::Error) -> WriteError + 'a {
-        move |source| WriteError::Io {
-            path: p.to_path_buf(),
-            action,
-            source,
+        .unwrap_or(Path::new("."))
+        .to_path_buf();
+    let prefix = format!(".{file_name}.tmp-");
+    (dir, file_name, prefix)
+}
+
+fn io<'a>(p: &'a Path, action: &'static str) -> impl FnOnce(std::io::Error) -> WriteError + 'a {
+    move |source| WriteError::Io {
+        path: p.to_path_buf(),
+        action,
+        source,
+    }
+}
+
+/// Check, before any work, that `path` can take the output: not a folder, its folder exists
+/// and a file can be created there (probed with the temp file, removed at once). Also removes
+/// stale temp files `.NAME.tmp-PID` of this output left by runs that were killed (their process
+/// is gone). Errors name `path` itself.
+pub fn check_output_path(path: impl AsRef<Path>) -> Result<(), WriteError> {
+    let path = path.as_ref();
+    let ends_in_separator = path.as_os_str().to_string_lossy().ends_with(['/', '\\']);
+    if path.is_dir() || ends_in_separator {
+        return Err(io(path, "checking the output")(std::io::Error::new(
+            std::io::ErrorKind::IsADirectory,
+            "it is a folder: give a file name (e.g. body.flexbody)",
+        )));
+    }
+    let (dir, _, prefix) = output_parts(path);
+    if !dir.is_dir() {
+        return Err(io(path, "checking the output")(std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            format!("its folder {} does not exist", dir.display()),
+        )));
+    }
+    remove_stale_temp_files(&dir, &prefix);
+    let probe = dir.join(format!("{prefix}{}", std::process::id()));
+    std::fs::File::create(&probe).map_err(io(path, "creating a file beside the output"))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// Remove `dir/PREFIX<pid>` files whose process no longer runs (Linux: no `/proc/<pid>`; on
+/// systems without `/proc` nothing is removed, as liveness cannot be told).
+fn remove_stale_temp_files(dir: &Path, prefix: &str) {
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let Some(pid) = name
+            .strip_prefix(prefix)
+            .and_then(|p| p.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        if pid != std::process::id() && !Path::new(&format!("/proc/{pid}")).exists() {
+            let _ = std::fs::remove_file(e.path());
         }
     }
+}
+
+/// Writes `body` to `path`: validate, encode, write `path`'s folder/.name.tmp-PID, fsync,
+/// rename over `path`. On any error the temp file is removed and `path` is untouched; errors
+/// name `path` (the temp file is an implementation detail). Stale temp files of killed runs
+/// are removed first.
+pub fn write_reduced_body(
+    path: impl AsRef<Path>,
+    body: &ReducedBody,
+    opts: &WriteOptions,
+) -> Result<(), WriteError> {
+    let path = path.as_ref();
+    let bytes = to_bytes_at(path, body, opts)?;
+    if path.is_dir() {
+        return check_output_path(path);
+    }
+    let (dir, _, prefix) = output_parts(path);
+    remove_stale_temp_files(&dir, &prefix);
+    let tmp = dir.join(format!("{prefix}{}", std::process::id()));
     let result = (|| {
-        let mut f = std::fs::File::create(&tmp).map_err(io(&tmp, "creating the temp file"))?;
+        let mut f =
+            std::fs::File::create(&tmp).map_err(io(path, "creating the temp file beside it"))?;
         f.write_all(&bytes)
-            .map_err(io(&tmp, "writing the temp file"))?;
-        f.sync_all().map_err(io(&tmp, "syncing the temp file"))?;
+            .map_err(io(path, "writing the temp file beside it"))?;
+        f.sync_all()
+            .map_err(io(path, "syncing the temp file beside it"))?;
         drop(f);
         std::fs::rename(&tmp, path).map_err(io(path, "renaming the temp file onto the target"))
     })();

@@ -50,7 +50,8 @@ fn cases() -> Vec<Case> {
             text: b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n3 1 0 2\n1\n2\n0 0 0\n1 x 0\n$EndNodes\n", line: 10, entity: "$Nodes", message: "bad number 'x'" },
         Case { name: "msh element with unknown node", file: "a.msh",
             text: b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 1 1 1\n3 1 0 1\n1\n0 0 0\n$EndNodes\n$Elements\n1 1 4 4\n3 1 4 1\n4 1 1 1 9\n$EndElements\n", line: 13, entity: "element 4", message: "unknown node 9" },
-        Case { name: "msh truncated", file: "a.msh", text: b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n3 1 0 2\n1\n", line: 8, entity: "$Nodes", message: "end of file" },
+        Case { name: "msh truncated", file: "a.msh", text: b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n3 1 0 2\n1\n", line: 5, entity: "$Nodes", message: "claims 2 nodes (at least 16 bytes), but only 15 bytes remain" },
+        Case { name: "msh truncated after the counts", file: "a.msh", text: b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n3 1 0 2\n1\n2\n0 0 0\n1 0.000000\n", line: 11, entity: "$Nodes", message: "end of file" },
         Case { name: "msh truncated binary", file: "a.msh", text: b"$MeshFormat\n4.1 1 8\n\x01\x00\x00\x00\n$EndMeshFormat\n$Nodes\n\x01\x00\x00\x00", line: 6, entity: "$Nodes", message: "end of file" },
     ]
 }

@@ -77,10 +77,18 @@ pub enum CcxMatrixError {
 }
 
 fn read(path: &Path) -> Result<String, CcxMatrixError> {
-    std::fs::read_to_string(path).map_err(|source| CcxMatrixError::Io {
-        path: path.to_owned(),
-        source,
-    })
+    use crate::import::budget::{read_bounded, Content};
+    let text = match read_bounded(path, Content::Text) {
+        Ok(bytes) => String::from_utf8(bytes).map_err(|_| "invalid UTF-8".to_owned()),
+        Err(crate::import::ImportError::Io { source, .. }) => {
+            return Err(CcxMatrixError::Io {
+                path: path.to_owned(),
+                source,
+            })
+        }
+        Err(e) => Err(e.to_string()),
+    };
+    text.map_err(|message| syntax(path, 1, message))
 }
 
 fn syntax(path: &Path, line: usize, message: String) -> CcxMatrixError {
@@ -148,7 +156,15 @@ pub fn parse_upper_triplets(
             .map_err(|_| syntax(path, i + 1, format!("bad column number `{c}`")))?;
         let v: f64 = v
             .parse()
-            .map_err(|_| syntax(path, i + 1, format!("bad value `{v}`")))?;
+            .ok()
+            .and_then(crate::import::budget::in_range)
+            .ok_or_else(|| {
+                syntax(
+                    path,
+                    i + 1,
+                    format!("bad value `{v}`: not a finite real with |x| < 1e150"),
+                )
+            })?;
         if r == 0 || c == 0 || r > n || c > n {
             return Err(syntax(
                 path,

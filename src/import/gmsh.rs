@@ -21,10 +21,7 @@ use crate::model::{ElementKind, Material, Model};
 /// Read a Gmsh 4.1 mesh; solid elements get a solid section of `material` when given.
 pub fn read(path: &Path, material: Option<&Material>) -> Result<Model, ImportError> {
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| ImportError::Io {
-        file: file.clone(),
-        source,
-    })?;
+    let bytes = super::budget::read_bounded(path, super::budget::Content::Mesh)?;
     let mut model = parse(&file, &bytes)?;
     if let Some(m) = material {
         super::apply_default_material(&mut model, m);
@@ -159,21 +156,55 @@ impl<'a> Cur<'a> {
             .map_err(|_| self.err(format!("bad non-negative integer '{t}'")))
     }
 
-    /// A count, bounded by what the remaining file could possibly hold.
+    /// A count of items taking at least one tag each, bounded by the bytes that remain.
     fn count(&mut self) -> Result<usize, ImportError> {
+        let tag = self.tag_bytes();
+        self.count_of(tag, "items")
+    }
+
+    /// Smallest encoding of one tag: a digit and a separator, or a binary int.
+    fn tag_bytes(&self) -> u64 {
+        if self.binary {
+            4
+        } else {
+            2
+        }
+    }
+
+    /// A count of `what`, each taking at least `per_item` bytes: it must fit in the bytes that
+    /// remain, checked before anything is reserved for it (the input budget, `import::budget`).
+    fn count_of(&mut self, per_item: u64, what: &str) -> Result<usize, ImportError> {
         let n = self.size()?;
-        if n > self.data.len() as u64 {
-            return Err(self.err(format!("count {n} larger than the file")));
+        let remaining = (self.data.len() - self.pos.min(self.data.len())) as u64;
+        if n.saturating_mul(per_item) > remaining {
+            return Err(self.err(format!(
+                "the file claims {n} {what} (at least {} bytes), but only {remaining} bytes remain",
+                n.saturating_mul(per_item)
+            )));
         }
         Ok(n as usize)
     }
 
-    fn dbl(&mut self) -> Result<f64, ImportError> {
+    /// A real that is skipped (any value, NaN included).
+    fn dbl_any(&mut self) -> Result<f64, ImportError> {
         if self.binary {
             return Ok(f64::from_le_bytes(self.raw::<8>()?));
         }
         let t = self.token()?;
         t.parse().map_err(|_| self.err(format!("bad number '{t}'")))
+    }
+
+    /// A real used by the model: finite and within the input budget's range.
+    fn dbl(&mut self) -> Result<f64, ImportError> {
+        let (v, t) = if self.binary {
+            let v = f64::from_le_bytes(self.raw::<8>()?);
+            (Some(v), format!("{v:e}"))
+        } else {
+            let t = self.token()?;
+            (t.parse::<f64>().ok(), t.to_owned())
+        };
+        v.and_then(super::budget::in_range)
+            .ok_or_else(|| self.err(super::budget::bad_number(&t, v)))
     }
 
     /// Skip to the line `$End<name>`.
@@ -273,8 +304,10 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                     for _ in 0..n {
                         let tag = c.int()?;
                         let nbox = if dim == 0 { 3 } else { 6 };
+                        // Bounding boxes are ignored, and Gmsh may write ±DBL_MAX for an
+                        // empty one: parsed, not range-checked.
                         for _ in 0..nbox {
-                            c.dbl()?;
+                            c.dbl_any()?;
                         }
                         let np = c.count()?;
                         let mut phys = Vec::with_capacity(np);
@@ -294,7 +327,9 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
             }
             "$Nodes" => {
                 c.section = "$Nodes";
-                let (blocks, total) = (c.count()?, c.count()?);
+                // A node takes at least a tag and three coordinates.
+                let per_node = if c.binary { c.size_t as u64 + 24 } else { 8 };
+                let (blocks, total) = (c.count()?, c.count_of(per_node, "nodes")?);
                 c.size()?;
                 c.size()?;
                 b.model.nodes.reserve(total);
@@ -302,7 +337,7 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                     let dim = c.int()?;
                     c.int()?;
                     let parametric = c.int()? != 0;
-                    let n = c.count()?;
+                    let n = c.count_of(per_node, "nodes")?;
                     let start = b.model.nodes.len();
                     let loc = Loc {
                         file: 0,
@@ -320,7 +355,7 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                     for k in 0..n {
                         let x = [c.dbl()?, c.dbl()?, c.dbl()?];
                         for _ in 0..extra {
-                            c.dbl()?;
+                            c.dbl_any()?;
                         }
                         b.model.nodes[start + k].x = x;
                         b.node_loc[start + k] = Loc {
@@ -342,9 +377,11 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                     let dim = c.int()?;
                     let ent = c.int()?;
                     let ty = c.int()?;
-                    let n = c.count()?;
                     let (tdim, nn, kind, perm) = element_type(ty as i32)
                         .ok_or_else(|| c.err(format!("unsupported element type {ty}")))?;
+                    // An element takes at least its tag and its node tags.
+                    let per_elem = (nn as u64 + 1) * if c.binary { c.size_t as u64 } else { 2 };
+                    let n = c.count_of(per_elem, "elements")?;
                     if dim != tdim as i64 {
                         return Err(
                             c.err(format!("element type {ty} in an entity of dimension {dim}"))

@@ -12,7 +12,7 @@
 use std::path::Path;
 
 use super::error::{parse_err, ImportError};
-use super::text::{parse_f64, read_text};
+use super::text::{bad_number, parse_f64, read_text};
 use crate::model::Material;
 
 /// Read a material side file.
@@ -36,14 +36,8 @@ pub fn read_material_file(path: &Path) -> Result<Material, ImportError> {
         };
         let (k, v) = (k.trim().to_ascii_lowercase(), v.trim());
         let num = || {
-            parse_f64(v).filter(|x| x.is_finite()).ok_or_else(|| {
-                parse_err(
-                    &file,
-                    i + 1,
-                    format!("material {k}"),
-                    format!("bad number '{v}'"),
-                )
-            })
+            parse_f64(v)
+                .ok_or_else(|| parse_err(&file, i + 1, format!("material {k}"), bad_number(v)))
         };
         match k.as_str() {
             "name" => name = v.trim_matches('"').to_ascii_uppercase(),

@@ -13,7 +13,7 @@ use std::path::Path;
 
 use super::ccx_matrices::{EquationDof, SymmetricTriplets};
 use super::error::{parse_err, ImportError};
-use super::text::{parse_f64, parse_u64, read_text};
+use super::text::{bad_number, parse_f64, parse_u64, read_text};
 use crate::model::Node;
 
 /// A body given only by its matrices.
@@ -36,7 +36,8 @@ pub fn read(k_path: &Path, m_path: &Path, nodes_path: &Path) -> Result<MatrixMod
     let (nodes, ndof) = read_node_table(nodes_path)?;
     let k = read_matrix(k_path)?;
     let m = read_matrix(m_path)?;
-    let mut dofs = Vec::with_capacity(k.n);
+    // Sized by the node table (read in full), not by a count a matrix header claims.
+    let mut dofs = Vec::with_capacity(ndof.iter().map(|&d| d as usize).sum());
     for (n, &nd) in nodes.iter().zip(&ndof) {
         dofs.extend((0..nd).map(|d| EquationDof { node: n.id, dir: d }));
     }
@@ -92,8 +93,7 @@ pub fn read_node_table(path: &Path) -> Result<(Vec<Node>, Vec<u8>), ImportError>
         let ent = format!("node {id}");
         let mut x = [0.0; 3];
         for d in 0..3 {
-            x[d] = parse_f64(f[1 + d])
-                .ok_or_else(|| err(ent.clone(), format!("bad number '{}'", f[1 + d])))?;
+            x[d] = parse_f64(f[1 + d]).ok_or_else(|| err(ent.clone(), bad_number(f[1 + d])))?;
         }
         let nd = match f[4] {
             "3" => 3,
@@ -158,8 +158,19 @@ pub fn read_matrix(path: &Path) -> Result<SymmetricTriplets, ImportError> {
             };
             match parsed {
                 (Some(r), Some(c), Some(z)) if r == c && r <= u64::from(u32::MAX) => {
+                    // The input budget (import::budget): an entry `i j v` takes at least 6
+                    // bytes, so the count must fit in what remains before it is reserved.
+                    let at = raw.as_ptr() as usize - text.as_ptr() as usize + raw.len();
+                    let remaining = (text.len() - at) as u64;
+                    if z.saturating_mul(6) > remaining {
+                        return Err(err(
+                            i + 1,
+                            "size",
+                            format!("the size line claims {z} entries (at least {} bytes), but only {remaining} bytes remain", z.saturating_mul(6)),
+                        ));
+                    }
                     size = Some((r as usize, z as usize));
-                    entries.reserve_exact(z.min(1 << 28) as usize);
+                    entries.reserve_exact(z as usize);
                 }
                 _ => {
                     return Err(err(
@@ -182,9 +193,7 @@ pub fn read_matrix(path: &Path) -> Result<SymmetricTriplets, ImportError> {
         let (Some(r), Some(c)) = (parse_u64(r), parse_u64(c)) else {
             return Err(err(i + 1, &ent(), format!("bad index in `{s}`")));
         };
-        let v = parse_f64(v)
-            .filter(|v| v.is_finite())
-            .ok_or_else(|| err(i + 1, &ent(), format!("bad value '{v}'")))?;
+        let v = parse_f64(v).ok_or_else(|| err(i + 1, &ent(), bad_number(v)))?;
         if r == 0 || c == 0 || r > n as u64 || c > n as u64 {
             return Err(err(
                 i + 1,

@@ -4,12 +4,14 @@
 //! returns a resolved [`Model`]. Every failure is an [`ImportError`] naming file, line and entity.
 //! Readers never panic on bad input.
 pub mod abaqus;
+pub mod budget;
 pub mod ccx_matrices;
 pub mod error;
 pub mod gmsh;
 pub mod material_file;
 pub mod matrix_market;
 pub mod nastran;
+pub mod plausibility;
 pub(crate) mod text;
 
 pub use error::ImportError;
@@ -89,6 +91,8 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
     if let Some(m) = &opts.material {
         apply_default_material(&mut model, m);
     }
+    let warnings = plausibility::material_warnings(&model, &path.display().to_string());
+    model.warnings.extend(warnings);
     match (opts.shell_thickness, &opts.material) {
         (Some(t), Some(m)) => apply_default_shell(&mut model, m, t),
         (Some(_), None) => model.warnings.push(ImportWarning {

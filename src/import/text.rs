@@ -12,10 +12,7 @@ use crate::model::{Element, ElementKind, Model, Node};
 /// the line where it occurs.
 pub(crate) fn read_text(path: &Path) -> Result<String, ImportError> {
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| ImportError::Io {
-        file: file.clone(),
-        source,
-    })?;
+    let bytes = super::budget::read_bounded(path, super::budget::Content::Text)?;
     check_text(&file, bytes)
 }
 
@@ -49,8 +46,18 @@ pub(crate) fn check_text(file: &str, bytes: Vec<u8>) -> Result<String, ImportErr
     }
 }
 
-/// Parse a real number, accepting Fortran `D` exponents (`1.5D3`).
+/// Parse a real number, accepting Fortran `D` exponents (`1.5D3`); `None` also for NaN, ±∞
+/// and |x| ≥ [`super::budget::MAX_ABS_REAL`] (see [`bad_number`] for the message).
 pub(crate) fn parse_f64(s: &str) -> Option<f64> {
+    parse_f64_unbounded(s).and_then(super::budget::in_range)
+}
+
+/// The error message for a real field `s` that [`parse_f64`] refused.
+pub(crate) fn bad_number(s: &str) -> String {
+    super::budget::bad_number(s, parse_f64_unbounded(s))
+}
+
+fn parse_f64_unbounded(s: &str) -> Option<f64> {
     let s = s.trim();
     if let Ok(v) = s.parse::<f64>() {
         return Some(v);
@@ -272,6 +279,11 @@ mod tests {
         assert_eq!(parse_f64(" 1.5D3 "), Some(1500.0));
         assert_eq!(parse_f64("2.1e11"), Some(2.1e11));
         assert_eq!(parse_f64("1.2.3"), None);
+        assert_eq!(
+            (parse_f64("nan"), parse_f64("inf"), parse_f64("1e400")),
+            (None, None, None)
+        );
+        assert!(bad_number("-inf").contains("infinite"));
     }
 
     #[test]

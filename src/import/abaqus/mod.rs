@@ -23,7 +23,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
 use super::error::ImportError;
-use super::text::{parse_f64, parse_u64, read_text, Builder, Loc};
+use super::text::{bad_number, parse_f64, parse_u64, read_text, Builder, Loc};
 use defs::{abaqus_shape, element_kind, transform_frame};
 
 use crate::model::{CoordSystem, DofMask, ElementKind, Model, Section, SectionShape};
@@ -34,9 +34,6 @@ pub fn read(path: &Path) -> Result<Model, ImportError> {
     p.read_file(path, 0, 0)?;
     p.finish()
 }
-
-/// Largest id range one GENERATE line may expand to.
-const MAX_RANGE: u64 = 20_000_000;
 
 /// Node reference: a node id or a node-set name.
 #[derive(Debug, Clone)]
@@ -134,6 +131,10 @@ struct Parser {
     extra_nodes: BTreeMap<&'static str, usize>,
     /// *SHELL SECTION lines that gave a number of section points (ignored, noted).
     shell_point_notes: Vec<String>,
+    /// Bytes of all files read so far (the input budget's base, see `import::budget`).
+    input_bytes: u64,
+    /// Set members added so far over all sets (bounded by the budget's total).
+    set_members: u64,
 }
 
 fn upper_norm(s: &str) -> String {
@@ -195,6 +196,8 @@ impl Parser {
             skipped: BTreeMap::new(),
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),
+            input_bytes: 0,
+            set_members: 0,
         }
     }
 
@@ -204,6 +207,7 @@ impl Parser {
 
     fn read_file(&mut self, path: &Path, file: u32, depth: usize) -> Result<(), ImportError> {
         let text = read_text(path)?;
+        self.input_bytes += text.len() as u64;
         let mut lines = text.split('\n').enumerate().peekable();
         while let Some((i, raw)) = lines.next() {
             let loc = Loc {
@@ -510,7 +514,7 @@ impl Parser {
 
     fn data_line(&mut self, line: &str, loc: Loc) -> Result<(), ImportError> {
         let num = |s: &str, ent: &str, p: &Parser| -> Result<f64, ImportError> {
-            parse_f64(s).ok_or_else(|| p.err(loc, ent.to_owned(), format!("bad number '{s}'")))
+            parse_f64(s).ok_or_else(|| p.err(loc, ent.to_owned(), bad_number(s)))
         };
         match &self.block {
             Block::Skip => {}
@@ -529,9 +533,8 @@ impl Parser {
                 let mut x = [0.0; 3];
                 for (k, s) in f.enumerate() {
                     if k < 3 && !s.is_empty() {
-                        x[k] = parse_f64(s).ok_or_else(|| {
-                            self.err(loc, format!("*NODE {id}"), format!("bad number '{s}'"))
-                        })?;
+                        x[k] = parse_f64(s)
+                            .ok_or_else(|| self.err(loc, format!("*NODE {id}"), bad_number(s)))?;
                     }
                 }
                 if let Some(n) = nset {
@@ -571,11 +574,12 @@ impl Parser {
                         self.b.add_element(id, kind, nodes, None, card, start);
                     }
                     None => {
-                        if self.mass_elems.insert(id, (vals[1], start)).is_some() {
+                        if let Some((_, first)) = self.mass_elems.insert(id, (vals[1], start)) {
+                            let at = format!("{}:{}", self.b.file_name(first), first.line);
                             return Err(self.err(
                                 start,
                                 format!("*ELEMENT {id}"),
-                                "duplicate element id",
+                                format!("duplicate element id (first defined at {at})"),
                             ));
                         }
                     }
@@ -590,17 +594,37 @@ impl Parser {
                 let kw = if node { "*NSET" } else { "*ELSET" };
                 let ent = format!("{kw} {name}");
                 let mut add: Vec<(u64, Loc)> = Vec::new();
+                let map = if node { &self.nsets } else { &self.elsets };
+                let had = map.get(&name).map_or(0, |m| m.len() as u64);
+                // The input budget (import::budget), checked before the ids are materialized:
+                // per set over all its lines, and over all sets of the deck.
+                let budget = |p: &Parser, more: u64, what: &str| -> Result<(), ImportError> {
+                    let (per_set, total) = (
+                        super::budget::expansion_limit(p.input_bytes),
+                        super::budget::total_expansion_limit(p.input_bytes),
+                    );
+                    if had.saturating_add(more) > per_set
+                        || p.set_members.saturating_add(more) > total
+                    {
+                        return Err(p.err(
+                            loc,
+                            ent.clone(),
+                            format!(
+                                "{what} would bring the set to {} members (all sets: {}): more than the input budget allows for {} bytes of input ({per_set} per set, {total} in all; see flexbody::import::budget)",
+                                had.saturating_add(more),
+                                p.set_members.saturating_add(more),
+                                p.input_bytes
+                            ),
+                        ));
+                    }
+                    Ok(())
+                };
                 if generate {
                     let v: Vec<&str> = fields(line).collect();
                     let g: Option<Vec<u64>> = v.iter().map(|s| parse_u64(s)).collect();
-                    match g.as_deref() {
-                        // At most MAX_RANGE ids per line: a corrupted bound must not exhaust memory.
-                        Some([a, b]) | Some([a, b, 1]) if a <= b && b - a < MAX_RANGE => {
-                            add.extend((*a..=*b).map(|i| (i, loc)))
-                        }
-                        Some([a, b, s]) if a <= b && *s > 0 && (b - a) / s < MAX_RANGE => {
-                            add.extend((*a..=*b).step_by(*s as usize).map(|i| (i, loc)))
-                        }
+                    let (a, b, step) = match g.as_deref() {
+                        Some([a, b]) if a <= b => (*a, *b, 1),
+                        Some([a, b, s]) if a <= b && *s > 0 => (*a, *b, *s),
                         _ => {
                             return Err(self.err(
                                 loc,
@@ -608,13 +632,27 @@ impl Parser {
                                 format!("bad GENERATE line '{}'", line.trim()),
                             ))
                         }
-                    }
+                    };
+                    budget(
+                        self,
+                        ((b - a) / step).saturating_add(1),
+                        &format!("GENERATE {a}..{b} step {step}"),
+                    )?;
+                    add.extend((a..=b).step_by(step as usize).map(|i| (i, loc)));
                 } else {
-                    let map = if node { &self.nsets } else { &self.elsets };
                     for s in fields(line).filter(|s| !s.is_empty()) {
+                        let up = s.to_ascii_uppercase();
                         if let Some(id) = parse_u64(s) {
                             add.push((id, loc));
-                        } else if let Some(members) = map.get(&s.to_ascii_uppercase()) {
+                        } else if up == name {
+                            // A set naming itself adds nothing: its members are already in it
+                            // (copying them would double the set on every such line).
+                        } else if let Some(members) = map.get(&up) {
+                            budget(
+                                self,
+                                add.len() as u64 + members.len() as u64,
+                                &format!("adding set {up} ({} members)", members.len()),
+                            )?;
                             add.extend_from_slice(members);
                         } else {
                             return Err(self.err(
@@ -625,6 +663,7 @@ impl Parser {
                         }
                     }
                 }
+                self.set_members += add.len() as u64;
                 let map = if node {
                     &mut self.nsets
                 } else {

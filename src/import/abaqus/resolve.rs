@@ -17,8 +17,14 @@ impl Parser {
         self.b.resolve_element_nodes(&nodes)?;
         let elems = self.b.element_map()?;
         for (id, (node, loc)) in &self.mass_elems {
-            if elems.get(*id).is_some() {
-                return Err(self.err(*loc, format!("*ELEMENT {id}"), "duplicate element id"));
+            if let Some(k) = elems.get(*id) {
+                let first = self.b.elem_loc[k];
+                let at = format!("{}:{}", self.b.file_name(first), first.line);
+                return Err(self.err(
+                    *loc,
+                    format!("*ELEMENT {id}"),
+                    format!("duplicate element id (first defined at {at})"),
+                ));
             }
             if nodes.get(*node).is_none() {
                 return Err(self.err(

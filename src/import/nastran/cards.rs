@@ -4,7 +4,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use super::coord::{dir_to_basic, from_points, to_basic};
-use super::fields::C;
+use super::fields::{ThruBudget, C};
 use super::lex::{Card, Lexer};
 use super::CardCounts;
 use crate::import::error::{parse_err, ImportError};
@@ -27,6 +27,7 @@ pub(crate) fn build(
     let mut counts = CardCounts::new();
     let mut unsupported: BTreeMap<String, usize> = BTreeMap::new();
     let files = lexer.files;
+    let thru_budget = ThruBudget::for_bytes(lexer.bytes);
     let case = super::case_control::parse(&lexer.case_lines, lexer.has_case_control, &files)?;
     let effective = case.effective(subcase, &files, &files[0])?;
     let mut b = Builder::new(&files[0]);
@@ -136,6 +137,10 @@ pub(crate) fn build(
     // Everything else.
     let mut props: Vec<(u64, u64, Section, &Card)> = Vec::new();
     let mut unsupported_props: HashMap<u64, String> = HashMap::new();
+    // Cards of unsupported property types: they share the property id space.
+    let mut unsupported_prop_cards: Vec<(u64, &Card)> = Vec::new();
+    // CONM2, RBE2 and RBE3 ids: they share the element id space with CBAR, CHEXA, ….
+    let mut other_eids: Vec<(u64, &Card)> = Vec::new();
     let mut mats: Vec<(u64, Material, &Card)> = Vec::new();
     let mut elem_pid: Vec<(u64, Loc)> = Vec::new();
     let mut shell_t: Vec<super::shell::ElementThickness> = Vec::new();
@@ -200,7 +205,9 @@ pub(crate) fn build(
             )))
             }
             "PCOMPG" | "PELAS" | "PBUSH" | "PSHEAR" | "PDAMP" | "PGAP" | "PMASS" | "PVISC" => {
-                unsupported_props.insert(g.id(0, "PID")?, name.to_owned());
+                let pid = g.id(0, "PID")?;
+                unsupported_props.insert(pid, name.to_owned());
+                unsupported_prop_cards.push((pid, card));
                 *unsupported.entry(name.to_owned()).or_default() += 1;
             }
             "MAT1" => {
@@ -209,6 +216,7 @@ pub(crate) fn build(
             }
             "CONM2" => {
                 let eid = g.id(0, "EID")?;
+                other_eids.push((eid, card));
                 let n = node(&g, 1, g.id(1, "G")?)?;
                 let cid = g.int(2)?.unwrap_or(0);
                 let m = g.real_or(3, 0.0)?;
@@ -234,12 +242,13 @@ pub(crate) fn build(
             }
             "RBE2" => {
                 let eid = g.id(0, "EID")?;
+                other_eids.push((eid, card));
                 let gn = node(&g, 1, g.id(1, "GN")?)?;
                 let cm = DofMask::from_digits(g.text(2))
                     .filter(|m| m.0 != 0)
                     .ok_or_else(|| g.err(2, "bad CM dof digits"))?;
                 let mut dep = Vec::new();
-                for (id, k) in g.id_list(3)? {
+                for (id, k) in g.id_list(3, &thru_budget)? {
                     dep.push(node(&g, k, id)?);
                 }
                 if dep.is_empty() {
@@ -252,7 +261,10 @@ pub(crate) fn build(
                     dofs: cm,
                 });
             }
-            "RBE3" => b.model.rigid_elements.push(rbe3(&g, &node)?),
+            "RBE3" => {
+                other_eids.push((g.id(0, "EID")?, card));
+                b.model.rigid_elements.push(rbe3(&g, &node)?)
+            }
             "SPC" => {
                 let sid = g.id(0, "SID")?;
                 for k in [1, 4] {
@@ -273,7 +285,7 @@ pub(crate) fn build(
                 let m =
                     DofMask::from_digits(g.text(1)).ok_or_else(|| g.err(1, "bad dof digits"))?;
                 let thru = (2..card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
-                for (id, k) in g.id_list(2)? {
+                for (id, k) in g.id_list(2, &thru_budget)? {
                     match nodes.get(id) {
                         Some(n) => spc_sets.entry(sid).or_default().push((n, m, card)),
                         None if thru => {}
@@ -281,7 +293,7 @@ pub(crate) fn build(
                     }
                 }
             }
-            "SPCADD" => spcadd.push((g.id(0, "SID")?, g.id_list(1)?, card)),
+            "SPCADD" => spcadd.push((g.id(0, "SID")?, g.id_list(1, &thru_budget)?, card)),
             "ASET" | "BSET" | "QSET" => {
                 let mut k = 0;
                 while !g.text(k).is_empty() {
@@ -309,7 +321,7 @@ pub(crate) fn build(
                     .filter(|m| m.0 != 0)
                     .ok_or_else(|| g.err(0, "bad dof digits"))?;
                 let thru = (1..card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
-                for (id, k) in g.id_list(1)? {
+                for (id, k) in g.id_list(1, &thru_budget)? {
                     let n = match nodes.get(id) {
                         Some(n) => n,
                         None if thru => continue,
@@ -358,15 +370,42 @@ pub(crate) fn build(
         }
     }
     b.resolve_element_nodes(&nodes)?;
-    b.element_map()?;
-    // Materials.
+    // One element id space (MSC/NX Nastran): structural elements, CONM2 and rigid elements.
+    let eids: Vec<(u64, &str, Loc)> = (b.model.elements.iter().enumerate())
+        .map(|(k, e)| (e.id, b.elem_card[k], b.elem_loc[k]))
+        .chain(
+            other_eids
+                .iter()
+                .map(|(id, c)| (*id, c.name.as_str(), c.loc)),
+        )
+        .collect();
+    unique_ids(
+        &eids,
+        &files,
+        "element id",
+        "elements, CONM2 and rigid elements share one id space",
+    )?;
+    // Materials. Only MAT1 is read; other MATi cards may legally share a MAT1 id (e.g. MAT4
+    // holds the thermal data of the same material), so only MAT1 ids must be unique.
+    let mat_ids: Vec<(u64, &str, Loc)> = mats.iter().map(|m| (m.0, "MAT1", m.2.loc)).collect();
+    unique_ids(&mat_ids, &files, "material id", "MAT1 ids must be unique")?;
     let mids = IdMap::build(mats.iter().map(|m| m.0))
         .map_err(|(_, k)| cc(mats[k].2, &files).err_card("duplicate material id"))?;
     b.model.materials = mats.iter().map(|m| m.1.clone()).collect();
     for m in &mut b.model.materials {
         m.rho *= wtmass;
     }
-    // Properties.
+    // Properties: supported and unsupported types share one id space.
+    let prop_ids: Vec<(u64, &str, Loc)> = (props.iter().map(|p| (p.0, p.3)))
+        .chain(unsupported_prop_cards.iter().copied())
+        .map(|(id, c)| (id, c.name.as_str(), c.loc))
+        .collect();
+    unique_ids(
+        &prop_ids,
+        &files,
+        "property id",
+        "all property cards share one id space",
+    )?;
     let pids = IdMap::build(props.iter().map(|p| p.0))
         .map_err(|(_, k)| cc(props[k].3, &files).err_card("duplicate property id"))?;
     for (pid, mid, section, card) in &props {
@@ -509,7 +548,9 @@ pub(crate) fn build(
             if !spc_sets.contains_key(&s) {
                 return Err(cc(card, &files).err(k, format!("references unknown SPC set {s}")));
             }
-            entry.0.push(s);
+            if !entry.0.contains(&s) {
+                entry.0.push(s);
+            }
         }
         let mut ns: Vec<usize> = entry
             .0
@@ -702,6 +743,29 @@ pub(crate) fn build(
     }
     b.model.files = b.files.clone();
     Ok((b.model, counts))
+}
+
+/// Fail on the first id of `items` (id, card name, location) seen twice, naming both places.
+fn unique_ids(
+    items: &[(u64, &str, Loc)],
+    files: &[String],
+    what: &str,
+    rule: &str,
+) -> Result<(), ImportError> {
+    IdMap::build(items.iter().map(|i| i.0))
+        .map(|_| ())
+        .map_err(|(a, k)| {
+            let ((id, card, loc), (_, first, floc)) = (items[k], items[a]);
+            parse_err(
+                &files[loc.file as usize],
+                loc.line as usize,
+                format!("{card} {id}"),
+                format!(
+                    "duplicate {what} {id}: also {first} {id} at {}:{} ({rule})",
+                    files[floc.file as usize], floc.line
+                ),
+            )
+        })
 }
 
 fn cc<'a>(card: &'a Card, files: &'a [String]) -> C<'a> {

@@ -3,8 +3,13 @@
 use super::lex::Card;
 use crate::import::error::{parse_err, ImportError};
 
-/// Nastran real: `1.5`, `1.5E3`, `1.5+3` (implicit exponent), `1.5D3`, `.5`, `1.`.
+/// Nastran real: `1.5`, `1.5E3`, `1.5+3` (implicit exponent), `1.5D3`, `.5`, `1.`; `None`
+/// also when out of [`crate::import::budget::MAX_ABS_REAL`] (e.g. `0.1e400`, which overflows).
 pub(crate) fn nastran_real(s: &str) -> Option<f64> {
+    nastran_real_unbounded(s).and_then(crate::import::budget::in_range)
+}
+
+fn nastran_real_unbounded(s: &str) -> Option<f64> {
     let s = s.trim();
     if s.is_empty() || !s.bytes().any(|b| b.is_ascii_digit()) {
         return None;
@@ -27,6 +32,23 @@ pub(crate) fn nastran_real(s: &str) -> Option<f64> {
         (b[i] == b'+' || b[i] == b'-') && !matches!(b[i - 1], b'e' | b'E' | b'+' | b'-')
     })?;
     format!("{}E{}", &s[..pos], &s[pos..]).parse().ok()
+}
+
+/// How many ids `THRU` ranges may expand to: per card, and over all cards of the deck (what is
+/// left). See `import::budget`.
+pub(crate) struct ThruBudget {
+    pub per_card: u64,
+    pub left: std::cell::Cell<u64>,
+}
+
+impl ThruBudget {
+    /// The budget of a deck of `bytes` bytes.
+    pub(crate) fn for_bytes(bytes: u64) -> ThruBudget {
+        ThruBudget {
+            per_card: crate::import::budget::expansion_limit(bytes),
+            left: std::cell::Cell::new(crate::import::budget::total_expansion_limit(bytes)),
+        }
+    }
 }
 
 /// A card plus the name of its file, for messages.
@@ -93,9 +115,10 @@ impl<'a> C<'a> {
         if s.is_empty() {
             return Ok(None);
         }
-        nastran_real(s)
-            .map(Some)
-            .ok_or_else(|| self.err(k, format!("field {}: bad number '{s}'", k + 2)))
+        nastran_real(s).map(Some).ok_or_else(|| {
+            let why = crate::import::budget::bad_number(s, nastran_real_unbounded(s));
+            self.err(k, format!("field {}: {why}", k + 2))
+        })
     }
 
     /// Real field with a default for blank.
@@ -105,7 +128,12 @@ impl<'a> C<'a> {
 
     /// Integer ids from field `start` on, expanding `a THRU b`; blank fields are skipped; stops
     /// at the first real number (e.g. RBE2 ALPHA) or keyword other than THRU.
-    pub(crate) fn id_list(&self, start: usize) -> Result<Vec<(u64, usize)>, ImportError> {
+    /// Expansion is bounded by `budget`, checked before the ids are materialized.
+    pub(crate) fn id_list(
+        &self,
+        start: usize,
+        budget: &ThruBudget,
+    ) -> Result<Vec<(u64, usize)>, ImportError> {
         let mut out = Vec::new();
         let mut k = start;
         let n = self.card.fields.len();
@@ -120,9 +148,22 @@ impl<'a> C<'a> {
                     return Err(self.err(k, "THRU without a start id"));
                 };
                 let b = self.id(k + 1, "THRU end")?;
-                if b < a || b - a > 20_000_000 {
+                if b < a {
                     return Err(self.err(k, format!("bad THRU range {a}..{b}")));
                 }
+                let more = b - a;
+                let card_total = (out.len() as u64).saturating_add(more);
+                if card_total > budget.per_card || more > budget.left.get() {
+                    return Err(self.err(
+                        k,
+                        format!(
+                            "THRU range {a}..{b} would expand the card to {card_total} ids: more than the input budget allows ({} per card, {} left for the deck; see flexbody::import::budget)",
+                            budget.per_card,
+                            budget.left.get()
+                        ),
+                    ));
+                }
+                budget.left.set(budget.left.get() - more);
                 out.extend((a + 1..=b).map(|i| (i, k)));
                 k += 2;
                 continue;
@@ -130,7 +171,8 @@ impl<'a> C<'a> {
             match s.parse::<u64>() {
                 Ok(v) => out.push((v, k)),
                 Err(_)
-                    if nastran_real(s).is_some() || s.chars().all(|c| c.is_ascii_alphabetic()) =>
+                    if nastran_real_unbounded(s).is_some()
+                        || s.chars().all(|c| c.is_ascii_alphabetic()) =>
                 {
                     break
                 }
@@ -158,5 +200,10 @@ mod tests {
         assert_eq!(nastran_real("nan"), None);
         assert_eq!(nastran_real("1.2.3"), None);
         assert_eq!(nastran_real("abc"), None);
+        assert_eq!(
+            (nastran_real("0.1e400"), nastran_real("1.+200")),
+            (None, None)
+        );
+        assert_eq!(nastran_real("1.-200"), Some(1e-200));
     }
 }

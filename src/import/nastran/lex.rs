@@ -66,6 +66,8 @@ pub(crate) struct Lexer {
     pub case_lines: Vec<(String, Loc)>,
     /// The main file has a `BEGIN BULK` line (so it is a whole deck, not bare bulk data).
     pub has_case_control: bool,
+    /// Bytes of all files lexed (the input budget's base, see `import::budget`).
+    pub bytes: u64,
 }
 
 impl Lexer {
@@ -75,6 +77,7 @@ impl Lexer {
             cards: Vec::new(),
             case_lines: Vec::new(),
             has_case_control: false,
+            bytes: 0,
         }
     }
 
@@ -142,6 +145,7 @@ impl Lexer {
         depth: usize,
     ) -> Result<bool, ImportError> {
         let text = read_text(path)?;
+        self.bytes += text.len() as u64;
         let upper_starts =
             |l: &str, p: &str| l.get(..p.len()).is_some_and(|h| h.eq_ignore_ascii_case(p));
         let mut in_bulk = depth > 0
