@@ -107,44 +107,38 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
 /// Give every 3- and 4-node surface element without a property a homogeneous shell section of
 /// material `m` and thickness `t` (a new material and property named `DEFAULT_SHELL`).
 pub fn apply_default_shell(model: &mut Model, m: &Material, t: f64) {
-    let is_bare_shell = |e: &crate::model::Element| {
-        e.property.is_none() && matches!(e.kind, ElementKind::Tri3 | ElementKind::Quad4)
-    };
-    if !model.elements.iter().any(is_bare_shell) {
-        return;
-    }
-    model.materials.push(Material {
-        name: if m.name.is_empty() {
-            "DEFAULT".into()
-        } else {
-            m.name.clone()
-        },
-        ..m.clone()
-    });
-    let mat = model.materials.len() - 1;
-    let pid = model.properties.iter().map(|p| p.id).max().unwrap_or(0) + 1;
-    model.properties.push(Property {
-        id: pid,
-        name: "DEFAULT_SHELL".into(),
-        material: mat,
-        section: Section::Shell(crate::model::ShellSection::homogeneous(t, mat)),
-    });
-    let prop = model.properties.len() - 1;
-    for e in &mut model.elements {
-        if is_bare_shell(e) {
-            e.property = Some(prop);
-        }
-    }
+    add_default_property(
+        model,
+        m,
+        "DEFAULT_SHELL",
+        |mat| Section::Shell(crate::model::ShellSection::homogeneous(t, mat)),
+        |e| matches!(e.kind, ElementKind::Tri3 | ElementKind::Quad4),
+    );
 }
 
 /// Give every solid element without a property a solid section of material `m`
 /// (added as a new material and property named `DEFAULT`). No-op if all elements have one.
 pub fn apply_default_material(model: &mut Model, m: &Material) {
-    let missing = model
-        .elements
-        .iter()
-        .any(|e| e.property.is_none() && e.kind.is_solid());
-    if !missing {
+    add_default_property(
+        model,
+        m,
+        "DEFAULT",
+        |_| Section::Solid,
+        |e| e.kind.is_solid(),
+    );
+}
+
+/// Adds material `m` and a property `name` with `section(material index)`, and gives it to every
+/// element without a property for which `takes` holds. No-op if there is no such element.
+fn add_default_property(
+    model: &mut Model,
+    m: &Material,
+    name: &str,
+    section: impl FnOnce(usize) -> Section,
+    takes: impl Fn(&crate::model::Element) -> bool,
+) {
+    let bare = |e: &crate::model::Element| e.property.is_none() && takes(e);
+    if !model.elements.iter().any(bare) {
         return;
     }
     model.materials.push(Material {
@@ -159,13 +153,13 @@ pub fn apply_default_material(model: &mut Model, m: &Material) {
     let pid = model.properties.iter().map(|p| p.id).max().unwrap_or(0) + 1;
     model.properties.push(Property {
         id: pid,
-        name: "DEFAULT".into(),
+        name: name.into(),
         material: mat,
-        section: Section::Solid,
+        section: section(mat),
     });
     let prop = model.properties.len() - 1;
     for e in &mut model.elements {
-        if e.property.is_none() && e.kind.is_solid() {
+        if bare(e) {
             e.property = Some(prop);
         }
     }
