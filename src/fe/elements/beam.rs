@@ -311,18 +311,7 @@ mod tests {
         let (k, _) = matrices(&x, Some([0.0, 0.3, 1.0]), &mat, &props(), None).unwrap();
         let kmax = k.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         for mode in 0..6 {
-            let mut u = [0.0; 12];
-            for (n, xn) in x.iter().enumerate() {
-                let (mut t, mut th) = ([0.0; 3], [0.0; 3]);
-                if mode < 3 {
-                    t[mode] = 1.0;
-                } else {
-                    th[mode - 3] = 1.0;
-                    t = cross(th, *xn);
-                }
-                u[6 * n..6 * n + 3].copy_from_slice(&t);
-                u[6 * n + 3..6 * n + 6].copy_from_slice(&th);
-            }
+            let u = crate::fe::elements::shell::test_util::rigid(&x, mode);
             for i in 0..12 {
                 let f: f64 = (0..12).map(|j| k[i * 12 + j] * u[j]).sum();
                 assert!(f.abs() < 1e-12 * kmax, "mode {mode} row {i}: {f}");
