@@ -91,7 +91,8 @@ struct BuildArgs {
     #[arg(long)]
     mass: Option<String>,
     /// Rotational inertia of lumped beam masses: auto (default: as Nastran lumps each card for
-    /// Nastran decks, CBAR none and CBEAM torsion only; the section's rotary inertia otherwise),
+    /// Nastran decks, CBAR none, CBEAM torsion only, CQUAD4/CTRIA3 translations only; the
+    /// section's rotary inertia otherwise),
     /// section, torsion, none or nastran.
     #[arg(long, default_value = "auto", value_name = "KIND")]
     beam_mass: String,

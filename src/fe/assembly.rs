@@ -13,8 +13,8 @@ use super::dofs::DofMap;
 use super::elements::beam::{BeamLumping, BeamProps};
 use super::elements::tet10::Tet10MassRule;
 use super::elements::{
-    beam, hex20, hex8, prism6, quad4_shell, rod, tet10, tet4, tri3_shell, ElementError, Isotropic,
-    Xyz,
+    beam, hex20, hex8, prism6, quad4_shell, rod, solid_incompatible, tet10, tet4, tri3_shell,
+    ElementError, Isotropic, Xyz,
 };
 use super::mass::{self, MassKind};
 use super::pattern::Pattern;
@@ -173,8 +173,13 @@ pub fn element_matrices(
         }
         ElementKind::Hex8 => {
             let x = coords::<8>(model, n);
+            let k = if model.params.solid_bubbles {
+                solid_incompatible::hex8_stiffness(&x, &iso)
+            } else {
+                hex8::stiffness(&x, &iso)
+            };
             solid(
-                hex8::stiffness(&x, &iso).map_err(elem_err)?,
+                k.map_err(elem_err)?,
                 hex8::scalar_mass(&x, iso.rho).map_err(elem_err)?,
                 8,
                 false,
@@ -192,8 +197,13 @@ pub fn element_matrices(
         }
         ElementKind::Prism6 => {
             let x = coords::<6>(model, n);
+            let k = if model.params.solid_bubbles {
+                solid_incompatible::prism6_stiffness(&x, &iso)
+            } else {
+                prism6::stiffness(&x, &iso)
+            };
             solid(
-                prism6::stiffness(&x, &iso).map_err(elem_err)?,
+                k.map_err(elem_err)?,
                 prism6::scalar_mass(&x, iso.rho).map_err(elem_err)?,
                 6,
                 false,
@@ -248,7 +258,9 @@ pub fn element_matrices(
                     prop.id
                 )));
             };
-            let p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;
+            let mut p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;
+            // Nastran lumps CQUAD4/CTRIA3 without rotary inertia (BeamLumping::Nastran doc).
+            p.lumped_rotary = spec.beam_lumping != BeamLumping::Nastran;
             let (k, m) = if el.kind == ElementKind::Quad4 {
                 quad4_shell::matrices(&coords::<4>(model, n), &p, lumped)
             } else {

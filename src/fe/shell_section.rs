@@ -44,5 +44,6 @@ pub fn shell_props(model: &Model, prop: &Property, s: &ShellSection) -> Result<S
         rho: primary.rho,
         nsm: s.nsm,
         drill_factor: super::elements::shell::DRILL_FACTOR,
+        lumped_rotary: true,
     })
 }

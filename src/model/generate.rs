@@ -76,6 +76,7 @@ pub fn block(spec: &BlockSpec) -> Model {
         params: ModelParams {
             wtmass: 1.0,
             coupled_mass: None,
+            solid_bubbles: false,
         },
         ..Default::default()
     }

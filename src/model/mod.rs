@@ -73,7 +73,8 @@ pub enum ElementKind {
     Tet4,
     /// 10-node tetrahedron (C3D10, CTETRA 10).
     Tet10,
-    /// 8-node hexahedron, full 2×2×2 integration (C3D8, CHEXA 8).
+    /// 8-node hexahedron, full 2×2×2 integration (C3D8, CHEXA 8); incompatible modes when
+    /// `ModelParams::solid_bubbles` (Nastran CHEXA, PSOLID ISOP blank).
     Hex8,
     /// 20-node hexahedron, full 3×3×3 integration (C3D20, CHEXA 20).
     Hex20,
@@ -90,7 +91,7 @@ pub enum ElementKind {
     Bar2,
     /// 2-node rod: axial + torsion (CROD, T3D2).
     Rod2,
-    /// 3-node shell triangle (S3, CTRIA3): DKT bending + CST membrane, 6 dofs per node; without
+    /// 3-node shell triangle (S3, CTRIA3): DKT/DKMT bending + CST membrane, 6 dofs per node; without
     /// a property (e.g. Gmsh surface elements without `--thickness`) graphics/sets only.
     Tri3,
     /// 4-node shell quadrilateral (S4, CQUAD4): MITC4 bending/shear + QM6 membrane, 6 dofs per
@@ -399,6 +400,10 @@ pub struct ModelParams {
     pub wtmass: f64,
     /// PARAM,COUPMASS > 0 asks for consistent mass.
     pub coupled_mass: Option<bool>,
+    /// Linear hexahedra and wedges (CHEXA 8, CPENTA 6) with incompatible (bubble) modes, as MSC
+    /// Nastran forms them for PSOLID ISOP blank (`fe::elements::solid_incompatible`); `false`:
+    /// fully integrated (CalculiX/Abaqus C3D8, C3D6).
+    pub solid_bubbles: bool,
 }
 
 /// A whole FE model, resolved to dense indices.

@@ -150,7 +150,9 @@ pub enum BeamLumping {
     /// No rotational inertia at all (as Nastran CBAR lumped).
     TranslationsOnly,
     /// As Nastran lumps each element: a bar (CBAR) none, a beam (CBEAM) torsion only. Resolved
-    /// per element by [`BeamLumping::for_element`]; on its own it means `TorsionOnly`.
+    /// per element by [`BeamLumping::for_element`]; on its own it means `TorsionOnly`. Shells
+    /// (CQUAD4/CTRIA3) then get translational lumped mass only, as MSC Nastran lumps them
+    /// (`ShellProps::lumped_rotary`).
     Nastran,
 }
 

@@ -29,7 +29,8 @@
 //! ⊗ (I − (1 − ε) e₃e₃ᵀ): the plate's rotary inertia on the two bending rotations and a small
 //! ε = [`DRILL_INERTIA`] = 10⁻⁴ of it on the drilling rotation, so that no rotation is massless.
 //! Lumped: the row sums of the same matrices (translations by the area ∫N_a dA, rotations
-//! ρt³/12 ∫N_a dA). Why ε is small: the drilling dof is a numerical device, and its penalty
+//! ρt³/12 ∫N_a dA); Nastran decks lump translations only, as MSC Nastran does
+//! ([`ShellProps::lumped_rotary`]). Why ε is small: the drilling dof is a numerical device, and its penalty
 //! spring against an inertia ε ρt³/12 makes a local "drilling oscillation" at
 //! ω ≈ √(c·DRILL_FACTOR·G/(ε ρ))/t (c of order 10). With the full ρt³/12 (ε = 1) that was
 //! measured at about 1.6 kHz on a 4 mm and 3 kHz on a 2 mm steel sheet — a cluster of spurious
@@ -59,6 +60,10 @@ pub struct ShellProps {
     pub nsm: f64,
     /// Drilling penalty factor ([`DRILL_FACTOR`] unless studying its effect).
     pub drill_factor: f64,
+    /// The lumped mass carries the rotary inertia ρt³/12 (module doc); `false`: translations
+    /// only, as MSC Nastran lumps CQUAD4/CTRIA3 (its grid-point kinetic energies of shell grids
+    /// have no rotational part). The consistent mass always has it.
+    pub lumped_rotary: bool,
 }
 
 impl ShellProps {
@@ -72,6 +77,7 @@ impl ShellProps {
             rho: mat.rho,
             nsm: 0.0,
             drill_factor: DRILL_FACTOR,
+            lumped_rotary: true,
         }
     }
 
@@ -299,7 +305,12 @@ pub fn mass_matrix(
     normal: &Xyz,
 ) -> Vec<f64> {
     let nd = 6 * n;
-    let (mt, mr) = (props.mass_per_area(), props.rotary_per_area());
+    let mt = props.mass_per_area();
+    let mr = if lumped && !props.lumped_rotary {
+        0.0
+    } else {
+        props.rotary_per_area()
+    };
     let rot: [[f64; 3]; 3] = std::array::from_fn(|i| {
         std::array::from_fn(|j| {
             let d = if i == j { 1.0 } else { 0.0 };

@@ -154,6 +154,8 @@ pub(crate) fn build(
     let mut qset_cards: BTreeMap<&str, usize> = BTreeMap::new();
     let mut wtmass = 1.0;
     let mut shear_rigid: Vec<String> = Vec::new();
+    // PSOLID ISOP: (FULL, other) property ids — MSC's CHEXA/CPENTA default has bubble modes.
+    let mut isop: (Vec<u64>, Vec<u64>) = Default::default();
     for card in others {
         let g = cc(card, &files);
         let name = card.name.as_str();
@@ -178,6 +180,12 @@ pub(crate) fn build(
             }
             "PSOLID" | "PSHELL" | "PROD" | "PBAR" | "PBARL" | "PBEAM" | "PBEAML" => {
                 let pid = g.id(0, "PID")?;
+                if name == "PSOLID" {
+                    match g.text(5).to_ascii_uppercase().as_str() {
+                        "FULL" | "2" => isop.0.push(pid),
+                        _ => isop.1.push(pid),
+                    }
+                }
                 let (mid, section) = match name {
                     "PSHELL" => super::shell::pshell(&g)?,
                     _ => (g.id(1, "MID")?, property(&g)?),
@@ -735,6 +743,18 @@ pub(crate) fn build(
     b.model.node_sets = node_sets;
     b.model.element_sets = element_sets;
     b.model.params.wtmass = wtmass;
+    b.model.params.solid_bubbles = isop.0.is_empty();
+    if !isop.0.is_empty() && !isop.1.is_empty() {
+        b.model.warnings.push(ImportWarning {
+            file: files[0].clone(),
+            message: format!(
+                "PSOLID {:?} ask for full integration (ISOP = FULL), PSOLID {:?} for MSC's default \
+                 bubble functions: one formulation per model is implemented, every CHEXA/CPENTA \
+                 is fully integrated (stiffer than MSC Nastran on the others)",
+                isop.0, isop.1
+            ),
+        });
+    }
     for (name, n) in unsupported {
         b.model.warnings.push(ImportWarning {
             file: files[0].clone(),
