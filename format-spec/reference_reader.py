@@ -27,6 +27,7 @@ ENTRIES = [  # SPEC §2: name, required
     ("lines.bin", False),  # format 1.1
     ("recipe.json", False),  # format 1.2
     ("label_shares.bin", False),  # format 1.2
+    ("stress_shapes_bottom.bin", False), ("strain_shapes_bottom.bin", False),  # format 1.5
 ]
 KNOWN = dict(ENTRIES)
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
@@ -190,6 +191,7 @@ DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin":
             "invariants.bin": decode_invariants, "method.bin": decode_method,
             "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field, "lines.bin": decode_lines,
             "label_shares.bin": lambda d: d.f64s(),
+            "stress_shapes_bottom.bin": decode_field, "strain_shapes_bottom.bin": decode_field,
             "damping.bin": decode_damping}
 
 
@@ -540,7 +542,7 @@ def validate(b, m):
         index("method.bin", f"reference_conditions[{q}].node", rc["node"], n)
     finite("method.bin", "cutoffs", [c for c in me["cutoffs"] if c is not None])
     counts_and_cutoffs(me, modes, req, err)
-    for entry in ["stress_shapes.bin", "strain_shapes.bin"]:
+    for entry in ["stress_shapes.bin", "strain_shapes.bin", "stress_shapes_bottom.bin", "strain_shapes_bottom.bin"]:
         s = b.get(entry)
         if s is None:
             continue
@@ -550,6 +552,13 @@ def validate(b, m):
                 err("Inconsistent", entry, "nodes must be strictly ascending")
         count(entry, "values", len(s["values"]), nm * len(s["nodes"]) * 6)
         finite(entry, "values", s["values"])
+        if entry.endswith("_bottom.bin"):  # format 1.5: shell bottom fibre, SPEC §5.13
+            top = entry.replace("_bottom.bin", ".bin")
+            if top not in b:
+                err("Inconsistent", entry, f"present without {top}")
+            missing = set(s["nodes"]) - set(b[top]["nodes"])
+            if missing:
+                err("Inconsistent", entry, f"node {min(missing)} has a bottom fibre but no value in {top}")
     dmp = b.get("damping.bin")
     if dmp is not None:
         count("damping.bin", "ratio", len(dmp["ratio"]), nm)

@@ -645,6 +645,7 @@ pub fn build_model_with_hook(
         .chain(reference_records.iter().map(|r| r.0))
         .collect();
     let stored = stored_nodes(&model, &spec.keep_nodes, &always, &faces).map_err(request_err)?;
+    let mut shell_bottom: Option<ModalFields> = None;
     let fields = if spec.fields.is_empty() {
         None
     } else {
@@ -654,25 +655,14 @@ pub fn build_model_with_hook(
             [s[0], s[1], s[2]]
         };
         let f = modal_fields(&model, &stored, phi.ncols(), &u, spec.fields)?;
-        let shells = model
-            .elements
-            .iter()
-            .filter(|e| {
-                e.property.is_some()
-                    && matches!(
-                        e.kind,
-                        crate::model::ElementKind::Quad4 | crate::model::ElementKind::Tri3
-                    )
-            })
-            .count();
-        if shells > 0 {
-            report.warnings.push(format!(
-                "stress/strain shapes are computed for solid elements only: the {shells} shell elements have none (shell fibre stresses are not implemented; use --no-stress to silence)"
-            ));
-        }
+        // Shells: top fibre in the solids' entries, bottom fibre in the 1.5 entries.
+        let u6 = |p: NodeIndex, j: usize| node_shape(dofs, &phi, p, j);
+        let sf = crate::shell_stress::shell_fields(&model, &stored, phi.ncols(), &u6, spec.fields)?;
+        let (f, bottom) = crate::shell_stress::merge(f, &sf, phi.ncols());
+        shell_bottom = bottom;
         if f.nodes.is_empty() {
             report.warnings.push(
-                "stress/strain shapes asked for, but no stored node belongs to a solid element: none written".into(),
+                "stress/strain shapes asked for, but no stored node belongs to a solid or shell element: none written".into(),
             );
         }
         if f.centroid_fallbacks > 0 {
@@ -705,6 +695,14 @@ pub fn build_model_with_hook(
     let recipe =
         crate::recipe::recipe(spec, &model, &report.interfaces, band).map_err(request_err)?;
     body.recipe = Some(recipe);
+    if let Some(b) = &shell_bottom {
+        let mut position = vec![u32::MAX; model.nodes.len()];
+        for (i, &n) in stored.iter().enumerate() {
+            position[n] = i as u32;
+        }
+        body.stress_shapes_bottom = field_shapes(b, b.stress.as_ref(), &position);
+        body.strain_shapes_bottom = field_shapes(b, b.strain.as_ref(), &position);
+    }
     body.version = file::version_for(&body);
     lap(&mut report, STAGES[7]);
 
@@ -1167,6 +1165,8 @@ fn assemble_body(
         damping: None,
         lines: (!lines.is_empty()).then_some(lines),
         recipe: None,
+        stress_shapes_bottom: None,
+        strain_shapes_bottom: None,
         label_shares: Some(if set.diagnostics.label_shares.len() == nm {
             set.diagnostics.label_shares.clone()
         } else {

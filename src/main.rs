@@ -107,8 +107,9 @@ struct BuildArgs {
     /// Invariant 9 costs 72·M² bytes for M modes.
     #[arg(long, default_value = "full")]
     invariants: String,
-    /// Store modal stress and strain shapes of the solid elements at the kept nodes (nodal
-    /// averages, body axes, xx yy zz xy yz zx): both (default when given), stress or strain.
+    /// Store modal stress and strain shapes of the solid and shell elements at the kept nodes
+    /// (nodal averages, body axes, xx yy zz xy yz zx; shells: top fibre, and the bottom fibre
+    /// in the format-1.5 `*_bottom.bin` entries): both (default when given), stress or strain.
     /// Costs 48·M bytes per kept node and field for M modes.
     #[arg(long, num_args = 0..=1, default_missing_value = "both", value_name = "FIELDS")]
     stress_modes: Option<String>,

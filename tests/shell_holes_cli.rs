@@ -155,7 +155,8 @@ fn shell_plate_with_two_holes_cb_on_hole_spiders_passes_check() {
         .unwrap();
     let text = String::from_utf8_lossy(&c3.stdout);
     assert!(c3.status.success(), "{text}");
-    // stress shapes are for solids: asking for them on shells says so instead of writing nothing
+    // shell fibre stress shapes (format 1.5): the top fibre in stress_shapes.bin, the bottom in
+    // stress_shapes_bottom.bin, at every shell node
     let stress = Command::new(exe)
         .args(["build", inp.to_str().unwrap()])
         .args([
@@ -172,6 +173,42 @@ fn shell_plate_with_two_holes_cb_on_hole_spiders_passes_check() {
         .unwrap();
     let report = String::from_utf8_lossy(&stress.stdout);
     assert!(stress.status.success(), "{report}");
-    assert!(report.contains("shell elements have none"), "{report}");
+    assert!(!report.contains("shell elements have none"), "{report}");
+    let body = flexbody_reader::read(dir.join("stress.flexbody")).unwrap();
+    assert_eq!((body.version.major, body.version.minor), (1, 5));
+    let (top, bottom) = (
+        body.stress_shapes.as_ref().unwrap(),
+        body.stress_shapes_bottom.as_ref().unwrap(),
+    );
+    assert!(body.strain_shapes_bottom.is_some());
+    // every stored node but the two spider centres is a shell node
+    assert_eq!(bottom.nodes.len(), body.nodes.len() - 2);
+    assert_eq!(top.nodes, bottom.nodes);
+    // a flat plate's modes are either bending (top = −bottom) or membrane (top = bottom)
+    // (rigid modes have no stress: skipped)
+    let k = top.nodes.len();
+    let peak = top.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    for j in 0..body.modes.omega2.len() {
+        let sj = top.values[j * k * 6..(j + 1) * k * 6]
+            .iter()
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        if sj < 1e-6 * peak {
+            continue;
+        }
+        let r = |sign: f64| {
+            let (mut d, mut s) = (0.0f64, 0.0f64);
+            for i in j * k * 6..(j + 1) * k * 6 {
+                d = d.max((top.values[i] + sign * bottom.values[i]).abs());
+                s = s.max(top.values[i].abs());
+            }
+            d / s
+        };
+        let (bending, membrane) = (r(1.0), r(-1.0));
+        eprintln!("mode {j}: |top + bottom| {bending:.1e}, |top − bottom| {membrane:.1e}");
+        assert!(
+            bending.min(membrane) < 1e-6,
+            "mode {j}: {bending} {membrane}"
+        );
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -15,7 +15,7 @@ pub const FORMAT_NAME: &str = "flexbody-reduced-body";
 pub const MANIFEST: &str = "manifest.json";
 
 /// Payload entries known to v1, in the fixed container order, with their required flag.
-pub const ENTRIES: [(&str, bool); 13] = [
+pub const ENTRIES: [(&str, bool); 15] = [
     (HEADER, true),
     (NODES, true),
     (FACES, true),
@@ -29,6 +29,8 @@ pub const ENTRIES: [(&str, bool); 13] = [
     (LINES, false),
     (RECIPE, false),
     (LABEL_SHARES, false),
+    (STRESS_SHAPES_BOTTOM, false),
+    (STRAIN_SHAPES_BOTTOM, false),
 ];
 /// `header.bin`.
 pub const HEADER: &str = "header.bin";
@@ -56,6 +58,10 @@ pub const LINES: &str = "lines.bin";
 pub const RECIPE: &str = "recipe.json";
 /// `label_shares.bin` (format 1.2).
 pub const LABEL_SHARES: &str = "label_shares.bin";
+/// `stress_shapes_bottom.bin` (format 1.5): shell bottom-fibre stress shapes.
+pub const STRESS_SHAPES_BOTTOM: &str = "stress_shapes_bottom.bin";
+/// `strain_shapes_bottom.bin` (format 1.5): shell bottom-fibre strain shapes.
+pub const STRAIN_SHAPES_BOTTOM: &str = "strain_shapes_bottom.bin";
 
 /// `manifest.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -2,7 +2,7 @@
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
     DAMPING, FACES, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD, MODES, NODAL_MASS,
-    NODES, RECIPE, STRAIN_SHAPES, STRESS_SHAPES,
+    NODES, RECIPE, STRAIN_SHAPES, STRAIN_SHAPES_BOTTOM, STRESS_SHAPES, STRESS_SHAPES_BOTTOM,
 };
 use crate::error::ReadError;
 use crate::limits::ReadLimits;
@@ -400,6 +400,33 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
     }
     if let Some(s) = &body.strain_shapes {
         field_shapes(STRAIN_SHAPES, s, n, m)?;
+    }
+    for (entry, bottom, top, top_entry) in [
+        (
+            STRESS_SHAPES_BOTTOM,
+            &body.stress_shapes_bottom,
+            &body.stress_shapes,
+            STRESS_SHAPES,
+        ),
+        (
+            STRAIN_SHAPES_BOTTOM,
+            &body.strain_shapes_bottom,
+            &body.strain_shapes,
+            STRAIN_SHAPES,
+        ),
+    ] {
+        let Some(b) = bottom else { continue };
+        field_shapes(entry, b, n, m)?;
+        // the bottom fibre's nodes are shell nodes whose top fibre is in the top entry
+        let Some(t) = top else {
+            return Err(inconsistent(entry, format!("present without {top_entry}")));
+        };
+        if let Some(p) = b.nodes.iter().find(|p| t.nodes.binary_search(p).is_err()) {
+            return Err(inconsistent(
+                entry,
+                format!("node {p} has a bottom fibre but no value in {top_entry}"),
+            ));
+        }
     }
     if let Some(d) = &body.damping {
         count(DAMPING, "ratio", d.ratio.len(), m, "one per mode")?;

@@ -338,6 +338,8 @@ pub fn body_3node() -> ReducedBody {
         lines: None,
         recipe: None,
         label_shares: None,
+        stress_shapes_bottom: None,
+        strain_shapes_bottom: None,
     }
 }
 
@@ -527,6 +529,8 @@ pub fn body_20node() -> ReducedBody {
         lines: None,
         recipe: None,
         label_shares: None,
+        stress_shapes_bottom: None,
+        strain_shapes_bottom: None,
     }
 }
 
@@ -621,6 +625,28 @@ pub fn body_3node_recipe() -> ReducedBody {
     b
 }
 
+/// The 3-node chain read as a shell strip (format 1.5): stress and strain shapes at all three
+/// nodes, the top fibre, and the bottom fibre of nodes 1 and 2 (SPEC §5.13).
+pub fn body_3node_shell_fibres() -> ReducedBody {
+    let mut b = body_3node();
+    let m = b.modes.omega2.len();
+    let field = |nodes: Vec<u32>, scale: f64| {
+        let k = nodes.len();
+        FieldShapes {
+            nodes,
+            values: (0..m * k * 6)
+                .map(|i| scale * (i as f64 * 0.25 - 1.5))
+                .collect(),
+        }
+    };
+    b.stress_shapes = Some(field(vec![0, 1, 2], 1.0e6));
+    b.strain_shapes = Some(field(vec![0, 1, 2], 1.0e-5));
+    b.stress_shapes_bottom = Some(field(vec![1, 2], -1.0e6));
+    b.strain_shapes_bottom = Some(field(vec![1, 2], -1.0e-5));
+    b.version = flexbody_reader::version_for(&b);
+    b
+}
+
 /// Golden files: (file stem, body); each goes under `golden/v<its version>/`.
 pub fn golden() -> Vec<(&'static str, ReducedBody)> {
     vec![
@@ -628,6 +654,7 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         ("twenty_node_chain", body_20node()),
         ("three_node_chain_lines", body_3node_lines()),
         ("three_node_chain_recipe", body_3node_recipe()),
+        ("three_node_chain_shell_fibres", body_3node_shell_fibres()),
     ]
 }
 

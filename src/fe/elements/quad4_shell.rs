@@ -285,6 +285,34 @@ pub fn area(x: &[Xyz; 4]) -> Result<f64, ElementError> {
     Ok(area_products(&f).iter().sum())
 }
 
+/// Membrane strain (ε_x, ε_y, γ_xy) and curvature (κ_x, κ_y, κ_xy) at each corner, in the
+/// element frame, from the local nodal values `[u v w θx θy θz]` of the real (warped) nodes:
+/// the bilinear fields' gradients at the corner (the condensed incompatible modes are left
+/// out: they vanish for the constant states the patch test checks).
+pub fn corner_strains(f: &ShellFrame<4>, u: &[[f64; 6]; 4]) -> [([f64; 3], [f64; 3]); 4] {
+    // warping links (shell::apply_warping): u_f = u − hθy, v_f = v + hθx
+    let uf: [[f64; 2]; 4] =
+        std::array::from_fn(|a| [u[a][0] - f.h[a] * u[a][4], u[a][1] + f.h[a] * u[a][3]]);
+    std::array::from_fn(|c| {
+        let (_, d) = shape(REF[c][0], REF[c][1]);
+        let (_, _, inv) = jacobian(&f.p, &d);
+        let mut em = [0.0; 3];
+        let mut k = [0.0; 3];
+        for a in 0..4 {
+            let g = grad(&inv, &d[a]);
+            em[0] += g[0] * uf[a][0];
+            em[1] += g[1] * uf[a][1];
+            em[2] += g[1] * uf[a][0] + g[0] * uf[a][1];
+            // βx = θy, βy = −θx
+            let (bx, by) = (u[a][4], -u[a][3]);
+            k[0] += g[0] * bx;
+            k[1] += g[1] * by;
+            k[2] += g[1] * bx + g[0] * by;
+        }
+        (em, k)
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::shell::test_util::*;

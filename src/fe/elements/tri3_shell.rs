@@ -401,6 +401,42 @@ pub fn matrices(
     Ok((k, m))
 }
 
+/// Membrane strain (ε_x, ε_y, γ_xy) and curvature (κ_x, κ_y, κ_xy) at each corner, in the
+/// element frame, from the local nodal values `[u v w θx θy θz]` (CST: constant membrane strain;
+/// DKT/DKMT: the rotation field's gradient at the corner).
+pub fn corner_strains(
+    f: &ShellFrame<3>,
+    props: &ShellProps,
+    u: &[[f64; 6]; 3],
+) -> [([f64; 3], [f64; 3]); 3] {
+    let (_, gl) = linear(&f.p);
+    let mut em = [0.0; 3];
+    for a in 0..3 {
+        em[0] += gl[a][0] * u[a][0];
+        em[1] += gl[a][1] * u[a][1];
+        em[2] += gl[a][1] * u[a][0] + gl[a][0] * u[a][1];
+    }
+    let (t, _) = dkt_nodal_rotations(&f.p, &edge_factors(&f.p, props));
+    let plate: Vec<f64> = (0..3).flat_map(|a| [u[a][2], u[a][3], u[a][4]]).collect();
+    // β at the 6 DKT nodes
+    let beta: Vec<f64> = (0..12)
+        .map(|r| (0..9).map(|m| t[r][m] * plate[m]).sum())
+        .collect();
+    std::array::from_fn(|c| {
+        let mut l = [0.0; 3];
+        l[c] = 1.0;
+        let g = quadratic_gradients(&l, &gl);
+        let mut k = [0.0; 3];
+        for a in 0..6 {
+            let (bx, by) = (beta[2 * a], beta[2 * a + 1]);
+            k[0] += g[a][0] * bx;
+            k[1] += g[a][1] * by;
+            k[2] += g[a][1] * bx + g[a][0] * by;
+        }
+        (em, k)
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::shell::test_util::*;
