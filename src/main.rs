@@ -29,11 +29,11 @@ enum Command {
     /// frequencies and residuals against the FE model). Exit code 1 when a check fails.
     Check(CheckArgs),
     /// Export a .flexbody file to another solver's format: exudyn (NPZ for
-    /// ObjectFFRFreducedOrderInterface.LoadFromFile).
+    /// ObjectFFRFreducedOrderInterface.LoadFromFile) or mbdyn (modal element .fem file).
     Export {
         /// The .flexbody file.
         file: PathBuf,
-        /// Target format: exudyn.
+        /// Target format: exudyn or mbdyn.
         #[arg(long)]
         to: String,
         /// Output file.
@@ -467,7 +467,7 @@ fn check(a: &CheckArgs) -> anyhow::Result<bool> {
 fn export(file: &PathBuf, to: &str, output: &std::path::Path) -> anyhow::Result<()> {
     use anyhow::Context;
     let target = flexbody::export::Target::from_name(to)
-        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn"))?;
+        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn or mbdyn"))?;
     let body = flexbody_reader::read(file)
         .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
     let summary = flexbody::export::export(&body, target, output)?;

@@ -3,12 +3,14 @@
 //! file beside the target and a rename, so a failed export never leaves a half-written file.
 //!
 //! * [`exudyn`] — the NPZ that `exudyn.FEM.ObjectFFRFreducedOrderInterface.LoadFromFile` reads.
+//! * [`mbdyn`] — the modal element's FEM file (MBDyn manual, "FEM File Format").
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use flexbody_reader::{ModeLabel, ReducedBody};
 
 pub mod exudyn;
+pub mod mbdyn;
 pub mod npz;
 
 /// Why an export failed. No output file is left behind in any case.
@@ -47,6 +49,8 @@ pub enum ExportError {
 pub enum Target {
     /// exudyn `ObjectFFRFreducedOrderInterface` NPZ.
     Exudyn,
+    /// MBDyn modal element `.fem` file.
+    Mbdyn,
 }
 
 impl Target {
@@ -54,6 +58,7 @@ impl Target {
     pub fn from_name(name: &str) -> Option<Target> {
         match name.to_ascii_lowercase().as_str() {
             "exudyn" => Some(Target::Exudyn),
+            "mbdyn" => Some(Target::Mbdyn),
             _ => None,
         }
     }
@@ -78,6 +83,7 @@ pub fn export(
 ) -> Result<ExportSummary, ExportError> {
     match target {
         Target::Exudyn => exudyn::export_exudyn(body, path),
+        Target::Mbdyn => mbdyn::export_mbdyn(body, path),
     }
 }
 
