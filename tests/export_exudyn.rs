@@ -123,6 +123,47 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The worked example (examples/pendulum_exudyn.py, built with this test's binary) runs and its
+/// swing agrees with the rigid physical pendulum of the file's mass properties (the conrod's
+/// elastic deflection is ~0.01 µm, far below what changes the swing).
+#[test]
+fn the_pendulum_example_runs_and_swings_like_the_rigid_pendulum_of_the_files_mass_properties() {
+    if !python_has("exudyn") || !python_has("scipy") || !python_has("matplotlib") {
+        eprintln!(
+            "SKIPPED the pendulum example: python3 cannot import exudyn, scipy and matplotlib"
+        );
+        return;
+    }
+    let dir = scratch("pendulum");
+    let png = dir.join("pendulum.png");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pendulum_exudyn.py");
+    let o = Command::new("python3")
+        .arg(&script)
+        .arg(&png)
+        .env("FLEXBODY", env!("CARGO_BIN_EXE_flexbody"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    println!("{stdout}");
+    assert!(
+        o.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(png.exists());
+    let diff: f64 = stdout
+        .split("largest difference to exudyn's flexible body: ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no difference line in {stdout}"));
+    assert!(
+        diff < 1e-3,
+        "swing differs from the rigid pendulum by {diff} deg"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
     let dir = scratch("partial");
