@@ -28,6 +28,18 @@ enum Command {
     /// Verify a .flexbody file (orthonormality, mass properties, rigid modes; with --model also
     /// frequencies and residuals against the FE model). Exit code 1 when a check fails.
     Check(CheckArgs),
+    /// Export a .flexbody file to another solver's format: exudyn (NPZ for
+    /// ObjectFFRFreducedOrderInterface.LoadFromFile) or mbdyn (modal element .fem file).
+    Export {
+        /// The .flexbody file.
+        file: PathBuf,
+        /// Target format: exudyn or mbdyn.
+        #[arg(long)]
+        to: String,
+        /// Output file.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
 }
 
 /// Model options shared by `build` and `check --model`.
@@ -454,12 +466,32 @@ fn check(a: &CheckArgs) -> anyhow::Result<bool> {
     Ok(report.passed())
 }
 
+fn export(file: &PathBuf, to: &str, output: &std::path::Path) -> anyhow::Result<()> {
+    use anyhow::Context;
+    let target = flexbody::export::Target::from_name(to)
+        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn or mbdyn"))?;
+    let body = flexbody_reader::read(file)
+        .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
+    let summary = flexbody::export::export(&body, target, output)?;
+    for n in &summary.notes {
+        eprintln!("flexbody: note: {n}");
+    }
+    eprintln!(
+        "flexbody: wrote {} — {} flexible modes, {} nodes",
+        output.display(),
+        summary.modes,
+        summary.nodes
+    );
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Build(args) => build(args).map(|()| true),
         Command::Inspect { file, json } => inspect(file, *json).map(|()| true),
         Command::Check(args) => check(args),
+        Command::Export { file, to, output } => export(file, to, output).map(|()| true),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,

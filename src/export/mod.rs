@@ -1,0 +1,140 @@
+//! Exporters: a `.flexbody` file (read through `flexbody-reader` only) → another solver's own
+//! format. Each exporter is a plain function of the [`ReducedBody`]; output goes through a temp
+//! file beside the target and a rename, so a failed export never leaves a half-written file.
+//!
+//! * [`exudyn`] — the NPZ that `exudyn.FEM.ObjectFFRFreducedOrderInterface.LoadFromFile` reads.
+//! * [`mbdyn`] — the modal element's FEM file (MBDyn manual, "FEM File Format").
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use flexbody_reader::{ModeLabel, ReducedBody};
+
+pub mod exudyn;
+pub mod mbdyn;
+pub mod npz;
+
+/// Why an export failed. No output file is left behind in any case.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// The body lacks something the target format needs.
+    #[error("cannot export to {target}: {reason}")]
+    Unsupported {
+        /// Target format name.
+        target: &'static str,
+        /// What is missing and how to get it.
+        reason: String,
+    },
+    /// Creating, writing or renaming the output failed.
+    #[error("{path}: {action} failed: {source}")]
+    Io {
+        /// The output path.
+        path: PathBuf,
+        /// What was being done.
+        action: &'static str,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The archive layer failed.
+    #[error("{path}: archive: {detail}")]
+    Archive {
+        /// The output path.
+        path: PathBuf,
+        /// The archive layer's message.
+        detail: String,
+    },
+}
+
+/// Export targets of `flexbody export --to`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    /// exudyn `ObjectFFRFreducedOrderInterface` NPZ.
+    Exudyn,
+    /// MBDyn modal element `.fem` file.
+    Mbdyn,
+}
+
+impl Target {
+    /// Parses a `--to` value.
+    pub fn from_name(name: &str) -> Option<Target> {
+        match name.to_ascii_lowercase().as_str() {
+            "exudyn" => Some(Target::Exudyn),
+            "mbdyn" => Some(Target::Mbdyn),
+            _ => None,
+        }
+    }
+}
+
+/// What an export wrote, for the CLI's one-line summary.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExportSummary {
+    /// Flexible modes written.
+    pub modes: usize,
+    /// Nodes written.
+    pub nodes: usize,
+    /// Notes for the user (what was left out and why).
+    pub notes: Vec<String>,
+}
+
+/// Exports `body` to `path` in the `target` format.
+pub fn export(
+    body: &ReducedBody,
+    target: Target,
+    path: &Path,
+) -> Result<ExportSummary, ExportError> {
+    match target {
+        Target::Exudyn => exudyn::export_exudyn(body, path),
+        Target::Mbdyn => mbdyn::export_mbdyn(body, path),
+    }
+}
+
+/// Indices of the flexible modes (every mode not labelled `Rigid`), ascending. Selected by
+/// label, not by ω²: a free body's rigid modes sit at ~1e-3 Hz, not at 0.
+pub fn flexible_modes(body: &ReducedBody) -> Vec<usize> {
+    body.modes
+        .labels
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| **l != ModeLabel::Rigid)
+        .map(|(j, _)| j)
+        .collect()
+}
+
+/// Writes `bytes` to `path` through `path`'s folder/.NAME.tmp-PID, fsync and rename; on any
+/// error the temp file is removed and `path` is untouched.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ExportError> {
+    let io = |action: &'static str| {
+        move |source| ExportError::Io {
+            path: path.to_path_buf(),
+            action,
+            source,
+        }
+    };
+    if path.is_dir() {
+        return Err(io("writing the output")(std::io::Error::new(
+            std::io::ErrorKind::IsADirectory,
+            "it is a folder: give a file name",
+        )));
+    }
+    let name = path
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "export".into());
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp).map_err(io("creating the temp file beside it"))?;
+        f.write_all(bytes)
+            .map_err(io("writing the temp file beside it"))?;
+        f.sync_all()
+            .map_err(io("syncing the temp file beside it"))?;
+        drop(f);
+        std::fs::rename(&tmp, path).map_err(io("renaming the temp file onto the target"))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}

@@ -1,0 +1,202 @@
+//! Issue 18, `flexbody export --to exudyn`: the NPZ checked by exudyn itself
+//! (`tests/python/exudyn_export_check.py`): LoadFromFile reads it, exudyn's own constructor
+//! recomputes the inertia terms from the exported nodes, masses and shapes (equal to 1e-12),
+//! and an exudyn simulation of the free body vibrating in each of the first 3 flexible modes
+//! gives the stored frequency to 1e-6. Through the real binary on the bundled connecting rod.
+//! Without an importable exudyn the Python part is skipped with a visible message (CI installs
+//! exudyn, see `.ci/run`).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn exe() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_flexbody"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("flexbody-export-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn build_conrod(out: &Path, extra: &[&str]) {
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp");
+    let o = exe()
+        .arg("build")
+        .arg(&model)
+        .args(["--interface", "BIG_END,SMALL_END", "--fmax", "3000"])
+        .args(["--units", "si", "-q"])
+        .args(extra)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "build failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+fn python_has(module: &str) -> bool {
+    Command::new("python3")
+        .args(["-c", &format!("import {module}")])
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+#[test]
+fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_frequencies() {
+    let dir = scratch("exudyn");
+    let body = dir.join("rod.flexbody");
+    let npz = dir.join("rod.npz");
+    build_conrod(&body, &["--stress-modes", "--damping", "2%"]);
+    let o = exe()
+        .arg("export")
+        .arg(&body)
+        .args(["--to", "exudyn", "-o"])
+        .arg(&npz)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "export failed: {stderr}");
+    assert!(stderr.contains("8 flexible modes, 6963 nodes"), "{stderr}");
+    assert!(
+        stderr.contains("2020 surface triangles with 6 nodes"),
+        "{stderr}"
+    );
+    // An NPZ is a zip of .npy files; exudyn's keys are there whatever Python can do.
+    let zip = zip::ZipArchive::new(std::fs::File::open(&npz).unwrap()).unwrap();
+    for key in [
+        "modeBasis",
+        "trigList",
+        "postProcessingModes",
+        "massMatrixReduced",
+        "stiffnessMatrixReduced",
+        "infoList",
+        "rigidBodyNodeType",
+        "xRef",
+        "inertiaLocal",
+        "Mtt",
+        "totalMass",
+        "chiU",
+        "chiUtilde",
+        "mPsiTildePsi",
+        "mPsiTildePsiTilde",
+        "mPhitTPsi",
+        "mPhitTPsiTilde",
+        "mXRefTildePsi",
+        "mXRefTildePsiTilde",
+        "fileVersion",
+        "type",
+    ] {
+        assert!(
+            zip.file_names()
+                .any(|n| n.is_ok_and(|n| n == format!("{key}.npy"))),
+            "{key}.npy missing"
+        );
+    }
+
+    if !python_has("exudyn") || !python_has("scipy") {
+        eprintln!(
+            "SKIPPED the exudyn checks of export_exudyn: python3 cannot import exudyn and scipy \
+             (pip install exudyn scipy); the NPZ was written but not loaded in exudyn"
+        );
+        return;
+    }
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/exudyn_export_check.py");
+    let o = Command::new("python3")
+        .arg(&script)
+        .arg(&npz)
+        .arg(&body)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    println!("{stdout}");
+    assert!(
+        o.status.success(),
+        "exudyn checks failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(stdout.contains("all exudyn checks passed"), "{stdout}");
+    assert_eq!(stdout.matches("ok   free vibration mode").count(), 3);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The worked example (examples/pendulum_exudyn.py, built with this test's binary) runs and its
+/// swing agrees with the rigid physical pendulum of the file's mass properties (the conrod's
+/// elastic deflection is ~0.01 µm, far below what changes the swing).
+#[test]
+fn the_pendulum_example_runs_and_swings_like_the_rigid_pendulum_of_the_files_mass_properties() {
+    if !python_has("exudyn") || !python_has("scipy") || !python_has("matplotlib") {
+        eprintln!(
+            "SKIPPED the pendulum example: python3 cannot import exudyn, scipy and matplotlib"
+        );
+        return;
+    }
+    let dir = scratch("pendulum");
+    let png = dir.join("pendulum.png");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pendulum_exudyn.py");
+    let o = Command::new("python3")
+        .arg(&script)
+        .arg(&png)
+        .env("FLEXBODY", env!("CARGO_BIN_EXE_flexbody"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    println!("{stdout}");
+    assert!(
+        o.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(png.exists());
+    let diff: f64 = stdout
+        .split("largest difference to exudyn's flexible body: ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no difference line in {stdout}"));
+    assert!(
+        diff < 1e-3,
+        "swing differs from the rigid pendulum by {diff} deg"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
+    let dir = scratch("partial");
+    let body = dir.join("rod.flexbody");
+    let npz = dir.join("rod.npz");
+    build_conrod(&body, &["--invariants", "partial"]);
+    let o = exe()
+        .arg("export")
+        .arg(&body)
+        .args(["--to", "exudyn", "-o"])
+        .arg(&npz)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("lacks I5, I9") && stderr.contains("--invariants full"),
+        "{stderr}"
+    );
+    assert!(!npz.exists());
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        1,
+        "a temp file was left"
+    );
+    let o = exe()
+        .arg("export")
+        .arg(&body)
+        .args(["--to", "adams", "-o"])
+        .arg(&npz)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--to adams: expected"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
