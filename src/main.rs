@@ -294,6 +294,9 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
             "notes": r.diagnostics.notes,
             "deck": r.notes,
             "constraints": r.constraints,
+            // VmHWM of this process: the whole build, file writing included
+            "peak_memory_mb": flexbody::solve::memory::peak_resident_bytes()
+                .map(|b| b as f64 / 1048576.0),
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
