@@ -125,10 +125,9 @@ struct BuildArgs {
     /// Costs 48·M bytes per kept node and field for M modes.
     #[arg(long, num_args = 0..=1, default_missing_value = "both", value_name = "FIELDS")]
     stress_modes: Option<String>,
-    /// Threads for the sparse factorization, the block solves and the dense kernels (default 1,
-    /// like CalculiX's and Nastran's default; 2 on this project's 2-core machine: see
-    /// docs/benchmarks.md).
-    #[arg(long, default_value_t = 1, value_name = "N")]
+    /// Threads for the sparse factorization, the block solves and the dense kernels (default:
+    /// the available cores; 1 for a sequential run; see docs/benchmarks.md for 1 vs 2 measured).
+    #[arg(long, default_value_t = default_threads(), value_name = "N")]
     threads: usize,
     /// Memory a sparse factorization may use, e.g. 8G (bytes, or with a K, M or G suffix);
     /// default: MemAvailable. The factor size is estimated before factoring and the build stops
@@ -236,6 +235,11 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
     })
 }
 
+/// The `--threads` default: the cores this process may use (1 when unknown).
+fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, usize::from)
+}
+
 /// Current time as RFC 3339 UTC (civil-from-days, no time-zone database needed).
 fn utc_now() -> String {
     let secs = std::time::SystemTime::now()
@@ -308,6 +312,9 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
             "notes": r.diagnostics.notes,
             "deck": r.notes,
             "constraints": r.constraints,
+            // VmHWM of this process: the whole build, file writing included
+            "peak_memory_mb": flexbody::solve::memory::peak_resident_bytes()
+                .map(|b| b as f64 / 1048576.0),
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());

@@ -6,6 +6,8 @@ resident memory of this process (or of the ccx child) in MB, and the eigenvalues
 
   peers.py superlu K.mtx M.mtx MODES        SciPy eigsh shift-invert, sigma = 0, SuperLU factor
   peers.py cholmod K.mtx M.mtx MODES        ARPACK (SciPy eigsh) with a CHOLMOD factor (scikit-sparse)
+  peers.py cholmod-factor K.mtx             CHOLMOD (scikit-sparse) analyse + supernodal LLT of K only
+                                            (the cb suite's peer row: one f64 factorization of K_ii)
   peers.py hcb K.mtx M.mtx XYZ.txt IFACE.txt MODES
                                             exudyn FEMinterface.ComputeHurtyCraigBamptonModes
                                             (RBE2 static modes, one interface per line of IFACE.txt)
@@ -101,6 +103,31 @@ def eigen_cholmod(kp, mp, modes):
     }
 
 
+def factor_cholmod(kp):
+    import scipy.io
+    from sksparse.cholmod import analyze
+    t = time.perf_counter()
+    k = scipy.io.mmread(kp).tocsc()
+    t_read = time.perf_counter() - t
+    peak_read = peak_mb()
+    t0 = time.perf_counter()
+    ordering = os.environ.get("CHOLMOD_ORDERING", "default")
+    f = analyze(k, mode="supernodal", ordering_method=ordering)
+    t1 = time.perf_counter()
+    f.cholesky_inplace(k)
+    t2 = time.perf_counter()
+    return {
+        "peer": "CHOLMOD (scikit-sparse) supernodal LLT, one f64 factorization",
+        "n": k.shape[0],
+        "nnz_k": int(k.nnz),
+        "cholmod_ordering": ordering,
+        "phases_s": {"read": t_read, "analyse": t1 - t0, "factor": t2 - t1,
+                     "analyse_factor": t2 - t0, "total": t2 - t0},
+        "peak_rss_mb": peak_mb(),
+        "peak_rss_after_read_mb": peak_read,
+    }
+
+
 def hcb(kp, mp, xyz, iface, modes):
     import numpy as np
     from exudyn.FEM import FEMinterface, HCBstaticModeSelection
@@ -164,6 +191,8 @@ def main(argv):
         out = eigen_superlu(a[0], a[1], int(a[2]))
     elif cmd == "cholmod":
         out = eigen_cholmod(a[0], a[1], int(a[2]))
+    elif cmd == "cholmod-factor":
+        out = factor_cholmod(a[0])
     elif cmd == "hcb":
         out = hcb(a[0], a[1], a[2], a[3], int(a[4]))
     elif cmd == "ccx":

@@ -8,7 +8,9 @@
 //! * `cb NX NY NZ [--modes N]`: the whole Craig–Bampton build (generate, RBE2 spiders on both
 //!   end faces = 2 interface nodes, assembly, elimination, CB with N fixed-interface modes,
 //!   orthonormalization) against exudyn's HCB (RBE2 interfaces on the same end-face nodes, our
-//!   assembled K, M) and ccx's frequency-only run of N modes with both end faces clamped.
+//!   assembled K, M) and ccx's frequency-only run of N modes with both end faces clamped, and
+//!   against one CHOLMOD factorization (analyse + factor) of the same K_ii in the same run
+//!   (`--repeat R` alternates ours and CHOLMOD R times).
 //!
 //! Results: `bench/results/eigen_<dofs>.json`, `bench/results/cb_<dofs>.json`.
 
@@ -271,6 +273,38 @@ pub fn eigen(n: [usize; 3], modes: usize, with_ccx: bool, with_superlu: bool) ->
     Ok(json)
 }
 
+/// The CB suite's K_ii: the generated block with RBE2 spiders on both end faces, assembled,
+/// eliminated, and restricted to the non-interface dofs (the matrix the CB build factors).
+pub fn cb_kii(n: [usize; 3]) -> Res<SparseColMat<usize, f64>> {
+    let mut model = tet10_block(n);
+    let itf = resolve_interfaces(&mut model, &["X0".into(), "XL".into()], SpiderKind::Rbe2)
+        .map_err(|e| e.to_string())?;
+    let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
+    let red = eliminate(
+        &model,
+        &asm.dofs,
+        &asm.k,
+        &asm.m,
+        &ConstraintSpec::default(),
+    )
+    .map_err(|e| e.to_string())?;
+    let mut pos = vec![usize::MAX; asm.dofs.n_dofs];
+    for (i, &p) in red.retained.iter().enumerate() {
+        pos[p] = i;
+    }
+    let mut is_iface = vec![false; red.k.nrows()];
+    for r in &itf {
+        for &node in &r.nodes {
+            for c in 0..6 {
+                is_iface[pos[asm.dofs.first[node] + c]] = true;
+            }
+        }
+    }
+    let inner: Vec<usize> = (0..red.k.nrows()).filter(|&i| !is_iface[i]).collect();
+    flexbody::solve::sparse_ops::submatrix(red.k.as_ref(), &inner, &inner)
+        .map_err(|e| e.to_string())
+}
+
 /// `ours-cb NX NY NZ MODES`: our whole CB build on the generated block (prints one JSON line).
 pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
     let mut phases = serde_json::Map::new();
@@ -350,19 +384,70 @@ pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
     }))
 }
 
-/// The `cb` suite.
-pub fn cb(n: [usize; 3], modes: usize, with_exudyn: bool, with_ccx: bool) -> Res<Value> {
+/// Ratio of our whole CB build's time and peak memory to one CHOLMOD factorization of the same
+/// K_ii (analyse + factor), from one repeat of the alternating pair.
+fn cholmod_ratio(ours: &Value, chol: &Value) -> Value {
+    let q = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) if b > 0.0 => num(a / b),
+        _ => Value::Null,
+    };
+    json!({
+        "total_over_factor": q(ours["phases_s"]["total"].as_f64(), chol["phases_s"]["analyse_factor"].as_f64()),
+        "our_factorization_over_factor": q(ours["phases_s"]["cb factorization"].as_f64(), chol["phases_s"]["analyse_factor"].as_f64()),
+        "peak_memory": q(ours["peak_rss_mb"].as_f64(), chol["peak_rss_mb"].as_f64()),
+    })
+}
+
+/// The `cb` suite. `repeats` alternates ours and the CHOLMOD factorization of the same K_ii
+/// (ours, CHOLMOD, ours, CHOLMOD, ...), so each pair shares the machine's load; the result keeps
+/// every pair and reports the fastest run of each side as `ours` and `cholmod_factor_kii`.
+pub fn cb(
+    n: [usize; 3],
+    modes: usize,
+    with_exudyn: bool,
+    with_ccx: bool,
+    repeats: usize,
+) -> Res<Value> {
     let load_before = loadavg();
     let ms = modes.to_string();
-    let ours = run_self(&[
-        "ours-cb".into(),
-        n[0].to_string(),
-        n[1].to_string(),
-        n[2].to_string(),
-        ms.clone(),
-    ])?;
+    let run_ours = || {
+        run_self(&[
+            "ours-cb".into(),
+            n[0].to_string(),
+            n[1].to_string(),
+            n[2].to_string(),
+            ms.clone(),
+        ])
+    };
+    let mut ours = run_ours()?;
     let dofs = ours["n"].as_u64().unwrap_or(0);
     let dir = data_dir(&format!("cb_{dofs}"))?;
+    // The CHOLMOD peer row: the same K_ii (interface dofs removed), written once.
+    let kii_path = dir.join("K_ii.mtx");
+    {
+        let kii = cb_kii(n)?;
+        write_mtx(&kii_path, &kii)?;
+    }
+    let kii_s = kii_path.display().to_string();
+    let mut pairs = Vec::new();
+    let mut chol_best: Option<Value> = None;
+    let total = |v: &Value, k: &str| v["phases_s"][k].as_f64().unwrap_or(f64::INFINITY);
+    for r in 0..repeats.max(1) {
+        let o = if r == 0 { ours.clone() } else { run_ours()? };
+        let c = run_peer(&["cholmod-factor".into(), kii_s.clone()]);
+        pairs.push(json!({"ours": o.clone(), "cholmod_factor_kii": c.clone(),
+                          "ratio": cholmod_ratio(&o, &c)}));
+        if total(&o, "total") < total(&ours, "total") {
+            ours = o;
+        }
+        if chol_best
+            .as_ref()
+            .is_none_or(|b| total(&c, "analyse_factor") < total(b, "analyse_factor"))
+        {
+            chol_best = Some(c);
+        }
+    }
+    let cholmod = chol_best.unwrap_or(Value::Null);
     let model = tet10_block(n);
     let (x0, xl) = (node_set(&model, "X0")?, node_set(&model, "XL")?);
     let exudyn = if with_exudyn {
@@ -420,11 +505,13 @@ pub fn cb(n: [usize; 3], modes: usize, with_exudyn: bool, with_ccx: bool) -> Res
         "loadavg_before": load_before,
         "loadavg_after": loadavg(),
         "ours": ours,
-        "peers": {"exudyn_hcb": exudyn, "ccx": ccx},
+        "peers": {"exudyn_hcb": exudyn, "ccx": ccx, "cholmod_factor_kii": cholmod},
         "ratios_ours_over": {
             "exudyn_hcb": ratios(&ours, &exudyn, modes),
             "ccx": ratios(&ours, &ccx, modes),
+            "cholmod_factor_kii": cholmod_ratio(&ours, &cholmod),
         },
+        "repeats": pairs,
     });
     write_result(&format!("cb_{dofs}.json"), &json)?;
     Ok(json)

@@ -54,9 +54,10 @@ pub fn craig_bampton_basis(
     let nb = interface.len();
     let t0 = Instant::now();
     let kii = sparse_ops::submatrix(k.as_ref(), &inner, &inner)?;
-    let mii = sparse_ops::submatrix(m.as_ref(), &inner, &inner)?;
     let kib = sparse_ops::submatrix(k.as_ref(), &inner, interface)?;
     let llt = factor_kii(&kii, &kib, &inner, eig)?;
+    // M_ii after the factorization: not resident beside the factorization's scratch
+    let mii = sparse_ops::submatrix(m.as_ref(), &inner, &inner)?;
     let t_factor = t0.elapsed().as_secs_f64();
     // Ψ = −K_ii⁻¹ K_ib
     let t1 = Instant::now();

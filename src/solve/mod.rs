@@ -8,6 +8,7 @@
 pub mod cholesky;
 pub mod dense;
 pub mod eigen;
+pub mod memory;
 pub mod ordering;
 mod rows;
 pub mod sparse_ops;

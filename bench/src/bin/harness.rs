@@ -3,7 +3,8 @@
 //! Suites (results under `bench/results/`, generated inputs under /work/benchdata):
 //! * `eigen NX NY NZ [--modes 30] [--ccx] [--no-superlu]` — factorization + eigen phase vs SciPy/SuperLU,
 //!   ARPACK/CHOLMOD (and ccx) on identical matrices;
-//! * `cb NX NY NZ [--modes 30] [--exudyn] [--ccx]` — whole CB build vs exudyn HCB and ccx;
+//! * `cb NX NY NZ [--modes 30] [--exudyn] [--ccx] [--repeat R]` — whole CB build vs exudyn HCB,
+//!   ccx and one CHOLMOD factorization of the same K_ii (R alternating pairs);
 //! * `accuracy [MODEL.inp]` — every reduction method × mode counts on the bundled conrod;
 //! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
 //!
@@ -12,7 +13,7 @@
 
 use flexbody_bench::{accuracy, chart, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] | accuracy [MODEL.inp] | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | accuracy [MODEL.inp] | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -34,12 +35,29 @@ fn modes(a: &[String]) -> Res<usize> {
     }
 }
 
+fn repeat(a: &[String]) -> Res<usize> {
+    match a.iter().position(|s| s == "--repeat") {
+        Some(i) => a
+            .get(i + 1)
+            .and_then(|s| s.parse().ok())
+            .filter(|&r| r > 0)
+            .ok_or_else(|| "--repeat R (R >= 1)".to_string()),
+        None => Ok(1),
+    }
+}
+
 fn run(args: &[String]) -> Res<()> {
     let (suite, a) = args.split_first().ok_or(USAGE)?;
     let has = |f: &str| a.iter().any(|s| s == f);
     let out = match suite.as_str() {
         "eigen" => suites::eigen(dims(a)?, modes(a)?, has("--ccx"), !has("--no-superlu"))?,
-        "cb" => suites::cb(dims(a)?, modes(a)?, has("--exudyn"), has("--ccx"))?,
+        "cb" => suites::cb(
+            dims(a)?,
+            modes(a)?,
+            has("--exudyn"),
+            has("--ccx"),
+            repeat(a)?,
+        )?,
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
         "chart" => chart::run()?,
         "ours-eigen" if (3..=6).contains(&a.len()) => {
