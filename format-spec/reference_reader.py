@@ -15,6 +15,7 @@ import math
 import struct
 import sys
 import zipfile
+import zlib
 from pathlib import Path
 
 FORMAT_NAME = "flexbody-reduced-body"
@@ -283,7 +284,7 @@ def read_entry(zf, info, declared):
     try:
         with zf.open(info) as f:
             data = f.read(declared + 1)
-    except (zipfile.BadZipFile, OSError, EOFError, ValueError) as e:
+    except (zipfile.BadZipFile, OSError, EOFError, ValueError, zlib.error) as e:
         raise ReadError("Container", f"{info.filename}: damaged zip data ({e})")
     if len(data) != declared:
         raise ReadError("SizeMismatch", f"{info.filename}: size {len(data)} differs from the manifest's {declared}")
