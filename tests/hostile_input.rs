@@ -506,3 +506,36 @@ $Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n"
         &["'1.797693134862316e+308'", "every real must be finite"],
     );
 }
+
+/// Errors found after import (element matrices) name the element's file and line, in every
+/// importer, and the text appears once.
+#[test]
+fn post_import_element_errors_carry_the_source_line() {
+    use flexbody::fe::{assembly::element_matrices, AssemblySpec};
+    // A flat (zero-volume) tet on line 8 of an .inp.
+    let inp = b"*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 1, 1, 0\n\
+*ELEMENT, TYPE=C3D4, ELSET=S\n7, 1, 2, 3, 4\n\n*MATERIAL, NAME=M\n*ELASTIC\n1e9, 0.3\n\
+*DENSITY\n1000\n*SOLID SECTION, ELSET=S, MATERIAL=M\n";
+    let m = read("flat_tet.inp", inp).unwrap();
+    let loc = m.element_location(7).unwrap();
+    assert!(loc.ends_with("flat_tet.inp:7"), "{loc}");
+    let err = element_matrices(&m, 0, &AssemblySpec::default())
+        .err()
+        .expect("a flat tet fails");
+    let msg = err.to_string();
+    assert!(msg.contains("flat_tet.inp:7: element 7"), "{msg}");
+    assert_eq!(msg.matches("element 7").count(), 1, "{msg}");
+    // Nastran: the card's first line.
+    let bdf = "MAT1,1,2.1e11,,.3,7850.\nPSOLID,3,1\nGRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\n\
+GRID,3,,0.,1.,0.\nGRID,4,,1.,1.,0.\n$ comment\nCTETRA,44,3,1,2,3,4\n";
+    let m = read("flat_tet.bdf", bdf.as_bytes()).unwrap();
+    let msg = element_matrices(&m, 0, &AssemblySpec::default())
+        .err()
+        .expect("a flat tet fails")
+        .to_string();
+    assert!(msg.contains("flat_tet.bdf:8: element 44"), "{msg}");
+    // A model built in memory has no lines: the source alone.
+    let mut m2 = m.clone();
+    m2.element_sources.clear();
+    assert_eq!(m2.element_origin(44), m2.source);
+}

@@ -742,6 +742,7 @@ pub(crate) fn build(
         });
     }
     b.model.files = b.files.clone();
+    b.record_element_sources();
     Ok((b.model, counts))
 }
 
