@@ -85,8 +85,9 @@ pub const BASES: [&[u8]; 4] = [
 pub fn structured(data: &[u8]) -> Option<Vec<u8>> {
     let (&sel, rest) = data.split_first()?;
     let (&mode, bytes) = rest.split_first()?;
-    let base = BASES[usize::from(sel & 3)];
-    let mut entries = entries_of(base);
+    static PARSED: std::sync::OnceLock<Vec<Vec<(String, Vec<u8>)>>> = std::sync::OnceLock::new();
+    let parsed = PARSED.get_or_init(|| BASES.iter().map(|b| entries_of(b)).collect());
+    let mut entries = parsed[usize::from(sel & 3)].clone();
     let i = usize::from(sel >> 2) % entries.len();
     let keep_manifest = entries[i].0 == "manifest.json";
     let old = std::mem::take(&mut entries[i].1);
