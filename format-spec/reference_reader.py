@@ -15,6 +15,7 @@ import math
 import struct
 import sys
 import zipfile
+import zlib
 from pathlib import Path
 
 FORMAT_NAME = "flexbody-reduced-body"
@@ -31,7 +32,8 @@ ENTRIES = [  # SPEC §2: name, required
 ]
 KNOWN = dict(ENTRIES)
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
-              max_entries=64, max_nodes=10_000_000, max_faces=50_000_000, max_modes=100_000)
+              max_entries=64, max_nodes=10_000_000, max_faces=50_000_000, max_modes=100_000,
+              max_expansion=64, max_expansion_floor=64 << 20)
 STRING_LIMIT = 16 << 20
 REL_TOL, FRAME_TOL = 1e-9, 1e-6
 UNIT_KEYS = ["mass", "length", "time", "force"]
@@ -275,6 +277,8 @@ def decode_recipe(data):
 
 
 def read_entry(zf, info, declared):
+    if info.file_size != declared:  # checked before inflating anything (a bomb's directory lies)
+        raise ReadError("SizeMismatch", f"{info.filename}: size {info.file_size} differs from the manifest's {declared}")
     if info.flag_bits & 0x1:
         raise ReadError("Container", f"{info.filename}: damaged zip data (encrypted entry; encryption has no meaning in v1)")
     if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
@@ -282,7 +286,7 @@ def read_entry(zf, info, declared):
     try:
         with zf.open(info) as f:
             data = f.read(declared + 1)
-    except (zipfile.BadZipFile, OSError, EOFError, ValueError) as e:
+    except (zipfile.BadZipFile, OSError, EOFError, ValueError, zlib.error) as e:
         raise ReadError("Container", f"{info.filename}: damaged zip data ({e})")
     if len(data) != declared:
         raise ReadError("SizeMismatch", f"{info.filename}: size {len(data)} differs from the manifest's {declared}")
@@ -347,7 +351,8 @@ def parse_manifest(text):
     return m
 
 
-def check_manifest(m):
+def check_manifest(m, file_bytes):
+    cap = max(file_bytes * LIMITS["max_expansion"], LIMITS["max_expansion_floor"])
     if m["format"] != FORMAT_NAME:
         raise ReadError("WrongFormat", f"format is {m['format']!r}")
     major, minor = m["version"]["major"], m["version"]["minor"]
@@ -374,6 +379,8 @@ def check_manifest(m):
         total += e["size"]
         if total > LIMITS["max_total_bytes"]:
             raise ReadError("LimitExceeded", f"{name}: total declared size exceeds the limit")
+        if total > cap:
+            raise ReadError("LimitExceeded", f"{name}: total declared size {total} of a {file_bytes}-byte file exceeds {cap}")
     for name, req in ENTRIES:
         if req and name not in seen:
             raise ReadError("MissingEntry", f"{name}: required in v1 but not listed")
@@ -404,7 +411,7 @@ def read_bytes(data):
     except UnicodeDecodeError as e:
         raise ReadError("Manifest", f"not UTF-8: {e}")
     m = parse_manifest(text)
-    check_manifest(m)
+    check_manifest(m, len(data))
     listed = {e["name"] for e in m["entries"]}
     for name in by_name:
         if name != MANIFEST and name not in listed:

@@ -286,7 +286,9 @@ pub fn build_model(
     model: Model,
     progress: &mut dyn FnMut(&str),
 ) -> Result<BuildOutput, BuildError> {
-    build_model_with_hook(spec, model, progress, &mut |_| {})
+    // Solver failures in the model's terms (crate::diagnose).
+    let ctx = crate::diagnose::SolverContext::of(&model);
+    build_model_with_hook(spec, model, progress, &mut |_| {}).map_err(|e| ctx.explain(e))
 }
 
 /// [`build_model`] with `hook` applied to the mode set (over the independent dofs) right after

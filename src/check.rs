@@ -13,6 +13,11 @@
 //!   mode shape breaks these; consistent mass: I6 equals the generalized mass (the invariants
 //!   come from the consistent M, not from the lumped nodal masses).
 //!
+//! A file that stores only some nodes (`build --keep-nodes interface|surface|SET`) cannot
+//! support the centre-of-mass bounding-box test, the invariants recomputed from nodal masses or
+//! the checks against the model's matrices: they are skipped and listed in
+//! [`CheckReport::skipped`] (printed as `skip …` lines).
+//!
 //! With the FE model (`--model`, rebuilt from the file's recipe — interface spiders, beam
 //! lumping, format, material — unless given explicitly):
 //! * the model files are the ones the body was built from (SHA-256 of the recipe); a changed
@@ -56,6 +61,9 @@ pub struct CheckItem {
 pub struct CheckReport {
     /// Checks in the order run.
     pub items: Vec<CheckItem>,
+    /// Checks not run because the file's stored data cannot support them (e.g. a file that
+    /// stores only some nodes), each "name: reason".
+    pub skipped: Vec<String>,
 }
 
 impl CheckReport {
@@ -172,7 +180,14 @@ pub fn check(
         0.0,
         format!("I1 = {i1:.6e}"),
     );
-    if i1 > 0.0 && inv.i2.len() == 3 && n > 0 {
+    let partial = partial_nodes(body);
+    if let Some(stored) = &partial {
+        r.skipped.push(format!(
+            "centre of mass inside the body's bounding box: the file stores {stored}, whose \
+             bounding box need not hold the centre of mass"
+        ));
+    }
+    if i1 > 0.0 && inv.i2.len() == 3 && n > 0 && partial.is_none() {
         let cm: Vec<f64> = inv.i2.iter().map(|v| v / i1).collect();
         let outside = (0..3)
             .map(|k| {
@@ -294,6 +309,12 @@ pub fn check(
             "the invariants use the mass the modes are orthonormal in".into(),
         );
     }
+    if let (Some(stored), false) = (&partial, consistent) {
+        r.skipped.push(format!(
+            "invariants recomputed from the stored nodal masses and shapes: the file stores \
+             {stored}, not the mass of the whole body"
+        ));
+    }
     if all_nodes && !consistent {
         let points: Vec<MassPoint> = body
             .nodes
@@ -364,6 +385,17 @@ pub fn check(
 
 /// Principal inertia ≤ ZERO_INERTIA · the largest one counts as zero (rounding of Σ m·0).
 pub const ZERO_INERTIA: f64 = 1e-10;
+
+/// `Some("only the … nodes (k of the model's)")` when the file does not store every node.
+fn partial_nodes(body: &file::ReducedBody) -> Option<String> {
+    let what = match &body.header.request.keep_nodes {
+        file::KeepNodes::All => return None,
+        file::KeepNodes::InterfaceAndSurface => "the interface and surface nodes".to_owned(),
+        file::KeepNodes::List(ids) if ids.is_empty() => "the interface nodes".to_owned(),
+        file::KeepNodes::List(ids) => format!("the interface nodes and {} listed nodes", ids.len()),
+    };
+    Some(format!("only {what} ({} nodes)", body.node_count()))
+}
 
 /// Principal axes through the centre of mass without inertia (from I1, I2, I7): 1 when every
 /// mass lies on a line and carries no rotary inertia about it, 0 for a body with volume.
@@ -625,6 +657,12 @@ fn model_checks(
     );
 
     // ΦᵀMΦ, ΦᵀKΦ and residuals against the model's matrices (needs every node's shape).
+    if let Some(stored) = partial_nodes(body) {
+        r.skipped.push(format!(
+            "Φᵀ M Φ, Φᵀ K Φ and eigen residuals against the model: the file stores {stored}, \
+             not every node's shape"
+        ));
+    }
     if body.header.request.keep_nodes == file::KeepNodes::All {
         let pos: std::collections::HashMap<u64, usize> = body
             .nodes

@@ -462,6 +462,9 @@ fn check(a: &CheckArgs) -> anyhow::Result<bool> {
                 i.detail
             );
         }
+        for s in &report.skipped {
+            println!("skip {s}");
+        }
         let failed = report.items.iter().filter(|i| !i.pass).count();
         println!(
             "{} checks, {} failed: {}",

@@ -506,3 +506,94 @@ $Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n"
         &["'1.797693134862316e+308'", "every real must be finite"],
     );
 }
+
+/// Errors found after import (element matrices) name the element's file and line, in every
+/// importer, and the text appears once.
+#[test]
+fn post_import_element_errors_carry_the_source_line() {
+    use flexbody::fe::{assembly::element_matrices, AssemblySpec};
+    // A flat (zero-volume) tet on line 8 of an .inp.
+    let inp = b"*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 1, 1, 0\n\
+*ELEMENT, TYPE=C3D4, ELSET=S\n7, 1, 2, 3, 4\n\n*MATERIAL, NAME=M\n*ELASTIC\n1e9, 0.3\n\
+*DENSITY\n1000\n*SOLID SECTION, ELSET=S, MATERIAL=M\n";
+    let m = read("flat_tet.inp", inp).unwrap();
+    let loc = m.element_location(7).unwrap();
+    assert!(loc.ends_with("flat_tet.inp:7"), "{loc}");
+    let Err(err) = element_matrices(&m, 0, &AssemblySpec::default()) else {
+        panic!("a flat tet fails")
+    };
+    let msg = err.to_string();
+    assert!(msg.contains("flat_tet.inp:7: element 7"), "{msg}");
+    assert_eq!(msg.matches("element 7").count(), 1, "{msg}");
+    // Nastran: the card's first line.
+    let bdf = "MAT1,1,2.1e11,,.3,7850.\nPSOLID,3,1\nGRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\n\
+GRID,3,,0.,1.,0.\nGRID,4,,1.,1.,0.\n$ comment\nCTETRA,44,3,1,2,3,4\n";
+    let m = read("flat_tet.bdf", bdf.as_bytes()).unwrap();
+    let Err(err) = element_matrices(&m, 0, &AssemblySpec::default()) else {
+        panic!("a flat tet fails")
+    };
+    let msg = err.to_string();
+    assert!(msg.contains("flat_tet.bdf:8: element 44"), "{msg}");
+    // A model built in memory has no lines: the source alone.
+    let mut m2 = m.clone();
+    m2.element_sources.clear();
+    assert_eq!(m2.element_origin(44), m2.source);
+}
+
+/// A solver failure deep in the reduction is reported with the model file and, when the
+/// materials explain it, the material named: an implausible one, or a stiffness contrast.
+#[test]
+fn solver_failures_are_translated_into_the_models_terms() {
+    use flexbody::build::BuildError;
+    use flexbody::diagnose::SolverContext;
+    use flexbody::reduce::ReduceError;
+    use flexbody::solve::SolveError;
+    let not_pd = || {
+        BuildError::Reduce(ReduceError::Solve(SolveError::NotPositiveDefinite {
+            shift: -8.75e7,
+        }))
+    };
+    // E in Pa with ρ in t/mm³: a wave speed no solid has.
+    let deck = BDF_BASE.replace("MAT1,1,2.1e11,,.3,7850.", "MAT1,1,2.1e11,,.3,7.85e-9");
+    let m = read("units_mixed.bdf", deck.as_bytes()).unwrap();
+    let msg = SolverContext::of(&m).explain(not_pd()).to_string();
+    assert!(
+        msg.contains("units_mixed.bdf: K - sigma*M is not positive definite"),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("likely cause: material") && msg.contains("wave speed"),
+        "{msg}"
+    );
+    // Two plausible materials 1e7 apart.
+    let deck = format!(
+        "{BDF_BASE}MAT1,2,2.1e4,,.3,7850.\nPBAR,3,2,1.e-4,1.e-9,1.e-9,2.e-9\nCBAR,11,3,2,3,0.,1.,0.\n"
+    );
+    let m = read("contrast.bdf", deck.as_bytes()).unwrap();
+    let msg = SolverContext::of(&m).explain(not_pd()).to_string();
+    assert!(msg.contains("stiffer than material"), "{msg}");
+    // Nothing extreme: the message says where else to look.
+    let m = read("plain.bdf", BDF_BASE.as_bytes()).unwrap();
+    let msg = SolverContext::of(&m).explain(not_pd()).to_string();
+    assert!(
+        msg.starts_with("plain.bdf: ") || msg.contains("/plain.bdf: "),
+        "{msg}"
+    );
+    assert!(msg.contains("distorted or inverted elements"), "{msg}");
+    // A mechanism found by the free-free solve names the file.
+    let mech = BuildError::Reduce(ReduceError::Mechanism {
+        zero_modes: 12,
+        at_least: true,
+    });
+    let msg = SolverContext::of(&m).explain(mech).to_string();
+    assert!(
+        msg.contains("plain.bdf: free-free analysis found 12 or more"),
+        "{msg}"
+    );
+    // Other errors pass unchanged.
+    let other = BuildError::Request {
+        file: "x".into(),
+        message: "y".into(),
+    };
+    assert_eq!(SolverContext::of(&m).explain(other).to_string(), "x: y");
+}

@@ -42,6 +42,15 @@ fn read_entry(
         detail: e.to_string(),
     };
     let file = zip.by_index(index).map_err(|e| container(&e))?;
+    // The zip directory's own size must agree before anything is decompressed: a bomb that
+    // declares a small size there (or a large one) is refused without inflating it.
+    if file.size() != declared {
+        return Err(ReadError::SizeMismatch {
+            entry: name.to_string(),
+            declared,
+            actual: file.size(),
+        });
+    }
     match file.compression() {
         CompressionMethod::Stored | CompressionMethod::Deflated => {}
         other => {
@@ -51,8 +60,10 @@ fn read_entry(
             })
         }
     }
-    // Capacity from the declared size only after the caller checked it against the limits.
-    let mut buf = Vec::with_capacity(declared.min(1 << 20) as usize);
+    // Capacity exactly the declared size, trusted only because the caller checked it against
+    // the limits (including the expansion cap: total ≤ file bytes × max_expansion) and the zip
+    // directory agrees: `read_to_end` then fills it without doubling and stops on a probe.
+    let mut buf = Vec::with_capacity(usize::try_from(declared).unwrap_or(usize::MAX));
     let mut limited = file.take(declared.saturating_add(1));
     limited.read_to_end(&mut buf).map_err(|e| container(&e))?;
     if buf.len() as u64 != declared {
@@ -95,7 +106,8 @@ fn format_and_version_first(v: &serde_json::Value) -> Result<(), ReadError> {
     Ok(())
 }
 
-fn check_manifest(m: &Manifest, limits: &ReadLimits) -> Result<(), ReadError> {
+fn check_manifest(m: &Manifest, limits: &ReadLimits, file_bytes: u64) -> Result<(), ReadError> {
+    let cap = limits.expansion_cap(file_bytes);
     if m.format != FORMAT_NAME {
         return Err(ReadError::WrongFormat {
             found: m.format.clone(),
@@ -169,6 +181,14 @@ fn check_manifest(m: &Manifest, limits: &ReadLimits) -> Result<(), ReadError> {
                 "total declared size (bytes)",
                 total,
                 limits.max_total_bytes,
+            ));
+        }
+        if total > cap {
+            return Err(limit_err(
+                &e.name,
+                &format!("total declared size (bytes) of a {file_bytes}-byte file (at most {}× its size or {} bytes)", limits.max_expansion, limits.max_expansion_floor),
+                total,
+                cap,
             ));
         }
     }
@@ -278,7 +298,7 @@ pub fn open(bytes: &[u8], limits: &ReadLimits) -> Result<Container, ReadError> {
     let manifest: Manifest = serde_json::from_value(value).map_err(|e| ReadError::Manifest {
         detail: format!("not valid manifest JSON: {e}"),
     })?;
-    check_manifest(&manifest, limits)?;
+    check_manifest(&manifest, limits, bytes.len() as u64)?;
     for name in index_of.keys() {
         if name != MANIFEST && !manifest.entries.iter().any(|e| &e.name == name) {
             return Err(ReadError::UnlistedEntry {

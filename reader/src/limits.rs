@@ -18,6 +18,22 @@ pub struct ReadLimits {
     pub max_faces: u64,
     /// Most modes (default 100 000).
     pub max_modes: u64,
+    /// Largest ratio of the summed decompressed entry sizes to the file's size (default 64;
+    /// real files stay below 5, deflate alone allows ~1032). Together with
+    /// [`max_expansion_floor`](Self::max_expansion_floor) it bounds a decompression bomb: a small
+    /// file cannot make the reader allocate more than `file bytes × max_expansion` (or the floor).
+    pub max_expansion: u64,
+    /// Summed decompressed size (bytes) always allowed whatever the file's size (default 64 MiB).
+    pub max_expansion_floor: u64,
+}
+
+impl ReadLimits {
+    /// The most decompressed bytes (all entries together) a `file_bytes`-byte file may declare.
+    pub fn expansion_cap(&self, file_bytes: u64) -> u64 {
+        file_bytes
+            .saturating_mul(self.max_expansion)
+            .max(self.max_expansion_floor)
+    }
 }
 
 impl Default for ReadLimits {
@@ -30,6 +46,8 @@ impl Default for ReadLimits {
             max_nodes: 10_000_000,
             max_faces: 50_000_000,
             max_modes: 100_000,
+            max_expansion: 64,
+            max_expansion_floor: 64 << 20,
         }
     }
 }

@@ -89,13 +89,13 @@ pub fn element_matrices(
 ) -> Result<ElementMatrices, FeError> {
     let el = &model.elements[e];
     let fail = |message: String| FeError::Unsupported {
-        source_file: model.source.clone(),
+        source_file: model.element_origin(el.id),
         id: el.id,
         kind: el.kind,
         message,
     };
     let elem_err = |err: ElementError| FeError::Element {
-        source_file: model.source.clone(),
+        source_file: model.element_origin(el.id),
         id: el.id,
         kind: el.kind,
         err,

@@ -486,5 +486,7 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
     }
     b.model.node_sets = node_sets;
     b.model.element_sets = element_sets;
+    b.model.files = b.files.clone();
+    b.record_element_sources();
     Ok(b.model)
 }

@@ -198,6 +198,20 @@ impl Builder {
         self.elem_card.push(card);
     }
 
+    /// Record every element's source line in [`Model::element_sources`] (call while
+    /// `elem_loc` still matches `model.elements`, after the duplicate-id check).
+    pub(crate) fn record_element_sources(&mut self) {
+        let mut v: Vec<(u64, u32, u32)> = self
+            .model
+            .elements
+            .iter()
+            .zip(&self.elem_loc)
+            .map(|(e, l)| (e.id, l.file, l.line))
+            .collect();
+        v.sort_unstable_by_key(|&(id, _, _)| id);
+        self.model.element_sources = v;
+    }
+
     /// Node id map, failing on a duplicate node id.
     pub(crate) fn node_map(&self, card: &str) -> Result<IdMap, ImportError> {
         IdMap::build(self.model.nodes.iter().map(|n| n.id)).map_err(|(a, b)| {

@@ -437,6 +437,10 @@ pub struct Model {
     pub params: ModelParams,
     /// Non-fatal findings.
     pub warnings: Vec<ImportWarning>,
+    /// Where each element was defined, for messages after import: (external element id,
+    /// index into [`Model::files`], 1-based line), sorted by id. Empty for models built in
+    /// memory; see [`Model::element_location`].
+    pub element_sources: Vec<(u64, u32, u32)>,
     /// The deck's analysis choices (case control, eigenvalue request, a-set, q-set).
     pub deck: DeckRequest,
     /// Where the records of `spcs` came from (card, line, set).
@@ -447,6 +451,24 @@ pub struct Model {
 }
 
 impl Model {
+    /// `file:line` where element `id` was defined, when the importer recorded it.
+    pub fn element_location(&self, id: u64) -> Option<String> {
+        let k = self
+            .element_sources
+            .binary_search_by_key(&id, |&(e, _, _)| e)
+            .ok()?;
+        let (_, file, line) = self.element_sources[k];
+        let file = self.files.get(file as usize).unwrap_or(&self.source);
+        Some(format!("{file}:{line}"))
+    }
+
+    /// The element's `file:line` if known, else the model's source: the prefix of messages
+    /// about element `id` after import.
+    pub fn element_origin(&self, id: u64) -> String {
+        self.element_location(id)
+            .unwrap_or_else(|| self.source.clone())
+    }
+
     /// Map from external node id to dense index (built on demand).
     pub fn node_index_by_id(&self) -> std::collections::HashMap<u64, NodeIndex> {
         self.nodes

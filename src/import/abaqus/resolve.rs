@@ -356,6 +356,7 @@ impl Parser {
         self.b.model.node_sets = node_sets;
         self.b.model.element_sets = element_sets;
         self.b.model.files = self.b.files.clone();
+        self.b.record_element_sources();
         Ok(self.b.model)
     }
 }

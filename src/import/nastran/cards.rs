@@ -762,6 +762,7 @@ pub(crate) fn build(
         });
     }
     b.model.files = b.files.clone();
+    b.record_element_sources();
     Ok((b.model, counts))
 }
 
