@@ -414,7 +414,10 @@ pub fn build_model_with_hook(
     let by_id = model.node_index_by_id();
     let mut reference = Vec::new();
     let mut reference_records = Vec::new();
-    for &(id, mask) in &spec.reference_conditions {
+    // Reference conditions by interface name (`BIG_END:123456`) are node ids from here on.
+    let (named_references, reference_sets) =
+        crate::interface::reference_names(&model, &report.interfaces, &spec.reference_sets)?;
+    for &(id, mask) in spec.reference_conditions.iter().chain(&named_references) {
         let node = *by_id
             .get(&id)
             .ok_or_else(|| request_err(format!("reference-condition node {id} does not exist")))?;
@@ -431,7 +434,7 @@ pub fn build_model_with_hook(
         reference_records.push((node, mask));
     }
     for (node, explicit, entry) in
-        crate::deck::reference_entries(&model, &spec.reference_sets).map_err(&request_err)?
+        crate::deck::reference_entries(&model, &reference_sets).map_err(&request_err)?
     {
         let count = usize::from(dofs.count[node]);
         let (mask, held) = crate::deck::node_mask(&model, node, count, None, "reference-condition")
@@ -705,6 +708,8 @@ pub fn build_model_with_hook(
     let recipe =
         crate::recipe::recipe(spec, &model, &report.interfaces, band).map_err(request_err)?;
     body.recipe = Some(recipe);
+    body.interfaces =
+        crate::interface_entry::interfaces_entry(&model, &report.interfaces, &body.nodes);
     body.version = file::version_for(&body);
     lap(&mut report, STAGES[7]);
 
@@ -1167,6 +1172,7 @@ fn assemble_body(
         damping: None,
         lines: (!lines.is_empty()).then_some(lines),
         recipe: None,
+        interfaces: None,
         label_shares: Some(if set.diagnostics.label_shares.len() == nm {
             set.diagnostics.label_shares.clone()
         } else {

@@ -21,6 +21,7 @@
 pub mod codec;
 mod container;
 mod error;
+mod interfaces;
 mod limits;
 mod recipe;
 mod types;
@@ -29,6 +30,7 @@ mod validate;
 use std::path::Path;
 
 pub use error::ReadError;
+pub use interfaces::{CentreFit, FitMethod, InterfaceInfo, InterfaceKind, FIT_TOL};
 pub use limits::ReadLimits;
 pub use recipe::*;
 pub use types::*;
@@ -37,12 +39,14 @@ pub use validate::{validate, FRAME_TOL, REL_TOL};
 /// The newest format version this crate writes and fully understands. A writer stamps the
 /// oldest version whose entries the file uses ([`version_for`]): 1.0 unless `lines.bin` is
 /// present.
-pub const FORMAT_VERSION: Version = Version { major: 1, minor: 2 };
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 3 };
 
 /// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`, 1.2
-/// `recipe.json` and `label_shares.bin`).
+/// `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`).
 pub fn version_for(body: &ReducedBody) -> Version {
-    let minor = if body.recipe.is_some() || body.label_shares.is_some() {
+    let minor = if body.interfaces.is_some() {
+        3
+    } else if body.recipe.is_some() || body.label_shares.is_some() {
         2
     } else {
         u32::from(body.lines.is_some())
@@ -119,6 +123,11 @@ pub fn from_bytes_with_manifest(
             .map(|b| decode_recipe(b))
             .transpose()?,
         label_shares: optional(&c, LABEL_SHARES)?,
+        interfaces: c
+            .entries
+            .get(INTERFACES)
+            .map(|b| decode(INTERFACES, b, true))
+            .transpose()?,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))
@@ -154,6 +163,9 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     }
     if let Some(s) = &body.label_shares {
         out.push((LABEL_SHARES, false, encode(s)));
+    }
+    if let Some(i) = &body.interfaces {
+        out.push((INTERFACES, false, encode(i)));
     }
     out
 }

@@ -367,6 +367,9 @@ pub struct ReducedBody {
     /// Optional `label_shares.bin` (format 1.2): per mode, the participation share (0…1) of the
     /// origin its label names; 1 for `Rigid` and for modes of a single-stage basis.
     pub label_shares: Option<Vec<f64>>,
+    /// Optional `interfaces.bin` (format 1.3): per interface node (in `method.interface` order)
+    /// its name, kind, dependent mesh nodes and centre fit.
+    pub interfaces: Option<Vec<crate::InterfaceInfo>>,
 }
 
 impl ReducedBody {

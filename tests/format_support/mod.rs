@@ -338,6 +338,7 @@ pub fn body_3node() -> ReducedBody {
         lines: None,
         recipe: None,
         label_shares: None,
+        interfaces: None,
     }
 }
 
@@ -527,6 +528,7 @@ pub fn body_20node() -> ReducedBody {
         lines: None,
         recipe: None,
         label_shares: None,
+        interfaces: None,
     }
 }
 
@@ -621,6 +623,45 @@ pub fn body_3node_recipe() -> ReducedBody {
     b
 }
 
+/// The 3-node chain with interface metadata (format 1.3 `interfaces.bin`): node 101 named by
+/// its id, node 103 the centre of an RBE2 spider over mesh nodes 7, 8, 9 (not stored) placed by a
+/// cylinder fit about the x axis.
+pub fn body_3node_interfaces() -> ReducedBody {
+    let mut b = body_3node_recipe();
+    if let Some(s) = b
+        .recipe
+        .as_mut()
+        .and_then(|r| r.interfaces[1].spider.as_mut())
+    {
+        s.fit = "CylinderFit".into();
+        s.offset_from_node_average = 1e-3;
+    }
+    b.interfaces = Some(vec![
+        InterfaceInfo {
+            node: 0,
+            name: "NODE101".into(),
+            kind: InterfaceKind::Node,
+            dependent: vec![],
+            fit: None,
+        },
+        InterfaceInfo {
+            node: 2,
+            name: "RIGHT_END".into(),
+            kind: InterfaceKind::Rbe2,
+            dependent: vec![7, 8, 9],
+            fit: Some(CentreFit {
+                method: FitMethod::CylinderFit,
+                centre: [2.0, 0.0, 0.0],
+                axis: Some([1.0, 0.0, 0.0]),
+                radius: Some(0.05),
+                offset_from_node_average: 1e-3,
+            }),
+        },
+    ]);
+    b.version = flexbody_reader::version_for(&b);
+    b
+}
+
 /// Golden files: (file stem, body); each goes under `golden/v<its version>/`.
 pub fn golden() -> Vec<(&'static str, ReducedBody)> {
     vec![
@@ -628,6 +669,7 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         ("twenty_node_chain", body_20node()),
         ("three_node_chain_lines", body_3node_lines()),
         ("three_node_chain_recipe", body_3node_recipe()),
+        ("three_node_chain_interfaces", body_3node_interfaces()),
     ]
 }
 
