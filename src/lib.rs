@@ -23,6 +23,7 @@ pub mod build;
 pub mod check;
 pub mod damping;
 pub mod deck;
+pub mod export;
 pub mod faces;
 pub mod fe;
 pub mod import;

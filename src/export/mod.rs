@@ -1,0 +1,2 @@
+//! Exporters: the body (or its model) in other programs' formats.
+pub mod mtx;
