@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference reader for flexbody reduced-body files, format v1 (1.0, 1.1 and 1.2), written from SPEC.md alone.
+"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.3), written from SPEC.md alone.
 
 Standard library only (zipfile, json, hashlib, struct). Usage:
 
@@ -28,6 +28,7 @@ ENTRIES = [  # SPEC §2: name, required
     ("lines.bin", False),  # format 1.1
     ("recipe.json", False),  # format 1.2
     ("label_shares.bin", False),  # format 1.2
+    ("interfaces.bin", False),  # format 1.3
     ("stress_shapes_bottom.bin", False), ("strain_shapes_bottom.bin", False),  # format 1.5
 ]
 KNOWN = dict(ENTRIES)
@@ -43,6 +44,9 @@ MASS_KIND = ["Lumped", "Consistent"]
 INVARIANT_SET = ["Full", "Partial", "Constant", "Rigid"]
 SET_MEMBERS = {"Full": range(1, 10), "Partial": [1, 2, 3, 4, 6, 7, 8], "Constant": [1, 2, 6, 7],
                "Rigid": [1, 2, 7]}
+INTERFACE_KIND = ["Node", "Rbe2", "Rbe3"]
+FIT_METHOD = ["CylinderFit", "FaceAreaCentroid", "NodeAverage"]
+FIT_TOL = 1e-9
 LABELS = ["Rigid", "Normal", "Constraint", "FixedInterface", "Attachment", "FrequencyResponse"]
 
 
@@ -188,11 +192,27 @@ def decode_lines(d):
     return d.vec(lambda: d.arr(d.u32, 2), 8)
 
 
+def decode_interfaces(d):
+    """SPEC §5.13: Vec<InterfaceInfo>; a record with strings, at most 16 MiB like header.bin."""
+    if len(d.data) > STRING_LIMIT:
+        d.fail("interfaces.bin exceeds the 16 MiB record limit")
+
+    def fit():
+        return dict(method=FIT_METHOD[d.tag(FIT_METHOD)], centre=d.arr(d.f64, 3),
+                    axis=d.option(lambda: d.arr(d.f64, 3)), radius=d.option(d.f64),
+                    offset_from_node_average=d.f64())
+
+    def one():
+        return dict(node=d.u32(), name=d.string(), kind=INTERFACE_KIND[d.tag(INTERFACE_KIND)],
+                    dependent=d.vec(d.u64, 8), fit=d.option(fit))
+    return d.vec(one, 25)
+
+
 DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin": decode_faces,
             "nodal_mass.bin": decode_nodal_mass, "modes.bin": decode_modes,
             "invariants.bin": decode_invariants, "method.bin": decode_method,
             "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field, "lines.bin": decode_lines,
-            "label_shares.bin": lambda d: d.f64s(),
+            "label_shares.bin": lambda d: d.f64s(), "interfaces.bin": decode_interfaces,
             "stress_shapes_bottom.bin": decode_field, "strain_shapes_bottom.bin": decode_field,
             "damping.bin": decode_damping}
 
@@ -559,7 +579,7 @@ def validate(b, m):
                 err("Inconsistent", entry, "nodes must be strictly ascending")
         count(entry, "values", len(s["values"]), nm * len(s["nodes"]) * 6)
         finite(entry, "values", s["values"])
-        if entry.endswith("_bottom.bin"):  # format 1.5: shell bottom fibre, SPEC §5.13
+        if entry.endswith("_bottom.bin"):  # format 1.5: shell bottom fibre, SPEC §5.15
             top = entry.replace("_bottom.bin", ".bin")
             if top not in b:
                 err("Inconsistent", entry, f"present without {top}")
@@ -581,6 +601,9 @@ def validate(b, m):
     rc = b.get("recipe.json")
     if rc is not None:
         validate_recipe(rc, b, m, err, finite)
+    itf = b.get("interfaces.bin")
+    if itf is not None:
+        validate_interfaces(itf, b, err, finite)
 
 
 def counts_and_cutoffs(me, modes, req, err):
@@ -645,6 +668,50 @@ def validate_recipe(rc, b, m, err, finite):
         err("Inconsistent", "recipe.json", "accuracy_band.fmax_hz must be > 0")
 
 
+def validate_interfaces(itf, b, err, finite):
+    """SPEC §6 rule 13: one record per method.bin interface node, attached as it says."""
+    E = "interfaces.bin"
+    rec, nodes = b["method.bin"]["interface"], b["nodes.bin"]
+    if len(itf) != len(rec):
+        err("CountMismatch", E, f"interfaces has length {len(itf)}, expected {len(rec)}")
+    for i, (info, r) in enumerate(zip(itf, rec)):
+        if info["node"] != r["node"]:
+            err("Inconsistent", E, f"interfaces[{i}].node differs from method.interface[{i}].node")
+        if not info["name"]:
+            err("Inconsistent", E, f"interfaces[{i}].name is empty")
+        node = nodes[r["node"]]
+        spider = info["kind"] != "Node"
+        if spider != bool(info["dependent"]) or spider != (info["fit"] is not None):
+            err("Inconsistent", E, f"interfaces[{i}]: kind, dependent nodes and centre fit disagree")
+        dep = info["dependent"]
+        if len(set(dep)) != len(dep):
+            err("Inconsistent", E, f"interfaces[{i}]: a dependent node is listed twice")
+        if node["id"] in dep:
+            err("Inconsistent", E, f"interfaces[{i}]: node depends on itself")
+        f = info["fit"]
+        if f is None:
+            continue
+        finite(E, f"interfaces[{i}].fit.centre", f["centre"])
+        if f["axis"] is not None:
+            finite(E, f"interfaces[{i}].fit.axis", f["axis"])
+        if f["radius"] is not None:
+            finite(E, f"interfaces[{i}].fit.radius", [f["radius"]])
+        finite(E, f"interfaces[{i}].fit.offset_from_node_average", [f["offset_from_node_average"]])
+        cyl = f["method"] == "CylinderFit"
+        if cyl != (f["axis"] is not None) or cyl != (f["radius"] is not None):
+            err("Inconsistent", E, f"interfaces[{i}]: axis and radius must be given exactly for CylinderFit")
+        if f["axis"] is not None and abs(math.sqrt(sum(a * a for a in f["axis"])) - 1.0) > FIT_TOL:
+            err("Inconsistent", E, f"interfaces[{i}]: axis is not a unit vector")
+        if f["radius"] is not None and f["radius"] <= 0:
+            err("Inconsistent", E, f"interfaces[{i}]: radius must be > 0")
+        if f["offset_from_node_average"] < 0:
+            err("Inconsistent", E, f"interfaces[{i}]: offset_from_node_average must be >= 0")
+        scale = max(abs(v) for v in f["centre"] + node["xyz"])
+        gap = max(abs(f["centre"][k] - node["xyz"][k]) for k in range(3))
+        if gap > FIT_TOL * scale:
+            err("Inconsistent", E, f"interfaces[{i}]: centre is not the interface node's position")
+
+
 def mass_properties(b):
     """SPEC §5.6: m = I1, c = I2/I1, J_c = I7 − m((c·c)E − c cᵀ); else from nodal masses."""
     inv = b["invariants.bin"]
@@ -693,6 +760,7 @@ def summarize(b, m):
         "optional": [x in b for x in ("stress_shapes.bin", "strain_shapes.bin", "damping.bin", "lines.bin")],
         "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
         "recipe": b.get("recipe.json"),
+        "interfaces": b.get("interfaces.bin"),
     }
 
 

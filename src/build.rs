@@ -428,7 +428,10 @@ pub fn build_model_with_hook(
     let by_id = model.node_index_by_id();
     let mut reference = Vec::new();
     let mut reference_records = Vec::new();
-    for &(id, mask) in &spec.reference_conditions {
+    // Reference conditions by interface name (`BIG_END:123456`) are node ids from here on.
+    let (named_references, reference_sets) =
+        crate::interface::reference_names(&model, &report.interfaces, &spec.reference_sets)?;
+    for &(id, mask) in spec.reference_conditions.iter().chain(&named_references) {
         let node = *by_id
             .get(&id)
             .ok_or_else(|| request_err(format!("reference-condition node {id} does not exist")))?;
@@ -445,7 +448,7 @@ pub fn build_model_with_hook(
         reference_records.push((node, mask));
     }
     for (node, explicit, entry) in
-        crate::deck::reference_entries(&model, &spec.reference_sets).map_err(&request_err)?
+        crate::deck::reference_entries(&model, &reference_sets).map_err(&request_err)?
     {
         let count = usize::from(dofs.count[node]);
         let (mask, held) = crate::deck::node_mask(&model, node, count, None, "reference-condition")
@@ -717,6 +720,8 @@ pub fn build_model_with_hook(
         body.stress_shapes_bottom = field_shapes(b, b.stress.as_ref(), &position);
         body.strain_shapes_bottom = field_shapes(b, b.strain.as_ref(), &position);
     }
+    body.interfaces =
+        crate::interface_entry::interfaces_entry(&model, &report.interfaces, &body.nodes);
     body.version = file::version_for(&body);
     lap(&mut report, STAGES[7]);
 
@@ -1181,6 +1186,7 @@ fn assemble_body(
         recipe: None,
         stress_shapes_bottom: None,
         strain_shapes_bottom: None,
+        interfaces: None,
         label_shares: Some(if set.diagnostics.label_shares.len() == nm {
             set.diagnostics.label_shares.clone()
         } else {

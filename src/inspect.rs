@@ -99,6 +99,8 @@ pub struct Summary {
     pub entries: Vec<EntryLine>,
     /// The build recipe (`recipe.json`, format 1.2), `null` when the file has none.
     pub recipe: Option<flexbody_reader::Recipe>,
+    /// Interface metadata (`interfaces.bin`, format 1.3), `null` when the file has none.
+    pub interfaces: Option<Vec<flexbody_reader::InterfaceInfo>>,
 }
 
 /// Mass properties from I1, I2, I7 when present, else from the stored nodal masses.
@@ -203,6 +205,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
             })
             .collect(),
         recipe: body.recipe.clone(),
+        interfaces: body.interfaces.clone(),
     }
 }
 
@@ -302,7 +305,45 @@ pub fn render_text(s: &Summary) -> String {
     if let Some(r) = &s.recipe {
         render_recipe(&mut o, r);
     }
+    if let Some(list) = &s.interfaces {
+        render_interfaces(&mut o, list);
+    }
     o
+}
+
+/// The interface block of the text summary (`interfaces.bin`).
+fn render_interfaces(o: &mut String, list: &[flexbody_reader::InterfaceInfo]) {
+    use std::fmt::Write;
+    let _ = writeln!(
+        o,
+        "interfaces   {:<20} {:>6} {:>5} {:>10}  centre fit",
+        "name", "node", "kind", "dependent"
+    );
+    for i in list {
+        let _ = write!(
+            o,
+            "             {:<20} {:>6} {:>5} {:>10}",
+            i.name,
+            i.node,
+            format!("{:?}", i.kind).to_uppercase(),
+            i.dependent.len()
+        );
+        if let Some(f) = &i.fit {
+            let _ = write!(
+                o,
+                "  {:?} ({:.6e}, {:.6e}, {:.6e})",
+                f.method, f.centre[0], f.centre[1], f.centre[2]
+            );
+            if let (Some(a), Some(r)) = (f.axis, f.radius) {
+                let _ = write!(
+                    o,
+                    " axis ({:.6}, {:.6}, {:.6}) radius {:.6e}",
+                    a[0], a[1], a[2], r
+                );
+            }
+        }
+        let _ = writeln!(o);
+    }
 }
 
 /// The recipe block of the text summary.

@@ -50,8 +50,10 @@ pub enum CentreMethod {
 /// What was done for one entry of the interface list.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InterfaceReport {
-    /// The entry as given (set name or node id).
+    /// The entry as given (set name or node id, optionally with `:DOFS`).
     pub entry: String,
+    /// The interface's name: the node set's name as the model spells it, or `NODE<id>`.
+    pub name: String,
     /// Interface node(s) it produced (dense indices into the model's nodes).
     pub nodes: Vec<NodeIndex>,
     /// Components given explicitly (`NODE:DOFS`, Nastran digits); `None` = every free component.
@@ -73,6 +75,22 @@ pub struct SpiderReport {
     pub offset_from_node_average: f64,
     /// Number of nodes in the set.
     pub set_nodes: usize,
+    /// RBE2 or RBE3.
+    pub kind: SpiderKind,
+    /// The set's nodes (the spider's legs), dense indices in the set's order.
+    pub legs: Vec<NodeIndex>,
+    /// Unit axis of the fitted cylinder (`CylinderFit` only).
+    pub axis: Option<[f64; 3]>,
+    /// Radius of the fitted cylinder (`CylinderFit` only).
+    pub radius: Option<f64>,
+}
+
+/// A node set's centre as [`set_centre`] placed it.
+struct Fit {
+    centre: [f64; 3],
+    method: CentreMethod,
+    axis: Option<[f64; 3]>,
+    radius: Option<f64>,
 }
 
 /// Errors resolving interfaces.
@@ -108,8 +126,11 @@ pub enum InterfaceError {
     },
 }
 
-/// Resolve `entries` (node ids or node-set names, matched case-insensitively) into interface
-/// nodes, adding spider centre nodes and rigid elements to `model` for node sets.
+/// Resolve `entries` into interface nodes, adding spider centre nodes and rigid elements to
+/// `model` for node sets. An entry is a node id, `NODE<id>`, or a node-set name (matched
+/// case-insensitively; a set wins over `NODE<id>`), optionally followed by `:DOFS` with Nastran
+/// component digits (`BIG_END:123456`, `17:126`): the interface node(s) it names then carry
+/// those components only.
 pub fn resolve_interfaces(
     model: &mut Model,
     entries: &[String],
@@ -121,65 +142,38 @@ pub fn resolve_interfaces(
     let mut faces = None;
     for entry in entries {
         let entry = entry.trim().to_string();
-        // NODE:DOFS — a node with explicit components.
-        if let Some((n, d)) = entry.split_once(':') {
-            let mask = DofMask::from_digits(d).filter(|m| m.0 != 0);
-            let index = n
-                .trim()
-                .parse::<u64>()
-                .ok()
-                .and_then(|id| by_id.get(&id).copied());
-            let (Some(mask), Some(index)) = (mask, index) else {
-                if mask.is_some() && n.trim().parse::<u64>().is_ok() {
-                    return Err(InterfaceError::Unknown {
-                        entry,
-                        source_file: model.source.clone(),
-                        known: "node ids only before ':'".into(),
-                    });
-                }
-                return Err(InterfaceError::BadComponents(entry));
-            };
-            if let Some(first) = seen.insert(index, entry.clone()) {
-                return Err(InterfaceError::Duplicate {
-                    node_id: model.nodes[index].id,
-                    first,
-                    second: entry,
-                });
+        // NAME:DOFS — explicit components.
+        let (name, dofs) = match entry.split_once(':') {
+            Some((n, d)) => {
+                let mask = DofMask::from_digits(d)
+                    .filter(|m| m.0 != 0)
+                    .ok_or_else(|| InterfaceError::BadComponents(entry.clone()))?;
+                (n.trim(), Some(mask))
             }
-            reports.push(InterfaceReport {
-                entry,
-                nodes: vec![index],
-                dofs: Some(mask),
-                spider: None,
-            });
-            continue;
-        }
+            None => (entry.as_str(), None),
+        };
         let set = model
             .node_sets
             .iter()
-            .find(|(name, _)| name.eq_ignore_ascii_case(&entry))
-            .map(|(_, s)| s.clone());
-        let report = match (
-            set,
-            entry
-                .parse::<u64>()
-                .ok()
-                .and_then(|id| by_id.get(&id).copied()),
-        ) {
-            (Some(set), _) => {
+            .find(|(set_name, _)| set_name.eq_ignore_ascii_case(name))
+            .map(|(set_name, s)| (set_name.clone(), s.clone()));
+        let report = match (set, node_by_name(name, &by_id)) {
+            (Some((set_name, set)), _) => {
                 if set.is_empty() {
                     return Err(InterfaceError::EmptySet(entry));
                 }
                 if spider == SpiderKind::None {
                     InterfaceReport {
                         entry: entry.clone(),
+                        name: set_name,
                         nodes: set,
-                        dofs: None,
+                        dofs,
                         spider: None,
                     }
                 } else {
                     let faces = faces.get_or_insert_with(|| graphics_faces(model));
-                    let (centre, method) = set_centre(model, &set, faces);
+                    let fit = set_centre(model, &set, faces);
+                    let centre = fit.centre;
                     let average = node_average(model, &set);
                     let centre_node_id = model.nodes.iter().map(|n| n.id).max().unwrap_or(0) + 1;
                     let centre_index = model.nodes.len();
@@ -212,22 +206,28 @@ pub fn resolve_interfaces(
                         .sqrt();
                     InterfaceReport {
                         entry: entry.clone(),
+                        name: set_name,
                         nodes: vec![centre_index],
-                        dofs: None,
+                        dofs,
                         spider: Some(SpiderReport {
                             centre_node_id,
                             centre,
-                            method,
+                            method: fit.method,
                             offset_from_node_average: offset,
                             set_nodes: set.len(),
+                            kind: spider,
+                            legs: set,
+                            axis: fit.axis,
+                            radius: fit.radius,
                         }),
                     }
                 }
             }
             (None, Some(index)) => InterfaceReport {
                 entry: entry.clone(),
+                name: format!("NODE{}", model.nodes[index].id),
                 nodes: vec![index],
-                dofs: None,
+                dofs,
                 spider: None,
             },
             (None, None) => {
@@ -261,6 +261,93 @@ pub fn resolve_interfaces(
     Ok(reports)
 }
 
+/// A node named by its id (`17`) or as `NODE17` (case-insensitive), if the model has it.
+pub fn node_by_name(
+    name: &str,
+    by_id: &std::collections::HashMap<u64, NodeIndex>,
+) -> Option<NodeIndex> {
+    let digits = match name.get(..4) {
+        Some(p) if p.eq_ignore_ascii_case("NODE") => &name[4..],
+        _ => name,
+    };
+    digits
+        .trim()
+        .parse::<u64>()
+        .ok()
+        .and_then(|id| by_id.get(&id).copied())
+}
+
+/// Reference conditions resolved by name — (node id, components) — and the entries left over.
+pub type NamedReferences = (Vec<(u64, DofMask)>, Vec<String>);
+
+/// `--reference-conditions` entries that name interfaces: `NAME` or `NAME:DOFS` where NAME is
+/// the name of an interface ([`InterfaceReport::name`] or its entry, case-insensitive) or
+/// `NODE<id>`, resolved to (node id, components) — all six digits, or none, mean the node's
+/// free components, as for `NODE:DOFS`. Returns those and the entries left for the deck's
+/// sets (node sets that are not interfaces, SPC sets, plain ids).
+pub fn reference_names(
+    model: &Model,
+    interfaces: &[InterfaceReport],
+    entries: &[String],
+) -> Result<NamedReferences, InterfaceError> {
+    let by_id = model.node_index_by_id();
+    let mut named = Vec::new();
+    let mut rest = Vec::new();
+    for entry in entries {
+        let (name, dofs) = match entry.split_once(':') {
+            Some((n, d)) => {
+                let mask = DofMask::from_digits(d)
+                    .filter(|m| m.0 != 0)
+                    .ok_or_else(|| InterfaceError::BadComponents(entry.clone()))?;
+                (n.trim(), Some(mask))
+            }
+            None => (entry.trim(), None),
+        };
+        let mask = dofs.unwrap_or(DofMask::ALL);
+        let interface = interfaces.iter().find(|r| {
+            r.name.eq_ignore_ascii_case(name)
+                || r.entry
+                    .split(':')
+                    .next()
+                    .is_some_and(|e| e.trim().eq_ignore_ascii_case(name))
+        });
+        if let Some(r) = interface {
+            named.extend(r.nodes.iter().map(|&n| (model.nodes[n].id, mask)));
+        } else if name
+            .get(..4)
+            .is_some_and(|p| p.eq_ignore_ascii_case("NODE"))
+            && !model.node_sets.keys().any(|k| k.eq_ignore_ascii_case(name))
+        {
+            let index = node_by_name(name, &by_id).ok_or_else(|| InterfaceError::Unknown {
+                entry: entry.clone(),
+                source_file: model.source.clone(),
+                known: "NODE<id> must name a node of the model".into(),
+            })?;
+            named.push((model.nodes[index].id, mask));
+        } else if dofs.is_some() {
+            // SET:DOFS for a node set that is not an interface: every node of the set.
+            let set = model
+                .node_sets
+                .iter()
+                .find(|(k, _)| k.eq_ignore_ascii_case(name))
+                .ok_or_else(|| InterfaceError::Unknown {
+                    entry: entry.clone(),
+                    source_file: model.source.clone(),
+                    known: model
+                        .node_sets
+                        .keys()
+                        .cloned()
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                })?;
+            named.extend(set.1.iter().map(|&n| (model.nodes[n].id, mask)));
+        } else {
+            rest.push(entry.clone());
+        }
+    }
+    Ok((named, rest))
+}
+
 fn next_rigid_id(model: &Model) -> u64 {
     let ids = model.rigid_elements.iter().map(|r| match r {
         RigidElement::Rbe2 { id, .. } | RigidElement::Rbe3 { id, .. } => *id,
@@ -278,11 +365,7 @@ fn node_average(model: &Model, set: &[NodeIndex]) -> [f64; 3] {
 /// Centre of a node set: cylinder fit, else area-weighted face centroid, else node average
 /// (module doc). Faces are the free faces whose corners all lie in `set`, each split into a fan of
 /// triangles from its first corner.
-fn set_centre(
-    model: &Model,
-    set: &[NodeIndex],
-    faces: &[crate::faces::GraphicsFace],
-) -> ([f64; 3], CentreMethod) {
+fn set_centre(model: &Model, set: &[NodeIndex], faces: &[crate::faces::GraphicsFace]) -> Fit {
     let members: BTreeSet<NodeIndex> = set.iter().copied().collect();
     // Triangles (area A, centroid c, unit normal n) of the set's faces.
     let mut tris: Vec<(f64, [f64; 3], [f64; 3])> = Vec::new();
@@ -306,26 +389,41 @@ fn set_centre(
     }
     let area: f64 = tris.iter().map(|t| t.0).sum();
     if area <= 0.0 {
-        return (node_average(model, set), CentreMethod::NodeAverage);
+        return Fit {
+            centre: node_average(model, set),
+            method: CentreMethod::NodeAverage,
+            axis: None,
+            radius: None,
+        };
     }
     let centroid: [f64; 3] =
         std::array::from_fn(|k| tris.iter().map(|t| t.0 * t.1[k]).sum::<f64>() / area);
     match cylinder_axis_centre(model, set, &tris, area) {
-        Some(c) => (c, CentreMethod::CylinderFit),
-        None => (centroid, CentreMethod::FaceAreaCentroid),
+        Some((centre, axis, radius)) => Fit {
+            centre,
+            method: CentreMethod::CylinderFit,
+            axis: Some(axis),
+            radius: Some(radius),
+        },
+        None => Fit {
+            centre: centroid,
+            method: CentreMethod::FaceAreaCentroid,
+            axis: None,
+            radius: None,
+        },
     }
 }
 
 /// Cylinder fit of a face set: axis = eigenvector of the smallest eigenvalue of N = Σ A n nᵀ
 /// (must be < 1e-2 of the largest while the middle one is not), then the algebraic (Kåsa) circle
 /// fit x² + y² + D x + E y + F = 0 of the nodes in the plane ⊥ axis; `None` unless every node is
-/// within 1e-3·R of the circle.
+/// within 1e-3·R of the circle. Returns (centre, unit axis, radius).
 fn cylinder_axis_centre(
     model: &Model,
     set: &[NodeIndex],
     tris: &[(f64, [f64; 3], [f64; 3])],
     area: f64,
-) -> Option<[f64; 3]> {
+) -> Option<([f64; 3], [f64; 3], f64)> {
     let n = faer::Mat::from_fn(3, 3, |r, c| {
         tris.iter().map(|t| t.0 * t.2[r] * t.2[c]).sum::<f64>() / area
     });
@@ -384,9 +482,8 @@ fn cylinder_axis_centre(
     }
     let axial = tris.iter().map(|t| t.0 * dot(t.1, axis)).sum::<f64>() / area;
     let (cu, cv) = (cx + mean[0], cy + mean[1]);
-    Some(std::array::from_fn(|k| {
-        axial * axis[k] + cu * u[k] + cv * v[k]
-    }))
+    let centre = std::array::from_fn(|k| axial * axis[k] + cu * u[k] + cv * v[k]);
+    Some((centre, axis, radius))
 }
 
 /// Cramer's rule for a 3×3 system; `None` when singular.
@@ -549,6 +646,48 @@ mod tests {
         assert!(
             matches!(&m.rigid_elements[0], RigidElement::Rbe3 { reference, independent, .. } if *reference == r[0].nodes[0] && independent.len() == 96)
         );
+    }
+
+    #[test]
+    fn names_with_components_and_node_names() {
+        let mut m = uneven_tube();
+        let r = resolve_interfaces(
+            &mut m,
+            &["bore:123".into(), "NODE30:126".into()],
+            SpiderKind::Rbe2,
+        )
+        .unwrap();
+        assert_eq!(r[0].name, "BORE");
+        assert_eq!(r[0].dofs, DofMask::from_digits("123"));
+        let s = r[0].spider.as_ref().unwrap();
+        assert_eq!(s.legs.len(), 96);
+        // Nodes on a true cylinder: the fitted radius is the bore's, the axis z.
+        assert!((s.radius.unwrap() - 0.0125).abs() < 1e-15, "{:?}", s.radius);
+        assert!((s.axis.unwrap()[2].abs() - 1.0).abs() < 1e-15);
+        assert_eq!(
+            (r[1].name.as_str(), r[1].nodes.clone()),
+            ("NODE30", vec![29])
+        );
+        assert_eq!(r[1].dofs, DofMask::from_digits("126"));
+        let (named, rest) = reference_names(
+            &m,
+            &r,
+            &["Bore:123456".into(), "NODE30".into(), "SPC_1".into()],
+        )
+        .unwrap();
+        assert_eq!(
+            named,
+            vec![
+                (m.nodes[r[0].nodes[0]].id, DofMask::ALL),
+                (30, DofMask::ALL)
+            ]
+        );
+        assert_eq!(rest, vec!["SPC_1".to_string()]);
+        let mut m = uneven_tube();
+        let e = resolve_interfaces(&mut m, &["CRANK:123".into()], SpiderKind::Rbe2).unwrap_err();
+        assert!(matches!(e, InterfaceError::Unknown { .. }), "{e}");
+        let e = resolve_interfaces(&mut m, &["BORE:17".into()], SpiderKind::Rbe2).unwrap_err();
+        assert!(matches!(e, InterfaceError::BadComponents(_)), "{e}");
     }
 
     #[test]

@@ -30,6 +30,7 @@ pub mod fe;
 pub mod import;
 pub mod inspect;
 pub mod interface;
+pub mod interface_entry;
 pub mod invariants;
 pub mod invariants_consistent;
 pub mod model;

@@ -154,6 +154,10 @@ struct BuildArgs {
     /// Print the build report as JSON on stdout.
     #[arg(long)]
     json: bool,
+    /// Also write the constrained K and M the reduction starts from (Matrix Market K.mtx,
+    /// M.mtx, lumped or consistent as built) and their dof table dofs.txt into DIR.
+    #[arg(long, value_name = "DIR")]
+    write_matrices: Option<PathBuf>,
 }
 
 #[derive(clap::Args)]
@@ -285,6 +289,9 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
         }
         progress.stage("write");
         flexbody::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
+        if let Some(dir) = &a.write_matrices {
+            flexbody::export::mtx::export_mtx(&spec, dir)?;
+        }
         Ok(out)
     };
     let result = run();

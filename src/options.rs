@@ -139,14 +139,18 @@ pub fn parse_reference_conditions(items: &[String]) -> Result<Vec<(u64, DofMask)
 pub type ReferenceEntries = (Vec<(u64, DofMask)>, Vec<String>);
 
 /// `--reference-conditions`: `NODE:DOFS` items (see [`parse_reference_conditions`]), and the
-/// other items — plain node ids (every free component) and set names (a node set, or a deck's
-/// constraint set such as `SPC_1` with the components it holds) — as given.
+/// other items — plain node ids (every free component), names with or without `:DOFS` (an
+/// interface's name such as `BIG_END:123456` or `NODE17`, a node set, or a deck's constraint
+/// set such as `SPC_1` with the components it holds) — as given.
 pub fn parse_reference_entries(items: &[String]) -> Result<ReferenceEntries, OptionError> {
     let (with_dofs, other): (Vec<String>, Vec<String>) = items
         .iter()
         .map(|s| s.trim().to_owned())
         .filter(|s| !s.is_empty())
-        .partition(|s| s.contains(':'));
+        .partition(|s| {
+            s.split_once(':')
+                .is_some_and(|(n, _)| n.trim().parse::<u64>().is_ok())
+        });
     Ok((parse_reference_conditions(&with_dofs)?, other))
 }
 

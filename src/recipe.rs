@@ -170,10 +170,12 @@ pub fn recipe(
         units: spec.units.clone(),
         interface: spec.interface.clone(),
         spider: spider_name(spec.spider).into(),
+        // NODE:DOFS pairs, then the entries given by name (interfaces, sets) as given.
         reference_conditions: spec
             .reference_conditions
             .iter()
             .map(|(id, m)| format!("{id}:{}", digits(*m)))
+            .chain(spec.reference_sets.iter().cloned())
             .collect(),
         reference_method: spec.reference_method,
         keep_nodes: match &spec.keep_nodes {

@@ -1,4 +1,4 @@
-//! Modal fibre stress and strain shapes of shell elements (format 1.5, SPEC §5.13): for each
+//! Modal fibre stress and strain shapes of shell elements (format 1.5, SPEC §5.15): for each
 //! mode, at every corner of every shell element, the membrane strain and the curvature in the
 //! element frame, the top (+t/2 along the element normal) and bottom (−t/2) fibre strains
 //! ε = ε_m ± (t/2) κ, plane-stress Hooke σ = Q_m ε_m ± (t/2) Q_b κ (membrane and bending
@@ -199,7 +199,7 @@ pub fn shell_fields(
     })
 }
 
-/// The solids' fields and the shells' fibres as the file stores them (SPEC §5.13): the top
+/// The solids' fields and the shells' fibres as the file stores them (SPEC §5.15): the top
 /// entry lists solid nodes with their solid value and shell-only nodes with their top fibre;
 /// the bottom entry lists the shell-only nodes with their bottom fibre (`None` when there are
 /// none). A node that solids and shells share keeps the solid value.

@@ -61,7 +61,7 @@ fn conrod_cb_check_needs_no_repeated_option() {
         String::from_utf8_lossy(&built.stderr)
     );
     let body = file::read(&out).unwrap();
-    assert_eq!(body.version, file::Version { major: 1, minor: 2 });
+    assert_eq!(body.version, file::Version { major: 1, minor: 3 });
     let r = body
         .recipe
         .as_ref()

@@ -15,7 +15,7 @@ pub const FORMAT_NAME: &str = "flexbody-reduced-body";
 pub const MANIFEST: &str = "manifest.json";
 
 /// Payload entries known to v1, in the fixed container order, with their required flag.
-pub const ENTRIES: [(&str, bool); 15] = [
+pub const ENTRIES: [(&str, bool); 16] = [
     (HEADER, true),
     (NODES, true),
     (FACES, true),
@@ -29,6 +29,7 @@ pub const ENTRIES: [(&str, bool); 15] = [
     (LINES, false),
     (RECIPE, false),
     (LABEL_SHARES, false),
+    (INTERFACES, false),
     (STRESS_SHAPES_BOTTOM, false),
     (STRAIN_SHAPES_BOTTOM, false),
 ];
@@ -58,6 +59,9 @@ pub const LINES: &str = "lines.bin";
 pub const RECIPE: &str = "recipe.json";
 /// `label_shares.bin` (format 1.2).
 pub const LABEL_SHARES: &str = "label_shares.bin";
+/// `interfaces.bin` (format 1.3): per interface node its name, kind, dependent nodes and centre
+/// fit.
+pub const INTERFACES: &str = "interfaces.bin";
 /// `stress_shapes_bottom.bin` (format 1.5): shell bottom-fibre stress shapes.
 pub const STRESS_SHAPES_BOTTOM: &str = "stress_shapes_bottom.bin";
 /// `strain_shapes_bottom.bin` (format 1.5): shell bottom-fibre strain shapes.
@@ -109,7 +113,7 @@ fn config() -> bincode::config::Configuration<bincode::config::LittleEndian, bin
         .with_fixed_int_encoding()
 }
 
-/// Byte limit for records that hold strings (only `header.bin` in v1): bincode allocates a string's
+/// Byte limit for records that hold strings (`header.bin`, and `interfaces.bin` since 1.3): bincode allocates a string's
 /// buffer from its length prefix before reading it, so this bounds that allocation.
 pub const STRING_RECORD_LIMIT: usize = 16 << 20;
 

@@ -21,6 +21,7 @@
 pub mod codec;
 mod container;
 mod error;
+mod interfaces;
 mod limits;
 mod recipe;
 mod types;
@@ -29,6 +30,7 @@ mod validate;
 use std::path::Path;
 
 pub use error::ReadError;
+pub use interfaces::{CentreFit, FitMethod, InterfaceInfo, InterfaceKind, FIT_TOL};
 pub use limits::ReadLimits;
 pub use recipe::*;
 pub use types::*;
@@ -40,10 +42,13 @@ pub use validate::{validate, FRAME_TOL, REL_TOL};
 pub const FORMAT_VERSION: Version = Version { major: 1, minor: 5 };
 
 /// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`, 1.2
-/// `recipe.json` and `label_shares.bin`, 1.5 the shells' bottom-fibre field shapes).
+/// `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`, 1.5 the shells' bottom-fibre
+/// field shapes).
 pub fn version_for(body: &ReducedBody) -> Version {
     let minor = if body.stress_shapes_bottom.is_some() || body.strain_shapes_bottom.is_some() {
         5
+    } else if body.interfaces.is_some() {
+        3
     } else if body.recipe.is_some() || body.label_shares.is_some() {
         2
     } else {
@@ -121,6 +126,11 @@ pub fn from_bytes_with_manifest(
             .map(|b| decode_recipe(b))
             .transpose()?,
         label_shares: optional(&c, LABEL_SHARES)?,
+        interfaces: c
+            .entries
+            .get(INTERFACES)
+            .map(|b| decode(INTERFACES, b, true))
+            .transpose()?,
         stress_shapes_bottom: optional(&c, STRESS_SHAPES_BOTTOM)?,
         strain_shapes_bottom: optional(&c, STRAIN_SHAPES_BOTTOM)?,
     };
@@ -158,6 +168,9 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     }
     if let Some(s) = &body.label_shares {
         out.push((LABEL_SHARES, false, encode(s)));
+    }
+    if let Some(i) = &body.interfaces {
+        out.push((INTERFACES, false, encode(i)));
     }
     if let Some(s) = &body.stress_shapes_bottom {
         out.push((STRESS_SHAPES_BOTTOM, false, encode(s)));

@@ -367,8 +367,11 @@ pub struct ReducedBody {
     /// Optional `label_shares.bin` (format 1.2): per mode, the participation share (0…1) of the
     /// origin its label names; 1 for `Rigid` and for modes of a single-stage basis.
     pub label_shares: Option<Vec<f64>>,
+    /// Optional `interfaces.bin` (format 1.3): per interface node (in `method.interface` order)
+    /// its name, kind, dependent mesh nodes and centre fit.
+    pub interfaces: Option<Vec<crate::InterfaceInfo>>,
     /// Optional `stress_shapes_bottom.bin` (format 1.5): the bottom-fibre stress of the shell
-    /// nodes, whose `stress_shapes` values are then the top fibre (SPEC §5.13).
+    /// nodes, whose `stress_shapes` values are then the top fibre (SPEC §5.15).
     pub stress_shapes_bottom: Option<FieldShapes>,
     /// Optional `strain_shapes_bottom.bin` (format 1.5): as `stress_shapes_bottom` for strain.
     pub strain_shapes_bottom: Option<FieldShapes>,

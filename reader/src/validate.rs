@@ -455,6 +455,9 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
     if let Some(r) = &body.recipe {
         recipe(r, body)?;
     }
+    if let Some(i) = &body.interfaces {
+        crate::interfaces::validate_interfaces(i, body)?;
+    }
     Ok(())
 }
 

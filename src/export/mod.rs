@@ -4,6 +4,7 @@
 //!
 //! * [`exudyn`] — the NPZ that `exudyn.FEM.ObjectFFRFreducedOrderInterface.LoadFromFile` reads.
 //! * [`mbdyn`] — the modal element's FEM file (MBDyn manual, "FEM File Format").
+//! * [`mtx`] — the model's K and M in Matrix Market (from the model, not the file).
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -11,6 +12,7 @@ use flexbody_reader::{ModeLabel, ReducedBody};
 
 pub mod exudyn;
 pub mod mbdyn;
+pub mod mtx;
 pub mod npz;
 
 /// Why an export failed. No output file is left behind in any case.

@@ -546,6 +546,18 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
             "recipe.json: interfaces[0] (101) names node 102",
         )),
     );
+    let mut b = super::body_3node_interfaces();
+    if let Some(f) = b.interfaces.as_mut().and_then(|i| i[1].fit.as_mut()) {
+        f.centre = [2.0, 0.001, 0.0];
+    }
+    add(
+        "interface_centre_not_at_node",
+        from_body(&b),
+        Some((
+            "Inconsistent",
+            "interfaces.bin: interfaces[1] (RIGHT_END): centre [2.0, 0.001, 0.0] is not node 103's position",
+        )),
+    );
     out
 }
 

@@ -340,6 +340,7 @@ pub fn body_3node() -> ReducedBody {
         label_shares: None,
         stress_shapes_bottom: None,
         strain_shapes_bottom: None,
+        interfaces: None,
     }
 }
 
@@ -531,6 +532,7 @@ pub fn body_20node() -> ReducedBody {
         label_shares: None,
         stress_shapes_bottom: None,
         strain_shapes_bottom: None,
+        interfaces: None,
     }
 }
 
@@ -625,8 +627,47 @@ pub fn body_3node_recipe() -> ReducedBody {
     b
 }
 
+/// The 3-node chain with interface metadata (format 1.3 `interfaces.bin`): node 101 named by
+/// its id, node 103 the centre of an RBE2 spider over mesh nodes 7, 8, 9 (not stored) placed by a
+/// cylinder fit about the x axis.
+pub fn body_3node_interfaces() -> ReducedBody {
+    let mut b = body_3node_recipe();
+    if let Some(s) = b
+        .recipe
+        .as_mut()
+        .and_then(|r| r.interfaces[1].spider.as_mut())
+    {
+        s.fit = "CylinderFit".into();
+        s.offset_from_node_average = 1e-3;
+    }
+    b.interfaces = Some(vec![
+        InterfaceInfo {
+            node: 0,
+            name: "NODE101".into(),
+            kind: InterfaceKind::Node,
+            dependent: vec![],
+            fit: None,
+        },
+        InterfaceInfo {
+            node: 2,
+            name: "RIGHT_END".into(),
+            kind: InterfaceKind::Rbe2,
+            dependent: vec![7, 8, 9],
+            fit: Some(CentreFit {
+                method: FitMethod::CylinderFit,
+                centre: [2.0, 0.0, 0.0],
+                axis: Some([1.0, 0.0, 0.0]),
+                radius: Some(0.05),
+                offset_from_node_average: 1e-3,
+            }),
+        },
+    ]);
+    b.version = flexbody_reader::version_for(&b);
+    b
+}
+
 /// The 3-node chain read as a shell strip (format 1.5): stress and strain shapes at all three
-/// nodes, the top fibre, and the bottom fibre of nodes 1 and 2 (SPEC §5.13).
+/// nodes, the top fibre, and the bottom fibre of nodes 1 and 2 (SPEC §5.15).
 pub fn body_3node_shell_fibres() -> ReducedBody {
     let mut b = body_3node();
     let m = b.modes.omega2.len();
@@ -654,6 +695,7 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         ("twenty_node_chain", body_20node()),
         ("three_node_chain_lines", body_3node_lines()),
         ("three_node_chain_recipe", body_3node_recipe()),
+        ("three_node_chain_interfaces", body_3node_interfaces()),
         ("three_node_chain_shell_fibres", body_3node_shell_fibres()),
     ]
 }

@@ -1,0 +1,1 @@
+../../format-spec/reference_reader.py
