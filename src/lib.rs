@@ -35,6 +35,7 @@ pub mod options;
 pub mod precheck;
 pub mod recipe;
 pub mod reduce;
+pub mod scene;
 pub mod solve;
 pub mod stress;
 pub mod verify;

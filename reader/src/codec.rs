@@ -15,7 +15,7 @@ pub const FORMAT_NAME: &str = "flexbody-reduced-body";
 pub const MANIFEST: &str = "manifest.json";
 
 /// Payload entries known to v1, in the fixed container order, with their required flag.
-pub const ENTRIES: [(&str, bool); 13] = [
+pub const ENTRIES: [(&str, bool); 14] = [
     (HEADER, true),
     (NODES, true),
     (FACES, true),
@@ -29,6 +29,7 @@ pub const ENTRIES: [(&str, bool); 13] = [
     (LINES, false),
     (RECIPE, false),
     (LABEL_SHARES, false),
+    (MODAL_LOADS, false),
 ];
 /// `header.bin`.
 pub const HEADER: &str = "header.bin";
@@ -56,6 +57,8 @@ pub const LINES: &str = "lines.bin";
 pub const RECIPE: &str = "recipe.json";
 /// `label_shares.bin` (format 1.2).
 pub const LABEL_SHARES: &str = "label_shares.bin";
+/// `modal_loads.bin` (format 1.4).
+pub const MODAL_LOADS: &str = "modal_loads.bin";
 
 /// `manifest.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -37,12 +37,14 @@ pub use validate::{validate, FRAME_TOL, REL_TOL};
 /// The newest format version this crate writes and fully understands. A writer stamps the
 /// oldest version whose entries the file uses ([`version_for`]): 1.0 unless `lines.bin` is
 /// present.
-pub const FORMAT_VERSION: Version = Version { major: 1, minor: 2 };
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 4 };
 
 /// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`, 1.2
-/// `recipe.json` and `label_shares.bin`).
+/// `recipe.json` and `label_shares.bin`, 1.4 `modal_loads.bin`).
 pub fn version_for(body: &ReducedBody) -> Version {
-    let minor = if body.recipe.is_some() || body.label_shares.is_some() {
+    let minor = if body.modal_loads.is_some() {
+        4
+    } else if body.recipe.is_some() || body.label_shares.is_some() {
         2
     } else {
         u32::from(body.lines.is_some())
@@ -119,6 +121,12 @@ pub fn from_bytes_with_manifest(
             .map(|b| decode_recipe(b))
             .transpose()?,
         label_shares: optional(&c, LABEL_SHARES)?,
+        // names and sources are strings: the string-record limit bounds their allocation
+        modal_loads: c
+            .entries
+            .get(MODAL_LOADS)
+            .map(|b| decode(MODAL_LOADS, b, true))
+            .transpose()?,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))
@@ -154,6 +162,9 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     }
     if let Some(s) = &body.label_shares {
         out.push((LABEL_SHARES, false, encode(s)));
+    }
+    if let Some(s) = &body.modal_loads {
+        out.push((MODAL_LOADS, false, encode(s)));
     }
     out
 }

@@ -338,6 +338,7 @@ pub fn body_3node() -> ReducedBody {
         lines: None,
         recipe: None,
         label_shares: None,
+        modal_loads: None,
     }
 }
 
@@ -527,6 +528,7 @@ pub fn body_20node() -> ReducedBody {
         lines: None,
         recipe: None,
         label_shares: None,
+        modal_loads: None,
     }
 }
 
@@ -584,6 +586,9 @@ pub fn recipe_3node() -> Recipe {
             damping: Some("0-1:0%,1-:2%".into()),
             thickness: None,
             subcase: None,
+            gravity: None,
+            loads: vec![],
+            residual_vectors: None,
         },
         interfaces: vec![
             RecipeInterface {

@@ -154,6 +154,7 @@ pub(crate) fn build(
     let mut qset_cards: BTreeMap<&str, usize> = BTreeMap::new();
     let mut wtmass = 1.0;
     let mut shear_rigid: Vec<String> = Vec::new();
+    let mut load_cards = super::loads::LoadCards::default();
     for card in others {
         let g = cc(card, &files);
         let name = card.name.as_str();
@@ -341,6 +342,7 @@ pub(crate) fn build(
                         .or_default() += 1;
                 }
             }
+            "FORCE" | "MOMENT" | "GRAV" | "PLOAD4" | "LOAD" => load_cards.cards.push(card),
             "EIGRL" | "EIGR" => {
                 let sid = g.id(0, "SID")?;
                 if let Some(prev) = eigen_cards.insert(sid, card) {
@@ -741,6 +743,10 @@ pub(crate) fn build(
             message: format!("unsupported card {name} ignored ({n} cards)"),
         });
     }
+    let elements = b.element_map()?;
+    let load_sel = case.load_selections(effective.subcase);
+    b.model.loads =
+        super::loads::resolve(&load_cards, &files, &b.model, &nodes, &elements, &load_sel)?;
     b.model.files = b.files.clone();
     Ok((b.model, counts))
 }

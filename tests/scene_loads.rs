@@ -1,0 +1,360 @@
+//! Issue 19: scene loads, residual vectors and modal loads. Every number is checked against the
+//! full FE solution: the static response of the reduced body, computed from the FILE alone
+//! (its modes and `modal_loads.bin`: q = Ω⁻²Φᵀf on the flexible modes, u = Φq), equals the
+//! static solution of the assembled model solved here densely (K_r u = Tᵀf; for a free body the
+//! inertia-relief system with the geometric rigid-body modes).
+
+// Index loops mirror the subscripts of the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use std::path::{Path, PathBuf};
+
+use flexbody::build::{build, BuildMethod, BuildSpec};
+use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec};
+use flexbody::model::{LoadPart, Model};
+use flexbody::reduce::residual::ResidualKind;
+use flexbody::scene::SceneSpec;
+use flexbody_reader as file;
+
+const NX: usize = 12;
+const NY: usize = 2;
+const NZ: usize = 2;
+const L: f64 = 1.2;
+const B: f64 = 0.1;
+
+fn nid(i: usize, j: usize, k: usize) -> usize {
+    (k * (NY + 1) + j) * (NX + 1) + i + 1
+}
+
+/// A hex8 cantilever deck (clamped at x = 0 when `clamped`), steel, with load sets: 1 = tip
+/// force, 2 = gravity, 10 = LOAD 1.0·(1 + 2·2) (selected by `LOAD = 10`), 3 = PLOAD4 on the
+/// top faces of the last two elements in x (unselected).
+fn deck(clamped: bool) -> String {
+    let mut d = String::from("SOL 101\nCEND\nTITLE = cantilever\n");
+    if clamped {
+        d += "SPC = 1\n";
+    }
+    d += "LOAD = 10\nBEGIN BULK\n";
+    for k in 0..=NZ {
+        for j in 0..=NY {
+            for i in 0..=NX {
+                d += &format!(
+                    "GRID,{},,{},{},{}\n",
+                    nid(i, j, k),
+                    i as f64 * L / NX as f64,
+                    j as f64 * B / NY as f64,
+                    k as f64 * B / NZ as f64
+                );
+            }
+        }
+    }
+    let mut e = 0;
+    let mut top_faces = Vec::new();
+    for k in 0..NZ {
+        for j in 0..NY {
+            for i in 0..NX {
+                e += 1;
+                let n = [
+                    nid(i, j, k),
+                    nid(i + 1, j, k),
+                    nid(i + 1, j + 1, k),
+                    nid(i, j + 1, k),
+                    nid(i, j, k + 1),
+                    nid(i + 1, j, k + 1),
+                    nid(i + 1, j + 1, k + 1),
+                    nid(i, j + 1, k + 1),
+                ];
+                d += &format!(
+                    "CHEXA,{e},1,{},{},{},{},{},{},+\n+,{},{}\n",
+                    n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7]
+                );
+                if k == NZ - 1 && i >= NX - 2 {
+                    // top face: G1 = node 5, diagonal G3 = node 7
+                    top_faces.push((e, n[4], n[6]));
+                }
+            }
+        }
+    }
+    d += "PSOLID,1,1\nMAT1,1,210e9,,0.3,7850.\n";
+    if clamped {
+        for k in 0..=NZ {
+            for j in 0..=NY {
+                d += &format!("SPC1,1,123,{}\n", nid(0, j, k));
+            }
+        }
+    }
+    // node set SPC_99 (an unselected SPC set): the end face x = L
+    for k in 0..=NZ {
+        for j in 0..=NY {
+            d += &format!("SPC1,99,123,{}\n", nid(NX, j, k));
+        }
+    }
+    d += &format!("FORCE,1,{},0,1000.,0.,0.3,-1.\n", nid(NX, NY, NZ));
+    d += "GRAV,2,0,9.81,0.,0.,-1.\n";
+    d += "LOAD,10,1.0,1.0,1,2.0,2\n";
+    for (e, g1, g3) in top_faces {
+        d += &format!("PLOAD4,3,{e},2.5e5,,,,{g1},{g3}\n");
+    }
+    d += "ENDDATA\n";
+    d
+}
+
+fn write_deck(tag: &str, clamped: bool) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("flexbody-scene-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("cantilever.bdf");
+    std::fs::write(&p, deck(clamped)).unwrap();
+    p
+}
+
+fn spec(model: &Path, method: BuildMethod, modes: usize, interface: &[&str]) -> BuildSpec {
+    BuildSpec {
+        method,
+        modes: Some(modes),
+        ..BuildSpec::new(model.to_path_buf(), file::Units::si(), interface)
+    }
+}
+
+/// Build, write, read back: the body as a solver sees it.
+fn built(s: &BuildSpec) -> (file::ReducedBody, Vec<String>) {
+    let out = build(s, &mut |_| {}).unwrap();
+    let path = s.model.with_extension(format!(
+        "{}.flexbody",
+        s.scene.residual_vectors.map_or("plain", |_| "resvec")
+    ));
+    flexbody::write::write_reduced_body(&path, &out.body, &Default::default()).unwrap();
+    let mut notes = out.report.notes.clone();
+    notes.extend(out.report.diagnostics.notes.clone());
+    (file::read(&path).unwrap(), notes)
+}
+
+/// The reduced static response at every stored node, translations, from the file alone.
+fn reduced_static(body: &file::ReducedBody, load: &str) -> Vec<[f64; 3]> {
+    let ml = body.modal_loads.as_ref().expect("modal_loads.bin");
+    let g = &ml.loads.iter().find(|l| l.name == load).unwrap().values;
+    let n = body.nodes.len();
+    let mut u = vec![[0.0; 3]; n];
+    for (j, &w2) in body.modes.omega2.iter().enumerate() {
+        if body.modes.labels[j] == file::ModeLabel::Rigid {
+            continue;
+        }
+        let q = g[j] / w2;
+        for (p, up) in u.iter_mut().enumerate() {
+            for c in 0..3 {
+                up[c] += body.modes.shapes[(j * n + p) * 6 + c] * q;
+            }
+        }
+    }
+    u
+}
+
+/// Dense Gaussian elimination with partial pivoting: solves A x = b (A square).
+fn dense_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+    let n = b.len();
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))
+            .unwrap();
+        a.swap(c, p);
+        b.swap(c, p);
+        let piv = a[c][c];
+        assert!(piv.abs() > 0.0, "singular system");
+        for r in c + 1..n {
+            let f = a[r][c] / piv;
+            if f != 0.0 {
+                for k in c..n {
+                    a[r][k] -= f * a[c][k];
+                }
+                b[r] -= f * b[c];
+            }
+        }
+    }
+    let mut x = vec![0.0; n];
+    for c in (0..n).rev() {
+        let s: f64 = (c + 1..n).map(|k| a[c][k] * x[k]).sum();
+        x[c] = (b[c] - s) / a[c][c];
+    }
+    x
+}
+
+fn dense(m: &faer::sparse::SparseColMat<usize, f64>) -> Vec<Vec<f64>> {
+    let mut a = vec![vec![0.0; m.ncols()]; m.nrows()];
+    for j in 0..m.ncols() {
+        for (i, v) in m.row_idx_of_col(j).zip(m.val_of_col(j)) {
+            a[i][j] += v;
+        }
+    }
+    a
+}
+
+/// The full FE static solution of load `name` (translations per node, by node index): the
+/// clamped body K_r u = Tᵀf; the free body by inertia relief with the geometric rigid-body
+/// modes R: [K MR; RᵀM 0][u; λ] = [f; 0] (the response with no rigid-body content RᵀMu = 0).
+fn full_static(
+    model: &Model,
+    loads: &[flexbody::model::Load],
+    name: &str,
+    free: bool,
+) -> Vec<[f64; 3]> {
+    let a = assemble(model, &AssemblySpec::default()).unwrap();
+    let r = eliminate(model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).unwrap();
+    let load = loads.iter().find(|l| l.name == name).unwrap();
+    let f = flexbody::fe::loads::load_vectors(model, &a.dofs, &a.m, std::slice::from_ref(load))
+        .unwrap();
+    let fr = flexbody::fe::loads::reduce_loads(&r.t, &f);
+    let n = r.k.nrows();
+    let mut k = dense(&r.k);
+    let mut b: Vec<f64> = (0..n).map(|i| fr[(i, 0)]).collect();
+    if free {
+        // geometric rigid modes over the retained dofs (solids: 3 dofs per node, basic frame)
+        let m = dense(&r.m);
+        let mut rig = vec![vec![0.0; 6]; n];
+        for (ri, &p) in r.retained.iter().enumerate() {
+            let (node, comp) = a.dofs.node_of(p).unwrap();
+            let x = model.nodes[node].x;
+            rig[ri][comp] = 1.0;
+            // rotation e_q × x, component comp
+            let rot = |q: usize| -> f64 {
+                let e = [0, 1, 2].map(|t| if t == q { 1.0 } else { 0.0 });
+                let c = [
+                    e[1] * x[2] - e[2] * x[1],
+                    e[2] * x[0] - e[0] * x[2],
+                    e[0] * x[1] - e[1] * x[0],
+                ];
+                c[comp]
+            };
+            for q in 0..3 {
+                rig[ri][3 + q] = rot(q);
+            }
+        }
+        let mr: Vec<Vec<f64>> = (0..n)
+            .map(|i| {
+                (0..6)
+                    .map(|q| (0..n).map(|t| m[i][t] * rig[t][q]).sum())
+                    .collect()
+            })
+            .collect();
+        for (i, row) in k.iter_mut().enumerate() {
+            row.extend(mr[i].iter().copied());
+        }
+        for q in 0..6 {
+            let mut row: Vec<f64> = (0..n).map(|i| mr[i][q]).collect();
+            row.extend([0.0; 6]);
+            k.push(row);
+        }
+        b.extend([0.0; 6]);
+    }
+    let x = dense_solve(k, b);
+    let mut u = vec![[0.0; 3]; model.nodes.len()];
+    for (ri, &p) in r.retained.iter().enumerate() {
+        let (node, comp) = a.dofs.node_of(p).unwrap();
+        u[node][comp] = x[ri];
+    }
+    u
+}
+
+/// max |u_red − u_full| / max |u_full| over the stored nodes.
+fn rel_error(body: &file::ReducedBody, model: &Model, red: &[[f64; 3]], full: &[[f64; 3]]) -> f64 {
+    let by_id = model.node_index_by_id();
+    let (mut err, mut top) = (0.0f64, 0.0f64);
+    for (p, node) in body.nodes.iter().enumerate() {
+        let Some(&n) = by_id.get(&node.id) else {
+            continue;
+        };
+        for c in 0..3 {
+            err = err.max((red[p][c] - full[n][c]).abs());
+            top = top.max(full[n][c].abs());
+        }
+    }
+    err / top
+}
+
+fn model_of(path: &Path) -> Model {
+    flexbody::import::read_model(path, &Default::default()).unwrap()
+}
+
+/// The deck's load cards become named loads: LOAD 10 (selected) = tip force + 2·gravity, the
+/// PLOAD4 set 3 unselected; the pressure resultant is p·A downward (closed form).
+#[test]
+fn nastran_load_cards_are_read_by_name() {
+    let path = write_deck("cards", true);
+    let model = model_of(&path);
+    let names: Vec<(&str, bool)> = model
+        .loads
+        .iter()
+        .map(|l| (l.name.as_str(), l.selected))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("LOAD_1", false),
+            ("LOAD_2", false),
+            ("LOAD_3", false),
+            ("LOAD_10", true)
+        ]
+    );
+    let l10 = &model.loads[3];
+    assert!(l10.parts.iter().any(
+        |p| matches!(p, LoadPart::Gravity { accel } if (accel[2] + 2.0 * 9.81).abs() < 1e-12)
+    ));
+    // PLOAD4 3: 2.5e5 Pa inward on the top faces of 2·NY elements of (L/NX)·(B/NY) each.
+    let a = assemble(&model, &AssemblySpec::default()).unwrap();
+    let f = flexbody::fe::loads::load_vectors(&model, &a.dofs, &a.m, &model.loads).unwrap();
+    let fz: f64 = (0..model.nodes.len())
+        .map(|p| f[(a.dofs.first[p] + 2, 2)])
+        .sum();
+    let area = 2.0 * NY as f64 * (L / NX as f64) * (B / NY as f64);
+    assert!((fz + 2.5e5 * area).abs() < 1e-9 * 2.5e5 * area, "fz {fz}");
+    // Gravity: Σ f_z = −m g with m = ρ V (lumped mass holds the whole mass).
+    let fz: f64 = (0..model.nodes.len())
+        .map(|p| f[(a.dofs.first[p] + 2, 1)])
+        .sum();
+    let mass = 7850.0 * L * B * B;
+    assert!(
+        (fz + mass * 9.81).abs() < 1e-9 * mass * 9.81,
+        "gravity {fz}"
+    );
+}
+
+/// Clamped cantilever, 4 normal modes: with residual vectors the file's static response to
+/// every scene load equals the full FE solution to 1e-8; without them it does not.
+#[test]
+fn clamped_cantilever_static_response_is_exact_with_residual_vectors() {
+    let path = write_deck("clamped", true);
+    let model = model_of(&path);
+    let scene = SceneSpec {
+        gravity: Some("0,0,-9.81".into()),
+        loads: vec![
+            "LOAD_3".into(),
+            format!("TIP:{}:0,500,-2000", nid(NX, 0, NZ)),
+            "ENDP:SPC_99:1e5".into(),
+        ],
+        residual_vectors: None,
+    };
+    let mut s = spec(&path, BuildMethod::Normal, 4, &[]);
+    s.scene = scene.clone();
+    let (plain, _) = built(&s);
+    s.scene.residual_vectors = Some(ResidualKind::Loads);
+    let (resvec, notes) = built(&s);
+    let loads = flexbody::scene::scene_loads(&model, &scene).unwrap();
+    let names: Vec<&str> = loads.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(names, ["LOAD_10", "GRAVITY", "LOAD_3", "TIP", "ENDP"]);
+    let ml = resvec.modal_loads.as_ref().unwrap();
+    assert_eq!(ml.loads.len(), 5);
+    // 4 normal modes + 5 independent residual vectors; modes whose dominant origin is a
+    // residual vector are marked (a label names the largest share, SPEC §5.5).
+    assert_eq!(resvec.mode_count(), 9, "{notes:?}");
+    assert!(
+        ml.residual.iter().filter(|&&r| r == 1).count() >= 4,
+        "{:?}",
+        ml.residual
+    );
+    for name in names {
+        let full = full_static(&model, &loads, name, false);
+        let with = rel_error(&resvec, &model, &reduced_static(&resvec, name), &full);
+        let without = rel_error(&plain, &model, &reduced_static(&plain, name), &full);
+        println!("{name}: static error with residual vectors {with:.2e}, without {without:.2e} (4 normal modes)");
+        assert!(with < 1e-8, "{name}: {with:e}");
+        assert!(without > 1e-3, "{name}: {without:e}");
+    }
+}
