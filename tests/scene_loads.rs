@@ -358,3 +358,169 @@ fn clamped_cantilever_static_response_is_exact_with_residual_vectors() {
         assert!(without > 1e-3, "{name}: {without:e}");
     }
 }
+
+fn exe() -> &'static str {
+    env!("CARGO_BIN_EXE_flexbody")
+}
+
+/// Free-free cantilever block, Craig–Chang with a tip interface node and 10 free-free modes,
+/// through the CLI: residual vectors of the scene loads and of the interface (the latter are
+/// the attachment modes already in the basis: removed as dependent and reported). The rigid
+/// modes and the rigid-body invariants are those of the build without residual vectors; every
+/// residual mode is balanced (no rigid-body content); the file's static response equals the
+/// full FE inertia-relief solution; `check --model` passes with nothing repeated.
+#[test]
+fn free_body_residual_vectors_are_balanced_and_exact() {
+    let path = write_deck("free", false);
+    let model = model_of(&path);
+    let dir = path.parent().unwrap();
+    let tip = nid(NX, NY, NZ).to_string();
+    let side = format!("SIDE:{}:0,800,0", nid(NX / 2, 0, 0));
+    let run = |out: &str, extra: &[&str]| -> std::process::Output {
+        let mut args = vec![
+            "build",
+            path.to_str().unwrap(),
+            "--method",
+            "craig-chang",
+            "--interface",
+            &tip,
+            "--modes",
+            "10",
+            "--units",
+            "si",
+            "-q",
+            "--gravity",
+            "0,0,-9.81",
+            "--load",
+            &side,
+            "-o",
+            out,
+        ];
+        args.extend(extra);
+        std::process::Command::new(exe())
+            .args(&args)
+            .output()
+            .unwrap()
+    };
+    let plain_p = dir.join("free_plain.flexbody");
+    let res_p = dir.join("free_res.flexbody");
+    let o = run(plain_p.to_str().unwrap(), &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(res_p.to_str().unwrap(), &["--residual-vectors", "both"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report =
+        String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    let plain = file::read(&plain_p).unwrap();
+    let res = file::read(&res_p).unwrap();
+    let ml = res.modal_loads.as_ref().unwrap();
+    let names: Vec<&str> = ml.loads.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(names, ["LOAD_10", "GRAVITY", "SIDE"]);
+    // Only SIDE adds a vector: GRAVITY alone is balanced by inertia (no response), LOAD_10 is
+    // the tip force (at the interface node: its response is the attachment modes' combination)
+    // plus 2·gravity, and the 3 interface unit loads are the attachment modes themselves —
+    // all already in the basis, removed as dependent.
+    let rigid = 6;
+    assert_eq!(
+        res.mode_count(),
+        plain.mode_count() + 1,
+        "{report}\n{:?}",
+        res.modes.frequency_hz
+    );
+    assert_eq!(
+        res.method.counts.removed_dependent,
+        plain.method.counts.removed_dependent + 4,
+        "{report}"
+    );
+    // rigid modes unchanged
+    let n = res.nodes.len();
+    for j in 0..rigid {
+        assert_eq!(res.modes.labels[j], file::ModeLabel::Rigid);
+        for i in 0..n * 6 {
+            let (a, b) = (
+                res.modes.shapes[j * n * 6 + i],
+                plain.modes.shapes[j * n * 6 + i],
+            );
+            assert!(
+                (a - b).abs() < 1e-12,
+                "rigid mode {j} changed at {i}: {a} vs {b}"
+            );
+        }
+    }
+    // invariants of the rigid body unchanged: mass, first moment, inertia
+    for (a, b) in [
+        (&res.invariants.i1, &plain.invariants.i1),
+        (&res.invariants.i2, &plain.invariants.i2),
+        (&res.invariants.i7, &plain.invariants.i7),
+    ] {
+        for (x, y) in a.iter().zip(b.iter()) {
+            assert!((x - y).abs() <= 1e-12 * y.abs().max(1.0), "{x} vs {y}");
+        }
+    }
+    // balanced: Σ_p m_p φ_rigid,p · φ_j,p = 0 for every residual mode (lumped nodal masses)
+    let mass = &res.nodal_mass;
+    for j in (0..res.mode_count()).filter(|&j| ml.residual[j] == 1) {
+        for r in 0..rigid {
+            let dot: f64 = (0..n)
+                .map(|p| {
+                    (0..3)
+                        .map(|c| {
+                            mass[p].mass
+                                * res.modes.shapes[(r * n + p) * 6 + c]
+                                * res.modes.shapes[(j * n + p) * 6 + c]
+                        })
+                        .sum::<f64>()
+                })
+                .sum();
+            assert!(
+                dot.abs() < 1e-10,
+                "mode {j} has rigid content {dot:e} on rigid mode {r}"
+            );
+        }
+    }
+    // static response against the full FE inertia-relief solution
+    let scene = SceneSpec {
+        gravity: Some("0,0,-9.81".into()),
+        loads: vec![side.clone()],
+        residual_vectors: None,
+    };
+    let loads = flexbody::scene::scene_loads(&model, &scene).unwrap();
+    for name in ["LOAD_10", "SIDE"] {
+        let full = full_static(&model, &loads, name, true);
+        let with = rel_error(&res, &model, &reduced_static(&res, name), &full);
+        let without = rel_error(&plain, &model, &reduced_static(&plain, name), &full);
+        println!("free body {name}: static error with residual vectors {with:.2e}, without {without:.2e} (Craig–Chang, 10 free-free modes + 3 attachment)");
+        assert!(with < 1e-8, "{name}: {with:e}");
+        if name == "SIDE" {
+            assert!(without > 1e-3, "{name}: {without:e}");
+        } else {
+            // the tip force acts at the interface: Craig–Chang's attachment modes hold it
+            assert!(without < 1e-8, "{name}: {without:e}");
+        }
+    }
+    // the gravity response of a free body is zero: its modal load acts on the rigid modes only
+    let g = &ml.loads[1].values;
+    let gmax = g.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    for j in rigid..res.mode_count() {
+        assert!(
+            g[j].abs() < 1e-9 * gmax,
+            "gravity on flexible mode {j}: {}",
+            g[j]
+        );
+    }
+    // check passes from the file's recipe alone
+    let c = std::process::Command::new(exe())
+        .args([
+            "check",
+            res_p.to_str().unwrap(),
+            "--model",
+            path.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        c.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&c.stdout),
+        String::from_utf8_lossy(&c.stderr)
+    );
+}

@@ -17,6 +17,10 @@ use super::{complement, ModeLabel, ModeSet, ReduceError};
 use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
 use faer::Mat;
 
+/// A load whose inertia-relief part ‖P f‖ is below this fraction of ‖f‖ is a rigid-body load
+/// (balanced entirely by the body's inertia): its response is zero and it adds no vector.
+pub const BALANCED_TOL: f64 = 1e-10;
+
 /// Which static responses to add (`--residual-vectors`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ResidualKind {
@@ -78,7 +82,22 @@ pub fn static_responses(
         )),
         other => other,
     })?;
-    let rs = ir.solve_equilibrated(&ir.equilibrate(&fs));
+    let pf = ir.equilibrate(&fs);
+    // A load the rigid-body inertia balances entirely (gravity on a free body) deforms nothing:
+    // its equilibrated part is rounding, and its response is zero, not noise.
+    let mut pf = pf;
+    for j in 0..pf.ncols() {
+        let norm = |x: &Mat<f64>| {
+            (0..x.nrows())
+                .map(|i| x[(i, j)].powi(2))
+                .sum::<f64>()
+                .sqrt()
+        };
+        if norm(&pf) <= BALANCED_TOL * norm(&fs) {
+            pf.as_mut().col_mut(j).fill(0.0);
+        }
+    }
+    let rs = ir.solve_equilibrated(&pf);
     let mut r = Mat::<f64>::zeros(n, f.ncols());
     for (a, &i) in free.iter().enumerate() {
         for j in 0..f.ncols() {
