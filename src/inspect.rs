@@ -99,6 +99,10 @@ pub struct Summary {
     pub entries: Vec<EntryLine>,
     /// The build recipe (`recipe.json`, format 1.2), `null` when the file has none.
     pub recipe: Option<flexbody_reader::Recipe>,
+    /// The modal loads and residual-vector origins (`modal_loads.bin`, format 1.4); absent
+    /// when the file has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modal_loads: Option<flexbody_reader::ModalLoads>,
 }
 
 /// Mass properties from I1, I2, I7 when present, else from the stored nodal masses.
@@ -203,6 +207,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
             })
             .collect(),
         recipe: body.recipe.clone(),
+        modal_loads: body.modal_loads.clone(),
     }
 }
 

@@ -626,6 +626,41 @@ pub fn body_3node_recipe() -> ReducedBody {
     b
 }
 
+/// The 3-node chain (x axis, nodes 101–103) with the modal loads of its scene (format 1.4
+/// `modal_loads.bin`): gravity −9.81 m/s² along x (Φᵀ M g: only the rigid mode,
+/// 3·m·(−9.81)/√(3m)) and a 10 N axial tip force at node 103 (10·φ_103,j), closed form; no
+/// residual vectors. The recipe records the options as given.
+pub fn body_3node_modal_loads() -> ReducedBody {
+    let mut b = body_3node_recipe();
+    let n = b.nodes.len();
+    let phi = |j: usize, p: usize| b.modes.shapes[(j * n + p) * 6];
+    let gravity: Vec<f64> = (0..3)
+        .map(|j| (0..n).map(|p| M3 * -9.81 * phi(j, p)).sum())
+        .collect();
+    let tip: Vec<f64> = (0..3).map(|j| 10.0 * phi(j, 2)).collect();
+    b.modal_loads = Some(ModalLoads {
+        loads: vec![
+            ModalLoad {
+                name: "GRAVITY".into(),
+                source: "--gravity -9.81,0,0".into(),
+                values: gravity,
+            },
+            ModalLoad {
+                name: "TIP".into(),
+                source: "--load TIP:103:10,0,0".into(),
+                values: tip,
+            },
+        ],
+        residual: vec![],
+    });
+    if let Some(r) = &mut b.recipe {
+        r.options.gravity = Some("-9.81,0,0".into());
+        r.options.loads = vec!["TIP:103:10,0,0".into()];
+    }
+    b.version = flexbody_reader::version_for(&b);
+    b
+}
+
 /// Golden files: (file stem, body); each goes under `golden/v<its version>/`.
 pub fn golden() -> Vec<(&'static str, ReducedBody)> {
     vec![
@@ -633,6 +668,7 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         ("twenty_node_chain", body_20node()),
         ("three_node_chain_lines", body_3node_lines()),
         ("three_node_chain_recipe", body_3node_recipe()),
+        ("three_node_chain_modal_loads", body_3node_modal_loads()),
     ]
 }
 
