@@ -137,7 +137,13 @@ fn pressure_faces(model: &Model, set: &[NodeIndex], p: f64) -> Vec<LoadPart> {
 /// The scene's loads for `model` (module doc): the deck's selected load sets, `--gravity`, then
 /// each `--load` in order. Names are unique.
 pub fn scene_loads(model: &Model, scene: &SceneSpec) -> Result<Vec<Load>, OptionError> {
-    let mut loads: Vec<Load> = model.loads.iter().filter(|l| l.selected).cloned().collect();
+    // Selected deck loads the tool cannot read are left out (the import warned about them).
+    let mut loads: Vec<Load> = model
+        .loads
+        .iter()
+        .filter(|l| l.selected && l.problem.is_none())
+        .cloned()
+        .collect();
     if let Some(g) = &scene.gravity {
         loads.push(Load {
             name: "GRAVITY".into(),
@@ -146,6 +152,7 @@ pub fn scene_loads(model: &Model, scene: &SceneSpec) -> Result<Vec<Load>, Option
             parts: vec![LoadPart::Gravity {
                 accel: parse_gravity(g)?,
             }],
+            problem: None,
         });
     }
     let by_id = model.node_index_by_id();
@@ -185,6 +192,13 @@ pub fn scene_loads(model: &Model, scene: &SceneSpec) -> Result<Vec<Load>, Option
                             ),
                         )
                     })?;
+                if let Some(p) = &l.problem {
+                    return Err(bad(
+                        "load",
+                        entry,
+                        &format!("the deck's load {name} cannot be used: {p}"),
+                    ));
+                }
                 l.selected = true;
                 l
             }
@@ -210,6 +224,7 @@ pub fn scene_loads(model: &Model, scene: &SceneSpec) -> Result<Vec<Load>, Option
                         source: format!("--load {entry}"),
                         selected: true,
                         parts: vec![LoadPart::Nodal { node, values }],
+                        problem: None,
                     }
                 } else {
                     let set = model
@@ -242,6 +257,7 @@ pub fn scene_loads(model: &Model, scene: &SceneSpec) -> Result<Vec<Load>, Option
                         source: format!("--load {entry}"),
                         selected: true,
                         parts,
+                        problem: None,
                     }
                 }
             }

@@ -3,7 +3,7 @@
 //! GRAV, PLOAD4, LOAD; see `import::nastran::loads`), the CLI adds its own (`--gravity`,
 //! `--load`). Plain data: `fe::loads` turns each into a load vector over the model's dofs.
 
-use super::{ElementKind, NodeIndex};
+use super::{ElementKind, ImportWarning, NodeIndex};
 
 /// One named load case.
 #[derive(Debug, Clone, PartialEq)]
@@ -17,6 +17,10 @@ pub struct Load {
     pub selected: bool,
     /// The parts, summed.
     pub parts: Vec<LoadPart>,
+    /// Why the load cannot be used (a card of it the tool does not support, e.g. a non-uniform
+    /// pressure), naming file, line and card; `None` = usable. The importer keeps such a load
+    /// by name with a warning instead of failing the whole deck.
+    pub problem: Option<String>,
 }
 
 /// One contribution to a load case (basic-frame components).
@@ -164,4 +168,20 @@ pub fn face_nodes(
         }
     }
     Some(out)
+}
+
+/// One import warning per load that cannot be used (its `problem`), for the deck's `file`.
+pub fn problem_warnings(loads: &[Load], file: &str) -> Vec<ImportWarning> {
+    loads
+        .iter()
+        .filter_map(|l| {
+            l.problem.as_ref().map(|p| ImportWarning {
+                file: file.to_owned(),
+                message: format!(
+                    "load {} ({}) is not available as a scene load: {p}",
+                    l.name, l.source
+                ),
+            })
+        })
+        .collect()
 }

@@ -747,6 +747,8 @@ pub(crate) fn build(
     let load_sel = case.load_selections(effective.subcase);
     b.model.loads =
         super::loads::resolve(&load_cards, &files, &b.model, &nodes, &elements, &load_sel)?;
+    let load_warnings = crate::model::load::problem_warnings(&b.model.loads, &files[0]);
+    b.model.warnings.extend(load_warnings);
     b.model.files = b.files.clone();
     Ok((b.model, counts))
 }

@@ -89,94 +89,75 @@ fn solid_face(
     face_nodes(nodes, face, edges)
 }
 
-/// Resolve the load cards into named loads (module doc). `nodes`/`elements` map external ids;
-/// `selected` are the case control's `LOAD =` selections.
-pub(crate) fn resolve(
-    cards: &LoadCards,
-    files: &[String],
+/// The parts of one FORCE, MOMENT, GRAV or PLOAD4 card.
+fn card_parts(
+    g: &C,
     model: &Model,
     nodes: &IdMap,
     elements: &IdMap,
-    selected: &[Select],
-) -> Result<Vec<Load>, ImportError> {
-    // sid → (parts, sources)
-    let mut sets: BTreeMap<u64, (Vec<LoadPart>, Vec<String>)> = BTreeMap::new();
-    let mut combos: Vec<&Card> = Vec::new();
-    let at = |card: &Card| {
-        format!(
-            "{} ({}:{})",
-            card.name, files[card.loc.file as usize], card.loc.line
-        )
-    };
-    for &card in &cards.cards {
-        let g = cc(card, files);
-        let name = card.name.as_str();
-        if name == "LOAD" {
-            combos.push(card);
-            continue;
+) -> Result<Vec<LoadPart>, ImportError> {
+    let mut parts = Vec::new();
+    let name = g.card.name.as_str();
+    match name {
+        "FORCE" | "MOMENT" => {
+            let id = g.id(1, "G")?;
+            let node = nodes
+                .get(id)
+                .ok_or_else(|| g.err(1, format!("references unknown node {id}")))?;
+            let cid = g.int(2)?.unwrap_or(0);
+            let f = g.real_or(3, 0.0)?;
+            let n = [g.real_or(4, 0.0)?, g.real_or(5, 0.0)?, g.real_or(6, 0.0)?];
+            let v = direction(&g, 2, cid, n.map(|x| x * f), model)?;
+            let mut values = [0.0; 6];
+            let off = if name == "FORCE" { 0 } else { 3 };
+            values[off..off + 3].copy_from_slice(&v);
+            parts.push(LoadPart::Nodal { node, values });
         }
-        let sid = g.id(0, "SID")?;
-        let mut parts = Vec::new();
-        match name {
-            "FORCE" | "MOMENT" => {
-                let id = g.id(1, "G")?;
-                let node = nodes
-                    .get(id)
-                    .ok_or_else(|| g.err(1, format!("references unknown node {id}")))?;
-                let cid = g.int(2)?.unwrap_or(0);
-                let f = g.real_or(3, 0.0)?;
-                let n = [g.real_or(4, 0.0)?, g.real_or(5, 0.0)?, g.real_or(6, 0.0)?];
-                let v = direction(&g, 2, cid, n.map(|x| x * f), model)?;
-                let mut values = [0.0; 6];
-                let off = if name == "FORCE" { 0 } else { 3 };
-                values[off..off + 3].copy_from_slice(&v);
-                parts.push(LoadPart::Nodal { node, values });
+        "GRAV" => {
+            let cid = g.int(1)?.unwrap_or(0);
+            let a = g.real_or(2, 0.0)?;
+            let n = [g.real_or(3, 0.0)?, g.real_or(4, 0.0)?, g.real_or(5, 0.0)?];
+            if n == [0.0; 3] {
+                return Err(g.err(3, "GRAV direction N1, N2, N3 is zero"));
             }
-            "GRAV" => {
-                let cid = g.int(1)?.unwrap_or(0);
-                let a = g.real_or(2, 0.0)?;
-                let n = [g.real_or(3, 0.0)?, g.real_or(4, 0.0)?, g.real_or(5, 0.0)?];
-                if n == [0.0; 3] {
-                    return Err(g.err(3, "GRAV direction N1, N2, N3 is zero"));
-                }
-                if g.int(6)?.unwrap_or(0) != 0 {
-                    return Err(g.err(
-                        6,
-                        "GRAV MB ≠ 0 (main-bulk coordinate system) is not supported",
-                    ));
-                }
-                let accel = direction(&g, 1, cid, n.map(|x| x * a), model)?;
-                parts.push(LoadPart::Gravity { accel });
+            if g.int(6)?.unwrap_or(0) != 0 {
+                return Err(g.err(
+                    6,
+                    "GRAV MB ≠ 0 (main-bulk coordinate system) is not supported",
+                ));
             }
-            "PLOAD4" => {
-                let p = g.real_or(2, 0.0)?;
-                for k in 3..6 {
-                    if let Some(pk) = g.real(k)? {
-                        if pk != p {
-                            return Err(g.err(k, format!("non-uniform pressure (P{} = {pk}, P1 = {p}) is not supported; give one uniform P1", k - 1)));
-                        }
+            let accel = direction(&g, 1, cid, n.map(|x| x * a), model)?;
+            parts.push(LoadPart::Gravity { accel });
+        }
+        "PLOAD4" => {
+            let p = g.real_or(2, 0.0)?;
+            for k in 3..6 {
+                if let Some(pk) = g.real(k)? {
+                    if pk != p {
+                        return Err(g.err(k, format!("non-uniform pressure (P{} = {pk}, P1 = {p}) is not supported; give one uniform P1", k - 1)));
                     }
                 }
-                for k in 8..12 {
-                    if !g.text(k).is_empty() && g.real_or(k, 0.0)? != 0.0 {
-                        return Err(g.err(k, "PLOAD4 with a load direction (CID/N1-N3) is not supported: only pressure normal to the face"));
+            }
+            for k in 8..12 {
+                if !g.text(k).is_empty() && g.real_or(k, 0.0)? != 0.0 {
+                    return Err(g.err(k, "PLOAD4 with a load direction (CID/N1-N3) is not supported: only pressure normal to the face"));
+                }
+            }
+            let eid = g.id(1, "EID")?;
+            let thru = g.text(6).eq_ignore_ascii_case("THRU");
+            let last = if thru { g.id(7, "EID2")? } else { eid };
+            if last < eid || last - eid > 10_000_000 {
+                return Err(g.err(7, format!("bad element range {eid} THRU {last}")));
+            }
+            for id in eid..=last {
+                let Some(e) = elements.get(id) else {
+                    if thru {
+                        continue;
                     }
-                }
-                let eid = g.id(1, "EID")?;
-                let thru = g.text(6).eq_ignore_ascii_case("THRU");
-                let last = if thru { g.id(7, "EID2")? } else { eid };
-                if last < eid || last - eid > 10_000_000 {
-                    return Err(g.err(7, format!("bad element range {eid} THRU {last}")));
-                }
-                for id in eid..=last {
-                    let Some(e) = elements.get(id) else {
-                        if thru {
-                            continue;
-                        }
-                        return Err(g.err(1, format!("references unknown element {id}")));
-                    };
-                    let el = &model.elements[e];
-                    let face_traction = match el.kind {
+                    return Err(g.err(1, format!("references unknown element {id}")));
+                };
+                let el = &model.elements[e];
+                let face_traction = match el.kind {
                         ElementKind::Quad4 | ElementKind::Tri3 => (el.nodes.clone(), p),
                         k if k.is_solid() => {
                             if thru {
@@ -206,15 +187,53 @@ pub(crate) fn resolve(
                             return Err(g.err(1, format!("PLOAD4 on element {id} of kind {k:?} is not supported (solids and CQUAD4/CTRIA3 shells)")))
                         }
                     };
-                    parts.push(LoadPart::Surface {
-                        nodes: face_traction.0,
-                        traction: face_traction.1,
-                        element: id,
-                    });
-                }
+                parts.push(LoadPart::Surface {
+                    nodes: face_traction.0,
+                    traction: face_traction.1,
+                    element: id,
+                });
             }
-            _ => continue,
         }
+        _ => {}
+    }
+    Ok(parts)
+}
+
+/// Resolve the load cards into named loads (module doc). `nodes`/`elements` map external ids;
+/// `selected` are the case control's `LOAD =` selections.
+pub(crate) fn resolve(
+    cards: &LoadCards,
+    files: &[String],
+    model: &Model,
+    nodes: &IdMap,
+    elements: &IdMap,
+    selected: &[Select],
+) -> Result<Vec<Load>, ImportError> {
+    // sid → (parts, sources)
+    let mut sets: BTreeMap<u64, (Vec<LoadPart>, Vec<String>)> = BTreeMap::new();
+    let mut combos: Vec<&Card> = Vec::new();
+    let at = |card: &Card| {
+        format!(
+            "{} ({}:{})",
+            card.name, files[card.loc.file as usize], card.loc.line
+        )
+    };
+    let mut problems: BTreeMap<u64, String> = BTreeMap::new();
+    for &card in &cards.cards {
+        let g = cc(card, files);
+        let name = card.name.as_str();
+        if name == "LOAD" {
+            combos.push(card);
+            continue;
+        }
+        let sid = g.id(0, "SID")?;
+        let parts = match card_parts(&g, model, nodes, elements) {
+            Ok(p) => p,
+            Err(e) => {
+                problems.entry(sid).or_insert_with(|| e.to_string());
+                Vec::new()
+            }
+        };
         let entry = sets.entry(sid).or_default();
         entry.0.extend(parts);
         entry.1.push(at(card));
@@ -229,6 +248,7 @@ pub(crate) fn resolve(
                     source: src.join(", "),
                     selected: false,
                     parts: parts.clone(),
+                    problem: problems.get(sid).cloned(),
                 },
             )
         })
@@ -247,6 +267,7 @@ pub(crate) fn resolve(
         }
         let s = g.real_or(1, 1.0)?;
         let mut parts = Vec::new();
+        let mut problem: Option<String> = None;
         for k in (2..card.fields.len()).step_by(2) {
             if g.text(k).is_empty() && g.text(k + 1).is_empty() {
                 continue;
@@ -256,6 +277,9 @@ pub(crate) fn resolve(
             let (set_parts, _) = sets.get(&li).ok_or_else(|| {
                 g.err(k + 1, format!("references load set {li}, which no FORCE, MOMENT, GRAV or PLOAD4 defines (a LOAD may not name another LOAD)"))
             })?;
+            if let Some(p) = problems.get(&li) {
+                problem.get_or_insert_with(|| p.clone());
+            }
             parts.extend(Load::scaled(set_parts, s * si));
         }
         if parts.is_empty() {
@@ -268,6 +292,7 @@ pub(crate) fn resolve(
                 source: at(card),
                 selected: false,
                 parts,
+                problem,
             },
         );
     }
