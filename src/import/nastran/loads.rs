@@ -107,7 +107,7 @@ fn card_parts(
             let cid = g.int(2)?.unwrap_or(0);
             let f = g.real_or(3, 0.0)?;
             let n = [g.real_or(4, 0.0)?, g.real_or(5, 0.0)?, g.real_or(6, 0.0)?];
-            let v = direction(&g, 2, cid, n.map(|x| x * f), model)?;
+            let v = direction(g, 2, cid, n.map(|x| x * f), model)?;
             let mut values = [0.0; 6];
             let off = if name == "FORCE" { 0 } else { 3 };
             values[off..off + 3].copy_from_slice(&v);
@@ -126,7 +126,7 @@ fn card_parts(
                     "GRAV MB ≠ 0 (main-bulk coordinate system) is not supported",
                 ));
             }
-            let accel = direction(&g, 1, cid, n.map(|x| x * a), model)?;
+            let accel = direction(g, 1, cid, n.map(|x| x * a), model)?;
             parts.push(LoadPart::Gravity { accel });
         }
         "PLOAD4" => {
