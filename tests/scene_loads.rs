@@ -682,3 +682,38 @@ fn unsupported_load_cards_warn_and_refuse_by_name() {
         "{e}"
     );
 }
+
+/// Residual vectors on every method's basis: Craig–Bampton (clamped cantilever, tip interface
+/// node, 2 fixed-interface modes) and Dietz (free body, tip interface, 8 free-free modes): the
+/// file's static response to the scene's loads equals the full FE solution.
+#[test]
+fn residual_vectors_on_craig_bampton_and_dietz() {
+    let tip = nid(NX, NY, NZ).to_string();
+    let side = format!("SIDE:{}:0,800,0", nid(NX / 2, 0, 0));
+    for (method, clamped, modes) in [
+        (BuildMethod::CraigBampton, true, 2),
+        (BuildMethod::Dietz, false, 8),
+    ] {
+        let path = write_deck(&format!("{method:?}"), clamped);
+        let model = model_of(&path);
+        let mut s = spec(&path, method, modes, &[tip.as_str()]);
+        s.scene = SceneSpec {
+            gravity: Some("0,0,-9.81".into()),
+            loads: vec![side.clone(), "LOAD_3".into()],
+            residual_vectors: Some(ResidualKind::Loads),
+        };
+        let (body, notes) = built(&s);
+        let loads = flexbody::scene::scene_loads(&model, &s.scene).unwrap();
+        let check: &[&str] = if clamped {
+            &["LOAD_10", "GRAVITY", "SIDE", "LOAD_3"]
+        } else {
+            &["LOAD_10", "SIDE", "LOAD_3"]
+        };
+        for name in check {
+            let full = full_static(&model, &loads, name, !clamped);
+            let err = rel_error(&body, &model, &reduced_static(&body, name), &full);
+            println!("{method:?} {name}: static error with residual vectors {err:.2e}");
+            assert!(err < 1e-8, "{method:?} {name}: {err:e} {notes:?}");
+        }
+    }
+}
