@@ -29,6 +29,7 @@ ENTRIES = [  # SPEC §2: name, required
     ("recipe.json", False),  # format 1.2
     ("label_shares.bin", False),  # format 1.2
     ("interfaces.bin", False),  # format 1.3
+    ("modal_loads.bin", False),  # format 1.4
     ("stress_shapes_bottom.bin", False), ("strain_shapes_bottom.bin", False),  # format 1.5
 ]
 KNOWN = dict(ENTRIES)
@@ -208,11 +209,20 @@ def decode_interfaces(d):
     return d.vec(one, 25)
 
 
+def decode_modal_loads(d):
+    """SPEC §5.14: ModalLoads { loads: Vec<ModalLoad { name, source, values }>, residual: Vec<u8> }."""
+    if len(d.data) > STRING_LIMIT:
+        d.fail("modal_loads.bin exceeds the 16 MiB record limit")
+    loads = d.vec(lambda: dict(name=d.string(), source=d.string(), values=d.f64s()), 24)
+    return dict(loads=loads, residual=d.vec(d.u8, 1))
+
+
 DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin": decode_faces,
             "nodal_mass.bin": decode_nodal_mass, "modes.bin": decode_modes,
             "invariants.bin": decode_invariants, "method.bin": decode_method,
             "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field, "lines.bin": decode_lines,
             "label_shares.bin": lambda d: d.f64s(), "interfaces.bin": decode_interfaces,
+            "modal_loads.bin": decode_modal_loads,
             "stress_shapes_bottom.bin": decode_field, "strain_shapes_bottom.bin": decode_field,
             "damping.bin": decode_damping}
 
@@ -229,7 +239,8 @@ RECIPE_T = {
                 "fmax_hz": ("opt", F64), "mass": STR, "beam_mass": STR, "units": UNITS_T,
                 "interface": ("list", STR), "spider": STR, "reference_conditions": ("list", STR),
                 "reference_method": U8, "keep_nodes": STR, "invariants": STR, "stress_fields": STR,
-                "damping": ("opt", STR), "thickness": ("omit", F64), "subcase": ("omit", U64)},
+                "damping": ("opt", STR), "thickness": ("omit", F64), "subcase": ("omit", U64),
+                "gravity": ("omit", STR), "loads": ("omit", ("list", STR)), "residual_vectors": ("omit", STR)},
     "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
         "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
         "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),
@@ -598,6 +609,21 @@ def validate(b, m):
         finite("label_shares.bin", "shares", sh)
         if any(not 0.0 <= v <= 1.0 for v in sh):
             err("Inconsistent", "label_shares.bin", "share outside 0..1")
+    ml = b.get("modal_loads.bin")
+    if ml is not None:
+        names = set()
+        for q, ld in enumerate(ml["loads"]):
+            if not ld["name"]:
+                err("Inconsistent", "modal_loads.bin", f"loads[{q}] has an empty name")
+            if ld["name"] in names:
+                err("Inconsistent", "modal_loads.bin", f"load name {ld['name']} appears twice")
+            names.add(ld["name"])
+            count("modal_loads.bin", "values", len(ld["values"]), nm)
+            finite("modal_loads.bin", "values", ld["values"])
+        if ml["residual"]:
+            count("modal_loads.bin", "residual", len(ml["residual"]), nm)
+            if any(r > 1 for r in ml["residual"]):
+                err("Inconsistent", "modal_loads.bin", "residual flag not 0 or 1")
     rc = b.get("recipe.json")
     if rc is not None:
         validate_recipe(rc, b, m, err, finite)
@@ -669,7 +695,7 @@ def validate_recipe(rc, b, m, err, finite):
 
 
 def validate_interfaces(itf, b, err, finite):
-    """SPEC §6 rule 13: one record per method.bin interface node, attached as it says."""
+    """SPEC §6 rule 14: one record per method.bin interface node, attached as it says."""
     E = "interfaces.bin"
     rec, nodes = b["method.bin"]["interface"], b["nodes.bin"]
     if len(itf) != len(rec):
@@ -761,6 +787,7 @@ def summarize(b, m):
         "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
         "recipe": b.get("recipe.json"),
         "interfaces": b.get("interfaces.bin"),
+        **({"modal_loads": b["modal_loads.bin"]} if "modal_loads.bin" in b else {}),
     }
 
 

@@ -107,6 +107,8 @@ pub struct BuildSpec {
     /// `mass` was chosen by the user (`--mass`); when false a deck's PARAM,COUPMASS > 0 selects
     /// consistent mass (see [`crate::deck`]).
     pub mass_explicit: bool,
+    /// The scene: loads (`--gravity`, `--load`) and residual vectors (`--residual-vectors`).
+    pub scene: crate::scene::SceneSpec,
 }
 
 impl BuildSpec {
@@ -137,6 +139,7 @@ impl BuildSpec {
             beam_mass: None,
             subcase: None,
             mass_explicit: false,
+            scene: Default::default(),
         }
     }
 
@@ -623,6 +626,18 @@ pub fn build_model_with_hook(
         };
         set = select::by_count(set, n + extra);
     }
+    // The scene's loads on the independent dofs (f_r = Tᵀf) and their residual vectors.
+    let scene = crate::scene::reduced_loads(&spec.scene, &model, &assembled, &reduced)
+        .map_err(|e| request_err(e.to_string()))??;
+    if let Some(kind) = spec.scene.residual_vectors {
+        let f = crate::scene::residual_loads(kind, &scene, &interface_dofs, k_r.nrows())
+            .map_err(&request_err)?;
+        let (s, rep) = reduce::residual::add_residual_vectors(k_r, m_r, set, &f, &eig)?;
+        set = s;
+        if !rep.removed.is_empty() {
+            report.notes.push(crate::scene::removed_note(&rep, &scene));
+        }
+    }
     hook(&mut set);
     report.diagnostics = set.diagnostics.clone();
     let phi = reduced.expand(set.phi.as_ref());
@@ -708,6 +723,7 @@ pub fn build_model_with_hook(
         &inv,
         fields.as_ref(),
     )?;
+    body.modal_loads = crate::scene::modal_loads(&scene, &set);
     let band = crate::recipe::accuracy_band(spec, &set);
     let recipe =
         crate::recipe::recipe(spec, &model, &report.interfaces, band).map_err(request_err)?;
@@ -924,6 +940,9 @@ fn file_label(l: &reduce::ModeLabel) -> file::ModeLabel {
         reduce::ModeLabel::FixedInterface { .. } => file::ModeLabel::FixedInterface,
         reduce::ModeLabel::Attachment { .. } => file::ModeLabel::Attachment,
         reduce::ModeLabel::FrequencyResponse { .. } => file::ModeLabel::FrequencyResponse,
+        // A static load response is an attachment mode of a distributed load; the file's
+        // `modal_loads.bin` (format 1.4) marks it residual (the label enum keeps its 1.0 tags).
+        reduce::ModeLabel::Residual { .. } => file::ModeLabel::Attachment,
     }
 }
 
@@ -1092,6 +1111,7 @@ fn assemble_body(
             .unwrap_or_default(),
     };
     let removed = set.diagnostics.removed.len() as u64;
+    let residual = set.diagnostics.residual_vectors as u64;
     let shift_fraction = matches!(
         set.method,
         reduce::Method::Dietz { .. } | reduce::Method::DietzModified { .. }
@@ -1160,14 +1180,15 @@ fn assemble_body(
                 file::Method::CraigBampton => file::ModeCounts {
                     rigid: count_of(file::ModeLabel::Rigid),
                     constraint: interface_count,
-                    fixed_interface: fixed_count,
+                    // residual vectors count with the component modes (SPEC §5.14)
+                    fixed_interface: fixed_count + residual,
                     removed_dependent: removed,
                     ..Default::default()
                 },
                 file::Method::CraigChang | file::Method::Dietz => file::ModeCounts {
                     rigid: count_of(file::ModeLabel::Rigid),
                     normal: set.diagnostics.basis_normal_modes.unwrap_or(0) as u64,
-                    attachment: interface_count,
+                    attachment: interface_count + residual,
                     removed_dependent: removed,
                     ..Default::default()
                 },
@@ -1192,6 +1213,7 @@ fn assemble_body(
         } else {
             vec![1.0; nm]
         }),
+        modal_loads: None,
     };
     body.version = flexbody_reader::version_for(&body);
     Ok(body)

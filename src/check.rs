@@ -701,7 +701,8 @@ fn model_checks(
                 r,
                 &f,
                 &body.modes.labels,
-                body.method.method == file::Method::NormalModes,
+                body.method.method == file::Method::NormalModes
+                    && !crate::scene::has_residual_vectors(body),
                 n_r,
             );
         }

@@ -101,6 +101,10 @@ pub struct Summary {
     pub recipe: Option<flexbody_reader::Recipe>,
     /// Interface metadata (`interfaces.bin`, format 1.3), `null` when the file has none.
     pub interfaces: Option<Vec<flexbody_reader::InterfaceInfo>>,
+    /// The modal loads and residual-vector origins (`modal_loads.bin`, format 1.4); absent
+    /// when the file has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modal_loads: Option<flexbody_reader::ModalLoads>,
 }
 
 /// Mass properties from I1, I2, I7 when present, else from the stored nodal masses.
@@ -206,6 +210,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
             .collect(),
         recipe: body.recipe.clone(),
         interfaces: body.interfaces.clone(),
+        modal_loads: body.modal_loads.clone(),
     }
 }
 

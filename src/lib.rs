@@ -38,6 +38,7 @@ pub mod options;
 pub mod precheck;
 pub mod recipe;
 pub mod reduce;
+pub mod scene;
 pub mod shell_stress;
 pub mod solve;
 pub mod stress;

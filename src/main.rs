@@ -139,6 +139,19 @@ struct BuildArgs {
     /// (ζ = α/2ω + βω/2). Rigid-body modes get 0.
     #[arg(long, value_name = "SPEC")]
     damping: Option<String>,
+    /// Scene gravity: acceleration ax,ay,az in the basic frame (e.g. 0,0,-9.81): load GRAVITY =
+    /// M·g, stored as a modal load.
+    #[arg(long, value_name = "AX,AY,AZ", allow_hyphen_values = true)]
+    gravity: Option<String>,
+    /// A scene load (repeatable): NAME:NODE:FX,FY,FZ[,MX,MY,MZ] (a node id), NAME:SET:P (uniform
+    /// pressure on the free faces within node set SET, positive into the body) or NAME of a
+    /// deck's load set (LOAD_10). The deck's selected loads (LOAD = n) are always included.
+    #[arg(long = "load", value_name = "SPEC", allow_hyphen_values = true)]
+    loads: Vec<String>,
+    /// Add residual vectors (static responses) to the basis: loads (each scene load), interface
+    /// (unit loads at the interface dofs) or both; inertia-relief balanced for a free body.
+    #[arg(long, value_name = "KIND", num_args = 0..=1, default_missing_value = "loads")]
+    residual_vectors: Option<String>,
     /// No stress or strain shapes (the default; for scripts that want to say so).
     #[arg(long, conflicts_with = "stress_modes")]
     no_stress: bool,
@@ -236,6 +249,15 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
         created_utc: a.timestamp.then(utc_now),
         threads: a.threads.max(1),
         beam_mass: parse_beam_mass(&a.beam_mass)?,
+        scene: flexbody::scene::SceneSpec {
+            gravity: a.gravity.clone(),
+            loads: a.loads.clone(),
+            residual_vectors: a
+                .residual_vectors
+                .as_deref()
+                .map(flexbody::scene::parse_residual_vectors)
+                .transpose()?,
+        },
     })
 }
 

@@ -201,6 +201,16 @@ pub fn recipe(
         damping: None,
         thickness: spec.thickness,
         subcase: spec.subcase,
+        gravity: spec.scene.gravity.clone(),
+        loads: spec.scene.loads.clone(),
+        residual_vectors: spec.scene.residual_vectors.map(|k| {
+            match k {
+                crate::reduce::residual::ResidualKind::Loads => "loads",
+                crate::reduce::residual::ResidualKind::Interface => "interface",
+                crate::reduce::residual::ResidualKind::Both => "both",
+            }
+            .into()
+        }),
     };
     let interfaces = interfaces
         .iter()

@@ -138,7 +138,8 @@ pub fn verify_body(
             &mut report,
             &identities(k, m, phi, &body.modes.omega2),
             &body.modes.labels,
-            body.method.method == file::Method::NormalModes,
+            body.method.method == file::Method::NormalModes
+                && !crate::scene::has_residual_vectors(body),
             k.nrows(),
         );
     }

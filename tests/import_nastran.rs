@@ -14,11 +14,12 @@ fn reference(rel: &str) -> PathBuf {
 }
 
 /// Supported card types; every other card type read must show up in a warning.
-const SUPPORTED: [&str; 38] = [
+const SUPPORTED: [&str; 43] = [
     "GRID", "CORD2R", "CORD2C", "CORD2S", "CTETRA", "CHEXA", "CPENTA", "CBAR", "CBEAM", "CROD",
     "CQUAD4", "CTRIA3", "PSOLID", "PBAR", "PBARL", "PBEAM", "PBEAML", "PROD", "PSHELL", "MAT1",
     "CONM2", "RBE2", "RBE3", "SPC", "SPC1", "SPCADD", "ASET", "ASET1", "PARAM", "INCLUDE", "EIGRL",
-    "EIGR", "GRDSET", "BSET", "BSET1", "QSET", "QSET1", "PCOMP",
+    "EIGR", "GRDSET", "BSET", "BSET1", "QSET", "QSET1", "PCOMP", "FORCE", "MOMENT", "GRAV",
+    "PLOAD4", "LOAD",
 ];
 
 fn check_counts(rel: &str, expected: &[(&str, usize)]) -> Model {

@@ -15,7 +15,7 @@ pub const FORMAT_NAME: &str = "flexbody-reduced-body";
 pub const MANIFEST: &str = "manifest.json";
 
 /// Payload entries known to v1, in the fixed container order, with their required flag.
-pub const ENTRIES: [(&str, bool); 16] = [
+pub const ENTRIES: [(&str, bool); 17] = [
     (HEADER, true),
     (NODES, true),
     (FACES, true),
@@ -30,6 +30,7 @@ pub const ENTRIES: [(&str, bool); 16] = [
     (RECIPE, false),
     (LABEL_SHARES, false),
     (INTERFACES, false),
+    (MODAL_LOADS, false),
     (STRESS_SHAPES_BOTTOM, false),
     (STRAIN_SHAPES_BOTTOM, false),
 ];
@@ -62,6 +63,8 @@ pub const LABEL_SHARES: &str = "label_shares.bin";
 /// `interfaces.bin` (format 1.3): per interface node its name, kind, dependent nodes and centre
 /// fit.
 pub const INTERFACES: &str = "interfaces.bin";
+/// `modal_loads.bin` (format 1.4).
+pub const MODAL_LOADS: &str = "modal_loads.bin";
 /// `stress_shapes_bottom.bin` (format 1.5): shell bottom-fibre stress shapes.
 pub const STRESS_SHAPES_BOTTOM: &str = "stress_shapes_bottom.bin";
 /// `strain_shapes_bottom.bin` (format 1.5): shell bottom-fibre strain shapes.

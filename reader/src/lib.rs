@@ -42,11 +42,13 @@ pub use validate::{validate, FRAME_TOL, REL_TOL};
 pub const FORMAT_VERSION: Version = Version { major: 1, minor: 5 };
 
 /// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`, 1.2
-/// `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`, 1.5 the shells' bottom-fibre
-/// field shapes).
+/// `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`, 1.4 `modal_loads.bin`, 1.5 the
+/// shells' bottom-fibre field shapes).
 pub fn version_for(body: &ReducedBody) -> Version {
     let minor = if body.stress_shapes_bottom.is_some() || body.strain_shapes_bottom.is_some() {
         5
+    } else if body.modal_loads.is_some() {
+        4
     } else if body.interfaces.is_some() {
         3
     } else if body.recipe.is_some() || body.label_shares.is_some() {
@@ -133,6 +135,12 @@ pub fn from_bytes_with_manifest(
             .transpose()?,
         stress_shapes_bottom: optional(&c, STRESS_SHAPES_BOTTOM)?,
         strain_shapes_bottom: optional(&c, STRAIN_SHAPES_BOTTOM)?,
+        // names and sources are strings: the string-record limit bounds their allocation
+        modal_loads: c
+            .entries
+            .get(MODAL_LOADS)
+            .map(|b| decode(MODAL_LOADS, b, true))
+            .transpose()?,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))
@@ -171,6 +179,9 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     }
     if let Some(i) = &body.interfaces {
         out.push((INTERFACES, false, encode(i)));
+    }
+    if let Some(s) = &body.modal_loads {
+        out.push((MODAL_LOADS, false, encode(s)));
     }
     if let Some(s) = &body.stress_shapes_bottom {
         out.push((STRESS_SHAPES_BOTTOM, false, encode(s)));

@@ -77,6 +77,15 @@ pub struct RecipeOptions {
     /// `--subcase` of a Nastran deck (absent: not given).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub subcase: Option<u64>,
+    /// `--gravity` as given (absent: not given; format 1.4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravity: Option<String>,
+    /// `--load` entries as given (absent: none; format 1.4).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub loads: Vec<String>,
+    /// `--residual-vectors`: `loads`, `interface` or `both` (absent: none; format 1.4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual_vectors: Option<String>,
 }
 
 /// One `--interface` entry as resolved.

@@ -329,6 +329,30 @@ pub struct Damping {
     pub ratio: Vec<f64>,
 }
 
+/// Entry `modal_loads.bin` (format 1.4): the scene's named loads projected on the modes, so a
+/// solver applies gravity, a point load or a pressure to the reduced body without the mesh,
+/// and which modes are residual vectors (static load responses).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModalLoads {
+    /// One per scene load, in the build's order.
+    pub loads: Vec<ModalLoad>,
+    /// Per mode (length M), or empty when the body has no residual vectors: 1 when the mode's
+    /// dominant origin is a residual vector (static response to a scene load, labelled
+    /// `Attachment` in `modes.bin`), else 0.
+    pub residual: Vec<u8>,
+}
+
+/// One named load of [`ModalLoads`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModalLoad {
+    /// The load's name (`GRAVITY`, `LOAD_10`, a `--load` name), unique in the entry.
+    pub name: String,
+    /// Where it came from (deck cards with file and line, or the CLI option).
+    pub source: String,
+    /// Generalized force Φᵀf per mode (length M): force × length per unit modal coordinate.
+    pub values: Vec<f64>,
+}
+
 /// A whole reduced body: everything a file holds, validated when read. (Serde derives are
 /// for tools, e.g. a JSON dump; the file itself stores the parts as separate entries.)
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -375,6 +399,9 @@ pub struct ReducedBody {
     pub stress_shapes_bottom: Option<FieldShapes>,
     /// Optional `strain_shapes_bottom.bin` (format 1.5): as `stress_shapes_bottom` for strain.
     pub strain_shapes_bottom: Option<FieldShapes>,
+    /// Optional `modal_loads.bin` (format 1.4): modal loads and residual-vector origins.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modal_loads: Option<ModalLoads>,
 }
 
 impl ReducedBody {

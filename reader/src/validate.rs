@@ -1,8 +1,8 @@
 //! Consistency rules of a decoded body (SPEC.md §6): counts, finiteness, index ranges,
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
-    DAMPING, FACES, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD, MODES, NODAL_MASS,
-    NODES, RECIPE, STRAIN_SHAPES, STRAIN_SHAPES_BOTTOM, STRESS_SHAPES, STRESS_SHAPES_BOTTOM,
+    DAMPING, FACES, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD, MODAL_LOADS, MODES,
+    NODAL_MASS, NODES, RECIPE, STRAIN_SHAPES, STRAIN_SHAPES_BOTTOM, STRESS_SHAPES, STRESS_SHAPES_BOTTOM,
 };
 use crate::error::ReadError;
 use crate::limits::ReadLimits;
@@ -452,6 +452,9 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
             ));
         }
     }
+    if let Some(ml) = &body.modal_loads {
+        modal_loads(ml, m)?;
+    }
     if let Some(r) = &body.recipe {
         recipe(r, body)?;
     }
@@ -616,6 +619,43 @@ fn recipe(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
             RECIPE,
             format!("accuracy_band.fmax_hz {band} must be > 0"),
         ));
+    }
+    Ok(())
+}
+
+/// SPEC §5.14: one value per mode per load, finite; names non-empty and unique; `residual`
+/// empty or one 0/1 per mode.
+fn modal_loads(ml: &crate::types::ModalLoads, m: usize) -> Result<(), ReadError> {
+    for (q, l) in ml.loads.iter().enumerate() {
+        if l.name.is_empty() {
+            return Err(inconsistent(
+                MODAL_LOADS,
+                format!("loads[{q}] has an empty name"),
+            ));
+        }
+        if ml.loads[..q].iter().any(|o| o.name == l.name) {
+            return Err(inconsistent(
+                MODAL_LOADS,
+                format!("load name {} appears twice", l.name),
+            ));
+        }
+        count(MODAL_LOADS, "values", l.values.len(), m, "one per mode")?;
+        finite(MODAL_LOADS, "values", &l.values)?;
+    }
+    if !ml.residual.is_empty() {
+        count(
+            MODAL_LOADS,
+            "residual",
+            ml.residual.len(),
+            m,
+            "one per mode or none",
+        )?;
+        if let Some((j, v)) = ml.residual.iter().enumerate().find(|(_, v)| **v > 1) {
+            return Err(inconsistent(
+                MODAL_LOADS,
+                format!("residual[{j}] = {v} is not 0 or 1"),
+            ));
+        }
     }
     Ok(())
 }

@@ -20,6 +20,7 @@ pub mod assembly;
 pub mod constraints;
 pub mod dofs;
 pub mod elements;
+pub mod loads;
 pub mod mass;
 pub mod pattern;
 pub mod quadrature;

@@ -15,9 +15,11 @@ use std::collections::BTreeMap;
 
 pub mod deck;
 pub mod generate;
+pub mod load;
 pub mod section;
 
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
+pub use load::{Load, LoadPart};
 pub use section::ShellSection;
 
 /// Dense 0-based index of a node in [`Model::nodes`].
@@ -448,6 +450,9 @@ pub struct Model {
     /// Every file the importer read, as opened: the main file first, then includes in the order
     /// read (empty for models built in memory). The build records their SHA-256 (recipe).
     pub files: Vec<String>,
+    /// Scene loads read from the deck (every load set by name; `selected` marks the ones the
+    /// case control applies).
+    pub loads: Vec<Load>,
 }
 
 impl Model {

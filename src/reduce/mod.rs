@@ -12,6 +12,7 @@ pub mod massless;
 pub mod normal;
 pub mod orthonormalize;
 pub mod reference;
+pub mod residual;
 pub mod select;
 
 use crate::solve::SolveError;
@@ -110,6 +111,9 @@ pub enum ModeLabel {
     Attachment { dof: usize },
     /// Dietz frequency-response mode for a unit load at `dof`.
     FrequencyResponse { dof: usize },
+    /// Residual vector: the (inertia-relief balanced) static response to scene load `load`
+    /// (index into the build's load list), see [`residual`].
+    Residual { load: usize },
 }
 
 /// A basis vector removed as dependent by the rank-revealing step.
@@ -156,6 +160,9 @@ pub struct Diagnostics {
     pub label_shares: Vec<f64>,
     /// Elastic free-free normal modes in the basis (Craig–Chang, Dietz); `None` otherwise.
     pub basis_normal_modes: Option<usize>,
+    /// Residual vectors (static load responses) added to the basis, dependent ones included
+    /// (they are also in `removed`), see [`residual`].
+    pub residual_vectors: usize,
 }
 
 /// Which method produced a mode set.

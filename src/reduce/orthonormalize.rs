@@ -36,6 +36,9 @@ pub fn rigid_flags(
         .collect()
 }
 
+/// Number of label kinds of [`kind`].
+const KINDS: usize = 7;
+
 /// Kind of a label (its variant, without the dof or index it carries).
 fn kind(l: &ModeLabel) -> usize {
     match l {
@@ -45,6 +48,7 @@ fn kind(l: &ModeLabel) -> usize {
         ModeLabel::FixedInterface { .. } => 3,
         ModeLabel::Attachment { .. } => 4,
         ModeLabel::FrequencyResponse { .. } => 5,
+        ModeLabel::Residual { .. } => 6,
     }
 }
 
@@ -65,14 +69,14 @@ pub fn origin_labels(
             if rigid[j] {
                 return (ModeLabel::Rigid, 1.0);
             }
-            let mut by_kind = [0.0f64; 6];
+            let mut by_kind = [0.0f64; KINDS];
             let mut total = 0.0;
             for (c, l) in basis.iter().enumerate().take(q) {
                 let w2 = weights[(c, j)].powi(2);
                 by_kind[kind(l)] += w2;
                 total += w2;
             }
-            let best_kind = (1..6).fold(1, |b, k| if by_kind[k] > by_kind[b] { k } else { b });
+            let best_kind = (1..KINDS).fold(1, |b, k| if by_kind[k] > by_kind[b] { k } else { b });
             let column = (0..q)
                 .filter(|&c| kind(&basis[c]) == best_kind)
                 .max_by(|&a, &b| weights[(a, j)].abs().total_cmp(&weights[(b, j)].abs()));

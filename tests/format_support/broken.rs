@@ -535,6 +535,29 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         from_body(&s),
         Some(("Inconsistent", "label_shares.bin: share[1] = 1.5")),
     );
+    let mut ml = base.clone();
+    ml.modal_loads = Some(ModalLoads {
+        loads: vec![ModalLoad {
+            name: "TIP".into(),
+            source: "--load TIP:103:10,0,0".into(),
+            values: vec![1.0, 2.0],
+        }],
+        residual: vec![],
+    });
+    add(
+        "modal_load_values_not_one_per_mode",
+        from_body(&ml),
+        Some(("CountMismatch", "modal_loads.bin")),
+    );
+    if let Some(m) = ml.modal_loads.as_mut() {
+        m.loads[0].values = vec![1.0, 2.0, 3.0];
+        m.residual = vec![0, 2, 0];
+    }
+    add(
+        "modal_load_residual_flag_not_0_or_1",
+        from_body(&ml),
+        Some(("Inconsistent", "modal_loads.bin: residual[1] = 2")),
+    );
     if let Some(r) = b.recipe.as_mut() {
         r.interfaces[0].nodes = vec![102];
     }

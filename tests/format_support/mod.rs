@@ -341,6 +341,7 @@ pub fn body_3node() -> ReducedBody {
         stress_shapes_bottom: None,
         strain_shapes_bottom: None,
         interfaces: None,
+        modal_loads: None,
     }
 }
 
@@ -533,6 +534,7 @@ pub fn body_20node() -> ReducedBody {
         stress_shapes_bottom: None,
         strain_shapes_bottom: None,
         interfaces: None,
+        modal_loads: None,
     }
 }
 
@@ -590,6 +592,9 @@ pub fn recipe_3node() -> Recipe {
             damping: Some("0-1:0%,1-:2%".into()),
             thickness: None,
             subcase: None,
+            gravity: None,
+            loads: vec![],
+            residual_vectors: None,
         },
         interfaces: vec![
             RecipeInterface {
@@ -666,6 +671,41 @@ pub fn body_3node_interfaces() -> ReducedBody {
     b
 }
 
+/// The 3-node chain (x axis, nodes 101–103) with the modal loads of its scene (format 1.4
+/// `modal_loads.bin`): gravity −9.81 m/s² along x (Φᵀ M g: only the rigid mode,
+/// 3·m·(−9.81)/√(3m)) and a 10 N axial tip force at node 103 (10·φ_103,j), closed form; no
+/// residual vectors. The recipe records the options as given.
+pub fn body_3node_modal_loads() -> ReducedBody {
+    let mut b = body_3node_recipe();
+    let n = b.nodes.len();
+    let phi = |j: usize, p: usize| b.modes.shapes[(j * n + p) * 6];
+    let gravity: Vec<f64> = (0..3)
+        .map(|j| (0..n).map(|p| M3 * -9.81 * phi(j, p)).sum())
+        .collect();
+    let tip: Vec<f64> = (0..3).map(|j| 10.0 * phi(j, 2)).collect();
+    b.modal_loads = Some(ModalLoads {
+        loads: vec![
+            ModalLoad {
+                name: "GRAVITY".into(),
+                source: "--gravity -9.81,0,0".into(),
+                values: gravity,
+            },
+            ModalLoad {
+                name: "TIP".into(),
+                source: "--load TIP:103:10,0,0".into(),
+                values: tip,
+            },
+        ],
+        residual: vec![],
+    });
+    if let Some(r) = &mut b.recipe {
+        r.options.gravity = Some("-9.81,0,0".into());
+        r.options.loads = vec!["TIP:103:10,0,0".into()];
+    }
+    b.version = flexbody_reader::version_for(&b);
+    b
+}
+
 /// The 3-node chain read as a shell strip (format 1.5): stress and strain shapes at all three
 /// nodes, the top fibre, and the bottom fibre of nodes 1 and 2 (SPEC §5.15).
 pub fn body_3node_shell_fibres() -> ReducedBody {
@@ -696,6 +736,7 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         ("three_node_chain_lines", body_3node_lines()),
         ("three_node_chain_recipe", body_3node_recipe()),
         ("three_node_chain_interfaces", body_3node_interfaces()),
+        ("three_node_chain_modal_loads", body_3node_modal_loads()),
         ("three_node_chain_shell_fibres", body_3node_shell_fibres()),
     ]
 }

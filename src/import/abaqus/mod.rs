@@ -10,12 +10,14 @@
 //! S4, S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE; *NSET from ELSET=), *MATERIAL,
 //! *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY (dof ranges, ENCASTRE, PINNED,
 //! X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *RIGID BODY, *SURFACE (TYPE=NODE), *COUPLING +
-//! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE.
+//! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE; the steps' *CLOAD and *DLOAD
+//! (GRAV, P, Pn) as named scene loads (`loads`).
 //! Reduced/incompatible-mode variants (C3D8R, C3D8I, C3D10M, B31R, S4R, …) are read as the base
 //! type with a warning: their special formulation is not reproduced. Other keywords (steps,
 //! outputs, …) are skipped with one warning per keyword and its count.
 
 mod defs;
+mod loads;
 mod resolve;
 mod steps;
 
@@ -99,6 +101,8 @@ enum Block {
     Transform(String, bool),
     /// `*FREQUENCY` data: the number of eigenvalues.
     Frequency,
+    /// `*CLOAD` / `*DLOAD` data lines (loads.rs).
+    Load(loads::LoadKeyword),
 }
 
 struct Parser {
@@ -113,6 +117,8 @@ struct Parser {
     boundaries: Vec<(Target, DofMask, Loc)>,
     /// `*STEP` blocks and their boundary conditions (steps.rs).
     steps: steps::Steps,
+    /// `*CLOAD` / `*DLOAD` lines of the steps (loads.rs).
+    loads: Vec<loads::RawLoad>,
     /// MASS / ROTARYI elements: id → (node id, loc).
     mass_elems: HashMap<u64, (u64, Loc)>,
     masses: Vec<(String, f64, Loc)>,
@@ -184,6 +190,7 @@ impl Parser {
             sections: Vec::new(),
             boundaries: Vec::new(),
             steps: steps::Steps::default(),
+            loads: Vec::new(),
             mass_elems: HashMap::new(),
             masses: Vec::new(),
             rotary: Vec::new(),
@@ -445,6 +452,26 @@ impl Parser {
                     Block::Skip
                 }
             }
+            "CLOAD" | "DLOAD" | "DSLOAD" => {
+                if self.steps.current.is_none() {
+                    return Err(self.err(
+                        loc,
+                        format!("*{name}"),
+                        "a load is history data: it belongs inside a *STEP",
+                    ));
+                }
+                match name {
+                    "CLOAD" => Block::Load(loads::LoadKeyword::Cload),
+                    "DLOAD" => Block::Load(loads::LoadKeyword::Dload),
+                    _ => {
+                        return Err(self.err(
+                            loc,
+                            "*DSLOAD",
+                            "loads on element-based surfaces are not supported (element-based *SURFACE is not read): give the pressure with *DLOAD, Pn on the elements",
+                        ))
+                    }
+                }
+            }
             "MASS" => Block::Mass(need("ELSET")?),
             "ROTARY INERTIA" => Block::RotaryInertia(need("ELSET")?),
             "TRANSFORM" => {
@@ -518,6 +545,18 @@ impl Parser {
         };
         match &self.block {
             Block::Skip => {}
+            Block::Load(keyword) => {
+                let step = (
+                    self.steps.done.len(),
+                    self.steps.current.as_ref().and_then(|s| s.name.clone()),
+                );
+                self.loads.push(loads::RawLoad {
+                    keyword: *keyword,
+                    step,
+                    fields: line.split(',').map(|f| f.trim().to_owned()).collect(),
+                    loc,
+                });
+            }
             Block::Frequency => {
                 let n = fields(line).next().and_then(parse_u64);
                 if let Some(step) = &mut self.steps.current {

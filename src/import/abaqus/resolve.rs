@@ -353,6 +353,25 @@ impl Parser {
                 message: format!("keyword *{name} ignored ({count}×)"),
             });
         }
+        let loads = {
+            let err = |loc: Loc, ent: String, msg: String| self.err(loc, ent, msg);
+            let at = |loc: Loc| format!("{}:{}", self.b.file_name(loc), loc.line);
+            super::loads::resolve(
+                &self.loads,
+                &super::loads::Resolve {
+                    model: &self.b.model,
+                    nodes: &nodes,
+                    elems: &elems,
+                    node_sets: &node_sets,
+                    element_sets: &element_sets,
+                    err: &err,
+                    at: &at,
+                },
+            )?
+        };
+        let load_warnings = crate::model::load::problem_warnings(&loads, &self.b.files[0]);
+        self.b.model.warnings.extend(load_warnings);
+        self.b.model.loads = loads;
         self.b.model.node_sets = node_sets;
         self.b.model.element_sets = element_sets;
         self.b.model.files = self.b.files.clone();

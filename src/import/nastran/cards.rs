@@ -156,6 +156,7 @@ pub(crate) fn build(
     let mut shear_rigid: Vec<String> = Vec::new();
     // PSOLID ISOP: (FULL, other) property ids — MSC's CHEXA/CPENTA default has bubble modes.
     let mut isop: (Vec<u64>, Vec<u64>) = Default::default();
+    let mut load_cards = super::loads::LoadCards::default();
     for card in others {
         let g = cc(card, &files);
         let name = card.name.as_str();
@@ -349,6 +350,7 @@ pub(crate) fn build(
                         .or_default() += 1;
                 }
             }
+            "FORCE" | "MOMENT" | "GRAV" | "PLOAD4" | "LOAD" => load_cards.cards.push(card),
             "EIGRL" | "EIGR" => {
                 let sid = g.id(0, "SID")?;
                 if let Some(prev) = eigen_cards.insert(sid, card) {
@@ -761,6 +763,12 @@ pub(crate) fn build(
             message: format!("unsupported card {name} ignored ({n} cards)"),
         });
     }
+    let elements = b.element_map()?;
+    let load_sel = case.load_selections(effective.subcase);
+    b.model.loads =
+        super::loads::resolve(&load_cards, &files, &b.model, &nodes, &elements, &load_sel)?;
+    let load_warnings = crate::model::load::problem_warnings(&b.model.loads, &files[0]);
+    b.model.warnings.extend(load_warnings);
     b.model.files = b.files.clone();
     b.record_element_sources();
     Ok((b.model, counts))

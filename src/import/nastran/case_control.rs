@@ -1,5 +1,5 @@
 //! Nastran case control: the part of a deck between `CEND` and `BEGIN BULK` that says which
-//! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC` and `METHOD` (global, i.e.
+//! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC`, `METHOD` and `LOAD` (global, i.e.
 //! above the first subcase, or inside a subcase, which overrides the global value). Every other
 //! command is output or solution control this tool has no use for and is skipped.
 //!
@@ -22,6 +22,7 @@ pub(crate) struct Select {
 pub(crate) struct Scope {
     pub spc: Option<Select>,
     pub method: Option<Select>,
+    pub load: Option<Select>,
 }
 
 /// One `SUBCASE n` block.
@@ -124,6 +125,7 @@ pub(crate) fn parse(
         let slot = match word {
             "SPC" => 0,
             "METHOD" | "METH" if !describer.contains("FLUID") => 1,
+            "LOAD" => 2,
             _ => continue,
         };
         let id = value.parse::<u64>().map_err(|_| {
@@ -139,10 +141,10 @@ pub(crate) fn parse(
             None => &mut cc.global,
         };
         let s = Some(Select { id, loc });
-        if slot == 0 {
-            scope.spc = s;
-        } else {
-            scope.method = s;
+        match slot {
+            0 => scope.spc = s,
+            1 => scope.method = s,
+            _ => scope.load = s,
         }
     }
     Ok(cc)
@@ -155,7 +157,28 @@ impl CaseControl {
         Scope {
             spc: s.spc.or(self.global.spc),
             method: s.method.or(self.global.method),
+            load: s.load.or(self.global.load),
         }
+    }
+
+    /// The load sets the case control applies (`LOAD = n`): of subcase `choice`, or of every
+    /// subcase (each subcase is a load case of the scene; loads may differ between subcases).
+    pub(crate) fn load_selections(&self, choice: Option<u64>) -> Vec<Select> {
+        let mut out: Vec<Select> = Vec::new();
+        if self.subcases.is_empty() {
+            out.extend(self.global.load);
+        } else {
+            for (k, s) in self.subcases.iter().enumerate() {
+                if choice.is_none_or(|c| c == s.id) {
+                    if let Some(l) = self.scope_of(k).load {
+                        if !out.iter().any(|o| o.id == l.id) {
+                            out.push(l);
+                        }
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The selections the build uses. `choice` picks a subcase; without it every subcase must

@@ -3,8 +3,9 @@
 //! Cards: GRID (CP/CD), CORD2R/CORD2C/CORD2S (chained), CTETRA (4/10), CHEXA (8/20),
 //! CPENTA (6/15), CBAR, CBEAM, CROD, CQUAD4, CTRIA3, PSOLID, PBAR, PBARL, PBEAM, PBEAML, PROD,
 //! PSHELL, PCOMP (one isotropic material), MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, GRDSET, ASET, ASET1, BSET, BSET1, QSET,
-//! QSET1, EIGRL, EIGR, PARAM WTMASS/COUPMASS; the case control's TITLE, SUBCASE, SPC and METHOD
-//! (`case_control`).
+//! QSET1, EIGRL, EIGR, PARAM WTMASS/COUPMASS; the load cards FORCE, MOMENT, GRAV, PLOAD4 and LOAD
+//! (`loads`: named scene loads `LOAD_<sid>`); the case control's TITLE, SUBCASE, SPC, METHOD and
+//! LOAD (`case_control`).
 //! Every other card is counted and reported once per card type as a warning; elements that
 //! reference a property of an unsupported type (e.g. PCOMPG) get no property and a warning.
 //!
@@ -20,6 +21,7 @@ mod case_control;
 mod coord;
 mod fields;
 mod lex;
+mod loads;
 mod shell;
 
 use std::collections::BTreeMap;

@@ -1,0 +1,215 @@
+//! Residual vectors (static correction, Nastran RESVEC): the static response to each scene
+//! load added to any method's basis, so the reduced body's quasi-static response to those loads
+//! is exact with few modes.
+//!
+//! For a body with rigid-body modes Xr in the set (free or partly restrained), the response is
+//! the inertia-relief one, as Craig–Chang's attachment modes: K r = P f with P = I − M Xr Xrᵀ,
+//! solved on a statically determinate support and purified (r ← r − Xr XrᵀM r), so r carries no
+//! rigid-body content (XrᵀM r = 0). Dofs the set holds at zero (reference conditions) are held
+//! in the solve too. The set's rigid modes are kept as they are; its flexible modes and the
+//! residual vectors are made independent and orthonormalized together in the second
+//! eigenproblem of [`orthonormalize`]; dependent residual vectors (already in the span) are
+//! removed and reported.
+
+use super::craig_chang::InertiaRelief;
+use super::orthonormalize::{diagnose, orthonormalize};
+use super::{complement, ModeLabel, ModeSet, ReduceError};
+use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
+use faer::Mat;
+
+/// A load whose inertia-relief part ‖P f‖ is below this fraction of ‖f‖ is a rigid-body load
+/// (balanced entirely by the body's inertia): its response is zero and it adds no vector.
+pub const BALANCED_TOL: f64 = 1e-10;
+
+/// Which static responses to add (`--residual-vectors`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ResidualKind {
+    /// One per scene load.
+    Loads,
+    /// One per interface dof (unit load): the attachment modes.
+    Interface,
+    /// Both.
+    Both,
+}
+
+/// What the augmentation did.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ResidualReport {
+    /// Load columns whose residual vector was removed as dependent (already in the basis), with
+    /// the remaining M-norm² fraction.
+    pub removed: Vec<(usize, f64)>,
+    /// Residual vectors kept.
+    pub kept: usize,
+}
+
+/// The static responses r (n × L) to the loads `f` (n × L) of the body `set` describes (module
+/// doc): inertia-relief balanced against the set's rigid modes, `set.reference_dofs` held.
+pub fn static_responses(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    set: &ModeSet,
+    f: &Mat<f64>,
+    eig: &EigenSpec,
+) -> Result<Mat<f64>, ReduceError> {
+    let n = k.nrows();
+    if f.nrows() != n {
+        return Err(ReduceError::Dofs {
+            what: "residual-vector loads",
+            detail: format!("{} rows for n = {n}", f.nrows()),
+        });
+    }
+    let mut held = set.reference_dofs.clone();
+    held.sort_unstable();
+    held.dedup();
+    let free = complement(&held, n);
+    let rigid: Vec<usize> = (0..set.len())
+        .filter(|&j| set.labels[j] == ModeLabel::Rigid)
+        .collect();
+    let xr = Mat::from_fn(free.len(), rigid.len(), |i, j| set.phi[(free[i], rigid[j])]);
+    let fs = Mat::from_fn(free.len(), f.ncols(), |i, j| f[(free[i], j)]);
+    let (ks, ms);
+    let (kr, mr) = if held.is_empty() {
+        (k, m)
+    } else {
+        ks = sparse_ops::submatrix(k.as_ref(), &free, &free)?;
+        ms = sparse_ops::submatrix(m.as_ref(), &free, &free)?;
+        (&ks, &ms)
+    };
+    let ir = InertiaRelief::new(kr, mr, xr, eig).map_err(|e| match e {
+        ReduceError::Solve(s) => ReduceError::Rigid(format!(
+            "residual vectors: the static solve failed ({s}); the set's {} rigid-body mode(s) do not cover every zero-stiffness motion of the model",
+            rigid.len()
+        )),
+        other => other,
+    })?;
+    let pf = ir.equilibrate(&fs);
+    // A load the rigid-body inertia balances entirely (gravity on a free body) deforms nothing:
+    // its equilibrated part is rounding, and its response is zero, not noise.
+    let mut pf = pf;
+    for j in 0..pf.ncols() {
+        let norm = |x: &Mat<f64>| {
+            (0..x.nrows())
+                .map(|i| x[(i, j)].powi(2))
+                .sum::<f64>()
+                .sqrt()
+        };
+        if norm(&pf) <= BALANCED_TOL * norm(&fs) {
+            pf.as_mut().col_mut(j).fill(0.0);
+        }
+    }
+    let rs = ir.solve_equilibrated(&pf);
+    let mut r = Mat::<f64>::zeros(n, f.ncols());
+    for (a, &i) in free.iter().enumerate() {
+        for j in 0..f.ncols() {
+            r[(i, j)] = rs[(a, j)];
+        }
+    }
+    Ok(r)
+}
+
+/// `set` with the static responses to `f` (n × L, column j labelled `Residual { load: j }`)
+/// added (module doc).
+pub fn add_residual_vectors(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    set: ModeSet,
+    f: &Mat<f64>,
+    eig: &EigenSpec,
+) -> Result<(ModeSet, ResidualReport), ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
+    let r = static_responses(k, m, &set, f, eig)?;
+    let n = k.nrows();
+    let rigid: Vec<usize> = (0..set.len())
+        .filter(|&j| set.labels[j] == ModeLabel::Rigid)
+        .collect();
+    let flex: Vec<usize> = (0..set.len())
+        .filter(|&j| set.labels[j] != ModeLabel::Rigid)
+        .collect();
+    let (nf, nl) = (flex.len(), f.ncols());
+    // A zero load (or one the held dofs take entirely) has no response: nothing to add.
+    let norms: Vec<f64> = (0..nl)
+        .map(|j| (0..n).map(|i| r[(i, j)] * r[(i, j)]).sum::<f64>().sqrt())
+        .collect();
+    let live: Vec<usize> = (0..nl).filter(|&j| norms[j] > 0.0).collect();
+    let mut basis = Mat::<f64>::zeros(n, nf + live.len());
+    let mut labels = Vec::with_capacity(nf + live.len());
+    for (c, &j) in flex.iter().enumerate() {
+        basis.as_mut().col_mut(c).copy_from(set.phi.col(j));
+        labels.push(set.labels[j].clone());
+    }
+    for (c, &j) in live.iter().enumerate() {
+        for i in 0..n {
+            basis[(i, nf + c)] = r[(i, j)] / norms[j];
+        }
+        labels.push(ModeLabel::Residual { load: j });
+    }
+    let o = orthonormalize(k, m, &basis, &labels)?;
+    let mut report = ResidualReport::default();
+    for rv in &o.diagnostics.removed {
+        if let ModeLabel::Residual { load } = rv.label {
+            report.removed.push((load, rv.remaining));
+        }
+    }
+    for j in (0..nl).filter(|j| norms[*j] == 0.0) {
+        report.removed.push((j, 0.0));
+    }
+    report.removed.sort_by_key(|x| x.0);
+    report.kept = live.len()
+        - (o.diagnostics.removed.iter())
+            .filter(|rv| matches!(rv.label, ModeLabel::Residual { .. }))
+            .count();
+    // [rigid modes as they were | new flexible modes]
+    let nr = rigid.len();
+    let q = o.omega2.len();
+    let mut phi = Mat::<f64>::zeros(n, nr + q);
+    for (c, &j) in rigid.iter().enumerate() {
+        phi.as_mut().col_mut(c).copy_from(set.phi.col(j));
+    }
+    phi.as_mut().subcols_mut(nr, q).copy_from(o.phi.as_ref());
+    let mut omega2: Vec<f64> = rigid.iter().map(|&j| set.omega2[j]).collect();
+    omega2.extend(&o.omega2);
+    let mut out_labels: Vec<ModeLabel> = vec![ModeLabel::Rigid; nr];
+    out_labels.extend(o.labels.iter().cloned());
+    let mut diagnostics = diagnose(k, m, &phi, &omega2)?;
+    let old = set.diagnostics;
+    let mut shares = vec![1.0; nr];
+    shares.extend(o.diagnostics.label_shares.iter().copied());
+    diagnostics.label_shares = shares;
+    diagnostics.removed = old.removed;
+    diagnostics
+        .removed
+        .extend(o.diagnostics.removed.iter().cloned());
+    diagnostics.dependency_tol = o.diagnostics.dependency_tol;
+    diagnostics.massless_directions = old.massless_directions + o.diagnostics.massless_directions;
+    diagnostics.massless_dofs = old.massless_dofs;
+    diagnostics.held_massless = old.held_massless;
+    diagnostics.basis_top_omega2 = old.basis_top_omega2;
+    diagnostics.basis_normal_modes = old.basis_normal_modes;
+    diagnostics.notes = old.notes;
+    diagnostics.residual_vectors = old.residual_vectors + live.len();
+    diagnostics.notes.push(format!(
+        "residual vectors: {} of {nl} static load responses added{}",
+        report.kept,
+        if report.removed.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; {} removed as dependent (already in the basis): load columns {:?}",
+                report.removed.len(),
+                report.removed.iter().map(|x| x.0).collect::<Vec<_>>()
+            )
+        }
+    ));
+    Ok((
+        ModeSet {
+            phi,
+            omega2,
+            labels: out_labels,
+            method: set.method,
+            reference_dofs: set.reference_dofs,
+            selection: set.selection,
+            diagnostics,
+        },
+        report,
+    ))
+}
