@@ -666,7 +666,7 @@ def counts_and_cutoffs(me, modes, req, err):
 
 
 def validate_recipe(rc, b, m, err, finite):
-    """SPEC §6 rule 11, in order."""
+    """SPEC §6 rule 13, in order."""
     for q, f in enumerate(rc["model_files"]):
         if len(f["sha256"]) != 64 or any(c not in "0123456789abcdef" for c in f["sha256"]):
             err("Inconsistent", "recipe.json", f"model_files[{q}].sha256 must be 64 lowercase hex digits")
