@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.3), written from SPEC.md alone.
+"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.5), written from SPEC.md alone.
 
 Standard library only (zipfile, json, hashlib, struct). Usage:
 
@@ -310,14 +310,14 @@ def decode_recipe(data):
 def read_entry(zf, info, declared):
     if info.file_size != declared:  # checked before inflating anything (a bomb's directory lies)
         raise ReadError("SizeMismatch", f"{info.filename}: size {info.file_size} differs from the manifest's {declared}")
-    if info.flag_bits & 0x1:
+    if info.flag_bits & 0x41:  # bit 0: encrypted, bit 6: strong encryption
         raise ReadError("Container", f"{info.filename}: damaged zip data (encrypted entry; encryption has no meaning in v1)")
     if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
         raise ReadError("Compression", f"{info.filename}: compression method {info.compress_type} not supported")
     try:
         with zf.open(info) as f:
             data = f.read(declared + 1)
-    except (zipfile.BadZipFile, OSError, EOFError, ValueError, zlib.error) as e:
+    except (zipfile.BadZipFile, OSError, EOFError, ValueError, NotImplementedError, zlib.error) as e:
         raise ReadError("Container", f"{info.filename}: damaged zip data ({e})")
     if len(data) != declared:
         raise ReadError("SizeMismatch", f"{info.filename}: size {len(data)} differs from the manifest's {declared}")
@@ -590,13 +590,8 @@ def validate(b, m):
                 err("Inconsistent", entry, "nodes must be strictly ascending")
         count(entry, "values", len(s["values"]), nm * len(s["nodes"]) * 6)
         finite(entry, "values", s["values"])
-        if entry.endswith("_bottom.bin"):  # format 1.5: shell bottom fibre, SPEC §5.15
-            top = entry.replace("_bottom.bin", ".bin")
-            if top not in b:
-                err("Inconsistent", entry, f"present without {top}")
-            missing = set(s["nodes"]) - set(b[top]["nodes"])
-            if missing:
-                err("Inconsistent", entry, f"node {min(missing)} has a bottom fibre but no value in {top}")
+        if entry.endswith("_bottom.bin"):
+            bottom_fibre_nodes(entry, s["nodes"], b, err)
     dmp = b.get("damping.bin")
     if dmp is not None:
         count("damping.bin", "ratio", len(dmp["ratio"]), nm)
@@ -611,25 +606,40 @@ def validate(b, m):
             err("Inconsistent", "label_shares.bin", "share outside 0..1")
     ml = b.get("modal_loads.bin")
     if ml is not None:
-        names = set()
-        for q, ld in enumerate(ml["loads"]):
-            if not ld["name"]:
-                err("Inconsistent", "modal_loads.bin", f"loads[{q}] has an empty name")
-            if ld["name"] in names:
-                err("Inconsistent", "modal_loads.bin", f"load name {ld['name']} appears twice")
-            names.add(ld["name"])
-            count("modal_loads.bin", "values", len(ld["values"]), nm)
-            finite("modal_loads.bin", "values", ld["values"])
-        if ml["residual"]:
-            count("modal_loads.bin", "residual", len(ml["residual"]), nm)
-            if any(r > 1 for r in ml["residual"]):
-                err("Inconsistent", "modal_loads.bin", "residual flag not 0 or 1")
+        validate_modal_loads(ml, nm, err, count, finite)
     rc = b.get("recipe.json")
     if rc is not None:
         validate_recipe(rc, b, m, err, finite)
     itf = b.get("interfaces.bin")
     if itf is not None:
         validate_interfaces(itf, b, err, finite)
+
+
+def bottom_fibre_nodes(entry, nodes, b, err):
+    """SPEC §5.15: a bottom-fibre entry needs its top entry and lists a subset of its nodes."""
+    top = entry.replace("_bottom.bin", ".bin")
+    if top not in b:
+        err("Inconsistent", entry, f"present without {top}")
+    missing = set(int(p) for p in nodes) - set(int(p) for p in b[top]["nodes"])
+    if missing:
+        err("Inconsistent", entry, f"node {min(missing)} has a bottom fibre but no value in {top}")
+
+
+def validate_modal_loads(ml, nm, err, count, finite):
+    """SPEC §6 rule 12: names non-empty and unique, M finite values per load, residual flags."""
+    names = set()
+    for q, ld in enumerate(ml["loads"]):
+        if not ld["name"]:
+            err("Inconsistent", "modal_loads.bin", f"loads[{q}] has an empty name")
+        if ld["name"] in names:
+            err("Inconsistent", "modal_loads.bin", f"load name {ld['name']} appears twice")
+        names.add(ld["name"])
+        count("modal_loads.bin", "values", len(ld["values"]), nm)
+        finite("modal_loads.bin", "values", ld["values"])
+    if ml["residual"]:
+        count("modal_loads.bin", "residual", len(ml["residual"]), nm)
+        if any(r > 1 for r in ml["residual"]):
+            err("Inconsistent", "modal_loads.bin", "residual flag not 0 or 1")
 
 
 def counts_and_cutoffs(me, modes, req, err):

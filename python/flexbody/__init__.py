@@ -33,8 +33,10 @@ class Body:
     ``invariants`` {"I1": (1,), "I2": (3,), "I3": (3, M), "I4": (3, M), "I5": (M, 3, M),
     "I6": (M, M), "I7": (3, 3), "I8": (M, 3, 3), "I9": (M, M, 3, 3)} (None when not stored),
     ``method`` (method.bin dict), ``stress_nodes``/``stress_shapes`` (K,), (M, K, 6) or None
-    (likewise ``strain_*``), ``damping_ratio`` (M,) or None, ``label_shares`` (M,) or None,
-    ``recipe`` (dict) or None, ``interfaces`` (list of dicts) or None, ``entries`` (manifest).
+    (likewise ``strain_*``; ``stress_bottom_nodes``/``stress_shapes_bottom`` the shells' bottom
+    fibre, SPEC §5.15), ``damping_ratio`` (M,) or None, ``label_shares`` (M,) or None,
+    ``recipe`` (dict) or None, ``interfaces`` (list of dicts) or None, ``modal_loads`` (dict with
+    ``loads`` [{name, source, values}] and ``residual``) or None, ``entries`` (manifest).
     """
 
     def __init__(self, b, m):
@@ -69,13 +71,16 @@ class Body:
                            for k in range(9)}
         self.method = b["method.bin"]
         for kind in ("stress", "strain"):
-            s = b.get(f"{kind}_shapes.bin")
-            setattr(self, f"{kind}_nodes", None if s is None else s["nodes"])
-            setattr(self, f"{kind}_shapes", None if s is None else s["values"].reshape(nm, len(s["nodes"]), 6))
+            for part in ("", "_bottom"):  # "_bottom": shells' bottom fibre (format 1.5)
+                s = b.get(f"{kind}_shapes{part}.bin")
+                setattr(self, f"{kind}{part}_nodes", None if s is None else s["nodes"])
+                setattr(self, f"{kind}_shapes{part}",
+                        None if s is None else s["values"].reshape(nm, len(s["nodes"]), 6))
         self.damping_ratio = b.get("damping.bin")
         self.label_shares = b.get("label_shares.bin")
         self.recipe = b.get("recipe.json")
         self.interfaces = b.get("interfaces.bin")
+        self.modal_loads = b.get("modal_loads.bin")
 
     @property
     def node_count(self):
@@ -133,6 +138,7 @@ class Body:
             "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
             "recipe": self.recipe,
             "interfaces": self.interfaces,
+            **({"modal_loads": self.modal_loads} if self.modal_loads is not None else {}),
         }
 
 

@@ -121,7 +121,8 @@ def _decode(name, data):
             c.fail(f"unknown enum tag {int(out['labels'].max())}")
     elif name == "invariants.bin":
         out = dict(mask=c.bools(9), i=[c.vec("<f8") for _ in range(9)])
-    elif name in ("stress_shapes.bin", "strain_shapes.bin"):
+    elif name in ("stress_shapes.bin", "strain_shapes.bin", "stress_shapes_bottom.bin",
+                  "strain_shapes_bottom.bin"):
         out = dict(nodes=c.vec("<u4"), values=c.vec("<f8"))
     elif name == "damping.bin":
         out = c.vec("<f8")
@@ -163,7 +164,7 @@ def read_container(data):
     except UnicodeDecodeError as e:
         raise ReadError("Manifest", f"not UTF-8: {e}")
     m = _spec.parse_manifest(text)
-    _spec.check_manifest(m)
+    _spec.check_manifest(m, len(data))
     listed = {e["name"] for e in m["entries"]}
     for name in by_name:
         if name != MANIFEST and name not in listed:
@@ -329,7 +330,8 @@ def validate(b, m):
     _finite("method.bin", "cutoffs", [c for c in me["cutoffs"] if c is not None])
     labels = {**modes, "labels": list(LABELS[modes["labels"]])}
     _spec.counts_and_cutoffs(me, labels, req, _err)
-    for entry in ["stress_shapes.bin", "strain_shapes.bin"]:
+    for entry in ["stress_shapes.bin", "strain_shapes.bin", "stress_shapes_bottom.bin",
+                  "strain_shapes_bottom.bin"]:
         s = b.get(entry)
         if s is None:
             continue
@@ -342,6 +344,8 @@ def validate(b, m):
             _err("Inconsistent", entry, "nodes must be strictly ascending")
         _count(entry, "values", len(s["values"]), nm * len(p) * 6)
         _finite(entry, "values", s["values"])
+        if entry.endswith("_bottom.bin"):
+            _spec.bottom_fibre_nodes(entry, p, b, _err)
     dmp = b.get("damping.bin")
     if dmp is not None:
         _count("damping.bin", "ratio", len(dmp), nm)
@@ -354,6 +358,9 @@ def validate(b, m):
         _finite("label_shares.bin", "shares", sh)
         if ((sh < 0) | (sh > 1)).any():
             _err("Inconsistent", "label_shares.bin", "share outside 0..1")
+    ml = b.get("modal_loads.bin")
+    if ml is not None:
+        _spec.validate_modal_loads(ml, nm, _err, _count, _finite_list)
     rc = b.get("recipe.json")
     if rc is not None:
         stored = [dict(id=int(i), interface=True) for i in ids[nodes["interface"] == 1]]

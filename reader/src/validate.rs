@@ -2,7 +2,8 @@
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
     DAMPING, FACES, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD, MODAL_LOADS, MODES,
-    NODAL_MASS, NODES, RECIPE, STRAIN_SHAPES, STRAIN_SHAPES_BOTTOM, STRESS_SHAPES, STRESS_SHAPES_BOTTOM,
+    NODAL_MASS, NODES, RECIPE, STRAIN_SHAPES, STRAIN_SHAPES_BOTTOM, STRESS_SHAPES,
+    STRESS_SHAPES_BOTTOM,
 };
 use crate::error::ReadError;
 use crate::limits::ReadLimits;
