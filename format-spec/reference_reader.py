@@ -417,8 +417,8 @@ def check_manifest(m, file_bytes):
             raise ReadError("MissingEntry", f"{name}: required in v1 but not listed")
 
 
-def read_bytes(data):
-    """SPEC §7.1. Returns (body dict, manifest dict)."""
+def read_container(data):
+    """SPEC §7.1 steps 1–6: (manifest dict, {entry name: verified bytes})."""
     try:
         zf = zipfile.ZipFile(io.BytesIO(data))
         infos = zf.infolist()
@@ -455,6 +455,12 @@ def read_bytes(data):
         if hashlib.sha256(b).hexdigest() != e["sha256"]:
             raise ReadError("Checksum", f"{e['name']}: SHA-256 differs from the manifest")
         blobs[e["name"]] = b
+    return m, blobs
+
+
+def read_bytes(data):
+    """SPEC §7.1. Returns (body dict, manifest dict)."""
+    m, blobs = read_container(data)
     body = {}
     for name, fn in DECODERS.items():
         if name in blobs:
