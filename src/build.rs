@@ -109,6 +109,9 @@ pub struct BuildSpec {
     pub mass_explicit: bool,
     /// The scene: loads (`--gravity`, `--load`) and residual vectors (`--residual-vectors`).
     pub scene: crate::scene::SceneSpec,
+    /// `--verify-band`: prove every eigenproblem's returned modes complete by an inertia count
+    /// (one extra LDLᵀ factorization each; [`EigenSpec::verify_band`]).
+    pub verify_band: bool,
 }
 
 impl BuildSpec {
@@ -140,6 +143,7 @@ impl BuildSpec {
             subcase: None,
             mass_explicit: false,
             scene: Default::default(),
+            verify_band: false,
         }
     }
 
@@ -545,6 +549,7 @@ pub fn build_model_with_hook(
     let eig = EigenSpec {
         dofs_per_node: Some(3),
         par: spec.par(),
+        verify_band: spec.verify_band,
         ..Default::default()
     };
     let (k_r, m_r) = (&reduced.k, &reduced.m);

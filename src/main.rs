@@ -152,6 +152,11 @@ struct BuildArgs {
     /// (unit loads at the interface dofs) or both; inertia-relief balanced for a free body.
     #[arg(long, value_name = "KIND", num_args = 0..=1, default_missing_value = "loads")]
     residual_vectors: Option<String>,
+    /// Prove each eigenproblem's modes complete: Sylvester's inertia count of K − σM just above
+    /// the highest mode returned must equal the modes returned, else the build fails (one
+    /// extra LDLᵀ factorization per eigenproblem; the report states the proven band).
+    #[arg(long)]
+    verify_band: bool,
     /// No stress or strain shapes (the default; for scripts that want to say so).
     #[arg(long, conflicts_with = "stress_modes")]
     no_stress: bool,
@@ -248,6 +253,7 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
         title: a.title.clone(),
         created_utc: a.timestamp.then(utc_now),
         threads: a.threads.max(1),
+        verify_band: a.verify_band,
         beam_mass: parse_beam_mass(&a.beam_mass)?,
         scene: flexbody::scene::SceneSpec {
             gravity: a.gravity.clone(),

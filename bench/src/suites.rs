@@ -80,6 +80,7 @@ pub fn ours_eigen(
         tol: tol.unwrap_or(EigenSpec::default().tol),
         par: threads(),
         upper: None,
+        verify_band: false,
     };
     let s = lowest_modes_iterative(&k, &m, &spec).map_err(|e| e.to_string())?;
     let total = t0.elapsed().as_secs_f64();

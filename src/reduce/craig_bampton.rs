@@ -201,6 +201,9 @@ pub fn craig_bampton(
     for (name, s) in &basis.timings {
         diagnostics.notes.push(format!("time {name}: {s:.3} s"));
     }
+    diagnostics
+        .notes
+        .extend(super::band_note(&basis.eigen, "fixed-interface"));
     if nq == 0 && matches!(modes, ModeCount::BelowHz(_)) {
         diagnostics.notes.push(
             "no fixed-interface mode lies below the cutoff: the set holds the constraint (static) \

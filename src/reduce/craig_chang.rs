@@ -239,6 +239,9 @@ pub fn craig_chang(
     let mut diagnostics = o.diagnostics;
     diagnostics.basis_top_omega2 = xn.eigenvalues.last().copied();
     diagnostics.basis_normal_modes = Some(xn.eigenvalues.len() - nr);
+    diagnostics
+        .notes
+        .extend(super::band_note(&xn.info, "free-free"));
     diagnostics.notes.push(format!(
         "statically determinate support (automatic): dofs {:?}",
         ir.support

@@ -65,7 +65,10 @@ pub fn normal_modes(
         }
     }
     // checked on the free-dof problem: rows of held dofs carry the reactions, not an error
-    let diagnostics = diagnose(kr, mr, &s.vectors, &s.eigenvalues)?;
+    let mut diagnostics = diagnose(kr, mr, &s.vectors, &s.eigenvalues)?;
+    diagnostics
+        .notes
+        .extend(super::band_note(&s.info, "normal"));
     let set = ModeSet {
         phi,
         omega2: s.eigenvalues,

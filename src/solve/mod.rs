@@ -8,6 +8,7 @@
 pub mod cholesky;
 pub mod dense;
 pub mod eigen;
+pub mod inertia;
 pub mod memory;
 pub mod ordering;
 mod rows;
@@ -60,6 +61,18 @@ pub enum SolveError {
     /// The iteration did not converge.
     #[error("eigensolver did not converge to {requested} modes in {steps} block steps")]
     NotConverged { requested: usize, steps: usize },
+    /// The inertia count of K − σM holds more eigenvalues below σ than the solver returned.
+    #[error(
+        "band check failed: the eigensolver returned {found} modes below omega^2 = {sigma:e} but \
+         K - sigma*M has {missing} more negative pivots (Sylvester's law of inertia): a mode was \
+         missed inside the band, or a repeated eigenvalue was cut at the last mode (ask for one \
+         more mode)"
+    )]
+    MissedModes {
+        found: usize,
+        missing: usize,
+        sigma: f64,
+    },
     /// A dense eigen-decomposition failed.
     #[error("dense eigensolver: {0}")]
     DenseEigen(String),
@@ -121,6 +134,10 @@ pub struct EigenSpec {
     /// (see [`eigen::BlockParams::upper`]). The dense path, and a band that outgrows the sparse
     /// path's limit, return `count` values all ≤ `upper`: ask again with more.
     pub upper: Option<f64>,
+    /// After the solve, prove with Sylvester's inertia count of K − σM (σ just above the
+    /// highest returned eigenvalue; one extra LDLᵀ factorization, [`inertia`]) that the returned
+    /// modes are all the eigenvalues below σ; a missed mode is [`SolveError::MissedModes`].
+    pub verify_band: bool,
 }
 
 impl Default for EigenSpec {
@@ -134,6 +151,7 @@ impl Default for EigenSpec {
             dofs_per_node: None,
             par: Par::Seq,
             upper: None,
+            verify_band: false,
         }
     }
 }
@@ -165,6 +183,8 @@ pub struct EigenInfo {
     pub seconds_solve: f64,
     /// Part of `seconds_eigen` spent orthogonalizing (Gram–Schmidt, M-QR with its M products).
     pub seconds_orth: f64,
+    /// With [`EigenSpec::verify_band`]: (modes proven complete, the shift σ of the count).
+    pub band_proof: Option<(usize, f64)>,
 }
 
 /// Lowest eigenpairs.
@@ -316,7 +336,7 @@ pub fn lowest_modes(
             seconds_eigen: t.elapsed().as_secs_f64(),
             ..Default::default()
         };
-        return finish(k, m, vals, vecs, info, spec.tol);
+        return finish(k, m, vals, vecs, info, spec.tol).and_then(|s| verify_band(k, m, s, spec));
     }
     lowest_modes_iterative(k, m, spec)
 }
@@ -453,8 +473,49 @@ pub fn lowest_modes_factored(
                 vals = vec![0.0; x.ncols()];
                 step += 1;
             }
-            other => return other,
+            other => return other.and_then(|s| verify_band(k, m, s, spec)),
         }
+    }
+}
+
+/// With `spec.verify_band`: Sylvester's law of inertia on K − σM, σ = (1 + 10⁻⁸)·λ_max of
+/// the solution (or a tiny positive σ when every returned λ is ~0), must count exactly the
+/// returned modes; more is [`SolveError::MissedModes`] (a mode skipped inside the band, or a
+/// repeated eigenvalue cut at the last returned mode).
+fn verify_band(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    mut sol: EigenSolution,
+    spec: &EigenSpec,
+) -> Result<EigenSolution, SolveError> {
+    if !spec.verify_band || sol.eigenvalues.is_empty() {
+        return Ok(sol);
+    }
+    let top = sol.eigenvalues.iter().copied().fold(0.0f64, f64::max);
+    let sigma = if top > 1e-8 * trace_ratio(k, m) {
+        top * (1.0 + 1e-8)
+    } else {
+        1e-6 * trace_ratio(k, m)
+    };
+    let found = sol.eigenvalues.len();
+    match inertia::check_band(
+        k,
+        m,
+        &sol.eigenvalues,
+        f64::NEG_INFINITY,
+        sigma,
+        spec.dofs_per_node,
+        spec.par,
+    )? {
+        Ok(_) => {
+            sol.info.band_proof = Some((found, sigma));
+            Ok(sol)
+        }
+        Err(missing) => Err(SolveError::MissedModes {
+            found,
+            missing,
+            sigma,
+        }),
     }
 }
 
