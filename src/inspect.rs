@@ -321,8 +321,8 @@ fn render_interfaces(o: &mut String, list: &[flexbody_reader::InterfaceInfo]) {
     use std::fmt::Write;
     let _ = writeln!(
         o,
-        "interfaces   {:<20} {:>6} {:>5} {:>10}  centre fit",
-        "name", "node", "kind", "dependent"
+        "interfaces   {:<20} {:>6} {:>5} {:>10}  centre fit   (index: 0-based, nodes.bin order)",
+        "name", "index", "kind", "dependent"
     );
     for i in list {
         let _ = write!(
