@@ -349,6 +349,8 @@ pub fn build_model_with_hook(
         .iter()
         .flat_map(|r| r.nodes.iter().copied())
         .collect();
+    // A bad --load/--gravity is reported now, not after the reduction.
+    crate::scene::scene_loads(&model, &spec.scene).map_err(|e| request_err(e.to_string()))?;
     lap(&mut report, STAGES[1]);
 
     progress(STAGES[2]);

@@ -547,12 +547,23 @@ fn main() -> ExitCode {
             let mut msg = String::new();
             for cause in e.chain() {
                 let text = cause.to_string();
-                if !msg.contains(&text) {
-                    if !msg.is_empty() {
-                        msg.push_str(": ");
-                    }
-                    msg.push_str(&text);
+                if msg.contains(&text) {
+                    continue;
                 }
+                // A cause that begins by repeating the end of the message (the file it names,
+                // "cannot build P" then "P: …") continues it.
+                let mut rest = text.as_str();
+                while let Some((head, tail)) = rest.split_once(": ") {
+                    if msg.ends_with(head) {
+                        rest = tail;
+                    } else {
+                        break;
+                    }
+                }
+                if !msg.is_empty() {
+                    msg.push_str(": ");
+                }
+                msg.push_str(rest);
             }
             eprintln!("flexbody: {msg}");
             ExitCode::from(2)

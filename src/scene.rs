@@ -240,7 +240,15 @@ pub fn scene_loads(model: &Model, scene: &SceneSpec) -> Result<Vec<Load>, Option
                             )
                         })?;
                     let [p] = v[..] else {
-                        return Err(bad("load", entry, "one pressure value after a node set"));
+                        return Err(bad(
+                            "load",
+                            entry,
+                            &format!(
+                                "one pressure value after a node set ({at} is a node set; a force \
+                                 at an interface goes on its centre node's id, which the build \
+                                 report and `inspect` list)"
+                            ),
+                        ));
                     };
                     let parts = pressure_faces(model, set, p);
                     if parts.is_empty() {
