@@ -5,15 +5,17 @@
 //!   ARPACK/CHOLMOD (and ccx) on identical matrices;
 //! * `cb NX NY NZ [--modes 30] [--exudyn] [--ccx] [--repeat R]` — whole CB build vs exudyn HCB,
 //!   ccx and one CHOLMOD factorization of the same K_ii (R alternating pairs);
+//! * `assembly [N_SHELL [N_TET]] [--repeat R]` — `fe::assemble` (lumped and consistent) on a
+//!   warped quad shell grid, the same grid in triangles and a tet10 block, each ≈10⁶ dofs;
 //! * `accuracy [MODEL.inp]` — every reduction method × mode counts on the bundled conrod;
 //! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
 //!
-//! `ours-eigen` and `ours-cb` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
+//! `ours-eigen`, `ours-cb` and `ours-assembly` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
 //! times faer's multi-RHS solve against ours on one factorization (for tuning).
 
-use flexbody_bench::{accuracy, chart, suites, Res};
+use flexbody_bench::{accuracy, assembly, chart, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | accuracy [MODEL.inp] | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | assembly [N_SHELL [N_TET]] [--repeat R] | accuracy [MODEL.inp] | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -58,6 +60,24 @@ fn run(args: &[String]) -> Res<()> {
             has("--ccx"),
             repeat(a)?,
         )?,
+        "assembly" => {
+            // sizes before any flag; defaults 408² shell cells (1 003 686 dofs), 34³ tet bricks
+            // (985 527 dofs)
+            let sizes: Vec<usize> = a
+                .iter()
+                .take_while(|s| !s.starts_with("--"))
+                .map(|s| s.parse().ok().filter(|&v| v > 0))
+                .collect::<Option<_>>()
+                .ok_or_else(|| format!("bad size\n{USAGE}"))?;
+            let shell = sizes.first().copied().unwrap_or(408);
+            let tet = sizes.get(1).copied().unwrap_or(34);
+            assembly::run(shell, tet, repeat(a)?)?
+        }
+        "ours-assembly" if a.len() == 4 => {
+            let n = a[1].parse().map_err(|_| "N".to_string())?;
+            let r = a[3].parse().map_err(|_| "REPEATS".to_string())?;
+            assembly::ours_assembly(&a[0], n, &a[2], r)?
+        }
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
         "chart" => chart::run()?,
         "ours-eigen" if (3..=6).contains(&a.len()) => {
