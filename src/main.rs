@@ -29,16 +29,27 @@ enum Command {
     /// frequencies and residuals against the FE model). Exit code 1 when a check fails.
     Check(CheckArgs),
     /// Export a .flexbody file to another solver's format: exudyn (NPZ for
-    /// ObjectFFRFreducedOrderInterface.LoadFromFile) or mbdyn (modal element .fem file).
+    /// ObjectFFRFreducedOrderInterface.LoadFromFile), mbdyn (modal element .fem file) or mtx
+    /// (the constrained K and M the build reduced, Matrix Market, with --model).
     Export {
         /// The .flexbody file.
         file: PathBuf,
-        /// Target format: exudyn or mbdyn.
+        /// Target format: exudyn, mbdyn or mtx.
         #[arg(long)]
         to: String,
-        /// Output file.
+        /// Output file (mtx: a folder for K.mtx, M.mtx and dofs.txt).
         #[arg(short, long)]
         output: PathBuf,
+        /// mtx: the FE model the file was built from, rebuilt with the options recorded in the
+        /// file's recipe (options given here override them). A model file changed since the
+        /// build is refused.
+        #[arg(long)]
+        model: Option<PathBuf>,
+        #[command(flatten)]
+        model_args: ModelArgs,
+        /// mtx: mass matrix lumped or consistent (default: as the file was built).
+        #[arg(long)]
+        mass: Option<String>,
     },
 }
 
@@ -511,12 +522,76 @@ fn check(a: &CheckArgs) -> anyhow::Result<bool> {
     Ok(report.passed())
 }
 
-fn export(file: &PathBuf, to: &str, output: &std::path::Path) -> anyhow::Result<()> {
+/// `--model` options given explicitly; each overrides the file's recipe.
+fn model_overrides(a: &ModelArgs) -> anyhow::Result<flexbody::recipe::ModelOverrides> {
+    Ok(flexbody::recipe::ModelOverrides {
+        format: import_format(&a.format)?,
+        material: a
+            .material
+            .as_deref()
+            .map(flexbody::options::parse_material)
+            .transpose()?,
+        interface: a.interface.clone(),
+        spider: a
+            .spider
+            .as_deref()
+            .map(flexbody::options::parse_spider)
+            .transpose()?,
+        thickness: a.thickness,
+        subcase: a.subcase,
+    })
+}
+
+/// What `flexbody export` was given besides the file and the target.
+struct ExportArgs<'a> {
+    output: &'a std::path::Path,
+    model: Option<&'a PathBuf>,
+    model_args: &'a ModelArgs,
+    mass: Option<&'a str>,
+}
+
+fn export(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result<()> {
     use anyhow::Context;
+    let output = a.output;
     let target = flexbody::export::Target::from_name(to)
-        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn or mbdyn"))?;
+        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn, mbdyn or mtx"))?;
     let body = flexbody_reader::read(file)
         .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
+    if target == flexbody::export::Target::Mtx {
+        let model = a.model.ok_or_else(|| {
+            anyhow::anyhow!(
+                "--to mtx writes the FE model's K and M, which the file does not hold: give the \
+                 model it was built from with --model MODEL (its recipe says how it was built)"
+            )
+        })?;
+        let mass = a.mass.map(flexbody::options::parse_mass).transpose()?;
+        let written = flexbody::export::mtx::export_body_matrices(
+            &body,
+            model,
+            model_overrides(a.model_args)?,
+            mass,
+            output,
+        )
+        .with_context(|| format!("cannot export the matrices of {}", model.display()))?;
+        eprintln!(
+            "flexbody: wrote {}",
+            written
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        return Ok(());
+    }
+    if let Some(model) = a.model {
+        anyhow::bail!(
+            "--model {}: only --to mtx reads the model; {to} is exported from the file alone",
+            model.display()
+        );
+    }
+    if let Some(mass) = a.mass {
+        anyhow::bail!("--mass {mass}: only --to mtx writes a mass matrix");
+    }
     let summary = flexbody::export::export(&body, target, output)?;
     for n in &summary.notes {
         eprintln!("flexbody: note: {n}");
@@ -536,7 +611,24 @@ fn main() -> ExitCode {
         Command::Build(args) => build(args).map(|()| true),
         Command::Inspect { file, json } => inspect(file, *json).map(|()| true),
         Command::Check(args) => check(args),
-        Command::Export { file, to, output } => export(file, to, output).map(|()| true),
+        Command::Export {
+            file,
+            to,
+            output,
+            model,
+            model_args,
+            mass,
+        } => export(
+            file,
+            to,
+            ExportArgs {
+                output,
+                model: model.as_ref(),
+                model_args,
+                mass: mass.as_deref(),
+            },
+        )
+        .map(|()| true),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,

@@ -200,3 +200,66 @@ fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("--to adams: expected"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The Python package's one-call helper `flexbody.exudyn.add_body(mbs, FILE)` (and
+/// `flexbody.exudyn.interface(FILE)`) builds the same exudyn body as `LoadFromFile` of the
+/// exported NPZ: every inertia term, array and object parameter equal, the file's damping
+/// applied, the object's frequencies = the file's (`tests/python/exudyn_helper_check.py`, run
+/// with this repository's `python/` on PYTHONPATH). On the conrod (6-node triangles, stress
+/// modes, damping) and on a hex8 block (quads split, strain modes, no damping).
+#[test]
+fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
+    if !python_has("exudyn") || !python_has("numpy") {
+        eprintln!(
+            "SKIPPED the flexbody.exudyn helper check: python3 cannot import exudyn and numpy \
+             (pip install exudyn)"
+        );
+        return;
+    }
+    let dir = scratch("helper");
+    let rod = dir.join("rod.flexbody");
+    build_conrod(&rod, &["--stress-modes", "--damping", "2%"]);
+    let block = dir.join("block.flexbody");
+    let o = exe()
+        .arg("build")
+        .arg(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../shared/reference/e_matrices/hex8_block_coarse/ccx_matrix_free.inp"),
+        )
+        .args(["--method", "normal", "--modes", "12", "--stress-modes", "strain"])
+        .args(["--units", "si", "-q", "-o"])
+        .arg(&block)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (body, what) in [(&rod, "6 nodes"), (&block, "3 nodes")] {
+        let npz = body.with_extension("npz");
+        let o = exe()
+            .arg("export")
+            .arg(body)
+            .args(["--to", "exudyn", "-o"])
+            .arg(&npz)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let o = Command::new("python3")
+            .arg(root.join("tests/python/exudyn_helper_check.py"))
+            .arg(&npz)
+            .arg(body)
+            .env("PYTHONPATH", root.join("python"))
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        println!("{stdout}");
+        assert!(
+            o.status.success(),
+            "helper checks failed:\n{stdout}\n{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(stdout.contains("all helper checks passed"), "{stdout}");
+        assert!(stdout.contains(&format!("triangles of {what}")), "{stdout}");
+        assert!(stdout.matches("ok   object parameter").count() >= 10, "{stdout}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -69,6 +69,14 @@ fn compare(case: &str, stem: &str) -> (f64, f64) {
     let dir = tmp(&format!("{case}-{stem}"));
     let written = export_mtx(&spec, &dir).unwrap();
     assert_eq!(written.len(), 3);
+    let d = compare_written(case, stem, &dir);
+    std::fs::remove_dir_all(&dir).ok();
+    d
+}
+
+/// `dir`'s `K.mtx`, `M.mtx`, `dofs.txt` against `case/stem.{sti,mas,dof}`: the dof tables must
+/// be equal; returns (K, M) relative differences.
+fn compare_written(case: &str, stem: &str, dir: &Path) -> (f64, f64) {
     let dofs = read_dofs(&dir.join("dofs.txt"));
     let ccx = read_ccx_matrices(&reference(&format!("e_matrices/{case}/{stem}"))).unwrap();
     let ccx_dofs: Vec<(u64, usize)> = ccx.dofs.iter().map(|d| (d.node, d.dir as usize)).collect();
@@ -83,7 +91,6 @@ fn compare(case: &str, stem: &str) -> (f64, f64) {
         &keyed(ccx.m.as_ref().unwrap().full(), &ccx_dofs),
     );
     eprintln!("{case}/{stem}: max rel. difference K {ek:.2e}, M {em:.2e}");
-    std::fs::remove_dir_all(&dir).ok();
     (ek, em)
 }
 
@@ -203,5 +210,162 @@ fn conrod_build_write_matrices_are_the_reduced_system() {
     }
     eprintln!("conrod: |ΦᵀMΦ − I| {em:.2e}, |ΦᵀKΦ − Ω²|/max ω² {ek:.2e}");
     assert!(em < 1e-8 && ek < 1e-8, "M {em:e}, K {ek:e}");
+    // `export --to mtx --model` rebuilds the same system from the file's recipe (interfaces,
+    // spiders, lumped mass): the same three files, byte for byte.
+    let again = dir.join("again");
+    let status = Command::new(env!("CARGO_BIN_EXE_flexbody"))
+        .arg("export")
+        .arg(&out)
+        .args(["--to", "mtx", "--model"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp"))
+        .arg("-o")
+        .arg(&again)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    for f in ["K.mtx", "M.mtx", "dofs.txt"] {
+        assert!(
+            std::fs::read(mats.join(f)).unwrap() == std::fs::read(again.join(f)).unwrap(),
+            "{f} differs between build --write-matrices and export --to mtx"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Runs the CLI; returns (success, stderr).
+fn flexbody_cli(args: &[&std::ffi::OsStr]) -> (bool, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_flexbody"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+/// Copies `case/stem.inp` and its `mesh.inp` into a fresh folder (so a test can change them).
+fn copy_case(case: &str, stem: &str, dir: &Path) -> PathBuf {
+    for f in [format!("{stem}.inp"), "mesh.inp".into()] {
+        std::fs::copy(reference(&format!("e_matrices/{case}/{f}")), dir.join(&f)).unwrap();
+    }
+    dir.join(format!("{stem}.inp"))
+}
+
+/// `flexbody build` (normal modes, consistent mass) then `flexbody export --to mtx --model`:
+/// the matrices the export writes from the file's recipe — no option repeated, the mass kind
+/// taken from the file — equal CalculiX's dumps. Returns (K, M) relative differences.
+fn build_then_export(case: &str, stem: &str) -> (f64, f64) {
+    let dir = tmp(&format!("cli-{case}-{stem}"));
+    let model = copy_case(case, stem, &dir);
+    let body = dir.join("block.flexbody");
+    let (ok, err) = flexbody_cli(&[
+        "build".as_ref(),
+        model.as_os_str(),
+        "--method".as_ref(),
+        "normal".as_ref(),
+        "--modes".as_ref(),
+        "8".as_ref(),
+        "--mass".as_ref(),
+        "consistent".as_ref(),
+        "--units".as_ref(),
+        "si".as_ref(),
+        "-q".as_ref(),
+        "-o".as_ref(),
+        body.as_os_str(),
+    ]);
+    assert!(ok, "build: {err}");
+    let mats = dir.join("mats");
+    let (ok, err) = flexbody_cli(&[
+        "export".as_ref(),
+        body.as_os_str(),
+        "--to".as_ref(),
+        "mtx".as_ref(),
+        "--model".as_ref(),
+        model.as_os_str(),
+        "-o".as_ref(),
+        mats.as_os_str(),
+    ]);
+    assert!(ok, "export: {err}");
+    let header = std::fs::read_to_string(mats.join("M.mtx")).unwrap();
+    assert!(header.lines().nth(1).unwrap().contains("consistent mass"));
+    let d = compare_written(case, stem, &mats);
+    std::fs::remove_dir_all(&dir).ok();
+    d
+}
+
+#[test]
+fn cli_export_mtx_of_fixed_hex8_block_equals_ccx_dump() {
+    let (ek, em) = build_then_export("hex8_block_coarse", "ccx_matrix_fixed");
+    assert!(ek < 1e-10 && em < 1e-10, "K {ek:e}, M {em:e}");
+}
+
+#[test]
+fn cli_export_mtx_of_free_tet10_block_equals_ccx_dump() {
+    let (ek, em) = build_then_export("tet10_block_coarse", "ccx_matrix_free");
+    assert!(ek < 1e-10 && em < 1e-10, "K {ek:e}, M {em:e}");
+}
+
+/// `--to mtx` without `--model` and with a model changed since the build: clear errors (the
+/// latter `check`'s "changed since the build" naming the file), exit code 2, nothing written.
+#[test]
+fn cli_export_mtx_refuses_missing_or_changed_model() {
+    let dir = tmp("cli-errors");
+    let model = copy_case("hex8_single", "ccx_matrix_free", &dir);
+    let body = dir.join("one.flexbody");
+    let (ok, err) = flexbody_cli(&[
+        "build".as_ref(),
+        model.as_os_str(),
+        "--method".as_ref(),
+        "normal".as_ref(),
+        "--modes".as_ref(),
+        "8".as_ref(),
+        "--units".as_ref(),
+        "si".as_ref(),
+        "-q".as_ref(),
+        "-o".as_ref(),
+        body.as_os_str(),
+    ]);
+    assert!(ok, "build: {err}");
+    let mats = dir.join("mats");
+    let export = |extra: &[&std::ffi::OsStr]| {
+        let mut args: Vec<&std::ffi::OsStr> = vec![
+            "export".as_ref(),
+            body.as_os_str(),
+            "--to".as_ref(),
+            "mtx".as_ref(),
+            "-o".as_ref(),
+            mats.as_os_str(),
+        ];
+        args.extend_from_slice(extra);
+        flexbody_cli(&args)
+    };
+    let (ok, err) = export(&[]);
+    assert!(!ok && err.contains("--model MODEL"), "{err}");
+    assert!(!mats.exists());
+    // The include changes: refused, naming the changed file.
+    let mesh = dir.join("mesh.inp");
+    let mut text = std::fs::read_to_string(&mesh).unwrap();
+    text.push_str("** edited after the build\n");
+    std::fs::write(&mesh, text).unwrap();
+    let (ok, err) = export(&["--model".as_ref(), model.as_os_str()]);
+    assert!(
+        !ok && err.contains("mesh.inp: changed since the build"),
+        "{err}"
+    );
+    assert!(!mats.exists());
+    // `check` names the same file with the same words.
+    let out = Command::new(env!("CARGO_BIN_EXE_flexbody"))
+        .arg("check")
+        .arg(&body)
+        .arg("--model")
+        .arg(&model)
+        .output()
+        .unwrap();
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        report.contains("mesh.inp: changed since the build"),
+        "{report}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -4,7 +4,8 @@
 //!
 //! * [`exudyn`] — the NPZ that `exudyn.FEM.ObjectFFRFreducedOrderInterface.LoadFromFile` reads.
 //! * [`mbdyn`] — the modal element's FEM file (MBDyn manual, "FEM File Format").
-//! * [`mtx`] — the model's K and M in Matrix Market (from the model, not the file).
+//! * [`mtx`] — the model's K and M in Matrix Market (from the model, not the file: the file's
+//!   recipe says how the model was built, [`mtx::export_body_matrices`]).
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -53,6 +54,9 @@ pub enum Target {
     Exudyn,
     /// MBDyn modal element `.fem` file.
     Mbdyn,
+    /// The constrained K and M in Matrix Market (`K.mtx`, `M.mtx`, `dofs.txt` in a folder);
+    /// needs the FE model: [`mtx::export_body_matrices`].
+    Mtx,
 }
 
 impl Target {
@@ -61,6 +65,7 @@ impl Target {
         match name.to_ascii_lowercase().as_str() {
             "exudyn" => Some(Target::Exudyn),
             "mbdyn" => Some(Target::Mbdyn),
+            "mtx" => Some(Target::Mtx),
             _ => None,
         }
     }
@@ -86,6 +91,12 @@ pub fn export(
     match target {
         Target::Exudyn => exudyn::export_exudyn(body, path),
         Target::Mbdyn => mbdyn::export_mbdyn(body, path),
+        Target::Mtx => Err(ExportError::Unsupported {
+            target: "mtx",
+            reason: "K and M come from the FE model, not from the file: give the model the \
+                     file was built from (`--model MODEL`, mtx::export_body_matrices)"
+                .into(),
+        }),
     }
 }
 

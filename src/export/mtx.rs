@@ -53,6 +53,13 @@ pub enum MtxError {
     /// Building the constrained model failed.
     #[error(transparent)]
     Build(#[from] BuildError),
+    /// The model files differ from the ones the body was built from (the recipe's SHA-256);
+    /// the same messages as `check`'s "model files as built" line.
+    #[error("the model is not the one the file was built from (recipe SHA-256): {}", .0.join("; "))]
+    ModelChanged(Vec<String>),
+    /// An option recorded in the recipe or given explicitly is not valid.
+    #[error(transparent)]
+    Options(#[from] crate::options::OptionError),
     /// A file could not be written.
     #[error("{path}: cannot write ({source})")]
     Io {
@@ -237,11 +244,17 @@ pub fn spec_from_body(
     body: &flexbody_reader::ReducedBody,
     model: &Path,
 ) -> Result<BuildSpec, crate::options::OptionError> {
-    let input = crate::recipe::model_input(
-        body.recipe.as_ref(),
-        model.to_path_buf(),
-        Default::default(),
-    )?;
+    spec_from_body_with(body, model, Default::default())
+}
+
+/// [`spec_from_body`] with explicit options on top of the recipe's, as `check --model` takes
+/// them.
+pub fn spec_from_body_with(
+    body: &flexbody_reader::ReducedBody,
+    model: &Path,
+    overrides: crate::recipe::ModelOverrides,
+) -> Result<BuildSpec, crate::options::OptionError> {
+    let input = crate::recipe::model_input(body.recipe.as_ref(), model.to_path_buf(), overrides)?;
     let mut spec = BuildSpec::new(model.to_path_buf(), body.units.clone(), &[]);
     spec.format = input.format;
     spec.material = input.material;
@@ -256,4 +269,29 @@ pub fn spec_from_body(
     };
     spec.mass_explicit = true;
     Ok(spec)
+}
+
+/// `flexbody export FILE --to mtx --model MODEL -o DIR`: the constrained K, M of the build that
+/// made `body`, rebuilt from `model` with the file's recipe (format, material, thickness,
+/// subcase, interfaces, spiders, beam mass; the mass kind of `method.bin`) as `check --model`
+/// rebuilds it; `overrides` and `mass` replace the recorded options. A model whose files differ
+/// from the recipe's SHA-256 is refused with `check`'s messages, before anything is written.
+pub fn export_body_matrices(
+    body: &flexbody_reader::ReducedBody,
+    model: &Path,
+    overrides: crate::recipe::ModelOverrides,
+    mass: Option<fe::MassKind>,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, MtxError> {
+    if let Some(recipe) = &body.recipe {
+        let changed = crate::recipe::changed_model_files(recipe, model);
+        if !changed.is_empty() {
+            return Err(MtxError::ModelChanged(changed));
+        }
+    }
+    let mut spec = spec_from_body_with(body, model, overrides)?;
+    if let Some(mass) = mass {
+        spec.mass = mass;
+    }
+    export_mtx(&spec, dir)
 }
