@@ -152,6 +152,12 @@ struct BuildArgs {
     /// (unit loads at the interface dofs) or both; inertia-relief balanced for a free body.
     #[arg(long, value_name = "KIND", num_args = 0..=1, default_missing_value = "loads")]
     residual_vectors: Option<String>,
+    /// Keep the fewest modes whose estimated frequency-response error at the scene's loads and
+    /// interfaces over [0, fmax] stays below EPS (relative to the static response):
+    /// participation:EPS, e.g. participation:0.01. The candidates are the modes --fmax/--modes
+    /// computes; what was dropped and the estimate are in the build report.
+    #[arg(long, value_name = "participation:EPS")]
+    select: Option<String>,
     /// No stress or strain shapes (the default; for scripts that want to say so).
     #[arg(long, conflicts_with = "stress_modes")]
     no_stress: bool,
@@ -256,6 +262,11 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
                 .residual_vectors
                 .as_deref()
                 .map(flexbody::scene::parse_residual_vectors)
+                .transpose()?,
+            select: a
+                .select
+                .as_deref()
+                .map(flexbody::scene::parse_select)
                 .transpose()?,
         },
     })
