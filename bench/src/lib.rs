@@ -4,6 +4,7 @@
 
 pub mod accuracy;
 pub mod chart;
+pub mod scene_accuracy;
 pub mod suites;
 
 use std::io::{BufWriter, Write};

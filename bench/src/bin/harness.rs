@@ -6,14 +6,16 @@
 //! * `cb NX NY NZ [--modes 30] [--exudyn] [--ccx] [--repeat R]` — whole CB build vs exudyn HCB,
 //!   ccx and one CHOLMOD factorization of the same K_ii (R alternating pairs);
 //! * `accuracy [MODEL.inp]` — every reduction method × mode counts on the bundled conrod;
+//! * `scene` — the scene's static and FRF error at the load points vs basis size (normal modes,
+//!   Craig–Bampton, with and without residual vectors, scene selection) on a cantilever;
 //! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
 //!
 //! `ours-eigen` and `ours-cb` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
 //! times faer's multi-RHS solve against ours on one factorization (for tuning).
 
-use flexbody_bench::{accuracy, chart, suites, Res};
+use flexbody_bench::{accuracy, chart, scene_accuracy, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | accuracy [MODEL.inp] | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | accuracy [MODEL.inp] | scene | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -59,6 +61,7 @@ fn run(args: &[String]) -> Res<()> {
             repeat(a)?,
         )?,
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
+        "scene" => scene_accuracy::run()?,
         "chart" => chart::run()?,
         "ours-eigen" if (3..=6).contains(&a.len()) => {
             let m = a[2].parse().map_err(|_| "MODES".to_string())?;
