@@ -636,6 +636,33 @@ pub fn build_model_with_hook(
     // The scene's loads on the independent dofs (f_r = Tᵀf) and their residual vectors.
     let scene = crate::scene::reduced_loads(&spec.scene, &model, &assembled, &reduced)
         .map_err(|e| request_err(e.to_string()))??;
+    if let Some(eps) = spec.scene.select {
+        // the band: --fmax, else the candidates' top read back through FMAX_FACTOR
+        let top = set.frequencies_hz().into_iter().fold(0.0f64, f64::max);
+        let band = spec.fmax_hz.unwrap_or(top / select::FMAX_FACTOR);
+        let (s, rep) = crate::scene::select_by_scene(
+            k_r,
+            m_r,
+            set,
+            &scene,
+            &interface_dofs,
+            spec.scene.residual_vectors,
+            eps,
+            band,
+            &eig,
+        )?;
+        set = s;
+        if rep.estimate_all > eps {
+            report.warnings.push(crate::reduce::participation::note(
+                &rep,
+                &crate::reduce::participation::Participation {
+                    epsilon: eps,
+                    band_hz: band,
+                    damping: crate::reduce::participation::DEFAULT_DAMPING,
+                },
+            ));
+        }
+    }
     if let Some(kind) = spec.scene.residual_vectors {
         let f = crate::scene::residual_loads(kind, &scene, &interface_dofs, k_r.nrows())
             .map_err(&request_err)?;

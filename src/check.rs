@@ -615,6 +615,7 @@ fn model_checks(
             "fmax".to_string(),
         ),
     };
+    let selected = (body.recipe.as_ref()).is_some_and(|rc| rc.options.select.is_some());
     let mut worst_err: f64 = 0.0;
     let mut worst_bound: f64 = 0.0;
     let mut compared = 0;
@@ -628,7 +629,17 @@ fn model_checks(
         } else {
             q < full_flex.len().div_ceil(2)
         };
-        if in_band {
+        if selected {
+            // `--select participation`: modes inside the band the scene does not excite were
+            // dropped; each kept one is compared with the nearest full frequency.
+            if band.is_finite() && *f <= band {
+                let nearest = (full_flex.iter())
+                    .map(|&ff| (f - ff).abs() / ff)
+                    .fold(f64::INFINITY, f64::min);
+                worst_err = worst_err.max(nearest);
+                compared += 1;
+            }
+        } else if in_band {
             worst_err = worst_err.max((f - f_full).abs() / f_full);
             compared += 1;
         }

@@ -168,6 +168,12 @@ struct BuildArgs {
     /// extra LDLᵀ factorization per eigenproblem; the report states the proven band).
     #[arg(long)]
     verify_band: bool,
+    /// Keep the fewest modes whose estimated frequency-response error at the scene's loads and
+    /// interfaces over [0, fmax] stays below EPS (relative to the static response):
+    /// participation:EPS, e.g. participation:0.01. The candidates are the modes --fmax/--modes
+    /// computes; what was dropped and the estimate are in the build report.
+    #[arg(long, value_name = "participation:EPS")]
+    select: Option<String>,
     /// No stress or strain shapes (the default; for scripts that want to say so).
     #[arg(long, conflicts_with = "stress_modes")]
     no_stress: bool,
@@ -273,6 +279,11 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
                 .residual_vectors
                 .as_deref()
                 .map(flexbody::scene::parse_residual_vectors)
+                .transpose()?,
+            select: a
+                .select
+                .as_deref()
+                .map(flexbody::scene::parse_select)
                 .transpose()?,
         },
     })

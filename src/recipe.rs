@@ -211,6 +211,7 @@ pub fn recipe(
             }
             .into()
         }),
+        select: spec.scene.select.map(crate::scene::select_text),
     };
     let interfaces = interfaces
         .iter()

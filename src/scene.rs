@@ -29,12 +29,17 @@ pub struct SceneSpec {
     pub loads: Vec<String>,
     /// `--residual-vectors`.
     pub residual_vectors: Option<ResidualKind>,
+    /// `--select participation:ε`: the ε (see [`crate::reduce::participation`]).
+    pub select: Option<f64>,
 }
 
 impl SceneSpec {
     /// Whether the scene asks for anything.
     pub fn is_empty(&self) -> bool {
-        self.gravity.is_none() && self.loads.is_empty() && self.residual_vectors.is_none()
+        self.gravity.is_none()
+            && self.loads.is_empty()
+            && self.residual_vectors.is_none()
+            && self.select.is_none()
     }
 }
 
@@ -54,6 +59,27 @@ pub fn parse_residual_vectors(s: &str) -> Result<ResidualKind, OptionError> {
         "both" => Ok(ResidualKind::Both),
         _ => Err(bad("residual-vectors", s, "loads, interface or both")),
     }
+}
+
+/// `--select` value: `participation:ε` with 0 < ε (e.g. `participation:0.01`).
+pub fn parse_select(s: &str) -> Result<f64, OptionError> {
+    let expected = "participation:EPS with EPS > 0, e.g. participation:0.01";
+    let (kind, eps) = s
+        .split_once(':')
+        .ok_or_else(|| bad("select", s, expected))?;
+    if !kind.trim().eq_ignore_ascii_case("participation") {
+        return Err(bad("select", s, expected));
+    }
+    eps.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|e| e.is_finite() && *e > 0.0)
+        .ok_or_else(|| bad("select", s, expected))
+}
+
+/// `--select` as the recipe records it.
+pub fn select_text(eps: f64) -> String {
+    format!("participation:{eps}")
 }
 
 fn reals(option: &'static str, whole: &str, s: &str) -> Result<Vec<f64>, OptionError> {
@@ -352,6 +378,73 @@ pub fn residual_loads(
     Ok(f)
 }
 
+/// `--select participation:ε` on a candidate set (module doc of
+/// [`crate::reduce::participation`]): the scene's loads and unit loads at the interface dofs
+/// rank the modes over [0, `band_hz`]; a load is corrected when `residual` will add its static
+/// response. The static compliances come from the same inertia-relief solve as the residual
+/// vectors.
+#[allow(clippy::too_many_arguments)]
+pub fn select_by_scene(
+    k: &crate::solve::SparseColMat<usize, f64>,
+    m: &crate::solve::SparseColMat<usize, f64>,
+    set: crate::reduce::ModeSet,
+    scene: &SceneLoads,
+    interface_dofs: &[usize],
+    residual: Option<ResidualKind>,
+    epsilon: f64,
+    band_hz: f64,
+    eig: &crate::solve::EigenSpec,
+) -> Result<
+    (
+        crate::reduce::ModeSet,
+        crate::reduce::participation::SelectionReport,
+    ),
+    crate::reduce::ReduceError,
+> {
+    use crate::reduce::participation::{select_by_participation, Participation, DEFAULT_DAMPING};
+    let n = k.nrows();
+    let (nl, ni) = (scene.loads.len(), interface_dofs.len());
+    if nl + ni == 0 {
+        return Err(crate::reduce::ReduceError::Dofs {
+            what: "--select participation",
+            detail: "the scene has no loads and the build no interface: give --gravity, --load \
+                     or --interface"
+                .into(),
+        });
+    }
+    let mut f = Mat::<f64>::zeros(n, nl + ni);
+    for j in 0..nl {
+        f.as_mut().col_mut(j).copy_from(scene.f.col(j));
+    }
+    for (c, &d) in interface_dofs.iter().enumerate() {
+        f[(d, nl + c)] = 1.0;
+    }
+    let _par = crate::solve::ParGuard::new(eig.par);
+    let r = crate::reduce::residual::static_responses(k, m, &set, &f, eig)?;
+    let compliance: Vec<f64> = (0..nl + ni)
+        .map(|j| (0..n).map(|i| f[(i, j)] * r[(i, j)]).sum::<f64>().max(0.0))
+        .collect();
+    let corrected: Vec<bool> = (0..nl + ni)
+        .map(|j| match residual {
+            None => false,
+            Some(ResidualKind::Both) => true,
+            Some(ResidualKind::Loads) => j < nl,
+            Some(ResidualKind::Interface) => j >= nl,
+        })
+        .collect();
+    select_by_participation(
+        set,
+        &f,
+        &compliance,
+        &corrected,
+        &Participation {
+            epsilon,
+            band_hz,
+            damping: DEFAULT_DAMPING,
+        },
+    )
+}
+
 /// The build-report note for residual vectors removed as dependent.
 pub fn removed_note(rep: &crate::reduce::residual::ResidualReport, scene: &SceneLoads) -> String {
     let names: Vec<String> = rep
@@ -402,12 +495,14 @@ pub fn modal_loads(scene: &SceneLoads, set: &crate::reduce::ModeSet) -> Option<f
     })
 }
 
-/// Whether the body holds residual vectors (`modal_loads.bin` marks a mode residual): its modes
-/// are then not all eigenvectors of the model, even for the normal-modes method.
+/// Whether the basis holds residual vectors (`modal_loads.bin`'s `residual` is non-empty,
+/// SPEC §5.14): its modes are then not all eigenvectors of the model, even for the
+/// normal-modes method — also when no mode's dominant origin is a residual vector (a static
+/// response mostly in the span of the modes mixes into them).
 pub fn has_residual_vectors(body: &file::ReducedBody) -> bool {
     body.modal_loads
         .as_ref()
-        .is_some_and(|m| m.residual.contains(&1))
+        .is_some_and(|m| !m.residual.is_empty())
 }
 
 #[cfg(test)]
@@ -422,5 +517,10 @@ mod tests {
         assert!(parse_gravity("0,x,1").is_err());
         assert_eq!(parse_residual_vectors("Both").unwrap(), ResidualKind::Both);
         assert!(parse_residual_vectors("all").is_err());
+        assert_eq!(parse_select("participation:0.01").unwrap(), 0.01);
+        assert_eq!(parse_select("Participation: 1e-3").unwrap(), 1e-3);
+        assert!(parse_select("participation:0").is_err());
+        assert!(parse_select("participation").is_err());
+        assert!(parse_select("count:3").is_err());
     }
 }

@@ -330,6 +330,7 @@ fn clamped_cantilever_static_response_is_exact_with_residual_vectors() {
             "ENDP:SPC_99:1e5".into(),
         ],
         residual_vectors: None,
+        ..Default::default()
     };
     let mut s = spec(&path, BuildMethod::Normal, 4, &[]);
     s.scene = scene.clone();
@@ -482,6 +483,7 @@ fn free_body_residual_vectors_are_balanced_and_exact() {
         gravity: Some("0,0,-9.81".into()),
         loads: vec![side.clone()],
         residual_vectors: None,
+        ..Default::default()
     };
     let loads = flexbody::scene::scene_loads(&model, &scene).unwrap();
     for name in ["LOAD_10", "SIDE"] {
@@ -701,6 +703,7 @@ fn residual_vectors_on_craig_bampton_and_dietz() {
             gravity: Some("0,0,-9.81".into()),
             loads: vec![side.clone(), "LOAD_3".into()],
             residual_vectors: Some(ResidualKind::Loads),
+            ..Default::default()
         };
         let (body, notes) = built(&s);
         let loads = flexbody::scene::scene_loads(&model, &s.scene).unwrap();

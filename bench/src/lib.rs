@@ -5,6 +5,7 @@
 pub mod accuracy;
 pub mod assembly;
 pub mod chart;
+pub mod scene_accuracy;
 pub mod suites;
 
 use std::io::{BufWriter, Write};

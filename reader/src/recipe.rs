@@ -86,6 +86,10 @@ pub struct RecipeOptions {
     /// `--residual-vectors`: `loads`, `interface` or `both` (absent: none; format 1.4).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub residual_vectors: Option<String>,
+    /// `--select`: `participation:ε` (absent: not given; the modes were selected by the
+    /// scene's participation, so modes inside the band may be missing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub select: Option<String>,
 }
 
 /// One `--interface` entry as resolved.

@@ -11,6 +11,7 @@ pub mod dietz;
 pub mod massless;
 pub mod normal;
 pub mod orthonormalize;
+pub mod participation;
 pub mod reference;
 pub mod residual;
 pub mod select;

@@ -21,6 +21,10 @@ use faer::Mat;
 /// (balanced entirely by the body's inertia): its response is zero and it adds no vector.
 pub const BALANCED_TOL: f64 = 1e-10;
 
+/// A static response whose part outside the flexible modes holds less than this fraction of its
+/// strain energy (≈ the relative static error of leaving it out) is already in the basis.
+pub const RESIDUAL_ENERGY_TOL: f64 = 1e-12;
+
 /// Which static responses to add (`--residual-vectors`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ResidualKind {
@@ -126,11 +130,51 @@ pub fn add_residual_vectors(
         .filter(|&j| set.labels[j] != ModeLabel::Rigid)
         .collect();
     let (nf, nl) = (flex.len(), f.ncols());
+    // The part of each response the flexible modes miss, r⊥ = r − Φ_f Φ_fᵀ M r (Φ_f is
+    // M-orthonormal): a response is already in the basis when r⊥ carries a fraction of its
+    // strain energy below RESIDUAL_ENERGY_TOL (the static compliance the basis misses). The
+    // M-norm dependency test of the orthonormalization would drop responses whose missing part
+    // is small in mass but not in compliance (a static error of ~1e-4 with 12 normal modes).
+    let phi_f = Mat::from_fn(n, nf, |i, c| set.phi[(i, flex[c])]);
+    let mr = sparse_ops::spmm(m.as_ref(), r.as_ref());
+    let coeff = phi_f.transpose() * &mr;
+    let r_perp = &r - &phi_f * &coeff;
+    let kr = sparse_ops::spmm(k.as_ref(), r.as_ref());
+    let kp = sparse_ops::spmm(k.as_ref(), r_perp.as_ref());
+    let energy = |a: &Mat<f64>, b: &Mat<f64>, j: usize| -> f64 {
+        (0..n).map(|i| a[(i, j)] * b[(i, j)]).sum::<f64>()
+    };
+    let missing: Vec<f64> = (0..nl)
+        .map(|j| {
+            let full = energy(&r, &kr, j);
+            if full > 0.0 {
+                (energy(&r_perp, &kp, j) / full).max(0.0)
+            } else {
+                0.0
+            }
+        })
+        .collect();
     // A zero load (or one the held dofs take entirely) has no response: nothing to add.
+    let nonzero: Vec<usize> = (0..nl)
+        .filter(|&j| (0..n).any(|i| r[(i, j)] != 0.0))
+        .collect();
+    let r = r_perp;
     let norms: Vec<f64> = (0..nl)
         .map(|j| (0..n).map(|i| r[(i, j)] * r[(i, j)]).sum::<f64>().sqrt())
         .collect();
-    let live: Vec<usize> = (0..nl).filter(|&j| norms[j] > 0.0).collect();
+    let live: Vec<usize> = (nonzero.iter().copied())
+        .filter(|&j| norms[j] > 0.0 && missing[j] > RESIDUAL_ENERGY_TOL)
+        .collect();
+    // already in the basis (counted as added and removed as dependent, like the ones the
+    // orthonormalization removes)
+    let in_basis: Vec<crate::reduce::RemovedVector> = (nonzero.iter().copied())
+        .filter(|j| !live.contains(j))
+        .map(|j| crate::reduce::RemovedVector {
+            column: nf + j,
+            label: ModeLabel::Residual { load: j },
+            remaining: missing[j],
+        })
+        .collect();
     let mut basis = Mat::<f64>::zeros(n, nf + live.len());
     let mut labels = Vec::with_capacity(nf + live.len());
     for (c, &j) in flex.iter().enumerate() {
@@ -150,8 +194,8 @@ pub fn add_residual_vectors(
             report.removed.push((load, rv.remaining));
         }
     }
-    for j in (0..nl).filter(|j| norms[*j] == 0.0) {
-        report.removed.push((j, 0.0));
+    for j in (0..nl).filter(|j| !live.contains(j)) {
+        report.removed.push((j, missing[j]));
     }
     report.removed.sort_by_key(|x| x.0);
     report.kept = live.len()
@@ -179,6 +223,7 @@ pub fn add_residual_vectors(
     diagnostics
         .removed
         .extend(o.diagnostics.removed.iter().cloned());
+    diagnostics.removed.extend(in_basis);
     diagnostics.dependency_tol = o.diagnostics.dependency_tol;
     diagnostics.massless_directions = old.massless_directions + o.diagnostics.massless_directions;
     diagnostics.massless_dofs = old.massless_dofs;
@@ -186,7 +231,7 @@ pub fn add_residual_vectors(
     diagnostics.basis_top_omega2 = old.basis_top_omega2;
     diagnostics.basis_normal_modes = old.basis_normal_modes;
     diagnostics.notes = old.notes;
-    diagnostics.residual_vectors = old.residual_vectors + live.len();
+    diagnostics.residual_vectors = old.residual_vectors + nonzero.len();
     diagnostics.notes.push(format!(
         "residual vectors: {} of {nl} static load responses added{}",
         report.kept,

@@ -33,6 +33,13 @@ pub enum Selection {
         factor: f64,
         cutoff_hz: f64,
     },
+    /// The fewest candidates whose estimated FRF error over [0, `band_hz`] is ≤ `epsilon`
+    /// (see [`super::participation`]); `estimate` is that error with the kept modes.
+    Participation {
+        epsilon: f64,
+        estimate: f64,
+        band_hz: f64,
+    },
 }
 
 fn hz(l: f64) -> f64 {
@@ -173,7 +180,7 @@ pub fn by_count(set: ModeSet, count: usize) -> ModeSet {
     pick(set, &keep, Selection::Count(count))
 }
 
-fn pick(mut set: ModeSet, keep: &[usize], sel: Selection) -> ModeSet {
+pub(crate) fn pick(mut set: ModeSet, keep: &[usize], sel: Selection) -> ModeSet {
     let phi = faer::Mat::from_fn(set.phi.nrows(), keep.len(), |i, j| set.phi[(i, keep[j])]);
     set.phi = phi;
     set.omega2 = keep.iter().map(|&j| set.omega2[j]).collect();

@@ -595,6 +595,7 @@ pub fn recipe_3node() -> Recipe {
             gravity: None,
             loads: vec![],
             residual_vectors: None,
+            select: None,
         },
         interfaces: vec![
             RecipeInterface {

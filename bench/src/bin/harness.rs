@@ -8,14 +8,16 @@
 //! * `assembly [N_SHELL [N_TET]] [--repeat R]` — `fe::assemble` (lumped and consistent) on a
 //!   warped quad shell grid, the same grid in triangles and a tet10 block, each ≈10⁶ dofs;
 //! * `accuracy [MODEL.inp]` — every reduction method × mode counts on the bundled conrod;
+//! * `scene` — the scene's static and FRF error at the load points vs basis size (normal modes,
+//!   Craig–Bampton, with and without residual vectors, scene selection) on a cantilever;
 //! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
 //!
 //! `ours-eigen`, `ours-cb` and `ours-assembly` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
 //! times faer's multi-RHS solve against ours on one factorization (for tuning).
 
-use flexbody_bench::{accuracy, assembly, chart, suites, Res};
+use flexbody_bench::{accuracy, assembly, chart, scene_accuracy, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | assembly [N_SHELL [N_TET]] [--repeat R] | accuracy [MODEL.inp] | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | assembly [N_SHELL [N_TET]] [--repeat R] | accuracy [MODEL.inp] | scene | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -79,6 +81,7 @@ fn run(args: &[String]) -> Res<()> {
             assembly::ours_assembly(&a[0], n, &a[2], r)?
         }
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
+        "scene" => scene_accuracy::run()?,
         "chart" => chart::run()?,
         "ours-eigen" if (3..=6).contains(&a.len()) => {
             let m = a[2].parse().map_err(|_| "MODES".to_string())?;
