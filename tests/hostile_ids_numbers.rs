@@ -144,6 +144,25 @@ fn abaqus_duplicate_node_across_node_blocks_and_element_across_types() {
     );
 }
 
+/// The format's own rule for a repeated set name: a later *NSET/*ELSET of an existing name adds
+/// its members (CalculiX manual, "Sets": two `*NSET,NSET=N1` blocks make one set N1; Abaqus
+/// likewise). Not a duplicate: the union, each member once, names case-insensitive.
+#[test]
+fn abaqus_repeated_set_name_adds_members() {
+    let d = format!(
+        "{}*NSET, NSET=Ends\n1, 2\n*NSET, NSET=ENDS\n2, 4\n*ELSET, ELSET=all\n7\n*ELSET, ELSET=ALL\n8, 7\n",
+        deck(&INP)
+    );
+    let m = read("sets.inp", d.as_bytes()).unwrap();
+    let ids = |v: &[usize]| v.iter().map(|&k| m.nodes[k].id).collect::<Vec<_>>();
+    assert_eq!(ids(&m.node_sets["ENDS"]), [1, 2, 4]);
+    let e: Vec<u64> = m.element_sets["ALL"]
+        .iter()
+        .map(|&k| m.elements[k].id)
+        .collect();
+    assert_eq!(e, [7, 8]);
+}
+
 #[test]
 fn abaqus_material_constants_non_finite_or_out_of_range() {
     let cases: [(&str, usize, &str, &str, &str); 6] = [
