@@ -15,7 +15,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use super::error::{parse_err, ImportError};
-use super::text::{Builder, Loc};
+use super::text::{Builder, IdMap, Loc};
 use crate::model::{ElementKind, Material, Model};
 
 /// Read a Gmsh 4.1 mesh; solid elements get a solid section of `material` when given.
@@ -237,6 +237,8 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
     let mut entity_phys: HashMap<(u8, i64), Vec<i64>> = HashMap::new();
     // Element blocks kept until all nodes are known: (dim, entity, kind, perm, ids, loc).
     let mut low_dim: Vec<(u8, i64, Vec<u64>)> = Vec::new();
+    // Tags and lines of the lower-dimensional elements, for the duplicate-tag check.
+    let mut low_dim_tags: Vec<(u64, Loc)> = Vec::new();
     let mut vol_entity: Vec<(u8, i64)> = Vec::new();
     let mut seen_format = false;
     while let Some(l) = c.next_line() {
@@ -418,6 +420,7 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
                             b.add_element(chunk[0], kind, nodes, None, "element", locs[e]);
                         }
                     } else {
+                        low_dim_tags.extend(ids.chunks_exact(nn + 1).map(|ch| ch[0]).zip(locs));
                         let nodes = ids
                             .chunks_exact(nn + 1)
                             .flat_map(|ch| ch[1..].iter().copied())
@@ -443,7 +446,8 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
     }
     let nodes = b.node_map("node")?;
     b.resolve_element_nodes(&nodes)?;
-    b.element_map()?;
+    let elements = b.element_map()?;
+    duplicate_low_dim_tag(&b, &elements, &low_dim_tags)?;
     let group_name = |d: u8, t: i64| {
         names
             .get(&(d, t))
@@ -489,4 +493,40 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
     b.model.files = b.files.clone();
     b.record_element_sources();
     Ok(b.model)
+}
+
+/// Gmsh's element tags are unique across all dimensions (its API calls them "unique, strictly
+/// positive identifiers"): a boundary element may not reuse the tag of a model element or of
+/// another boundary element. The later of the two lines is reported, naming the first.
+fn duplicate_low_dim_tag(
+    b: &Builder,
+    elements: &IdMap,
+    low: &[(u64, Loc)],
+) -> Result<(), ImportError> {
+    let mut seen: HashMap<u64, Loc> = HashMap::with_capacity(low.len());
+    for &(tag, loc) in low {
+        let first = match elements.get(tag) {
+            Some(k) => b.elem_loc[k],
+            None => match seen.insert(tag, loc) {
+                Some(prev) => prev,
+                None => continue,
+            },
+        };
+        let (first, later) = if first.line <= loc.line {
+            (first, loc)
+        } else {
+            (loc, first)
+        };
+        return Err(b.err(
+            later,
+            format!("element {tag}"),
+            format!(
+                "duplicate element id (first defined at {}:{}; element tags are unique across \
+                 all dimensions)",
+                b.file_name(first),
+                first.line
+            ),
+        ));
+    }
+    Ok(())
 }

@@ -87,11 +87,21 @@ impl Parser {
         let mut mat_index = HashMap::new();
         for (k, m) in self.materials.iter().enumerate() {
             let ent = format!("*MATERIAL {}", m.name);
+            // Names are case-insensitive (upper-cased on reading): STEEL and Steel are one.
+            if let Some(first) = mat_index.insert(m.name.clone(), k) {
+                let at = self.materials[first].loc;
+                return Err(self.err(
+                    m.loc,
+                    ent,
+                    format!(
+                        "duplicate material name (first defined at {}:{})",
+                        self.b.file_name(at),
+                        at.line
+                    ),
+                ));
+            }
             let (e, nu) =
                 m.e.ok_or_else(|| self.err(m.loc, ent.clone(), "no *ELASTIC given"))?;
-            if mat_index.insert(m.name.clone(), k).is_some() {
-                return Err(self.err(m.loc, ent, "duplicate material name"));
-            }
             if m.rho.is_none() {
                 self.b.model.warnings.push(ImportWarning {
                     file: self.b.file_name(m.loc).to_owned(),
