@@ -418,8 +418,9 @@ def check_manifest(m, file_bytes):
             raise ReadError("MissingEntry", f"{name}: required in v1 but not listed")
 
 
-def read_container(data):
-    """SPEC §7.1 steps 1–6: (manifest dict, {entry name: verified bytes})."""
+def open_container(data):
+    """SPEC §7.1 steps 1–5: (zipfile, {entry name: ZipInfo}, manifest dict), the manifest checked
+    and no entry outside it."""
     try:
         zf = zipfile.ZipFile(io.BytesIO(data))
         infos = zf.infolist()
@@ -448,6 +449,12 @@ def read_container(data):
     for name in by_name:
         if name != MANIFEST and name not in listed:
             raise ReadError("UnlistedEntry", name)
+    return zf, by_name, m
+
+
+def read_container(data):
+    """SPEC §7.1 steps 1–6: (manifest dict, {entry name: verified bytes})."""
+    zf, by_name, m = open_container(data)
     blobs = {}
     for e in m["entries"]:
         if e["name"] not in by_name:

@@ -226,7 +226,14 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
             Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join("../shared/reference/e_matrices/hex8_block_coarse/ccx_matrix_free.inp"),
         )
-        .args(["--method", "normal", "--modes", "12", "--stress-modes", "strain"])
+        .args([
+            "--method",
+            "normal",
+            "--modes",
+            "12",
+            "--stress-modes",
+            "strain",
+        ])
         .args(["--units", "si", "-q", "-o"])
         .arg(&block)
         .output()
@@ -259,7 +266,10 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
         );
         assert!(stdout.contains("all helper checks passed"), "{stdout}");
         assert!(stdout.contains(&format!("triangles of {what}")), "{stdout}");
-        assert!(stdout.matches("ok   object parameter").count() >= 10, "{stdout}");
+        assert!(
+            stdout.matches("ok   object parameter").count() >= 10,
+            "{stdout}"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -6,7 +6,11 @@ recipe) and the rules that look at them are the stdlib reference reader's own co
 decoded payload (np.frombuffer, no per-value Python loop) and their rules are the reference's,
 vectorized, in the same order — so both readers refuse a file with the same error name.
 """
+import hashlib
 import math
+import zipfile
+import zlib
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -40,6 +44,7 @@ class _Cursor:
         if count * dtype.itemsize > len(self.data) - self.pos:
             self.fail("record ends early: count exceeds the entry")
         a = np.frombuffer(self.data, dtype=dtype, count=count, offset=self.pos)
+        a.flags.writeable = False  # a view of the payload (a bytearray for large entries)
         self.pos += count * dtype.itemsize
         return a if shape is None else a.reshape(shape)
 
@@ -137,8 +142,114 @@ def _decode(name, data):
 
 
 def read_container(data):
-    """SPEC §7.1 steps 1–6, the reference reader's own code: (manifest, {entry name: bytes})."""
-    return _spec.read_container(data)
+    """SPEC §7.1 steps 1–6: the reference reader opens the container and checks the manifest
+    (`open_container`); the listed entries are then inflated and hashed here, in parallel
+    threads: (manifest, {entry name: bytes})."""
+    zf, by_name, m = _spec.open_container(data)
+    view = memoryview(data)
+
+    def entry(e):
+        # Returns the bytes or the ReadError the reference would raise for this entry.
+        try:
+            info = by_name[e["name"]]
+            b, sha = _inflate(view, info, e["size"]) or (None, None)
+            if b is None:  # anything irregular: the reference's own code and errors
+                b = _spec.read_entry(zf, info, e["size"])
+                sha = hashlib.sha256(b).hexdigest()
+            if sha != e["sha256"]:
+                raise ReadError("Checksum", f"{e['name']}: SHA-256 differs from the manifest")
+            return b
+        except ReadError as err:
+            return err
+
+    present = [e for e in m["entries"] if e["name"] in by_name]
+    # zlib and hashlib release the GIL on large buffers: the entries inflate and hash in
+    # parallel; errors are raised below in the manifest's order, as the reference raises them.
+    with ThreadPoolExecutor(max_workers=min(4, max(1, len(present)))) as pool:
+        done = dict(zip((e["name"] for e in present), pool.map(entry, present)))
+    blobs = {}
+    for e in m["entries"]:
+        if e["name"] not in by_name:
+            raise ReadError("MissingEntry", f"{e['name']}: listed but absent")
+        b = done[e["name"]]
+        if isinstance(b, ReadError):
+            raise b
+        blobs[e["name"]] = b
+    return m, blobs
+
+
+def _inflate(view, info, declared):
+    """(bytes, SHA-256 hex) of an entry straight from the container, or None when anything is
+    irregular — then the caller reads it with the reference's code (zipfile), which raises the
+    reference's error. Only a regular entry takes this path: sizes as declared, no encryption
+    or patch flags, stored or deflated, a local header with the central directory's name, data
+    inside the container, and an inflated stream that ends exactly at the declared size with
+    the directory's CRC-32. A large entry inflates chunk by chunk into one buffer while another
+    thread hashes the chunks already inflated (zlib and hashlib release the GIL)."""
+    if (info.file_size != declared or info.flag_bits & 0x61
+            or info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED)):
+        return None
+    off = info.header_offset
+    head = bytes(view[off:off + 30])
+    if len(head) != 30 or head[:4] != b"PK\x03\x04":
+        return None
+    n_name = int.from_bytes(head[26:28], "little")
+    n_extra = int.from_bytes(head[28:30], "little")
+    name = bytes(view[off + 30:off + 30 + n_name])
+    if name not in (info.orig_filename.encode("utf-8"), info.orig_filename.encode("cp437", "replace")):
+        return None
+    start = off + 30 + n_name + n_extra
+    raw = view[start:start + info.compress_size]
+    if len(raw) != info.compress_size:
+        return None
+    try:
+        if info.compress_type == zipfile.ZIP_STORED:
+            out = bytes(raw)
+        elif declared <= _CHUNK:
+            d = zlib.decompressobj(-15)
+            out = d.decompress(raw, declared + 1)
+            if not d.eof or d.unconsumed_tail:
+                return None
+        else:
+            return _inflate_hashing(raw, info.CRC, declared)
+    except zlib.error:
+        return None
+    if len(out) != declared or zlib.crc32(out) != info.CRC:
+        return None
+    return out, hashlib.sha256(out).hexdigest()
+
+
+_CHUNK = 1 << 22
+
+
+def _inflate_hashing(raw, crc_expected, declared):
+    """Large deflated entry: inflate `raw` in input chunks into a buffer of `declared` bytes;
+    a second thread takes SHA-256 and CRC-32 of each finished piece in order. The output is
+    capped at the declared size + 1 (a longer stream is irregular)."""
+    buf = bytearray(declared)
+    out = memoryview(buf)
+    sha = hashlib.sha256()
+    crc = [0]
+
+    def digest(piece):
+        sha.update(piece)
+        crc[0] = zlib.crc32(piece, crc[0])
+
+    d = zlib.decompressobj(-15)
+    pos = 0
+    with ThreadPoolExecutor(max_workers=1) as hasher:
+        for i in range(0, len(raw), _CHUNK):
+            piece = d.decompress(raw[i:i + _CHUNK], declared + 1 - pos)
+            if d.unconsumed_tail or pos + len(piece) > declared:
+                return None
+            out[pos:pos + len(piece)] = piece
+            hasher.submit(digest, out[pos:pos + len(piece)])
+            pos += len(piece)
+            if d.eof:
+                break
+    if not d.eof or pos != declared or crc[0] != crc_expected:
+        return None
+    return buf, sha.hexdigest()
 
 
 def decode_all(m, blobs):
