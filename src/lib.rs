@@ -13,34 +13,33 @@
 //! * [`solve`] — sparse Cholesky with METIS ordering and the block shift-invert eigensolver.
 //! * [`reduce`] — normal modes, Craig–Bampton, Craig–Chang, Dietz, reference conditions.
 //! * [`write`](mod@write) — the reduced-body file writer (types from the `flexbody-reader` crate).
-//! * [`stress`] — modal stress and strain shapes of solid elements (nodal averages).
+//! * [`body`] — faces, inertia invariants, modal stress/strain shapes (solids, shell fibres),
+//!   damping.
 //! * [`inspect`] — the summary `flexbody inspect` prints (mass properties, modes, entries).
 //!
 //! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.
 #![allow(non_snake_case)]
 
+pub mod body;
 pub mod build;
 pub mod check;
-pub mod damping;
 pub mod deck;
 pub mod diagnose;
 pub mod export;
-pub mod faces;
 pub mod fe;
 pub mod import;
 pub mod inspect;
 pub mod interface;
 pub mod interface_entry;
-pub mod invariants;
-pub mod invariants_consistent;
 pub mod model;
 pub mod options;
 pub mod precheck;
 pub mod recipe;
 pub mod reduce;
 pub mod scene;
-pub mod shell_stress;
 pub mod solve;
-pub mod stress;
 pub mod verify;
 pub mod write;
+
+// The body stage's modules keep their crate-root paths (`flexbody::stress`, …).
+pub use body::{damping, faces, invariants, invariants_consistent, shell_stress, stress};
