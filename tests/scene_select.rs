@@ -310,3 +310,59 @@ fn selection_halves_the_modes_for_the_cutoff_error() {
         );
     }
 }
+
+/// Through the CLI: `--select participation:ε` is parsed, its note (what was dropped, the
+/// estimate) is printed, the recipe records it, and a bad value is refused naming the option.
+#[test]
+fn cli_select_is_recorded_and_refused_when_malformed() {
+    let path = write_deck("cli");
+    let out = path.with_extension("cli.flexbody");
+    let tip = nid(NX, NY / 2, NZ / 2);
+    let run = |select: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_flexbody"))
+            .args([
+                "build",
+                path.to_str().unwrap(),
+                "--method",
+                "normal",
+                "--fmax",
+            ])
+            .arg(FMAX.to_string())
+            .args([
+                "--load",
+                &format!("TIP:{tip}:0,0,-1000"),
+                "--select",
+                select,
+            ])
+            .args([
+                "--residual-vectors",
+                "loads",
+                "--units",
+                "si",
+                "-o",
+                out.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap()
+    };
+    let o = run("participation:0.01");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("scene selection (participation, ε = 1.000e-2"),
+        "{err}"
+    );
+    assert!(err.contains("dropped (Hz): "), "{err}");
+    let body = file::read(&out).unwrap();
+    let recipe = body.recipe.as_ref().unwrap();
+    assert_eq!(recipe.options.select.as_deref(), Some("participation:0.01"));
+    // TIP excites only the vertical bending modes: fewer flexible vectors than the 11 candidates
+    assert!(flexible(&body) < 11, "{}", flexible(&body));
+    let o = run("participation:-1");
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("select") && err.contains("participation:EPS"),
+        "{err}"
+    );
+}
