@@ -366,3 +366,56 @@ fn cli_select_is_recorded_and_refused_when_malformed() {
         "{err}"
     );
 }
+
+/// Craig–Bampton with the tip node as interface: the selection also ranks the unit interface
+/// loads; its estimate bounds the full FE error of the scene's load-point responses, and the
+/// scene keeps fewer vectors than the 3·fmax basis.
+#[test]
+fn craig_bampton_selection_estimate_bounds_the_full_error() {
+    let path = write_deck("cb");
+    let tip = nid(NX, NY / 2, NZ / 2).to_string();
+    let scene = SceneSpec {
+        gravity: Some("0,0,-9.81".into()),
+        loads: vec![format!("TIP:{tip}:0,0,-1000")],
+        residual_vectors: Some(ResidualKind::Loads),
+        ..Default::default()
+    };
+    let names = ["GRAVITY", "TIP"];
+    let omegas = band_omegas();
+    let h = full_frf(&path, &scene, &omegas);
+    let cb = |select: Option<f64>| BuildSpec {
+        method: BuildMethod::CraigBampton,
+        fmax_hz: Some(FMAX),
+        scene: SceneSpec {
+            select,
+            ..scene.clone()
+        },
+        ..BuildSpec::new(path.to_path_buf(), file::Units::si(), &[tip.as_str()])
+    };
+    let (all, _, _) = built(&cb(None), "cb-all");
+    let e_all = worst_error(&all, &names, &omegas, &h);
+    let (sel, notes, _) = built(&cb(Some(1e-2)), "cb-sel");
+    let e_sel = worst_error(&sel, &names, &omegas, &h);
+    let note = notes
+        .iter()
+        .find(|n| n.starts_with("scene selection"))
+        .unwrap_or_else(|| panic!("{notes:?}"));
+    let est: f64 = note
+        .split("estimated worst FRF error ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap();
+    println!(
+        "CB 3·fmax + residual: {} vectors, error {e_all:.3e}; selection ε = 1e-2: {} vectors, \
+         error {e_sel:.3e}, estimate {est:.3e}\n  {note}",
+        flexible(&all),
+        flexible(&sel)
+    );
+    assert!(
+        e_sel <= est * 1.05 + 1e-12,
+        "measured {e_sel:e} > estimate {est:e}"
+    );
+    assert!(est <= 1e-2);
+    assert!(flexible(&sel) < flexible(&all));
+}
