@@ -310,3 +310,112 @@ fn selection_halves_the_modes_for_the_cutoff_error() {
         );
     }
 }
+
+/// Through the CLI: `--select participation:ε` is parsed, its note (what was dropped, the
+/// estimate) is printed, the recipe records it, and a bad value is refused naming the option.
+#[test]
+fn cli_select_is_recorded_and_refused_when_malformed() {
+    let path = write_deck("cli");
+    let out = path.with_extension("cli.flexbody");
+    let tip = nid(NX, NY / 2, NZ / 2);
+    let run = |select: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_flexbody"))
+            .args([
+                "build",
+                path.to_str().unwrap(),
+                "--method",
+                "normal",
+                "--fmax",
+            ])
+            .arg(FMAX.to_string())
+            .args([
+                "--load",
+                &format!("TIP:{tip}:0,0,-1000"),
+                "--select",
+                select,
+            ])
+            .args([
+                "--residual-vectors",
+                "loads",
+                "--units",
+                "si",
+                "-o",
+                out.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap()
+    };
+    let o = run("participation:0.01");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("scene selection (participation, ε = 1.000e-2"),
+        "{err}"
+    );
+    assert!(err.contains("dropped (Hz): "), "{err}");
+    let body = file::read(&out).unwrap();
+    let recipe = body.recipe.as_ref().unwrap();
+    assert_eq!(recipe.options.select.as_deref(), Some("participation:0.01"));
+    // TIP excites only the vertical bending modes: fewer flexible vectors than the 11 candidates
+    assert!(flexible(&body) < 11, "{}", flexible(&body));
+    let o = run("participation:-1");
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("select") && err.contains("participation:EPS"),
+        "{err}"
+    );
+}
+
+/// Craig–Bampton with the tip node as interface: the selection also ranks the unit interface
+/// loads; its estimate bounds the full FE error of the scene's load-point responses, and the
+/// scene keeps fewer vectors than the 3·fmax basis.
+#[test]
+fn craig_bampton_selection_estimate_bounds_the_full_error() {
+    let path = write_deck("cb");
+    let tip = nid(NX, NY / 2, NZ / 2).to_string();
+    let scene = SceneSpec {
+        gravity: Some("0,0,-9.81".into()),
+        loads: vec![format!("TIP:{tip}:0,0,-1000")],
+        residual_vectors: Some(ResidualKind::Loads),
+        ..Default::default()
+    };
+    let names = ["GRAVITY", "TIP"];
+    let omegas = band_omegas();
+    let h = full_frf(&path, &scene, &omegas);
+    let cb = |select: Option<f64>| BuildSpec {
+        method: BuildMethod::CraigBampton,
+        fmax_hz: Some(FMAX),
+        scene: SceneSpec {
+            select,
+            ..scene.clone()
+        },
+        ..BuildSpec::new(path.to_path_buf(), file::Units::si(), &[tip.as_str()])
+    };
+    let (all, _, _) = built(&cb(None), "cb-all");
+    let e_all = worst_error(&all, &names, &omegas, &h);
+    let (sel, notes, _) = built(&cb(Some(1e-2)), "cb-sel");
+    let e_sel = worst_error(&sel, &names, &omegas, &h);
+    let note = notes
+        .iter()
+        .find(|n| n.starts_with("scene selection"))
+        .unwrap_or_else(|| panic!("{notes:?}"));
+    let est: f64 = note
+        .split("estimated worst FRF error ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap();
+    println!(
+        "CB 3·fmax + residual: {} vectors, error {e_all:.3e}; selection ε = 1e-2: {} vectors, \
+         error {e_sel:.3e}, estimate {est:.3e}\n  {note}",
+        flexible(&all),
+        flexible(&sel)
+    );
+    assert!(
+        e_sel <= est * 1.05 + 1e-12,
+        "measured {e_sel:e} > estimate {est:e}"
+    );
+    assert!(est <= 1e-2);
+    assert!(flexible(&sel) < flexible(&all));
+}
