@@ -29,12 +29,13 @@ enum Command {
     /// frequencies and residuals against the FE model). Exit code 1 when a check fails.
     Check(CheckArgs),
     /// Export a .flexbody file to another solver's format: exudyn (NPZ for
-    /// ObjectFFRFreducedOrderInterface.LoadFromFile), mbdyn (modal element .fem file) or mtx
-    /// (the constrained K and M the build reduced, Matrix Market, with --model).
+    /// ObjectFFRFreducedOrderInterface.LoadFromFile), mbdyn (modal element .fem file), sid
+    /// (Standard Input Data, .SID_FEM text) or mtx (the constrained K and M the build reduced,
+    /// Matrix Market, with --model).
     Export {
         /// The .flexbody file.
         file: PathBuf,
-        /// Target format: exudyn, mbdyn or mtx.
+        /// Target format: exudyn, mbdyn, sid or mtx.
         #[arg(long)]
         to: String,
         /// Output file (mtx: a folder for K.mtx, M.mtx and dofs.txt).
@@ -565,7 +566,7 @@ fn export(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result<()> {
     use anyhow::Context;
     let output = a.output;
     let target = flexbody::export::Target::from_name(to)
-        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn, mbdyn or mtx"))?;
+        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn, mbdyn, sid or mtx"))?;
     let body = flexbody_reader::read(file)
         .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
     if target == flexbody::export::Target::Mtx {

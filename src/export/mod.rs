@@ -4,6 +4,7 @@
 //!
 //! * [`exudyn`] — the NPZ that `exudyn.FEM.ObjectFFRFreducedOrderInterface.LoadFromFile` reads.
 //! * [`mbdyn`] — the modal element's FEM file (MBDyn manual, "FEM File Format").
+//! * [`sid`] — Wallrapp's Standard Input Data (`.SID_FEM` text, as EMBSlib reads it).
 //! * [`mtx`] — the model's K and M in Matrix Market (from the model, not the file: the file's
 //!   recipe says how the model was built, [`mtx::export_body_matrices`]).
 use std::io::Write;
@@ -15,6 +16,7 @@ pub mod exudyn;
 pub mod mbdyn;
 pub mod mtx;
 pub mod npz;
+pub mod sid;
 
 /// Why an export failed. No output file is left behind in any case.
 #[derive(Debug, thiserror::Error)]
@@ -54,6 +56,8 @@ pub enum Target {
     Exudyn,
     /// MBDyn modal element `.fem` file.
     Mbdyn,
+    /// SID (Standard Input Data) `.SID_FEM` text.
+    Sid,
     /// The constrained K and M in Matrix Market (`K.mtx`, `M.mtx`, `dofs.txt` in a folder);
     /// needs the FE model: [`mtx::export_body_matrices`].
     Mtx,
@@ -65,6 +69,7 @@ impl Target {
         match name.to_ascii_lowercase().as_str() {
             "exudyn" => Some(Target::Exudyn),
             "mbdyn" => Some(Target::Mbdyn),
+            "sid" | "sid_fem" => Some(Target::Sid),
             "mtx" => Some(Target::Mtx),
             _ => None,
         }
@@ -91,6 +96,7 @@ pub fn export(
     match target {
         Target::Exudyn => exudyn::export_exudyn(body, path),
         Target::Mbdyn => mbdyn::export_mbdyn(body, path),
+        Target::Sid => sid::export_sid(body, path),
         Target::Mtx => Err(ExportError::Unsupported {
             target: "mtx",
             reason: "K and M come from the FE model, not from the file: give the model the \

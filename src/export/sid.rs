@@ -1,0 +1,390 @@
+//! SID export: Wallrapp's *Standard Input Data* of a flexible body (`.SID_FEM` text;
+//! Wallrapp 1993, Schwertassek & Wallrapp, *Dynamik flexibler Mehrkörpersysteme*, Table 6.9),
+//! as EMBSlib reads it. Every body term is a Taylor expansion in the modal coordinates q,
+//! T(q) = T⁰ + Σ_k T¹_k q_k, computed from the file's inertia invariants (which sum over every
+//! mass node of the model, not only the stored ones). Flexible modes only (the reference frame
+//! carries the rigid-body motion), indices r, s over them, j = F(r) the file's mode:
+//!
+//! | term | size, order | T⁰ | T¹_k |
+//! |---|---|---|---|
+//! | `mdCM` | 3×1, 1 | I2 | I3 column k |
+//! | `J` | 6×1, 1 | I7 (xx yy zz xy xz yz) | −(I8_k + I8_kᵀ) |
+//! | `Ct` | q×3, 0 | I3ᵀ | — |
+//! | `Cr` | q×3, 1 | I4ᵀ | row r: I5_k column j (Σ m φ̃_k φ_j) |
+//! | `Me`, `Ke` | q×q, 0 | I6, Φᵀ K Φ | — |
+//! | `Gr` | 3×3q, 0 | block s: −2 I8_s | — |
+//! | `Ge` | q×3q, 0 | (r, 3s+a): 2 Cr¹(r, s, a) | — |
+//! | `Oe` | q×6, 1 | row r: sym(I8_j) as xx yy zz 2xy 2yz 2xz | sym(I9_kj), same order |
+//! | `De` | q×q, 0 | diag 2 ζ ω m | — |
+//! | `ksigma` | q×1, 0 | 0 (no preload) | — |
+//!
+//! Conventions (those of EMBSlib's reader and flexible body, `EMBSlib/Components.mo`): first-order
+//! entries are written `m1(row, mode, column)`; `J` is the 6-vector xx yy zz xy xz yz of the
+//! inertia tensor (true tensor: negative products); `Oe` multiplies (ωx², ωy², ωz², ωxωy, ωyωz,
+//! ωxωz); `Gr` and `Ge` hold one 3-column block per mode. Numbers in Fortran `D` notation with 17
+//! significant digits (round-trip exact); zero entries are omitted (SID's default is zero).
+//! Frames (`new node`): the interface nodes, or every stored node when the file flags none, each
+//! with `origin` (order 1: position, translational shape), `phi`, `psi` and `AP` (order 1:
+//! identity, skew of the rotational shape).
+use std::fmt::Write as _;
+use std::path::Path;
+
+use flexbody_reader::ReducedBody;
+
+use super::{flexible_modes, write_atomic, ExportError, ExportSummary};
+
+/// Writes the `.SID_FEM` text of `body` to `path` (temp file + rename).
+pub fn export_sid(body: &ReducedBody, path: &Path) -> Result<ExportSummary, ExportError> {
+    let (text, summary) = sid_fem(body)?;
+    write_atomic(path, text.as_bytes())?;
+    Ok(summary)
+}
+
+fn unsupported(reason: impl Into<String>) -> ExportError {
+    ExportError::Unsupported {
+        target: "sid",
+        reason: reason.into(),
+    }
+}
+
+/// A number in Fortran `D` notation with 17 significant digits: ` 1.2345678901234567D-05`
+/// (a leading blank for non-negative values, as SID files are written).
+fn fortran(x: f64) -> String {
+    let s = format!("{x:.16e}");
+    // `{:e}` writes one 'e' for every finite value (the reader refuses non-finite ones).
+    let (mantissa, exponent) = s.split_once('e').unwrap_or((s.as_str(), "0"));
+    let e: i32 = exponent.parse().unwrap_or(0);
+    let sign = if e < 0 { '-' } else { '+' };
+    let lead = if mantissa.starts_with('-') { "" } else { " " };
+    format!("{lead}{mantissa}D{sign}{:02}", e.abs())
+}
+
+/// One Taylor block being written: the header, then entries.
+struct Taylor<'a> {
+    s: &'a mut String,
+    indent: &'static str,
+}
+
+impl<'a> Taylor<'a> {
+    #[allow(clippy::too_many_arguments)]
+    fn open(
+        s: &'a mut String,
+        indent: &'static str,
+        name: &str,
+        order: usize,
+        nrow: usize,
+        ncol: usize,
+        nq: usize,
+        structure: usize,
+    ) -> Self {
+        // `write!` into a String cannot fail; the results are ignored on purpose.
+        let _ = writeln!(s, "{indent}{name}");
+        for (key, v) in [
+            ("order", order),
+            ("nrow", nrow),
+            ("ncol", ncol),
+            ("nq", nq),
+            ("nqn", 0),
+            ("structure", structure),
+        ] {
+            let _ = writeln!(s, "{indent}     {key:<22}= {v:4}");
+        }
+        Taylor { s, indent }
+    }
+
+    fn m0(&mut self, r: usize, c: usize, v: f64) {
+        if v != 0.0 {
+            let key = format!("m0( {}, {})", r + 1, c + 1);
+            let _ = writeln!(self.s, "{}     {key:<22}={}", self.indent, fortran(v));
+        }
+    }
+
+    fn m1(&mut self, r: usize, k: usize, c: usize, v: f64) {
+        if v != 0.0 {
+            let key = format!("m1( {}, {}, {})", r + 1, k + 1, c + 1);
+            let _ = writeln!(self.s, "{}     {key:<22}={}", self.indent, fortran(v));
+        }
+    }
+
+    fn close(self, name: &str) {
+        let _ = writeln!(self.s, "{}end {name}", self.indent);
+    }
+}
+
+/// The six components of a symmetric 3×3 tensor in the order of `J`: xx yy zz xy xz yz.
+fn j_order(t: &[f64]) -> [f64; 6] {
+    [t[0], t[4], t[8], t[1], t[2], t[5]]
+}
+
+/// The six coefficients of ωᵀ S ω for the products of `Oe` (ωx², ωy², ωz², ωxωy, ωyωz, ωxωz)
+/// of the symmetric part S of `t`.
+fn oe_order(t: &[f64]) -> [f64; 6] {
+    [t[0], t[4], t[8], t[1] + t[3], t[5] + t[7], t[2] + t[6]]
+}
+
+/// The `.SID_FEM` text and the summary (no file written).
+pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportError> {
+    let inv = &body.invariants;
+    if let Some(k) = inv.mask.iter().position(|&m| !m) {
+        return Err(unsupported(format!(
+            "SID's first-order terms need all nine inertia invariants; the file lacks I{} \
+             (rebuild with --invariants full)",
+            k + 1
+        )));
+    }
+    let flex = flexible_modes(body);
+    let nq = flex.len();
+    if nq == 0 {
+        return Err(unsupported("the file has no flexible modes"));
+    }
+    let n = body.node_count();
+    let big_m = body.mode_count();
+    let mut notes = Vec::new();
+    let mut frames: Vec<usize> = (0..n).filter(|&p| body.nodes[p].interface).collect();
+    if frames.is_empty() {
+        frames = (0..n).collect();
+        notes.push(format!(
+            "the file flags no interface node: all {n} stored nodes are written as SID frames"
+        ));
+    }
+    if let Some(nd) = frames
+        .iter()
+        .map(|&p| &body.nodes[p])
+        .find(|nd| nd.id > 99_999)
+    {
+        notes.push(format!(
+            "node id {} has more than 5 digits: EMBSlib's reader reads at most 5 (renumber the \
+             model if you load the file there)",
+            nd.id
+        ));
+    }
+    let m = big_m;
+    let i3 = |a: usize, j: usize| inv.i3[a * m + j];
+    let i4 = |a: usize, j: usize| inv.i4[a * m + j];
+    let i5 = |j: usize, a: usize, k: usize| inv.i5[(j * 3 + a) * m + k];
+    let i8 = |j: usize| &inv.i8[j * 9..j * 9 + 9];
+    let i9 = |j: usize, k: usize| &inv.i9[(j * m + k) * 9..(j * m + k) * 9 + 9];
+    let shapes = &body.modes.shapes;
+    let shape = |j: usize, p: usize, c: usize| shapes[(j * n + p) * 6 + c];
+
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:6} {:4}    :No. nodes, No. modes: written by {} {}",
+        frames.len(),
+        nq,
+        body.generator.name,
+        body.generator.version
+    );
+    let _ = writeln!(s, " part");
+    let _ = writeln!(s, "      new modal                                 =");
+    let _ = writeln!(s, "           refmod");
+    let _ = writeln!(
+        s,
+        "                mass                            ={}",
+        fortran(inv.i1[0])
+    );
+    let _ = writeln!(
+        s,
+        "                nelastq                         = {nq:5}"
+    );
+    for (r, &j) in flex.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "                ielastq ({:4})                  = Eigen Mode {:4} : {:14.6} Hz",
+            r + 1,
+            j + 1,
+            body.modes.frequency_hz[j]
+        );
+    }
+    let _ = writeln!(s, "           end refmod");
+    let _ = writeln!(s, "           frame");
+    const NODE: &str = "                     ";
+    for &p in &frames {
+        let nd = &body.nodes[p];
+        let _ = writeln!(
+            s,
+            "                new node                        = {:7}",
+            nd.id
+        );
+        let _ = writeln!(s, "{NODE}rframe                     =    body ref");
+        let mut t = Taylor::open(&mut s, NODE, "origin", 1, 3, 1, nq, 3);
+        for a in 0..3 {
+            t.m0(a, 0, nd.xyz[a]);
+        }
+        for a in 0..3 {
+            for (r, &j) in flex.iter().enumerate() {
+                t.m1(a, r, 0, shape(j, p, a));
+            }
+        }
+        t.close("origin");
+        for (name, c0) in [("phi", 0), ("psi", 3)] {
+            let mut t = Taylor::open(&mut s, NODE, name, 0, 3, nq, nq, 3);
+            for a in 0..3 {
+                for (r, &j) in flex.iter().enumerate() {
+                    t.m0(a, r, shape(j, p, c0 + a));
+                }
+            }
+            t.close(name);
+        }
+        let mut t = Taylor::open(&mut s, NODE, "AP", 1, 3, 3, nq, 3);
+        for a in 0..3 {
+            t.m0(a, a, 1.0);
+        }
+        for a in 0..3 {
+            for (r, &j) in flex.iter().enumerate() {
+                let w = [shape(j, p, 3), shape(j, p, 4), shape(j, p, 5)];
+                let skew = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
+                for (b, &v) in skew[a].iter().enumerate() {
+                    t.m1(a, r, b, v);
+                }
+            }
+        }
+        t.close("AP");
+        let _ = writeln!(s, "                end node");
+    }
+    let _ = writeln!(s, "           end frame");
+    const BODY: &str = "           ";
+
+    let mut t = Taylor::open(&mut s, BODY, "mdCM", 1, 3, 1, nq, 3);
+    for a in 0..3 {
+        t.m0(a, 0, inv.i2[a]);
+    }
+    for a in 0..3 {
+        for (r, &j) in flex.iter().enumerate() {
+            t.m1(a, r, 0, i3(a, j));
+        }
+    }
+    t.close("mdCM");
+
+    let mut t = Taylor::open(&mut s, BODY, "J", 1, 6, 1, nq, 3);
+    for (c, v) in j_order(&inv.i7).into_iter().enumerate() {
+        t.m0(c, 0, v);
+    }
+    let j1: Vec<[f64; 6]> = flex
+        .iter()
+        .map(|&j| {
+            let c = i8(j);
+            let mut sym = [0.0; 9];
+            for a in 0..3 {
+                for b in 0..3 {
+                    sym[a * 3 + b] = -(c[a * 3 + b] + c[b * 3 + a]);
+                }
+            }
+            j_order(&sym)
+        })
+        .collect();
+    for c in 0..6 {
+        for (r, v) in j1.iter().enumerate() {
+            t.m1(c, r, 0, v[c]);
+        }
+    }
+    t.close("J");
+
+    let mut t = Taylor::open(&mut s, BODY, "Ct", 0, nq, 3, nq, 3);
+    for (r, &j) in flex.iter().enumerate() {
+        for a in 0..3 {
+            t.m0(r, a, i3(a, j));
+        }
+    }
+    t.close("Ct");
+
+    // Cr¹(r, s, a) = (Σ m φ̃_k φ_j)_a with k = F(s), j = F(r).
+    let cr1 = |r: usize, s_: usize, a: usize| i5(flex[s_], a, flex[r]);
+    let mut t = Taylor::open(&mut s, BODY, "Cr", 1, nq, 3, nq, 3);
+    for (r, &j) in flex.iter().enumerate() {
+        for a in 0..3 {
+            t.m0(r, a, i4(a, j));
+        }
+    }
+    for r in 0..nq {
+        for s_ in 0..nq {
+            for a in 0..3 {
+                t.m1(r, s_, a, cr1(r, s_, a));
+            }
+        }
+    }
+    t.close("Cr");
+
+    let gm = &body.modes.generalized_mass;
+    let gk = &body.modes.generalized_stiffness;
+    let mut t = Taylor::open(&mut s, BODY, "Me", 0, nq, nq, nq, 3);
+    for (r, &j) in flex.iter().enumerate() {
+        for (c, &k) in flex.iter().enumerate() {
+            t.m0(r, c, inv.i6[j * m + k]);
+        }
+    }
+    t.close("Me");
+
+    let mut t = Taylor::open(&mut s, BODY, "Gr", 0, 3, 3 * nq, nq, 3);
+    for (r, &j) in flex.iter().enumerate() {
+        let c = i8(j);
+        for a in 0..3 {
+            for b in 0..3 {
+                t.m0(a, 3 * r + b, -2.0 * c[a * 3 + b]);
+            }
+        }
+    }
+    t.close("Gr");
+
+    let mut t = Taylor::open(&mut s, BODY, "Ge", 0, nq, 3 * nq, nq, 3);
+    for r in 0..nq {
+        for s_ in 0..nq {
+            for a in 0..3 {
+                t.m0(r, 3 * s_ + a, 2.0 * cr1(r, s_, a));
+            }
+        }
+    }
+    t.close("Ge");
+
+    let mut t = Taylor::open(&mut s, BODY, "Oe", 1, nq, 6, nq, 3);
+    for (r, &j) in flex.iter().enumerate() {
+        for (c, v) in oe_order(i8(j)).into_iter().enumerate() {
+            t.m0(r, c, v);
+        }
+    }
+    for (r, &j) in flex.iter().enumerate() {
+        for (s_, &k) in flex.iter().enumerate() {
+            for (c, v) in oe_order(i9(k, j)).into_iter().enumerate() {
+                t.m1(r, s_, c, v);
+            }
+        }
+    }
+    t.close("Oe");
+
+    let t = Taylor::open(&mut s, BODY, "ksigma", 0, nq, 1, nq, 0);
+    t.close("ksigma");
+
+    let mut t = Taylor::open(&mut s, BODY, "Ke", 0, nq, nq, nq, 3);
+    for (r, &j) in flex.iter().enumerate() {
+        for (c, &k) in flex.iter().enumerate() {
+            t.m0(r, c, gk[j * m + k]);
+        }
+    }
+    t.close("Ke");
+
+    match &body.damping {
+        Some(d) => {
+            let mut t = Taylor::open(&mut s, BODY, "De", 0, nq, nq, nq, 3);
+            for (r, &j) in flex.iter().enumerate() {
+                let omega = body.modes.omega2[j].max(0.0).sqrt();
+                t.m0(r, r, 2.0 * d.ratio[j] * omega * gm[j * m + j]);
+            }
+            t.close("De");
+        }
+        None => {
+            let t = Taylor::open(&mut s, BODY, "De", 0, nq, nq, nq, 0);
+            t.close("De");
+        }
+    }
+    let _ = writeln!(s, "      end modal");
+    let _ = writeln!(s, " end part");
+    Ok((
+        s,
+        ExportSummary {
+            modes: nq,
+            nodes: frames.len(),
+            notes,
+        },
+    ))
+}
