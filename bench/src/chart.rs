@@ -35,7 +35,12 @@ fn load(prefix: &str) -> Res<Vec<Value>> {
             }
         }
     }
-    out.sort_by_key(|v| v["dofs"].as_u64().unwrap_or(0));
+    out.sort_by_key(|v| {
+        (
+            v["dofs"].as_u64().unwrap_or(0),
+            v["modes"].as_u64().unwrap_or(0),
+        )
+    });
     Ok(out)
 }
 
@@ -377,6 +382,7 @@ fn tables(eigen: &[Value], cb: &[Value], acc: &[Value]) -> String {
             );
         }
     }
+    many_modes_table(&mut s, eigen);
     let _ = writeln!(s, "\n## Whole Craig–Bampton build (`harness cb`)\n");
     let _ = writeln!(s, "Ours: generate → RBE2 spiders (2 interface nodes) → assembly → elimination → CB → orthonormalization. exudyn: `ComputeHurtyCraigBamptonModes` (RBE2) on our assembled K, M (reading excluded). ccx: frequency-only run, both end faces clamped, same mode count. CHOLMOD: one analyse + supernodal factorization (f64, scikit-sparse, default ordering) of the same K_ii the CB build factors, in the same run and with the same threads — the ratio is the whole CB build over that one factorization (the fastest of the alternating repeats of each side). Agreement: fixed-interface eigenvalues.\n");
     let _ = writeln!(
@@ -468,6 +474,47 @@ fn tables(eigen: &[Value], cb: &[Value], acc: &[Value]) -> String {
     s
 }
 
+/// The many-mode runs (`harness eigen ... --baseline B --inertia`): our eigen phase against our
+/// own baseline-mode eigen phase in the same run, and the inertia count of the band.
+fn many_modes_table(s: &mut String, eigen: &[Value]) {
+    let runs: Vec<&Value> = eigen
+        .iter()
+        .filter(|r| !r["baseline"].is_null() || !r["inertia"].is_null())
+        .collect();
+    if runs.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        s,
+        "\n### Many modes (`harness eigen … --modes N --baseline B --inertia`)\n"
+    );
+    let _ = writeln!(s, "Ours with N and with B modes in the same run (eigen phase, solves, basis orthogonalization), ARPACK + CHOLMOD with N; the band [0, σ) with σ just above the highest eigenvalue found: Sylvester's count (negative pivots of the LDLᵀ of K − σM) against how many eigenvalues each solver returned below σ.\n");
+    let _ = writeln!(s, "| dofs | N / B | eigen N s | eigen B s | ratio | solves N / B | orthogonalization N s | ARPACK eigen N s | inertia count | ours below σ | ARPACK below σ | LDLᵀ s | load (1 min) |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for r in runs {
+        let (o, b, i) = (&r["ours"], &r["baseline"], &r["inertia"]);
+        let _ = writeln!(
+            s,
+            "| {} | {} / {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} |",
+            r["dofs"],
+            r["modes"],
+            b["modes"],
+            f(&o["phases_s"]["eigen"]),
+            f(&b["phases_s"]["eigen"]),
+            f(&b["eigen_ratio"]),
+            o["solves"],
+            b["solves"],
+            f(&o["phases_s"]["eigen_orthogonalization"]),
+            f(&r["peers"]["arpack_cholmod"]["phases_s"]["eigen"]),
+            i["count_below"],
+            i["ours_below"],
+            i["arpack_below"],
+            f(&i["seconds"]),
+            f(&r["loadavg_before"][0]),
+        );
+    }
+}
+
 /// Draws both charts and writes `docs/benchmarks.md`.
 pub fn run() -> Res<Value> {
     let docs = docs_dir();
@@ -479,7 +526,13 @@ pub fn run() -> Res<Value> {
     if let Some(a) = acc.first() {
         accuracy_chart(a, &docs.join("accuracy_vs_time.svg"))?;
     }
-    scaling_chart(&eigen, &cb, &docs.join("scaling.svg"))?;
+    // the scaling chart compares sizes at the default 30 modes; many-mode runs have a table
+    let eigen30: Vec<Value> = eigen
+        .iter()
+        .filter(|r| r["modes"].as_u64() == Some(30))
+        .cloned()
+        .collect();
+    scaling_chart(&eigen30, &cb, &docs.join("scaling.svg"))?;
     let scene = load("scene_")?;
     let scene_md = match scene.first() {
         Some(v) => {

@@ -12,7 +12,13 @@
 //!   against one CHOLMOD factorization (analyse + factor) of the same K_ii in the same run
 //!   (`--repeat R` alternates ours and CHOLMOD R times).
 //!
-//! Results: `bench/results/eigen_<dofs>.json`, `bench/results/cb_<dofs>.json`.
+//! * `eigen ... --modes 300 --baseline 30 --inertia`: many modes — ours also with the baseline
+//!   count in the same run (the ratio of the eigen phases), and Sylvester's inertia count of
+//!   K − σM at σ just above the highest eigenvalue found, against how many eigenvalues ours and
+//!   ARPACK returned below σ.
+//!
+//! Results: `bench/results/eigen_<dofs>.json` (30 modes; `eigen_<dofs>_<N>modes.json`
+//! otherwise), `bench/results/cb_<dofs>.json`.
 
 use std::time::Instant;
 
@@ -215,8 +221,51 @@ fn ratios(ours: &Value, peer: &Value, modes: usize) -> Value {
     Value::Object(r)
 }
 
+/// `inertia K.mtx M.mtx SIGMA`: Sylvester's count of the eigenvalues of K x = λ M x below σ
+/// (negative pivots of the LDLᵀ of K − σM, `flexbody::solve::inertia`), with its time.
+pub fn inertia_count(kp: &str, mp: &str, sigma: f64) -> Res<Value> {
+    let (k, m) = (read_full_mtx(kp)?, read_full_mtx(mp)?);
+    let t = Instant::now();
+    let count = flexbody::solve::inertia::count_below(&k, &m, sigma, None, threads())
+        .map_err(|e| e.to_string())?;
+    Ok(
+        json!({"sigma": sigma, "count_below": count, "seconds": t.elapsed().as_secs_f64(),
+              "peak_rss_mb": peak_rss_mb()}),
+    )
+}
+
+/// Optional parts of the `eigen` suite for many-mode runs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct EigenExtras {
+    /// Also run ours with this many modes in the same run (the many-mode ratio's baseline).
+    pub baseline: Option<usize>,
+    /// Count the eigenvalues below σ just above the highest one found (Sylvester's inertia) and
+    /// compare with how many ours and ARPACK returned below it.
+    pub inertia: bool,
+}
+
+/// Eigenvalues of a suite part's JSON.
+fn eigenvalues(v: &Value) -> Vec<f64> {
+    v["eigenvalues"]
+        .as_array()
+        .map(|a| a.iter().filter_map(Value::as_f64).collect())
+        .unwrap_or_default()
+}
+
 /// The `eigen` suite.
 pub fn eigen(n: [usize; 3], modes: usize, with_ccx: bool, with_superlu: bool) -> Res<Value> {
+    eigen_with(n, modes, with_ccx, with_superlu, EigenExtras::default())
+}
+
+/// The `eigen` suite with the many-mode extras; results in `eigen_<dofs>.json` for 30 modes,
+/// `eigen_<dofs>_<modes>modes.json` otherwise.
+pub fn eigen_with(
+    n: [usize; 3],
+    modes: usize,
+    with_ccx: bool,
+    with_superlu: bool,
+    extras: EigenExtras,
+) -> Res<Value> {
     let mut model = tet10_block(n);
     let fixed = node_set(&model, "X0")?;
     let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
@@ -249,14 +298,44 @@ pub fn eigen(n: [usize; 3], modes: usize, with_ccx: bool, with_superlu: bool) ->
     } else {
         json!({"skipped": "not asked (--no-superlu)"})
     };
-    let cholmod = run_peer(&["cholmod".into(), ks, ms, ms_]);
+    let cholmod = run_peer(&["cholmod".into(), ks.clone(), ms.clone(), ms_]);
     let ccx = if with_ccx {
         run_peer(&["ccx".into(), deck.display().to_string()])
     } else {
         json!({"skipped": "not asked (--ccx)"})
     };
+    let baseline = match extras.baseline {
+        Some(b) => {
+            let v = run_self(&["ours-eigen".into(), ks.clone(), ms.clone(), b.to_string()])?;
+            let ratio = |ph: &str| {
+                ours["phases_s"][ph]
+                    .as_f64()
+                    .zip(v["phases_s"][ph].as_f64())
+                    .map(|(a, b)| a / b)
+            };
+            json!({"modes": b, "phases_s": v["phases_s"], "solves": v["solves"],
+                   "steps": v["steps"], "peak_rss_mb": v["peak_rss_mb"],
+                   "eigen_ratio": ratio("eigen"), "total_ratio": ratio("total")})
+        }
+        None => Value::Null,
+    };
+    let inertia = if extras.inertia {
+        let (lo, lp) = (eigenvalues(&ours), eigenvalues(&cholmod));
+        let top = lo.iter().chain(lp.iter()).copied().fold(0.0f64, f64::max);
+        // just above the highest eigenvalue either side found: the band [0, σ) must hold
+        // exactly the count of both
+        let sigma = top * (1.0 + 1e-8);
+        let v = run_self(&["inertia".into(), ks.clone(), ms.clone(), sigma.to_string()])?;
+        let below = |l: &[f64]| l.iter().filter(|&&x| x < sigma).count();
+        json!({"sigma": sigma, "count_below": v["count_below"], "seconds": v["seconds"],
+               "ours_below": below(&lo), "arpack_below": if lp.is_empty() { Value::Null } else { json!(below(&lp)) }})
+    } else {
+        Value::Null
+    };
     let json = json!({
         "suite": "eigen",
+        "baseline": baseline,
+        "inertia": inertia,
         "model": format!("tet10 block {}x{}x{} bricks (6 tets each), 0.5x0.1x0.1 m steel, clamped at x=0, consistent mass", n[0], n[1], n[2]),
         "dofs": dofs,
         "modes": modes,
@@ -270,7 +349,12 @@ pub fn eigen(n: [usize; 3], modes: usize, with_ccx: bool, with_superlu: bool) ->
             "ccx": ratios(&ours, &ccx, modes),
         },
     });
-    write_result(&format!("eigen_{dofs}.json"), &json)?;
+    let name = if modes == 30 {
+        format!("eigen_{dofs}.json")
+    } else {
+        format!("eigen_{dofs}_{modes}modes.json")
+    };
+    write_result(&name, &json)?;
     Ok(json)
 }
 

@@ -1,8 +1,10 @@
 //! Benchmark harness: `cargo run --release -p flexbody-bench --bin harness -- <suite> [args]`.
 //!
 //! Suites (results under `bench/results/`, generated inputs under /work/benchdata):
-//! * `eigen NX NY NZ [--modes 30] [--ccx] [--no-superlu]` — factorization + eigen phase vs SciPy/SuperLU,
-//!   ARPACK/CHOLMOD (and ccx) on identical matrices;
+//! * `eigen NX NY NZ [--modes 30] [--ccx] [--no-superlu] [--baseline B] [--inertia]` —
+//!   factorization + eigen phase vs SciPy/SuperLU, ARPACK/CHOLMOD (and ccx) on identical
+//!   matrices; `--baseline B` also runs ours with B modes (many-mode ratio), `--inertia` counts
+//!   the eigenvalues below the highest found (Sylvester) against both solvers' counts;
 //! * `cb NX NY NZ [--modes 30] [--exudyn] [--ccx] [--repeat R]` — whole CB build vs exudyn HCB,
 //!   ccx and one CHOLMOD factorization of the same K_ii (R alternating pairs);
 //! * `assembly [N_SHELL [N_TET]] [--repeat R]` — `fe::assemble` (lumped and consistent) on a
@@ -12,12 +14,12 @@
 //!   Craig–Bampton, with and without residual vectors, scene selection) on a cantilever;
 //! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
 //!
-//! `ours-eigen`, `ours-cb` and `ours-assembly` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
+//! `ours-eigen`, `ours-cb`, `ours-assembly` and `inertia K.mtx M.mtx SIGMA` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
 //! times faer's multi-RHS solve against ours on one factorization (for tuning).
 
 use flexbody_bench::{accuracy, assembly, chart, scene_accuracy, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | assembly [N_SHELL [N_TET]] [--repeat R] | accuracy [MODEL.inp] | scene | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] [--baseline B] [--inertia] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | assembly [N_SHELL [N_TET]] [--repeat R] | accuracy [MODEL.inp] | scene | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -54,7 +56,27 @@ fn run(args: &[String]) -> Res<()> {
     let (suite, a) = args.split_first().ok_or(USAGE)?;
     let has = |f: &str| a.iter().any(|s| s == f);
     let out = match suite.as_str() {
-        "eigen" => suites::eigen(dims(a)?, modes(a)?, has("--ccx"), !has("--no-superlu"))?,
+        "eigen" => {
+            let baseline = match a.iter().position(|s| s == "--baseline") {
+                Some(i) => Some(
+                    a.get(i + 1)
+                        .and_then(|s| s.parse().ok())
+                        .ok_or_else(|| "--baseline N".to_string())?,
+                ),
+                None => None,
+            };
+            let extras = suites::EigenExtras {
+                baseline,
+                inertia: has("--inertia"),
+            };
+            suites::eigen_with(
+                dims(a)?,
+                modes(a)?,
+                has("--ccx"),
+                !has("--no-superlu"),
+                extras,
+            )?
+        }
         "cb" => suites::cb(
             dims(a)?,
             modes(a)?,
@@ -89,6 +111,10 @@ fn run(args: &[String]) -> Res<()> {
             let tol = a.get(4).and_then(|s| s.parse().ok());
             let basis = a.get(5).and_then(|s| s.parse().ok());
             suites::ours_eigen(&a[0], &a[1], m, block, tol, basis)?
+        }
+        "inertia" if a.len() == 3 => {
+            let sigma = a[2].parse().map_err(|_| "SIGMA".to_string())?;
+            suites::inertia_count(&a[0], &a[1], sigma)?
         }
         "solve-kernel" if !a.is_empty() => {
             let blocks: Vec<usize> = a[1..].iter().filter_map(|s| s.parse().ok()).collect();
