@@ -169,6 +169,14 @@ struct BuildArgs {
     /// extra LDLᵀ factorization per eigenproblem; the report states the proven band).
     #[arg(long)]
     verify_band: bool,
+    /// Solver engine for the Craig–Bampton interior: native (ours) or slepc (PETSc/SLEPc with
+    /// MUMPS under MPI: needs mpirun and slepc4py, e.g. Debian's openmpi-bin and
+    /// python3-slepc4py-real). The reduction, invariants and file stay ours.
+    #[arg(long, default_value = "native", value_name = "native|slepc")]
+    engine: String,
+    /// MPI ranks for --engine slepc (mpirun -np N).
+    #[arg(long, default_value_t = 2, value_name = "N")]
+    mpi: usize,
     /// Keep the fewest modes whose estimated frequency-response error at the scene's loads and
     /// interfaces over [0, fmax] stays below EPS (relative to the static response):
     /// participation:EPS, e.g. participation:0.01. The candidates are the modes --fmax/--modes
@@ -272,6 +280,13 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
         created_utc: a.timestamp.then(utc_now),
         threads: a.threads.max(1),
         verify_band: a.verify_band,
+        engine: match a.engine.as_str() {
+            "native" => None,
+            "slepc" => Some(flexbody::solve::slepc::SlepcEngine {
+                ranks: a.mpi.max(1),
+            }),
+            other => anyhow::bail!("--engine {other}: expected native or slepc"),
+        },
         beam_mass: parse_beam_mass(&a.beam_mass)?,
         scene: flexbody::scene::SceneSpec {
             gravity: a.gravity.clone(),

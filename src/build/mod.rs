@@ -115,6 +115,9 @@ pub struct BuildSpec {
     /// `--verify-band`: prove every eigenproblem's returned modes complete by an inertia count
     /// (one extra LDLᵀ factorization each; [`EigenSpec::verify_band`]).
     pub verify_band: bool,
+    /// `--engine slepc --mpi N`: the Craig–Bampton interior (factorization, constraint modes,
+    /// fixed-interface eigenproblem) on PETSc/SLEPc under MPI; `None`: our own solvers.
+    pub engine: Option<crate::solve::slepc::SlepcEngine>,
 }
 
 impl BuildSpec {
@@ -147,6 +150,7 @@ impl BuildSpec {
             mass_explicit: false,
             scene: Default::default(),
             verify_band: false,
+            engine: None,
         }
     }
 
@@ -574,7 +578,29 @@ pub fn build_model_with_hook(
             .collect();
         reduce::craig_chang::unit_loads(k.nrows(), &dofs)
     };
+    if spec.engine.is_some() && !(spec.method == BuildMethod::CraigBampton && reference.is_empty())
+    {
+        return Err(request_err(
+            "--engine slepc runs the Craig-Bampton interior only: use --method cb without \
+             --reference-conditions, or the default engine"
+                .into(),
+        ));
+    }
     let mut set: ModeSet = match spec.method {
+        BuildMethod::CraigBampton if reference.is_empty() && spec.engine.is_some() => {
+            let engine = spec
+                .engine
+                .as_ref()
+                .ok_or_else(|| request_err("engine".into()))?;
+            reduce::craig_bampton::craig_bampton_slepc(
+                k_r,
+                m_r,
+                &interface_dofs,
+                count,
+                &eig,
+                engine,
+            )?
+        }
         BuildMethod::Normal => reduce::massless::on_held(k_r, m_r, &massless, |k, m, map| {
             let fixed = reduce::massless::map_dofs(map, &reference, "reference dofs")?;
             reduce::normal::normal_modes(k, m, count, &fixed, &eig)

@@ -193,6 +193,90 @@ pub fn craig_bampton(
 ) -> Result<ModeSet, ReduceError> {
     let _par = crate::solve::ParGuard::new(eig.par);
     let basis = craig_bampton_basis(k, m, interface, modes, eig)?;
+    craig_bampton_from_basis(k, m, interface, modes, basis)
+}
+
+/// Craig–Bampton with the factorization of K_ii, the constraint modes and the fixed-interface
+/// eigenproblem on PETSc/SLEPc under MPI ([`crate::solve::slepc`]); a mode count only (no
+/// `--fmax` band). The basis is then orthonormalized here as on the native path.
+pub fn craig_bampton_slepc(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    interface: &[usize],
+    modes: ModeCount,
+    eig: &EigenSpec,
+    engine: &crate::solve::slepc::SlepcEngine,
+) -> Result<ModeSet, ReduceError> {
+    let _par = crate::solve::ParGuard::new(eig.par);
+    let n = k.nrows();
+    check_dofs("interface dofs", interface, n)?;
+    let ModeCount::Count(count) = modes else {
+        return Err(ReduceError::Dofs {
+            what: "mode count",
+            detail: "--engine slepc takes a mode count (--modes N), not a frequency band".into(),
+        });
+    };
+    if interface.is_empty() || count == 0 {
+        return Err(ReduceError::Dofs {
+            what: "interface dofs",
+            detail: "--engine slepc needs interface dofs and at least one fixed-interface mode"
+                .into(),
+        });
+    }
+    let inner = complement(interface, n);
+    super::select::check_count(modes, inner.len(), "the interior (non-interface dofs)")?;
+    let nb = interface.len();
+    let kii = sparse_ops::submatrix(k.as_ref(), &inner, &inner)?;
+    let kib = sparse_ops::submatrix(k.as_ref(), &inner, interface)?;
+    let mii = sparse_ops::submatrix(m.as_ref(), &inner, &inner)?;
+    let sol = crate::solve::slepc::fixed_interface(
+        kii.as_ref(),
+        mii.as_ref(),
+        kib.as_ref(),
+        count,
+        eig.tol,
+        engine,
+    )?;
+    let mut t = Mat::<f64>::zeros(n, nb + count);
+    for (c, &d) in interface.iter().enumerate() {
+        t[(d, c)] = 1.0;
+        for (r, &i) in inner.iter().enumerate() {
+            t[(i, c)] = -sol.x[(r, c)];
+        }
+    }
+    for q in 0..count {
+        for (r, &i) in inner.iter().enumerate() {
+            t[(i, nb + q)] = sol.vectors[(r, q)];
+        }
+    }
+    let mut labels: Vec<ModeLabel> = interface
+        .iter()
+        .map(|&d| ModeLabel::Constraint { dof: d })
+        .collect();
+    labels.extend((0..count).map(|index| ModeLabel::FixedInterface { index }));
+    let basis = CbBasis {
+        t,
+        labels,
+        fixed_omega2: sol.eigenvalues,
+        timings: vec![("slepc engine (write, MPI run, read back)", sol.seconds)],
+        eigen: Default::default(),
+    };
+    let mut set = craig_bampton_from_basis(k, m, interface, modes, basis)?;
+    set.diagnostics.notes.push(format!(
+        "engine slepc, {} MPI ranks: {}",
+        engine.ranks, sol.report
+    ));
+    Ok(set)
+}
+
+/// The Craig–Bampton mode set of a basis (orthonormalization and diagnostics).
+fn craig_bampton_from_basis(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    interface: &[usize],
+    modes: ModeCount,
+    basis: CbBasis,
+) -> Result<ModeSet, ReduceError> {
     let nq = basis.fixed_omega2.len();
     let t3 = Instant::now();
     let o = orthonormalize(k, m, &basis.t, &basis.labels)?;

@@ -12,6 +12,7 @@ pub mod inertia;
 pub mod memory;
 pub mod ordering;
 mod rows;
+pub mod slepc;
 pub mod sparse_ops;
 mod supernodal;
 pub mod thin_ops;

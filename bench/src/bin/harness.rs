@@ -12,6 +12,8 @@
 //! * `accuracy [MODEL.inp]` — every reduction method × mode counts on the bundled conrod;
 //! * `scene` — the scene's static and FRF error at the load points vs basis size (normal modes,
 //!   Craig–Bampton, with and without residual vectors, scene selection) on a cantilever;
+//! * `slepc NX NY NZ [--modes 30] [--mpi 2]` — the cb suite's interior solved by our engine and
+//!   by `--engine slepc` (MUMPS + SLEPc under mpirun) in the same run: agreement and times;
 //! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
 //!
 //! `ours-eigen`, `ours-cb`, `ours-assembly` and `inertia K.mtx M.mtx SIGMA` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
@@ -19,7 +21,7 @@
 
 use flexbody_bench::{accuracy, assembly, chart, scene_accuracy, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] [--baseline B] [--inertia] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | assembly [N_SHELL [N_TET]] [--repeat R] | accuracy [MODEL.inp] | scene | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] [--baseline B] [--inertia] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | assembly [N_SHELL [N_TET]] [--repeat R] | slepc NX NY NZ [--modes N] [--mpi N] | accuracy [MODEL.inp] | scene | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -111,6 +113,16 @@ fn run(args: &[String]) -> Res<()> {
             let tol = a.get(4).and_then(|s| s.parse().ok());
             let basis = a.get(5).and_then(|s| s.parse().ok());
             suites::ours_eigen(&a[0], &a[1], m, block, tol, basis)?
+        }
+        "slepc" => {
+            let ranks = match a.iter().position(|s| s == "--mpi") {
+                Some(i) => a
+                    .get(i + 1)
+                    .and_then(|s| s.parse().ok())
+                    .ok_or_else(|| "--mpi N".to_string())?,
+                None => 2,
+            };
+            suites::slepc(dims(a)?, modes(a)?, ranks)?
         }
         "inertia" if a.len() == 3 => {
             let sigma = a[2].parse().map_err(|_| "SIGMA".to_string())?;

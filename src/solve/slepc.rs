@@ -1,0 +1,284 @@
+//! `--engine slepc`: the factorization of K_ii and the fixed-interface eigenproblem of a
+//! Craig–Bampton reduction on PETSc/SLEPc over MPI (issue 22, models past one machine). K_ii,
+//! M_ii and K_ib go to a scratch folder in PETSc's binary format; `mpirun -np N python3
+//! slepc_cb.py` (the script is embedded here) factors K_ii once with MUMPS, solves
+//! K_ii X = K_ib with it and runs SLEPc's Krylov–Schur with shift-and-invert at σ = 0; the
+//! eigenpairs and X are read back. The reduction, orthonormalization, invariants and the file
+//! stay ours.
+//!
+//! Needs `mpirun` and a Python with petsc4py/slepc4py (Debian: `openmpi-bin`,
+//! `python3-slepc4py-real`); `FLEXBODY_SLEPC_PYTHON` and `FLEXBODY_MPIRUN` override the commands.
+//! Debian's packages want `PETSC_DIR`/`SLEPC_DIR` when the `/usr/lib/petsc` alternatives are not
+//! set; they are filled in from `/usr/lib/petscdir` and `/usr/lib/slepcdir` when found.
+
+use std::io::{BufWriter, Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use faer::sparse::SparseColMatRef;
+use faer::Mat;
+
+use super::SolveError;
+
+/// PETSc's binary class ids (petscmat.h, petscvec.h).
+const MAT_FILE_CLASSID: i32 = 1_211_216;
+const VEC_FILE_CLASSID: i32 = 1_211_214;
+
+/// The Python side, written next to the matrices for each run.
+const SCRIPT: &str = include_str!("slepc_cb.py");
+
+/// How to run the external engine.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SlepcEngine {
+    /// MPI ranks (`mpirun -np`).
+    pub ranks: usize,
+}
+
+/// What the engine returned for the interior of a Craig–Bampton reduction.
+#[derive(Debug)]
+pub struct SlepcSolution {
+    /// X = K_ii⁻¹ K_ib (n_i × n_b); the constraint modes are −X.
+    pub x: Mat<f64>,
+    /// Lowest eigenvalues of K_ii φ = λ M_ii φ, ascending.
+    pub eigenvalues: Vec<f64>,
+    /// Their eigenvectors (n_i × count), as SLEPc normalized them.
+    pub vectors: Mat<f64>,
+    /// The script's timings and facts (one JSON object), and our wall time around it.
+    pub report: String,
+    /// Wall time of writing, running and reading back (s).
+    pub seconds: f64,
+}
+
+fn err(what: impl Into<String>) -> SolveError {
+    SolveError::Invalid(format!("--engine slepc: {}", what.into()))
+}
+
+fn io_err(path: &Path, e: std::io::Error) -> SolveError {
+    err(format!("{}: {e}", path.display()))
+}
+
+/// Writes `a` (n × m, CSC) as a PETSc binary AIJ matrix (big-endian, 32-bit indices).
+pub fn write_petsc_mat(path: &Path, a: SparseColMatRef<'_, usize, f64>) -> Result<(), SolveError> {
+    let (nr, nc) = (a.nrows(), a.ncols());
+    let i32_of = |v: usize, what: &str| {
+        i32::try_from(v).map_err(|_| err(format!("{what} {v} exceeds PETSc's 32-bit indices")))
+    };
+    // CSC -> CSR
+    let mut row_len = vec![0usize; nr];
+    for j in 0..nc {
+        for &i in a.row_idx_of_col_raw(j) {
+            row_len[i] += 1;
+        }
+    }
+    let mut start = vec![0usize; nr + 1];
+    for i in 0..nr {
+        start[i + 1] = start[i] + row_len[i];
+    }
+    let nnz = start[nr];
+    let mut cols = vec![0i32; nnz];
+    let mut vals = vec![0f64; nnz];
+    let mut next = start.clone();
+    for j in 0..nc {
+        let jj = i32_of(j, "column")?;
+        for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+            cols[next[i]] = jj;
+            vals[next[i]] = v;
+            next[i] += 1;
+        }
+    }
+    let file = std::fs::File::create(path).map_err(|e| io_err(path, e))?;
+    let mut w = BufWriter::new(file);
+    let mut put = |bytes: &[u8]| w.write_all(bytes).map_err(|e| io_err(path, e));
+    put(&MAT_FILE_CLASSID.to_be_bytes())?;
+    put(&i32_of(nr, "rows")?.to_be_bytes())?;
+    put(&i32_of(nc, "columns")?.to_be_bytes())?;
+    put(&i32_of(nnz, "non-zeros")?.to_be_bytes())?;
+    for &l in &row_len {
+        put(&(l as i32).to_be_bytes())?;
+    }
+    for c in &cols {
+        put(&c.to_be_bytes())?;
+    }
+    for v in &vals {
+        put(&v.to_be_bytes())?;
+    }
+    w.flush().map_err(|e| io_err(path, e))
+}
+
+/// Reads `count` consecutive PETSc binary Vecs of length `n` into the columns of a matrix.
+pub fn read_petsc_vecs(path: &Path, n: usize, count: usize) -> Result<Mat<f64>, SolveError> {
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_to_end(&mut bytes))
+        .map_err(|e| io_err(path, e))?;
+    let want = count * (8 + 8 * n);
+    if bytes.len() != want {
+        return Err(err(format!(
+            "{}: {} bytes, expected {want} for {count} vectors of {n}",
+            path.display(),
+            bytes.len()
+        )));
+    }
+    let mut out = Mat::<f64>::zeros(n, count);
+    let mut at = 0;
+    let word =
+        |at: usize| i32::from_be_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+    for c in 0..count {
+        if word(at) != VEC_FILE_CLASSID || word(at + 4) as usize != n {
+            return Err(err(format!(
+                "{}: vector {c} has a bad header",
+                path.display()
+            )));
+        }
+        at += 8;
+        for r in 0..n {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(&bytes[at..at + 8]);
+            out[(r, c)] = f64::from_be_bytes(b);
+            at += 8;
+        }
+    }
+    Ok(out)
+}
+
+/// The Debian install folder of PETSc or SLEPc when the alternatives link is missing.
+fn debian_dir(root: &str, prefix: &str) -> Option<PathBuf> {
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
+        .ok()?
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().starts_with(prefix))
+        .map(|e| e.path().join("x86_64-linux-gnu-real"))
+        .filter(|p| p.is_dir())
+        .collect();
+    dirs.sort();
+    dirs.pop()
+}
+
+/// Runs the engine on K_ii, M_ii, K_ib (full symmetric K_ii and M_ii) for `count` modes.
+pub fn fixed_interface(
+    kii: SparseColMatRef<'_, usize, f64>,
+    mii: SparseColMatRef<'_, usize, f64>,
+    kib: SparseColMatRef<'_, usize, f64>,
+    count: usize,
+    tol: f64,
+    engine: &SlepcEngine,
+) -> Result<SlepcSolution, SolveError> {
+    let t = Instant::now();
+    let dir = std::env::temp_dir().join(format!(
+        "flexbody-slepc-{}-{}",
+        std::process::id(),
+        t.elapsed().as_nanos()
+    ));
+    std::fs::create_dir_all(&dir).map_err(|e| io_err(&dir, e))?;
+    let result = run_in(&dir, kii, mii, kib, count, tol, engine);
+    let _ = std::fs::remove_dir_all(&dir);
+    let (x, eigenvalues, vectors, report) = result?;
+    Ok(SlepcSolution {
+        x,
+        eigenvalues,
+        vectors,
+        report,
+        seconds: t.elapsed().as_secs_f64(),
+    })
+}
+
+type Parts = (Mat<f64>, Vec<f64>, Mat<f64>, String);
+
+fn run_in(
+    dir: &Path,
+    kii: SparseColMatRef<'_, usize, f64>,
+    mii: SparseColMatRef<'_, usize, f64>,
+    kib: SparseColMatRef<'_, usize, f64>,
+    count: usize,
+    tol: f64,
+    engine: &SlepcEngine,
+) -> Result<Parts, SolveError> {
+    let (ni, nb) = (kii.nrows(), kib.ncols());
+    write_petsc_mat(&dir.join("Kii.petsc"), kii)?;
+    write_petsc_mat(&dir.join("Mii.petsc"), mii)?;
+    write_petsc_mat(&dir.join("Kib.petsc"), kib)?;
+    let script = dir.join("slepc_cb.py");
+    std::fs::write(&script, SCRIPT).map_err(|e| io_err(&script, e))?;
+    let python = std::env::var("FLEXBODY_SLEPC_PYTHON").unwrap_or_else(|_| {
+        if Path::new("/usr/bin/python3").exists() {
+            "/usr/bin/python3".into()
+        } else {
+            "python3".into()
+        }
+    });
+    let mpirun = std::env::var("FLEXBODY_MPIRUN").unwrap_or_else(|_| "mpirun".into());
+    let mut cmd = Command::new(&mpirun);
+    cmd.arg("-np")
+        .arg(engine.ranks.max(1).to_string())
+        .arg(&python)
+        .arg(&script)
+        .arg(dir)
+        .arg(count.to_string())
+        .arg(format!("{tol:e}"))
+        // OpenMPI refuses root without these; harmless otherwise
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1");
+    if std::env::var_os("PETSC_DIR").is_none() {
+        if let Some(d) = debian_dir("/usr/lib/petscdir", "petsc") {
+            cmd.env("PETSC_DIR", d);
+        }
+    }
+    if std::env::var_os("SLEPC_DIR").is_none() {
+        if let Some(d) = debian_dir("/usr/lib/slepcdir", "slepc") {
+            cmd.env("SLEPC_DIR", d);
+        }
+    }
+    let out = cmd.output().map_err(|e| {
+        err(format!(
+            "cannot run {mpirun} ({e}); install MPI and slepc4py (Debian: openmpi-bin, \
+             python3-slepc4py-real) or set FLEXBODY_MPIRUN / FLEXBODY_SLEPC_PYTHON"
+        ))
+    })?;
+    if !out.status.success() {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        // the script's own error (a Python exception or PETSc's message) before mpirun's banner
+        let errors: Vec<&str> = stderr
+            .lines()
+            .filter(|l| l.contains("Error") || l.contains("error") || l.contains("SLEPc"))
+            .take(6)
+            .collect();
+        let tail: Vec<&str> = if errors.is_empty() {
+            stderr.lines().rev().take(8).collect()
+        } else {
+            errors.into_iter().rev().collect()
+        };
+        return Err(err(format!(
+            "{mpirun} -np {} {python} slepc_cb.py failed ({}): {}",
+            engine.ranks,
+            out.status,
+            tail.into_iter().rev().collect::<Vec<_>>().join(" | ")
+        )));
+    }
+    let report = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .last()
+        .unwrap_or("")
+        .to_string();
+    let values_path = dir.join("values.txt");
+    let text = std::fs::read_to_string(&values_path).map_err(|e| io_err(&values_path, e))?;
+    let eigenvalues: Vec<f64> = text
+        .lines()
+        .map(|l| l.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| err(format!("values.txt: {e}")))?;
+    if eigenvalues.len() != count || eigenvalues.iter().any(|v| !v.is_finite()) {
+        return Err(err(format!(
+            "values.txt holds {} values, expected {count} finite ones",
+            eigenvalues.len()
+        )));
+    }
+    let vectors = read_petsc_vecs(&dir.join("vectors.petsc"), ni, count)?;
+    let x = read_petsc_vecs(&dir.join("psi.petsc"), ni, nb)?;
+    // ascending (SLEPc returns by distance to the target 0, i.e. ascending here; sort anyway)
+    let mut order: Vec<usize> = (0..count).collect();
+    order.sort_by(|&a, &b| eigenvalues[a].total_cmp(&eigenvalues[b]));
+    let vals = order.iter().map(|&i| eigenvalues[i]).collect();
+    let vecs = Mat::from_fn(ni, count, |r, c| vectors[(r, order[c])]);
+    Ok((x, vals, vecs, report))
+}
