@@ -358,9 +358,16 @@ pub fn eigen_with(
     Ok(json)
 }
 
-/// The CB suite's K_ii: the generated block with RBE2 spiders on both end faces, assembled,
-/// eliminated, and restricted to the non-interface dofs (the matrix the CB build factors).
-pub fn cb_kii(n: [usize; 3]) -> Res<SparseColMat<usize, f64>> {
+/// (K, M, interface dofs ascending) of an assembled, eliminated system.
+pub type System = (
+    SparseColMat<usize, f64>,
+    SparseColMat<usize, f64>,
+    Vec<usize>,
+);
+
+/// The CB suite's assembled system: the generated block with RBE2 spiders on both end faces,
+/// assembled and eliminated.
+pub fn cb_system(n: [usize; 3]) -> Res<System> {
     let mut model = tet10_block(n);
     let itf = resolve_interfaces(&mut model, &["X0".into(), "XL".into()], SpiderKind::Rbe2)
         .map_err(|e| e.to_string())?;
@@ -377,17 +384,24 @@ pub fn cb_kii(n: [usize; 3]) -> Res<SparseColMat<usize, f64>> {
     for (i, &p) in red.retained.iter().enumerate() {
         pos[p] = i;
     }
-    let mut is_iface = vec![false; red.k.nrows()];
-    for r in &itf {
-        for &node in &r.nodes {
-            for c in 0..6 {
-                is_iface[pos[asm.dofs.first[node] + c]] = true;
-            }
-        }
-    }
-    let inner: Vec<usize> = (0..red.k.nrows()).filter(|&i| !is_iface[i]).collect();
-    flexbody::solve::sparse_ops::submatrix(red.k.as_ref(), &inner, &inner)
-        .map_err(|e| e.to_string())
+    let mut interface: Vec<usize> = itf
+        .iter()
+        .flat_map(|r| r.nodes.iter())
+        .flat_map(|&node| (0..6).map(move |c| (node, c)))
+        .map(|(node, c)| pos[asm.dofs.first[node] + c])
+        .collect();
+    interface.sort_unstable();
+    Ok((red.k, red.m, interface))
+}
+
+/// The CB suite's K_ii: [`cb_system`]'s K restricted to the non-interface dofs (the matrix the
+/// CB build factors).
+pub fn cb_kii(n: [usize; 3]) -> Res<SparseColMat<usize, f64>> {
+    let (k, _, interface) = cb_system(n)?;
+    let inner: Vec<usize> = (0..k.nrows())
+        .filter(|i| interface.binary_search(i).is_err())
+        .collect();
+    flexbody::solve::sparse_ops::submatrix(k.as_ref(), &inner, &inner).map_err(|e| e.to_string())
 }
 
 /// `ours-cb NX NY NZ MODES`: our whole CB build on the generated block (prints one JSON line).
@@ -607,31 +621,7 @@ pub fn cb(
 /// `--engine slepc` (MUMPS + SLEPc Krylov–Schur under `mpirun -np ranks`), in the same run:
 /// fixed-interface eigenvalue agreement, constraint-mode agreement, wall times.
 pub fn slepc(n: [usize; 3], modes: usize, ranks: usize) -> Res<Value> {
-    let mut model = tet10_block(n);
-    let itf = resolve_interfaces(&mut model, &["X0".into(), "XL".into()], SpiderKind::Rbe2)
-        .map_err(|e| e.to_string())?;
-    let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
-    let red = eliminate(
-        &model,
-        &asm.dofs,
-        &asm.k,
-        &asm.m,
-        &ConstraintSpec::default(),
-    )
-    .map_err(|e| e.to_string())?;
-    let mut pos = vec![usize::MAX; asm.dofs.n_dofs];
-    for (i, &p) in red.retained.iter().enumerate() {
-        pos[p] = i;
-    }
-    let mut interface: Vec<usize> = itf
-        .iter()
-        .flat_map(|r| r.nodes.iter())
-        .flat_map(|&node| (0..6).map(move |c| (node, c)))
-        .map(|(node, c)| pos[asm.dofs.first[node] + c])
-        .collect();
-    interface.sort_unstable();
-    let (k, m) = (red.k, red.m);
-    drop(asm);
+    let (k, m, interface) = cb_system(n)?;
     let nb = interface.len();
     let eig = flexbody::solve::EigenSpec {
         dofs_per_node: Some(3),
