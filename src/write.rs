@@ -102,9 +102,9 @@ pub enum WriteError {
 }
 
 /// Zips `entries` (name, uncompressed bytes) in the given order with fixed timestamps
-/// (1980-01-01 00:00), fixed permissions and the chosen compression (per entry for
-/// [`Compression::Auto`]). Low level: no
-/// manifest is added and nothing is checked (the fixture generator uses it for broken files).
+/// (1980-01-01 00:00), fixed permissions and the chosen compression (decided per entry for
+/// [`Compression::Auto`]). Low level: no manifest is added and nothing is checked (the
+/// fixture generator uses it for broken files).
 pub fn zip_entries(
     entries: &[(String, Vec<u8>)],
     compression: Compression,
