@@ -13,6 +13,7 @@ use std::io::{Cursor, Write};
 use std::path::{Path, PathBuf};
 
 use flexbody_reader::{codec, ReadError, ReadLimits, ReducedBody};
+use rayon::prelude::*;
 use zip::write::{PreparedZipFile, SimpleFileOptions};
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
@@ -35,8 +36,9 @@ pub enum Compression {
     Stored,
     /// Deflate at `level`, except that an entry of `n ≥` [`AUTO_STORE_MIN_BYTES`] bytes whose
     /// deflated form has `c` bytes with `16·(n − c) < n` (it saves less than 1/16,
-    /// [`AUTO_STORE_MIN_SAVING`]) is stored. The deflate is run once; the decision is a
-    /// function of the bytes, so output stays deterministic. The default (level 6).
+    /// [`AUTO_STORE_MIN_SAVING`]) is stored. The deflate is run once (large entries in
+    /// parallel); the decision is a function of the bytes, so output stays deterministic. The
+    /// default (level 6).
     Auto {
         /// Deflate level (1–9).
         level: i64,
@@ -118,23 +120,37 @@ pub fn zip_entries(
         base.compression_method(CompressionMethod::Deflated)
             .compression_level(Some(level))
     };
+    // Auto: every large entry is deflated once, in memory and in parallel (each entry on its
+    // own, so the bytes do not depend on the threads); that result is kept unless it saves
+    // too little.
+    let prepared: Vec<Option<PreparedZipFile>> = match compression {
+        Compression::Auto { level } => entries
+            .par_iter()
+            .map(|(name, bytes)| {
+                (bytes.len() >= AUTO_STORE_MIN_BYTES)
+                    .then(|| PreparedZipFile::from_data(name, deflated(level), bytes))
+                    .transpose()
+            })
+            .collect::<zip::result::ZipResult<_>>()?,
+        _ => Vec::new(),
+    };
+    let mut prepared = prepared.into_iter();
     for (name, bytes) in entries {
-        match compression {
-            Compression::Stored => zw.start_file(name.as_str(), stored)?,
-            Compression::Deflate(level) => zw.start_file(name.as_str(), deflated(level))?,
-            Compression::Auto { level } if bytes.len() < AUTO_STORE_MIN_BYTES => {
-                zw.start_file(name.as_str(), deflated(level))?
-            }
-            Compression::Auto { level } => {
-                // Deflate once in memory; keep that result unless it saves too little.
-                let prepared = PreparedZipFile::from_data(name, deflated(level), bytes)?;
-                if !Compression::auto_stores(bytes.len() as u64, prepared.compressed_size()) {
-                    zw.add_prepared_file(prepared)?;
+        let opts = match compression {
+            Compression::Stored => stored,
+            Compression::Deflate(level) => deflated(level),
+            Compression::Auto { level } => match prepared.next().flatten() {
+                None => deflated(level),
+                Some(p) if Compression::auto_stores(bytes.len() as u64, p.compressed_size()) => {
+                    stored
+                }
+                Some(p) => {
+                    zw.add_prepared_file(p)?;
                     continue;
                 }
-                zw.start_file(name.as_str(), stored)?
-            }
-        }
+            },
+        };
+        zw.start_file(name.as_str(), opts)?;
         zw.write_all(bytes)?;
     }
     Ok(zw.finish()?.into_inner())
