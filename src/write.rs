@@ -1,6 +1,8 @@
 //! Reduced-body file writer: validates with the reader's own rules, zips the v1 entries in
 //! their fixed order with fixed timestamps and a fixed deflate level (byte-identical output
 //! for identical input), writes a temp file beside the target and renames it into place.
+//! By default a large entry that deflate does not shrink (random-looking doubles) is stored
+//! instead ([`Compression::Auto`]), so readers do not pay for inflating it.
 //!
 //! ```no_run
 //! # fn demo(body: &flexbody_reader::ReducedBody) -> Result<(), flexbody::write::WriteError> {
@@ -11,11 +13,19 @@ use std::io::{Cursor, Write};
 use std::path::{Path, PathBuf};
 
 use flexbody_reader::{codec, ReadError, ReadLimits, ReducedBody};
-use zip::write::SimpleFileOptions;
+use rayon::prelude::*;
+use zip::write::{PreparedZipFile, SimpleFileOptions};
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
 /// Deflate level used by default; fixed so output is reproducible.
 pub const DEFAULT_DEFLATE_LEVEL: i64 = 6;
+
+/// An entry smaller than this (uncompressed bytes) is always deflated by [`Compression::Auto`].
+pub const AUTO_STORE_MIN_BYTES: usize = 1 << 20;
+
+/// [`Compression::Auto`] stores an entry of at least [`AUTO_STORE_MIN_BYTES`] when deflating
+/// it saves less than `1 / AUTO_STORE_MIN_SAVING` of its bytes.
+pub const AUTO_STORE_MIN_SAVING: u64 = 16;
 
 /// How entries are compressed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -24,20 +34,40 @@ pub enum Compression {
     Deflate(i64),
     /// No compression.
     Stored,
+    /// Deflate at `level`, except that an entry of `n ≥` [`AUTO_STORE_MIN_BYTES`] bytes whose
+    /// deflated form has `c` bytes with `16·(n − c) < n` (it saves less than 1/16,
+    /// [`AUTO_STORE_MIN_SAVING`]) is stored. The deflate is run once (large entries in
+    /// parallel); the decision is a function of the bytes, so output stays deterministic. The
+    /// default (level 6).
+    Auto {
+        /// Deflate level (1–9).
+        level: i64,
+    },
+}
+
+impl Compression {
+    /// Whether [`Compression::Auto`] stores an entry of `uncompressed` bytes that deflates to
+    /// `deflated` bytes (only asked for entries of at least [`AUTO_STORE_MIN_BYTES`]).
+    pub fn auto_stores(uncompressed: u64, deflated: u64) -> bool {
+        uncompressed >= AUTO_STORE_MIN_BYTES as u64
+            && AUTO_STORE_MIN_SAVING * uncompressed.saturating_sub(deflated) < uncompressed
+    }
 }
 
 /// Writer options. The creation time is not an option here: it is `header.created_utc`,
 /// set by the caller only when the user asks for it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct WriteOptions {
-    /// Entry compression (default deflate level 6).
+    /// Entry compression (default [`Compression::Auto`] at deflate level 6).
     pub compression: Compression,
 }
 
 impl Default for WriteOptions {
     fn default() -> Self {
         WriteOptions {
-            compression: Compression::Deflate(DEFAULT_DEFLATE_LEVEL),
+            compression: Compression::Auto {
+                level: DEFAULT_DEFLATE_LEVEL,
+            },
         }
     }
 }
@@ -74,8 +104,9 @@ pub enum WriteError {
 }
 
 /// Zips `entries` (name, uncompressed bytes) in the given order with fixed timestamps
-/// (1980-01-01 00:00), fixed permissions and the chosen compression. Low level: no
-/// manifest is added and nothing is checked (the fixture generator uses it for broken files).
+/// (1980-01-01 00:00), fixed permissions and the chosen compression (decided per entry for
+/// [`Compression::Auto`]). Low level: no manifest is added and nothing is checked (the
+/// fixture generator uses it for broken files).
 pub fn zip_entries(
     entries: &[(String, Vec<u8>)],
     compression: Compression,
@@ -84,13 +115,41 @@ pub fn zip_entries(
     let base = SimpleFileOptions::default()
         .last_modified_time(DateTime::default())
         .unix_permissions(0o644);
-    let opts = match compression {
-        Compression::Deflate(level) => base
-            .compression_method(CompressionMethod::Deflated)
-            .compression_level(Some(level)),
-        Compression::Stored => base.compression_method(CompressionMethod::Stored),
+    let stored = base.compression_method(CompressionMethod::Stored);
+    let deflated = |level| {
+        base.compression_method(CompressionMethod::Deflated)
+            .compression_level(Some(level))
     };
+    // Auto: every large entry is deflated once, in memory and in parallel (each entry on its
+    // own, so the bytes do not depend on the threads); that result is kept unless it saves
+    // too little.
+    let prepared: Vec<Option<PreparedZipFile>> = match compression {
+        Compression::Auto { level } => entries
+            .par_iter()
+            .map(|(name, bytes)| {
+                (bytes.len() >= AUTO_STORE_MIN_BYTES)
+                    .then(|| PreparedZipFile::from_data(name, deflated(level), bytes))
+                    .transpose()
+            })
+            .collect::<zip::result::ZipResult<_>>()?,
+        _ => Vec::new(),
+    };
+    let mut prepared = prepared.into_iter();
     for (name, bytes) in entries {
+        let opts = match compression {
+            Compression::Stored => stored,
+            Compression::Deflate(level) => deflated(level),
+            Compression::Auto { level } => match prepared.next().flatten() {
+                None => deflated(level),
+                Some(p) if Compression::auto_stores(bytes.len() as u64, p.compressed_size()) => {
+                    stored
+                }
+                Some(p) => {
+                    zw.add_prepared_file(p)?;
+                    continue;
+                }
+            },
+        };
         zw.start_file(name.as_str(), opts)?;
         zw.write_all(bytes)?;
     }

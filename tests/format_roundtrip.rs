@@ -38,6 +38,7 @@ fn round_trip_is_bit_exact_for_every_entry() {
         Compression::Deflate(6),
         Compression::Stored,
         Compression::Deflate(9),
+        Compression::Auto { level: 6 },
     ] {
         let body = awkward_body();
         let bytes = to_bytes(&body, &WriteOptions { compression }).expect("write");

@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """Benchmark (not a test): time the numpy package against the stdlib reference reader on a
 synthetic valid body of N nodes and M modes (default 500,000 and 6), mixed triangle/quad faces,
-written as flexbody writes (deflate level 6).
+random mode shapes in all six components.
 
     python3 python/bench/read_speed.py [N] [M]
+    python3 python/bench/read_speed.py --file BODY.flexbody    # a real file, as written
 
-Twice: entries deflated as flexbody writes them, and stored. Also prints the container floor
-both readers share on the deflated file (zlib inflate + SHA-256 of every entry): with random
-mode shapes (incompressible doubles) it bounds the speed-up of any reader.
+Three times: entries as flexbody writes them (deflate level 6, except that an entry of at least
+1 MiB whose deflate saves less than 1/16 is stored: `Compression::Auto`, SPEC.md §2 — here the
+random mode shapes are stored), every entry deflated (as flexbody wrote before that rule, and
+`Compression::Deflate(6)` still does), and every entry stored. Also prints the container floor
+both readers share (zlib inflate of the deflated entries + SHA-256 of every entry).
 """
 import hashlib
 import io
@@ -31,6 +34,22 @@ import flexbody  # noqa: E402
 def vec(a, dtype):
     a = np.ascontiguousarray(a, dtype=dtype)
     return struct.pack("<Q", len(a)) + a.tobytes()
+
+
+# The writer's rule (src/write.rs: AUTO_STORE_MIN_BYTES, AUTO_STORE_MIN_SAVING).
+AUTO_STORE_MIN_BYTES = 1 << 20
+AUTO_STORE_MIN_SAVING = 16
+AUTO = "auto"
+
+
+def auto_stores(raw):
+    """Compression::Auto's decision: store an entry of n >= 1 MiB whose level-6 deflate has c
+    bytes with 16 (n - c) < n. (zlib here, zlib-rs in the writer: sizes agree to a few bytes.)"""
+    n = len(raw)
+    if n < AUTO_STORE_MIN_BYTES:
+        return False
+    c = zlib.compressobj(6, zlib.DEFLATED, -15)
+    return AUTO_STORE_MIN_SAVING * (n - len(c.compress(raw) + c.flush())) < n
 
 
 def body_bytes(n, m, seed=1, compression=zipfile.ZIP_DEFLATED):
@@ -82,10 +101,12 @@ def body_bytes(n, m, seed=1, compression=zipfile.ZIP_DEFLATED):
                 "entries": [{"name": e, "size": len(b), "sha256": hashlib.sha256(b).hexdigest(), "required": r}
                             for e, r, b in entries]}
     out = io.BytesIO()
-    with zipfile.ZipFile(out, "w", compression, compresslevel=6) as z:
-        z.writestr("manifest.json", json.dumps(manifest))
-        for e, _, b in entries:
-            z.writestr(e, b)
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED, compresslevel=6) as z:
+        for e, b in [("manifest.json", json.dumps(manifest).encode())] + [(e, b) for e, _, b in entries]:
+            method = compression
+            if compression == AUTO:
+                method = zipfile.ZIP_STORED if auto_stores(b) else zipfile.ZIP_DEFLATED
+            z.writestr(e, b, compress_type=method)
     return out.getvalue()
 
 
@@ -99,23 +120,37 @@ def best(f, repeat):
 
 
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--file":
+        data = Path(sys.argv[2]).read_bytes()
+        print(f"{sys.argv[2]} ({stored_summary(data)}):")
+        run(data)
+        return
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 500_000
     m = int(sys.argv[2]) if len(sys.argv) > 2 else 6
-    for compression, how in ((zipfile.ZIP_DEFLATED, "deflated (level 6, as flexbody writes)"),
-                             (zipfile.ZIP_STORED, "stored (write option Compression::Stored)")):
-        print(f"entries {how}:")
-        run(body_bytes(n, m, compression=compression), n, m)
+    for compression, how in ((AUTO, "as flexbody writes (Compression::Auto)"),
+                             (zipfile.ZIP_DEFLATED, "all deflated (level 6, Compression::Deflate(6))"),
+                             (zipfile.ZIP_STORED, "all stored (Compression::Stored)")):
+        data = body_bytes(n, m, compression=compression)
+        print(f"entries {how} ({stored_summary(data)}):")
+        run(data)
 
 
-def run(data, n, m):
+def stored_summary(data):
+    with zipfile.ZipFile(io.BytesIO(data)) as z:
+        stored = [i.filename for i in z.infolist() if i.compress_type == zipfile.ZIP_STORED]
+    return "stored: " + (", ".join(stored) or "none")
+
+
+def run(data):
     ref = reference_reader.summarize(*reference_reader.read_bytes(data))
     got = flexbody.read_bytes_body(data).summary()
     diff = reference_reader.close(got, ref)
     assert diff is None, diff
+    c = ref["counts"]
     t_np = best(lambda: flexbody.read_bytes_body(data), 3)
     t_ref = best(lambda: reference_reader.read_bytes(data), 1)
     t_zip = best(lambda: inflate_and_hash(data), 3)
-    print(f"{n} nodes, {m} modes, {n // 2} faces, {len(data) / 1e6:.1f} MB file: "
+    print(f"{c['nodes']} nodes, {c['modes']} modes, {c['faces']} faces, {len(data) / 1e6:.1f} MB file: "
           f"reference reader {t_ref:.2f} s, numpy package {t_np:.3f} s, {t_ref / t_np:.1f}x faster "
           f"(numpy {np.__version__}, Python {sys.version.split()[0]}); "
           f"inflating and hashing the entries alone (zlib, hashlib; one thread) {t_zip:.3f} s")

@@ -44,7 +44,7 @@ class _Cursor:
         if count * dtype.itemsize > len(self.data) - self.pos:
             self.fail("record ends early: count exceeds the entry")
         a = np.frombuffer(self.data, dtype=dtype, count=count, offset=self.pos)
-        a.flags.writeable = False  # a view of the payload (a bytearray for large entries)
+        a.flags.writeable = False  # a view of the payload (a bytearray or the file's bytes)
         self.pos += count * dtype.itemsize
         return a if shape is None else a.reshape(shape)
 
@@ -185,7 +185,8 @@ def _inflate(view, info, declared):
     or patch flags, stored or deflated, a local header with the central directory's name, data
     inside the container, and an inflated stream that ends exactly at the declared size with
     the directory's CRC-32. A large entry inflates chunk by chunk into one buffer while another
-    thread hashes the chunks already inflated (zlib and hashlib release the GIL)."""
+    thread hashes the chunks already inflated (zlib and hashlib release the GIL); a large stored
+    one is checked in place (`_check_stored`)."""
     if (info.file_size != declared or info.flag_bits & 0x61
             or info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED)):
         return None
@@ -204,6 +205,8 @@ def _inflate(view, info, declared):
         return None
     try:
         if info.compress_type == zipfile.ZIP_STORED:
+            if declared > _CHUNK and info.filename in _NUMPY_DECODED:
+                return _check_stored(raw, info.CRC, declared)
             out = bytes(raw)
         elif declared <= _CHUNK:
             d = zlib.decompressobj(-15)
@@ -220,6 +223,24 @@ def _inflate(view, info, declared):
 
 
 _CHUNK = 1 << 22
+# Entries `_decode` reads with numpy (a memoryview does as well as bytes there).
+_NUMPY_DECODED = frozenset((
+    "nodes.bin", "faces.bin", "nodal_mass.bin", "modes.bin", "invariants.bin", "stress_shapes.bin",
+    "strain_shapes.bin", "stress_shapes_bottom.bin", "strain_shapes_bottom.bin", "damping.bin",
+    "lines.bin", "label_shares.bin"))
+
+
+def _check_stored(raw, crc_expected, declared):
+    """Large stored entry: not copied (the blob is a read-only view of the container's
+    bytes); its CRC-32 is taken in a second thread while this one takes SHA-256."""
+    if len(raw) != declared:
+        return None
+    with ThreadPoolExecutor(max_workers=1) as crc_thread:
+        crc = crc_thread.submit(zlib.crc32, raw)
+        sha = hashlib.sha256(raw).hexdigest()
+        if crc.result() != crc_expected:
+            return None
+    return raw, sha
 
 
 def _inflate_hashing(raw, crc_expected, declared):

@@ -4,9 +4,15 @@ fixtures): every golden and compat file gives the summary in its .json (and the 
 stdlib reference reader's), every broken file is refused with the error name of its .expect.
 Everything runs twice: as shipped, and with the chunked inflate of large entries (inflate and
 hash in pieces, `_reader._CHUNK`) forced on every entry, so that path meets the broken files
-too. Exit 1 on any mismatch."""
+too. Then stored entries (the writer stores large incompressible ones, SPEC §2): every golden
+file re-zipped with its entries stored reads as the reference reads it, and with one byte of
+an entry flipped (CRC-32 left as it was, or made to match) the numpy reader refuses it with
+the reference's error name — with the in-place check of large stored entries forced on every
+entry. Exit 1 on any mismatch."""
+import io
 import json
 import sys
+import zipfile
 from pathlib import Path
 
 import flexbody
@@ -43,9 +49,66 @@ def main(root):
     return 1 if bad or n == 0 else 0
 
 
+def restored(data, flip=None, fix_crc=False):
+    """`data` re-zipped with every entry stored; `flip`: the entry whose middle byte is
+    inverted, after zipping (its CRC-32 no longer matches) or before (`fix_crc`: it matches)."""
+    src = zipfile.ZipFile(io.BytesIO(data))
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_STORED) as z:
+        for info in src.infolist():
+            b = bytearray(src.read(info.filename))
+            if info.filename == flip and fix_crc:
+                b[len(b) // 2] ^= 0xFF
+            z.writestr(info.filename, bytes(b))
+    data = bytearray(out.getvalue())
+    if flip is not None and not fix_crc:
+        info = zipfile.ZipFile(io.BytesIO(bytes(data))).getinfo(flip)
+        off = info.header_offset
+        start = off + 30 + int.from_bytes(data[off + 26:off + 28], "little") \
+            + int.from_bytes(data[off + 28:off + 30], "little")
+        data[start + info.file_size // 2] ^= 0xFF
+    return bytes(data)
+
+
+def outcome(read, data):
+    try:
+        read(data)
+        return "accepted"
+    except flexbody.ReadError as e:
+        return e.variant
+
+
+def stored(root):
+    root, bad, n = Path(root), 0, 0
+    for f in sorted(root.glob("golden/*/*.flexbody")):
+        data = f.read_bytes()
+        names = [i.filename for i in zipfile.ZipFile(io.BytesIO(data)).infolist()
+                 if i.filename in _reader._NUMPY_DECODED and i.file_size > 0]
+        cases = [("all stored", restored(data))]
+        for name in names:
+            cases.append((f"{name} flipped", restored(data, name)))
+            cases.append((f"{name} flipped, CRC-32 matching", restored(data, name, fix_crc=True)))
+        for what, case in cases:
+            n += 1
+            want = outcome(_spec.read_bytes, case)
+            got = outcome(flexbody.read_bytes_body, case)
+            ok = got == want and (what == "all stored") == (want == "accepted")
+            if ok and want == "accepted":
+                diff = _spec.close(flexbody.read_bytes_body(case).summary(),
+                                   _spec.summarize(*_spec.read_bytes(case)))
+                ok = diff is None
+            if not ok:
+                print(f"FAIL {f} {what}: numpy reader {got}, reference {want}")
+            bad += not ok
+    print(f"{n - bad}/{n} stored-entry cases: numpy reader conforms")
+    return 1 if bad or n == 0 else 0
+
+
 if __name__ == "__main__":
     root = sys.argv[1] if len(sys.argv) > 1 else "fixtures"
     status = main(root)
     _reader._CHUNK = 7  # every deflated entry through the chunked inflate, 7-byte input pieces
     print("again, with the chunked inflate on every entry:")
-    sys.exit(main(root) or status)
+    status = main(root) or status
+    _reader._CHUNK = 0  # every stored numpy-decoded entry checked in place (`_check_stored`)
+    sys.exit(stored(root) or status)
