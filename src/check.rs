@@ -707,7 +707,7 @@ fn model_checks(
             }
         }
         if missing == 0 {
-            let f = crate::verify::identities(&red.k, &red.m, &phi, &body.modes.omega2);
+            let f = crate::verify::identities(&red.k, &red.m, &phi, &body.modes.omega2, &fixed);
             crate::verify::push_identities(
                 r,
                 &f,

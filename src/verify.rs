@@ -40,13 +40,22 @@ pub struct Identities {
     pub residual_limits: Vec<f64>,
 }
 
-/// ΦᵀMΦ − I, ΦᵀKΦ − diag(ω²) and the eigen residuals of Φ (n × modes) against (K, M).
+/// ΦᵀMΦ − I, ΦᵀKΦ − diag(ω²) and the eigen residuals of Φ (n × modes) against (K, M). The
+/// rows `held` (reference-condition dofs: Φ is zero there and Kφ − ω²Mφ is the reaction force
+/// that holds them) are left out of the residuals.
 pub fn identities(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     phi: &Mat<f64>,
     omega2: &[f64],
+    held: &[usize],
 ) -> Identities {
+    let mut is_held = vec![false; phi.nrows()];
+    for &d in held {
+        if let Some(h) = is_held.get_mut(d) {
+            *h = true;
+        }
+    }
     let nm = phi.ncols();
     let mphi = sparse_ops::spmm(m.as_ref(), phi.as_ref());
     let kphi = sparse_ops::spmm(k.as_ref(), phi.as_ref());
@@ -76,7 +85,7 @@ pub fn identities(
     let mut residual_limits = Vec::with_capacity(nm);
     for j in 0..nm {
         let (mut rn, mut kn) = (0.0, 0.0);
-        for i in 0..phi.nrows() {
+        for i in (0..phi.nrows()).filter(|&i| !is_held[i]) {
             rn += (kphi[(i, j)] - omega2[j] * mphi[(i, j)]).powi(2);
             kn += kphi[(i, j)].powi(2);
         }
@@ -106,11 +115,13 @@ pub struct VerifyError {
     pub failed: Vec<CheckItem>,
 }
 
-/// (K, M, Φ) over the independent dofs of the model a body was reduced from.
+/// (K, M, Φ, held dofs) over the independent dofs of the model a body was reduced from; the
+/// held dofs are the reference conditions' (left out of the eigen residuals, [`identities`]).
 pub type ModelPhi<'a> = (
     &'a SparseColMat<usize, f64>,
     &'a SparseColMat<usize, f64>,
     &'a Mat<f64>,
+    &'a [usize],
 );
 
 /// Verifies `body` (as it will be written) and Φ over the independent dofs of the model (K, M)
@@ -133,10 +144,10 @@ pub fn verify_body(
             })
         }
     };
-    if let Some((k, m, phi)) = model {
+    if let Some((k, m, phi, held)) = model {
         push_identities(
             &mut report,
-            &identities(k, m, phi, &body.modes.omega2),
+            &identities(k, m, phi, &body.modes.omega2, held),
             &body.modes.labels,
             body.method.method == file::Method::NormalModes
                 && !crate::scene::has_residual_vectors(body),

@@ -805,12 +805,12 @@ pub fn build_model_with_hook(
     lap(&mut report, STAGES[7]);
 
     progress(STAGES[8]);
-    crate::verify::verify_body(&body, Some((k_r, m_r, &set.phi))).map_err(|failures| {
-        BuildError::Verify {
+    crate::verify::verify_body(&body, Some((k_r, m_r, &set.phi, &reference))).map_err(
+        |failures| BuildError::Verify {
             file: file_name.clone(),
             failures,
-        }
-    })?;
+        },
+    )?;
     lap(&mut report, STAGES[8]);
     Ok(BuildOutput { body, report })
 }
