@@ -51,7 +51,6 @@ pub fn craig_bampton_basis(
     if modes != ModeCount::Count(0) {
         super::select::check_count(modes, ni, "the interior (non-interface dofs)")?;
     }
-    let nb = interface.len();
     let t0 = Instant::now();
     let kii = sparse_ops::submatrix(k.as_ref(), &inner, &inner)?;
     let kib = sparse_ops::submatrix(k.as_ref(), &inner, interface)?;
@@ -67,25 +66,8 @@ pub fn craig_bampton_basis(
     let t2 = Instant::now();
     let fixed = fixed_interface_modes(&kii, &mii, &llt, modes, eig)?;
     let t_eigen = t2.elapsed().as_secs_f64();
-    let nq = fixed.eigenvalues.len();
     let eigen = fixed.info.clone();
-    let mut t = Mat::<f64>::zeros(n, nb + nq);
-    for (c, &d) in interface.iter().enumerate() {
-        t[(d, c)] = 1.0;
-        for (r, &i) in inner.iter().enumerate() {
-            t[(i, c)] = -psi[(r, c)];
-        }
-    }
-    for q in 0..nq {
-        for (r, &i) in inner.iter().enumerate() {
-            t[(i, nb + q)] = fixed.vectors[(r, q)];
-        }
-    }
-    let mut labels: Vec<ModeLabel> = interface
-        .iter()
-        .map(|&d| ModeLabel::Constraint { dof: d })
-        .collect();
-    labels.extend((0..nq).map(|index| ModeLabel::FixedInterface { index }));
+    let (t, labels) = basis_matrix(n, interface, &inner, &psi, &fixed.vectors);
     let _ = ni;
     Ok(CbBasis {
         t,
@@ -98,6 +80,36 @@ pub fn craig_bampton_basis(
         ],
         eigen,
     })
+}
+
+/// T = [I 0; Ψ Φ_i] over all n dofs with Ψ = −X, X = K_ii⁻¹ K_ib (n_i × n_b) and the
+/// fixed-interface modes Φ_i (n_i × n_q), and the label of each column.
+fn basis_matrix(
+    n: usize,
+    interface: &[usize],
+    inner: &[usize],
+    x: &Mat<f64>,
+    fixed: &Mat<f64>,
+) -> (Mat<f64>, Vec<ModeLabel>) {
+    let (nb, nq) = (interface.len(), fixed.ncols());
+    let mut t = Mat::<f64>::zeros(n, nb + nq);
+    for (c, &d) in interface.iter().enumerate() {
+        t[(d, c)] = 1.0;
+        for (r, &i) in inner.iter().enumerate() {
+            t[(i, c)] = -x[(r, c)];
+        }
+    }
+    for q in 0..nq {
+        for (r, &i) in inner.iter().enumerate() {
+            t[(i, nb + q)] = fixed[(r, q)];
+        }
+    }
+    let mut labels: Vec<ModeLabel> = interface
+        .iter()
+        .map(|&d| ModeLabel::Constraint { dof: d })
+        .collect();
+    labels.extend((0..nq).map(|index| ModeLabel::FixedInterface { index }));
+    (t, labels)
 }
 
 /// LLᵀ of K_ii; a zero pivot (non-positive, or positive below [`SINGULAR_PIVOT`] of its
@@ -225,7 +237,6 @@ pub fn craig_bampton_slepc(
     }
     let inner = complement(interface, n);
     super::select::check_count(modes, inner.len(), "the interior (non-interface dofs)")?;
-    let nb = interface.len();
     let kii = sparse_ops::submatrix(k.as_ref(), &inner, &inner)?;
     let kib = sparse_ops::submatrix(k.as_ref(), &inner, interface)?;
     let mii = sparse_ops::submatrix(m.as_ref(), &inner, &inner)?;
@@ -237,23 +248,7 @@ pub fn craig_bampton_slepc(
         eig.tol,
         engine,
     )?;
-    let mut t = Mat::<f64>::zeros(n, nb + count);
-    for (c, &d) in interface.iter().enumerate() {
-        t[(d, c)] = 1.0;
-        for (r, &i) in inner.iter().enumerate() {
-            t[(i, c)] = -sol.x[(r, c)];
-        }
-    }
-    for q in 0..count {
-        for (r, &i) in inner.iter().enumerate() {
-            t[(i, nb + q)] = sol.vectors[(r, q)];
-        }
-    }
-    let mut labels: Vec<ModeLabel> = interface
-        .iter()
-        .map(|&d| ModeLabel::Constraint { dof: d })
-        .collect();
-    labels.extend((0..count).map(|index| ModeLabel::FixedInterface { index }));
+    let (t, labels) = basis_matrix(n, interface, &inner, &sol.x, &sol.vectors);
     let basis = CbBasis {
         t,
         labels,
