@@ -89,12 +89,6 @@ pub fn shell_fields(
     request: FieldRequest,
 ) -> Result<ShellFields, StressError> {
     let nn = model.nodes.len();
-    let mut is_wanted = vec![false; nn];
-    for &n in wanted {
-        if n < nn {
-            is_wanted[n] = true;
-        }
-    }
     let shell_section = |el: &crate::model::Element| {
         let p = el.property.and_then(|p| model.properties.get(p))?;
         match &p.section {
@@ -105,20 +99,11 @@ pub fn shell_fields(
     let is_shell = |el: &crate::model::Element| {
         matches!(el.kind, ElementKind::Quad4 | ElementKind::Tri3) && shell_section(el).is_some()
     };
-    let mut slot = vec![usize::MAX; nn];
-    let mut nodes: Vec<NodeIndex> = Vec::new();
-    for el in model.elements.iter().filter(|e| is_shell(e)) {
-        for &n in &el.nodes {
-            if n < nn && is_wanted[n] && slot[n] == usize::MAX {
-                slot[n] = 0;
-                nodes.push(n);
-            }
-        }
-    }
-    nodes.sort_unstable();
-    for (q, &n) in nodes.iter().enumerate() {
-        slot[n] = q;
-    }
+    let super::stress::WantedSlots {
+        is_wanted,
+        slot,
+        nodes,
+    } = super::stress::wanted_slots(model, wanted, is_shell);
     let k = nodes.len();
     let size = n_modes * k * 6;
     let mut sums = [(); 4].map(|_| vec![0.0; size]); // top σ, bottom σ, top ε, bottom ε

@@ -173,6 +173,51 @@ fn hooke(lambda: f64, mu: f64, e: &[f64; 6]) -> [f64; 6] {
     ]
 }
 
+/// The wanted nodes that elements of one family touch, numbered for per-node accumulators.
+pub(crate) struct WantedSlots {
+    /// Per model node: asked for.
+    pub is_wanted: Vec<bool>,
+    /// Per model node: its index into `nodes` (`usize::MAX` when not touched or not wanted).
+    pub slot: Vec<usize>,
+    /// The wanted nodes touched by an element of the family, ascending.
+    pub nodes: Vec<NodeIndex>,
+}
+
+/// [`WantedSlots`] of the `wanted` nodes over the elements `family` accepts (the averaging
+/// set of nodal field recovery: solids here, shells in `shell_stress`).
+pub(crate) fn wanted_slots(
+    model: &Model,
+    wanted: &[NodeIndex],
+    family: impl Fn(&crate::model::Element) -> bool,
+) -> WantedSlots {
+    let nn = model.nodes.len();
+    let mut is_wanted = vec![false; nn];
+    for &n in wanted {
+        if n < nn {
+            is_wanted[n] = true;
+        }
+    }
+    let mut slot = vec![usize::MAX; nn];
+    let mut nodes: Vec<NodeIndex> = Vec::new();
+    for el in model.elements.iter().filter(|e| family(e)) {
+        for &n in &el.nodes {
+            if n < nn && is_wanted[n] && slot[n] == usize::MAX {
+                slot[n] = 0;
+                nodes.push(n);
+            }
+        }
+    }
+    nodes.sort_unstable();
+    for (q, &n) in nodes.iter().enumerate() {
+        slot[n] = q;
+    }
+    WantedSlots {
+        is_wanted,
+        slot,
+        nodes,
+    }
+}
+
 /// Recover nodal stress/strain shapes of `n_modes` modes at the `wanted` nodes.
 /// `displacement(node, mode)` gives the node's translation (basic frame) in that mode.
 pub fn modal_fields(
@@ -183,30 +228,12 @@ pub fn modal_fields(
     request: FieldRequest,
 ) -> Result<ModalFields, StressError> {
     let nn = model.nodes.len();
-    let mut is_wanted = vec![false; nn];
-    for &n in wanted {
-        if n < nn {
-            is_wanted[n] = true;
-        }
-    }
     // Accumulators per wanted node touched by a solid: slot → (count, sums).
-    let mut slot = vec![usize::MAX; nn];
-    let mut touched: Vec<NodeIndex> = Vec::new();
-    for el in &model.elements {
-        if !el.kind.is_solid() {
-            continue;
-        }
-        for &n in &el.nodes {
-            if n < nn && is_wanted[n] && slot[n] == usize::MAX {
-                slot[n] = 0;
-                touched.push(n);
-            }
-        }
-    }
-    touched.sort_unstable();
-    for (q, &n) in touched.iter().enumerate() {
-        slot[n] = q;
-    }
+    let WantedSlots {
+        is_wanted,
+        slot,
+        nodes: touched,
+    } = wanted_slots(model, wanted, |el| el.kind.is_solid());
     let k = touched.len();
     let mut count = vec![0u32; k];
     let mut sum_strain = vec![0.0; n_modes * k * 6];
