@@ -5,21 +5,14 @@
 //! with slepc4py (Debian: openmpi-bin, python3-slepc4py-real) the comparison is skipped with a
 //! visible message; the refusal of other methods is always tested.
 
-use std::path::{Path, PathBuf};
+use common::{exe, scratch};
+use std::path::Path;
 use std::process::Command;
 
-fn exe() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_flexbody"))
-}
+mod common;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("flexbody-slepc-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 fn conrod() -> String {
@@ -76,7 +69,7 @@ fn slepc_engine_gives_the_native_frequencies_on_the_conrod() {
         println!("SLEPc engine test skipped: {why} (Debian: openmpi-bin, python3-slepc4py-real)");
         return;
     }
-    let dir = scratch("conrod");
+    let dir = scratch("slepc-conrod");
     let model = conrod();
     let mut files = Vec::new();
     for engine in ["native", "slepc"] {
@@ -130,7 +123,7 @@ fn slepc_engine_gives_the_native_frequencies_on_the_conrod() {
 
 #[test]
 fn slepc_engine_refuses_what_it_does_not_run() {
-    let dir = scratch("refuse");
+    let dir = scratch("slepc-refuse");
     let out = dir.join("x.flexbody");
     let o = exe()
         .args(["build", &conrod(), "--interface", "BIG_END,SMALL_END"])

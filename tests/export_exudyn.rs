@@ -6,18 +6,11 @@
 //! Without an importable exudyn the Python part is skipped with a visible message (CI installs
 //! exudyn, see `.ci/run`).
 
-use std::path::{Path, PathBuf};
+use common::{exe, python_has, scratch};
+use std::path::Path;
 use std::process::Command;
 
-fn exe() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_flexbody"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("flexbody-export-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+mod common;
 
 fn build_conrod(out: &Path, extra: &[&str]) {
     let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp");
@@ -38,16 +31,9 @@ fn build_conrod(out: &Path, extra: &[&str]) {
     );
 }
 
-fn python_has(module: &str) -> bool {
-    Command::new("python3")
-        .args(["-c", &format!("import {module}")])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
-
 #[test]
 fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_frequencies() {
-    let dir = scratch("exudyn");
+    let dir = scratch("exudyn-exudyn");
     let body = dir.join("rod.flexbody");
     let npz = dir.join("rod.npz");
     build_conrod(&body, &["--stress-modes", "--damping", "2%"]);
@@ -134,7 +120,7 @@ fn the_pendulum_example_runs_and_swings_like_the_rigid_pendulum_of_the_files_mas
         );
         return;
     }
-    let dir = scratch("pendulum");
+    let dir = scratch("exudyn-pendulum");
     let png = dir.join("pendulum.png");
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pendulum_exudyn.py");
     let o = Command::new("python3")
@@ -166,7 +152,7 @@ fn the_pendulum_example_runs_and_swings_like_the_rigid_pendulum_of_the_files_mas
 
 #[test]
 fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
-    let dir = scratch("partial");
+    let dir = scratch("exudyn-partial");
     let body = dir.join("rod.flexbody");
     let npz = dir.join("rod.npz");
     build_conrod(&body, &["--invariants", "partial"]);
@@ -216,7 +202,7 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
         );
         return;
     }
-    let dir = scratch("helper");
+    let dir = scratch("exudyn-helper");
     let rod = dir.join("rod.flexbody");
     build_conrod(&rod, &["--stress-modes", "--damping", "2%"]);
     let block = dir.join("block.flexbody");

@@ -12,21 +12,14 @@
 //! so Ct and Cr are not zero; 2 % damping) and the planar beam (rotations and rotary inertia;
 //! mean-axis normal modes and a CB body with reference conditions).
 
+use common::{exe, python_has, scratch};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn exe() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_flexbody"))
-}
+mod common;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("flexbody-sid-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 fn run(args: &[&str]) -> String {
@@ -34,13 +27,6 @@ fn run(args: &[&str]) -> String {
     let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
     assert!(o.status.success(), "flexbody {args:?}: {stderr}");
     stderr
-}
-
-fn python_has(module: &str) -> bool {
-    Command::new("python3")
-        .args(["-c", &format!("import {module}")])
-        .output()
-        .is_ok_and(|o| o.status.success())
 }
 
 /// EMBSlib's reader compiled with our stand-in header, or None (with the reason printed).
@@ -185,7 +171,7 @@ fn beam_sid_carries_rotations_and_rotary_inertia() {
 
 #[test]
 fn sid_export_refuses_a_file_without_the_second_order_invariants() {
-    let dir = scratch("partial");
+    let dir = scratch("sid-partial");
     let body = dir.join("rod.flexbody");
     let model = root().join("fixtures/models/conrod/conrod.inp");
     run(&[

@@ -5,19 +5,17 @@
 //! constrained K, M of `export --to mtx --model` with the held node's dofs removed
 //! (`tests/python/held_normal_modes_check.py`; skipped visibly without SciPy).
 
+use common::{exe, scratch};
 use std::path::Path;
 use std::process::Command;
 
-fn exe() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_flexbody"))
-}
+mod common;
 
 #[test]
 fn normal_modes_with_the_big_end_held_build_check_and_match_scipy() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let model = root.join("fixtures/models/conrod/conrod.inp");
-    let dir = std::env::temp_dir().join(format!("flexbody-held-normal-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("held-normal");
     let body = dir.join("rod.flexbody");
     let o = exe()
         .arg("build")

@@ -1,9 +1,10 @@
-//! Test support for the fe tests: the reference-data paths, reading the reference meshes through
-//! the `.inp` importer, dense copies of sparse matrices, and a dense generalized symmetric
-//! eigen-solve for small systems.
+//! Test support: the reference-data paths, reading the reference meshes through the `.inp`
+//! importer, dense copies of sparse matrices, a dense generalized symmetric eigen-solve for small
+//! systems, and for the CLI tests the binary, a scratch folder and a Python module probe.
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
+use std::process::Command;
 
 use faer::sparse::SparseColMat;
 use faer::Mat;
@@ -68,4 +69,24 @@ pub fn generalized_eigenvalues(k: &Mat<f64>, m: &Mat<f64>) -> Vec<f64> {
 /// Hz from ω².
 pub fn hz(lambda: f64) -> f64 {
     lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// The `flexbody` binary under test.
+pub fn exe() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_flexbody"))
+}
+
+/// A fresh folder under the system temp dir for one test (`name` unique within the test binary).
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("flexbody-test-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Whether `python3` imports `module` (the Python checks skip visibly without it).
+pub fn python_has(module: &str) -> bool {
+    Command::new("python3")
+        .args(["-c", &format!("import {module}")])
+        .output()
+        .is_ok_and(|o| o.status.success())
 }
