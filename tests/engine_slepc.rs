@@ -7,7 +7,6 @@
 
 use common::{exe, scratch};
 use std::path::Path;
-use std::process::Command;
 
 mod common;
 
@@ -22,42 +21,6 @@ fn conrod() -> String {
         .to_string()
 }
 
-/// mpirun and a Python that imports slepc4py (the engine's own defaults).
-fn slepc_available() -> Result<(), String> {
-    let mpirun = std::env::var("FLEXBODY_MPIRUN").unwrap_or_else(|_| "mpirun".into());
-    if Command::new(&mpirun).arg("--version").output().is_err() {
-        return Err(format!("{mpirun} not found"));
-    }
-    let python = std::env::var("FLEXBODY_SLEPC_PYTHON").unwrap_or_else(|_| {
-        if Path::new("/usr/bin/python3").exists() {
-            "/usr/bin/python3".into()
-        } else {
-            "python3".into()
-        }
-    });
-    let mut probe = Command::new(&python);
-    probe.args(["-c", "import slepc4py, petsc4py"]);
-    for (var, root, prefix) in [
-        ("PETSC_DIR", "/usr/lib/petscdir", "petsc"),
-        ("SLEPC_DIR", "/usr/lib/slepcdir", "slepc"),
-    ] {
-        if std::env::var_os(var).is_none() {
-            if let Some(d) = std::fs::read_dir(root).ok().and_then(|rd| {
-                rd.flatten()
-                    .filter(|e| e.file_name().to_string_lossy().starts_with(prefix))
-                    .map(|e| e.path().join("x86_64-linux-gnu-real"))
-                    .find(|p| p.is_dir())
-            }) {
-                probe.env(var, d);
-            }
-        }
-    }
-    match probe.output() {
-        Ok(o) if o.status.success() => Ok(()),
-        _ => Err(format!("{python} cannot import slepc4py")),
-    }
-}
-
 fn frequencies(file: &Path) -> Vec<f64> {
     let body = flexbody_reader::read(file).unwrap();
     body.modes.frequency_hz.clone()
@@ -65,7 +28,7 @@ fn frequencies(file: &Path) -> Vec<f64> {
 
 #[test]
 fn slepc_engine_gives_the_native_frequencies_on_the_conrod() {
-    if let Err(why) = slepc_available() {
+    if let Err(why) = flexbody::solve::slepc::available() {
         println!("SLEPc engine test skipped: {why} (Debian: openmpi-bin, python3-slepc4py-real)");
         return;
     }

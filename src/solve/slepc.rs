@@ -155,6 +155,51 @@ fn debian_dir(root: &str, prefix: &str) -> Option<PathBuf> {
     dirs.pop()
 }
 
+/// The commands the engine runs: (mpirun, python), from `FLEXBODY_MPIRUN` and
+/// `FLEXBODY_SLEPC_PYTHON`, else `mpirun` and the system's `/usr/bin/python3` (where Debian puts
+/// slepc4py) or `python3`.
+pub fn commands() -> (String, String) {
+    let mpirun = std::env::var("FLEXBODY_MPIRUN").unwrap_or_else(|_| "mpirun".into());
+    let python = std::env::var("FLEXBODY_SLEPC_PYTHON").unwrap_or_else(|_| {
+        if Path::new("/usr/bin/python3").exists() {
+            "/usr/bin/python3".into()
+        } else {
+            "python3".into()
+        }
+    });
+    (mpirun, python)
+}
+
+/// `PETSC_DIR` / `SLEPC_DIR` to give the script when the environment has none and Debian's
+/// install folders exist.
+pub fn package_env() -> Vec<(&'static str, PathBuf)> {
+    [
+        ("PETSC_DIR", "/usr/lib/petscdir", "petsc"),
+        ("SLEPC_DIR", "/usr/lib/slepcdir", "slepc"),
+    ]
+    .into_iter()
+    .filter(|(var, _, _)| std::env::var_os(var).is_none())
+    .filter_map(|(var, root, prefix)| Some((var, debian_dir(root, prefix)?)))
+    .collect()
+}
+
+/// Whether the engine can run here: `mpirun` starts and its Python imports slepc4py; the error
+/// names what is missing.
+pub fn available() -> Result<(), String> {
+    let (mpirun, python) = commands();
+    if Command::new(&mpirun).arg("--version").output().is_err() {
+        return Err(format!("{mpirun} not found"));
+    }
+    let probe = Command::new(&python)
+        .args(["-c", "import slepc4py, petsc4py"])
+        .envs(package_env())
+        .output();
+    match probe {
+        Ok(o) if o.status.success() => Ok(()),
+        _ => Err(format!("{python} cannot import slepc4py")),
+    }
+}
+
 /// Runs the engine on K_ii, M_ii, K_ib (full symmetric K_ii and M_ii) for `count` modes.
 pub fn fixed_interface(
     kii: SparseColMatRef<'_, usize, f64>,
@@ -200,14 +245,7 @@ fn run_in(
     write_petsc_mat(&dir.join("Kib.petsc"), kib)?;
     let script = dir.join("slepc_cb.py");
     std::fs::write(&script, SCRIPT).map_err(|e| io_err(&script, e))?;
-    let python = std::env::var("FLEXBODY_SLEPC_PYTHON").unwrap_or_else(|_| {
-        if Path::new("/usr/bin/python3").exists() {
-            "/usr/bin/python3".into()
-        } else {
-            "python3".into()
-        }
-    });
-    let mpirun = std::env::var("FLEXBODY_MPIRUN").unwrap_or_else(|_| "mpirun".into());
+    let (mpirun, python) = commands();
     let mut cmd = Command::new(&mpirun);
     cmd.arg("-np")
         .arg(engine.ranks.max(1).to_string())
@@ -218,17 +256,8 @@ fn run_in(
         .arg(format!("{tol:e}"))
         // OpenMPI refuses root without these; harmless otherwise
         .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1");
-    if std::env::var_os("PETSC_DIR").is_none() {
-        if let Some(d) = debian_dir("/usr/lib/petscdir", "petsc") {
-            cmd.env("PETSC_DIR", d);
-        }
-    }
-    if std::env::var_os("SLEPC_DIR").is_none() {
-        if let Some(d) = debian_dir("/usr/lib/slepcdir", "slepc") {
-            cmd.env("SLEPC_DIR", d);
-        }
-    }
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .envs(package_env());
     let out = cmd.output().map_err(|e| {
         err(format!(
             "cannot run {mpirun} ({e}); install MPI and slepc4py (Debian: openmpi-bin, \
