@@ -7,7 +7,7 @@
 //! ([`SparseLlt::min_pivot`]) so that callers can tell a singular matrix whose rounding left a
 //! tiny positive pivot from a merely ill-conditioned one.
 
-use super::{ordering, supernodal, SolveError};
+use super::{ordering, sparse_ops, supernodal, SolveError};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
@@ -33,11 +33,29 @@ pub struct FactorStats {
     pub supernodal: bool,
 }
 
+/// The stored values of L: f64, or f32 for a mixed-precision factor (supernodal only).
+#[derive(Debug)]
+enum Values {
+    F64(Vec<f64>),
+    F32(Vec<f32>),
+}
+
+/// Relative refinement correction below which corrections that stop shrinking are f64 rounding
+/// (the f64 direct solve's own error on these matrices is 1e-13 … 1e-11), not a failure.
+pub const REFINE_FLOOR: f64 = 1e-9;
+
+/// The f64-accuracy target of a refined solve: the error an f64 direct solve leaves.
+pub const REFINE_F64: f64 = 1e-14;
+
+/// Most refinement steps of one solve: with the contraction the stop rule demands (≤ 1/2 per
+/// step) the f32 start reaches f64 rounding well within this.
+const MAX_REFINE: usize = 12;
+
 /// A numeric LLᵀ factorization that owns its symbolic part and values.
 #[derive(Debug)]
 pub struct SparseLlt {
     symbolic: SymbolicCholesky<usize>,
-    values: Vec<f64>,
+    values: Values,
     /// Fill and cost of the factorization.
     pub stats: FactorStats,
     par: Par,
@@ -110,6 +128,19 @@ pub fn format_bytes(b: u64) -> String {
 pub fn factor_memory(symbolic: &SymbolicCholesky<usize>, par: Par) -> usize {
     let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
     symbolic.len_val() * std::mem::size_of::<f64>() + req.size_bytes()
+}
+
+/// Bytes of a mixed-precision factorization: the f32 values of L, faer's f32 scratch and the f32
+/// copy of the matrix.
+pub fn factor_memory_mixed(
+    symbolic: &SymbolicCholesky<usize>,
+    a: SparseColMatRef<'_, usize, f64>,
+    par: Par,
+) -> usize {
+    let req = symbolic.factorize_numeric_llt_scratch::<f32>(par, Default::default());
+    symbolic.len_val() * std::mem::size_of::<f32>()
+        + req.size_bytes()
+        + a.val().len() * std::mem::size_of::<f32>()
 }
 
 /// Errors with [`SolveError::OutOfMemory`] when `needed` bytes exceed the [`memory_limit`].
@@ -198,7 +229,7 @@ fn stats_of(symbolic: &SymbolicCholesky<usize>) -> FactorStats {
 /// min_j L_jj² / A_jj over the permuted order, with the original dof of j (A_jj ≤ 0 counts as 0).
 fn min_pivot(
     symbolic: &SymbolicCholesky<usize>,
-    values: &[f64],
+    value: impl Fn(usize) -> f64,
     a: SparseColMatRef<'_, usize, f64>,
 ) -> (f64, usize) {
     let n = symbolic.nrows();
@@ -223,7 +254,7 @@ fn min_pivot(
             let (cp, ri) = (s.col_ptr(), s.row_idx());
             for j in 0..n {
                 if let Some(p) = (cp[j]..cp[j + 1]).find(|&p| ri[p] == j) {
-                    visit(j, values[p]);
+                    visit(j, value(p));
                 }
             }
         }
@@ -238,7 +269,7 @@ fn min_pivot(
                 let w = end[k] - beg[k];
                 let rows = w + rp[k + 1] - rp[k];
                 for t in 0..w {
-                    visit(beg[k] + t, values[vp[k] + t * rows + t]);
+                    visit(beg[k] + t, value(vp[k] + t * rows + t));
                 }
             }
         }
@@ -294,14 +325,83 @@ impl SparseLlt {
                 .map_or(pos, |p| p.arrays().0[pos.min(p.arrays().0.len() - 1)]);
             return Err(SolveError::NonPositivePivot { dof });
         }
-        let min_pivot = min_pivot(&symbolic, &values, a);
+        let min_pivot = min_pivot(&symbolic, |p| values[p], a);
         Ok(Self {
             symbolic,
-            values,
+            values: Values::F64(values),
             stats,
             par,
             min_pivot,
         })
+    }
+
+    /// Mixed precision: the numeric factorization of `a` rounded to f32 (half the memory and
+    /// bandwidth of an f64 L); the solves read it into f64 arithmetic, and
+    /// [`SparseLlt::solve_refined_in_place`] recovers the f64 solution by iterative refinement
+    /// against `a`. Only for a supernodal analysis (a simplicial one is factored in f64). A
+    /// non-positive f32 pivot is [`SolveError::NonPositivePivot`], as in f64: the caller decides
+    /// whether to factor in f64 instead.
+    pub fn factor_mixed_with(
+        symbolic: SymbolicCholesky<usize>,
+        stats: FactorStats,
+        a: SparseColMatRef<'_, usize, f64>,
+        par: Par,
+    ) -> Result<Self, SolveError> {
+        if !matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)) {
+            return Self::factor_with(symbolic, stats, a, par);
+        }
+        if a.val().iter().any(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite("matrix to factor"));
+        }
+        check_memory(factor_memory_mixed(&symbolic, a, par), a.nrows())?;
+        let mut values = vec![0.0f32; symbolic.len_val()];
+        {
+            let (pattern, val) = a.parts();
+            let rounded: Vec<f32> = val.iter().map(|&v| v as f32).collect();
+            if rounded.iter().any(|v| !v.is_finite()) {
+                return Err(SolveError::Invalid(
+                    "matrix entries overflow single precision: factor in f64".into(),
+                ));
+            }
+            let a32 = SparseColMatRef::<usize, f32>::new(pattern, &rounded);
+            let req = symbolic.factorize_numeric_llt_scratch::<f32>(par, Default::default());
+            let mut buf = MemBuffer::new(req);
+            let res = symbolic.factorize_numeric_llt(
+                &mut values,
+                a32,
+                Side::Lower,
+                LltRegularization::default(),
+                par,
+                MemStack::new(&mut buf),
+                Default::default(),
+            );
+            if let Err(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }) =
+                res
+            {
+                // supernodal: 0-based, permuted order (see factor_with)
+                let dof = symbolic
+                    .perm()
+                    .map_or(index, |p| p.arrays().0[index.min(p.arrays().0.len() - 1)]);
+                return Err(SolveError::NonPositivePivot { dof });
+            }
+        }
+        let min_pivot = min_pivot(&symbolic, |p| f64::from(values[p]), a);
+        let factor_bytes = values.len() * std::mem::size_of::<f32>();
+        Ok(Self {
+            symbolic,
+            values: Values::F32(values),
+            stats: FactorStats {
+                factor_bytes,
+                ..stats
+            },
+            par,
+            min_pivot,
+        })
+    }
+
+    /// Whether L is stored in f32 ([`SparseLlt::factor_mixed_with`]).
+    pub fn is_mixed(&self) -> bool {
+        matches!(self.values, Values::F32(_))
     }
 
     /// The smallest L_jj² / A_jj over all pivots and the (original) dof where it occurs: ≈ 1 for a
@@ -316,10 +416,22 @@ impl SparseLlt {
         &self.symbolic
     }
 
-    /// The stored values of L.
+    /// The stored values of an f32 factor.
+    #[cfg(test)]
+    pub(crate) fn values_f32(&self) -> &[f32] {
+        match &self.values {
+            Values::F32(v) => v,
+            Values::F64(_) => panic!("f64 factor"),
+        }
+    }
+
+    /// The stored values of L (f64 factors).
     #[cfg(test)]
     pub(crate) fn values(&self) -> &[f64] {
-        &self.values
+        match &self.values {
+            Values::F64(v) => v,
+            Values::F32(_) => panic!("f32 factor"),
+        }
     }
 
     /// Dimension.
@@ -351,16 +463,12 @@ impl SparseLlt {
         self.solve_with(rhs, self.par);
     }
 
-    fn solve_with(&self, mut rhs: MatMut<'_, f64>, par: Par) {
+    fn solve_with(&self, rhs: MatMut<'_, f64>, par: Par) {
         if let SymbolicCholeskyRaw::Supernodal(s) = self.symbolic.raw() {
-            let f = supernodal::Supernodal::new(s, &self.values);
             let perm = self.symbolic.perm().map(|p| p.arrays().0);
-            let mut rest = rhs.as_mut();
-            while rest.ncols() > 0 {
-                let w = rest.ncols().min(supernodal::MAX_LANES);
-                let (a, b) = rest.split_at_col_mut(w);
-                supernodal::solve_in_place(&f, perm, a);
-                rest = b;
+            match &self.values {
+                Values::F64(v) => solve_chunks(&supernodal::Supernodal::new(s, v), perm, rhs),
+                Values::F32(v) => solve_chunks(&supernodal::Supernodal::new(s, v), perm, rhs),
             }
             return;
         }
@@ -374,7 +482,12 @@ impl SparseLlt {
     }
 
     fn solve_with_faer(&self, rhs: MatMut<'_, f64>, par: Par) {
-        let llt = LltRef::new(&self.symbolic, &self.values);
+        let Values::F64(values) = &self.values else {
+            // faer's solve is for f64 factors; an f32 one (always supernodal) takes the row
+            // kernels, which read it in f64 arithmetic
+            return self.solve_with(rhs, par);
+        };
+        let llt = LltRef::new(&self.symbolic, values);
         let req = self
             .symbolic
             .solve_in_place_scratch::<f64>(rhs.ncols(), par);
@@ -382,10 +495,86 @@ impl SparseLlt {
         llt.solve_in_place_with_conj(Conj::No, rhs, par, MemStack::new(&mut buf));
     }
 
+    /// Solves A X = B for a factor of A itself: one solve for an f64 factor; for a mixed (f32)
+    /// factor, iterative refinement X ← X + (L̃L̃ᵀ)⁻¹(B − A X) with the residual in f64
+    /// (Wilkinson's refinement; the error shrinks by ρ ≈ ‖I − (L̃L̃ᵀ)⁻¹A‖ per step), until the
+    /// error left, estimated from the last two corrections (δₖ²/δₖ₋₁, relative to each column's
+    /// size), is at most `target`, or the corrections stop shrinking at f64 rounding
+    /// (≤ [`REFINE_FLOOR`]). Returns the refinement steps taken (solves beyond the first). A
+    /// correction that shrinks by less than half per step above that floor means the f32 factor
+    /// is too far from A (ill conditioning): [`SolveError::Refinement`], and the caller factors in
+    /// f64.
+    pub fn solve_refined_in_place(
+        &self,
+        a: SparseColMatRef<'_, usize, f64>,
+        mut rhs: MatMut<'_, f64>,
+        target: f64,
+    ) -> Result<usize, SolveError> {
+        if !self.is_mixed() {
+            self.solve_in_place(rhs);
+            return Ok(0);
+        }
+        let b = rhs.to_owned();
+        self.solve_in_place(rhs.as_mut());
+        let mut last = f64::INFINITY;
+        for step in 1..=MAX_REFINE {
+            let mut r = &b - sparse_ops::spmm(a, rhs.as_ref());
+            self.solve_in_place(r.as_mut());
+            let mut worst = 0.0f64;
+            for c in 0..r.ncols() {
+                let dx = r.col(c).norm_max();
+                let x = rhs.as_ref().col(c).norm_max();
+                worst = worst.max(if x > 0.0 { dx / x } else { dx });
+            }
+            for c in 0..r.ncols() {
+                for (x, d) in rhs.as_mut().col_mut(c).iter_mut().zip(r.col(c).iter()) {
+                    *x += d;
+                }
+            }
+            if worst.is_nan() {
+                break;
+            }
+            // the error left after this step ≈ δₖ·(δₖ/δₖ₋₁) once two corrections are known
+            let shrink = worst / last;
+            if worst <= target || (last.is_finite() && worst * shrink <= target) {
+                return Ok(step);
+            }
+            if shrink > 0.5 {
+                if worst <= REFINE_FLOOR {
+                    return Ok(step);
+                }
+                return Err(SolveError::Refinement {
+                    step,
+                    correction: worst,
+                });
+            }
+            last = worst;
+        }
+        Err(SolveError::Refinement {
+            step: MAX_REFINE,
+            correction: last,
+        })
+    }
+
     /// Returns A⁻¹ B.
     pub fn solve(&self, rhs: MatRef<'_, f64>) -> Mat<f64> {
         let mut x = rhs.to_owned();
         self.solve_in_place(x.as_mut());
         x
+    }
+}
+
+/// Solves with the row kernels, [`supernodal::MAX_LANES`] columns at a time.
+fn solve_chunks<T: supernodal::Entry>(
+    f: &supernodal::Supernodal<'_, T>,
+    perm: Option<&[usize]>,
+    mut rhs: MatMut<'_, f64>,
+) {
+    let mut rest = rhs.as_mut();
+    while rest.ncols() > 0 {
+        let w = rest.ncols().min(supernodal::MAX_LANES);
+        let (a, b) = rest.split_at_col_mut(w);
+        supernodal::solve_in_place(f, perm, a);
+        rest = b;
     }
 }

@@ -50,6 +50,8 @@ pub struct BlockResult {
     pub vectors: Mat<f64>,
     /// Number of vectors solved with the factorization.
     pub solves: usize,
+    /// Triangular solves spent refining solves with a mixed-precision factor (vectors × steps).
+    pub refinement_solves: usize,
     /// Number of block steps.
     pub steps: usize,
     /// Number of thick restarts.
@@ -76,6 +78,47 @@ fn gs(v: MatRef<'_, f64>, mv: MatRef<'_, f64>, mut w: Mat<f64>) -> (Mat<f64>, Ma
     (c, w)
 }
 
+/// A ← (K − σM)⁻¹ X with the factorization of K − σM: one solve with an f64 factor; with a
+/// mixed-precision (f32) one, refined against K (σ must be 0: the factor is of K itself) until
+/// the error left is below `target`. Returns the refinement solves beyond the first.
+pub(crate) fn shift_inverse_solve(
+    llt: &SparseLlt,
+    k: SparseColMatRef<'_, usize, f64>,
+    sigma: f64,
+    x: faer::MatMut<'_, f64>,
+    target: f64,
+) -> Result<usize, SolveError> {
+    if !llt.is_mixed() {
+        llt.solve_in_place(x);
+        return Ok(0);
+    }
+    if sigma != 0.0 {
+        return Err(SolveError::Invalid(
+            "a mixed-precision factorization is of K itself (shift 0)".into(),
+        ));
+    }
+    llt.solve_refined_in_place(k, x, target)
+}
+
+/// The operator of one run: the factor, the matrix it refines against, σ and the target.
+struct Operator<'a> {
+    llt: &'a SparseLlt,
+    k: SparseColMatRef<'a, usize, f64>,
+    sigma: f64,
+    target: f64,
+    /// Triangular solves spent on refinement (vectors × steps).
+    refinement: std::cell::Cell<usize>,
+}
+
+impl Operator<'_> {
+    fn solve(&self, mut x: faer::MatMut<'_, f64>) -> Result<(), SolveError> {
+        let cols = x.ncols();
+        let steps = shift_inverse_solve(self.llt, self.k, self.sigma, x.as_mut(), self.target)?;
+        self.refinement.set(self.refinement.get() + steps * cols);
+        Ok(())
+    }
+}
+
 /// (Q, M Q, R) of an M-QR.
 type Mqr = (Mat<f64>, Mat<f64>, Mat<f64>);
 
@@ -85,7 +128,7 @@ type Mqr = (Mat<f64>, Mat<f64>, Mat<f64>);
 #[allow(clippy::too_many_arguments)]
 fn mqr(
     m: SparseColMatRef<'_, usize, f64>,
-    llt: &SparseLlt,
+    op: &Operator<'_>,
     v: MatRef<'_, f64>,
     mv: MatRef<'_, f64>,
     w: Mat<f64>,
@@ -127,7 +170,7 @@ fn mqr(
         // pad with A·random, orthogonal to v and to the kept part of q
         let z = random_block(n, b - kq, seed);
         let mut pz = spmm(m, z.as_ref());
-        llt.solve_in_place(pz.as_mut());
+        op.solve(pz.as_mut())?;
         *solves += b - kq;
         let mut basis = Mat::<f64>::zeros(n, v.ncols() + kq);
         let mut mbasis = Mat::<f64>::zeros(n, v.ncols() + kq);
@@ -181,7 +224,6 @@ pub fn block_shift_invert(
     sigma: f64,
     prm: &BlockParams,
 ) -> Result<BlockResult, SolveError> {
-    let _ = k;
     let n = m.nrows();
     let b = prm.block.max(1);
     let mut count = prm.count;
@@ -195,13 +237,20 @@ pub fn block_shift_invert(
     // with M (in the M-QR) instead of four.
     let seconds_solve = std::cell::Cell::new(0.0);
     let mut seconds_orth = 0.0;
-    let apply = |mx: &Mat<f64>, solves: &mut usize| {
+    let op = Operator {
+        llt,
+        k,
+        sigma,
+        target: prm.tol,
+        refinement: std::cell::Cell::new(0),
+    };
+    let apply = |mx: &Mat<f64>, solves: &mut usize| -> Result<Mat<f64>, SolveError> {
         let t = std::time::Instant::now();
         let mut w = mx.clone();
-        llt.solve_in_place(w.as_mut());
+        op.solve(w.as_mut())?;
         *solves += mx.ncols();
         seconds_solve.set(seconds_solve.get() + t.elapsed().as_secs_f64());
-        w
+        Ok(w)
     };
     // V and M·V live in preallocated n × max_basis buffers: the basis grows by writing b columns
     // and shrinks at a restart, never by copying the whole basis into a new matrix (that copy
@@ -210,12 +259,12 @@ pub fn block_shift_invert(
     let mut mvbuf = Mat::<f64>::zeros(n, max_basis);
     // start: V = MQR(A Z), then A V = V T + F Eᵀ
     let z = random_block(n, b, &mut seed);
-    let w0 = apply(&spmm(m, z.as_ref()), &mut solves);
+    let w0 = apply(&spmm(m, z.as_ref()), &mut solves)?;
     let empty = Mat::<f64>::zeros(n, 0);
     let s0 = w0.norm_max().powi(2);
     let (q0, mq0, _) = mqr(
         m,
-        llt,
+        &op,
         empty.as_ref(),
         empty.as_ref(),
         w0,
@@ -226,7 +275,7 @@ pub fn block_shift_invert(
     vbuf.as_mut().subcols_mut(0, b).copy_from(&q0);
     mvbuf.as_mut().subcols_mut(0, b).copy_from(&mq0);
     let mut p = b;
-    let w = apply(&mq0, &mut solves);
+    let w = apply(&mq0, &mut solves)?;
     let (c, mut f) = gs(vbuf.as_ref().subcols(0, p), mvbuf.as_ref().subcols(0, p), w);
     let mut t = c;
     let mut e = Mat::<f64>::identity(b, b);
@@ -239,7 +288,7 @@ pub fn block_shift_invert(
         let clock = std::time::Instant::now();
         let (q, mq, rf) = mqr(
             m,
-            llt,
+            &op,
             vbuf.as_ref().subcols(0, p),
             mvbuf.as_ref().subcols(0, p),
             f,
@@ -298,6 +347,7 @@ pub fn block_shift_invert(
                 values,
                 vectors: x,
                 solves,
+                refinement_solves: op.refinement.get(),
                 steps: step - 1,
                 restarts,
                 seconds_solve: seconds_solve.get(),
@@ -318,7 +368,7 @@ pub fn block_shift_invert(
             restarts += 1;
         }
         // expand with Q: A Q = [V Q] C + F'
-        let aq = apply(&mq, &mut solves);
+        let aq = apply(&mq, &mut solves)?;
         vbuf.as_mut().subcols_mut(p, b).copy_from(&q);
         mvbuf.as_mut().subcols_mut(p, b).copy_from(&mq);
         let clock = std::time::Instant::now();

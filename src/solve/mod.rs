@@ -90,6 +90,13 @@ pub enum SolveError {
         value: f64,
         limit: f64,
     },
+    /// Iterative refinement on a mixed-precision (f32) factor did not converge: the matrix is too
+    /// ill-conditioned for f32 (the caller factors in f64).
+    #[error(
+        "iterative refinement on the single-precision factor stalled at step {step} (relative \
+         correction {correction:e}): the matrix is too ill-conditioned for mixed precision"
+    )]
+    Refinement { step: usize, correction: f64 },
     /// Bad input.
     #[error("invalid input: {0}")]
     Invalid(String),
@@ -112,6 +119,35 @@ pub enum SolveError {
     },
 }
 
+/// Arithmetic of the Craig–Bampton interior's factorization (K_ii), `build --precision`.
+///
+/// Measured (docs/benchmarks.md, "Mixed precision"): an f32 factor takes half the memory of L
+/// and 0.5–0.6× the factorization time, but every solve then needs iterative refinement against
+/// K_ii (3–4 triangular solves where f64 needs one), so the eigen phase costs more than the
+/// factorization saves. Hence f64 by default, and f32 where the f64 factor does not fit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Precision {
+    /// f64, unless the f64 factor would exceed the memory limit and the f32 one fits.
+    #[default]
+    Auto,
+    /// Always f64.
+    F64,
+    /// An f32 factor with refined solves; f64 again where refinement stalls (ill conditioning).
+    Mixed,
+}
+
+impl std::str::FromStr for Precision {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => Ok(Self::Auto),
+            "f64" => Ok(Self::F64),
+            "mixed" => Ok(Self::Mixed),
+            other => Err(format!("{other}: expected auto, f64 or mixed")),
+        }
+    }
+}
+
 /// What to compute.
 #[derive(Clone, Debug)]
 pub struct EigenSpec {
@@ -130,6 +166,8 @@ pub struct EigenSpec {
     pub dofs_per_node: Option<usize>,
     /// Parallelism of the dense kernels inside the factorization and solves.
     pub par: Par,
+    /// Arithmetic of a Craig–Bampton interior's factorization (other factorizations are f64).
+    pub precision: Precision,
     /// Band mode (an eigenvalue ω², e.g. from `--fmax`): every eigenvalue ≤ `upper` plus the
     /// first one above it, from one iteration whose count starts at `count` and grows as needed
     /// (see [`eigen::BlockParams::upper`]). The dense path, and a band that outgrows the sparse
@@ -151,6 +189,7 @@ impl Default for EigenSpec {
             max_basis: None,
             dofs_per_node: None,
             par: Par::Seq,
+            precision: Precision::Auto,
             upper: None,
             verify_band: false,
         }
@@ -166,6 +205,8 @@ pub struct EigenInfo {
     pub dense: bool,
     /// Vectors solved with the factorization.
     pub solves: usize,
+    /// Extra triangular solves spent refining with a mixed-precision factor (vectors × steps).
+    pub refinement_solves: usize,
     /// Block steps and thick restarts.
     pub steps: usize,
     /// Thick restarts.
@@ -448,6 +489,7 @@ pub fn lowest_modes_factored(
         shift: sigma,
         dense: false,
         solves: r.solves,
+        refinement_solves: r.refinement_solves,
         steps: r.steps,
         restarts: r.restarts,
         factor: Some(llt.stats.clone()),
@@ -468,8 +510,10 @@ pub fn lowest_modes_factored(
                 what: "relative residual",
                 ..
             }) if step < REFINE_STEPS => {
-                let mx = sparse_ops::spmm(m.as_ref(), x.as_ref());
-                x = llt.solve(mx.as_ref());
+                x = sparse_ops::spmm(m.as_ref(), x.as_ref());
+                info.refinement_solves +=
+                    eigen::shift_inverse_solve(llt, k.as_ref(), sigma, x.as_mut(), spec.tol)?
+                        * x.ncols();
                 info.solves += x.ncols();
                 vals = vec![0.0; x.ncols()];
                 step += 1;

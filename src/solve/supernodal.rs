@@ -28,8 +28,45 @@ const PANEL: usize = 32;
 /// Widest block solved in one pass; wider right-hand sides are split into chunks of this many.
 pub(crate) const MAX_LANES: usize = 16;
 
+/// A stored value of L: f64, or f32 for a mixed-precision factor (read into f64 registers, so
+/// that the solves run in f64 arithmetic on a factor of half the bytes).
+pub(crate) trait Entry: Copy + Send + Sync + 'static {
+    fn to_f64(self) -> f64;
+    /// The value at `p` in all four f64 lanes (one load; for f32 one conversion).
+    ///
+    /// # Safety
+    /// `p` is valid for a read, and the CPU has AVX (the callers are the AVX2 kernels).
+    #[cfg(target_arch = "x86_64")]
+    unsafe fn splat(p: *const Self) -> std::arch::x86_64::__m256d;
+}
+
+impl Entry for f64 {
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    unsafe fn splat(p: *const Self) -> std::arch::x86_64::__m256d {
+        std::arch::x86_64::_mm256_broadcast_sd(&*p)
+    }
+}
+
+impl Entry for f32 {
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    unsafe fn splat(p: *const Self) -> std::arch::x86_64::__m256d {
+        use std::arch::x86_64::*;
+        _mm256_cvtps_pd(_mm_broadcast_ss(&*p))
+    }
+}
+
 /// The parts of a supernodal factor the solves read.
-pub(crate) struct Supernodal<'a> {
+pub(crate) struct Supernodal<'a, T: Entry> {
     /// First column of each supernode.
     begin: &'a [usize],
     /// Past-the-end column of each supernode.
@@ -40,27 +77,27 @@ pub(crate) struct Supernodal<'a> {
     rows: &'a [usize],
     /// Start of each supernode's values: a column-major (w + r) × w block, lower triangle on top.
     val_ptr: &'a [usize],
-    values: &'a [f64],
+    values: &'a [T],
     n: usize,
 }
 
 /// One supernode: first column, width, rows below it, and its column-major (w + r) × w values.
-struct Node<'a> {
+struct Node<'a, T> {
     c0: usize,
     w: usize,
     pattern: &'a [usize],
-    l: &'a [f64],
+    l: &'a [T],
 }
 
-impl Node<'_> {
+impl<T> Node<'_, T> {
     /// Leading dimension of the value block.
     fn ld(&self) -> usize {
         self.w + self.pattern.len()
     }
 }
 
-impl<'a> Supernodal<'a> {
-    pub(crate) fn new(s: &'a SymbolicSupernodalCholesky<usize>, values: &'a [f64]) -> Self {
+impl<'a, T: Entry> Supernodal<'a, T> {
+    pub(crate) fn new(s: &'a SymbolicSupernodalCholesky<usize>, values: &'a [T]) -> Self {
         Self {
             begin: s.supernode_begin(),
             end: s.supernode_end(),
@@ -76,7 +113,7 @@ impl<'a> Supernodal<'a> {
         self.begin.len()
     }
 
-    fn node(&self, s: usize) -> Node<'a> {
+    fn node(&self, s: usize) -> Node<'a, T> {
         let c0 = self.begin[s];
         let w = self.end[s] - c0;
         let l = &self.values[self.val_ptr[s]..self.val_ptr[s + 1]];
@@ -91,24 +128,33 @@ impl<'a> Supernodal<'a> {
 
 /// Solves L Lᵀ X = B in place for the columns of `rhs` (at most [`MAX_LANES`]), `perm[new] =
 /// old` being the factor's fill-reducing permutation.
-pub(crate) fn solve_in_place(f: &Supernodal<'_>, perm: Option<&[usize]>, rhs: MatMut<'_, f64>) {
+pub(crate) fn solve_in_place<T: Entry>(
+    f: &Supernodal<'_, T>,
+    perm: Option<&[usize]>,
+    rhs: MatMut<'_, f64>,
+) {
     solve_dispatch(f, perm, rhs, true);
 }
 
-fn solve_dispatch(f: &Supernodal<'_>, perm: Option<&[usize]>, rhs: MatMut<'_, f64>, simd: bool) {
+fn solve_dispatch<T: Entry>(
+    f: &Supernodal<'_, T>,
+    perm: Option<&[usize]>,
+    rhs: MatMut<'_, f64>,
+    simd: bool,
+) {
     assert!(rhs.ncols() <= MAX_LANES && rhs.nrows() == f.n);
     match rhs.ncols() {
         0 => {}
-        1..=4 => solve_lanes::<4, 1>(f, perm, rhs, simd),
-        5..=8 => solve_lanes::<8, 2>(f, perm, rhs, simd),
-        9..=12 => solve_lanes::<12, 3>(f, perm, rhs, simd),
-        _ => solve_lanes::<16, 4>(f, perm, rhs, simd),
+        1..=4 => solve_lanes::<T, 4, 1>(f, perm, rhs, simd),
+        5..=8 => solve_lanes::<T, 8, 2>(f, perm, rhs, simd),
+        9..=12 => solve_lanes::<T, 12, 3>(f, perm, rhs, simd),
+        _ => solve_lanes::<T, 16, 4>(f, perm, rhs, simd),
     }
 }
 
 /// `W = 4·Q` lanes.
-fn solve_lanes<const W: usize, const Q: usize>(
-    f: &Supernodal<'_>,
+fn solve_lanes<T: Entry, const W: usize, const Q: usize>(
+    f: &Supernodal<'_, T>,
     perm: Option<&[usize]>,
     mut rhs: MatMut<'_, f64>,
     simd: bool,
@@ -121,12 +167,12 @@ fn solve_lanes<const W: usize, const Q: usize>(
         if simd && is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
             // SAFETY: the CPU has AVX2 and FMA (checked just above), and `x` holds one row per
             // column of the factor, which is what the kernels index.
-            unsafe { avx2::solve::<W, Q>(f, &mut x) };
+            unsafe { avx2::solve::<T, W, Q>(f, &mut x) };
             done = true;
         }
     }
     if !done {
-        portable::solve::<W>(f, &mut x);
+        portable::solve::<T, W>(f, &mut x);
     }
     rows::from_rows(&x, rhs.as_mut(), perm);
 }
@@ -135,19 +181,23 @@ fn solve_lanes<const W: usize, const Q: usize>(
 #[allow(clippy::needless_range_loop)]
 /// The same substitutions in plain Rust, column of L by column of L (machines without AVX2/FMA).
 mod portable {
-    use super::{Row, Supernodal};
+    use super::{Entry, Row, Supernodal};
 
-    pub(super) fn solve<const W: usize>(f: &Supernodal<'_>, x: &mut [Row<W>]) {
+    pub(super) fn solve<T: Entry, const W: usize>(f: &Supernodal<'_, T>, x: &mut [Row<W>]) {
         for s in 0..f.n_supernodes() {
             let nd = f.node(s);
             let ld = nd.ld();
             for t in 0..nd.w {
                 let col = &nd.l[t * ld..(t + 1) * ld];
-                let d = 1.0 / col[t];
+                let d = 1.0 / col[t].to_f64();
                 let xt = x[nd.c0 + t].0.map(|v| v * d);
                 x[nd.c0 + t].0 = xt;
-                let below = (t + 1..nd.w).map(|i| (nd.c0 + i, col[i]));
-                let outer = nd.pattern.iter().zip(&col[nd.w..]).map(|(&p, &v)| (p, v));
+                let below = (t + 1..nd.w).map(|i| (nd.c0 + i, col[i].to_f64()));
+                let outer = nd
+                    .pattern
+                    .iter()
+                    .zip(&col[nd.w..])
+                    .map(|(&p, &v)| (p, v.to_f64()));
                 for (row, v) in below.chain(outer) {
                     for c in 0..W {
                         x[row].0[c] -= v * xt[c];
@@ -161,14 +211,18 @@ mod portable {
             for t in (0..nd.w).rev() {
                 let col = &nd.l[t * ld..(t + 1) * ld];
                 let mut acc = x[nd.c0 + t].0;
-                let below = (t + 1..nd.w).map(|i| (nd.c0 + i, col[i]));
-                let outer = nd.pattern.iter().zip(&col[nd.w..]).map(|(&p, &v)| (p, v));
+                let below = (t + 1..nd.w).map(|i| (nd.c0 + i, col[i].to_f64()));
+                let outer = nd
+                    .pattern
+                    .iter()
+                    .zip(&col[nd.w..])
+                    .map(|(&p, &v)| (p, v.to_f64()));
                 for (row, v) in below.chain(outer) {
                     for c in 0..W {
                         acc[c] -= v * x[row].0[c];
                     }
                 }
-                let d = 1.0 / col[t];
+                let d = 1.0 / col[t].to_f64();
                 x[nd.c0 + t].0 = acc.map(|v| v * d);
             }
         }
@@ -181,7 +235,7 @@ mod avx2 {
     //! `is_x86_feature_detected!`) and rows of `W = 4·Q` lanes; the index arithmetic stays inside
     //! the slices, which each function asserts once before its loops.
 
-    use super::{Node, Row, Supernodal, PANEL};
+    use super::{Entry, Node, Row, Supernodal, PANEL};
     use std::arch::x86_64::*;
 
     /// Where the rows of a product live: a contiguous run of X (rows inside a supernode's
@@ -221,21 +275,21 @@ mod avx2 {
 
     /// Forward then backward substitution on the permuted rows `x` (one per column of L).
     #[target_feature(enable = "avx2,fma")]
-    pub(super) unsafe fn solve<const W: usize, const Q: usize>(
-        f: &Supernodal<'_>,
+    pub(super) unsafe fn solve<T: Entry, const W: usize, const Q: usize>(
+        f: &Supernodal<'_, T>,
         x: &mut [Row<W>],
     ) {
         assert_eq!(x.len(), f.n);
         let xp = x.as_mut_ptr() as *mut f64;
         for s in 0..f.n_supernodes() {
             let nd = f.node(s);
-            forward_triangle::<W, Q>(&nd, xp);
-            forward_update::<W, Q, _>(&nd, nd.w, 0, nd.w, Pattern(nd.pattern), xp);
+            forward_triangle::<T, W, Q>(&nd, xp);
+            forward_update::<T, W, Q, _>(&nd, nd.w, 0, nd.w, Pattern(nd.pattern), xp);
         }
         for s in (0..f.n_supernodes()).rev() {
             let nd = f.node(s);
-            backward_update::<W, Q, _>(&nd, nd.w, 0, nd.w, Pattern(nd.pattern), xp);
-            backward_triangle::<W, Q>(&nd, xp);
+            backward_update::<T, W, Q, _>(&nd, nd.w, 0, nd.w, Pattern(nd.pattern), xp);
+            backward_triangle::<T, W, Q>(&nd, xp);
         }
     }
 
@@ -253,8 +307,8 @@ mod avx2 {
     /// X[rows[i]] -= Σ_{t<k} L[row0 + i, col0 + t] · X[c0 + col0 + t] for all rows: the forward
     /// product, KT columns of L at a time.
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn forward_update<const W: usize, const Q: usize, R: Rows>(
-        nd: &Node<'_>,
+    unsafe fn forward_update<T: Entry, const W: usize, const Q: usize, R: Rows>(
+        nd: &Node<'_, T>,
         row0: usize,
         col0: usize,
         k: usize,
@@ -267,14 +321,14 @@ mod avx2 {
             let take = (k - t).min(kt);
             let c = col0 + t;
             match take {
-                8 => fwd_tile::<W, Q, 8, R>(nd, row0, c, rows, xp),
-                7 => fwd_tile::<W, Q, 7, R>(nd, row0, c, rows, xp),
-                6 => fwd_tile::<W, Q, 6, R>(nd, row0, c, rows, xp),
-                5 => fwd_tile::<W, Q, 5, R>(nd, row0, c, rows, xp),
-                4 => fwd_tile::<W, Q, 4, R>(nd, row0, c, rows, xp),
-                3 => fwd_tile::<W, Q, 3, R>(nd, row0, c, rows, xp),
-                2 => fwd_tile::<W, Q, 2, R>(nd, row0, c, rows, xp),
-                _ => fwd_tile::<W, Q, 1, R>(nd, row0, c, rows, xp),
+                8 => fwd_tile::<T, W, Q, 8, R>(nd, row0, c, rows, xp),
+                7 => fwd_tile::<T, W, Q, 7, R>(nd, row0, c, rows, xp),
+                6 => fwd_tile::<T, W, Q, 6, R>(nd, row0, c, rows, xp),
+                5 => fwd_tile::<T, W, Q, 5, R>(nd, row0, c, rows, xp),
+                4 => fwd_tile::<T, W, Q, 4, R>(nd, row0, c, rows, xp),
+                3 => fwd_tile::<T, W, Q, 3, R>(nd, row0, c, rows, xp),
+                2 => fwd_tile::<T, W, Q, 2, R>(nd, row0, c, rows, xp),
+                _ => fwd_tile::<T, W, Q, 1, R>(nd, row0, c, rows, xp),
             }
             t += take;
         }
@@ -282,8 +336,8 @@ mod avx2 {
 
     /// One pass of [`forward_update`] with KT columns `col0..col0+KT` of L.
     #[inline(always)]
-    unsafe fn fwd_tile<const W: usize, const Q: usize, const KT: usize, R: Rows>(
-        nd: &Node<'_>,
+    unsafe fn fwd_tile<T: Entry, const W: usize, const Q: usize, const KT: usize, R: Rows>(
+        nd: &Node<'_, T>,
         row0: usize,
         col0: usize,
         rows: R,
@@ -299,7 +353,7 @@ mod avx2 {
                 *v = _mm256_load_pd(src.add(4 * q));
             }
         }
-        let base: [*const f64; KT] =
+        let base: [*const T; KT] =
             std::array::from_fn(|m| nd.l.as_ptr().add((col0 + m) * ld + row0));
         for i in 0..r {
             let p = xp.add(W * rows.at(i));
@@ -308,7 +362,7 @@ mod avx2 {
                 *a = _mm256_load_pd(p.add(4 * q));
             }
             for m in 0..KT {
-                let v = _mm256_broadcast_sd(&*base[m].add(i));
+                let v = T::splat(base[m].add(i));
                 for q in 0..Q {
                     acc[q] = _mm256_fnmadd_pd(v, xk[m][q], acc[q]);
                 }
@@ -322,8 +376,8 @@ mod avx2 {
     /// X[c0 + col0 + t] -= Σ_i L[row0 + i, col0 + t] · X[rows[i]] for t < k: the backward
     /// (transposed) product, MR columns of L at a time.
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn backward_update<const W: usize, const Q: usize, R: Rows>(
-        nd: &Node<'_>,
+    unsafe fn backward_update<T: Entry, const W: usize, const Q: usize, R: Rows>(
+        nd: &Node<'_, T>,
         row0: usize,
         col0: usize,
         k: usize,
@@ -336,14 +390,14 @@ mod avx2 {
             let take = (k - t).min(mr);
             let c = col0 + t;
             match take {
-                8 => bwd_tile::<W, Q, 8, R>(nd, row0, c, rows, xp),
-                7 => bwd_tile::<W, Q, 7, R>(nd, row0, c, rows, xp),
-                6 => bwd_tile::<W, Q, 6, R>(nd, row0, c, rows, xp),
-                5 => bwd_tile::<W, Q, 5, R>(nd, row0, c, rows, xp),
-                4 => bwd_tile::<W, Q, 4, R>(nd, row0, c, rows, xp),
-                3 => bwd_tile::<W, Q, 3, R>(nd, row0, c, rows, xp),
-                2 => bwd_tile::<W, Q, 2, R>(nd, row0, c, rows, xp),
-                _ => bwd_tile::<W, Q, 1, R>(nd, row0, c, rows, xp),
+                8 => bwd_tile::<T, W, Q, 8, R>(nd, row0, c, rows, xp),
+                7 => bwd_tile::<T, W, Q, 7, R>(nd, row0, c, rows, xp),
+                6 => bwd_tile::<T, W, Q, 6, R>(nd, row0, c, rows, xp),
+                5 => bwd_tile::<T, W, Q, 5, R>(nd, row0, c, rows, xp),
+                4 => bwd_tile::<T, W, Q, 4, R>(nd, row0, c, rows, xp),
+                3 => bwd_tile::<T, W, Q, 3, R>(nd, row0, c, rows, xp),
+                2 => bwd_tile::<T, W, Q, 2, R>(nd, row0, c, rows, xp),
+                _ => bwd_tile::<T, W, Q, 1, R>(nd, row0, c, rows, xp),
             }
             t += take;
         }
@@ -351,8 +405,8 @@ mod avx2 {
 
     /// One tile of [`backward_update`]: MR columns `col0..col0+MR` of L.
     #[inline(always)]
-    unsafe fn bwd_tile<const W: usize, const Q: usize, const MR: usize, R: Rows>(
-        nd: &Node<'_>,
+    unsafe fn bwd_tile<T: Entry, const W: usize, const Q: usize, const MR: usize, R: Rows>(
+        nd: &Node<'_, T>,
         row0: usize,
         col0: usize,
         rows: R,
@@ -362,7 +416,7 @@ mod avx2 {
         let r = rows.len();
         assert!(row0 + r <= ld && (col0 + MR) * ld <= nd.l.len());
         let mut acc = [[_mm256_setzero_pd(); Q]; MR];
-        let base: [*const f64; MR] =
+        let base: [*const T; MR] =
             std::array::from_fn(|m| nd.l.as_ptr().add((col0 + m) * ld + row0));
         for i in 0..r {
             let g = xp.add(W * rows.at(i));
@@ -371,7 +425,7 @@ mod avx2 {
                 *v = _mm256_load_pd(g.add(4 * q));
             }
             for m in 0..MR {
-                let v = _mm256_broadcast_sd(&*base[m].add(i));
+                let v = T::splat(base[m].add(i));
                 for q in 0..Q {
                     acc[m][q] = _mm256_fmadd_pd(v, gi[q], acc[m][q]);
                 }
@@ -391,7 +445,10 @@ mod avx2 {
     /// L₁₁ Y = X₁ for a supernode's triangle: panels of [`PANEL`] columns, each solved column by
     /// column, then the rows below it in the triangle updated by [`forward_update`].
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn forward_triangle<const W: usize, const Q: usize>(nd: &Node<'_>, xp: *mut f64) {
+    unsafe fn forward_triangle<T: Entry, const W: usize, const Q: usize>(
+        nd: &Node<'_, T>,
+        xp: *mut f64,
+    ) {
         let (w, ld) = (nd.w, nd.ld());
         assert!(w * ld <= nd.l.len());
         let mut p0 = 0;
@@ -399,7 +456,7 @@ mod avx2 {
             let p1 = (p0 + PANEL).min(w);
             for t in p0..p1 {
                 let col = nd.l.as_ptr().add(t * ld);
-                let d = _mm256_set1_pd(1.0 / *col.add(t));
+                let d = _mm256_set1_pd(1.0 / (*col.add(t)).to_f64());
                 let pt = xp.add(W * (nd.c0 + t));
                 let mut xt = [_mm256_setzero_pd(); Q];
                 for (q, v) in xt.iter_mut().enumerate() {
@@ -407,7 +464,7 @@ mod avx2 {
                     _mm256_store_pd(pt.add(4 * q), *v);
                 }
                 for i in t + 1..p1 {
-                    let v = _mm256_broadcast_sd(&*col.add(i));
+                    let v = T::splat(col.add(i));
                     let pi = xp.add(W * (nd.c0 + i));
                     for (q, x) in xt.iter().enumerate() {
                         let y = _mm256_fnmadd_pd(v, *x, _mm256_load_pd(pi.add(4 * q)));
@@ -416,7 +473,7 @@ mod avx2 {
                 }
             }
             if p1 < w {
-                forward_update::<W, Q, _>(nd, p1, p0, p1 - p0, Run(nd.c0 + p1, w - p1), xp);
+                forward_update::<T, W, Q, _>(nd, p1, p0, p1 - p0, Run(nd.c0 + p1, w - p1), xp);
             }
             p0 = p1;
         }
@@ -426,14 +483,17 @@ mod avx2 {
     /// product with the rows already solved below it ([`backward_update`]), then is solved
     /// column by column.
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn backward_triangle<const W: usize, const Q: usize>(nd: &Node<'_>, xp: *mut f64) {
+    unsafe fn backward_triangle<T: Entry, const W: usize, const Q: usize>(
+        nd: &Node<'_, T>,
+        xp: *mut f64,
+    ) {
         let (w, ld) = (nd.w, nd.ld());
         assert!(w * ld <= nd.l.len());
         let mut p1 = w;
         while p1 > 0 {
             let p0 = p1.saturating_sub(PANEL);
             if p1 < w {
-                backward_update::<W, Q, _>(nd, p1, p0, p1 - p0, Run(nd.c0 + p1, w - p1), xp);
+                backward_update::<T, W, Q, _>(nd, p1, p0, p1 - p0, Run(nd.c0 + p1, w - p1), xp);
             }
             for t in (p0..p1).rev() {
                 let col = nd.l.as_ptr().add(t * ld);
@@ -443,13 +503,13 @@ mod avx2 {
                     *a = _mm256_load_pd(pt.add(4 * q));
                 }
                 for i in t + 1..p1 {
-                    let v = _mm256_broadcast_sd(&*col.add(i));
+                    let v = T::splat(col.add(i));
                     let pi = xp.add(W * (nd.c0 + i));
                     for (q, a) in acc.iter_mut().enumerate() {
                         *a = _mm256_fnmadd_pd(v, _mm256_load_pd(pi.add(4 * q)), *a);
                     }
                 }
-                let d = _mm256_set1_pd(1.0 / *col.add(t));
+                let d = _mm256_set1_pd(1.0 / (*col.add(t)).to_f64());
                 for (q, a) in acc.iter().enumerate() {
                     _mm256_store_pd(pt.add(4 * q), _mm256_mul_pd(*a, d));
                 }
@@ -536,5 +596,104 @@ mod tests {
                 assert!(rel < 1e-12, "b = {b}, simd = {simd}: residual {rel:e}");
             }
         }
+    }
+
+    /// An f32 factor: the SIMD and portable kernels agree (both read L into f64 arithmetic); one
+    /// solve is off by what f32 leaves (> 1e-9), and refinement against A brings it to the f64
+    /// solve's accuracy.
+    #[test]
+    fn mixed_factor_solves_refine_to_the_f64_solution() {
+        let a = grid_matrix(14, 12, 12);
+        let (s64, st64) = crate::solve::cholesky::analyze(a.as_ref(), Some(3)).unwrap();
+        let f64_llt = SparseLlt::factor_with(s64, st64, a.as_ref(), Par::Seq).unwrap();
+        let (s32, st32) = crate::solve::cholesky::analyze(a.as_ref(), Some(3)).unwrap();
+        let mixed = SparseLlt::factor_mixed_with(s32, st32, a.as_ref(), Par::Seq).unwrap();
+        assert!(mixed.is_mixed());
+        assert_eq!(mixed.stats.factor_bytes, 4 * mixed.symbolic().len_val());
+        let n = a.nrows();
+        for b in [1, 6, 8, 16] {
+            let bm = crate::solve::eigen::random_block(n, b, &mut 0x2545_F491_4F6C_DD1Du64);
+            let exact = f64_llt.solve(bm.as_ref());
+            let scale = exact.norm_max();
+            let one = mixed.solve(bm.as_ref());
+            let d1 = (&one - &exact).norm_max() / scale;
+            assert!(d1 > 1e-9 && d1 < 1e-4, "b = {b}: one f32 solve {d1:e}");
+            // the two kernels on the f32 factor
+            let SymbolicCholeskyRaw::Supernodal(sym) = mixed.symbolic().raw() else {
+                panic!("expected a supernodal factor");
+            };
+            let f = Supernodal::new(sym, mixed.values_f32());
+            let perm = mixed.symbolic().perm().map(|p| p.arrays().0);
+            let mut portable = bm.clone();
+            solve_dispatch(&f, perm, portable.as_mut(), false);
+            let dk = (&portable - &one).norm_max() / scale;
+            assert!(dk < 1e-13, "b = {b}: SIMD vs portable on f32 L {dk:e}");
+            let mut x = bm.clone();
+            let steps = mixed
+                .solve_refined_in_place(a.as_ref(), x.as_mut(), crate::solve::cholesky::REFINE_F64)
+                .unwrap();
+            let d = (&x - &exact).norm_max() / scale;
+            assert!(
+                steps >= 1 && d < 1e-13,
+                "b = {b}: refined in {steps} steps: {d:e}"
+            );
+        }
+    }
+
+    /// A matrix too ill-conditioned for f32 (a grid Laplacian, singular, shifted by 1e-9 of its
+    /// largest diagonal: κ ≈ 1e10) is refused loudly, by a non-positive f32 pivot or a stalled
+    /// refinement, never answered with an f32-accurate solution.
+    #[test]
+    fn mixed_factor_of_an_ill_conditioned_matrix_fails_loudly() {
+        let (nx, ny, nz) = (14, 12, 12);
+        let id = |i: usize, j: usize, k: usize| (i * ny + j) * nz + k;
+        let n = 3 * nx * ny * nz;
+        let mut diag = vec![6e-9; n];
+        let mut trips = Vec::new();
+        for i in 0..nx {
+            for j in 0..ny {
+                for k in 0..nz {
+                    let a = id(i, j, k);
+                    let mut links = vec![];
+                    if i + 1 < nx {
+                        links.push(id(i + 1, j, k));
+                    }
+                    if j + 1 < ny {
+                        links.push(id(i, j + 1, k));
+                    }
+                    if k + 1 < nz {
+                        links.push(id(i, j, k + 1));
+                    }
+                    for b in links {
+                        for c in 0..3 {
+                            trips.push(faer::sparse::Triplet::new(3 * a + c, 3 * b + c, -1.0));
+                            trips.push(faer::sparse::Triplet::new(3 * b + c, 3 * a + c, -1.0));
+                            diag[3 * a + c] += 1.0;
+                            diag[3 * b + c] += 1.0;
+                        }
+                    }
+                }
+            }
+        }
+        trips.extend(
+            diag.iter()
+                .enumerate()
+                .map(|(i, &d)| faer::sparse::Triplet::new(i, i, d)),
+        );
+        let a = faer::sparse::SparseColMat::try_new_from_triplets(n, n, &trips).unwrap();
+        let (s32, st32) = crate::solve::cholesky::analyze(a.as_ref(), Some(3)).unwrap();
+        assert!(matches!(s32.raw(), SymbolicCholeskyRaw::Supernodal(_)));
+        let outcome = SparseLlt::factor_mixed_with(s32, st32, a.as_ref(), Par::Seq).and_then(|l| {
+            let mut x = crate::solve::eigen::random_block(n, 4, &mut 0x9E37_79B9u64);
+            l.solve_refined_in_place(a.as_ref(), x.as_mut(), crate::solve::cholesky::REFINE_F64)
+        });
+        assert!(
+            matches!(
+                outcome,
+                Err(crate::solve::SolveError::Refinement { .. })
+                    | Err(crate::solve::SolveError::NonPositivePivot { .. })
+            ),
+            "{outcome:?}"
+        );
     }
 }
