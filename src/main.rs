@@ -177,6 +177,12 @@ struct BuildArgs {
     /// MPI ranks for --engine slepc (mpirun -np N).
     #[arg(long, default_value_t = 2, value_name = "N")]
     mpi: usize,
+    /// Arithmetic of the Craig–Bampton interior's factorization: auto (f64, unless the f64
+    /// factor would exceed --max-memory/MemAvailable and an f32 one fits), f64, or mixed (an
+    /// f32 factor, half the memory, with solves refined to f64 accuracy: slower, see
+    /// docs/benchmarks.md; f64 again where K_ii is too ill-conditioned for it).
+    #[arg(long, default_value = "auto", value_name = "auto|f64|mixed")]
+    precision: String,
     /// Keep the fewest modes whose estimated frequency-response error at the scene's loads and
     /// interfaces over [0, fmax] stays below EPS (relative to the static response):
     /// participation:EPS, e.g. participation:0.01. The candidates are the modes --fmax/--modes
@@ -287,6 +293,10 @@ fn build_spec(a: &BuildArgs) -> anyhow::Result<flexbody::build::BuildSpec> {
             }),
             other => anyhow::bail!("--engine {other}: expected native or slepc"),
         },
+        precision: a
+            .precision
+            .parse()
+            .map_err(|e: String| anyhow::anyhow!("--precision {e}"))?,
         beam_mass: parse_beam_mass(&a.beam_mass)?,
         scene: flexbody::scene::SceneSpec {
             gravity: a.gravity.clone(),

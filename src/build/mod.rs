@@ -118,6 +118,8 @@ pub struct BuildSpec {
     /// `--engine slepc --mpi N`: the Craig–Bampton interior (factorization, constraint modes,
     /// fixed-interface eigenproblem) on PETSc/SLEPc under MPI; `None`: our own solvers.
     pub engine: Option<crate::solve::slepc::SlepcEngine>,
+    /// `--precision`: arithmetic of the Craig–Bampton interior's factorization.
+    pub precision: crate::solve::Precision,
 }
 
 impl BuildSpec {
@@ -151,6 +153,7 @@ impl BuildSpec {
             scene: Default::default(),
             verify_band: false,
             engine: None,
+            precision: Default::default(),
         }
     }
 
@@ -559,6 +562,7 @@ pub fn build_model_with_hook(
         dofs_per_node: Some(3),
         par: spec.par(),
         verify_band: spec.verify_band,
+        precision: spec.precision,
         ..Default::default()
     };
     let (k_r, m_r) = (&reduced.k, &reduced.m);

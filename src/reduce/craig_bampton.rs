@@ -5,13 +5,20 @@
 use super::orthonormalize::orthonormalize;
 use super::select::{solve_count_with, ModeCount};
 use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
-use crate::solve::cholesky::SINGULAR_PIVOT;
+use crate::solve::cholesky::{self, REFINE_F64, SINGULAR_PIVOT};
 use crate::solve::{
-    lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, SolveError,
-    SparseColMat, SparseLlt, DENSE_MAX,
+    lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, Precision,
+    SolveError, SparseColMat, SparseLlt, DENSE_MAX,
 };
 use faer::Mat;
 use std::time::Instant;
+
+/// Smallest L_jj² / A_jj an f32 factor may keep; below it K_ii is factored in f64 at once.
+/// Measured on the stability insert block (3087 dofs, docs/stability.md row 7): contrast 1 gives
+/// 4.7e-3 and refines in ~3 steps, 1e2 gives 4.7e-5 and refines slowly (ω² still 4e-11 from
+/// f64), 1e3 gives 6.2e-6 and refinement stalls after 12 steps; from 1e4 the f32 factorization
+/// meets a non-positive pivot.
+const F32_PIVOT: f64 = 1e-5;
 
 /// The un-orthonormalized Craig–Bampton basis.
 #[derive(Clone, Debug)]
@@ -27,6 +34,8 @@ pub struct CbBasis {
     pub timings: Vec<(&'static str, f64)>,
     /// How the fixed-interface eigenproblem was solved (vectors, steps, factor size, times).
     pub eigen: crate::solve::EigenInfo,
+    /// Choices made on the way (e.g. the precision of the factorization), for the report.
+    pub notes: Vec<String>,
 }
 
 /// Builds the Craig–Bampton basis for the interface dofs `interface`.
@@ -54,18 +63,33 @@ pub fn craig_bampton_basis(
     let t0 = Instant::now();
     let kii = sparse_ops::submatrix(k.as_ref(), &inner, &inner)?;
     let kib = sparse_ops::submatrix(k.as_ref(), &inner, interface)?;
-    let llt = factor_kii(&kii, &kib, &inner, eig)?;
+    let (mut llt, mut notes) = factor_kii(&kii, &kib, &inner, eig, eig.precision)?;
     // M_ii after the factorization: not resident beside the factorization's scratch
     let mii = sparse_ops::submatrix(m.as_ref(), &inner, &inner)?;
-    let t_factor = t0.elapsed().as_secs_f64();
-    // Ψ = −K_ii⁻¹ K_ib
-    let t1 = Instant::now();
-    let mut psi = sparse_ops::to_dense(kib.as_ref());
-    llt.solve_in_place(psi.as_mut());
-    let t_constraint = t1.elapsed().as_secs_f64();
-    let t2 = Instant::now();
-    let fixed = fixed_interface_modes(&kii, &mii, &llt, modes, eig)?;
-    let t_eigen = t2.elapsed().as_secs_f64();
+    let mut t_factor = t0.elapsed().as_secs_f64();
+    let (psi, fixed, t_constraint, t_eigen) =
+        match constraint_and_fixed(&kii, &kib, &mii, &llt, modes, eig) {
+            Err(ReduceError::Solve(e @ SolveError::Refinement { .. })) if llt.is_mixed() => {
+                // the f32 factor is too far from K_ii for refinement: factor again in f64
+                drop(llt);
+                let t = Instant::now();
+                (llt, _) = factor_kii(&kii, &kib, &inner, eig, Precision::F64)?;
+                t_factor += t.elapsed().as_secs_f64();
+                notes.push(format!(
+                    "mixed precision abandoned ({e}); K_ii factored again in f64"
+                ));
+                constraint_and_fixed(&kii, &kib, &mii, &llt, modes, eig)?
+            }
+            other => other?,
+        };
+    if llt.is_mixed() {
+        notes.push(format!(
+            "K_ii factored in mixed precision (f32 L, {}; solves refined against K_ii to f64 \
+             accuracy: {} extra triangular solves in the eigen phase)",
+            cholesky::format_bytes(llt.stats.factor_bytes as u64),
+            fixed.info.refinement_solves
+        ));
+    }
     let eigen = fixed.info.clone();
     let (t, labels) = basis_matrix(n, interface, &inner, &psi, &fixed.vectors);
     let _ = ni;
@@ -79,7 +103,27 @@ pub fn craig_bampton_basis(
             ("eigen", t_eigen),
         ],
         eigen,
+        notes,
     })
+}
+
+/// Constraint modes X = K_ii⁻¹ K_ib (n_i × n_b; Ψ = −X) and the fixed-interface modes with the
+/// factorization `llt` of K_ii, and the time of each.
+fn constraint_and_fixed(
+    kii: &SparseColMat<usize, f64>,
+    kib: &SparseColMat<usize, f64>,
+    mii: &SparseColMat<usize, f64>,
+    llt: &SparseLlt,
+    modes: ModeCount,
+    eig: &EigenSpec,
+) -> Result<(Mat<f64>, EigenSolution, f64, f64), ReduceError> {
+    let t1 = Instant::now();
+    let mut x = sparse_ops::to_dense(kib.as_ref());
+    llt.solve_refined_in_place(kii.as_ref(), x.as_mut(), REFINE_F64)?;
+    let t_constraint = t1.elapsed().as_secs_f64();
+    let t2 = Instant::now();
+    let fixed = fixed_interface_modes(kii, mii, llt, modes, eig)?;
+    Ok((x, fixed, t_constraint, t2.elapsed().as_secs_f64()))
 }
 
 /// T = [I 0; Ψ Φ_i] over all n dofs with Ψ = −X, X = K_ii⁻¹ K_ib (n_i × n_b) and the
@@ -112,22 +156,69 @@ fn basis_matrix(
     (t, labels)
 }
 
-/// LLᵀ of K_ii; a zero pivot (non-positive, or positive below [`SINGULAR_PIVOT`] of its
-/// diagonal) becomes [`ReduceError::UnrestrainedInterior`] naming the dof and its region.
+/// LLᵀ of K_ii in the asked `precision` ([`Precision::Auto`]: f64 unless its factor exceeds the
+/// memory limit and the f32 one fits; a mixed factorization that meets a non-positive f32 pivot
+/// is done again in f64), with notes for the report. A zero pivot of the f64 factorization
+/// (non-positive, or positive below [`SINGULAR_PIVOT`] of its diagonal) becomes
+/// [`ReduceError::UnrestrainedInterior`] naming the dof and its region.
 fn factor_kii(
     kii: &SparseColMat<usize, f64>,
     kib: &SparseColMat<usize, f64>,
     inner: &[usize],
     eig: &EigenSpec,
-) -> Result<SparseLlt, ReduceError> {
-    let (local, pivot, llt) = match SparseLlt::factor(kii.as_ref(), eig.dofs_per_node, eig.par) {
+    precision: Precision,
+) -> Result<(SparseLlt, Vec<String>), ReduceError> {
+    let mut notes = vec![];
+    let (symbolic, stats) = cholesky::analyze(kii.as_ref(), eig.dofs_per_node)?;
+    let mixed = match precision {
+        Precision::F64 => false,
+        Precision::Mixed => true,
+        Precision::Auto => {
+            let f64_bytes = cholesky::factor_memory(&symbolic, eig.par);
+            match cholesky::check_memory(f64_bytes, kii.nrows()) {
+                Ok(()) => false,
+                Err(SolveError::OutOfMemory { .. })
+                    if cholesky::check_memory(
+                        cholesky::factor_memory_mixed(&symbolic, kii.as_ref(), eig.par),
+                        kii.nrows(),
+                    )
+                    .is_ok() =>
+                {
+                    notes.push(format!(
+                        "the f64 factor of K_ii ({}) exceeds the memory limit: factored in mixed \
+                         precision (--precision auto)",
+                        cholesky::format_bytes(f64_bytes as u64)
+                    ));
+                    true
+                }
+                Err(e) => return Err(e.into()),
+            }
+        }
+    };
+    let first = if mixed {
+        match SparseLlt::factor_mixed_with(symbolic, stats, kii.as_ref(), eig.par) {
+            Ok(l) if l.min_pivot().0 > F32_PIVOT => Ok(l),
+            Ok(_) | Err(SolveError::NonPositivePivot { .. }) => {
+                notes.push(
+                    "mixed precision abandoned: K_ii is too ill-conditioned for an f32 factor \
+                     (a pivot lost its digits); factored in f64"
+                        .into(),
+                );
+                SparseLlt::factor(kii.as_ref(), eig.dofs_per_node, eig.par)
+            }
+            Err(e) => Err(e),
+        }
+    } else {
+        SparseLlt::factor_with(symbolic, stats, kii.as_ref(), eig.par)
+    };
+    let (local, pivot, llt) = match first {
         Err(SolveError::NonPositivePivot { dof }) => (dof, 0.0, None),
         Err(e) => return Err(e.into()),
         Ok(l) if l.min_pivot().0 <= SINGULAR_PIVOT => (l.min_pivot().1, l.min_pivot().0, None),
         Ok(l) => (0, 1.0, Some(l)),
     };
     if let Some(l) = llt {
-        return Ok(l);
+        return Ok((l, notes));
     }
     // the region of K_ii's graph around the zero pivot, and whether K_ib couples it to the interface
     let ni = kii.nrows();
@@ -255,6 +346,7 @@ pub fn craig_bampton_slepc(
         fixed_omega2: sol.eigenvalues,
         timings: vec![("slepc engine (write, MPI run, read back)", sol.seconds)],
         eigen: Default::default(),
+        notes: vec![],
     };
     let mut set = craig_bampton_from_basis(k, m, interface, modes, basis)?;
     set.diagnostics.notes.push(format!(
@@ -280,6 +372,7 @@ fn craig_bampton_from_basis(
     for (name, s) in &basis.timings {
         diagnostics.notes.push(format!("time {name}: {s:.3} s"));
     }
+    diagnostics.notes.extend(basis.notes.iter().cloned());
     diagnostics
         .notes
         .extend(super::band_note(&basis.eigen, "fixed-interface"));

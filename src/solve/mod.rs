@@ -121,10 +121,13 @@ pub enum SolveError {
 
 /// Arithmetic of the Craig–Bampton interior's factorization (K_ii), `build --precision`.
 ///
-/// Measured (docs/benchmarks.md, "Mixed precision"): an f32 factor takes half the memory of L
-/// and 0.5–0.6× the factorization time, but every solve then needs iterative refinement against
-/// K_ii (3–4 triangular solves where f64 needs one), so the eigen phase costs more than the
-/// factorization saves. Hence f64 by default, and f32 where the f64 factor does not fit.
+/// Measured (docs/benchmarks.md, "Mixed precision", 69k/178k/519k dofs): an f32 factor takes
+/// half the memory of L and 0.62–0.65× the f64 factorization time, but every solve then needs
+/// iterative refinement against K_ii (about 4 triangular solves where f64 needs one, and the
+/// row kernels are not faster on f32 values: they are bound by the right-hand sides' traffic),
+/// so the eigen phase takes 2.1–3.5× longer and the whole build 1.5–2.0×. The peak memory drops
+/// 12–30 % (519k: 7.29 GB vs 10.48 GB). Hence f64 by default, f32 where the f64 factor does not
+/// fit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Precision {
     /// f64, unless the f64 factor would exceed the memory limit and the f32 one fits.

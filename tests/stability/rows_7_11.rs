@@ -523,3 +523,77 @@ fn row11_factor_memory_is_estimated_and_limited() {
     );
     assert_eq!(ok.0, Some(0), "{}", ok.2);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Row 7 (mixed precision) — an f32 factor of K_ii under stiffness contrast.
+
+/// `--precision mixed` on the sparse Craig–Bampton path of the insert block (3087 dofs) at
+/// contrasts 1 … 1e8: up to 1e2 the f32 factor with refined solves gives the f64 build's
+/// fixed-interface frequencies and constraint modes (to 1e-9); from 1e3 K_ii is too
+/// ill-conditioned for f32 (a pivot keeps < 1e-5 of its diagonal, or the f32 factorization meets a
+/// non-positive one) and the build says so and factors in f64 — never an f32-accurate answer.
+#[test]
+fn row07_mixed_precision_matches_f64_or_falls_back_under_contrast() {
+    use flexbody::reduce::craig_bampton::craig_bampton_basis;
+    use flexbody::solve::Precision;
+    for contrast in [1.0f64, 1e2, 1e3, 1e4, 1e8] {
+        let mut model = block([20, 6, 6], [0.4, 0.05, 0.05]);
+        let insert = insert_block(contrast);
+        model.materials.push(insert.materials[1].clone());
+        model.properties.push(insert.properties[1].clone());
+        for e in 0..model.elements.len() {
+            let xc = model.elements[e]
+                .nodes
+                .iter()
+                .map(|&n| model.nodes[n].x[0])
+                .sum::<f64>()
+                / 8.0;
+            if xc > 0.15 && xc < 0.25 {
+                model.elements[e].property = Some(1);
+            }
+        }
+        let (model, k, m) = system(&model);
+        let x0 = set_dofs(&model, "X0");
+        let run = |precision| {
+            let spec = flexbody::solve::EigenSpec { precision, ..eig() };
+            craig_bampton_basis(&k, &m, &x0, ModeCount::Count(10), &spec).unwrap()
+        };
+        let (f64_run, mixed) = (run(Precision::F64), run(Precision::Mixed));
+        let d = f64_run
+            .fixed_omega2
+            .iter()
+            .zip(&mixed.fixed_omega2)
+            .map(|(a, b)| (a - b).abs() / a)
+            .fold(0.0, f64::max);
+        let x = |b: &flexbody::reduce::craig_bampton::CbBasis| {
+            b.t.as_ref().subcols(0, x0.len()).to_owned()
+        };
+        let dx = (x(&f64_run) - x(&mixed)).norm_max() / x(&f64_run).norm_max();
+        let used = mixed
+            .notes
+            .iter()
+            .any(|n| n.contains("factored in mixed precision"));
+        let abandoned = mixed.notes.iter().any(|n| n.contains("abandoned"));
+        println!(
+            "contrast {contrast:.0e}: mixed {} ; ω² vs f64 {d:.2e}, constraint modes {dx:.2e}; notes {:?}",
+            if used { "used" } else { "abandoned" },
+            mixed.notes
+        );
+        assert!(used != abandoned, "{:?}", mixed.notes);
+        assert_eq!(
+            used,
+            contrast <= 1e2,
+            "contrast {contrast:e}: {:?}",
+            mixed.notes
+        );
+        assert!(d < 1e-9, "contrast {contrast:e}: fixed-interface ω² {d:e}");
+        assert!(dx < 1e-9, "contrast {contrast:e}: constraint modes {dx:e}");
+        record(
+            "7",
+            &format!(
+                "contrast {contrast:.0e} (CB, 3087 dofs, --precision mixed): ω² vs f64 (rel.)"
+            ),
+            d,
+        );
+    }
+}
