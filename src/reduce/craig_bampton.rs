@@ -339,13 +339,29 @@ pub fn craig_bampton_slepc(
         eig.tol,
         engine,
     )?;
+    // --verify-band: the same inertia count as the native engine, on our K_ii and M_ii
+    let mut eigen = crate::solve::EigenInfo::default();
+    if eig.verify_band {
+        let checked = crate::solve::verify_band(
+            &kii,
+            &mii,
+            EigenSolution {
+                eigenvalues: sol.eigenvalues.clone(),
+                vectors: Mat::zeros(0, 0),
+                residuals: vec![],
+                info: Default::default(),
+            },
+            eig,
+        )?;
+        eigen.band_proof = checked.info.band_proof;
+    }
     let (t, labels) = basis_matrix(n, interface, &inner, &sol.x, &sol.vectors);
     let basis = CbBasis {
         t,
         labels,
         fixed_omega2: sol.eigenvalues,
         timings: vec![("slepc engine (write, MPI run, read back)", sol.seconds)],
-        eigen: Default::default(),
+        eigen,
         notes: vec![],
     };
     let mut set = craig_bampton_from_basis(k, m, interface, modes, basis)?;

@@ -530,7 +530,7 @@ pub fn lowest_modes_factored(
 /// the solution (or a tiny positive σ when every returned λ is ~0), must count exactly the
 /// returned modes; more is [`SolveError::MissedModes`] (a mode skipped inside the band, or a
 /// repeated eigenvalue cut at the last returned mode).
-fn verify_band(
+pub(crate) fn verify_band(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     mut sol: EigenSolution,
