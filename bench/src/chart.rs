@@ -476,6 +476,144 @@ fn tables(eigen: &[Value], cb: &[Value], acc: &[Value]) -> String {
 
 /// The many-mode runs (`harness eigen ... --baseline B --inertia`): our eigen phase against our
 /// own baseline-mode eigen phase in the same run, and the inertia count of the band.
+/// `harness modes`: eigen time and peak memory against the mode count, with the issue's target
+/// line (3× the smallest count's eigen time).
+fn many_modes_chart(v: &Value, path: &Path) -> Res<()> {
+    let rows = v["rows"].as_array().cloned().unwrap_or_default();
+    let pick = |key: &str| -> Vec<(f64, f64, String)> {
+        rows.iter()
+            .filter_map(|r| Some((r["modes"].as_f64()?, r[key].as_f64()?, String::new())))
+            .collect()
+    };
+    let time = pick("eigen_s");
+    let mut target = vec![];
+    if let (Some(first), Some(last)) = (time.first(), time.last()) {
+        target = vec![
+            (first.0, 3.0 * first.1, String::new()),
+            (last.0, 3.0 * first.1, "3x".into()),
+        ];
+    }
+    let root = SVGBackend::new(path, (1400, 620)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let areas = root.split_evenly((1, 2));
+    panel(
+        &areas[0],
+        &format!("eigen phase vs modes ({} dofs)", v["dofs"]),
+        "modes",
+        "seconds",
+        &[
+            ("flexbody eigen phase".into(), time),
+            ("target: 3 x the first count".into(), target),
+            ("orthogonalization".into(), pick("orthogonalization_s")),
+        ],
+        SeriesLabelPosition::UpperLeft,
+    )?;
+    panel(
+        &areas[1],
+        "peak memory vs modes",
+        "modes",
+        "MB",
+        &[("flexbody (factor + eigen)".into(), pick("peak_rss_mb"))],
+        SeriesLabelPosition::UpperLeft,
+    )?;
+    root.present().map_err(err)
+}
+
+fn many_modes_sweep_table(v: &Value) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\n### Eigen phase against the mode count (`harness modes`)\n"
+    );
+    let _ = writeln!(s, "{}: {} dofs, one child process per count (peak memory per run), load {} before. Ratio: eigen time over the first count's; the issue's target is ≤ 3 at 300 modes.\n\n![many modes](many_modes.svg)\n", v["model"].as_str().unwrap_or("?"), v["dofs"], f(&v["loadavg_before"][0]));
+    let _ = writeln!(s, "| modes | eigen s | ratio | solved vectors | restarts | orthogonalization s | factor s | peak MB | max residual |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    for r in v["rows"].as_array().into_iter().flatten() {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            r["modes"],
+            f(&r["eigen_s"]),
+            f(&r["eigen_over_first"]),
+            r["solves"],
+            r["restarts"],
+            f(&r["orthogonalization_s"]),
+            f(&r["analyse_factor_s"]),
+            f(&r["peak_rss_mb"]),
+            f(&r["max_residual"]),
+        );
+    }
+    s
+}
+
+/// `harness cb … --precision mixed` beside the f64 run of the same size: phases, peak memory,
+/// the ratio to CHOLMOD's factorization in each run, and the fixed-interface eigenvalues of the
+/// mixed build against the f64 build's.
+fn mixed_precision_table(cb: &[Value], mixed: &[Value]) -> String {
+    let mut s = String::new();
+    if mixed.is_empty() {
+        return s;
+    }
+    let _ = writeln!(
+        s,
+        "\n## Mixed precision (`harness cb … --precision mixed`)\n"
+    );
+    let _ = writeln!(s, "`build --precision mixed`: K_ii factored in f32, every solve refined against K_ii to f64 accuracy (Wilkinson's iterative refinement, the residual in f64). Each row is its own run with its own CHOLMOD factorization of the same K_ii (f64); the f64 row is the `cb` suite's run of the same size. Agreement: fixed-interface eigenvalues of the mixed build vs the f64 build (max relative difference). Times in s, memory in MB.\n");
+    let _ = writeln!(s, "| dofs | precision | factorization | constraint modes | eigen (solves) | extra refinement solves | total | peak MB | factor MB | total / CHOLMOD factor | peak / CHOLMOD peak | agreement | load (1 min) |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for m in mixed {
+        let f64_run = cb
+            .iter()
+            .find(|r| r["dofs"] == m["dofs"] && r["modes"] == m["modes"]);
+        let agreement = f64_run.map_or(Value::Null, |r| {
+            let (a, b) = (eigen_list(&r["ours"]), eigen_list(&m["ours"]));
+            if a.is_empty() || a.len() != b.len() {
+                return Value::Null;
+            }
+            let d = a
+                .iter()
+                .zip(&b)
+                .map(|(x, y)| (x - y).abs() / x.abs())
+                .fold(0.0f64, f64::max);
+            serde_json::json!(d)
+        });
+        for (name, r, agree) in [("f64", f64_run, Value::Null), ("mixed", Some(m), agreement)] {
+            let Some(r) = r else { continue };
+            let o = &r["ours"];
+            let q = &r["ratios_ours_over"]["cholmod_factor_kii"];
+            let _ = writeln!(
+                s,
+                "| {} | {name} | {} | {} | {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} |",
+                r["dofs"],
+                f(&o["phases_s"]["cb factorization"]),
+                f(&o["phases_s"]["cb constraint modes"]),
+                f(&o["phases_s"]["cb eigen"]),
+                f(&o["phases_s"]["cb eigen solves"]),
+                o["eigen_refinement_solves"]
+                    .as_u64()
+                    .map_or("–".into(), |v| v.to_string()),
+                f(&o["phases_s"]["total"]),
+                f(&o["peak_rss_mb"]),
+                f(&o["factor_bytes"]
+                    .as_f64()
+                    .map_or(Value::Null, |b| serde_json::json!(b / 1048576.0))),
+                f(&q["total_over_factor"]),
+                f(&q["peak_memory"]),
+                f(&agree),
+                f(&r["loadavg_before"][0]),
+            );
+        }
+    }
+    s
+}
+
+fn eigen_list(v: &Value) -> Vec<f64> {
+    v["eigenvalues"]
+        .as_array()
+        .map(|a| a.iter().filter_map(Value::as_f64).collect())
+        .unwrap_or_default()
+}
+
 fn many_modes_table(s: &mut String, eigen: &[Value]) {
     let runs: Vec<&Value> = eigen
         .iter()
@@ -558,7 +696,10 @@ pub fn run() -> Res<Value> {
     let docs = docs_dir();
     std::fs::create_dir_all(&docs).map_err(|e| e.to_string())?;
     let eigen = load("eigen_")?;
-    let cb = load("cb_")?;
+    // `cb … --precision mixed` runs have their own table; the cb table and chart are f64 builds
+    let (mixed, cb): (Vec<Value>, Vec<Value>) = load("cb_")?
+        .into_iter()
+        .partition(|r| r["precision"].as_str() == Some("mixed"));
     let acc = load("accuracy_")?;
     let asm = load("assembly_")?;
     if let Some(a) = acc.first() {
@@ -572,6 +713,13 @@ pub fn run() -> Res<Value> {
         .collect();
     scaling_chart(&eigen30, &cb, &docs.join("scaling.svg"))?;
     let slepc_md = slepc_table(&load("slepc_")?);
+    let modes_md = match load("modes_")?.last() {
+        Some(v) => {
+            many_modes_chart(v, &docs.join("many_modes.svg"))?;
+            many_modes_sweep_table(v)
+        }
+        None => String::new(),
+    };
     let scene = load("scene_")?;
     let scene_md = match scene.first() {
         Some(v) => {
@@ -593,7 +741,9 @@ pub fn run() -> Res<Value> {
         "# Benchmarks\n\n<!-- generated by `cargo run --release -p flexbody-bench --bin harness -- chart` from bench/results/*.json; edit bench/README.md instead -->\n\n{head}\n\
          ![accuracy vs time](accuracy_vs_time.svg)\n\n![time and memory vs dofs](scaling.svg)\n\n{}",
         tables(&eigen, &cb, &acc) + &crate::assembly::table(&asm)
-    ) + &slepc_md
+    ) + &modes_md
+        + &mixed_precision_table(&cb, &mixed)
+        + &slepc_md
         + &scene_md;
     let path = docs.join("benchmarks.md");
     std::fs::write(&path, md).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -601,6 +751,7 @@ pub fn run() -> Res<Value> {
         docs.join("accuracy_vs_time.svg"),
         docs.join("scaling.svg"),
         docs.join("scene_accuracy.svg"),
+        docs.join("many_modes.svg"),
         path,
     ]
     .iter()

@@ -85,6 +85,7 @@ pub fn ours_eigen(
         max_basis,
         tol: tol.unwrap_or(EigenSpec::default().tol),
         par: threads(),
+        precision: Default::default(),
         upper: None,
         verify_band: false,
     };
@@ -242,6 +243,77 @@ pub struct EigenExtras {
     /// Count the eigenvalues below σ just above the highest one found (Sylvester's inertia) and
     /// compare with how many ours and ARPACK returned below it.
     pub inertia: bool,
+}
+
+/// The `modes` suite: our eigen phase on the `eigen` suite's clamped block (same K, M) for each
+/// mode count in `counts`, one child process each (peak memory per run): eigen time, solved
+/// vectors, orthogonalization time and peak memory against the mode count, and each count's
+/// eigen time over the smallest count's (issue 22's many-mode target: ≤ 3× from 30 to 300).
+pub fn modes(n: [usize; 3], counts: &[usize]) -> Res<Value> {
+    let mut model = tet10_block(n);
+    let fixed = node_set(&model, "X0")?;
+    let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
+    let red = eliminate(
+        &model,
+        &asm.dofs,
+        &asm.k,
+        &asm.m,
+        &ConstraintSpec {
+            fixed: fixed.iter().map(|&i| (i, DofMask::ALL)).collect(),
+            ..Default::default()
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let dofs = red.k.nrows();
+    let dir = data_dir(&format!("eigen_{dofs}"))?;
+    let (kp, mp) = (dir.join("K.mtx"), dir.join("M.mtx"));
+    write_mtx(&kp, &red.k)?;
+    write_mtx(&mp, &red.m)?;
+    model.node_sets.clear();
+    drop((asm, red, model));
+    let load_before = loadavg();
+    let mut runs = Vec::new();
+    for &c in counts {
+        runs.push(run_self(&[
+            "ours-eigen".into(),
+            kp.display().to_string(),
+            mp.display().to_string(),
+            c.to_string(),
+        ])?);
+    }
+    let base = runs
+        .first()
+        .and_then(|r| r["phases_s"]["eigen"].as_f64())
+        .unwrap_or(f64::NAN);
+    let rows: Vec<Value> = counts
+        .iter()
+        .zip(&runs)
+        .map(|(c, r)| {
+            json!({
+                "modes": c,
+                "eigen_s": r["phases_s"]["eigen"],
+                "eigen_over_first": r["phases_s"]["eigen"].as_f64().map(|e| num(e / base)),
+                "orthogonalization_s": r["phases_s"]["eigen_orthogonalization"],
+                "solves": r["solves"],
+                "restarts": r["restarts"],
+                "peak_rss_mb": r["peak_rss_mb"],
+                "analyse_factor_s": r["phases_s"]["analyse_factor"],
+                "max_residual": r["max_residual"],
+            })
+        })
+        .collect();
+    let json = json!({
+        "suite": "modes",
+        "model": format!("tet10 block {}x{}x{} bricks, x=0 clamped, consistent mass (the eigen suite's K, M)", n[0], n[1], n[2]),
+        "dofs": dofs,
+        "counts": counts,
+        "loadavg_before": load_before,
+        "loadavg_after": loadavg(),
+        "rows": rows,
+        "runs": runs,
+    });
+    write_result(&format!("modes_{dofs}.json"), &json)?;
+    Ok(json)
 }
 
 /// Eigenvalues of a suite part's JSON.
@@ -405,7 +477,8 @@ pub fn cb_kii(n: [usize; 3]) -> Res<SparseColMat<usize, f64>> {
 }
 
 /// `ours-cb NX NY NZ MODES`: our whole CB build on the generated block (prints one JSON line).
-pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
+pub fn ours_cb(n: [usize; 3], modes: usize, precision: &str) -> Res<Value> {
+    let precision: flexbody::solve::Precision = precision.parse()?;
     let mut phases = serde_json::Map::new();
     let t_all = Instant::now();
     let mut t = Instant::now();
@@ -445,10 +518,14 @@ pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
     let eig = EigenSpec {
         dofs_per_node: Some(3),
         par: threads(),
+        precision,
         ..Default::default()
     };
     let basis = craig_bampton_basis(&red.k, &red.m, &interface, ModeCount::Count(modes), &eig)
         .map_err(|e| e.to_string())?;
+    for note in &basis.notes {
+        eprintln!("  note: {note}");
+    }
     for (name, s) in &basis.timings {
         phases.insert(format!("cb {name}"), num(*s));
     }
@@ -478,6 +555,10 @@ pub fn ours_cb(n: [usize; 3], modes: usize) -> Res<Value> {
         "eigen_steps": basis.eigen.steps,
         "eigen_restarts": basis.eigen.restarts,
         "nnz_l": basis.eigen.factor.as_ref().map(|f| f.nnz_l),
+        "factor_bytes": basis.eigen.factor.as_ref().map(|f| f.factor_bytes),
+        "precision": format!("{precision:?}"),
+        "eigen_refinement_solves": basis.eigen.refinement_solves,
+        "notes": basis.notes,
         "threads": format!("faer {:?}", threads()),
         "loadavg": loadavg(),
     }))
@@ -506,6 +587,7 @@ pub fn cb(
     with_exudyn: bool,
     with_ccx: bool,
     repeats: usize,
+    precision: &str,
 ) -> Res<Value> {
     let load_before = loadavg();
     let ms = modes.to_string();
@@ -516,6 +598,7 @@ pub fn cb(
             n[1].to_string(),
             n[2].to_string(),
             ms.clone(),
+            precision.into(),
         ])
     };
     let mut ours = run_ours()?;
@@ -598,6 +681,7 @@ pub fn cb(
     };
     let json = json!({
         "suite": "cb",
+        "precision": precision,
         "model": format!("tet10 block {}x{}x{} bricks (6 tets each), 0.5x0.1x0.1 m steel, RBE2 spiders on x=0 and x=L (exudyn: RBE2 interfaces on the same nodes; ccx: both faces clamped, frequency only), consistent mass", n[0], n[1], n[2]),
         "dofs": dofs,
         "modes": modes,
@@ -612,7 +696,12 @@ pub fn cb(
         },
         "repeats": pairs,
     });
-    write_result(&format!("cb_{dofs}.json"), &json)?;
+    let suffix = if precision == "auto" {
+        String::new()
+    } else {
+        format!("_{precision}")
+    };
+    write_result(&format!("cb_{dofs}{suffix}.json"), &json)?;
     Ok(json)
 }
 

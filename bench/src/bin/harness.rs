@@ -21,7 +21,7 @@
 
 use flexbody_bench::{accuracy, assembly, chart, scene_accuracy, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] [--baseline B] [--inertia] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] | assembly [N_SHELL [N_TET]] [--repeat R] | slepc NX NY NZ [--modes N] [--mpi N] | accuracy [MODEL.inp] | scene | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] [--baseline B] [--inertia] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] [--precision auto|f64|mixed] | modes NX NY NZ [--counts 30,100,200,300] | assembly [N_SHELL [N_TET]] [--repeat R] | slepc NX NY NZ [--modes N] [--mpi N] | accuracy [MODEL.inp] | scene | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -43,6 +43,13 @@ fn modes(a: &[String]) -> Res<usize> {
     }
 }
 
+/// The value after `flag`, if given.
+fn flag_value(a: &[String], flag: &str) -> Option<String> {
+    a.iter()
+        .position(|s| s == flag)
+        .and_then(|i| a.get(i + 1).cloned())
+}
+
 fn repeat(a: &[String]) -> Res<usize> {
     match a.iter().position(|s| s == "--repeat") {
         Some(i) => a
@@ -58,6 +65,15 @@ fn run(args: &[String]) -> Res<()> {
     let (suite, a) = args.split_first().ok_or(USAGE)?;
     let has = |f: &str| a.iter().any(|s| s == f);
     let out = match suite.as_str() {
+        "modes" => {
+            let counts: Vec<usize> = flag_value(a, "--counts")
+                .unwrap_or_else(|| "30,100,200,300".into())
+                .split(',')
+                .map(|c| c.trim().parse().ok().filter(|&v| v > 0))
+                .collect::<Option<_>>()
+                .ok_or_else(|| "--counts N,N,...".to_string())?;
+            suites::modes(dims(a)?, &counts)?
+        }
         "eigen" => {
             let baseline = match a.iter().position(|s| s == "--baseline") {
                 Some(i) => Some(
@@ -85,6 +101,7 @@ fn run(args: &[String]) -> Res<()> {
             has("--exudyn"),
             has("--ccx"),
             repeat(a)?,
+            &flag_value(a, "--precision").unwrap_or_else(|| "auto".into()),
         )?,
         "assembly" => {
             // sizes before any flag; defaults 408² shell cells (1 003 686 dofs), 34³ tet bricks
@@ -132,9 +149,9 @@ fn run(args: &[String]) -> Res<()> {
             let blocks: Vec<usize> = a[1..].iter().filter_map(|s| s.parse().ok()).collect();
             suites::solve_kernel(&a[0], &blocks)?
         }
-        "ours-cb" if a.len() == 4 => {
+        "ours-cb" if a.len() == 5 => {
             let m = a[3].parse().map_err(|_| "MODES".to_string())?;
-            suites::ours_cb(dims(a)?, m)?
+            suites::ours_cb(dims(a)?, m, &a[4])?
         }
         _ => return Err(USAGE.into()),
     };
