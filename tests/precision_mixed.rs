@@ -4,7 +4,7 @@
 //!   and the report says the factor was f32;
 //! * `--precision auto` under a `--max-memory` that holds the f32 factor but not the f64 one
 //!   builds in mixed precision and says why, where `--precision f64` stops before factoring;
-//! * a bad value is refused.
+//! * a bad value, or `mixed` where no Craig–Bampton interior is factored, is refused.
 
 use common::{exe, scratch};
 use std::path::{Path, PathBuf};
@@ -155,5 +155,14 @@ fn a_bad_precision_is_refused() {
         stderr.contains("--precision half: expected auto, f64 or mixed"),
         "{stderr}"
     );
+    for other in [["--method", "normal"], ["--engine", "slepc"]] {
+        let o = build(&out, &["--precision", "mixed", other[0], other[1]]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && !out.exists(), "{other:?}: {stderr}");
+        assert!(
+            stderr.contains("--precision mixed applies to the Craig-Bampton interior"),
+            "{other:?}: {stderr}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

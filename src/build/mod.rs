@@ -582,6 +582,16 @@ pub fn build_model_with_hook(
             .collect();
         reduce::craig_chang::unit_loads(k.nrows(), &dofs)
     };
+    // an explicit --precision mixed that nothing would use is refused, not ignored
+    if spec.precision == crate::solve::Precision::Mixed
+        && (spec.method != BuildMethod::CraigBampton || spec.engine.is_some())
+    {
+        return Err(request_err(
+            "--precision mixed applies to the Craig-Bampton interior of the native engine: use \
+             --method cb without --engine slepc (the other methods factor in f64)"
+                .into(),
+        ));
+    }
     if spec.engine.is_some() && !(spec.method == BuildMethod::CraigBampton && reference.is_empty())
     {
         return Err(request_err(
