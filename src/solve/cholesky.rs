@@ -532,7 +532,10 @@ impl SparseLlt {
                 }
             }
             if worst.is_nan() {
-                break;
+                return Err(SolveError::Refinement {
+                    step,
+                    correction: worst,
+                });
             }
             // the error left after this step ≈ δₖ·(δₖ/δₖ₋₁) once two corrections are known
             let shrink = worst / last;
