@@ -301,30 +301,7 @@ impl SparseLlt {
         }
         check_memory(factor_memory(&symbolic, par), a.nrows())?;
         let mut values = vec![0.0f64; symbolic.len_val()];
-        let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
-        let mut buf = MemBuffer::new(req);
-        let res = symbolic.factorize_numeric_llt(
-            &mut values,
-            a,
-            Side::Lower,
-            LltRegularization::default(),
-            par,
-            MemStack::new(&mut buf),
-            Default::default(),
-        );
-        if let Err(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }) = res
-        {
-            // faer 0.24 reports the simplicial pivot 1-based and the supernodal one 0-based,
-            // both in the permuted order
-            let pos = match symbolic.raw() {
-                SymbolicCholeskyRaw::Simplicial(_) => index.saturating_sub(1),
-                SymbolicCholeskyRaw::Supernodal(_) => index,
-            };
-            let dof = symbolic
-                .perm()
-                .map_or(pos, |p| p.arrays().0[pos.min(p.arrays().0.len() - 1)]);
-            return Err(SolveError::NonPositivePivot { dof });
-        }
+        factor_numeric(&symbolic, &mut values, a, par)?;
         let min_pivot = min_pivot(&symbolic, |p| values[p], a);
         Ok(Self {
             symbolic,
@@ -364,26 +341,7 @@ impl SparseLlt {
                 ));
             }
             let a32 = SparseColMatRef::<usize, f32>::new(pattern, &rounded);
-            let req = symbolic.factorize_numeric_llt_scratch::<f32>(par, Default::default());
-            let mut buf = MemBuffer::new(req);
-            let res = symbolic.factorize_numeric_llt(
-                &mut values,
-                a32,
-                Side::Lower,
-                LltRegularization::default(),
-                par,
-                MemStack::new(&mut buf),
-                Default::default(),
-            );
-            if let Err(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }) =
-                res
-            {
-                // supernodal: 0-based, permuted order (see factor_with)
-                let dof = symbolic
-                    .perm()
-                    .map_or(index, |p| p.arrays().0[index.min(p.arrays().0.len() - 1)]);
-                return Err(SolveError::NonPositivePivot { dof });
-            }
+            factor_numeric(&symbolic, &mut values, a32, par)?;
         }
         let min_pivot = min_pivot(&symbolic, |p| f64::from(values[p]), a);
         let factor_bytes = values.len() * std::mem::size_of::<f32>();
@@ -565,6 +523,41 @@ impl SparseLlt {
         self.solve_in_place(x.as_mut());
         x
     }
+}
+
+/// The numeric LLᵀ of `a` (lower triangle read) into `values`, in the precision of `T` (f64, or
+/// f32 for a mixed factor); a non-positive pivot is [`SolveError::NonPositivePivot`] with its
+/// original dof.
+fn factor_numeric<T: faer::traits::ComplexField>(
+    symbolic: &SymbolicCholesky<usize>,
+    values: &mut [T],
+    a: SparseColMatRef<'_, usize, T>,
+    par: Par,
+) -> Result<(), SolveError> {
+    let req = symbolic.factorize_numeric_llt_scratch::<T>(par, Default::default());
+    let mut buf = MemBuffer::new(req);
+    let res = symbolic.factorize_numeric_llt(
+        values,
+        a,
+        Side::Lower,
+        LltRegularization::default(),
+        par,
+        MemStack::new(&mut buf),
+        Default::default(),
+    );
+    if let Err(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }) = res {
+        // faer 0.24 reports the simplicial pivot 1-based and the supernodal one 0-based, both in
+        // the permuted order
+        let pos = match symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(_) => index.saturating_sub(1),
+            SymbolicCholeskyRaw::Supernodal(_) => index,
+        };
+        let dof = symbolic
+            .perm()
+            .map_or(pos, |p| p.arrays().0[pos.min(p.arrays().0.len() - 1)]);
+        return Err(SolveError::NonPositivePivot { dof });
+    }
+    Ok(())
 }
 
 /// Solves with the row kernels, [`supernodal::MAX_LANES`] columns at a time.
