@@ -245,12 +245,21 @@ pub struct EigenExtras {
     pub inertia: bool,
 }
 
-/// The `modes` suite: our eigen phase on the `eigen` suite's clamped block (same K, M) for each
-/// mode count in `counts`, one child process each (peak memory per run): eigen time, solved
-/// vectors, orthogonalization time and peak memory against the mode count, and each count's
-/// eigen time over the smallest count's (issue 22's many-mode target: ≤ 3× from 30 to 300).
-pub fn modes(n: [usize; 3], counts: &[usize]) -> Res<Value> {
-    let mut model = tet10_block(n);
+/// The `eigen` suite's system: the generated block clamped at x = 0, assembled and eliminated,
+/// with K and M written to `eigen_<dofs>/K.mtx` and `M.mtx` (the peers and our child processes
+/// read them there).
+struct EigenSystem {
+    model: flexbody::model::Model,
+    /// Nodes of the clamped face.
+    fixed: Vec<usize>,
+    dofs: usize,
+    dir: std::path::PathBuf,
+    kp: std::path::PathBuf,
+    mp: std::path::PathBuf,
+}
+
+fn eigen_system(n: [usize; 3]) -> Res<EigenSystem> {
+    let model = tet10_block(n);
     let fixed = node_set(&model, "X0")?;
     let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
     let red = eliminate(
@@ -269,8 +278,22 @@ pub fn modes(n: [usize; 3], counts: &[usize]) -> Res<Value> {
     let (kp, mp) = (dir.join("K.mtx"), dir.join("M.mtx"));
     write_mtx(&kp, &red.k)?;
     write_mtx(&mp, &red.m)?;
-    model.node_sets.clear();
-    drop((asm, red, model));
+    Ok(EigenSystem {
+        model,
+        fixed,
+        dofs,
+        dir,
+        kp,
+        mp,
+    })
+}
+
+/// The `modes` suite: our eigen phase on the `eigen` suite's clamped block (same K, M) for each
+/// mode count in `counts`, one child process each (peak memory per run): eigen time, solved
+/// vectors, orthogonalization time and peak memory against the mode count, and each count's
+/// eigen time over the smallest count's (issue 22's many-mode target: ≤ 3× from 30 to 300).
+pub fn modes(n: [usize; 3], counts: &[usize]) -> Res<Value> {
+    let EigenSystem { dofs, kp, mp, .. } = eigen_system(n)?;
     let load_before = loadavg();
     let mut runs = Vec::new();
     for &c in counts {
@@ -338,29 +361,18 @@ pub fn eigen_with(
     with_superlu: bool,
     extras: EigenExtras,
 ) -> Res<Value> {
-    let mut model = tet10_block(n);
-    let fixed = node_set(&model, "X0")?;
-    let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
-    let red = eliminate(
-        &model,
-        &asm.dofs,
-        &asm.k,
-        &asm.m,
-        &ConstraintSpec {
-            fixed: fixed.iter().map(|&i| (i, DofMask::ALL)).collect(),
-            ..Default::default()
-        },
-    )
-    .map_err(|e| e.to_string())?;
-    let dofs = red.k.nrows();
-    let dir = data_dir(&format!("eigen_{dofs}"))?;
-    let (kp, mp) = (dir.join("K.mtx"), dir.join("M.mtx"));
-    write_mtx(&kp, &red.k)?;
-    write_mtx(&mp, &red.m)?;
+    let EigenSystem {
+        mut model,
+        fixed,
+        dofs,
+        dir,
+        kp,
+        mp,
+    } = eigen_system(n)?;
     let deck = dir.join("freq.inp");
     write_ccx_deck(&deck, &model, &fixed, modes)?;
     model.node_sets.clear();
-    drop((asm, red, model));
+    drop(model);
     let (ks, ms) = (kp.display().to_string(), mp.display().to_string());
     let ms_ = modes.to_string();
     let load_before = loadavg();
