@@ -376,7 +376,7 @@ pub fn build_model_with_hook(
     lap(&mut report, STAGES[2]);
 
     progress(STAGES[3]);
-    let reduced = eliminate(
+    let mut reduced = eliminate(
         &model,
         &assembled.dofs,
         &assembled.k,
@@ -607,33 +607,41 @@ pub fn build_model_with_hook(
                 .as_ref()
                 .ok_or_else(|| request_err("engine".into()))?;
             reduce::craig_bampton::craig_bampton_slepc(
-                k_r,
-                m_r,
+                &reduced.k,
+                &reduced.m,
                 &interface_dofs,
                 count,
                 &eig,
                 engine,
             )?
         }
-        BuildMethod::Normal => reduce::massless::on_held(k_r, m_r, &massless, |k, m, map| {
-            let fixed = reduce::massless::map_dofs(map, &reference, "reference dofs")?;
-            reduce::normal::normal_modes(k, m, count, &fixed, &eig)
-        })?,
+        BuildMethod::Normal => {
+            reduce::massless::on_held(&reduced.k, &reduced.m, &massless, |k, m, map| {
+                let fixed = reduce::massless::map_dofs(map, &reference, "reference dofs")?;
+                reduce::normal::normal_modes(k, m, count, &fixed, &eig)
+            })?
+        }
         BuildMethod::CraigBampton if reference.is_empty() => {
-            reduce::craig_bampton::craig_bampton(k_r, m_r, &interface_dofs, count, &eig)?
+            // K and M handed over: not resident beside K_ii, M_ii and L (issue 22)
+            let k = std::mem::replace(&mut reduced.k, empty_matrix());
+            let m = std::mem::replace(&mut reduced.m, empty_matrix());
+            let (set, k, m) =
+                reduce::craig_bampton::craig_bampton_owned(k, m, &interface_dofs, count, &eig)?;
+            (reduced.k, reduced.m) = (k, m);
+            set
         }
         BuildMethod::CraigBampton => match spec.reference_method {
             1 => reduce::reference::improved_cb_method1(
-                k_r,
-                m_r,
+                &reduced.k,
+                &reduced.m,
                 &interface_dofs,
                 &reference,
                 count,
                 &eig,
             )?,
             2 => reduce::reference::improved_cb_method2(
-                k_r,
-                m_r,
+                &reduced.k,
+                &reduced.m,
                 &interface_dofs,
                 &reference,
                 count,
@@ -645,15 +653,20 @@ pub fn build_model_with_hook(
                 )))
             }
         },
-        BuildMethod::CraigChang => reduce::massless::on_held(k_r, m_r, &massless, |k, m, map| {
-            let fa = unit_loads_at(map, k)?;
-            reduce::craig_chang::craig_chang(k, m, &fa, count, &eig)
-        })?,
-        BuildMethod::Dietz => reduce::massless::on_held(k_r, m_r, &massless, |k, m, map| {
-            let fa = unit_loads_at(map, k)?;
-            reduce::dietz::dietz(k, m, &fa, count, None, &eig)
-        })?,
+        BuildMethod::CraigChang => {
+            reduce::massless::on_held(&reduced.k, &reduced.m, &massless, |k, m, map| {
+                let fa = unit_loads_at(map, k)?;
+                reduce::craig_chang::craig_chang(k, m, &fa, count, &eig)
+            })?
+        }
+        BuildMethod::Dietz => {
+            reduce::massless::on_held(&reduced.k, &reduced.m, &massless, |k, m, map| {
+                let fa = unit_loads_at(map, k)?;
+                reduce::dietz::dietz(k, m, &fa, count, None, &eig)
+            })?
+        }
     };
+    let (k_r, m_r) = (&reduced.k, &reduced.m);
     if spec.method == BuildMethod::CraigBampton {
         set.diagnostics.massless_dofs = massless.massless.len();
         if !massless.massless.is_empty() {

@@ -295,6 +295,144 @@ pub fn submatrix(
     Ok(SparseColMat::new(symbolic, val))
 }
 
+/// A square matrix split at its interior dofs: A_ii, and the border, every entry of A in a row
+/// or a column outside the interior (in A's own indexing). The two hold A's entries once, so A
+/// itself need not stay resident while A_ii is in use; [`join_interior`] puts it back.
+#[derive(Clone, Debug)]
+pub struct InteriorSplit {
+    /// A[inner, inner], in `inner` order.
+    pub interior: SparseColMat<usize, f64>,
+    /// The entries of A with a row or a column outside `inner`, n × n.
+    pub border: SparseColMat<usize, f64>,
+}
+
+/// Splits the square `a` at the strictly increasing interior dofs `inner` (consumed: A is dropped
+/// once split). Each column's entries are sorted and duplicates summed, as [`submatrix`] does.
+pub fn split_interior(
+    a: SparseColMat<usize, f64>,
+    inner: &[usize],
+) -> Result<InteriorSplit, SolveError> {
+    let n = a.nrows();
+    if a.ncols() != n {
+        return Err(SolveError::Dimension(format!(
+            "interior split of a {n} × {} matrix: not square",
+            a.ncols()
+        )));
+    }
+    let mut pos = vec![usize::MAX; n];
+    for (r, &i) in inner.iter().enumerate() {
+        if i >= n || (r > 0 && inner[r - 1] >= i) {
+            return Err(SolveError::Dimension(format!(
+                "interior split: interior dof {i} (position {r}) is out of range {n} or not increasing"
+            )));
+        }
+        pos[i] = r;
+    }
+    let (mut in_ptr, mut in_idx, mut in_val) = (vec![0usize], Vec::new(), Vec::new());
+    let (mut b_ptr, mut b_idx, mut b_val) = (vec![0usize], Vec::new(), Vec::new());
+    let mut col: Vec<(usize, f64)> = Vec::new();
+    for j in 0..n {
+        col.clear();
+        col.extend(
+            a.row_idx_of_col_raw(j)
+                .iter()
+                .copied()
+                .zip(a.val_of_col(j).iter().copied()),
+        );
+        if !col.windows(2).all(|w| w[0].0 < w[1].0) {
+            col.sort_by_key(|e| e.0);
+            col.dedup_by(|next, kept| {
+                // a duplicate stored entry: summed, as a triplet build would
+                let same = next.0 == kept.0;
+                if same {
+                    kept.1 += next.1;
+                }
+                same
+            });
+        }
+        for &(i, v) in &col {
+            if pos[j] != usize::MAX && pos[i] != usize::MAX {
+                in_idx.push(pos[i]);
+                in_val.push(v);
+            } else {
+                b_idx.push(i);
+                b_val.push(v);
+            }
+        }
+        if pos[j] != usize::MAX {
+            in_ptr.push(in_idx.len());
+        }
+        b_ptr.push(b_idx.len());
+    }
+    drop(a);
+    let ni = inner.len();
+    let interior = SparseColMat::new(
+        faer::sparse::SymbolicSparseColMat::new_checked(ni, ni, in_ptr, None, in_idx),
+        in_val,
+    );
+    let border = SparseColMat::new(
+        faer::sparse::SymbolicSparseColMat::new_checked(n, n, b_ptr, None, b_idx),
+        b_val,
+    );
+    Ok(InteriorSplit { interior, border })
+}
+
+/// The matrix [`split_interior`] split at `inner` (the same list), entry for entry.
+pub fn join_interior(
+    split: InteriorSplit,
+    inner: &[usize],
+) -> Result<SparseColMat<usize, f64>, SolveError> {
+    let InteriorSplit { interior, border } = split;
+    let n = border.nrows();
+    if interior.nrows() != inner.len() || interior.ncols() != inner.len() || border.ncols() != n {
+        return Err(SolveError::Dimension(format!(
+            "interior join: interior {} × {}, border {n} × {}, {} interior dofs",
+            interior.nrows(),
+            interior.ncols(),
+            border.ncols(),
+            inner.len()
+        )));
+    }
+    let nnz = interior.compute_nnz() + border.compute_nnz();
+    let (mut ptr, mut idx, mut val) = (
+        Vec::with_capacity(n + 1),
+        Vec::with_capacity(nnz),
+        Vec::with_capacity(nnz),
+    );
+    ptr.push(0usize);
+    let mut c = 0;
+    for j in 0..n {
+        let (bi, bv) = (border.row_idx_of_col_raw(j), border.val_of_col(j));
+        if c < inner.len() && inner[c] == j {
+            // merge the two sorted columns: interior rows map to increasing original rows
+            let (ii, iv) = (interior.row_idx_of_col_raw(c), interior.val_of_col(c));
+            let (mut p, mut q) = (0, 0);
+            while p < ii.len() || q < bi.len() {
+                let from_interior = q == bi.len() || (p < ii.len() && inner[ii[p]] < bi[q]);
+                if from_interior {
+                    idx.push(inner[ii[p]]);
+                    val.push(iv[p]);
+                    p += 1;
+                } else {
+                    idx.push(bi[q]);
+                    val.push(bv[q]);
+                    q += 1;
+                }
+            }
+            c += 1;
+        } else {
+            idx.extend_from_slice(bi);
+            val.extend_from_slice(bv);
+        }
+        ptr.push(idx.len());
+    }
+    drop((interior, border));
+    Ok(SparseColMat::new(
+        faer::sparse::SymbolicSparseColMat::new_checked(n, n, ptr, None, idx),
+        val,
+    ))
+}
+
 /// Dense copy of a sparse matrix.
 pub fn to_dense(a: SparseColMatRef<'_, usize, f64>) -> Mat<f64> {
     let mut d = Mat::<f64>::zeros(a.nrows(), a.ncols());
@@ -355,4 +493,58 @@ pub fn abs_products(
         c0 += w;
     }
     (energy, norm)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 7 × 7 symmetric matrix with a duplicate stored entry and an explicit zero.
+    fn sample() -> SparseColMat<usize, f64> {
+        let mut t = vec![];
+        for i in 0..7usize {
+            t.push(Triplet::new(i, i, 4.0 + i as f64));
+            if i + 1 < 7 {
+                t.push(Triplet::new(i, i + 1, -1.0 - 0.1 * i as f64));
+                t.push(Triplet::new(i + 1, i, -1.0 - 0.1 * i as f64));
+            }
+        }
+        t.push(Triplet::new(0, 6, 0.0));
+        t.push(Triplet::new(6, 0, 0.0));
+        t.push(Triplet::new(2, 5, 0.5));
+        t.push(Triplet::new(5, 2, 0.5));
+        SparseColMat::try_new_from_triplets(7, 7, &t).unwrap()
+    }
+
+    #[test]
+    fn split_and_join_give_back_the_matrix_and_its_interior_block() {
+        let a = sample();
+        let inner = [1usize, 2, 4, 5];
+        let split = split_interior(a.clone(), &inner).unwrap();
+        let want = submatrix(a.as_ref(), &inner, &inner).unwrap();
+        assert_eq!(to_dense(split.interior.as_ref()), to_dense(want.as_ref()));
+        assert_eq!(
+            split.interior.compute_nnz() + split.border.compute_nnz(),
+            a.compute_nnz()
+        );
+        // the border holds no entry of the interior block
+        for j in inner {
+            for &i in split.border.row_idx_of_col_raw(j) {
+                assert!(!inner.contains(&i), "({i}, {j}) in the border");
+            }
+        }
+        let back = join_interior(split, &inner).unwrap();
+        for j in 0..7 {
+            assert_eq!(back.row_idx_of_col_raw(j), a.row_idx_of_col_raw(j));
+            assert_eq!(back.val_of_col(j), a.val_of_col(j));
+        }
+    }
+
+    #[test]
+    fn split_refuses_an_unordered_interior() {
+        let e = split_interior(sample(), &[2, 1]).unwrap_err();
+        assert!(e.to_string().contains("not increasing"), "{e}");
+        let e = split_interior(sample(), &[1, 9]).unwrap_err();
+        assert!(e.to_string().contains("out of range"), "{e}");
+    }
 }
