@@ -375,13 +375,13 @@ pub fn lowest_modes(
         let t = std::time::Instant::now();
         let kd = sparse_ops::to_dense(k.as_ref());
         let md = sparse_ops::to_dense(m.as_ref());
-        let (vals, vecs) = dense::lowest(kd.as_ref(), md.as_ref(), count, spec.shift)?;
+        let (_, mut vecs) = dense::lowest(kd.as_ref(), md.as_ref(), count, spec.shift)?;
         let info = EigenInfo {
             dense: true,
             seconds_eigen: t.elapsed().as_secs_f64(),
             ..Default::default()
         };
-        return finish(k, m, vals, vecs, info, spec.tol).and_then(|s| verify_band(k, m, s, spec));
+        return finish(k, m, &mut vecs, info, spec.tol).and_then(|s| verify_band(k, m, s, spec));
     }
     lowest_modes_iterative(k, m, spec)
 }
@@ -462,6 +462,9 @@ pub fn lowest_modes_factored(
         upper: spec.upper,
         // the basis (3 × count) stays within half the problem; beyond, the dense path
         max_count: count.max(n / 6),
+        // an f32 factor is chosen to save memory (issue 22): so is the lean basis, whose M·V
+        // is 0.37 GB at 519k dofs and 30 modes (docs/memory.md)
+        keep_mv: !llt.is_mixed(),
     };
     // A small basis can stall (measured: a free 1000-element lumped CBAR line, whose rotations
     // are all massless, did not converge to 6 or 12 modes in 240 steps but did to 20): retry
@@ -505,10 +508,10 @@ pub fn lowest_modes_factored(
     // contrasts: the shift-invert operator's Ritz estimate understates it), refine by subspace
     // iteration X ← (K − σM)⁻¹ M X, at most REFINE_STEPS block solves; `finish` re-does the
     // Rayleigh–Ritz step each time.
-    let (mut vals, mut x) = (r.values, r.vectors);
+    let mut x = r.vectors;
     let mut step = 0;
     loop {
-        match finish(k, m, vals.clone(), x.clone(), info.clone(), spec.tol) {
+        match finish(k, m, &mut x, info.clone(), spec.tol) {
             Err(SolveError::CheckFailed {
                 what: "relative residual",
                 ..
@@ -518,7 +521,6 @@ pub fn lowest_modes_factored(
                     eigen::shift_inverse_solve(llt, k.as_ref(), sigma, x.as_mut(), spec.tol)?
                         * x.ncols();
                 info.solves += x.ncols();
-                vals = vec![0.0; x.ncols()];
                 step += 1;
             }
             other => return other.and_then(|s| verify_band(k, m, s, spec)),
@@ -580,23 +582,27 @@ pub fn default_basis(count: usize, b: usize) -> usize {
 const REFINE_STEPS: usize = 3;
 
 /// Final Rayleigh–Ritz cleanup (exact ΦᵀMΦ = I, ΦᵀKΦ = diag to rounding) and the checks.
+///
+/// `x` is rotated to the Ritz vectors in place (x ← xY, the same span), so that a caller can go
+/// on from it when a check fails; x, Kx and Mx are the only n × c blocks held (issue 22: copies
+/// of them were the 519k build's peak).
 fn finish(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
-    _vals: Vec<f64>,
-    x: Mat<f64>,
+    x: &mut Mat<f64>,
     mut info: EigenInfo,
     tol: f64,
 ) -> Result<EigenSolution, SolveError> {
-    let kx = sparse_ops::spmm(k.as_ref(), x.as_ref());
-    let mx = sparse_ops::spmm(m.as_ref(), x.as_ref());
+    let mut kx = sparse_ops::spmm(k.as_ref(), x.as_ref());
+    let mut mx = sparse_ops::spmm(m.as_ref(), x.as_ref());
     let kp = x.transpose() * &kx;
     let mp = x.transpose() * &mx;
     let (vals, y) = dense::projected(kp.as_ref(), mp.as_ref())?;
-    let x = &x * &y;
-    let kx = &kx * &y;
-    let mx = &mx * &y;
+    // y is c × c (c = the columns of x)
     let c = vals.len();
+    for v in [&mut *x, &mut kx, &mut mx] {
+        thin_ops::mul_in_place(v.as_mut(), y.as_ref());
+    }
     let mut orth = 0.0f64;
     let mut kd = 0.0f64;
     let mp = x.transpose() * &mx;
@@ -665,7 +671,7 @@ fn finish(
     info.stiffness_diag = kd;
     Ok(EigenSolution {
         eigenvalues: vals,
-        vectors: x,
+        vectors: std::mem::replace(x, Mat::zeros(0, 0)),
         residuals,
         info,
     })

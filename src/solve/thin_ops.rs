@@ -60,6 +60,34 @@ pub fn add_a_d(mut w: MatMut<'_, f64>, a: MatRef<'_, f64>, d: MatRef<'_, f64>, a
     faer::linalg::matmul::matmul(w, Accum::Add, a, d, alpha, Par::Seq);
 }
 
+/// Rows per block of [`mul_in_place`]: its scratch is this × k (0.7 MB for k = 22).
+const IN_PLACE_ROWS: usize = 4096;
+
+/// V[:, ..k] = V[:, ..p] · Y (Y p × k, k ≤ p ≤ V's columns) in place, by blocks of rows: a row
+/// of the product needs only the same row of V, so no n × k temporary is made (the thick
+/// restart's V·Y_k was the eigen phase's peak, issue 22). Columns k.. of V are left as they were.
+pub fn mul_in_place(mut v: MatMut<'_, f64>, y: MatRef<'_, f64>) {
+    let (n, p, k) = (v.nrows(), y.nrows(), y.ncols());
+    assert!(k <= p && p <= v.ncols());
+    let par = faer::get_global_parallelism();
+    let mut tmp = Mat::<f64>::zeros(IN_PLACE_ROWS.min(n), k);
+    let mut r0 = 0;
+    while r0 < n {
+        let h = (n - r0).min(IN_PLACE_ROWS);
+        let mut t = tmp.as_mut().subrows_mut(0, h);
+        faer::linalg::matmul::matmul(
+            t.as_mut(),
+            Accum::Replace,
+            v.as_ref().submatrix(r0, 0, h, p),
+            y,
+            1.0,
+            par,
+        );
+        v.as_mut().submatrix_mut(r0, 0, h, k).copy_from(t.as_ref());
+        r0 += h;
+    }
+}
+
 /// AVX2/FMA present and all matrices stored with contiguous columns.
 #[cfg(target_arch = "x86_64")]
 fn simd_ok(ms: &[MatRef<'_, f64>]) -> bool {
@@ -286,6 +314,33 @@ mod tests {
                     "W+aAD n={n} p={p} k={k}"
                 );
             }
+        }
+    }
+
+    /// The in-place product equals faer's V·Y on row counts around the row block, leaves the
+    /// columns past k alone, and handles k = p and k = 0.
+    #[test]
+    fn in_place_product_equals_faer() {
+        for (n, p, k) in [
+            (5, 3, 2),
+            (IN_PLACE_ROWS + 17, 9, 4),
+            (2 * IN_PLACE_ROWS, 6, 6),
+            (10, 4, 0),
+        ] {
+            let v0 = mat(n, p + 2, 3);
+            let y = mat(p, k, 11);
+            let want = v0.as_ref().subcols(0, p) * &y;
+            let mut v = v0.clone();
+            mul_in_place(v.as_mut(), y.as_ref());
+            let got = v.as_ref().subcols(0, k);
+            assert!(
+                (got - &want).norm_max() <= 1e-13 * p as f64,
+                "n={n} p={p} k={k}"
+            );
+            assert_eq!(
+                v.as_ref().subcols(k, p + 2 - k),
+                v0.as_ref().subcols(k, p + 2 - k)
+            );
         }
     }
 }
