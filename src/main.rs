@@ -179,8 +179,9 @@ struct BuildArgs {
     mpi: usize,
     /// Arithmetic of the Craig–Bampton interior's factorization: auto (f64, unless the f64
     /// factor would exceed --max-memory/MemAvailable and an f32 one fits), f64, or mixed (an
-    /// f32 factor, half the memory, with solves refined to f64 accuracy: slower, see
-    /// docs/benchmarks.md; f64 again where K_ii is too ill-conditioned for it).
+    /// f32 factor, half the memory, with solves refined to f64 accuracy and a leaner Krylov
+    /// basis: slower, see docs/benchmarks.md and docs/memory.md; f64 again where K_ii is too
+    /// ill-conditioned for it).
     #[arg(long, default_value = "auto", value_name = "auto|f64|mixed")]
     precision: String,
     /// Keep the fewest modes whose estimated frequency-response error at the scene's loads and

@@ -125,9 +125,11 @@ pub enum SolveError {
 /// half the memory of L and 0.62–0.65× the f64 factorization time, but every solve then needs
 /// iterative refinement against K_ii (about 4 triangular solves where f64 needs one, and the
 /// row kernels are not faster on f32 values: they are bound by the right-hand sides' traffic),
-/// so the eigen phase takes 2.1–3.5× longer and the whole build 1.5–2.0×. The peak memory drops
-/// 12–30 % (519k: 7.29 GB vs 10.48 GB). Hence f64 by default, f32 where the f64 factor does not
-/// fit.
+/// so the eigen phase takes 2.1–3.5× longer and the whole build 1.5–2.0×. With an f32 factor
+/// the Krylov basis also keeps no M·V beside V ([`eigen::BlockParams::keep_mv`]: two more
+/// products with M per step). The 519k build then peaks at 5.6 GB against CHOLMOD's 7.7 GB for
+/// the factorization alone (docs/memory.md). Hence f64 by default, f32 where the f64 factor
+/// does not fit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Precision {
     /// f64, unless the f64 factor would exceed the memory limit and the f32 one fits.
