@@ -14,6 +14,7 @@
 use std::io::{BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use faer::sparse::SparseColMatRef;
@@ -200,6 +201,33 @@ pub fn available() -> Result<(), String> {
     }
 }
 
+/// Engine runs started by this process.
+static RUNS: AtomicUsize = AtomicUsize::new(0);
+
+/// A new, empty directory for one engine run: `flexbody-slepc-<pid>-<run>` in the temporary
+/// directory, `run` counting this process's runs (two builds of one process at once, e.g. tests
+/// in parallel, never share one); a name that exists already is skipped, never reused.
+fn run_dir() -> Result<PathBuf, SolveError> {
+    let mut last = None;
+    for _ in 0..1000 {
+        let run = RUNS.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("flexbody-slepc-{}-{run}", std::process::id()));
+        match std::fs::create_dir(&dir) {
+            Ok(()) => return Ok(dir),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(dir),
+            Err(e) => return Err(io_err(&dir, e)),
+        }
+    }
+    let dir = last.unwrap_or_else(std::env::temp_dir);
+    Err(io_err(
+        &dir,
+        std::io::Error::new(
+            std::io::ErrorKind::AlreadyExists,
+            "1000 run directories exist",
+        ),
+    ))
+}
+
 /// Runs the engine on K_ii, M_ii, K_ib (full symmetric K_ii and M_ii) for `count` modes.
 pub fn fixed_interface(
     kii: SparseColMatRef<'_, usize, f64>,
@@ -210,12 +238,7 @@ pub fn fixed_interface(
     engine: &SlepcEngine,
 ) -> Result<SlepcSolution, SolveError> {
     let t = Instant::now();
-    let dir = std::env::temp_dir().join(format!(
-        "flexbody-slepc-{}-{}",
-        std::process::id(),
-        t.elapsed().as_nanos()
-    ));
-    std::fs::create_dir_all(&dir).map_err(|e| io_err(&dir, e))?;
+    let dir = run_dir()?;
     let result = run_in(&dir, kii, mii, kib, count, tol, engine);
     let _ = std::fs::remove_dir_all(&dir);
     let (x, eigenvalues, vectors, report) = result?;
@@ -310,4 +333,30 @@ fn run_in(
     let vals = order.iter().map(|&i| eigenvalues[i]).collect();
     let vecs = Mat::from_fn(ni, count, |r, c| vectors[(r, order[c])]);
     Ok((x, vals, vecs, report))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Runs of one process get distinct new directories, also when a name is taken already.
+    #[test]
+    fn each_run_gets_its_own_new_directory() {
+        let a = run_dir().unwrap();
+        // take the next name before the engine does: it is skipped, not shared
+        let next = std::env::temp_dir().join(format!(
+            "flexbody-slepc-{}-{}",
+            std::process::id(),
+            RUNS.load(Ordering::Relaxed)
+        ));
+        std::fs::create_dir(&next).unwrap();
+        let b = run_dir().unwrap();
+        assert!(
+            a != b && b != next && a.is_dir() && b.is_dir(),
+            "{a:?} {b:?} {next:?}"
+        );
+        for d in [a, b, next] {
+            std::fs::remove_dir(d).unwrap();
+        }
+    }
 }
