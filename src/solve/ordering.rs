@@ -49,6 +49,12 @@ pub fn nested_dissection(
     let mut options = [-1i32; metis_sys::METIS_NOPTIONS as usize];
     let mut perm = vec![0i32; nv];
     let mut iperm = vec![0i32; nv];
+    // METIS seeds and draws from GKlib's random generator, a C global (vendor/GKlib/random.c,
+    // `static uint64_t mt[NN]`): two calls at once race on it, and their orderings then differ
+    // from run to run (seen in parallel tests: two analyses of one matrix gave L of 8.1 and
+    // 9.7 MB). One call at a time keeps them reproducible.
+    static METIS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _one_at_a_time = METIS.lock().unwrap_or_else(|e| e.into_inner());
     // SAFETY: every array has the length METIS_NodeND documents (xadj nv+1, adjncy xadj[nv],
     // options METIS_NOPTIONS, perm/iperm nv); vwgt may be null.
     let status = unsafe {
