@@ -5,7 +5,7 @@
 use super::orthonormalize::orthonormalize;
 use super::select::{solve_count_with, ModeCount};
 use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
-use crate::solve::cholesky::{self, REFINE_F64, SINGULAR_PIVOT};
+use crate::solve::cholesky::{self, Analysis, REFINE_F64, SINGULAR_PIVOT};
 use crate::solve::{
     lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, Precision,
     SolveError, SparseColMat, SparseLlt, DENSE_MAX,
@@ -139,16 +139,17 @@ fn basis_of_blocks(
 ) -> Result<(CbBasis, SparseColMat<usize, f64>), ReduceError> {
     let n = inner.len() + interface.len();
     let t0 = Instant::now();
-    let (mut llt, mut notes) = factor_kii(kii, kib, inner, eig, eig.precision)?;
+    let (mut llt, mut notes) = factor_kii(kii, kib, inner, eig, eig.precision, None)?;
     let mii = make_mii()?;
     let mut t_factor = t0.elapsed().as_secs_f64();
     let (psi, fixed, t_constraint, t_eigen) =
         match constraint_and_fixed(kii, kib, &mii, &llt, modes, eig) {
             Err(ReduceError::Solve(e @ SolveError::Refinement { .. })) if llt.is_mixed() => {
-                // the f32 factor is too far from K_ii for refinement: factor again in f64
-                drop(llt);
+                // the f32 factor is too far from K_ii for refinement: factor again in f64, on
+                // the same analysis
+                let analysis = llt.into_analysis();
                 let t = Instant::now();
-                (llt, _) = factor_kii(kii, kib, inner, eig, Precision::F64)?;
+                (llt, _) = factor_kii(kii, kib, inner, eig, Precision::F64, Some(analysis))?;
                 t_factor += t.elapsed().as_secs_f64();
                 notes.push(format!(
                     "mixed precision abandoned ({e}); K_ii factored again in f64"
@@ -233,8 +234,9 @@ fn basis_matrix(
 }
 
 /// LLᵀ of K_ii in the asked `precision` ([`Precision::Auto`]: f64 unless its factor exceeds the
-/// memory limit and the f32 one fits; a mixed factorization that meets a non-positive f32 pivot
-/// is done again in f64), with notes for the report. A zero pivot of the f64 factorization
+/// memory limit and the f32 one fits; a mixed factorization whose pivots lost their digits is
+/// done again in f64), with notes for the report; on `analysis` when given (else K_ii is
+/// ordered and analysed here). A zero pivot of the f64 factorization
 /// (non-positive, or positive below [`SINGULAR_PIVOT`] of its diagonal) becomes
 /// [`ReduceError::UnrestrainedInterior`] naming the dof and its region.
 fn factor_kii(
@@ -243,9 +245,13 @@ fn factor_kii(
     inner: &[usize],
     eig: &EigenSpec,
     precision: Precision,
+    analysis: Option<Analysis>,
 ) -> Result<(SparseLlt, Vec<String>), ReduceError> {
     let mut notes = vec![];
-    let (symbolic, stats) = cholesky::analyze(kii.as_ref(), eig.dofs_per_node)?;
+    let (symbolic, stats) = match analysis {
+        Some(a) => a,
+        None => cholesky::analyze(kii.as_ref(), eig.dofs_per_node)?,
+    };
     let mixed = match precision {
         Precision::F64 => false,
         Precision::Mixed => true,
@@ -272,14 +278,18 @@ fn factor_kii(
         }
     };
     let first = if mixed {
+        let abandoned = "mixed precision abandoned: K_ii is too ill-conditioned for an f32 factor \
+                         (a pivot lost its digits); factored in f64";
         match SparseLlt::factor_mixed_with(symbolic, stats, kii.as_ref(), eig.par) {
             Ok(l) if l.min_pivot().0 > F32_PIVOT => Ok(l),
-            Ok(_) | Err(SolveError::NonPositivePivot { .. }) => {
-                notes.push(
-                    "mixed precision abandoned: K_ii is too ill-conditioned for an f32 factor \
-                     (a pivot lost its digits); factored in f64"
-                        .into(),
-                );
+            Ok(l) => {
+                notes.push(abandoned.into());
+                let (symbolic, stats) = l.into_analysis();
+                SparseLlt::factor_with(symbolic, stats, kii.as_ref(), eig.par)
+            }
+            // the failed factorization consumed the analysis: ordered again
+            Err(SolveError::NonPositivePivot { .. }) => {
+                notes.push(abandoned.into());
                 SparseLlt::factor(kii.as_ref(), eig.dofs_per_node, eig.par)
             }
             Err(e) => Err(e),

@@ -62,6 +62,10 @@ pub struct SparseLlt {
     min_pivot: (f64, usize),
 }
 
+/// A symbolic analysis (ordering and structure of L) and its statistics, as [`analyze`] gives
+/// them.
+pub type Analysis = (SymbolicCholesky<usize>, FactorStats);
+
 /// A pivot with L_jj² ≤ SINGULAR_PIVOT · A_jj is taken as a zero pivot: the matrix is singular
 /// and rounding left a tiny positive value (rounding alone leaves ~1e-16·growth of A_jj).
 /// Measured on K_ii of the stability rows: a stiff insert gives 1.3e-12 at contrast 1e10 and
@@ -366,6 +370,22 @@ impl SparseLlt {
     /// well-conditioned matrix, ≤ [`SINGULAR_PIVOT`] for a singular one.
     pub fn min_pivot(&self) -> (f64, usize) {
         self.min_pivot
+    }
+
+    /// The symbolic analysis and its statistics, L's values dropped: to factor the same matrix
+    /// again (in f64 after an f32 factor proved too inaccurate) without ordering it again
+    /// (METIS and the symbolic factorization: about 20 s at 519k dofs).
+    pub fn into_analysis(self) -> Analysis {
+        let Self {
+            symbolic,
+            values,
+            mut stats,
+            ..
+        } = self;
+        drop(values);
+        // as `analyze` gives them: an f64 factor's size (an f32 factor halved it)
+        stats.factor_bytes = 8 * symbolic.len_val();
+        (symbolic, stats)
     }
 
     /// The symbolic analysis (ordering and structure of L).

@@ -638,6 +638,12 @@ mod tests {
                 "b = {b}: refined in {steps} steps: {d:e}"
             );
         }
+        // the f32 factor's analysis factors A again in f64: the same L as a fresh analysis
+        let (symbolic, stats) = mixed.into_analysis();
+        assert_eq!(stats.factor_bytes, f64_llt.stats.factor_bytes);
+        let again = SparseLlt::factor_with(symbolic, stats, a.as_ref(), Par::Seq).unwrap();
+        assert!(!again.is_mixed());
+        assert_eq!(again.values(), f64_llt.values());
     }
 
     /// A matrix too ill-conditioned for f32 (a grid Laplacian, singular, shifted by 1e-9 of its
