@@ -372,7 +372,10 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
 
     const CHUNK: usize = 4096;
     for chunk in elems.chunks(CHUNK) {
-        let mats: Vec<ElementMatrices> = chunk
+        // every element's result first, then the first error in element order: rayon's
+        // collect into a Result returns whichever error a thread met first, so a deck with
+        // several bad elements named a different one from run to run
+        let results: Vec<Result<ElementMatrices, FeError>> = chunk
             .par_iter()
             .map(|&e| {
                 let mut em = element_matrices(model, e, spec)?;
@@ -383,7 +386,8 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
                 }
                 Ok(em)
             })
-            .collect::<Result<_, FeError>>()?;
+            .collect();
+        let mats = results.into_iter().collect::<Result<Vec<_>, FeError>>()?;
         // Split the value arrays at the cuts and scatter each range in parallel.
         let mut kparts = Vec::new();
         let mut mparts = Vec::new();

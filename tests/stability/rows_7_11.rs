@@ -439,6 +439,37 @@ fn row10_bad_elements_and_materials_name_the_entity() {
     }
 }
 
+/// A deck with many bad elements names the first of them, every time: the elements are computed
+/// in parallel, and the error was whichever a thread met first. Here element 2000 of 4000 and all
+/// past it have a bad material: a second thread starts in the bad half at once, while the first
+/// works through 1999 good elements.
+#[test]
+fn row10_many_bad_elements_name_the_first_every_time() {
+    use flexbody::model::{Material, Property, Section};
+    let mut model = block([40, 10, 10], [0.4, 0.1, 0.1]);
+    let mut bad = Material::steel();
+    (bad.id, bad.name, bad.e) = (2, "BAD".into(), -1e9);
+    model.materials.push(bad);
+    model.properties.push(Property {
+        id: 2,
+        name: "BAD".into(),
+        material: 1,
+        section: Section::Solid,
+    });
+    let n = model.elements.len();
+    for e in n / 2 - 1..n {
+        model.elements[e].property = Some(1);
+    }
+    let first = model.elements[n / 2 - 1].id;
+    for run in 0..6 {
+        let e = assemble(&model, &AssemblySpec::default()).unwrap_err();
+        assert!(
+            matches!(&e, FeError::Element { id, .. } if *id == first),
+            "run {run}: {e} (the first bad element is {first})"
+        );
+    }
+}
+
 /// ρ = 0 for a whole part: the command line names the part and the material and writes nothing.
 #[test]
 fn row10_cli_massless_part_names_the_material() {
