@@ -268,21 +268,9 @@ pub fn submatrix(
                 .filter(|(&i, _)| pos[i] != usize::MAX)
                 .map(|(&i, &v)| (pos[i], v)),
         );
-        if !col.windows(2).all(|w| w[0].0 < w[1].0) {
-            col.sort_by_key(|e| e.0);
-        }
-        let start = row_idx.len();
-        for &(r, v) in &col {
-            if row_idx.len() > start && row_idx.last() == Some(&r) {
-                // a duplicate stored entry: summed, as a triplet build would
-                if let Some(last) = val.last_mut() {
-                    *last += v;
-                }
-            } else {
-                row_idx.push(r);
-                val.push(v);
-            }
-        }
+        sort_and_sum(&mut col);
+        row_idx.extend(col.iter().map(|e| e.0));
+        val.extend(col.iter().map(|e| e.1));
         col_ptr.push(row_idx.len());
     }
     let symbolic = faer::sparse::SymbolicSparseColMat::new_checked(
@@ -293,6 +281,22 @@ pub fn submatrix(
         row_idx,
     );
     Ok(SparseColMat::new(symbolic, val))
+}
+
+/// A column's (row, value) entries sorted by row, duplicates summed as a triplet build would
+/// (a no-op for the usual strictly increasing column).
+fn sort_and_sum(col: &mut Vec<(usize, f64)>) {
+    if col.windows(2).all(|w| w[0].0 < w[1].0) {
+        return;
+    }
+    col.sort_by_key(|e| e.0);
+    col.dedup_by(|next, kept| {
+        let same = next.0 == kept.0;
+        if same {
+            kept.1 += next.1;
+        }
+        same
+    });
 }
 
 /// A square matrix split at its interior dofs: A_ii, and the border, every entry of A in a row
@@ -339,17 +343,7 @@ pub fn split_interior(
                 .copied()
                 .zip(a.val_of_col(j).iter().copied()),
         );
-        if !col.windows(2).all(|w| w[0].0 < w[1].0) {
-            col.sort_by_key(|e| e.0);
-            col.dedup_by(|next, kept| {
-                // a duplicate stored entry: summed, as a triplet build would
-                let same = next.0 == kept.0;
-                if same {
-                    kept.1 += next.1;
-                }
-                same
-            });
-        }
+        sort_and_sum(&mut col);
         for &(i, v) in &col {
             if pos[j] != usize::MAX && pos[i] != usize::MAX {
                 in_idx.push(pos[i]);
@@ -538,6 +532,29 @@ mod tests {
             assert_eq!(back.row_idx_of_col_raw(j), a.row_idx_of_col_raw(j));
             assert_eq!(back.val_of_col(j), a.val_of_col(j));
         }
+    }
+
+    /// A column stored unsorted and with a duplicate entry: both the sub-matrix and the split
+    /// sort it and sum the duplicate.
+    #[test]
+    fn unsorted_duplicate_entries_are_sorted_and_summed() {
+        // 3 × 3, column 1 stored as rows [2, 1, 1, 0] (row 1 twice: 1.5 + 0.5)
+        let sym = faer::sparse::SymbolicSparseColMat::new_unsorted_checked(
+            3,
+            3,
+            vec![0, 1, 5, 6],
+            None,
+            vec![0, 2, 1, 1, 0, 2],
+        );
+        let a = SparseColMat::new(sym, vec![4.0, -1.0, 1.5, 0.5, -2.0, 5.0]);
+        let sub = submatrix(a.as_ref(), &[0, 1, 2], &[1]).unwrap();
+        assert_eq!(sub.row_idx_of_col_raw(0), &[0, 1, 2]);
+        assert_eq!(sub.val_of_col(0), &[-2.0, 2.0, -1.0]);
+        let split = split_interior(a, &[1, 2]).unwrap();
+        assert_eq!(split.interior.row_idx_of_col_raw(0), &[0, 1]);
+        assert_eq!(split.interior.val_of_col(0), &[2.0, -1.0]);
+        assert_eq!(split.border.row_idx_of_col_raw(1), &[0]);
+        assert_eq!(split.border.val_of_col(1), &[-2.0]);
     }
 
     #[test]
