@@ -127,8 +127,8 @@ pub enum SolveError {
 /// row kernels are not faster on f32 values: they are bound by the right-hand sides' traffic),
 /// so the eigen phase takes 2.1–3.5× longer and the whole build 1.5–2.0×. With an f32 factor
 /// the Krylov basis also keeps no M·V beside V ([`eigen::BlockParams::keep_mv`]: two more
-/// products with M per step). The 519k build then peaks at 5.6 GB against CHOLMOD's 7.7 GB for
-/// the factorization alone (docs/memory.md). Hence f64 by default, f32 where the f64 factor
+/// products with M per step). The 519k build then peaks at 5,601 MiB against CHOLMOD's
+/// 7,707 MiB for the factorization alone (docs/memory.md). Hence f64 by default, f32 where the f64 factor
 /// does not fit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Precision {

@@ -208,22 +208,21 @@ static RUNS: AtomicUsize = AtomicUsize::new(0);
 /// directory, `run` counting this process's runs (two builds of one process at once, e.g. tests
 /// in parallel, never share one); a name that exists already is skipped, never reused.
 fn run_dir() -> Result<PathBuf, SolveError> {
-    let mut last = None;
+    let tmp = std::env::temp_dir();
     for _ in 0..1000 {
         let run = RUNS.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!("flexbody-slepc-{}-{run}", std::process::id()));
+        let dir = tmp.join(format!("flexbody-slepc-{}-{run}", std::process::id()));
         match std::fs::create_dir(&dir) {
             Ok(()) => return Ok(dir),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(dir),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
             Err(e) => return Err(io_err(&dir, e)),
         }
     }
-    let dir = last.unwrap_or_else(std::env::temp_dir);
     Err(io_err(
-        &dir,
+        &tmp,
         std::io::Error::new(
             std::io::ErrorKind::AlreadyExists,
-            "1000 run directories exist",
+            "1000 run directories of this process exist already",
         ),
     ))
 }
