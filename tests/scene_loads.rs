@@ -720,3 +720,73 @@ fn residual_vectors_on_craig_bampton_and_dietz() {
         }
     }
 }
+
+/// Consistent mass on the native Craig–Bampton path (clamped cantilever, tip interface), where
+/// the physical M is not held through the reduction but assembled again after it (issue 22):
+/// the file's gravity modal load is Φᵀ Tᵀ (M g) with an independently assembled consistent M,
+/// and its mass invariant I1 is the model's mass 1ᵀ M 1 over a translation.
+#[test]
+fn consistent_mass_craig_bampton_uses_the_consistent_m_for_gravity_and_invariants() {
+    use flexbody::fe::MassKind;
+    let path = write_deck("clamped_consistent", true);
+    let model = model_of(&path);
+    let tip = nid(NX, NY, NZ).to_string();
+    let mut s = spec(&path, BuildMethod::CraigBampton, 6, &[tip.as_str()]);
+    s.mass = MassKind::Consistent;
+    s.scene = SceneSpec {
+        gravity: Some("0,0,-9.81".into()),
+        ..Default::default()
+    };
+    let mut phi = None;
+    let out = flexbody::build::build_model_with_hook(&s, model.clone(), &mut |_| {}, &mut |set| {
+        phi = Some(set.phi.clone())
+    })
+    .unwrap();
+    let phi = phi.unwrap();
+    let a = assemble(
+        &model,
+        &AssemblySpec {
+            mass: MassKind::Consistent,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let r = eliminate(&model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).unwrap();
+    let loads = flexbody::scene::scene_loads(&model, &s.scene).unwrap();
+    let gravity = loads.iter().find(|l| l.name == "GRAVITY").unwrap();
+    let f = flexbody::fe::loads::load_vectors(&model, &a.dofs, &a.m, std::slice::from_ref(gravity))
+        .unwrap();
+    let want = phi.transpose() * flexbody::fe::loads::reduce_loads(&r.t, &f);
+    let ml = out.body.modal_loads.as_ref().unwrap();
+    let got = &ml
+        .loads
+        .iter()
+        .find(|l| l.name == "GRAVITY")
+        .unwrap()
+        .values;
+    let scale = (0..want.nrows())
+        .map(|j| want[(j, 0)].abs())
+        .fold(0.0, f64::max);
+    for (j, g) in got.iter().enumerate() {
+        assert!(
+            (g - want[(j, 0)]).abs() <= 1e-10 * scale,
+            "mode {j}: {g} vs {}",
+            want[(j, 0)]
+        );
+    }
+    // I1 = 1ᵀ M 1 over the x translation of every node
+    let ones: Vec<f64> = (0..a.dofs.n_dofs)
+        .map(|p| f64::from(u8::from(a.dofs.node_of(p).unwrap().1 == 0)))
+        .collect();
+    let mass: f64 = (0..a.m.ncols())
+        .flat_map(|j| {
+            let ones = &ones;
+            a.m.row_idx_of_col_raw(j)
+                .iter()
+                .zip(a.m.val_of_col(j))
+                .map(move |(&i, &v)| ones[i] * v * ones[j])
+        })
+        .sum();
+    let i1 = out.body.invariants.i1[0];
+    assert!((i1 - mass).abs() <= 1e-12 * mass, "I1 {i1} vs 1ᵀM1 {mass}");
+}

@@ -16,7 +16,7 @@
 //!   by `--engine slepc` (MUMPS + SLEPc under mpirun) in the same run: agreement and times;
 //! * `chart` — the SVG charts and `docs/benchmarks.md` from the JSON results.
 //!
-//! `ours-eigen`, `ours-cb`, `ours-assembly` and `inertia K.mtx M.mtx SIGMA` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
+//! `ours-eigen`, `ours-cb`, `ours-build`, `ours-assembly` and `inertia K.mtx M.mtx SIGMA` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
 //! times faer's multi-RHS solve against ours on one factorization (for tuning).
 
 use flexbody_bench::{accuracy, assembly, chart, scene_accuracy, suites, Res};
@@ -152,6 +152,10 @@ fn run(args: &[String]) -> Res<()> {
         "ours-cb" if a.len() == 5 => {
             let m = a[3].parse().map_err(|_| "MODES".to_string())?;
             suites::ours_cb(dims(a)?, m, &a[4])?
+        }
+        "ours-build" if a.len() == 5 => {
+            let m = a[3].parse().map_err(|_| "MODES".to_string())?;
+            suites::ours_build(dims(a)?, m, &a[4])?
         }
         _ => return Err(USAGE.into()),
     };
