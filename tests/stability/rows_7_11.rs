@@ -127,23 +127,7 @@ fn row07_stiffness_contrast_meets_the_engine_bounds() {
     // at 1e8 (the build's limit) the residual needs the subspace-iteration refinement of
     // `lowest_modes_factored` and the agreement is what rounding leaves.
     for (contrast, bound) in [(1e4, 1e-8), (1e8, 1e-4)] {
-        let mut big = block([12, 3, 3], [0.4, 0.05, 0.05]);
-        big.materials
-            .push(insert_block(contrast).materials[1].clone());
-        big.properties
-            .push(insert_block(contrast).properties[1].clone());
-        for e in 0..big.elements.len() {
-            let xc = big.elements[e]
-                .nodes
-                .iter()
-                .map(|&n| big.nodes[n].x[0])
-                .sum::<f64>()
-                / 8.0;
-            if xc > 0.15 && xc < 0.25 {
-                big.elements[e].property = Some(1);
-            }
-        }
-        let (_, k, m) = system(&big);
+        let (_, k, m) = system(&insert_block_of([12, 3, 3], contrast));
         let s = normal_modes(&k, &m, ModeCount::Count(12), &[], &eig()).unwrap();
         let (vals, _) = dense_reference(&k, &m);
         let d = (6..12)
@@ -568,22 +552,7 @@ fn row07_mixed_precision_matches_f64_or_falls_back_under_contrast() {
     use flexbody::reduce::craig_bampton::craig_bampton_basis;
     use flexbody::solve::Precision;
     for contrast in [1.0f64, 1e2, 1e3, 1e4, 1e8] {
-        let mut model = block([20, 6, 6], [0.4, 0.05, 0.05]);
-        let insert = insert_block(contrast);
-        model.materials.push(insert.materials[1].clone());
-        model.properties.push(insert.properties[1].clone());
-        for e in 0..model.elements.len() {
-            let xc = model.elements[e]
-                .nodes
-                .iter()
-                .map(|&n| model.nodes[n].x[0])
-                .sum::<f64>()
-                / 8.0;
-            if xc > 0.15 && xc < 0.25 {
-                model.elements[e].property = Some(1);
-            }
-        }
-        let (model, k, m) = system(&model);
+        let (model, k, m) = system(&insert_block_of([20, 6, 6], contrast));
         let x0 = set_dofs(&model, "X0");
         let run = |precision| {
             let spec = flexbody::solve::EigenSpec { precision, ..eig() };

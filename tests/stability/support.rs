@@ -137,7 +137,12 @@ pub fn two_blocks(joint: Joint) -> Model {
 /// 8×2×2 block 0.4 × 0.05 × 0.05 whose middle quarter (0.15 < x < 0.25) is `contrast` times
 /// stiffer (same density).
 pub fn insert_block(contrast: f64) -> Model {
-    let mut m = block([8, 2, 2], [0.4, 0.05, 0.05]);
+    insert_block_of([8, 2, 2], contrast)
+}
+
+/// [`insert_block`] meshed with `bricks` hexahedra.
+pub fn insert_block_of(bricks: [usize; 3], contrast: f64) -> Model {
+    let mut m = block(bricks, [0.4, 0.05, 0.05]);
     let mut stiff = Material::steel();
     stiff.id = 2;
     stiff.name = "INSERT".into();
