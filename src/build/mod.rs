@@ -601,13 +601,13 @@ pub fn build_model_with_hook(
     // The scene's loads on the independent dofs (f_r = Tᵀf; gravity is M·g with the physical M).
     let scene = crate::scene::reduced_loads(&spec.scene, &model, &assembled, &reduced)
         .map_err(|e| request_err(e.to_string()))??;
-    // A consistent physical M is as large as K: not held through the native Craig–Bampton
-    // reduction (issue 22: +0.69 GB at 519k dofs), but assembled again for the invariants after
-    // it (the assembly's time, ~1.5 % of such a build). A lumped M is node-block diagonal.
-    let reassemble_mass = spec.mass == fe::MassKind::Consistent
-        && spec.method == BuildMethod::CraigBampton
-        && reference.is_empty()
-        && spec.engine.is_none();
+    // The native Craig–Bampton reduction takes K and M over (craig_bampton_owned).
+    let native_cb =
+        spec.method == BuildMethod::CraigBampton && reference.is_empty() && spec.engine.is_none();
+    // A consistent physical M is as large as K: not held through that reduction either (issue
+    // 22: +0.69 GB at 519k dofs), but assembled again for the invariants after it (the
+    // assembly's time, ~1.5 % of such a build). A lumped M is node-block diagonal.
+    let reassemble_mass = spec.mass == fe::MassKind::Consistent && native_cb;
     if reassemble_mass {
         assembled.m = empty_matrix();
     }
@@ -632,7 +632,7 @@ pub fn build_model_with_hook(
                 reduce::normal::normal_modes(k, m, count, &fixed, &eig)
             })?
         }
-        BuildMethod::CraigBampton if reference.is_empty() => {
+        BuildMethod::CraigBampton if native_cb => {
             // K and M handed over: not resident beside K_ii, M_ii and L (issue 22)
             let k = std::mem::replace(&mut reduced.k, empty_matrix());
             let m = std::mem::replace(&mut reduced.m, empty_matrix());
