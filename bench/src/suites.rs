@@ -142,6 +142,15 @@ pub fn solve_kernel(kp: &str, blocks: &[usize]) -> Res<Value> {
         llt.stats.nnz_l, llt.stats.flops
     );
     let nnz_l = llt.stats.nnz_l as f64;
+    // the same analysis factored in f32 (a mixed-precision factor), solved in f32 arithmetic
+    let (sym32, stats32) =
+        flexbody::solve::cholesky::analyze(k.as_ref(), Some(3)).map_err(|e| e.to_string())?;
+    let t = Instant::now();
+    let llt32 =
+        flexbody::solve::SparseLlt::factor_mixed_with(sym32, stats32, k.as_ref(), threads())
+            .map_err(|e| e.to_string())?;
+    let t_factor32 = t.elapsed().as_secs_f64();
+    eprintln!("f32 numeric factorization {t_factor32:.2} s");
     let blocks = if blocks.is_empty() {
         vec![1, 4, 6, 8, 12, 16]
     } else {
@@ -169,7 +178,9 @@ pub fn solve_kernel(kp: &str, blocks: &[usize]) -> Res<Value> {
         });
         let (t_faer, x_faer) = time(&|x| llt.solve_in_place_faer(x.as_mut()));
         let (t_ours, x_ours) = time(&|x| llt.solve_in_place(x.as_mut()));
+        let (t_f32, x_f32) = time(&|x| llt32.solve_in_place(x.as_mut()));
         let diff = (&x_faer - &x_ours).norm_max() / x_faer.norm_max();
+        let diff32 = (&x_f32 - &x_ours).norm_max() / x_ours.norm_max();
         let gf = |t: f64| 4.0 * nnz_l * b as f64 / t / 1e9;
         eprintln!(
             "b={b:2}: faer {:7.3} ms/vec {:5.2} GFlop/s | ours {:7.3} ms/vec {:5.2} GFlop/s | x{:.2} | diff {diff:.1e} | K·X {:.2} ms",
@@ -180,13 +191,18 @@ pub fn solve_kernel(kp: &str, blocks: &[usize]) -> Res<Value> {
             t_faer / t_ours,
             1e3 * t_spmm
         );
+        eprintln!(
+            "      f32 factor, f32 arithmetic: {:7.3} ms/vec, {:.2}× ours f64 | one solve off by {diff32:.1e}",
+            1e3 * t_f32 / b as f64,
+            t_f32 / t_ours
+        );
         rows.push(json!({"block": b, "faer_s": t_faer, "ours_s": t_ours,
             "faer_gflops": gf(t_faer), "ours_gflops": gf(t_ours), "max_rel_diff": diff,
-            "spmm_s": t_spmm}));
+            "spmm_s": t_spmm, "f32_s": t_f32, "f32_one_solve_error": diff32}));
     }
     Ok(
         json!({"n": k.nrows(), "nnz_l": llt.stats.nnz_l, "ordering_s": t_order,
-        "analyse_s": t_analyse, "factor_s": t_factor,
+        "analyse_s": t_analyse, "factor_s": t_factor, "factor_f32_s": t_factor32,
         "threads": format!("faer {:?}", threads()), "loadavg": loadavg(), "blocks": rows}),
     )
 }

@@ -3,32 +3,66 @@
 
 use faer::{MatMut, MatRef};
 
+/// The element of a row: f64, or f32 for the single-precision solves of a mixed factor.
+pub(crate) trait Lane: Copy + Send + Sync + 'static {
+    const ZERO: Self;
+    fn from_f64(v: f64) -> Self;
+    fn to_f64(self) -> f64;
+}
+
+impl Lane for f64 {
+    const ZERO: Self = 0.0;
+    #[inline(always)]
+    fn from_f64(v: f64) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self
+    }
+}
+
+impl Lane for f32 {
+    const ZERO: Self = 0.0;
+    #[inline(always)]
+    fn from_f64(v: f64) -> Self {
+        v as f32
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
+}
+
 /// A row of `W` lanes (zero-padded past the block's columns), aligned so that AVX2 loads of its
-/// 4-lane groups never split a cache line (unaligned rows measured up to 1.6× slower).
+/// 32-byte groups never split a cache line (unaligned rows measured up to 1.6× slower).
 #[derive(Clone, Copy)]
 #[repr(C, align(32))]
-pub(crate) struct Row<const W: usize>(pub(crate) [f64; W]);
+pub(crate) struct Row<const W: usize, E = f64>(pub(crate) [E; W]);
 
-impl<const W: usize> Row<W> {
-    pub(crate) const ZERO: Self = Row([0.0; W]);
+impl<const W: usize, E: Lane> Row<W, E> {
+    pub(crate) const ZERO: Self = Row([E::ZERO; W]);
 }
 
 /// Rows of `x` (k ≤ W columns): `rows[i] = x[perm[i], ..]` with a permutation `perm[new] = old`,
-/// else `rows[i] = x[i, ..]`.
-pub(crate) fn to_rows<const W: usize>(x: MatRef<'_, f64>, perm: Option<&[usize]>) -> Vec<Row<W>> {
+/// else `rows[i] = x[i, ..]`, rounded to `E`.
+pub(crate) fn to_rows<const W: usize, E: Lane>(
+    x: MatRef<'_, f64>,
+    perm: Option<&[usize]>,
+) -> Vec<Row<W, E>> {
     assert!(x.ncols() <= W);
-    let mut rows = vec![Row::<W>::ZERO; x.nrows()];
+    let mut rows = vec![Row::<W, E>::ZERO; x.nrows()];
     for c in 0..x.ncols() {
         let col = x.col(c);
         match perm {
             Some(p) => {
                 for (row, &old) in rows.iter_mut().zip(p) {
-                    row.0[c] = col[old];
+                    row.0[c] = E::from_f64(col[old]);
                 }
             }
             None => {
                 for (row, v) in rows.iter_mut().zip(col.iter()) {
-                    row.0[c] = *v;
+                    row.0[c] = E::from_f64(*v);
                 }
             }
         }
@@ -38,8 +72,8 @@ pub(crate) fn to_rows<const W: usize>(x: MatRef<'_, f64>, perm: Option<&[usize]>
 
 /// The inverse of [`to_rows`]: `x[perm[i], ..] = rows[i]` (or `x[i, ..] = rows[i]`), the first
 /// `x.ncols()` lanes.
-pub(crate) fn from_rows<const W: usize>(
-    rows: &[Row<W>],
+pub(crate) fn from_rows<const W: usize, E: Lane>(
+    rows: &[Row<W, E>],
     mut x: MatMut<'_, f64>,
     perm: Option<&[usize]>,
 ) {
@@ -49,12 +83,12 @@ pub(crate) fn from_rows<const W: usize>(
         match perm {
             Some(p) => {
                 for (row, &old) in rows.iter().zip(p) {
-                    col[old] = row.0[c];
+                    col[old] = row.0[c].to_f64();
                 }
             }
             None => {
                 for (row, v) in rows.iter().zip(col.iter_mut()) {
-                    *v = row.0[c];
+                    *v = row.0[c].to_f64();
                 }
             }
         }

@@ -68,7 +68,7 @@ fn gather_lanes<const W: usize, const Q: usize, const ABS: bool>(
     x: MatRef<'_, f64>,
     y: MatMut<'_, f64>,
 ) {
-    let mut xr = rows::to_rows::<W>(x, None);
+    let mut xr = rows::to_rows::<W, f64>(x, None);
     if ABS {
         for r in xr.iter_mut() {
             r.0 = r.0.map(f64::abs);
