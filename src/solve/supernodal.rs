@@ -128,14 +128,27 @@ impl<'a, T: Entry> Supernodal<'a, T> {
     }
 }
 
+/// Whether the AVX2/FMA kernels run on this CPU (the only ones a [`Schedule`] splits).
+pub(crate) fn simd_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
 /// Solves L Lᵀ X = B in place for the columns of `rhs` (at most [`MAX_LANES`]), `perm[new] =
 /// old` being the factor's fill-reducing permutation.
 pub(crate) fn solve_in_place<T: Entry>(
     f: &Supernodal<'_, T>,
     perm: Option<&[usize]>,
     rhs: MatMut<'_, f64>,
+    split: Option<&Schedule>,
 ) {
-    solve_dispatch(f, perm, rhs, true);
+    solve_dispatch(f, perm, rhs, true, split);
 }
 
 /// Solves L Lᵀ X = B for an f32 factor in f32 arithmetic, rows of 8 or 16 f32 lanes (at most
@@ -149,6 +162,7 @@ pub(crate) fn solve_in_place_single(
     f: &Supernodal<'_, f32>,
     perm: Option<&[usize]>,
     mut rhs: MatMut<'_, f64>,
+    split: Option<&Schedule>,
 ) {
     assert!(rhs.ncols() <= MAX_LANES && rhs.nrows() == f.n);
     #[cfg(target_arch = "x86_64")]
@@ -169,8 +183,8 @@ pub(crate) fn solve_in_place_single(
             }
             match rhs.ncols() {
                 0 => {}
-                1..=8 => single_lanes::<8, 1>(f, perm, rhs.as_mut()),
-                _ => single_lanes::<16, 2>(f, perm, rhs.as_mut()),
+                1..=8 => single_lanes::<8, 1>(f, perm, rhs.as_mut(), split),
+                _ => single_lanes::<16, 2>(f, perm, rhs.as_mut(), split),
             }
             for (c, &sc) in scales.iter().enumerate() {
                 rhs.as_mut().col_mut(c).iter_mut().for_each(|v| *v /= sc);
@@ -178,7 +192,7 @@ pub(crate) fn solve_in_place_single(
             return;
         }
     }
-    solve_dispatch(f, perm, rhs, true);
+    solve_dispatch(f, perm, rhs, true, split);
 }
 
 /// [`solve_in_place_single`] on rows of `W = 8·Q` f32 lanes.
@@ -187,27 +201,31 @@ fn single_lanes<const W: usize, const Q: usize>(
     f: &Supernodal<'_, f32>,
     perm: Option<&[usize]>,
     mut rhs: MatMut<'_, f64>,
+    split: Option<&Schedule>,
 ) {
     debug_assert_eq!(W, 8 * Q);
     let mut x = rows::to_rows::<W, f32>(rhs.as_ref(), perm);
     // SAFETY: the caller checked AVX2 and FMA, and `x` holds one row per column of the factor.
-    unsafe { avx2::solve::<f32, f32, W, Q>(f, &mut x) };
+    unsafe { avx2::solve::<f32, f32, W, Q>(f, &mut x, split) };
     rows::from_rows(&x, rhs.as_mut(), perm);
 }
 
+/// The f64-arithmetic kernels (AVX2 with `simd` where the CPU has it, else portable; `split`
+/// only with AVX2: the portable kernels run on one thread).
 fn solve_dispatch<T: Entry>(
     f: &Supernodal<'_, T>,
     perm: Option<&[usize]>,
     rhs: MatMut<'_, f64>,
     simd: bool,
+    split: Option<&Schedule>,
 ) {
     assert!(rhs.ncols() <= MAX_LANES && rhs.nrows() == f.n);
     match rhs.ncols() {
         0 => {}
-        1..=4 => solve_lanes::<T, 4, 1>(f, perm, rhs, simd),
-        5..=8 => solve_lanes::<T, 8, 2>(f, perm, rhs, simd),
-        9..=12 => solve_lanes::<T, 12, 3>(f, perm, rhs, simd),
-        _ => solve_lanes::<T, 16, 4>(f, perm, rhs, simd),
+        1..=4 => solve_lanes::<T, 4, 1>(f, perm, rhs, simd, split),
+        5..=8 => solve_lanes::<T, 8, 2>(f, perm, rhs, simd, split),
+        9..=12 => solve_lanes::<T, 12, 3>(f, perm, rhs, simd, split),
+        _ => solve_lanes::<T, 16, 4>(f, perm, rhs, simd, split),
     }
 }
 
@@ -217,6 +235,7 @@ fn solve_lanes<T: Entry, const W: usize, const Q: usize>(
     perm: Option<&[usize]>,
     mut rhs: MatMut<'_, f64>,
     simd: bool,
+    split: Option<&Schedule>,
 ) {
     debug_assert_eq!(W, 4 * Q);
     let mut x = rows::to_rows::<W, f64>(rhs.as_ref(), perm);
@@ -226,7 +245,7 @@ fn solve_lanes<T: Entry, const W: usize, const Q: usize>(
         if simd && is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
             // SAFETY: the CPU has AVX2 and FMA (checked just above), and `x` holds one row per
             // column of the factor, which is what the kernels index.
-            unsafe { avx2::solve::<T, f64, W, Q>(f, &mut x) };
+            unsafe { avx2::solve::<T, f64, W, Q>(f, &mut x, split) };
             done = true;
         }
     }
@@ -290,6 +309,8 @@ mod portable {
 
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+pub(crate) mod tree;
+pub(crate) use tree::Schedule;
 
 #[cfg(test)]
 mod tests {
@@ -360,12 +381,62 @@ mod tests {
             llt.solve_in_place_faer(reference.as_mut());
             for simd in [true, false] {
                 let mut x = bm.clone();
-                solve_dispatch(&f, perm, x.as_mut(), simd);
+                solve_dispatch(&f, perm, x.as_mut(), simd, None);
                 let d = (&x - &reference).norm_max() / reference.norm_max();
                 assert!(d < 1e-12, "b = {b}, simd = {simd}: {d:e}");
                 let r = sparse_ops::spmm(a.as_ref(), x.as_ref()) - &bm;
                 let rel = r.norm_max() / bm.norm_max();
                 assert!(rel < 1e-12, "b = {b}, simd = {simd}: residual {rel:e}");
+            }
+        }
+    }
+
+    /// Two threads on one solve: the elimination tree of the grid splits into two groups of
+    /// subtrees holding most of L, and the split solve gives the one-thread solve's X (to
+    /// rounding: the rows above both groups are summed in another order) for f64 and f32
+    /// factors and every lane width.
+    #[test]
+    fn two_thread_tree_split_solves_equal_one_thread() {
+        let a = grid_matrix(14, 12, 12);
+        let n = a.nrows();
+        for mixed in [false, true] {
+            let (sym, st) = crate::solve::cholesky::analyze(a.as_ref(), Some(3)).unwrap();
+            let (sym2, st2) = crate::solve::cholesky::analyze(a.as_ref(), Some(3)).unwrap();
+            let factor = |sym, st, par| {
+                if mixed {
+                    SparseLlt::factor_mixed_with(sym, st, a.as_ref(), par).unwrap()
+                } else {
+                    SparseLlt::factor_with(sym, st, a.as_ref(), par).unwrap()
+                }
+            };
+            let one = factor(sym, st, Par::Seq);
+            let two = factor(sym2, st2, Par::rayon(2));
+            let SymbolicCholeskyRaw::Supernodal(s) = two.symbolic().raw() else {
+                panic!("expected a supernodal factor");
+            };
+            let sch = if mixed {
+                tree::schedule(&Supernodal::new(s, two.values_f32()))
+            } else {
+                tree::schedule(&Supernodal::new(s, two.values()))
+            }
+            .expect("the grid's tree splits");
+            let ptr = s.col_ptr_for_val();
+            let share = |l: &[usize]| {
+                l.iter().map(|&k| ptr[k + 1] - ptr[k]).sum::<usize>() as f64
+                    / ptr[ptr.len() - 1] as f64
+            };
+            let (wa, wb, wr) = (share(&sch.a), share(&sch.b), share(&sch.rest));
+            assert!(
+                wa > 0.2 && wb > 0.2 && wr < 0.5,
+                "shares of L: {wa:.2} / {wb:.2} / rest {wr:.2}"
+            );
+            for b in [1, 6, 8, 12, 16] {
+                let bm = crate::solve::eigen::random_block(n, b, &mut 0x9E37_79B9_7F4A_7C15u64);
+                let x1 = one.solve(bm.as_ref());
+                let x2 = two.solve(bm.as_ref());
+                let d = (&x1 - &x2).norm_max() / x1.norm_max();
+                let limit = if mixed { 1e-5 } else { 1e-13 };
+                assert!(d <= limit, "mixed {mixed}, b = {b}: {d:e}");
             }
         }
     }
@@ -401,9 +472,9 @@ mod tests {
             let f = Supernodal::new(sym, mixed.values_f32());
             let perm = mixed.symbolic().perm().map(|p| p.arrays().0);
             let mut portable = bm.clone();
-            solve_dispatch(&f, perm, portable.as_mut(), false);
+            solve_dispatch(&f, perm, portable.as_mut(), false, None);
             let mut simd = bm.clone();
-            solve_dispatch(&f, perm, simd.as_mut(), true);
+            solve_dispatch(&f, perm, simd.as_mut(), true, None);
             let dk = (&portable - &simd).norm_max() / scale;
             assert!(dk < 1e-13, "b = {b}: SIMD vs portable on f32 L {dk:e}");
             let d64 = (&simd - &exact).norm_max() / scale;

@@ -16,9 +16,34 @@ const ROW_BLOCK: usize = 512;
 /// Columns of the thin operand per kernel pass.
 const MAX_THIN: usize = 8;
 
+/// Rows from which [`at_b`] and [`add_a_d`] split the rows in two halves for two threads
+/// (under faer's global parallelism of degree ≥ 2): the Gram–Schmidt passes were the eigen
+/// phase's largest sequential part once the solves ran on two threads.
+const SPLIT_ROWS: usize = 16 * ROW_BLOCK;
+
+/// Where to split n rows for two threads, if at all: at a multiple of the row block, so that
+/// every row is computed as on one thread.
+fn halves(n: usize) -> Option<usize> {
+    (n >= SPLIT_ROWS && faer::get_global_parallelism().degree() >= 2)
+        .then_some(n / 2 / ROW_BLOCK * ROW_BLOCK)
+}
+
 /// D = Aᵀ B (A n × p, B n × k).
 pub fn at_b(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Mat<f64> {
     assert_eq!(a.nrows(), b.nrows());
+    if let Some(h) = halves(a.nrows()) {
+        let n = a.nrows();
+        let (d1, d2) = rayon::join(
+            || at_b_seq(a.subrows(0, h), b.subrows(0, h)),
+            || at_b_seq(a.subrows(h, n - h), b.subrows(h, n - h)),
+        );
+        return d1 + d2;
+    }
+    at_b_seq(a, b)
+}
+
+/// [`at_b`] on one thread.
+fn at_b_seq(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Mat<f64> {
     let mut d = Mat::<f64>::zeros(a.ncols(), b.ncols());
     #[cfg(target_arch = "x86_64")]
     {
@@ -41,8 +66,22 @@ pub fn at_b(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Mat<f64> {
 }
 
 /// W += α A D (W n × k, A n × p, D p × k).
-pub fn add_a_d(mut w: MatMut<'_, f64>, a: MatRef<'_, f64>, d: MatRef<'_, f64>, alpha: f64) {
+pub fn add_a_d(w: MatMut<'_, f64>, a: MatRef<'_, f64>, d: MatRef<'_, f64>, alpha: f64) {
     assert!(w.nrows() == a.nrows() && a.ncols() == d.nrows() && d.ncols() == w.ncols());
+    if let Some(h) = halves(a.nrows()) {
+        let n = a.nrows();
+        let (w1, w2) = w.split_at_row_mut(h);
+        rayon::join(
+            || add_a_d_seq(w1, a.subrows(0, h), d, alpha),
+            || add_a_d_seq(w2, a.subrows(h, n - h), d, alpha),
+        );
+        return;
+    }
+    add_a_d_seq(w, a, d, alpha);
+}
+
+/// [`add_a_d`] on one thread.
+fn add_a_d_seq(mut w: MatMut<'_, f64>, a: MatRef<'_, f64>, d: MatRef<'_, f64>, alpha: f64) {
     #[cfg(target_arch = "x86_64")]
     {
         if simd_ok(&[a, w.as_ref()]) {
@@ -287,6 +326,29 @@ mod tests {
 
     fn mat(n: usize, k: usize, seed: u64) -> Mat<f64> {
         crate::solve::eigen::random_block(n, k, &mut { seed })
+    }
+
+    /// On two threads (rows split in halves, from SPLIT_ROWS rows) both kernels give faer's
+    /// products, W += αAD exactly the one-thread result (rows are independent) and D = AᵀB the
+    /// one-thread result to rounding (the halves are summed).
+    #[test]
+    fn thin_products_on_two_threads_equal_one_thread() {
+        let (n, p, k) = (SPLIT_ROWS + 37, 9, 6);
+        let (a, b, d) = (mat(n, p, 3), mat(n, k, 5), mat(p, k, 9));
+        let run = |par| {
+            let _g = crate::solve::ParGuard::new(par);
+            let mut w = b.clone();
+            add_a_d(w.as_mut(), a.as_ref(), d.as_ref(), -0.5);
+            (at_b(a.as_ref(), b.as_ref()), w)
+        };
+        let (d1, w1) = run(Par::Seq);
+        let (d2, w2) = run(Par::rayon(2));
+        assert_eq!(w1, w2);
+        let dref = a.transpose() * &b;
+        assert!((&d2 - &dref).norm_max() <= 1e-12 * n as f64);
+        assert!((&d1 - &d2).norm_max() <= 1e-13 * n as f64);
+        let wref = &b - (&a * &d) * faer::Scale(0.5);
+        assert!((&w2 - &wref).norm_max() <= 1e-13 * p as f64);
     }
 
     /// Both kernels against faer's products, for thin widths 1…13 (two passes above 8), row

@@ -2,6 +2,7 @@
 //! `is_x86_feature_detected!`) and rows of `W = N·Q` lanes (N per vector, [`Lanes`]); the index
 //! arithmetic stays inside the slices, which each function asserts once before its loops.
 
+use super::tree::Schedule;
 use super::{Entry, Node, Row, Supernodal, PANEL};
 use crate::solve::rows::Lane;
 use std::arch::x86_64::*;
@@ -143,20 +144,98 @@ impl Rows for Pattern<'_> {
     }
 }
 
-/// Forward then backward substitution on the permuted rows `x` (one per column of L).
+/// Forward then backward substitution on the permuted rows `x` (one per column of L); with a
+/// [`Schedule`], on two threads ([`super::tree`]).
 #[target_feature(enable = "avx2,fma")]
 pub(super) unsafe fn solve<T: Entry, X: Lanes<T>, const W: usize, const Q: usize>(
     f: &Supernodal<'_, T>,
     x: &mut [Row<W, X>],
+    split: Option<&Schedule>,
 ) {
     assert_eq!(x.len(), f.n);
+    let Some(sch) = split else {
+        let xp = x.as_mut_ptr() as *mut X;
+        forward::<T, X, W, Q>(f, 0..f.n_supernodes(), xp);
+        backward::<T, X, W, Q>(f, (0..f.n_supernodes()).rev(), xp);
+        return;
+    };
+    // forward: group b on a copy whose rows of the rest are zero, then its rows and its
+    // contributions to the rest's rows added back
+    let mut xb = x.to_vec();
+    let rows_of = |list: &[usize]| {
+        list.iter()
+            .flat_map(|&s| f.begin[s]..f.end[s])
+            .collect::<Vec<_>>()
+    };
+    let (rows_b, rows_rest) = (rows_of(&sch.b), rows_of(&sch.rest));
+    for &r in &rows_rest {
+        xb[r] = Row::ZERO;
+    }
+    let (pa, pb) = (
+        Shared(x.as_mut_ptr() as *mut X),
+        Shared(xb.as_mut_ptr() as *mut X),
+    );
+    // SAFETY (both joins): the two groups' subtrees have no supernode in common, so their
+    // updates write disjoint rows (a on x, b on xb in the forward pass; both on x in the
+    // backward pass, where each writes only its own rows and reads rows of the rest, which no
+    // one writes then); the CPU has AVX2/FMA (checked by the caller of `solve`).
+    rayon::join(
+        || unsafe { forward::<T, X, W, Q>(f, sch.a.iter().copied(), pa.get()) },
+        || unsafe { forward::<T, X, W, Q>(f, sch.b.iter().copied(), pb.get()) },
+    );
+    for &r in &rows_b {
+        x[r] = xb[r];
+    }
+    for &r in &rows_rest {
+        for (v, d) in x[r].0.iter_mut().zip(xb[r].0) {
+            *v = X::from_f64(v.to_f64() + d.to_f64());
+        }
+    }
     let xp = x.as_mut_ptr() as *mut X;
-    for s in 0..f.n_supernodes() {
+    forward::<T, X, W, Q>(f, sch.rest.iter().copied(), xp);
+    backward::<T, X, W, Q>(f, sch.rest.iter().rev().copied(), xp);
+    let p = Shared(xp);
+    rayon::join(
+        || unsafe { backward::<T, X, W, Q>(f, sch.a.iter().rev().copied(), p.get()) },
+        || unsafe { backward::<T, X, W, Q>(f, sch.b.iter().rev().copied(), p.get()) },
+    );
+}
+
+/// A pointer to the rows handed to the two threads of a split solve.
+#[derive(Clone, Copy)]
+struct Shared<X>(*mut X);
+// SAFETY: the threads of a split solve write disjoint rows through it (see `solve`).
+unsafe impl<X> Send for Shared<X> {}
+unsafe impl<X> Sync for Shared<X> {}
+impl<X> Shared<X> {
+    /// The pointer (a method, so that closures capture the whole `Shared`, which is `Send`).
+    fn get(self) -> *mut X {
+        self.0
+    }
+}
+
+/// The forward substitution of the supernodes `order` (children before parents).
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward<T: Entry, X: Lanes<T>, const W: usize, const Q: usize>(
+    f: &Supernodal<'_, T>,
+    order: impl Iterator<Item = usize>,
+    xp: *mut X,
+) {
+    for s in order {
         let nd = f.node(s);
         forward_triangle::<T, X, W, Q>(&nd, xp);
         forward_update::<T, X, W, Q, _>(&nd, nd.w, 0, nd.w, Pattern(nd.pattern), xp);
     }
-    for s in (0..f.n_supernodes()).rev() {
+}
+
+/// The backward substitution of the supernodes `order` (parents before children).
+#[target_feature(enable = "avx2,fma")]
+unsafe fn backward<T: Entry, X: Lanes<T>, const W: usize, const Q: usize>(
+    f: &Supernodal<'_, T>,
+    order: impl Iterator<Item = usize>,
+    xp: *mut X,
+) {
+    for s in order {
         let nd = f.node(s);
         backward_update::<T, X, W, Q, _>(&nd, nd.w, 0, nd.w, Pattern(nd.pattern), xp);
         backward_triangle::<T, X, W, Q>(&nd, xp);
