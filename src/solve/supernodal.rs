@@ -152,9 +152,9 @@ pub(crate) fn solve_in_place<T: Entry>(
 }
 
 /// Solves L Lᵀ X = B for an f32 factor in f32 arithmetic, rows of 8 or 16 f32 lanes (at most
-/// [`MAX_LANES`] columns): twice the lanes of an instruction and half the bytes of X, so about
-/// 0.6× the time of the f64-arithmetic solve of the same factor (the 180k tet10 factor, 6
-/// columns), whose error it matches (one solve: 6.2e-2 either way, the factor's own). Each
+/// [`MAX_LANES`] columns): twice the lanes of an instruction and half the bytes of X, so 0.55×
+/// the time of the f64-arithmetic solve of the same factor (the 180k tet10 factor, 6 columns),
+/// whose error it matches (one solve: 6.2e-2 either way, the factor's own). Each
 /// column is scaled by a power of two to max |b| ∈ [1, 2) first, so f32's range holds it. For
 /// refined solves ([`super::cholesky::SparseLlt::solve_refined_in_place`]); machines without
 /// AVX2/FMA take the f64-arithmetic kernels.
