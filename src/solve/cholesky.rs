@@ -322,9 +322,9 @@ impl SparseLlt {
     /// Mixed precision: the numeric factorization of `a` rounded to f32 (half the memory and
     /// bandwidth of an f64 L); the solves run in f32 arithmetic on it (0.55× the f64 solve's
     /// time at 6 columns), and [`SparseLlt::solve_refined_in_place`] recovers the f64 solution
-    /// by iterative refinement against `a`. Only for a supernodal analysis (a simplicial one is factored in f64). A
-    /// non-positive f32 pivot is [`SolveError::NonPositivePivot`], as in f64: the caller decides
-    /// whether to factor in f64 instead.
+    /// by iterative refinement against `a`. Only for a supernodal analysis (a simplicial one is
+    /// factored in f64). A non-positive f32 pivot is [`SolveError::NonPositivePivot`], as in
+    /// f64: the caller decides whether to factor in f64 instead.
     pub fn factor_mixed_with(
         symbolic: SymbolicCholesky<usize>,
         stats: FactorStats,

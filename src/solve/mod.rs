@@ -121,15 +121,14 @@ pub enum SolveError {
 
 /// Arithmetic of the Craig–Bampton interior's factorization (K_ii), `build --precision`.
 ///
-/// Measured (docs/benchmarks.md, "Mixed precision", 69k/178k/519k dofs): an f32 factor takes
-/// half the memory of L and 0.62–0.65× the f64 factorization time, but every solve then needs
-/// iterative refinement against K_ii (about 4 triangular solves where f64 needs one, and the
-/// row kernels are not faster on f32 values: they are bound by the right-hand sides' traffic),
-/// so the eigen phase takes 2.1–3.5× longer and the whole build 1.5–2.0×. With an f32 factor
-/// the Krylov basis also keeps no M·V beside V ([`eigen::BlockParams::keep_mv`]: two more
-/// products with M per step). The 519k build then peaks at 5,601 MiB against CHOLMOD's
-/// 7,707 MiB for the factorization alone (docs/memory.md). Hence f64 by default, f32 where the f64 factor
-/// does not fit.
+/// Measured (docs/benchmarks.md, "Mixed precision", 69k/178k/519k dofs, one thread): an f32
+/// factor takes half the memory of L and about half the f64 factorization time, but every solve
+/// then needs iterative refinement against K_ii (about 4 triangular solves where f64 needs one;
+/// in f32 arithmetic each takes 0.55× an f64 solve), so the eigen phase takes 1.9–2.5× longer
+/// and the whole build 1.1–1.45×. With an f32 factor the Krylov basis also keeps no M·V beside
+/// V ([`eigen::BlockParams::keep_mv`]: two more products with M per step). The 519k build then
+/// peaks at 5,508 MiB against CHOLMOD's 7,701 MiB for the factorization alone
+/// (docs/memory.md). Hence f64 by default, f32 where the f64 factor does not fit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Precision {
     /// f64, unless the f64 factor would exceed the memory limit and the f32 one fits.
@@ -252,6 +251,16 @@ pub struct EigenSolution {
 /// cores) was measured 2.4× slower in the eigen phase on this shared 2-core machine (36k dofs:
 /// 8.0 s vs 3.3 s). Process-global: concurrent faer users in other threads see the setting too.
 pub struct ParGuard(Par);
+
+/// Rows from which the row-wise products (K·X, the Gram–Schmidt products of
+/// [`thin_ops`]) split their rows between two threads, under faer's global parallelism.
+pub(crate) const SPLIT_ROWS: usize = 8192;
+
+/// Whether a row-wise product over `n` rows runs on two threads: n ≥ [`SPLIT_ROWS`] and
+/// faer's global parallelism of degree ≥ 2 (`--threads`, set by [`ParGuard`]).
+pub(crate) fn rows_on_two_threads(n: usize) -> bool {
+    n >= SPLIT_ROWS && faer::get_global_parallelism().degree() >= 2
+}
 
 impl ParGuard {
     /// Switches to `par` until the guard is dropped.

@@ -81,7 +81,7 @@ fn gather_lanes<const W: usize, const Q: usize, const ABS: bool>(
             let n = yr.len();
             // the output rows are independent: two halves on two threads under faer's global
             // parallelism (the products with M and K of the eigen phase and the refinement)
-            if n >= 8192 && faer::get_global_parallelism().degree() >= 2 {
+            if super::rows_on_two_threads(n) {
                 let (y1, y2) = yr.split_at_mut(n / 2);
                 let xr = &xr;
                 rayon::join(
@@ -526,7 +526,7 @@ mod tests {
         SparseColMat::try_new_from_triplets(7, 7, &t).unwrap()
     }
 
-    /// K·X with the output rows split between two threads (n ≥ 8192) equals the one-thread
+    /// K·X with the output rows split between two threads (n ≥ SPLIT_ROWS) equals the one-thread
     /// product exactly (each row is one column's sum either way) and faer's product to rounding.
     #[test]
     fn spmm_on_two_threads_equals_one_thread() {

@@ -16,16 +16,11 @@ const ROW_BLOCK: usize = 512;
 /// Columns of the thin operand per kernel pass.
 const MAX_THIN: usize = 8;
 
-/// Rows from which [`at_b`] and [`add_a_d`] split the rows in two halves for two threads
-/// (under faer's global parallelism of degree ≥ 2): the Gram–Schmidt passes were the eigen
-/// phase's largest sequential part once the solves ran on two threads.
-const SPLIT_ROWS: usize = 16 * ROW_BLOCK;
-
-/// Where to split n rows for two threads, if at all: at a multiple of the row block, so that
-/// every row is computed as on one thread.
+/// Where to split n rows for two threads, if at all ([`super::rows_on_two_threads`]: the
+/// Gram–Schmidt passes were the eigen phase's largest sequential part once the solves ran on two
+/// threads): at a multiple of the row block, so that every row is computed as on one thread.
 fn halves(n: usize) -> Option<usize> {
-    (n >= SPLIT_ROWS && faer::get_global_parallelism().degree() >= 2)
-        .then_some(n / 2 / ROW_BLOCK * ROW_BLOCK)
+    super::rows_on_two_threads(n).then_some(n / 2 / ROW_BLOCK * ROW_BLOCK)
 }
 
 /// D = Aᵀ B (A n × p, B n × k).
@@ -333,7 +328,7 @@ mod tests {
     /// one-thread result to rounding (the halves are summed).
     #[test]
     fn thin_products_on_two_threads_equal_one_thread() {
-        let (n, p, k) = (SPLIT_ROWS + 37, 9, 6);
+        let (n, p, k) = (crate::solve::SPLIT_ROWS + 37, 9, 6);
         let (a, b, d) = (mat(n, p, 3), mat(n, k, 5), mat(p, k, 9));
         let run = |par| {
             let _g = crate::solve::ParGuard::new(par);
