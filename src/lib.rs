@@ -21,25 +21,21 @@
 #![allow(non_snake_case)]
 
 pub mod body;
-pub mod build;
-pub mod check;
-pub mod deck;
-pub mod diagnose;
+pub mod cli;
 pub mod export;
 pub mod fe;
 pub mod import;
-pub mod inspect;
-pub mod interface;
-pub mod interface_entry;
 pub mod model;
-pub mod options;
-pub mod precheck;
-pub mod recipe;
+pub mod pipeline;
 pub mod reduce;
-pub mod scene;
 pub mod solve;
-pub mod verify;
 pub mod write;
 
-// The body stage's modules keep their crate-root paths (`flexbody::stress`, …).
+// Crate-root paths kept for programs written against the flat layout (`flexbody::build::…`,
+// `flexbody::check::…`, `flexbody::stress`, …): each names the module where the code lives now.
 pub use body::{damping, faces, invariants, invariants_consistent, shell_stress, stress};
+pub use cli::{check, inspect};
+pub use pipeline as build;
+pub use pipeline::{
+    deck, diagnose, interface, interface_entry, options, precheck, recipe, scene, verify,
+};

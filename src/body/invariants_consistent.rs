@@ -13,8 +13,8 @@
 use faer::sparse::SparseColMat;
 use faer::Mat;
 
+use crate::body::invariants::{InvariantSet, Invariants};
 use crate::fe::DofMap;
-use crate::invariants::{InvariantSet, Invariants};
 use crate::solve::sparse_ops::spmm;
 
 /// Rigid-body vectors of the dofs: columns tx ty tz rx ry rz (basic axes, local dof frames).

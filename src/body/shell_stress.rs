@@ -6,12 +6,12 @@
 //! averaged over the shell elements that share the node (each contributes its own top and
 //! bottom fibre: the normal is each element's own, by the right-hand rule on its node order).
 //! Voigt order xx yy zz xy yz zx, engineering shear strains, per unit modal coordinate, as the
-//! solids' fields in [`crate::stress`].
+//! solids' fields in [`crate::body::stress`].
 
+use crate::body::stress::{FieldRequest, ModalFields, StressError};
 use crate::fe::elements::shell::{plane_stress, ShellFrame, ShellProps};
 use crate::fe::elements::{quad4_shell, tri3_shell, Xyz};
 use crate::model::{ElementKind, Model, NodeIndex, Section};
-use crate::stress::{FieldRequest, ModalFields, StressError};
 
 /// Membrane strain and curvature (element frame) at one corner.
 type CornerStrains = ([f64; 3], [f64; 3]);

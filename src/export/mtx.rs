@@ -25,11 +25,11 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use crate::build::{BuildError, BuildSpec};
 use crate::fe::{self, assemble, eliminate, AssemblySpec, ConstraintSpec};
 use crate::import::{self, ImportOptions};
-use crate::interface::resolve_interfaces;
 use crate::model::Model;
+use crate::pipeline::interface::resolve_interfaces;
+use crate::pipeline::{BuildError, BuildSpec};
 use crate::solve::SparseColMat;
 
 /// The constrained system: K_r, M_r and the dof each equation is.
@@ -59,7 +59,7 @@ pub enum MtxError {
     ModelChanged(Vec<String>),
     /// An option recorded in the recipe or given explicitly is not valid.
     #[error(transparent)]
-    Options(#[from] crate::options::OptionError),
+    Options(#[from] crate::pipeline::options::OptionError),
     /// A file could not be written.
     #[error("{path}: cannot write ({source})")]
     Io {
@@ -94,7 +94,7 @@ pub fn constrained_system_of_model(
     spec: &BuildSpec,
     mut model: Model,
 ) -> Result<ConstrainedSystem, BuildError> {
-    let defaults = crate::deck::deck_defaults(spec, &model);
+    let defaults = crate::pipeline::deck::deck_defaults(spec, &model);
     let spec = &defaults.spec;
     let interfaces = resolve_interfaces(&mut model, &spec.interface, spec.spider)?;
     let interface_nodes: Vec<usize> = interfaces
@@ -243,7 +243,7 @@ pub fn export_mtx(spec: &BuildSpec, dir: &Path) -> Result<Vec<PathBuf>, MtxError
 pub fn spec_from_body(
     body: &flexbody_reader::ReducedBody,
     model: &Path,
-) -> Result<BuildSpec, crate::options::OptionError> {
+) -> Result<BuildSpec, crate::pipeline::options::OptionError> {
     spec_from_body_with(body, model, Default::default())
 }
 
@@ -252,9 +252,10 @@ pub fn spec_from_body(
 pub fn spec_from_body_with(
     body: &flexbody_reader::ReducedBody,
     model: &Path,
-    overrides: crate::recipe::ModelOverrides,
-) -> Result<BuildSpec, crate::options::OptionError> {
-    let input = crate::recipe::model_input(body.recipe.as_ref(), model.to_path_buf(), overrides)?;
+    overrides: crate::pipeline::recipe::ModelOverrides,
+) -> Result<BuildSpec, crate::pipeline::options::OptionError> {
+    let input =
+        crate::pipeline::recipe::model_input(body.recipe.as_ref(), model.to_path_buf(), overrides)?;
     let mut spec = BuildSpec::new(model.to_path_buf(), body.units.clone(), &[]);
     spec.format = input.format;
     spec.material = input.material;
@@ -279,12 +280,12 @@ pub fn spec_from_body_with(
 pub fn export_body_matrices(
     body: &flexbody_reader::ReducedBody,
     model: &Path,
-    overrides: crate::recipe::ModelOverrides,
+    overrides: crate::pipeline::recipe::ModelOverrides,
     mass: Option<fe::MassKind>,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, MtxError> {
     if let Some(recipe) = &body.recipe {
-        let changed = crate::recipe::changed_model_files(recipe, model);
+        let changed = crate::pipeline::recipe::changed_model_files(recipe, model);
         if !changed.is_empty() {
             return Err(MtxError::ModelChanged(changed));
         }

@@ -6,11 +6,11 @@ use faer::Mat;
 use flexbody_reader as file;
 
 use super::{BuildError, BuildSpec, KeepNodes};
+use crate::body::invariants::MassPoint;
+use crate::body::stress::ModalFields;
 use crate::fe::{self, assemble, AssemblySpec, BeamLumping, DofMap};
-use crate::invariants::MassPoint;
 use crate::model::{DofMask, Model, NodeIndex};
 use crate::reduce::{self, ModeSet};
-use crate::stress::ModalFields;
 
 /// Rows `[ux uy uz rx ry rz]` of node `p` for mode `j` in the basic frame (zeros where the node
 /// has no such dof): u_basic = Aᵀ u_local with A's rows the local axes.
@@ -157,7 +157,7 @@ pub(super) fn stored_nodes(
     model: &Model,
     keep: &KeepNodes,
     always: &[NodeIndex],
-    faces: &[crate::faces::GraphicsFace],
+    faces: &[crate::body::faces::GraphicsFace],
 ) -> Result<Vec<NodeIndex>, String> {
     let mut on = vec![false; model.nodes.len()];
     for &n in always {
@@ -228,9 +228,9 @@ pub(super) fn assemble_body(
     interface: &[NodeIndex],
     interface_masks: &[DofMask],
     reference: &[(NodeIndex, DofMask)],
-    faces: &[crate::faces::GraphicsFace],
+    faces: &[crate::body::faces::GraphicsFace],
     nodal: &NodalMass,
-    inv: &crate::invariants::Invariants,
+    inv: &crate::body::invariants::Invariants,
     fields: Option<&ModalFields>,
 ) -> Result<file::ReducedBody, BuildError> {
     let mut position = vec![u32::MAX; model.nodes.len()];

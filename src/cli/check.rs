@@ -33,11 +33,11 @@ use std::path::PathBuf;
 use faer::{Mat, Par};
 use flexbody_reader as file;
 
+use crate::body::invariants::{compute_invariants, InvariantSet, MassPoint};
 use crate::fe::{self, assemble, eliminate, AssemblySpec, ConstraintSpec};
 use crate::import::{self, Format, ImportOptions};
-use crate::interface::{resolve_interfaces, SpiderKind};
-use crate::invariants::{compute_invariants, InvariantSet, MassPoint};
 use crate::model::Material;
+use crate::pipeline::interface::{resolve_interfaces, SpiderKind};
 use crate::reduce::select::ModeCount;
 use crate::solve::EigenSpec;
 
@@ -110,7 +110,7 @@ pub struct ModelInput {
 pub enum CheckError {
     /// The model could not be rebuilt.
     #[error(transparent)]
-    Build(#[from] crate::build::BuildError),
+    Build(#[from] crate::pipeline::BuildError),
 }
 
 /// Limit on ‖ΦᵀMΦ − I‖ and the stored-data identities (relative).
@@ -481,9 +481,9 @@ fn model_checks(
     input: &ModelInput,
     r: &mut CheckReport,
 ) -> Result<(), CheckError> {
-    use crate::build::BuildError;
+    use crate::pipeline::BuildError;
     if let Some(recipe) = &body.recipe {
-        let changed = crate::recipe::changed_model_files(recipe, &input.path);
+        let changed = crate::pipeline::recipe::changed_model_files(recipe, &input.path);
         r.push(
             "model files as built (recipe SHA-256)",
             changed.len() as f64,
@@ -518,7 +518,7 @@ fn model_checks(
         .flat_map(|i| i.nodes.iter().copied())
         .collect();
     let beam_lumping = input.beam_mass.unwrap_or_else(|| {
-        let mut spec = crate::build::BuildSpec::new(input.path.clone(), file::Units::si(), &[]);
+        let mut spec = crate::pipeline::BuildSpec::new(input.path.clone(), file::Units::si(), &[]);
         spec.format = input.format;
         spec.beam_lumping()
     });
@@ -707,13 +707,19 @@ fn model_checks(
             }
         }
         if missing == 0 {
-            let f = crate::verify::identities(&red.k, &red.m, &phi, &body.modes.omega2, &fixed);
-            crate::verify::push_identities(
+            let f = crate::pipeline::verify::identities(
+                &red.k,
+                &red.m,
+                &phi,
+                &body.modes.omega2,
+                &fixed,
+            );
+            crate::pipeline::verify::push_identities(
                 r,
                 &f,
                 &body.modes.labels,
                 body.method.method == file::Method::NormalModes
-                    && !crate::scene::has_residual_vectors(body),
+                    && !crate::pipeline::scene::has_residual_vectors(body),
                 n_r,
             );
         }

@@ -21,7 +21,7 @@
 
 use std::collections::BTreeSet;
 
-use crate::faces::graphics_faces;
+use crate::body::faces::graphics_faces;
 use crate::model::{DofMask, Model, Node, NodeIndex, RigidElement};
 
 /// How a node set named as an interface is attached.
@@ -365,7 +365,7 @@ fn node_average(model: &Model, set: &[NodeIndex]) -> [f64; 3] {
 /// Centre of a node set: cylinder fit, else area-weighted face centroid, else node average
 /// (module doc). Faces are the free faces whose corners all lie in `set`, each split into a fan of
 /// triangles from its first corner.
-fn set_centre(model: &Model, set: &[NodeIndex], faces: &[crate::faces::GraphicsFace]) -> Fit {
+fn set_centre(model: &Model, set: &[NodeIndex], faces: &[crate::body::faces::GraphicsFace]) -> Fit {
     let members: BTreeSet<NodeIndex> = set.iter().copied().collect();
     // Triangles (area A, centroid c, unit normal n) of the set's faces.
     let mut tris: Vec<(f64, [f64; 3], [f64; 3])> = Vec::new();

@@ -14,9 +14,9 @@
 
 use std::collections::BTreeMap;
 
-use crate::build::BuildSpec;
 use crate::fe::{DofMap, MassKind};
 use crate::model::{DofMask, Model, NodeIndex};
+use crate::pipeline::BuildSpec;
 use crate::reduce::select::ModeCount;
 
 /// The spec with the deck's defaults filled in, the mode count the deck asks for (when the

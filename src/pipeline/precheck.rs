@@ -16,9 +16,9 @@
 use faer::sparse::SparseColMat;
 use faer::Mat;
 
-use crate::build::BuildMethod;
 use crate::fe::DofMap;
 use crate::model::{DofMask, Model, NodeIndex, RigidElement};
+use crate::pipeline::BuildMethod;
 
 /// Largest ratio of Young's moduli between the model's materials that the build accepts
 /// (docs/stability.md, row 7): the sparse iterative path meets its residual bounds to 1e8 (with

@@ -1,12 +1,12 @@
-//! The file's `interfaces.bin` (format 1.3) from what [`crate::interface`] resolved: per
+//! The file's `interfaces.bin` (format 1.3) from what [`crate::pipeline::interface`] resolved: per
 //! interface node of `method.bin`, in the same order, its name, how it is attached, the
 //! external ids of the mesh nodes it depends on and the spider's centre fit.
 use std::collections::HashMap;
 
 use flexbody_reader as file;
 
-use crate::interface::{CentreMethod, InterfaceReport, SpiderKind};
 use crate::model::Model;
+use crate::pipeline::interface::{CentreMethod, InterfaceReport, SpiderKind};
 
 /// One [`file::InterfaceInfo`] per interface node of `reports` (their `nodes` flattened, the
 /// order `method.bin` lists them in); `body_nodes` are the stored nodes, whose positions the

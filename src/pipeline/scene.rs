@@ -17,7 +17,7 @@ use flexbody_reader as file;
 
 use crate::model::load::{face_nodes, solid_faces};
 use crate::model::{ElementKind, Load, LoadPart, Model, NodeIndex};
-use crate::options::OptionError;
+use crate::pipeline::options::OptionError;
 use crate::reduce::residual::ResidualKind;
 
 /// The scene options of a build.

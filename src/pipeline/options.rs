@@ -4,10 +4,10 @@
 
 use flexbody_reader as file;
 
-use crate::build::{BuildMethod, KeepNodes};
 use crate::fe::{BeamLumping, MassKind};
-use crate::interface::SpiderKind;
 use crate::model::{DofMask, Material};
+use crate::pipeline::interface::SpiderKind;
+use crate::pipeline::{BuildMethod, KeepNodes};
 
 /// A bad option value: names the option and says what is accepted.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -211,8 +211,10 @@ pub fn parse_keep_nodes(s: &str) -> KeepNodes {
 }
 
 /// `--stress-modes [both|stress|strain]` (absent: none).
-pub fn parse_field_request(s: Option<&str>) -> Result<crate::stress::FieldRequest, OptionError> {
-    use crate::stress::FieldRequest;
+pub fn parse_field_request(
+    s: Option<&str>,
+) -> Result<crate::body::stress::FieldRequest, OptionError> {
+    use crate::body::stress::FieldRequest;
     let (stress, strain) = match s.map(str::to_ascii_lowercase).as_deref() {
         None => (false, false),
         Some("both") => (true, true),

@@ -12,12 +12,12 @@ use std::path::{Path, PathBuf};
 
 use flexbody_reader as file;
 
-use crate::build::{BuildMethod, BuildSpec, KeepNodes};
-use crate::check::ModelInput;
+use crate::cli::check::ModelInput;
 use crate::fe::{self, BeamLumping};
 use crate::import::Format;
-use crate::interface::{InterfaceReport, SpiderKind};
 use crate::model::{DofMask, Material, Model, RigidElement};
+use crate::pipeline::interface::{InterfaceReport, SpiderKind};
+use crate::pipeline::{BuildMethod, BuildSpec, KeepNodes};
 use crate::reduce::select::FMAX_FACTOR;
 use crate::reduce::ModeSet;
 
@@ -211,7 +211,7 @@ pub fn recipe(
             }
             .into()
         }),
-        select: spec.scene.select.map(crate::scene::select_text),
+        select: spec.scene.select.map(crate::pipeline::scene::select_text),
     };
     let interfaces = interfaces
         .iter()
@@ -321,8 +321,8 @@ pub fn model_input(
     recipe: Option<&file::Recipe>,
     path: PathBuf,
     o: ModelOverrides,
-) -> Result<ModelInput, crate::options::OptionError> {
-    use crate::options::{parse_material, parse_spider};
+) -> Result<ModelInput, crate::pipeline::options::OptionError> {
+    use crate::pipeline::options::{parse_material, parse_spider};
     let opts = recipe.map(|r| &r.options);
     let format = match o.format {
         Some(f) => Some(f),
@@ -350,7 +350,7 @@ pub fn model_input(
             .unwrap_or_default(),
     };
     let beam_mass = opts
-        .map(|r| crate::options::parse_beam_mass(&r.beam_mass))
+        .map(|r| crate::pipeline::options::parse_beam_mass(&r.beam_mass))
         .transpose()?
         .flatten();
     Ok(ModelInput {

@@ -4,17 +4,17 @@
 //! and, where the cause is knowable from the model alone, the material that makes it so: an
 //! implausible material (wave speed, ν, sign of E — [`crate::import::plausibility`]) or a
 //! stiffness contrast between materials beyond what double precision separates. The connected
-//! parts are judged before the reduction ([`crate::precheck`]); what reaches here is what that
+//! parts are judged before the reduction ([`crate::pipeline::precheck`]); what reaches here is what that
 //! check cannot see.
 
-use crate::build::BuildError;
 use crate::model::Model;
+use crate::pipeline::BuildError;
 use crate::reduce::ReduceError;
 use crate::solve::SolveError;
 
 /// Stiffness contrast (largest E / smallest E) above which a failed solve names the two
 /// materials: beyond ~1e8 the soft part's modes are lost in the stiff part's rounding
-/// ([`crate::precheck::MAX_CONTRAST`] refuses contrasts between connected parts above it).
+/// ([`crate::pipeline::precheck::MAX_CONTRAST`] refuses contrasts between connected parts above it).
 pub const CONTRAST_HINT: f64 = 1e6;
 
 /// What a failed solve is explained with: taken from the model before the build consumes it

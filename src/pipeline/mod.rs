@@ -17,19 +17,29 @@ use std::time::Instant;
 use faer::Par;
 use flexbody_reader as file;
 
-use crate::faces::graphics_faces;
+use crate::body::faces::graphics_faces;
+use crate::body::invariants::compute_invariants;
+use crate::body::stress::{modal_fields, FieldRequest, ModalFields};
 use crate::fe::{self, assemble, eliminate, AssemblySpec, BeamLumping, ConstraintSpec};
 use crate::import::{self, Format, ImportOptions};
-use crate::interface::{resolve_interfaces, InterfaceReport, SpiderKind};
-use crate::invariants::compute_invariants;
 use crate::model::{DofMask, Material, Model, NodeIndex};
+use crate::pipeline::interface::{resolve_interfaces, InterfaceReport, SpiderKind};
 use crate::reduce::select::{self, ModeCount};
 use crate::reduce::{self, ModeSet};
 use crate::solve::EigenSpec;
-use crate::stress::{modal_fields, FieldRequest, ModalFields};
 
 mod body;
 use body::*;
+
+pub mod deck;
+pub mod diagnose;
+pub mod interface;
+pub mod interface_entry;
+pub mod options;
+pub mod precheck;
+pub mod recipe;
+pub mod scene;
+pub mod verify;
 
 /// Reduction method asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,7 +92,7 @@ pub struct BuildSpec {
     /// Reference conditions: (external node id, dofs).
     pub reference_conditions: Vec<(u64, DofMask)>,
     /// Reference conditions by name: plain node ids (free components), node-set names, or a
-    /// deck's constraint set (`SPC_1`: the components it holds) — see [`crate::deck`].
+    /// deck's constraint set (`SPC_1`: the components it holds) — see [`crate::pipeline::deck`].
     pub reference_sets: Vec<String>,
     /// Improved-CB method (1 or 2) for reference conditions.
     pub reference_method: u8,
@@ -108,10 +118,10 @@ pub struct BuildSpec {
     /// Nastran: the case-control subcase whose SPC and METHOD selections apply.
     pub subcase: Option<u64>,
     /// `mass` was chosen by the user (`--mass`); when false a deck's PARAM,COUPMASS > 0 selects
-    /// consistent mass (see [`crate::deck`]).
+    /// consistent mass (see [`crate::pipeline::deck`]).
     pub mass_explicit: bool,
     /// The scene: loads (`--gravity`, `--load`) and residual vectors (`--residual-vectors`).
-    pub scene: crate::scene::SceneSpec,
+    pub scene: crate::pipeline::scene::SceneSpec,
     /// `--verify-band`: prove every eigenproblem's returned modes complete by an inertia count
     /// (one extra LDLᵀ factorization each; [`EigenSpec::verify_band`]).
     pub verify_band: bool,
@@ -198,7 +208,7 @@ pub struct BuildReport {
     /// constraint components dropped from interface/reference nodes.
     pub notes: Vec<String>,
     /// Every applied constraint: card, line, set, dofs held.
-    pub constraints: Vec<crate::deck::ConstraintSummary>,
+    pub constraints: Vec<crate::pipeline::deck::ConstraintSummary>,
 }
 
 /// A built body with its report.
@@ -218,7 +228,7 @@ pub enum BuildError {
     Import(#[from] import::ImportError),
     /// Interface resolution failed.
     #[error(transparent)]
-    Interface(#[from] crate::interface::InterfaceError),
+    Interface(#[from] crate::pipeline::interface::InterfaceError),
     /// Assembly or constraint elimination failed.
     #[error(transparent)]
     Fe(#[from] fe::FeError),
@@ -227,17 +237,17 @@ pub enum BuildError {
     Reduce(#[from] reduce::ReduceError),
     /// Invariants could not be formed.
     #[error(transparent)]
-    Invariants(#[from] crate::invariants::InvariantError),
+    Invariants(#[from] crate::body::invariants::InvariantError),
     /// Stress/strain shapes could not be recovered.
     #[error(transparent)]
-    Fields(#[from] crate::stress::StressError),
+    Fields(#[from] crate::body::stress::StressError),
     /// The built body failed its own verification (nothing was written).
     #[error("{file}: {failures}")]
     Verify {
         /// Model file.
         file: String,
         /// The failed checks.
-        failures: crate::verify::VerifyError,
+        failures: crate::pipeline::verify::VerifyError,
     },
     /// The request does not fit the model.
     #[error("{file}: {message}")]
@@ -303,8 +313,8 @@ pub fn build_model(
     model: Model,
     progress: &mut dyn FnMut(&str),
 ) -> Result<BuildOutput, BuildError> {
-    // Solver failures in the model's terms (crate::diagnose).
-    let ctx = crate::diagnose::SolverContext::of(&model);
+    // Solver failures in the model's terms (crate::pipeline::diagnose).
+    let ctx = crate::pipeline::diagnose::SolverContext::of(&model);
     build_model_with_hook(spec, model, progress, &mut |_| {}).map_err(|e| ctx.explain(e))
 }
 
@@ -319,7 +329,7 @@ pub fn build_model_with_hook(
 ) -> Result<BuildOutput, BuildError> {
     let mut report = BuildReport::default();
     // The deck's own requests (COUPMASS, METHOD, ASET, TITLE) fill the choices left open.
-    let defaults = crate::deck::deck_defaults(spec, &model);
+    let defaults = crate::pipeline::deck::deck_defaults(spec, &model);
     let spec = &defaults.spec;
     report.notes = defaults.notes.clone();
     let mut clock = Instant::now();
@@ -360,7 +370,8 @@ pub fn build_model_with_hook(
         .flat_map(|r| r.nodes.iter().copied())
         .collect();
     // A bad --load/--gravity is reported now, not after the reduction.
-    crate::scene::scene_loads(&model, &spec.scene).map_err(|e| request_err(e.to_string()))?;
+    crate::pipeline::scene::scene_loads(&model, &spec.scene)
+        .map_err(|e| request_err(e.to_string()))?;
     lap(&mut report, STAGES[1]);
 
     progress(STAGES[2]);
@@ -370,7 +381,7 @@ pub fn build_model_with_hook(
         ..Default::default()
     };
     let mut assembled = assemble(&model, &assembly)?;
-    report.constraints = crate::deck::constraint_summary(&model, &assembled.dofs);
+    report.constraints = crate::pipeline::deck::constraint_summary(&model, &assembled.dofs);
     lap(&mut report, STAGES[2]);
 
     progress(STAGES[3]);
@@ -429,8 +440,9 @@ pub fn build_model_with_hook(
     for r in &report.interfaces {
         for &n in &r.nodes {
             let count = usize::from(dofs.count[n]);
-            let (mask, held) = crate::deck::node_mask(&model, n, count, r.dofs, "interface")
-                .map_err(&request_err)?;
+            let (mask, held) =
+                crate::pipeline::deck::node_mask(&model, n, count, r.dofs, "interface")
+                    .map_err(&request_err)?;
             if held.0 != 0 {
                 dropped.push(format!(
                     "interface node {} ({})",
@@ -446,8 +458,11 @@ pub fn build_model_with_hook(
     let mut reference = Vec::new();
     let mut reference_records = Vec::new();
     // Reference conditions by interface name (`BIG_END:123456`) are node ids from here on.
-    let (named_references, reference_sets) =
-        crate::interface::reference_names(&model, &report.interfaces, &spec.reference_sets)?;
+    let (named_references, reference_sets) = crate::pipeline::interface::reference_names(
+        &model,
+        &report.interfaces,
+        &spec.reference_sets,
+    )?;
     for &(id, mask) in spec.reference_conditions.iter().chain(&named_references) {
         let node = *by_id
             .get(&id)
@@ -456,7 +471,7 @@ pub fn build_model_with_hook(
         let explicit = (mask != DofMask::ALL).then_some(mask);
         let count = usize::from(dofs.count[node]);
         let (mask, held) =
-            crate::deck::node_mask(&model, node, count, explicit, "reference-condition")
+            crate::pipeline::deck::node_mask(&model, node, count, explicit, "reference-condition")
                 .map_err(&request_err)?;
         if held.0 != 0 {
             dropped.push(format!("reference node {id} ({})", held.digits()));
@@ -465,11 +480,12 @@ pub fn build_model_with_hook(
         reference_records.push((node, mask));
     }
     for (node, explicit, entry) in
-        crate::deck::reference_entries(&model, &reference_sets).map_err(&request_err)?
+        crate::pipeline::deck::reference_entries(&model, &reference_sets).map_err(&request_err)?
     {
         let count = usize::from(dofs.count[node]);
-        let (mask, held) = crate::deck::node_mask(&model, node, count, None, "reference-condition")
-            .map_err(&request_err)?;
+        let (mask, held) =
+            crate::pipeline::deck::node_mask(&model, node, count, None, "reference-condition")
+                .map_err(&request_err)?;
         // A constraint set's components, less the held ones (they are held already).
         let mask = DofMask(mask.0 & explicit.map_or(0x3f, |m| m.0));
         if held.0 != 0 && explicit.is_none_or(|m| m.0 & held.0 != 0) {
@@ -495,7 +511,7 @@ pub fn build_model_with_hook(
         ));
     }
     // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
-    crate::precheck::before_reduction(
+    crate::pipeline::precheck::before_reduction(
         &model,
         dofs,
         &assembled.m,
@@ -599,7 +615,7 @@ pub fn build_model_with_hook(
         ));
     }
     // The scene's loads on the independent dofs (f_r = Tᵀf; gravity is M·g with the physical M).
-    let scene = crate::scene::reduced_loads(&spec.scene, &model, &assembled, &reduced)
+    let scene = crate::pipeline::scene::reduced_loads(&spec.scene, &model, &assembled, &reduced)
         .map_err(|e| request_err(e.to_string()))??;
     // The native Craig–Bampton reduction takes K and M over (craig_bampton_owned).
     let native_cb =
@@ -705,7 +721,7 @@ pub fn build_model_with_hook(
         // the band: --fmax, else the candidates' top read back through FMAX_FACTOR
         let top = set.frequencies_hz().into_iter().fold(0.0f64, f64::max);
         let band = spec.fmax_hz.unwrap_or(top / select::FMAX_FACTOR);
-        let (s, rep) = crate::scene::select_by_scene(
+        let (s, rep) = crate::pipeline::scene::select_by_scene(
             k_r,
             m_r,
             set,
@@ -729,12 +745,14 @@ pub fn build_model_with_hook(
         }
     }
     if let Some(kind) = spec.scene.residual_vectors {
-        let f = crate::scene::residual_loads(kind, &scene, &interface_dofs, k_r.nrows())
+        let f = crate::pipeline::scene::residual_loads(kind, &scene, &interface_dofs, k_r.nrows())
             .map_err(&request_err)?;
         let (s, rep) = reduce::residual::add_residual_vectors(k_r, m_r, set, &f, &eig)?;
         set = s;
         if !rep.removed.is_empty() {
-            report.notes.push(crate::scene::removed_note(&rep, &scene));
+            report
+                .notes
+                .push(crate::pipeline::scene::removed_note(&rep, &scene));
         }
     }
     hook(&mut set);
@@ -759,7 +777,7 @@ pub fn build_model_with_hook(
             let s = node_shape(dofs, &phi, p, j);
             [s[0], s[1], s[2]]
         };
-        crate::invariants_consistent::consistent_invariants(
+        crate::body::invariants_consistent::consistent_invariants(
             &assembled.m,
             dofs,
             &x,
@@ -791,8 +809,14 @@ pub fn build_model_with_hook(
         let f = modal_fields(&model, &stored, phi.ncols(), &u, spec.fields)?;
         // Shells: top fibre in the solids' entries, bottom fibre in the 1.5 entries.
         let u6 = |p: NodeIndex, j: usize| node_shape(dofs, &phi, p, j);
-        let sf = crate::shell_stress::shell_fields(&model, &stored, phi.ncols(), &u6, spec.fields)?;
-        let (f, bottom) = crate::shell_stress::merge(f, &sf, phi.ncols());
+        let sf = crate::body::shell_stress::shell_fields(
+            &model,
+            &stored,
+            phi.ncols(),
+            &u6,
+            spec.fields,
+        )?;
+        let (f, bottom) = crate::body::shell_stress::merge(f, &sf, phi.ncols());
         shell_bottom = bottom;
         if f.nodes.is_empty() {
             report.warnings.push(
@@ -825,10 +849,10 @@ pub fn build_model_with_hook(
         &inv,
         fields.as_ref(),
     )?;
-    body.modal_loads = crate::scene::modal_loads(&scene, &set);
-    let band = crate::recipe::accuracy_band(spec, &set);
-    let recipe =
-        crate::recipe::recipe(spec, &model, &report.interfaces, band).map_err(request_err)?;
+    body.modal_loads = crate::pipeline::scene::modal_loads(&scene, &set);
+    let band = crate::pipeline::recipe::accuracy_band(spec, &set);
+    let recipe = crate::pipeline::recipe::recipe(spec, &model, &report.interfaces, band)
+        .map_err(request_err)?;
     body.recipe = Some(recipe);
     if let Some(b) = &shell_bottom {
         let mut position = vec![u32::MAX; model.nodes.len()];
@@ -839,12 +863,12 @@ pub fn build_model_with_hook(
         body.strain_shapes_bottom = field_shapes(b, b.strain.as_ref(), &position);
     }
     body.interfaces =
-        crate::interface_entry::interfaces_entry(&model, &report.interfaces, &body.nodes);
+        crate::pipeline::interface_entry::interfaces_entry(&model, &report.interfaces, &body.nodes);
     body.version = file::version_for(&body);
     lap(&mut report, STAGES[7]);
 
     progress(STAGES[8]);
-    crate::verify::verify_body(&body, Some((k_r, m_r, &set.phi, &reference))).map_err(
+    crate::pipeline::verify::verify_body(&body, Some((k_r, m_r, &set.phi, &reference))).map_err(
         |failures| BuildError::Verify {
             file: file_name.clone(),
             failures,
