@@ -2,16 +2,9 @@
 //! `cbcheck`. Each check measures one figure against a stated limit; the file passes only when
 //! every check passes.
 //!
-//! From the file alone:
-//! * generalized mass = I and generalized stiffness = diag(ω²), frequencies = √ω²/2π;
-//! * rigid-body properties from the invariants: I1 > 0, centre of mass I2/I1 inside the nodes'
-//!   bounding box, I7 symmetric positive definite;
-//! * the number of rigid-body modes against the expectation (6 for a free body, 0 with
-//!   reference conditions);
-//! * lumped mass, every node stored: invariants I1, I2, I6, I7 recomputed from the stored nodal
-//!   masses and shapes equal the stored ones, and I6 equals the generalized mass — a corrupted
-//!   mode shape breaks these; consistent mass: I6 equals the generalized mass (the invariants
-//!   come from the consistent M, not from the lumped nodal masses).
+//! From the file alone: the checks of [`file_checks`] (generalized mass and stiffness, rigid-body
+//! properties, rigid-body modes, invariants recomputed from the stored nodes) — the same ones the
+//! build runs on its own result before writing.
 //!
 //! A file that stores only some nodes (`build --keep-nodes interface|surface|SET`) cannot
 //! support the centre-of-mass bounding-box test, the invariants recomputed from nodal masses or
@@ -28,82 +21,20 @@
 //!   relative error ≤ 1% for the flexible modes inside the recipe's accuracy band (files
 //!   without a recipe: below the requested fmax, else the lower half of the modes).
 
-use std::path::PathBuf;
-
 use faer::{Mat, Par};
 use flexbody_reader as file;
 
-use crate::body::invariants::{compute_invariants, InvariantSet, MassPoint};
 use crate::fe::{self, assemble, eliminate, AssemblySpec, ConstraintSpec};
-use crate::import::{self, Format, ImportOptions};
-use crate::model::Material;
-use crate::pipeline::interface::{resolve_interfaces, SpiderKind};
+use crate::import::{self, ImportOptions};
+use crate::pipeline::file_checks::partial_nodes;
+use crate::pipeline::interface::resolve_interfaces;
 use crate::reduce::select::ModeCount;
 use crate::solve::EigenSpec;
 
-/// One check: a measured figure against its limit.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct CheckItem {
-    /// Short name.
-    pub name: String,
-    /// Measured value.
-    pub value: f64,
-    /// Limit the value must not exceed (or reach, see `detail`).
-    pub limit: f64,
-    /// Did it pass?
-    pub pass: bool,
-    /// One line explaining the figure.
-    pub detail: String,
-}
-
-/// The whole report.
-#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
-pub struct CheckReport {
-    /// Checks in the order run.
-    pub items: Vec<CheckItem>,
-    /// Checks not run because the file's stored data cannot support them (e.g. a file that
-    /// stores only some nodes), each "name: reason".
-    pub skipped: Vec<String>,
-}
-
-impl CheckReport {
-    /// True when every check passed.
-    pub fn passed(&self) -> bool {
-        self.items.iter().all(|i| i.pass)
-    }
-
-    pub(crate) fn push(&mut self, name: &str, value: f64, limit: f64, detail: String) {
-        let pass = value.is_finite() && value <= limit;
-        self.items.push(CheckItem {
-            name: name.into(),
-            value,
-            limit,
-            pass,
-            detail,
-        });
-    }
-}
-
-/// The FE model to check against, rebuilt as `build` did.
-#[derive(Debug, Clone)]
-pub struct ModelInput {
-    /// Model file.
-    pub path: PathBuf,
-    /// Format override.
-    pub format: Option<Format>,
-    /// Material for elements without a section.
-    pub material: Option<Material>,
-    /// Shell thickness for 2D elements without a section.
-    pub thickness: Option<f64>,
-    /// Nastran subcase whose SPC and METHOD selections apply.
-    pub subcase: Option<u64>,
-    /// The interface entries given to `build`.
-    pub interface: Vec<String>,
-    /// The spider kind given to `build`.
-    pub spider: SpiderKind,
-    /// Rotational inertia of lumped beam masses (`None`: as `build` resolves it by default).
-    pub beam_mass: Option<crate::fe::BeamLumping>,
-}
+pub use crate::pipeline::file_checks::{
+    file_checks, zero_inertia_axes, CheckItem, CheckReport, ORTHO_LIMIT, ZERO_INERTIA,
+};
+pub use crate::pipeline::recipe::ModelInput;
 
 /// Errors that stop the check from running at all (a failed check is not an error).
 #[derive(Debug, thiserror::Error)]
@@ -113,367 +44,20 @@ pub enum CheckError {
     Build(#[from] crate::pipeline::BuildError),
 }
 
-/// Limit on ‖ΦᵀMΦ − I‖ and the stored-data identities (relative).
-pub const ORTHO_LIMIT: f64 = 1e-8;
 /// Limit on the relative frequency error of modes in the scene's band.
 pub const FREQ_LIMIT: f64 = 0.01;
 
-/// Run every check that the inputs allow.
+/// Run every check that the inputs allow: the file's own ([`file_checks`]), then with `model`
+/// the checks against the rebuilt FE model.
 pub fn check(
     body: &file::ReducedBody,
     model: Option<&ModelInput>,
 ) -> Result<CheckReport, CheckError> {
-    let mut r = CheckReport::default();
-    let m = body.mode_count();
-    let n = body.node_count();
-    let md = &body.modes;
-    let max_w2 = md
-        .omega2
-        .iter()
-        .fold(0.0f64, |a, &b| a.max(b.abs()))
-        .max(f64::MIN_POSITIVE);
-
-    let gm_err = (0..m * m)
-        .map(|i| (md.generalized_mass[i] - if i / m == i % m { 1.0 } else { 0.0 }).abs())
-        .fold(0.0, f64::max);
-    r.push(
-        "generalized mass = I",
-        gm_err,
-        ORTHO_LIMIT,
-        format!("max |Φᵀ M Φ − I| as stored, {m} modes"),
-    );
-    let gk_err = (0..m * m)
-        .map(|i| {
-            (md.generalized_stiffness[i]
-                - if i / m == i % m {
-                    md.omega2[i / m]
-                } else {
-                    0.0
-                })
-            .abs()
-        })
-        .fold(0.0, f64::max)
-        / max_w2;
-    r.push(
-        "generalized stiffness = diag(ω²)",
-        gk_err,
-        ORTHO_LIMIT,
-        "max |Φᵀ K Φ − diag(ω²)| / max ω², as stored".into(),
-    );
-    let f_err = md
-        .omega2
-        .iter()
-        .zip(&md.frequency_hz)
-        .map(|(&w2, &f)| {
-            (w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI) - f).abs() / f.max(1e-300)
-        })
-        .filter(|e| e.is_finite())
-        .fold(0.0, f64::max);
-    r.push("frequencies = √ω²/2π", f_err, 1e-12, "relative".into());
-
-    // Rigid-body properties from the invariants.
-    let inv = &body.invariants;
-    let i1 = inv.i1.first().copied().unwrap_or(0.0);
-    r.push(
-        "total mass I1 > 0",
-        if i1 > 0.0 { 0.0 } else { 1.0 },
-        0.0,
-        format!("I1 = {i1:.6e}"),
-    );
-    let partial = partial_nodes(body);
-    if let Some(stored) = &partial {
-        r.skipped.push(format!(
-            "centre of mass inside the body's bounding box: the file stores {stored}, whose \
-             bounding box need not hold the centre of mass"
-        ));
-    }
-    if i1 > 0.0 && inv.i2.len() == 3 && n > 0 && partial.is_none() {
-        let cm: Vec<f64> = inv.i2.iter().map(|v| v / i1).collect();
-        let outside = (0..3)
-            .map(|k| {
-                let lo = body
-                    .nodes
-                    .iter()
-                    .map(|p| p.xyz[k])
-                    .fold(f64::INFINITY, f64::min);
-                let hi = body
-                    .nodes
-                    .iter()
-                    .map(|p| p.xyz[k])
-                    .fold(f64::NEG_INFINITY, f64::max);
-                let tol = 1e-9 * (hi - lo).abs().max(1e-300);
-                ((lo - tol) - cm[k]).max(cm[k] - (hi + tol)).max(0.0)
-            })
-            .fold(0.0, f64::max);
-        r.push(
-            "centre of mass inside the body's bounding box",
-            outside,
-            0.0,
-            format!("I2/I1 = ({:.6e}, {:.6e}, {:.6e})", cm[0], cm[1], cm[2]),
-        );
-    }
-    if inv.i7.len() == 9 {
-        let t = Mat::from_fn(3, 3, |a, b| inv.i7[3 * a + b]);
-        let asym = (0..3)
-            .flat_map(|a| (0..3).map(move |b| (a, b)))
-            .map(|(a, b)| (t[(a, b)] - t[(b, a)]).abs())
-            .fold(0.0, f64::max);
-        let ev = t
-            .self_adjoint_eigenvalues(faer::Side::Lower)
-            .unwrap_or_default();
-        let min_ev = ev.first().copied().unwrap_or(-1.0);
-        let max_ev = ev.last().copied().unwrap_or(1.0);
-        // a line of point masses without rotary inertia about it (beam-only models with lumped
-        // mass, e.g. Nastran's CBAR) has no inertia about that line: physics, not an error
-        let line = zero_inertia_axes(body) == 1 && min_ev.abs() <= ZERO_INERTIA * max_ev;
-        r.push(
-            "inertia tensor I7 symmetric positive definite",
-            if min_ev > 0.0 || line {
-                asym / max_ev
-            } else {
-                1.0
-            },
-            1e-12,
-            if line {
-                format!(
-                    "principal values {ev:?}: singular, accepted: all mass lies on a line \
-                     through the origin with no rotary inertia about it (beam-only or point \
-                     masses on a line)"
-                )
-            } else {
-                format!("principal values {ev:?}")
-            },
-        );
-    }
-
-    // Rigid modes against the expectation.
-    // rigid: below 1e-4 of the highest frequency, or labelled rigid and below 1e-2 of the first
-    // flexible mode (on a slender model rounding leaves rigid modes at ~1e-3 Hz while the set
-    // ends at a few hundred Hz)
-    let fmax_stored = md.frequency_hz.iter().fold(0.0f64, |a, &b| a.max(b));
-    let first_flexible = md
-        .frequency_hz
-        .iter()
-        .zip(&md.labels)
-        .filter(|(_, l)| **l != file::ModeLabel::Rigid)
-        .map(|(f, _)| *f)
-        .fold(f64::INFINITY, f64::min);
-    let rigid = md
-        .frequency_hz
-        .iter()
-        .zip(&md.labels)
-        .filter(|&(&f, l)| {
-            f < 1e-4 * fmax_stored || (*l == file::ModeLabel::Rigid && f < 1e-2 * first_flexible)
-        })
-        .count();
-    let massless_rotations = if body.method.reference_conditions.is_empty() {
-        zero_inertia_axes(body)
-    } else {
-        0
-    };
-    let expected = free_rigid_motions(body) - massless_rotations.min(3);
-    let labelled = md
-        .labels
-        .iter()
-        .filter(|l| **l == file::ModeLabel::Rigid)
-        .count();
-    r.push(
-        "rigid-body modes as expected",
-        (rigid as f64 - expected as f64).abs() + (labelled as f64 - rigid as f64).abs(),
-        0.0,
-        format!(
-            "{rigid} modes below 1e-4·f_max (labelled rigid: {labelled}); expected {expected} ({})",
-            if body.method.reference_conditions.is_empty() && massless_rotations > 0 {
-                "free body; its rotation about the line of its masses has no inertia and is no mode"
-            } else if body.method.reference_conditions.is_empty() {
-                "free body"
-            } else {
-                "rigid motions the reference conditions leave free"
-            }
-        ),
-    );
-
-    // Invariants recomputed from the stored nodes (only meaningful when every node is stored).
-    let all_nodes = body.header.request.keep_nodes == file::KeepNodes::All;
-    let consistent = body.method.mass_kind == file::MassKind::Consistent;
-    if consistent && inv.i6.len() == m * m {
-        // Consistent mass: the invariants come from the consistent M (SPEC §5.6), not from the
-        // lumped nodal masses, so they cannot be recomputed from the file; I6 is Φᵀ M Φ itself.
-        let e = (0..m * m)
-            .map(|i| (inv.i6[i] - md.generalized_mass[i]).abs())
-            .fold(0.0, f64::max);
-        r.push(
-            "I6 = generalized mass (consistent M)",
-            e,
-            1e-9,
-            "the invariants use the mass the modes are orthonormal in".into(),
-        );
-    }
-    if let (Some(stored), false) = (&partial, consistent) {
-        r.skipped.push(format!(
-            "invariants recomputed from the stored nodal masses and shapes: the file stores \
-             {stored}, not the mass of the whole body"
-        ));
-    }
-    if all_nodes && !consistent {
-        let points: Vec<MassPoint> = body
-            .nodes
-            .iter()
-            .zip(&body.nodal_mass)
-            .map(|(p, nm)| MassPoint {
-                position: p.xyz,
-                mass: nm.mass,
-                inertia: nm.inertia,
-            })
-            .collect();
-        let shapes = Mat::from_fn(6 * n, m, |row, j| {
-            md.shapes[(j * n + row / 6) * 6 + row % 6]
-        });
-        if let Ok(re) =
-            compute_invariants(&points, shapes.as_ref(), InvariantSet::Constant, Par::Seq)
-        {
-            let rel = |a: f64, b: f64, scale: f64| (a - b).abs() / scale.max(f64::MIN_POSITIVE);
-            let mut worst: f64 = rel(re.i1, i1, i1.abs());
-            let len = (inv.i7.iter().map(|v| v.abs()).fold(0.0, f64::max)
-                / i1.max(f64::MIN_POSITIVE))
-            .sqrt();
-            for k in 0..3 {
-                worst = worst.max(rel(
-                    re.i2[k],
-                    inv.i2.get(k).copied().unwrap_or(f64::NAN),
-                    i1 * len,
-                ));
-            }
-            for k in 0..9 {
-                worst = worst.max(rel(
-                    re.i7[k / 3][k % 3],
-                    inv.i7.get(k).copied().unwrap_or(f64::NAN),
-                    i1 * len * len,
-                ));
-            }
-            if inv.i6.len() == m * m {
-                if let Some(i6) = &re.i6 {
-                    for a in 0..m {
-                        for b in 0..m {
-                            worst = worst.max(rel(i6[(a, b)], inv.i6[a * m + b], 1.0));
-                        }
-                    }
-                }
-            }
-            r.push("stored invariants = recomputation from stored nodes", worst, 1e-9, "I1, I2, I6, I7 relative (point masses with offsets are lumped to their node in the file)".into());
-            if body.method.mass_kind == file::MassKind::Lumped {
-                if let Some(i6) = &re.i6 {
-                    let e = (0..m * m)
-                        .map(|i| (i6[(i / m, i % m)] - md.generalized_mass[i]).abs())
-                        .fold(0.0, f64::max);
-                    r.push(
-                        "I6 from stored shapes = generalized mass",
-                        e,
-                        1e-6,
-                        "lumped mass: Σ m ΦᵀΦ + Φ*ᵀ I Φ* must equal Φᵀ M Φ = I".into(),
-                    );
-                }
-            }
-        }
-    }
-
+    let mut r = file_checks(body);
     if let Some(input) = model {
         model_checks(body, input, &mut r)?;
     }
     Ok(r)
-}
-
-/// Principal inertia ≤ ZERO_INERTIA · the largest one counts as zero (rounding of Σ m·0).
-pub const ZERO_INERTIA: f64 = 1e-10;
-
-/// `Some("only the … nodes (k of the model's)")` when the file does not store every node.
-fn partial_nodes(body: &file::ReducedBody) -> Option<String> {
-    let what = match &body.header.request.keep_nodes {
-        file::KeepNodes::All => return None,
-        file::KeepNodes::InterfaceAndSurface => "the interface and surface nodes".to_owned(),
-        file::KeepNodes::List(ids) if ids.is_empty() => "the interface nodes".to_owned(),
-        file::KeepNodes::List(ids) => format!("the interface nodes and {} listed nodes", ids.len()),
-    };
-    Some(format!("only {what} ({} nodes)", body.node_count()))
-}
-
-/// Principal axes through the centre of mass without inertia (from I1, I2, I7): 1 when every
-/// mass lies on a line and carries no rotary inertia about it, 0 for a body with volume.
-pub fn zero_inertia_axes(body: &file::ReducedBody) -> usize {
-    let inv = &body.invariants;
-    let i1 = inv.i1.first().copied().unwrap_or(0.0);
-    if i1.is_nan() || i1 <= 0.0 || inv.i2.len() != 3 || inv.i7.len() != 9 {
-        return 0;
-    }
-    let c: Vec<f64> = inv.i2.iter().map(|v| v / i1).collect();
-    let cc = c.iter().map(|v| v * v).sum::<f64>();
-    // J_cm = I7 − m (|c|² E − c cᵀ)
-    let j = Mat::from_fn(3, 3, |a, b| {
-        inv.i7[3 * a + b] - i1 * (if a == b { cc } else { 0.0 } - c[a] * c[b])
-    });
-    let ev = j
-        .self_adjoint_eigenvalues(faer::Side::Lower)
-        .unwrap_or_default();
-    let top = ev.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-    if top <= 0.0 {
-        return 0;
-    }
-    ev.iter()
-        .filter(|&&v| v.abs() <= ZERO_INERTIA * top)
-        .count()
-}
-
-/// Rigid-body motions the reference conditions leave free: 6 − rank(R_c), where R_c holds the
-/// rows of the rigid motion u = t + θ × x (rotations θ) at the held dofs (node frames from the
-/// interface records, else basic); θ is scaled by the body size so the rank test is unit-free.
-fn free_rigid_motions(body: &file::ReducedBody) -> usize {
-    let size = body
-        .nodes
-        .iter()
-        .map(|n| n.xyz.iter().map(|v| v * v).sum::<f64>().sqrt())
-        .fold(0.0f64, f64::max)
-        .max(f64::MIN_POSITIVE);
-    let eye = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    let mut g = faer::Mat::<f64>::zeros(6, 6);
-    for rc in &body.method.reference_conditions {
-        let Some(node) = body.nodes.get(rc.node as usize) else {
-            continue;
-        };
-        let x = node.xyz;
-        let f = body
-            .method
-            .interface
-            .iter()
-            .find(|i| i.node == rc.node)
-            .map_or(eye, |i| i.frame);
-        for c in (0..6).filter(|&c| rc.dofs[c]) {
-            let e = f[c % 3];
-            let row: [f64; 6] = if c < 3 {
-                // e · (θ × x) = θ · (x × e)
-                [
-                    e[0],
-                    e[1],
-                    e[2],
-                    (x[1] * e[2] - x[2] * e[1]) / size,
-                    (x[2] * e[0] - x[0] * e[2]) / size,
-                    (x[0] * e[1] - x[1] * e[0]) / size,
-                ]
-            } else {
-                // [0, e/size], scaled by `size` as a row (rank is unchanged).
-                [0.0, 0.0, 0.0, e[0], e[1], e[2]]
-            };
-            for a in 0..6 {
-                for b in 0..6 {
-                    g[(a, b)] += row[a] * row[b];
-                }
-            }
-        }
-    }
-    let ev = g
-        .self_adjoint_eigenvalues(faer::Side::Lower)
-        .unwrap_or_default();
-    let top = ev.iter().fold(0.0f64, |a, &b| a.max(b));
-    6 - ev.iter().filter(|&&l| top > 0.0 && l > 1e-10 * top).count()
 }
 
 fn model_checks(

@@ -33,6 +33,7 @@ use body::*;
 
 pub mod deck;
 pub mod diagnose;
+pub mod file_checks;
 pub mod interface;
 pub mod interface_entry;
 pub mod options;

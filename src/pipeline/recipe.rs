@@ -6,13 +6,12 @@
 //!   interfaces and spiders as resolved, and the [`accuracy_band`].
 //! * [`changed_model_files`] compares the recorded files with the ones on disk now.
 //! * [`model_input`] turns the recipe (plus explicit overrides) back into the model `check`
-//!   rebuilds.
+//!   rebuilds ([`ModelInput`]).
 
 use std::path::{Path, PathBuf};
 
 use flexbody_reader as file;
 
-use crate::cli::check::ModelInput;
 use crate::fe::{self, BeamLumping};
 use crate::import::Format;
 use crate::model::{DofMask, Material, Model, RigidElement};
@@ -296,6 +295,27 @@ pub fn changed_model_files(recipe: &file::Recipe, main: &Path) -> Vec<String> {
             }
         })
         .collect()
+}
+
+/// The FE model to check against, rebuilt as `build` did.
+#[derive(Debug, Clone)]
+pub struct ModelInput {
+    /// Model file.
+    pub path: PathBuf,
+    /// Format override.
+    pub format: Option<Format>,
+    /// Material for elements without a section.
+    pub material: Option<Material>,
+    /// Shell thickness for 2D elements without a section.
+    pub thickness: Option<f64>,
+    /// Nastran subcase whose SPC and METHOD selections apply.
+    pub subcase: Option<u64>,
+    /// The interface entries given to `build`.
+    pub interface: Vec<String>,
+    /// The spider kind given to `build`.
+    pub spider: SpiderKind,
+    /// Rotational inertia of lumped beam masses (`None`: as `build` resolves it by default).
+    pub beam_mass: Option<crate::fe::BeamLumping>,
 }
 
 /// Model options given explicitly to `check`; each overrides the recipe's.

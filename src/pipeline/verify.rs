@@ -1,5 +1,5 @@
 //! The build's own verification before anything is written: the assembled body must pass the
-//! checks `flexbody check` runs on the file (same items, same limits, [`crate::cli::check`]) plus the
+//! checks `flexbody check` runs on the file (same items, same limits, [`file_checks`]) plus the
 //! identities against the assembled, constrained model it was reduced from:
 //!
 //! * ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²) against that model's K and M ([`identities`]); together they
@@ -8,7 +8,7 @@
 //!   so a reduced basis that passes cannot undercut the full model's frequencies;
 //! * eigen residuals ‖Kφ − ω²Mφ‖/‖Kφ‖ of normal modes;
 //! * the rigid-mode count and the stored-data identities of the file (generalized mass and
-//!   stiffness, invariants recomputed from the stored shapes), by [`crate::cli::check::check`].
+//!   stiffness, invariants recomputed from the stored shapes), by [`file_checks`].
 //!
 //! A violation is [`VerifyError`], naming every failed item; `flexbody build` then writes nothing.
 //! The cost is a few sparse products per mode (timed as the build's "verify" stage).
@@ -16,7 +16,7 @@
 use faer::Mat;
 use flexbody_reader as file;
 
-use crate::cli::check::{self, CheckItem, CheckReport, ORTHO_LIMIT};
+use super::file_checks::{file_checks, CheckItem, CheckReport, ORTHO_LIMIT};
 use crate::solve::{sparse_ops, SparseColMat};
 
 /// Limit on the eigen residual of a normal mode against the model (as `check`).
@@ -130,20 +130,7 @@ pub fn verify_body(
     body: &file::ReducedBody,
     model: Option<ModelPhi<'_>>,
 ) -> Result<CheckReport, VerifyError> {
-    let mut report = match check::check(body, None) {
-        Ok(r) => r,
-        Err(e) => {
-            return Err(VerifyError {
-                failed: vec![CheckItem {
-                    name: "file checks".into(),
-                    value: f64::NAN,
-                    limit: 0.0,
-                    pass: false,
-                    detail: e.to_string(),
-                }],
-            })
-        }
-    };
+    let mut report = file_checks(body);
     if let Some((k, m, phi, held)) = model {
         push_identities(
             &mut report,
