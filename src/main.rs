@@ -367,7 +367,7 @@ fn build(a: &BuildArgs) -> anyhow::Result<()> {
         progress.stage("write");
         flexbody::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
         if let Some(dir) = &a.write_matrices {
-            flexbody::export::mtx::export_mtx(&spec, dir)?;
+            flexbody::pipeline::matrices::export_mtx(&spec, dir)?;
         }
         Ok(out)
     };
@@ -603,7 +603,7 @@ fn export(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result<()> {
             )
         })?;
         let mass = a.mass.map(flexbody::options::parse_mass).transpose()?;
-        let written = flexbody::export::mtx::export_body_matrices(
+        let written = flexbody::pipeline::matrices::export_body_matrices(
             &body,
             model,
             model_overrides(a.model_args)?,

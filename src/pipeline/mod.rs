@@ -36,6 +36,7 @@ pub mod diagnose;
 pub mod file_checks;
 pub mod interface;
 pub mod interface_entry;
+pub mod matrices;
 pub mod options;
 pub mod precheck;
 pub mod recipe;

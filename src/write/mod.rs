@@ -9,6 +9,8 @@
 //! flexbody::write::write_reduced_body("rod.flexbody", body, &Default::default())?;
 //! # Ok(()) }
 //! ```
+pub mod mtx;
+
 use std::io::{Cursor, Write};
 use std::path::{Path, PathBuf};
 

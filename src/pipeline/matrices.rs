@@ -1,0 +1,169 @@
+//! The constrained system `build` reduces — K_r = Tᵀ K T and M_r = Tᵀ M T over the independent
+//! dofs, after the same import, deck defaults, interface spiders, lumped or consistent mass and
+//! elimination u = T u_r of rigid elements, SPCs and held components — for Chrono's modal
+//! reduction, pyyeti, SciPy and one's own checks: `flexbody build --write-matrices DIR`, and
+//! `flexbody export --to mtx` with the model (the options from the file's recipe,
+//! [`export_body_matrices`]). The files are written by [`crate::write::mtx`].
+use std::path::{Path, PathBuf};
+
+use crate::fe::{self, assemble, eliminate, AssemblySpec, ConstraintSpec};
+use crate::import::{self, ImportOptions};
+use crate::model::Model;
+use crate::pipeline::interface::resolve_interfaces;
+use crate::pipeline::{BuildError, BuildSpec};
+use crate::write::mtx::{write_matrices, ConstrainedSystem, MatrixWriteError};
+
+/// Errors of the export.
+#[derive(Debug, thiserror::Error)]
+pub enum MtxError {
+    /// Building the constrained model failed.
+    #[error(transparent)]
+    Build(#[from] BuildError),
+    /// The model files differ from the ones the body was built from (the recipe's SHA-256);
+    /// the same messages as `check`'s "model files as built" line.
+    #[error("the model is not the one the file was built from (recipe SHA-256): {}", .0.join("; "))]
+    ModelChanged(Vec<String>),
+    /// An option recorded in the recipe or given explicitly is not valid.
+    #[error(transparent)]
+    Options(#[from] crate::pipeline::options::OptionError),
+    /// A file could not be written.
+    #[error(transparent)]
+    Write(#[from] MatrixWriteError),
+}
+
+/// The constrained system `build` would reduce for `spec` (reads the model).
+pub fn constrained_system(spec: &BuildSpec) -> Result<ConstrainedSystem, BuildError> {
+    let model = import::read_model(
+        &spec.model,
+        &ImportOptions {
+            format: spec.format,
+            material: spec.material.clone(),
+            subcase: spec.subcase,
+            shell_thickness: spec.thickness,
+        },
+    )?;
+    let resolved = BuildSpec {
+        beam_mass: Some(spec.beam_lumping()),
+        ..spec.clone()
+    };
+    constrained_system_of_model(&resolved, model)
+}
+
+/// [`constrained_system`] for a model in memory: the deck's defaults, the interface spiders,
+/// assembly and elimination exactly as `build` does them.
+pub fn constrained_system_of_model(
+    spec: &BuildSpec,
+    mut model: Model,
+) -> Result<ConstrainedSystem, BuildError> {
+    let defaults = crate::pipeline::deck::deck_defaults(spec, &model);
+    let spec = &defaults.spec;
+    let interfaces = resolve_interfaces(&mut model, &spec.interface, spec.spider)?;
+    let interface_nodes: Vec<usize> = interfaces
+        .iter()
+        .flat_map(|r| r.nodes.iter().copied())
+        .collect();
+    let assembled = assemble(
+        &model,
+        &AssemblySpec {
+            mass: spec.mass,
+            beam_lumping: spec.beam_mass.unwrap_or_default(),
+            ..Default::default()
+        },
+    )?;
+    let reduced = eliminate(
+        &model,
+        &assembled.dofs,
+        &assembled.k,
+        &assembled.m,
+        &ConstraintSpec {
+            independent_rbe3_reference: interface_nodes,
+            ..Default::default()
+        },
+    )?;
+    let d = &assembled.dofs;
+    // Physical dof → (node, component): dofs are numbered node-major from `first`.
+    let mut owner = vec![(0u64, 0u8); d.n_dofs];
+    for (node, (&first, &count)) in d.first.iter().zip(&d.count).enumerate() {
+        for c in 0..usize::from(count) {
+            owner[first + c] = (model.nodes[node].id, c as u8);
+        }
+    }
+    Ok(ConstrainedSystem {
+        dofs: reduced.retained.iter().map(|&p| owner[p]).collect(),
+        k: reduced.k,
+        m: reduced.m,
+        mass: spec.mass,
+        physical_dofs: d.n_dofs,
+    })
+}
+
+/// The `mtx` export target: the constrained K, M of `spec`'s model written to `dir`.
+pub fn export_mtx(spec: &BuildSpec, dir: &Path) -> Result<Vec<PathBuf>, MtxError> {
+    let sys = constrained_system(spec)?;
+    let source = spec.model.file_name().map_or_else(
+        || spec.model.display().to_string(),
+        |f| f.to_string_lossy().into_owned(),
+    );
+    Ok(write_matrices(dir, &sys, &source)?)
+}
+
+/// The build options a body was made with, from its recipe (`recipe.json`), for exporting the
+/// constrained matrices of that build from `model`: format, material, thickness, subcase,
+/// interfaces, spider, beam mass as the recipe records them, the mass kind as `method.bin`
+/// does. Without a recipe: the defaults of `build` with the body's mass kind.
+pub fn spec_from_body(
+    body: &flexbody_reader::ReducedBody,
+    model: &Path,
+) -> Result<BuildSpec, crate::pipeline::options::OptionError> {
+    spec_from_body_with(body, model, Default::default())
+}
+
+/// [`spec_from_body`] with explicit options on top of the recipe's, as `check --model` takes
+/// them.
+pub fn spec_from_body_with(
+    body: &flexbody_reader::ReducedBody,
+    model: &Path,
+    overrides: crate::pipeline::recipe::ModelOverrides,
+) -> Result<BuildSpec, crate::pipeline::options::OptionError> {
+    let input =
+        crate::pipeline::recipe::model_input(body.recipe.as_ref(), model.to_path_buf(), overrides)?;
+    let mut spec = BuildSpec::new(model.to_path_buf(), body.units.clone(), &[]);
+    spec.format = input.format;
+    spec.material = input.material;
+    spec.thickness = input.thickness;
+    spec.subcase = input.subcase;
+    spec.interface = input.interface;
+    spec.spider = input.spider;
+    spec.beam_mass = input.beam_mass;
+    spec.mass = match body.method.mass_kind {
+        flexbody_reader::MassKind::Lumped => fe::MassKind::Lumped,
+        flexbody_reader::MassKind::Consistent => fe::MassKind::Consistent,
+    };
+    spec.mass_explicit = true;
+    Ok(spec)
+}
+
+/// `flexbody export FILE --to mtx --model MODEL -o DIR`: the constrained K, M of the build that
+/// made `body`, rebuilt from `model` with the file's recipe (format, material, thickness,
+/// subcase, interfaces, spiders, beam mass; the mass kind of `method.bin`) as `check --model`
+/// rebuilds it; `overrides` and `mass` replace the recorded options. A model whose files differ
+/// from the recipe's SHA-256 is refused with `check`'s messages, before anything is written.
+pub fn export_body_matrices(
+    body: &flexbody_reader::ReducedBody,
+    model: &Path,
+    overrides: crate::pipeline::recipe::ModelOverrides,
+    mass: Option<fe::MassKind>,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, MtxError> {
+    if let Some(recipe) = &body.recipe {
+        let changed = crate::pipeline::recipe::changed_model_files(recipe, model);
+        if !changed.is_empty() {
+            return Err(MtxError::ModelChanged(changed));
+        }
+    }
+    let mut spec = spec_from_body_with(body, model, overrides)?;
+    if let Some(mass) = mass {
+        spec.mass = mass;
+    }
+    export_mtx(&spec, dir)
+}

@@ -1,0 +1,139 @@
+//! The constrained K and M in Matrix Market, with a dof table — the files `flexbody build
+//! --write-matrices DIR` and `flexbody export --to mtx` write (the system itself comes from the
+//! pipeline, [`crate::pipeline::matrices`]).
+//!
+//! Files in DIR:
+//! * `K.mtx`, `M.mtx`: `%%MatrixMarket matrix coordinate real symmetric`, the lower triangle
+//!   (row ≥ column, 1-based), column by column, rows ascending; values as the shortest decimal
+//!   that reads back to the same binary64 (so a reader gets the matrices bit for bit). Explicit
+//!   zeros are not written. Units: the model's.
+//! * `dofs.txt`: equation k (1-based, line k after the `#` comments) = `k node component`, with
+//!   the node's external id and the component 1…6 = ux uy uz rx ry rz in the node's
+//!   displacement frame (Nastran's CD; the basic frame for Abaqus/Gmsh models).
+//!
+//! **Dof order**: the independent dofs node by node in the model's node order (the order the
+//! deck defines its nodes; spider centre nodes `build` adds come last), and within a node by
+//! component. A dof is absent when an SPC or a held component fixes it or when it is dependent
+//! (an RBE2 leg, an RBE3 reference not at an interface). For a deck whose nodes are numbered in
+//! ascending order this is CalculiX's equation order (`*FREQUENCY, SOLVER=MATRIXSTORAGE`): its
+//! `.dof` table equals `dofs.txt` line for line (`tests/export_mtx.rs`).
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use crate::fe;
+use crate::solve::SparseColMat;
+
+/// The constrained system: K_r, M_r and the dof each equation is.
+#[derive(Debug, Clone)]
+pub struct ConstrainedSystem {
+    /// K_r = Tᵀ K T, full symmetric.
+    pub k: SparseColMat<usize, f64>,
+    /// M_r = Tᵀ M T, full symmetric.
+    pub m: SparseColMat<usize, f64>,
+    /// Equation k ↔ (external node id, component 0…5).
+    pub dofs: Vec<(u64, u8)>,
+    /// Lumped or consistent.
+    pub mass: fe::MassKind,
+    /// Number of physical dofs before the elimination.
+    pub physical_dofs: usize,
+}
+
+/// A matrix file could not be written.
+#[derive(Debug, thiserror::Error)]
+#[error("{path}: cannot write ({source})")]
+pub struct MatrixWriteError {
+    /// The file.
+    pub path: PathBuf,
+    /// The cause.
+    pub source: std::io::Error,
+}
+
+/// Writes `K.mtx`, `M.mtx` and `dofs.txt` of `sys` into `dir` (created if missing); each file
+/// goes to a temporary name first and is renamed when complete. Returns the paths written.
+pub fn write_matrices(
+    dir: &Path,
+    sys: &ConstrainedSystem,
+    source: &str,
+) -> Result<Vec<PathBuf>, MatrixWriteError> {
+    let io = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| MatrixWriteError { path, source }
+    };
+    std::fs::create_dir_all(dir).map_err(io(dir))?;
+    let mass = match sys.mass {
+        fe::MassKind::Lumped => "lumped",
+        fe::MassKind::Consistent => "consistent",
+    };
+    let about = format!(
+        "% flexbody {}: {source}, constrained ({} of {} dofs independent), {mass} mass; dof table dofs.txt\n",
+        env!("CARGO_PKG_VERSION"),
+        sys.dofs.len(),
+        sys.physical_dofs
+    );
+    let mut written = Vec::new();
+    for (name, a) in [("K.mtx", &sys.k), ("M.mtx", &sys.m)] {
+        let path = dir.join(name);
+        write_atomically(&path, |w| write_lower(w, a, &about)).map_err(io(&path))?;
+        written.push(path);
+    }
+    let path = dir.join("dofs.txt");
+    write_atomically(&path, |w| {
+        writeln!(
+            w,
+            "# flexbody {}: {source}; equation k = line k: k node component (1-6 = ux uy uz rx ry rz, node displacement frame)",
+            env!("CARGO_PKG_VERSION")
+        )?;
+        for (k, (node, c)) in sys.dofs.iter().enumerate() {
+            writeln!(w, "{} {node} {}", k + 1, c + 1)?;
+        }
+        Ok(())
+    })
+    .map_err(io(&path))?;
+    written.push(path);
+    Ok(written)
+}
+
+/// One symmetric matrix: header, size line, lower triangle column by column.
+fn write_lower(
+    w: &mut dyn Write,
+    a: &SparseColMat<usize, f64>,
+    about: &str,
+) -> std::io::Result<()> {
+    let n = a.ncols();
+    let lower = |j: usize| {
+        a.row_idx_of_col(j)
+            .zip(a.val_of_col(j).iter().copied())
+            .filter(move |&(i, v)| i >= j && v != 0.0)
+    };
+    let nnz: usize = (0..n).map(|j| lower(j).count()).sum();
+    writeln!(w, "%%MatrixMarket matrix coordinate real symmetric")?;
+    w.write_all(about.as_bytes())?;
+    writeln!(w, "{n} {n} {nnz}")?;
+    for j in 0..n {
+        let mut col: Vec<(usize, f64)> = lower(j).collect();
+        col.sort_unstable_by_key(|e| e.0);
+        for (i, v) in col {
+            writeln!(w, "{} {} {v:e}", i + 1, j + 1)?;
+        }
+    }
+    Ok(())
+}
+
+fn write_atomically(
+    path: &Path,
+    body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".partial");
+    let tmp = PathBuf::from(tmp);
+    let result = (|| {
+        let mut w = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
+        body(&mut w)?;
+        w.into_inner().map_err(|e| e.into_error())?.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        std::fs::remove_file(&tmp).ok();
+    }
+    result
+}
