@@ -36,6 +36,8 @@ pub use crate::pipeline::file_checks::{
 };
 pub use crate::pipeline::recipe::ModelInput;
 
+use super::args::{model_overrides, CheckArgs};
+
 /// Errors that stop the check from running at all (a failed check is not an error).
 #[derive(Debug, thiserror::Error)]
 pub enum CheckError {
@@ -309,4 +311,46 @@ fn model_checks(
         }
     }
     Ok(())
+}
+
+/// Runs `flexbody check`: prints the report (text, or `--json`); `Ok(false)` when a check
+/// failed.
+pub(crate) fn command(a: &CheckArgs) -> anyhow::Result<bool> {
+    use anyhow::Context;
+    let body = flexbody_reader::read(&a.file)
+        .with_context(|| format!("{} is not a valid flexbody file", a.file.display()))?;
+    let model = match &a.model {
+        None => None,
+        Some(path) => Some(crate::pipeline::recipe::model_input(
+            body.recipe.as_ref(),
+            path.clone(),
+            model_overrides(&a.model_args)?,
+        )?),
+    };
+    let report = check(&body, model.as_ref())?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        for i in &report.items {
+            println!(
+                "{} {:<52} {:>12.3e} (limit {:.1e})  {}",
+                if i.pass { "ok  " } else { "FAIL" },
+                i.name,
+                i.value,
+                i.limit,
+                i.detail
+            );
+        }
+        for s in &report.skipped {
+            println!("skip {s}");
+        }
+        let failed = report.items.iter().filter(|i| !i.pass).count();
+        println!(
+            "{} checks, {} failed: {}",
+            report.items.len(),
+            failed,
+            if failed == 0 { "PASS" } else { "FAIL" }
+        );
+    }
+    Ok(report.passed())
 }

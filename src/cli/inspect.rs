@@ -430,3 +430,19 @@ fn render_recipe(o: &mut String, r: &flexbody_reader::Recipe) {
         r.accuracy_band.fmax_hz, r.accuracy_band.rule
     );
 }
+
+/// Runs `flexbody inspect`: the summary as text, or as JSON.
+pub(crate) fn command(file: &std::path::Path, json: bool) -> anyhow::Result<()> {
+    use anyhow::Context;
+    let bytes = std::fs::read(file).with_context(|| format!("cannot read {}", file.display()))?;
+    let limits = flexbody_reader::ReadLimits::default();
+    let (body, manifest) = flexbody_reader::from_bytes_with_manifest(&bytes, &limits)
+        .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
+    let summary = summarize(&body, &manifest);
+    if json {
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+    } else {
+        print!("{}", render_text(&summary));
+    }
+    Ok(())
+}

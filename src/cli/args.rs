@@ -1,0 +1,355 @@
+//! The command line's arguments (clap) and their conversion into the library's specs: the one
+//! place where typed text becomes a [`BuildSpec`] or [`ModelOverrides`]; the value grammar
+//! itself is [`crate::pipeline::options`].
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+use crate::pipeline::recipe::ModelOverrides;
+use crate::pipeline::BuildSpec;
+
+/// FE model → reduced flexible-body file for multibody solvers.
+#[derive(Parser)]
+#[command(name = "flexbody", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum Command {
+    /// Build a reduced flexible-body file from an FE model (.inp, .bdf, .msh).
+    Build(Box<BuildArgs>),
+    /// Print what a .flexbody file holds: header, units, counts, mass properties, modes, entries.
+    Inspect {
+        /// The .flexbody file.
+        file: PathBuf,
+        /// Print the summary as JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Verify a .flexbody file (orthonormality, mass properties, rigid modes; with --model also
+    /// frequencies and residuals against the FE model). Exit code 1 when a check fails.
+    Check(CheckArgs),
+    /// Export a .flexbody file to another solver's format: exudyn (NPZ for
+    /// ObjectFFRFreducedOrderInterface.LoadFromFile), mbdyn (modal element .fem file), sid
+    /// (Standard Input Data, .SID_FEM text) or mtx (the constrained K and M the build reduced,
+    /// Matrix Market, with --model).
+    Export {
+        /// The .flexbody file.
+        file: PathBuf,
+        /// Target format: exudyn, mbdyn, sid or mtx.
+        #[arg(long)]
+        to: String,
+        /// Output file (mtx: a folder for K.mtx, M.mtx and dofs.txt).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// mtx: the FE model the file was built from, rebuilt with the options recorded in the
+        /// file's recipe (options given here override them). A model file changed since the
+        /// build is refused.
+        #[arg(long)]
+        model: Option<PathBuf>,
+        #[command(flatten)]
+        model_args: ModelArgs,
+        /// mtx: mass matrix lumped or consistent (default: as the file was built).
+        #[arg(long)]
+        mass: Option<String>,
+    },
+}
+
+/// Model options shared by `build` and `check --model`.
+#[derive(clap::Args, Clone)]
+pub(crate) struct ModelArgs {
+    /// Input format (default: from the extension): inp, bdf, msh.
+    #[arg(long)]
+    pub(crate) format: Option<String>,
+    /// Material for elements without a section (Gmsh meshes): E=…,nu=…,rho=…
+    #[arg(long)]
+    pub(crate) material: Option<String>,
+    /// Thickness of shell elements without a section (Gmsh triangles/quadrangles), with
+    /// --material.
+    #[arg(long)]
+    pub(crate) thickness: Option<f64>,
+    /// Interface nodes: node ids (every free component), NODE:DOFS with Nastran component digits
+    /// (e.g. 1:126) and/or node-set names, comma separated. Default: the deck's ASET/BSET.
+    #[arg(long, value_delimiter = ',')]
+    pub(crate) interface: Vec<String>,
+    /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
+    /// (weighted average) or none (every node of the set is an interface node). `check`: default
+    /// from the file's recipe.
+    #[arg(long)]
+    pub(crate) spider: Option<String>,
+    /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when
+    /// the deck's subcases select different sets). `check`: default
+    /// from the file's recipe.
+    #[arg(long, value_name = "N")]
+    pub(crate) subcase: Option<u64>,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct BuildArgs {
+    /// The FE model file.
+    pub(crate) model: PathBuf,
+    #[command(flatten)]
+    pub(crate) model_args: ModelArgs,
+    /// Output file (.flexbody).
+    #[arg(short, long)]
+    pub(crate) output: PathBuf,
+    /// Reduction method: cb (Craig–Bampton), normal, craig-chang or dietz.
+    #[arg(long, default_value = "cb")]
+    pub(crate) method: String,
+    /// Number of fixed-interface modes (cb), free-free modes (craig-chang, dietz) or normal
+    /// modes (normal); default 20 without --fmax.
+    #[arg(long)]
+    pub(crate) modes: Option<usize>,
+    /// Highest frequency of the scene in Hz: modes are kept up to 3× it.
+    #[arg(long)]
+    pub(crate) fmax: Option<f64>,
+    /// Reference conditions NODE:DOFS (Nastran dof digits), e.g. 1:12,9:2; a plain node id (its
+    /// free components) or a set name (a node set, or a deck's constraint set such as SPC_1
+    /// with the components it holds).
+    #[arg(long, value_delimiter = ',')]
+    pub(crate) reference_conditions: Vec<String>,
+    /// Improved Craig–Bampton method for reference conditions: 1 or 2.
+    #[arg(long, default_value_t = 1)]
+    pub(crate) reference_method: u8,
+    /// Mass matrix: lumped (default; what multibody invariants need) or consistent. Default for
+    /// a Nastran deck with PARAM,COUPMASS > 0: consistent, as the deck asks.
+    #[arg(long)]
+    pub(crate) mass: Option<String>,
+    /// Rotational inertia of lumped beam masses: auto (default: as Nastran lumps each card for
+    /// Nastran decks, CBAR none, CBEAM torsion only, CQUAD4/CTRIA3 translations only; the
+    /// section's rotary inertia otherwise),
+    /// section, torsion, none or nastran.
+    #[arg(long, default_value = "auto", value_name = "KIND")]
+    pub(crate) beam_mass: String,
+    /// The model's consistent unit system (recorded in the file, never guessed): si (kg m s N),
+    /// mm-t-s (t mm s N), mm-kg-ms (kg mm ms kN), cm-g-s (g cm s dyn), in-lbf-s (lbf·s²/in in s lbf).
+    #[arg(long)]
+    pub(crate) units: String,
+    /// Which nodes get mode shapes in the file: all, interface, surface, or a node-set name.
+    #[arg(long, default_value = "all")]
+    pub(crate) keep_nodes: String,
+    /// Invariant set: full, partial (no 5, 9), constant (1, 2, 6, 7) or rigid (1, 2, 7).
+    /// Invariant 9 costs 72·M² bytes for M modes.
+    #[arg(long, default_value = "full")]
+    pub(crate) invariants: String,
+    /// Store modal stress and strain shapes of the solid and shell elements at the kept nodes
+    /// (nodal averages, body axes, xx yy zz xy yz zx; shells: top fibre, and the bottom fibre
+    /// in the format-1.5 `*_bottom.bin` entries): both (default when given), stress or strain.
+    /// Costs 48·M bytes per kept node and field for M modes.
+    #[arg(long, num_args = 0..=1, default_missing_value = "both", value_name = "FIELDS")]
+    pub(crate) stress_modes: Option<String>,
+    /// Threads for the sparse factorization, the block solves and the dense kernels (default:
+    /// the available cores; 1 for a sequential run; see docs/benchmarks.md for 1 vs 2 measured).
+    #[arg(long, default_value_t = default_threads(), value_name = "N")]
+    pub(crate) threads: usize,
+    /// Memory a sparse factorization may use, e.g. 8G (bytes, or with a K, M or G suffix);
+    /// default: MemAvailable. The factor size is estimated before factoring and the build stops
+    /// with a clear error instead of being killed. Same as the FLEXBODY_MAX_MEMORY variable.
+    #[arg(long, value_name = "SIZE")]
+    pub(crate) max_memory: Option<String>,
+    /// Modal damping stored in the file: one ratio (2% or 0.02), ratios by frequency band
+    /// (0-1000:1%,1000-:3%, Hz, [lo, hi), empty hi = open), or rayleigh:ALPHA,BETA
+    /// (ζ = α/2ω + βω/2). Rigid-body modes get 0.
+    #[arg(long, value_name = "SPEC")]
+    pub(crate) damping: Option<String>,
+    /// Scene gravity: acceleration ax,ay,az in the basic frame (e.g. 0,0,-9.81): load GRAVITY =
+    /// M·g, stored as a modal load.
+    #[arg(long, value_name = "AX,AY,AZ", allow_hyphen_values = true)]
+    pub(crate) gravity: Option<String>,
+    /// A scene load (repeatable): NAME:NODE:FX,FY,FZ[,MX,MY,MZ] (a node id), NAME:SET:P (uniform
+    /// pressure on the free faces within node set SET, positive into the body) or NAME of a
+    /// deck's load set (LOAD_10). The deck's selected loads (LOAD = n) are always included.
+    #[arg(long = "load", value_name = "SPEC", allow_hyphen_values = true)]
+    pub(crate) loads: Vec<String>,
+    /// Add residual vectors (static responses) to the basis: loads (each scene load), interface
+    /// (unit loads at the interface dofs) or both; inertia-relief balanced for a free body.
+    #[arg(long, value_name = "KIND", num_args = 0..=1, default_missing_value = "loads")]
+    pub(crate) residual_vectors: Option<String>,
+    /// Prove each eigenproblem's modes complete: Sylvester's inertia count of K − σM just above
+    /// the highest mode returned must equal the modes returned, else the build fails (one
+    /// extra LDLᵀ factorization per eigenproblem; the report states the proven band).
+    #[arg(long)]
+    pub(crate) verify_band: bool,
+    /// Solver engine for the Craig–Bampton interior: native (ours) or slepc (PETSc/SLEPc with
+    /// MUMPS under MPI: needs mpirun and slepc4py, e.g. Debian's openmpi-bin and
+    /// python3-slepc4py-real). The reduction, invariants and file stay ours.
+    #[arg(long, default_value = "native", value_name = "native|slepc")]
+    pub(crate) engine: String,
+    /// MPI ranks for --engine slepc (mpirun -np N).
+    #[arg(long, default_value_t = 2, value_name = "N")]
+    pub(crate) mpi: usize,
+    /// Arithmetic of the Craig–Bampton interior's factorization: auto (f64, unless the f64
+    /// factor would exceed --max-memory/MemAvailable and an f32 one fits), f64, or mixed (an
+    /// f32 factor, half the memory, with solves refined to f64 accuracy and a leaner Krylov
+    /// basis: slower, see docs/benchmarks.md and docs/memory.md; f64 again where K_ii is too
+    /// ill-conditioned for it).
+    #[arg(long, default_value = "auto", value_name = "auto|f64|mixed")]
+    pub(crate) precision: String,
+    /// Keep the fewest modes whose estimated frequency-response error at the scene's loads and
+    /// interfaces over [0, fmax] stays below EPS (relative to the static response):
+    /// participation:EPS, e.g. participation:0.01. The candidates are the modes --fmax/--modes
+    /// computes; what was dropped and the estimate are in the build report.
+    #[arg(long, value_name = "participation:EPS")]
+    pub(crate) select: Option<String>,
+    /// No stress or strain shapes (the default; for scripts that want to say so).
+    #[arg(long, conflicts_with = "stress_modes")]
+    pub(crate) no_stress: bool,
+    /// Title stored in the header (default: the model file name).
+    #[arg(long)]
+    pub(crate) title: Option<String>,
+    /// Record the creation time in the header (makes the output non-reproducible).
+    #[arg(long)]
+    pub(crate) timestamp: bool,
+    /// No progress on stderr.
+    #[arg(long, short)]
+    pub(crate) quiet: bool,
+    /// Print the build report as JSON on stdout.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Also write the constrained K and M the reduction starts from (Matrix Market K.mtx,
+    /// M.mtx, lumped or consistent as built) and their dof table dofs.txt into DIR.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) write_matrices: Option<PathBuf>,
+}
+
+#[derive(clap::Args)]
+pub(crate) struct CheckArgs {
+    /// The .flexbody file.
+    pub(crate) file: PathBuf,
+    /// The FE model the file was built from. The model is rebuilt with the options recorded in
+    /// the file's recipe (interfaces, spiders, format, material, beam mass); options given here
+    /// override them. A model file changed since the build fails the check.
+    #[arg(long)]
+    pub(crate) model: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) model_args: ModelArgs,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+pub(crate) fn import_format(
+    name: &Option<String>,
+) -> anyhow::Result<Option<crate::import::Format>> {
+    name.as_deref()
+        .map(|n| {
+            crate::import::Format::from_name(n)
+                .ok_or_else(|| anyhow::anyhow!("--format {n}: expected inp, bdf or msh"))
+        })
+        .transpose()
+}
+
+/// clap arguments → the library's build spec (the one conversion point).
+pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
+    use crate::pipeline::options::*;
+    Ok(BuildSpec {
+        model: a.model.clone(),
+        format: import_format(&a.model_args.format)?,
+        material: a
+            .model_args
+            .material
+            .as_deref()
+            .map(parse_material)
+            .transpose()?,
+        thickness: a.model_args.thickness,
+        interface: a.model_args.interface.clone(),
+        spider: parse_spider(a.model_args.spider.as_deref().unwrap_or("rbe2"))?,
+        method: parse_method(&a.method)?,
+        modes: a.modes,
+        fmax_hz: a.fmax,
+        reference_conditions: parse_reference_entries(&a.reference_conditions)?.0,
+        reference_sets: parse_reference_entries(&a.reference_conditions)?.1,
+        reference_method: a.reference_method,
+        mass: parse_mass(a.mass.as_deref().unwrap_or("lumped"))?,
+        mass_explicit: a.mass.is_some(),
+        subcase: a.model_args.subcase,
+        units: parse_units(&a.units)?,
+        keep_nodes: parse_keep_nodes(&a.keep_nodes),
+        invariants: parse_invariants(&a.invariants)?,
+        fields: parse_field_request(if a.no_stress {
+            None
+        } else {
+            a.stress_modes.as_deref()
+        })?,
+        title: a.title.clone(),
+        created_utc: a.timestamp.then(utc_now),
+        threads: a.threads.max(1),
+        verify_band: a.verify_band,
+        engine: match a.engine.as_str() {
+            "native" => None,
+            "slepc" => Some(crate::solve::slepc::SlepcEngine {
+                ranks: a.mpi.max(1),
+            }),
+            other => anyhow::bail!("--engine {other}: expected native or slepc"),
+        },
+        precision: a
+            .precision
+            .parse()
+            .map_err(|e: String| anyhow::anyhow!("--precision {e}"))?,
+        beam_mass: parse_beam_mass(&a.beam_mass)?,
+        scene: crate::pipeline::scene::SceneSpec {
+            gravity: a.gravity.clone(),
+            loads: a.loads.clone(),
+            residual_vectors: a
+                .residual_vectors
+                .as_deref()
+                .map(crate::pipeline::scene::parse_residual_vectors)
+                .transpose()?,
+            select: a
+                .select
+                .as_deref()
+                .map(crate::pipeline::scene::parse_select)
+                .transpose()?,
+        },
+    })
+}
+
+/// The `--threads` default: the cores this process may use (1 when unknown).
+fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, usize::from)
+}
+
+/// Current time as RFC 3339 UTC (civil-from-days, no time-zone database needed).
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (days, rem) = ((secs / 86_400) as i64, secs % 86_400);
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}
+
+/// `--model` options given explicitly; each overrides the file's recipe.
+pub(crate) fn model_overrides(a: &ModelArgs) -> anyhow::Result<ModelOverrides> {
+    Ok(ModelOverrides {
+        format: import_format(&a.format)?,
+        material: a
+            .material
+            .as_deref()
+            .map(crate::pipeline::options::parse_material)
+            .transpose()?,
+        interface: a.interface.clone(),
+        spider: a
+            .spider
+            .as_deref()
+            .map(crate::pipeline::options::parse_spider)
+            .transpose()?,
+        thickness: a.thickness,
+        subcase: a.subcase,
+    })
+}
