@@ -6,10 +6,12 @@
 //! [`export_body_matrices`]). The files are written by [`crate::write::mtx`].
 use std::path::{Path, PathBuf};
 
-use crate::fe::{self, assemble, eliminate, AssemblySpec, ConstraintSpec};
-use crate::import::{self, ImportOptions};
+use crate::fe::{self, assemble};
 use crate::model::Model;
-use crate::pipeline::interface::resolve_interfaces;
+use crate::pipeline::plan::Plan;
+use crate::pipeline::stages::constraints::eliminate_constraints;
+use crate::pipeline::stages::import::import;
+use crate::pipeline::stages::interfaces::attach;
 use crate::pipeline::{BuildError, BuildSpec};
 use crate::write::mtx::{write_matrices, ConstrainedSystem, MatrixWriteError};
 
@@ -33,53 +35,21 @@ pub enum MtxError {
 
 /// The constrained system `build` would reduce for `spec` (reads the model).
 pub fn constrained_system(spec: &BuildSpec) -> Result<ConstrainedSystem, BuildError> {
-    let model = import::read_model(
-        &spec.model,
-        &ImportOptions {
-            format: spec.format,
-            material: spec.material.clone(),
-            subcase: spec.subcase,
-            shell_thickness: spec.thickness,
-        },
-    )?;
-    let resolved = BuildSpec {
-        beam_mass: Some(spec.beam_lumping()),
-        ..spec.clone()
-    };
-    constrained_system_of_model(&resolved, model)
+    let model = import(spec)?;
+    constrained_system_of_model(&spec.with_beam_lumping_resolved(), model)
 }
 
 /// [`constrained_system`] for a model in memory: the deck's defaults, the interface spiders,
-/// assembly and elimination exactly as `build` does them.
+/// assembly and elimination by the build's own stages.
 pub fn constrained_system_of_model(
     spec: &BuildSpec,
-    mut model: Model,
+    model: Model,
 ) -> Result<ConstrainedSystem, BuildError> {
-    let defaults = crate::pipeline::deck::deck_defaults(spec, &model);
-    let spec = &defaults.spec;
-    let interfaces = resolve_interfaces(&mut model, &spec.interface, spec.spider)?;
-    let interface_nodes: Vec<usize> = interfaces
-        .iter()
-        .flat_map(|r| r.nodes.iter().copied())
-        .collect();
-    let assembled = assemble(
-        &model,
-        &AssemblySpec {
-            mass: spec.mass,
-            beam_lumping: spec.beam_mass.unwrap_or_default(),
-            ..Default::default()
-        },
-    )?;
-    let reduced = eliminate(
-        &model,
-        &assembled.dofs,
-        &assembled.k,
-        &assembled.m,
-        &ConstraintSpec {
-            independent_rbe3_reference: interface_nodes,
-            ..Default::default()
-        },
-    )?;
+    let plan = Plan::resolve(spec, &model);
+    let with = attach(&plan, model)?;
+    let assembled = assemble(&with.model, &plan.assembly)?;
+    let reduced = eliminate_constraints(&with, &assembled)?;
+    let model = &with.model;
     let d = &assembled.dofs;
     // Physical dof → (node, component): dofs are numbered node-major from `first`.
     let mut owner = vec![(0u64, 0u8); d.n_dofs];
@@ -92,7 +62,7 @@ pub fn constrained_system_of_model(
         dofs: reduced.retained.iter().map(|&p| owner[p]).collect(),
         k: reduced.k,
         m: reduced.m,
-        mass: spec.mass,
+        mass: plan.spec.mass,
         physical_dofs: d.n_dofs,
     })
 }

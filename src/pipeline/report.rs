@@ -1,0 +1,120 @@
+//! What a build tells: the [`BuildReport`] beside the body, the [`BuildError`] instead of one,
+//! and the names of the [`Stage`]s that progress and timing are reported by.
+
+use flexbody_reader as file;
+
+use crate::fe;
+use crate::import;
+use crate::pipeline::interface::InterfaceReport;
+use crate::reduce;
+
+/// What happened, for the user.
+#[derive(Debug, Clone, Default)]
+pub struct BuildReport {
+    /// (stage, seconds).
+    pub stages: Vec<(String, f64)>,
+    /// Interfaces and spiders.
+    pub interfaces: Vec<InterfaceReport>,
+    /// Import warnings and pipeline notes.
+    pub warnings: Vec<String>,
+    /// Number of physical and independent dofs.
+    pub dofs: (usize, usize),
+    /// Checked diagnostics of the mode set.
+    pub diagnostics: reduce::Diagnostics,
+    /// What the build took from the deck (mass, mode count, interface, subcase), and
+    /// constraint components dropped from interface/reference nodes.
+    pub notes: Vec<String>,
+    /// Every applied constraint: card, line, set, dofs held.
+    pub constraints: Vec<crate::pipeline::deck::ConstraintSummary>,
+}
+
+/// A built body with its report.
+#[derive(Debug, Clone)]
+pub struct BuildOutput {
+    /// The reduced body, ready to write.
+    pub body: file::ReducedBody,
+    /// What was done.
+    pub report: BuildReport,
+}
+
+/// Errors of the pipeline; each names the file and the entity.
+#[derive(Debug, thiserror::Error)]
+pub enum BuildError {
+    /// Import failed.
+    #[error(transparent)]
+    Import(#[from] import::ImportError),
+    /// Interface resolution failed.
+    #[error(transparent)]
+    Interface(#[from] crate::pipeline::interface::InterfaceError),
+    /// Assembly or constraint elimination failed.
+    #[error(transparent)]
+    Fe(#[from] fe::FeError),
+    /// The reduction failed.
+    #[error(transparent)]
+    Reduce(#[from] reduce::ReduceError),
+    /// Invariants could not be formed.
+    #[error(transparent)]
+    Invariants(#[from] crate::body::invariants::InvariantError),
+    /// Stress/strain shapes could not be recovered.
+    #[error(transparent)]
+    Fields(#[from] crate::body::stress::StressError),
+    /// The built body failed its own verification (nothing was written).
+    #[error("{file}: {failures}")]
+    Verify {
+        /// Model file.
+        file: String,
+        /// The failed checks.
+        failures: crate::pipeline::verify::VerifyError,
+    },
+    /// The request does not fit the model.
+    #[error("{file}: {message}")]
+    Request {
+        /// Model file.
+        file: String,
+        /// What is wrong and what to do.
+        message: String,
+    },
+}
+
+/// Stages reported to the progress callback, in order.
+pub const STAGES: [&str; 9] = [
+    "import",
+    "interfaces",
+    "assembly",
+    "constraints",
+    "reduction",
+    "invariants",
+    "stress shapes",
+    "assemble file",
+    "verify",
+];
+
+/// One stage of the pipeline, in order ([`STAGES`] holds their names).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stage {
+    /// Model file → [`crate::model::Model`].
+    Import,
+    /// Interface entries → interface nodes and spiders.
+    Interfaces,
+    /// K and M of the model.
+    Assembly,
+    /// Elimination u = T u_r, interface and reference dofs, the checks before the reduction.
+    Constraints,
+    /// The mode set.
+    Reduction,
+    /// Mass points and the inertia invariants.
+    Invariants,
+    /// Modal stress/strain shapes (only when asked).
+    StressShapes,
+    /// The file's records.
+    AssembleFile,
+    /// The body against the file checks and the model it was reduced from.
+    Verify,
+}
+
+impl Stage {
+    /// The name reported to the progress callback and in [`BuildReport::stages`].
+    pub fn name(self) -> &'static str {
+        STAGES[self as usize]
+    }
+}

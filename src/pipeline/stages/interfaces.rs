@@ -1,0 +1,55 @@
+//! Interfaces: the `--interface` entries → interface nodes; a node set becomes a spider to a
+//! new centre node ([`resolve_interfaces`]), so the model leaves this stage with those nodes and
+//! rigid elements added.
+
+use crate::model::{Model, NodeIndex};
+use crate::pipeline::interface::{resolve_interfaces, InterfaceReport};
+use crate::pipeline::plan::Plan;
+use crate::pipeline::scene::scene_loads;
+use crate::pipeline::{BuildError, BuildMethod};
+
+/// The model with its interface spiders, and the interfaces as resolved.
+#[derive(Debug, Clone)]
+pub struct WithInterfaces {
+    /// The model, spider centre nodes and rigid elements included.
+    pub model: Model,
+    /// One per `--interface` entry.
+    pub interfaces: Vec<InterfaceReport>,
+    /// Every interface's nodes, in entry order (a spider's centre node for a node set).
+    pub interface_nodes: Vec<NodeIndex>,
+}
+
+/// The interfaces stage: the request checked against the method, the interfaces attached, the
+/// scene's loads checked against the model (a bad `--load`/`--gravity` is reported now, not
+/// after the reduction).
+pub fn interfaces(plan: &Plan, model: Model) -> Result<WithInterfaces, BuildError> {
+    let spec = &plan.spec;
+    if spec.method != BuildMethod::Normal && spec.interface.is_empty() {
+        return Err(plan.request_error(format!(
+            "{:?} needs interface nodes: give --interface with node ids or node-set names",
+            spec.method
+        )));
+    }
+    if !spec.reference_conditions.is_empty()
+        && matches!(spec.method, BuildMethod::CraigChang | BuildMethod::Dietz)
+    {
+        return Err(plan.request_error("reference conditions are defined for normal modes and Craig–Bampton (improved CB methods 1 and 2), not for Craig–Chang or Dietz".into()));
+    }
+    let with = attach(plan, model)?;
+    scene_loads(&with.model, &spec.scene).map_err(|e| plan.request_error(e.to_string()))?;
+    Ok(with)
+}
+
+/// The interfaces attached to `model` as `plan` asks, nothing checked.
+pub fn attach(plan: &Plan, mut model: Model) -> Result<WithInterfaces, BuildError> {
+    let interfaces = resolve_interfaces(&mut model, &plan.spec.interface, plan.spec.spider)?;
+    let interface_nodes = interfaces
+        .iter()
+        .flat_map(|r| r.nodes.iter().copied())
+        .collect();
+    Ok(WithInterfaces {
+        model,
+        interfaces,
+        interface_nodes,
+    })
+}
