@@ -24,10 +24,13 @@
 use faer::{Mat, Par};
 use flexbody_reader as file;
 
-use crate::fe::{self, assemble, eliminate, AssemblySpec, ConstraintSpec};
+use crate::fe::{self, assemble, AssemblySpec};
 use crate::import::{self, ImportOptions};
+use crate::model::Model;
 use crate::pipeline::file_checks::partial_nodes;
 use crate::pipeline::interface::resolve_interfaces;
+use crate::pipeline::stages::constraints::eliminate_constraints;
+use crate::pipeline::stages::interfaces::WithInterfaces;
 use crate::reduce::select::ModeCount;
 use crate::solve::EigenSpec;
 
@@ -62,12 +65,24 @@ pub fn check(
     Ok(r)
 }
 
+/// The checks against the FE model: its files as built, then the model rebuilt as `build` did
+/// and the body's frequencies and identities against it.
 fn model_checks(
     body: &file::ReducedBody,
     input: &ModelInput,
     r: &mut CheckReport,
 ) -> Result<(), CheckError> {
-    use crate::pipeline::BuildError;
+    if !model_files_as_built(body, input, r) {
+        return Ok(());
+    }
+    let rebuilt = rebuild(body, input)?;
+    frequencies_against_full_solve(body, &rebuilt, r)?;
+    identities_against_model(body, &rebuilt, r);
+    Ok(())
+}
+
+/// The model files against the recipe's SHA-256; false when one changed (the model checks stop).
+fn model_files_as_built(body: &file::ReducedBody, input: &ModelInput, r: &mut CheckReport) -> bool {
     if let Some(recipe) = &body.recipe {
         let changed = crate::pipeline::recipe::changed_model_files(recipe, &input.path);
         r.push(
@@ -83,10 +98,23 @@ fn model_checks(
                 changed.join("; ")
             },
         );
-        if !changed.is_empty() {
-            return Ok(());
-        }
+        return changed.is_empty();
     }
+    true
+}
+
+/// The model as `build` constrained it, and the body's reference-condition dofs in it.
+struct Rebuilt {
+    model: Model,
+    assembled: fe::Assembled,
+    reduced: fe::Reduced,
+    /// Reference-condition dofs in the independent numbering.
+    fixed: Vec<usize>,
+}
+
+/// Import, interfaces, assembly and elimination as `build` did them (mass as the file says).
+fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, CheckError> {
+    use crate::pipeline::BuildError;
     let mut model = import::read_model(
         &input.path,
         &ImportOptions {
@@ -99,10 +127,6 @@ fn model_checks(
     .map_err(BuildError::from)?;
     let interfaces =
         resolve_interfaces(&mut model, &input.interface, input.spider).map_err(BuildError::from)?;
-    let interface_nodes: Vec<usize> = interfaces
-        .iter()
-        .flat_map(|i| i.nodes.iter().copied())
-        .collect();
     let beam_lumping = input.beam_mass.unwrap_or_else(|| {
         let mut spec = crate::pipeline::BuildSpec::new(input.path.clone(), file::Units::si(), &[]);
         spec.format = input.format;
@@ -121,20 +145,14 @@ fn model_checks(
         },
     )
     .map_err(BuildError::from)?;
-    let red = eliminate(
-        &model,
-        &a.dofs,
-        &a.k,
-        &a.m,
-        &ConstraintSpec {
-            // as `build`: RBE3 spiders at interface nodes keep their centre independent
-            independent_rbe3_reference: interface_nodes,
-            ..Default::default()
-        },
-    )
-    .map_err(BuildError::from)?;
-    let m = body.mode_count();
-    let n_r = red.retained.len();
+    // as `build`: RBE3 spiders at interface nodes keep their centre independent
+    let with = WithInterfaces {
+        interface_nodes: interfaces.iter().flat_map(|i| i.nodes.clone()).collect(),
+        interfaces,
+        model,
+    };
+    let red = eliminate_constraints(&with, &a)?;
+    let model = with.model;
     let by_id = model.node_index_by_id();
     // Reference-condition dofs in the reduced numbering.
     let mut reduced_index = vec![usize::MAX; a.dofs.n_dofs];
@@ -157,8 +175,24 @@ fn model_checks(
             }
         }
     }
+    Ok(Rebuilt {
+        model,
+        assembled: a,
+        reduced: red,
+        fixed,
+    })
+}
 
-    // Frequencies against the full normal-mode solve.
+/// The flexible frequencies against a full normal-mode solve of the model: the Rayleigh–Ritz
+/// bound (reduced ≥ full) and the relative error inside the accuracy band.
+fn frequencies_against_full_solve(
+    body: &file::ReducedBody,
+    rebuilt: &Rebuilt,
+    r: &mut CheckReport,
+) -> Result<(), CheckError> {
+    use crate::pipeline::BuildError;
+    let (red, fixed) = (&rebuilt.reduced, &rebuilt.fixed);
+    let n_r = red.retained.len();
     let flexible: Vec<(usize, f64)> = body
         .modes
         .frequency_hz
@@ -180,10 +214,10 @@ fn model_checks(
         dofs_per_node: Some(3),
         ..Default::default()
     };
-    let massless = crate::reduce::massless::analyse(&red.k, &red.m, &fixed, &[], Par::Seq)
+    let massless = crate::reduce::massless::analyse(&red.k, &red.m, fixed, &[], Par::Seq)
         .map_err(BuildError::from)?;
     let full = crate::reduce::massless::on_held(&red.k, &red.m, &massless, |k, m, map| {
-        let fixed = crate::reduce::massless::map_dofs(map, &fixed, "reference dofs")?;
+        let fixed = crate::reduce::massless::map_dofs(map, fixed, "reference dofs")?;
         crate::reduce::normal::normal_modes(k, m, ModeCount::Count(wanted), &fixed, &eig)
     })
     .map_err(BuildError::from)?;
@@ -252,8 +286,19 @@ fn model_checks(
             }
         ),
     );
+    Ok(())
+}
 
-    // ΦᵀMΦ, ΦᵀKΦ and residuals against the model's matrices (needs every node's shape).
+/// ΦᵀMΦ, ΦᵀKΦ and residuals against the model's matrices (needs every node's shape).
+fn identities_against_model(body: &file::ReducedBody, rebuilt: &Rebuilt, r: &mut CheckReport) {
+    let (model, a, red, fixed) = (
+        &rebuilt.model,
+        &rebuilt.assembled,
+        &rebuilt.reduced,
+        &rebuilt.fixed,
+    );
+    let m = body.mode_count();
+    let n_r = red.retained.len();
     if let Some(stored) = partial_nodes(body) {
         r.skipped.push(format!(
             "Φᵀ M Φ, Φᵀ K Φ and eigen residuals against the model: the file stores {stored}, \
@@ -298,7 +343,7 @@ fn model_checks(
                 &red.m,
                 &phi,
                 &body.modes.omega2,
-                &fixed,
+                fixed,
             );
             crate::pipeline::verify::push_identities(
                 r,
@@ -310,7 +355,6 @@ fn model_checks(
             );
         }
     }
-    Ok(())
 }
 
 /// Runs `flexbody check`: prints the report (text, or `--json`); `Ok(false)` when a check

@@ -71,15 +71,22 @@ pub const ORTHO_LIMIT: f64 = 1e-8;
 /// Every check the file's own data allows, in the order run.
 pub fn file_checks(body: &file::ReducedBody) -> CheckReport {
     let mut r = CheckReport::default();
+    generalized_matrices(body, &mut r);
+    rigid_body_properties(body, &mut r);
+    rigid_modes(body, &mut r);
+    stored_invariants(body, &mut r);
+    r
+}
+
+/// Generalized mass = I and stiffness = diag(ω²) as stored, frequencies = √ω²/2π.
+fn generalized_matrices(body: &file::ReducedBody, r: &mut CheckReport) {
     let m = body.mode_count();
-    let n = body.node_count();
     let md = &body.modes;
     let max_w2 = md
         .omega2
         .iter()
         .fold(0.0f64, |a, &b| a.max(b.abs()))
         .max(f64::MIN_POSITIVE);
-
     let gm_err = (0..m * m)
         .map(|i| (md.generalized_mass[i] - if i / m == i % m { 1.0 } else { 0.0 }).abs())
         .fold(0.0, f64::max);
@@ -117,8 +124,12 @@ pub fn file_checks(body: &file::ReducedBody) -> CheckReport {
         .filter(|e| e.is_finite())
         .fold(0.0, f64::max);
     r.push("frequencies = √ω²/2π", f_err, 1e-12, "relative".into());
+}
 
-    // Rigid-body properties from the invariants.
+/// Rigid-body properties from the invariants: I1 > 0, the centre of mass I2/I1 inside the nodes'
+/// bounding box (every node stored), I7 symmetric positive definite.
+fn rigid_body_properties(body: &file::ReducedBody, r: &mut CheckReport) {
+    let n = body.node_count();
     let inv = &body.invariants;
     let i1 = inv.i1.first().copied().unwrap_or(0.0);
     r.push(
@@ -192,8 +203,12 @@ pub fn file_checks(body: &file::ReducedBody) -> CheckReport {
             },
         );
     }
+}
 
-    // Rigid modes against the expectation.
+/// The rigid-body modes against the expectation: 6 for a free body (less the rotations about a
+/// line of masses without inertia about it), the rigid motions reference conditions leave free.
+fn rigid_modes(body: &file::ReducedBody, r: &mut CheckReport) {
+    let md = &body.modes;
     // rigid: below 1e-4 of the highest frequency, or labelled rigid and below 1e-2 of the first
     // flexible mode (on a slender model rounding leaves rigid modes at ~1e-3 Hz while the set
     // ends at a few hundred Hz)
@@ -239,7 +254,17 @@ pub fn file_checks(body: &file::ReducedBody) -> CheckReport {
             }
         ),
     );
+}
 
+/// The stored invariants: I6 = the generalized mass for consistent mass; for lumped mass with
+/// every node stored, I1, I2, I6, I7 recomputed from the stored nodal masses and shapes.
+fn stored_invariants(body: &file::ReducedBody, r: &mut CheckReport) {
+    let m = body.mode_count();
+    let n = body.node_count();
+    let md = &body.modes;
+    let inv = &body.invariants;
+    let i1 = inv.i1.first().copied().unwrap_or(0.0);
+    let partial = partial_nodes(body);
     // Invariants recomputed from the stored nodes (only meaningful when every node is stored).
     let all_nodes = body.header.request.keep_nodes == file::KeepNodes::All;
     let consistent = body.method.mass_kind == file::MassKind::Consistent;
@@ -323,7 +348,6 @@ pub fn file_checks(body: &file::ReducedBody) -> CheckReport {
             }
         }
     }
-    r
 }
 
 /// Principal inertia ≤ ZERO_INERTIA · the largest one counts as zero (rounding of Σ m·0).

@@ -495,13 +495,67 @@ pub fn before_reduction(
     interface: &[NodeIndex],
     reference: &[(NodeIndex, DofMask)],
 ) -> Result<(), String> {
-    let parts = parts(model, dofs);
-    let mut part_of = vec![usize::MAX; model.nodes.len()];
-    for (k, p) in parts.iter().enumerate() {
-        p.nodes.iter().for_each(|&n| part_of[n] = k);
+    let parts = Parts::of(model, dofs);
+    every_part_has_mass(&parts, m)?;
+    stiffness_contrast(model)?;
+    let free_free = matches!(method, BuildMethod::CraigChang | BuildMethod::Dietz)
+        || (method == BuildMethod::Normal && reference.is_empty());
+    if free_free {
+        one_free_body(&parts)?;
     }
-    // mass of every part (translational diagonal of M)
-    for (k, p) in parts.iter().enumerate() {
+    if method == BuildMethod::CraigBampton {
+        held_by_interfaces(&parts, interface)?;
+    }
+    if !reference.is_empty() {
+        held_by_reference_conditions(&parts, reference)?;
+    }
+    Ok(())
+}
+
+/// The model's connected parts, and which part each node is in.
+struct Parts<'a> {
+    model: &'a Model,
+    dofs: &'a DofMap,
+    parts: Vec<Part>,
+    /// Node → its part (`usize::MAX`: none).
+    part_of: Vec<usize>,
+}
+
+impl<'a> Parts<'a> {
+    fn of(model: &'a Model, dofs: &'a DofMap) -> Self {
+        let parts = parts(model, dofs);
+        let mut part_of = vec![usize::MAX; model.nodes.len()];
+        for (k, p) in parts.iter().enumerate() {
+            p.nodes.iter().for_each(|&n| part_of[n] = k);
+        }
+        Parts {
+            model,
+            dofs,
+            parts,
+            part_of,
+        }
+    }
+
+    /// The rows the model's SPCs hold in part `k`.
+    fn spc_rows(&self, k: usize) -> Vec<(NodeIndex, usize)> {
+        self.model
+            .spcs
+            .iter()
+            .filter(|s| self.part_of.get(s.node) == Some(&k))
+            .flat_map(|s| node_rows(self.dofs, s.node, s.dofs))
+            .collect()
+    }
+
+    /// Part `k` in words: its elements, sets and nodes.
+    fn describe(&self, k: usize) -> String {
+        describe_part(self.model, &self.parts, k)
+    }
+}
+
+/// Every part has mass (the translational diagonal of M), else its modes have no frequency.
+fn every_part_has_mass(parts: &Parts, m: &SparseColMat<usize, f64>) -> Result<(), String> {
+    let (model, dofs) = (parts.model, parts.dofs);
+    for (k, p) in parts.parts.iter().enumerate() {
         let mass: f64 = p
             .nodes
             .iter()
@@ -529,7 +583,7 @@ pub fn before_reduction(
             return Err(format!(
                 "{} has no mass ({}): its modes would have zero or undefined frequencies; \
                  give the material its density",
-                describe_part(model, &parts, k),
+                parts.describe(k),
                 if mats.is_empty() {
                     "its mass matrix is zero".to_string()
                 } else {
@@ -538,7 +592,12 @@ pub fn before_reduction(
             ));
         }
     }
-    // stiffness contrast between the materials of the structural elements
+    Ok(())
+}
+
+/// The stiffness contrast between the materials of the structural elements stays below
+/// [`MAX_CONTRAST`].
+fn stiffness_contrast(model: &Model) -> Result<(), String> {
     let used: Vec<&crate::model::Material> = {
         let mut ids: Vec<usize> = model
             .elements
@@ -571,157 +630,157 @@ pub fn before_reduction(
             ));
         }
     }
-    let spc_rows = |k: usize| -> Vec<(NodeIndex, usize)> {
-        model
-            .spcs
-            .iter()
-            .filter(|s| part_of.get(s.node) == Some(&k))
-            .flat_map(|s| node_rows(dofs, s.node, s.dofs))
-            .collect()
-    };
-    let node_label =
-        |(n, c): (NodeIndex, usize)| format!("node {} dof {}", model.nodes[n].id, c + 1);
-    let free_free = matches!(method, BuildMethod::CraigChang | BuildMethod::Dietz)
-        || (method == BuildMethod::Normal && reference.is_empty());
-    if free_free {
-        let loose: Vec<usize> = (0..parts.len())
-            .filter(|&k| {
-                !restrain(model, dofs, &parts[k], &spc_rows(k))
-                    .free
-                    .is_empty()
-            })
-            .collect();
-        if loose.len() > 1 {
-            let list: Vec<String> = loose
+    Ok(())
+}
+
+/// Free-free: one free body — no second disconnected part, no solid groups turning against
+/// each other about shared nodes.
+fn one_free_body(parts: &Parts) -> Result<(), String> {
+    let (model, dofs) = (parts.model, parts.dofs);
+    let loose: Vec<usize> = (0..parts.parts.len())
+        .filter(|&k| {
+            !restrain(model, dofs, &parts.parts[k], &parts.spc_rows(k))
+                .free
+                .is_empty()
+        })
+        .collect();
+    if loose.len() > 1 {
+        let list: Vec<String> = loose.iter().map(|&k| parts.describe(k)).collect();
+        return Err(format!(
+            "free-free analysis: the model has {} disconnected parts, so it has {} zero-frequency \
+             modes instead of 6: {}; connect them (merge coincident nodes, tie or RBE2) or \
+             build each part as its own body",
+            loose.len(),
+            6 * loose.len(),
+            list.join("; ")
+        ));
+    }
+    for (k, part) in parts.parts.iter().enumerate() {
+        if let Some((groups, joints)) = solid_groups(model, part).filter(|g| g.0.len() > 1) {
+            let list: Vec<String> = groups
                 .iter()
-                .map(|&k| describe_part(model, &parts, k))
+                .enumerate()
+                .map(|(i, g)| format!("group {}: {}", i + 1, describe_elements(model, &g.elements)))
                 .collect();
             return Err(format!(
-                "free-free analysis: the model has {} disconnected parts, so it has {} zero-frequency \
-                 modes instead of 6: {}; connect them (merge coincident nodes, tie or RBE2) or \
-                 build each part as its own body",
-                loose.len(),
-                6 * loose.len(),
+                "free-free analysis: {} is a mechanism: its solid elements form {} groups that \
+                 share no face, only node(s) {} ({}), so they can turn against each other \
+                 (extra zero-frequency modes); merge or tie the groups over a face",
+                parts.describe(k),
+                groups.len(),
+                node_ids(model, &joints),
                 list.join("; ")
             ));
         }
     }
-    if free_free {
-        for (k, part) in parts.iter().enumerate() {
-            if let Some((groups, joints)) = solid_groups(model, part).filter(|g| g.0.len() > 1) {
-                let list: Vec<String> = groups
-                    .iter()
-                    .enumerate()
-                    .map(|(i, g)| {
-                        format!("group {}: {}", i + 1, describe_elements(model, &g.elements))
-                    })
-                    .collect();
-                return Err(format!(
-                    "free-free analysis: {} is a mechanism: its solid elements form {} groups that \
-                     share no face, only node(s) {} ({}), so they can turn against each other \
-                     (extra zero-frequency modes); merge or tie the groups over a face",
-                    describe_part(model, &parts, k),
-                    groups.len(),
-                    node_ids(model, &joints),
-                    list.join("; ")
-                ));
-            }
-        }
-    }
-    if method == BuildMethod::CraigBampton {
-        for k in 0..parts.len() {
-            let mut rows = spc_rows(k);
-            rows.extend(
-                interface
-                    .iter()
-                    .filter(|&&n| part_of[n] == k)
-                    .flat_map(|&n| node_rows(dofs, n, DofMask::ALL)),
-            );
-            let r = restrain(model, dofs, &parts[k], &rows);
-            if r.free.is_empty() {
-                // a mechanism inside the part: every face-bonded group must be held on its own
-                if let Some((groups, joints)) = solid_groups(model, &parts[k]) {
-                    for (i, g) in groups.iter().enumerate().filter(|_| groups.len() > 1) {
-                        let mut mine = vec![false; model.nodes.len()];
-                        g.nodes.iter().for_each(|&n| mine[n] = true);
-                        let rows_g: Vec<(NodeIndex, usize)> =
-                            rows.iter().copied().filter(|&(n, _)| mine[n]).collect();
-                        let rg = restrain(model, dofs, g, &rows_g);
-                        if !rg.free.is_empty() {
-                            return Err(format!(
-                                "Craig–Bampton: in {}, group {} of {} solid groups ({}) shares no face \
-                                 with the others (only node(s) {}) and is not held by its interface \
-                                 dofs: {} left free, so K_ii is singular; tie the groups over a face \
-                                 or give this group interface nodes",
-                                describe_part(model, &parts, k),
-                                i + 1,
-                                groups.len(),
-                                describe_elements(model, &g.elements),
-                                node_ids(model, &joints),
-                                rg.free.join(", ")
-                            ));
-                        }
+    Ok(())
+}
+
+/// Craig–Bampton: the model's SPCs and the interface nodes hold every part (and every
+/// face-bonded solid group of it), else K_ii is singular.
+fn held_by_interfaces(parts: &Parts, interface: &[NodeIndex]) -> Result<(), String> {
+    let (model, dofs) = (parts.model, parts.dofs);
+    for k in 0..parts.parts.len() {
+        let mut rows = parts.spc_rows(k);
+        rows.extend(
+            interface
+                .iter()
+                .filter(|&&n| parts.part_of[n] == k)
+                .flat_map(|&n| node_rows(dofs, n, DofMask::ALL)),
+        );
+        let r = restrain(model, dofs, &parts.parts[k], &rows);
+        if r.free.is_empty() {
+            // a mechanism inside the part: every face-bonded group must be held on its own
+            if let Some((groups, joints)) = solid_groups(model, &parts.parts[k]) {
+                for (i, g) in groups.iter().enumerate().filter(|_| groups.len() > 1) {
+                    let mut mine = vec![false; model.nodes.len()];
+                    g.nodes.iter().for_each(|&n| mine[n] = true);
+                    let rows_g: Vec<(NodeIndex, usize)> =
+                        rows.iter().copied().filter(|&(n, _)| mine[n]).collect();
+                    let rg = restrain(model, dofs, g, &rows_g);
+                    if !rg.free.is_empty() {
+                        return Err(format!(
+                            "Craig–Bampton: in {}, group {} of {} solid groups ({}) shares no face \
+                             with the others (only node(s) {}) and is not held by its interface \
+                             dofs: {} left free, so K_ii is singular; tie the groups over a face \
+                             or give this group interface nodes",
+                            parts.describe(k),
+                            i + 1,
+                            groups.len(),
+                            describe_elements(model, &g.elements),
+                            node_ids(model, &joints),
+                            rg.free.join(", ")
+                        ));
                     }
                 }
             }
-            if !r.free.is_empty() {
-                let what = if rows.is_empty() {
-                    "is not connected to any interface node".to_string()
+        }
+        if !r.free.is_empty() {
+            let what = if rows.is_empty() {
+                "is not connected to any interface node".to_string()
+            } else {
+                format!(
+                    "is not held by its interface dofs: {} left free",
+                    r.free.join(", ")
+                )
+            };
+            return Err(format!(
+                "Craig–Bampton: {} {what}, so the fixed-interface stiffness K_ii is singular; \
+                 {}",
+                parts.describe(k),
+                if rows.is_empty() {
+                    "connect it to the rest of the model or add one of its nodes to --interface"
                 } else {
-                    format!(
-                        "is not held by its interface dofs: {} left free",
-                        r.free.join(", ")
-                    )
-                };
-                return Err(format!(
-                    "Craig–Bampton: {} {what}, so the fixed-interface stiffness K_ii is singular; \
-                     {}",
-                    describe_part(model, &parts, k),
-                    if rows.is_empty() {
-                        "connect it to the rest of the model or add one of its nodes to --interface"
-                    } else {
-                        "add interface nodes, or attach the interface through a node set (an RBE2 \
-                         spider, --spider rbe2) so that it carries rotations"
-                    }
-                ));
-            }
+                    "add interface nodes, or attach the interface through a node set (an RBE2 \
+                     spider, --spider rbe2) so that it carries rotations"
+                }
+            ));
         }
     }
-    if !reference.is_empty() {
-        for k in 0..parts.len() {
-            let base = spc_rows(k);
-            let nb = base.len();
-            let mut rows = base;
-            rows.extend(
-                reference
-                    .iter()
-                    .filter(|(n, _)| part_of[*n] == k)
-                    .flat_map(|&(n, mask)| node_rows(dofs, n, mask)),
-            );
-            let r = restrain(model, dofs, &parts[k], &rows);
-            let extra: Vec<String> = r
-                .redundant
+    Ok(())
+}
+
+/// Reference conditions remove every rigid motion of each part, and none twice.
+fn held_by_reference_conditions(
+    parts: &Parts,
+    reference: &[(NodeIndex, DofMask)],
+) -> Result<(), String> {
+    let (model, dofs) = (parts.model, parts.dofs);
+    let node_label =
+        |(n, c): (NodeIndex, usize)| format!("node {} dof {}", model.nodes[n].id, c + 1);
+    for k in 0..parts.parts.len() {
+        let base = parts.spc_rows(k);
+        let nb = base.len();
+        let mut rows = base;
+        rows.extend(
+            reference
                 .iter()
-                .filter(|x| rows.iter().position(|y| y == *x).is_some_and(|i| i >= nb))
-                .map(|&x| node_label(x))
-                .collect();
-            if !extra.is_empty() {
-                return Err(format!(
-                    "reference conditions over-constrain {}: {} repeat(s) a rigid motion already \
-                     held by the others, so the body would be stiffened; give exactly 6 \
-                     independent dofs (e.g. all 6 dofs of one interface node)",
-                    describe_part(model, &parts, k),
-                    extra.join(", ")
-                ));
-            }
-            if !r.free.is_empty() {
-                return Err(format!(
-                    "reference conditions do not remove all rigid motion of {}: {} left free; \
-                     give 6 independent dofs (e.g. all 6 dofs of one interface node)",
-                    describe_part(model, &parts, k),
-                    r.free.join(", ")
-                ));
-            }
+                .filter(|(n, _)| parts.part_of[*n] == k)
+                .flat_map(|&(n, mask)| node_rows(dofs, n, mask)),
+        );
+        let r = restrain(model, dofs, &parts.parts[k], &rows);
+        let extra: Vec<String> = r
+            .redundant
+            .iter()
+            .filter(|x| rows.iter().position(|y| y == *x).is_some_and(|i| i >= nb))
+            .map(|&x| node_label(x))
+            .collect();
+        if !extra.is_empty() {
+            return Err(format!(
+                "reference conditions over-constrain {}: {} repeat(s) a rigid motion already \
+                 held by the others, so the body would be stiffened; give exactly 6 \
+                 independent dofs (e.g. all 6 dofs of one interface node)",
+                parts.describe(k),
+                extra.join(", ")
+            ));
+        }
+        if !r.free.is_empty() {
+            return Err(format!(
+                "reference conditions do not remove all rigid motion of {}: {} left free; \
+                 give 6 independent dofs (e.g. all 6 dofs of one interface node)",
+                parts.describe(k),
+                r.free.join(", ")
+            ));
         }
     }
     Ok(())
