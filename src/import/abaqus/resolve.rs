@@ -5,14 +5,69 @@ use std::collections::{BTreeMap, HashMap};
 
 use super::{CouplingKind, Parser, Target};
 use crate::import::error::ImportError;
-use crate::import::text::Loc;
+use crate::import::text::{IdMap, Loc};
 use crate::model::{
     ConstraintSource, DofMask, EigenRequest, ImportWarning, Material, Model, PointMass, Property,
     RigidElement, Section, SectionShape, Spc,
 };
 
+/// The model's ids and sets, resolved: what every later step looks members up in.
+struct Sets {
+    /// Node id → index.
+    nodes: IdMap,
+    /// Element id → index.
+    elems: IdMap,
+    node_sets: BTreeMap<String, Vec<usize>>,
+    element_sets: BTreeMap<String, Vec<usize>>,
+}
+
+impl Sets {
+    /// The nodes of a `*BOUNDARY`/`*RIGID BODY`/`*COUPLING` target: a node id or a node set.
+    fn target(
+        &self,
+        t: &Target,
+        loc: Loc,
+        ent: &str,
+        p: &Parser,
+    ) -> Result<Vec<usize>, ImportError> {
+        match t {
+            Target::Node(id) => self
+                .nodes
+                .get(*id)
+                .map(|i| vec![i])
+                .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node {id}"))),
+            Target::Set(s) => self
+                .node_sets
+                .get(s)
+                .cloned()
+                .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node set {s}"))),
+        }
+    }
+}
+
 impl Parser {
+    /// The resolve pass: ids → indices and sets, then materials, sections, boundary
+    /// conditions, point masses, frames, rigid elements, notes and loads, in that order.
     pub(super) fn finish(mut self) -> Result<Model, ImportError> {
+        let sets = self.resolve_sets()?;
+        let mat_index = self.resolve_materials()?;
+        self.resolve_sections(&mat_index, &sets)?;
+        self.resolve_boundaries(&sets)?;
+        self.resolve_point_masses(&sets)?;
+        self.resolve_transforms(&sets)?;
+        self.resolve_rigid_elements(&sets)?;
+        self.import_notes();
+        self.b.model.loads = self.resolve_loads(&sets)?;
+        self.b.model.node_sets = sets.node_sets;
+        self.b.model.element_sets = sets.element_sets;
+        self.b.model.files = self.b.files.clone();
+        self.b.record_element_sources();
+        Ok(self.b.model)
+    }
+
+    /// Node and element ids → indices (mass elements checked against both), the node and
+    /// element sets, and node sets made from element sets.
+    fn resolve_sets(&mut self) -> Result<Sets, ImportError> {
         let nodes = self.b.node_map("*NODE")?;
         self.b.resolve_element_nodes(&nodes)?;
         let elems = self.b.element_map()?;
@@ -83,7 +138,16 @@ impl Parser {
             set.sort_unstable();
             set.dedup();
         }
-        // Materials.
+        Ok(Sets {
+            nodes,
+            elems,
+            node_sets,
+            element_sets,
+        })
+    }
+
+    /// `*MATERIAL`s → the model's materials; returns name → index.
+    fn resolve_materials(&mut self) -> Result<HashMap<String, usize>, ImportError> {
         let mut mat_index = HashMap::new();
         for (k, m) in self.materials.iter().enumerate() {
             let ent = format!("*MATERIAL {}", m.name);
@@ -117,7 +181,15 @@ impl Parser {
                 rho: m.rho.unwrap_or(0.0),
             });
         }
-        // Sections → properties, assigned to the elements of their set.
+        Ok(mat_index)
+    }
+
+    /// Sections → properties, assigned to the elements of their set.
+    fn resolve_sections(
+        &mut self,
+        mat_index: &HashMap<String, usize>,
+        sets: &Sets,
+    ) -> Result<(), ImportError> {
         for (k, s) in self.sections.iter().enumerate() {
             let ent = format!("*SECTION ELSET={}", s.elset);
             let material = *mat_index.get(&s.material).ok_or_else(|| {
@@ -127,7 +199,7 @@ impl Parser {
                     format!("unknown material {}", s.material),
                 )
             })?;
-            let members = element_sets.get(&s.elset).ok_or_else(|| {
+            let members = sets.element_sets.get(&s.elset).ok_or_else(|| {
                 self.err(
                     s.loc,
                     ent.clone(),
@@ -166,20 +238,12 @@ impl Parser {
                 el.orientation = s.orientation;
             }
         }
-        let resolve_target =
-            |t: &Target, loc: Loc, ent: &str, p: &Parser| -> Result<Vec<usize>, ImportError> {
-                match t {
-                    Target::Node(id) => nodes
-                        .get(*id)
-                        .map(|i| vec![i])
-                        .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node {id}"))),
-                    Target::Set(s) => node_sets
-                        .get(s)
-                        .cloned()
-                        .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node set {s}"))),
-                }
-            };
-        // *BOUNDARY: the model data's, and those of the *FREQUENCY step (steps.rs).
+        Ok(())
+    }
+
+    /// `*BOUNDARY`: the model data's, and those of the `*FREQUENCY` step (steps.rs), as SPCs
+    /// with their source; the step's ignored keywords as warnings, its mode count.
+    fn resolve_boundaries(&mut self, sets: &Sets) -> Result<(), ImportError> {
         self.steps.finish_current();
         let at = |loc: Loc| format!("{}:{}", self.b.file_name(loc), loc.line);
         let applied = self.steps.applied(&at);
@@ -198,7 +262,7 @@ impl Parser {
         let frequency = applied.frequency;
         for (t, dofs, loc, what) in &bcs {
             let first = self.b.model.spcs.len();
-            for node in resolve_target(t, *loc, "*BOUNDARY", &self)? {
+            for node in sets.target(t, *loc, "*BOUNDARY", self)? {
                 self.b.model.spcs.push(Spc {
                     node,
                     dofs: *dofs,
@@ -233,7 +297,11 @@ impl Parser {
                 upper_hz: None,
             });
         }
-        // Point masses from MASS / ROTARYI elements.
+        Ok(())
+    }
+
+    /// Point masses from MASS / ROTARYI elements.
+    fn resolve_point_masses(&mut self, sets: &Sets) -> Result<(), ImportError> {
         let mut pm: BTreeMap<u64, PointMass> = BTreeMap::new();
         let set_mass_elems =
             |set: &str, loc: Loc, p: &Parser| -> Result<Vec<(u64, usize)>, ImportError> {
@@ -244,44 +312,52 @@ impl Parser {
                     .filter_map(|(id, _)| {
                         p.mass_elems
                             .get(id)
-                            .and_then(|(n, _)| nodes.get(*n))
+                            .and_then(|(n, _)| sets.nodes.get(*n))
                             .map(|n| (*id, n))
                     })
                     .collect())
             };
         for (set, mass, loc) in &self.masses {
-            for (id, node) in set_mass_elems(set, *loc, &self)? {
+            for (id, node) in set_mass_elems(set, *loc, self)? {
                 pm.entry(id).or_insert_with(|| empty_mass(id, node)).mass = *mass;
             }
         }
         for (set, r, loc) in &self.rotary {
-            for (id, node) in set_mass_elems(set, *loc, &self)? {
+            for (id, node) in set_mass_elems(set, *loc, self)? {
                 let p = pm.entry(id).or_insert_with(|| empty_mass(id, node));
                 // Abaqus order I11, I22, I33, I12, I13, I23 (I_ij = −∫ x_i x_j dm for i ≠ j).
                 p.inertia = [[r[0], r[3], r[4]], [r[3], r[1], r[5]], [r[4], r[5], r[2]]];
             }
         }
         self.b.model.point_masses = pm.into_values().collect();
-        // *TRANSFORM: nodal displacement frames.
+        Ok(())
+    }
+
+    /// `*TRANSFORM`: nodal displacement frames.
+    fn resolve_transforms(&mut self, sets: &Sets) -> Result<(), ImportError> {
         for (nset, cs, loc) in &self.transforms {
             let ent = format!("*TRANSFORM NSET={nset}");
-            let members = resolve_target(&Target::Set(nset.clone()), *loc, &ent, &self)?;
+            let members = sets.target(&Target::Set(nset.clone()), *loc, &ent, self)?;
             self.b.model.coord_systems.push(cs.clone());
             let k = self.b.model.coord_systems.len() - 1;
             for n in members {
                 self.b.model.nodes[n].displacement_frame = Some(k);
             }
         }
-        // Rigid bodies and couplings.
+        Ok(())
+    }
+
+    /// Rigid bodies and couplings → RBE2 / RBE3.
+    fn resolve_rigid_elements(&mut self, sets: &Sets) -> Result<(), ImportError> {
         let mut rid = 0u64;
         for (r, nset, loc) in &self.rigid {
             let ind = single(
-                resolve_target(r, *loc, "*RIGID BODY", &self)?,
+                sets.target(r, *loc, "*RIGID BODY", self)?,
                 *loc,
                 "*RIGID BODY",
-                &self,
+                self,
             )?;
-            let dep = resolve_target(&Target::Set(nset.clone()), *loc, "*RIGID BODY", &self)?;
+            let dep = sets.target(&Target::Set(nset.clone()), *loc, "*RIGID BODY", self)?;
             rid += 1;
             self.b.model.rigid_elements.push(RigidElement::Rbe2 {
                 id: rid,
@@ -293,10 +369,10 @@ impl Parser {
         for c in &self.couplings {
             let ent = format!("*COUPLING SURFACE={}", c.surface);
             let reference = single(
-                resolve_target(&c.reference, c.loc, &ent, &self)?,
+                sets.target(&c.reference, c.loc, &ent, self)?,
                 c.loc,
                 &ent,
-                &self,
+                self,
             )?;
             let surf = self
                 .surfaces
@@ -304,7 +380,7 @@ impl Parser {
                 .ok_or_else(|| self.err(c.loc, ent.clone(), "unknown node surface"))?;
             let mut members = Vec::new();
             for (t, w, loc) in surf {
-                for n in resolve_target(t, *loc, &ent, &self)? {
+                for n in sets.target(t, *loc, &ent, self)? {
                     members.push((n, *w));
                 }
             }
@@ -333,6 +409,12 @@ impl Parser {
             };
             self.b.model.rigid_elements.push(rigid);
         }
+        Ok(())
+    }
+
+    /// What the reader did not reproduce, as warnings: substituted element types, extra node
+    /// ids, section points, ignored keywords.
+    fn import_notes(&mut self) {
         for (what, count) in &self.substituted {
             self.b.model.warnings.push(ImportWarning {
                 file: self.b.files[0].clone(),
@@ -363,6 +445,10 @@ impl Parser {
                 message: format!("keyword *{name} ignored ({count}×)"),
             });
         }
+    }
+
+    /// The steps' loads (loads.rs), their problems as warnings.
+    fn resolve_loads(&mut self, sets: &Sets) -> Result<Vec<crate::model::Load>, ImportError> {
         let loads = {
             let err = |loc: Loc, ent: String, msg: String| self.err(loc, ent, msg);
             let at = |loc: Loc| format!("{}:{}", self.b.file_name(loc), loc.line);
@@ -370,10 +456,10 @@ impl Parser {
                 &self.loads,
                 &super::loads::Resolve {
                     model: &self.b.model,
-                    nodes: &nodes,
-                    elems: &elems,
-                    node_sets: &node_sets,
-                    element_sets: &element_sets,
+                    nodes: &sets.nodes,
+                    elems: &sets.elems,
+                    node_sets: &sets.node_sets,
+                    element_sets: &sets.element_sets,
                     err: &err,
                     at: &at,
                 },
@@ -381,12 +467,7 @@ impl Parser {
         };
         let load_warnings = crate::model::load::problem_warnings(&loads, &self.b.files[0]);
         self.b.model.warnings.extend(load_warnings);
-        self.b.model.loads = loads;
-        self.b.model.node_sets = node_sets;
-        self.b.model.element_sets = element_sets;
-        self.b.model.files = self.b.files.clone();
-        self.b.record_element_sources();
-        Ok(self.b.model)
+        Ok(loads)
     }
 }
 

@@ -1,0 +1,318 @@
+//! Keyword lines of the Abaqus reader: `*NAME, KEY=value, …` → the [`Block`] its data lines
+//! fill ([`super::data`]). [`Parser::start_keyword`] is the table: one reader per keyword
+//! family; a keyword it does not know is counted and skipped.
+
+use super::defs::element_kind;
+use super::{
+    loads, param, steps, target, Block, CouplingKind, Parser, RawCoupling, RawMaterial, RawSection,
+};
+use crate::import::error::ImportError;
+use crate::import::text::Loc;
+use crate::model::{DofMask, Section, SectionShape};
+
+/// A keyword line: its name, its parameters and where it is.
+struct Keyword<'a> {
+    name: &'a str,
+    params: &'a [(String, String)],
+    loc: Loc,
+}
+
+impl Keyword<'_> {
+    fn param(&self, key: &str) -> Option<&str> {
+        param(self.params, key)
+    }
+
+    /// The parameter `key`, upper-cased; an error naming the keyword when it is missing or empty.
+    fn need(&self, key: &str, p: &Parser) -> Result<String, ImportError> {
+        self.param(key)
+            .filter(|v| !v.is_empty())
+            .map(|v| v.to_ascii_uppercase())
+            .ok_or_else(|| {
+                p.err(
+                    self.loc,
+                    format!("*{}", self.name),
+                    format!("missing {key}="),
+                )
+            })
+    }
+}
+
+impl Parser {
+    /// The keyword table: the block that the data lines after keyword `name` fill.
+    pub(super) fn start_keyword(
+        &mut self,
+        name: &str,
+        params: &[(String, String)],
+        loc: Loc,
+    ) -> Result<Block, ImportError> {
+        let kw = Keyword { name, params, loc };
+        Ok(match name {
+            "NODE" => Block::Node(kw.param("NSET").map(|s| s.to_ascii_uppercase())),
+            "ELEMENT" => self.element_keyword(&kw)?,
+            "NSET" | "ELSET" => self.set_keyword(&kw)?,
+            "MATERIAL" => {
+                self.materials.push(RawMaterial {
+                    name: kw.need("NAME", self)?,
+                    e: None,
+                    rho: None,
+                    loc,
+                });
+                Block::Skip
+            }
+            "ELASTIC" | "DENSITY" => self.material_data_keyword(&kw)?,
+            "SOLID SECTION" | "BEAM SECTION" | "SHELL SECTION" => self.section_keyword(&kw)?,
+            "BOUNDARY" => self.boundary_keyword(&kw),
+            "STEP" => {
+                self.steps.begin(loc, kw.param("NAME").map(str::to_owned));
+                Block::Skip
+            }
+            "END STEP" => {
+                self.steps.finish_current();
+                Block::Skip
+            }
+            p if self.steps.current.is_some() && steps::PROCEDURES.contains(&p) => {
+                self.procedure_keyword(&kw)
+            }
+            "CLOAD" | "DLOAD" | "DSLOAD" => self.load_keyword(&kw)?,
+            "MASS" => Block::Mass(kw.need("ELSET", self)?),
+            "ROTARY INERTIA" => Block::RotaryInertia(kw.need("ELSET", self)?),
+            "TRANSFORM" => self.transform_keyword(&kw)?,
+            "RIGID BODY" => {
+                let nset = kw.need("NSET", self)?;
+                let r = kw.need("REF NODE", self)?;
+                self.rigid.push((target(&r), nset, loc));
+                Block::Skip
+            }
+            "SURFACE" => self.surface_keyword(&kw)?,
+            "COUPLING" => {
+                let r = kw.need("REF NODE", self)?;
+                let s = kw.need("SURFACE", self)?;
+                self.couplings.push(RawCoupling {
+                    reference: target(&r),
+                    surface: s,
+                    kind: None,
+                    loc,
+                });
+                Block::Skip
+            }
+            "KINEMATIC" | "DISTRIBUTING" => self.coupling_kind_keyword(&kw)?,
+            _ => return self.skip(name, params),
+        })
+    }
+
+    /// A keyword that is not read: counted for the warning.
+    pub(super) fn skip(
+        &mut self,
+        name: &str,
+        _params: &[(String, String)],
+    ) -> Result<Block, ImportError> {
+        *self.skipped.entry(name.to_owned()).or_default() += 1;
+        Ok(Block::Skip)
+    }
+
+    /// `*ELEMENT, TYPE=…`: the element kind (a close relative's, noted, for variants).
+    fn element_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let t = kw.need("TYPE", self)?;
+        let Some((kind, card)) = element_kind(&t) else {
+            return Err(self.err(kw.loc, "*ELEMENT", format!("unsupported element type {t}")));
+        };
+        if t != card {
+            *self
+                .substituted
+                .entry(format!("{t} read as {card}"))
+                .or_default() += 1;
+        }
+        Ok(Block::Element {
+            kind,
+            card,
+            elset: kw.param("ELSET").map(|s| s.to_ascii_uppercase()),
+        })
+    }
+
+    /// `*NSET` / `*ELSET` (GENERATE; `*NSET, NSET=A, ELSET=B`: the nodes of B's elements).
+    fn set_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let node = kw.name == "NSET";
+        let name = kw.need(if node { "NSET" } else { "ELSET" }, self)?;
+        let map = if node {
+            &mut self.nsets
+        } else {
+            &mut self.elsets
+        };
+        map.entry(name.clone()).or_default();
+        if let (true, Some(e)) = (node, kw.param("ELSET")) {
+            // *NSET, NSET=A, ELSET=B: the nodes of B's elements (resolved later).
+            self.nset_from_elset
+                .push((name, e.to_ascii_uppercase(), kw.loc));
+            return Ok(Block::Skip);
+        }
+        Ok(Block::Set {
+            node,
+            name,
+            generate: kw.params.iter().any(|(k, _)| k == "GENERATE"),
+        })
+    }
+
+    /// `*ELASTIC` (isotropic) / `*DENSITY` inside a `*MATERIAL`.
+    fn material_data_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        if self.materials.is_empty() {
+            return Err(self.err(kw.loc, format!("*{}", kw.name), "outside a *MATERIAL"));
+        }
+        if let Some(t) = kw.param("TYPE") {
+            if !t.eq_ignore_ascii_case("ISO") {
+                return Err(self.err(
+                    kw.loc,
+                    "*ELASTIC",
+                    format!("TYPE={t} not supported (isotropic only)"),
+                ));
+            }
+        }
+        Ok(if kw.name == "ELASTIC" {
+            Block::Elastic
+        } else {
+            Block::Density
+        })
+    }
+
+    /// `*SOLID SECTION` / `*SHELL SECTION` (mid-surface only) / `*BEAM SECTION`.
+    fn section_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let elset = kw.need("ELSET", self)?;
+        let material = kw.need("MATERIAL", self)?;
+        let section = match kw.name {
+            "SOLID SECTION" => Section::Solid,
+            "SHELL SECTION" => {
+                // OFFSET= moves the reference surface off the mid-surface: not modelled.
+                if let Some(o) = kw.param("OFFSET") {
+                    let zero = o.eq_ignore_ascii_case("SMID")
+                        || o.trim().parse::<f64>().is_ok_and(|v| v == 0.0);
+                    if !zero {
+                        return Err(self.err(
+                            kw.loc,
+                            format!("*SHELL SECTION ELSET={elset}"),
+                            format!("OFFSET={o} not supported (mid-surface shells only)"),
+                        ));
+                    }
+                }
+                // Material indices are set when the material names are resolved.
+                Section::Shell(crate::model::ShellSection::homogeneous(f64::NAN, 0))
+            }
+            _ => {
+                let s = kw.need("SECTION", self)?;
+                Section::Beam(crate::model::BeamSection {
+                    area: 0.0,
+                    i1: 0.0,
+                    i2: 0.0,
+                    i12: 0.0,
+                    j: 0.0,
+                    shear_factors: None,
+                    nsm: 0.0,
+                    shape: Some(SectionShape::Other {
+                        name: s,
+                        dims: vec![],
+                    }),
+                })
+            }
+        };
+        self.sections.push(RawSection {
+            elset,
+            material,
+            section,
+            orientation: None,
+            loc: kw.loc,
+        });
+        Ok(Block::SectionLine(self.sections.len() - 1, 0))
+    }
+
+    /// `*BOUNDARY` (OP=NEW clears the conditions before it).
+    fn boundary_keyword(&mut self, kw: &Keyword) -> Block {
+        if kw
+            .param("OP")
+            .is_some_and(|v| v.eq_ignore_ascii_case("NEW"))
+        {
+            match &mut self.steps.current {
+                Some(step) => {
+                    step.op_new = true;
+                    step.boundaries.clear();
+                }
+                None => self.boundaries.clear(),
+            }
+        }
+        Block::Boundary
+    }
+
+    /// A step's procedure (`*FREQUENCY`, `*STATIC`, …): the first one is the step's.
+    fn procedure_keyword(&mut self, kw: &Keyword) -> Block {
+        let p = kw.name;
+        if let Some(step) = &mut self.steps.current {
+            if step.procedure.is_none() {
+                step.procedure = Some((p.to_owned(), kw.loc));
+            }
+        }
+        if p == "FREQUENCY" {
+            Block::Frequency
+        } else {
+            Block::Skip
+        }
+    }
+
+    /// `*CLOAD` / `*DLOAD` inside a step (`*DSLOAD` refused).
+    fn load_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        if self.steps.current.is_none() {
+            return Err(self.err(
+                kw.loc,
+                format!("*{}", kw.name),
+                "a load is history data: it belongs inside a *STEP",
+            ));
+        }
+        match kw.name {
+            "CLOAD" => Ok(Block::Load(loads::LoadKeyword::Cload)),
+            "DLOAD" => Ok(Block::Load(loads::LoadKeyword::Dload)),
+            _ => Err(self.err(
+                kw.loc,
+                "*DSLOAD",
+                "loads on element-based surfaces are not supported (element-based *SURFACE is not read): give the pressure with *DLOAD, Pn on the elements",
+            )),
+        }
+    }
+
+    /// `*TRANSFORM, NSET=…, TYPE=R|C`.
+    fn transform_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let cyl = match kw.param("TYPE").map(str::to_ascii_uppercase).as_deref() {
+            None | Some("R") => false,
+            Some("C") => true,
+            Some(t) => {
+                return Err(self.err(
+                    kw.loc,
+                    "*TRANSFORM",
+                    format!("TYPE={t} not supported (R, C)"),
+                ))
+            }
+        };
+        Ok(Block::Transform(kw.need("NSET", self)?, cyl))
+    }
+
+    /// `*SURFACE, TYPE=NODE` (element-based surfaces are skipped).
+    fn surface_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let t = kw.param("TYPE").unwrap_or("ELEMENT");
+        if !t.eq_ignore_ascii_case("NODE") {
+            return self.skip(kw.name, kw.params);
+        }
+        let n = kw.need("NAME", self)?;
+        self.surfaces.entry(n.clone()).or_default();
+        Ok(Block::Surface(n))
+    }
+
+    /// `*KINEMATIC` / `*DISTRIBUTING` after a `*COUPLING`.
+    fn coupling_kind_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        if self.couplings.is_empty() {
+            return Err(self.err(kw.loc, format!("*{}", kw.name), "not after a *COUPLING"));
+        }
+        let k = self.couplings.len() - 1;
+        let c = &mut self.couplings[k];
+        c.kind = Some(if kw.name == "KINEMATIC" {
+            CouplingKind::Kinematic(DofMask(0))
+        } else {
+            CouplingKind::Distributing(DofMask(0))
+        });
+        Ok(Block::Coupling(k))
+    }
+}
