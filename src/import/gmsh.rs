@@ -219,6 +219,22 @@ impl<'a> Cur<'a> {
     }
 }
 
+/// What a mesh file's sections hold, gathered before the model is resolved.
+struct Sections<'a> {
+    b: Builder,
+    /// $PhysicalNames: (dim, tag) → name.
+    names: HashMap<(u8, i64), String>,
+    /// $Entities: (dim, entity) → its physical groups.
+    entity_phys: HashMap<(u8, i64), Vec<i64>>,
+    /// Element blocks below the top dimension: (dim, entity, node ids), for node sets.
+    low_dim: Vec<(u8, i64, Vec<u64>)>,
+    /// Tags and lines of the lower-dimensional elements, for the duplicate-tag check.
+    low_dim_tags: Vec<(u64, Loc)>,
+    /// The entity of each model element.
+    vol_entity: Vec<(u8, i64)>,
+    file: &'a str,
+}
+
 fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(parse_err(file, 1, "file", "empty file"));
@@ -232,14 +248,15 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
         size_t: 8,
         section: "file",
     };
-    let mut b = Builder::new(file);
-    let mut names: HashMap<(u8, i64), String> = HashMap::new();
-    let mut entity_phys: HashMap<(u8, i64), Vec<i64>> = HashMap::new();
-    // Element blocks kept until all nodes are known: (dim, entity, kind, perm, ids, loc).
-    let mut low_dim: Vec<(u8, i64, Vec<u64>)> = Vec::new();
-    // Tags and lines of the lower-dimensional elements, for the duplicate-tag check.
-    let mut low_dim_tags: Vec<(u64, Loc)> = Vec::new();
-    let mut vol_entity: Vec<(u8, i64)> = Vec::new();
+    let mut s = Sections {
+        b: Builder::new(file),
+        names: HashMap::new(),
+        entity_phys: HashMap::new(),
+        low_dim: Vec::new(),
+        low_dim_tags: Vec::new(),
+        vol_entity: Vec::new(),
+        file,
+    };
     let mut seen_format = false;
     while let Some(l) = c.next_line() {
         let l = l.trim();
@@ -254,181 +271,15 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
         }
         match l {
             "$MeshFormat" => {
-                c.section = "$MeshFormat";
-                let hdr = c.next_line().ok_or_else(|| c.err("missing version line"))?;
-                let v: Vec<&str> = hdr.split_whitespace().collect();
-                if v.len() < 3 || !v[0].starts_with("4.1") {
-                    return Err(c.err_hdr(format!("only MSH 4.1 is supported, found '{hdr}'")));
-                }
-                c.binary = v[1] == "1";
-                c.size_t = v[2]
-                    .parse()
-                    .ok()
-                    .filter(|s| *s == 4 || *s == 8)
-                    .ok_or_else(|| c.err_hdr("bad data size"))?;
-                if c.binary {
-                    if c.raw::<4>()? != 1i32.to_le_bytes() {
-                        return Err(c.err("big-endian binary mesh not supported"));
-                    }
-                    c.next_line();
-                }
+                mesh_format(&mut c)?;
                 seen_format = true;
                 c.end_section("MeshFormat")?;
             }
             _ if !seen_format => return Err(c.err_hdr("file does not start with $MeshFormat")),
-            "$PhysicalNames" => {
-                c.section = "$PhysicalNames";
-                let n: usize = c
-                    .next_line()
-                    .and_then(|s| s.trim().parse().ok())
-                    .ok_or_else(|| c.err_hdr("bad count"))?;
-                for _ in 0..n {
-                    let s = c
-                        .next_line()
-                        .ok_or_else(|| c.err("unexpected end of file"))?;
-                    let mut it = s.splitn(3, ' ');
-                    let dim = it.next().and_then(|x| x.parse::<u8>().ok());
-                    let tag = it.next().and_then(|x| x.parse::<i64>().ok());
-                    let name = it
-                        .next()
-                        .map(|x| x.trim().trim_matches('"').to_ascii_uppercase());
-                    match (dim, tag, name) {
-                        (Some(d), Some(t), Some(nm)) => names.insert((d, t), nm),
-                        _ => return Err(c.err_hdr(format!("bad physical name line '{s}'"))),
-                    };
-                }
-                c.end_section("PhysicalNames")?;
-            }
-            "$Entities" => {
-                c.section = "$Entities";
-                let counts = [c.count()?, c.count()?, c.count()?, c.count()?];
-                for (dim, &n) in counts.iter().enumerate() {
-                    for _ in 0..n {
-                        let tag = c.int()?;
-                        let nbox = if dim == 0 { 3 } else { 6 };
-                        // Bounding boxes are ignored, and Gmsh may write ±DBL_MAX for an
-                        // empty one: parsed, not range-checked.
-                        for _ in 0..nbox {
-                            c.dbl_any()?;
-                        }
-                        let np = c.count()?;
-                        let mut phys = Vec::with_capacity(np);
-                        for _ in 0..np {
-                            phys.push(c.int()?);
-                        }
-                        if dim > 0 {
-                            let nb = c.count()?;
-                            for _ in 0..nb {
-                                c.int()?;
-                            }
-                        }
-                        entity_phys.insert((dim as u8, tag), phys);
-                    }
-                }
-                c.end_section("Entities")?;
-            }
-            "$Nodes" => {
-                c.section = "$Nodes";
-                // A node takes at least a tag and three coordinates.
-                let per_node = if c.binary { c.size_t as u64 + 24 } else { 8 };
-                let (blocks, total) = (c.count()?, c.count_of(per_node, "nodes")?);
-                c.size()?;
-                c.size()?;
-                b.model.nodes.reserve(total);
-                for _ in 0..blocks {
-                    let dim = c.int()?;
-                    c.int()?;
-                    let parametric = c.int()? != 0;
-                    let n = c.count_of(per_node, "nodes")?;
-                    let start = b.model.nodes.len();
-                    let loc = Loc {
-                        file: 0,
-                        line: c.line,
-                    };
-                    for _ in 0..n {
-                        let id = c.size()?;
-                        b.add_node(id, [0.0; 3], loc);
-                    }
-                    let extra = if parametric {
-                        dim.clamp(0, 3) as usize
-                    } else {
-                        0
-                    };
-                    for k in 0..n {
-                        let x = [c.dbl()?, c.dbl()?, c.dbl()?];
-                        for _ in 0..extra {
-                            c.dbl_any()?;
-                        }
-                        b.model.nodes[start + k].x = x;
-                        b.node_loc[start + k] = Loc {
-                            file: 0,
-                            line: c.line,
-                        };
-                    }
-                }
-                c.end_section("Nodes")?;
-            }
-            "$Elements" => {
-                c.section = "$Elements";
-                let blocks = c.count()?;
-                c.size()?;
-                c.size()?;
-                c.size()?;
-                let mut pending = Vec::new();
-                for _ in 0..blocks {
-                    let dim = c.int()?;
-                    let ent = c.int()?;
-                    let ty = c.int()?;
-                    let (tdim, nn, kind, perm) = element_type(ty as i32)
-                        .ok_or_else(|| c.err(format!("unsupported element type {ty}")))?;
-                    // An element takes at least its tag and its node tags.
-                    let per_elem = (nn as u64 + 1) * if c.binary { c.size_t as u64 } else { 2 };
-                    let n = c.count_of(per_elem, "elements")?;
-                    if dim != tdim as i64 {
-                        return Err(
-                            c.err(format!("element type {ty} in an entity of dimension {dim}"))
-                        );
-                    }
-                    let mut ids = Vec::with_capacity(n * (nn + 1));
-                    let mut locs = Vec::with_capacity(n);
-                    for _ in 0..n {
-                        locs.push(Loc {
-                            file: 0,
-                            line: c.line + u32::from(!c.binary),
-                        });
-                        for _ in 0..=nn {
-                            ids.push(c.size()?);
-                        }
-                    }
-                    pending.push((tdim, ent, nn, kind, perm, ids, locs));
-                }
-                c.end_section("Elements")?;
-                let top = pending.iter().map(|p| p.0).max().unwrap_or(0);
-                for (dim, ent, nn, kind, perm, ids, locs) in pending {
-                    if dim == top {
-                        let kind = kind.ok_or_else(|| {
-                            c.err(format!(
-                                "top-dimension element of {nn} nodes is not a model element"
-                            ))
-                        })?;
-                        for (e, chunk) in ids.chunks_exact(nn + 1).enumerate() {
-                            let nodes: Vec<usize> = match perm {
-                                Some(p) => p.iter().map(|&k| chunk[1 + k] as usize).collect(),
-                                None => chunk[1..].iter().map(|&v| v as usize).collect(),
-                            };
-                            vol_entity.push((dim, ent));
-                            b.add_element(chunk[0], kind, nodes, None, "element", locs[e]);
-                        }
-                    } else {
-                        low_dim_tags.extend(ids.chunks_exact(nn + 1).map(|ch| ch[0]).zip(locs));
-                        let nodes = ids
-                            .chunks_exact(nn + 1)
-                            .flat_map(|ch| ch[1..].iter().copied())
-                            .collect();
-                        low_dim.push((dim, ent, nodes));
-                    }
-                }
-            }
+            "$PhysicalNames" => physical_names(&mut c, &mut s.names)?,
+            "$Entities" => entities(&mut c, &mut s.entity_phys)?,
+            "$Nodes" => nodes(&mut c, &mut s.b)?,
+            "$Elements" => elements(&mut c, &mut s)?,
             _ => {
                 let name = l[1..].to_owned();
                 c.section = "section";
@@ -444,55 +295,265 @@ fn parse(file: &str, bytes: &[u8]) -> Result<Model, ImportError> {
             "not a Gmsh mesh: no $MeshFormat",
         ));
     }
-    let nodes = b.node_map("node")?;
-    b.resolve_element_nodes(&nodes)?;
-    let elements = b.element_map()?;
-    duplicate_low_dim_tag(&b, &elements, &low_dim_tags)?;
-    let group_name = |d: u8, t: i64| {
-        names
-            .get(&(d, t))
-            .cloned()
-            .unwrap_or_else(|| format!("PHYSICAL_{d}_{t}"))
-    };
-    let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    for (dim, ent, ids) in low_dim {
-        for &t in entity_phys
-            .get(&(dim, ent))
-            .map(Vec::as_slice)
-            .unwrap_or(&[])
-        {
-            let set = node_sets.entry(group_name(dim, t)).or_default();
-            for &id in &ids {
-                set.push(nodes.get(id).ok_or_else(|| {
-                    parse_err(
-                        file,
-                        1,
-                        "$Elements",
-                        format!("element of entity {ent} (dim {dim}) references unknown node {id}"),
-                    )
-                })?);
+    s.into_model()
+}
+
+/// $MeshFormat: version 4.1, ASCII or little-endian binary, the size of size_t.
+fn mesh_format(c: &mut Cur) -> Result<(), ImportError> {
+    c.section = "$MeshFormat";
+    let hdr = c.next_line().ok_or_else(|| c.err("missing version line"))?;
+    let v: Vec<&str> = hdr.split_whitespace().collect();
+    if v.len() < 3 || !v[0].starts_with("4.1") {
+        return Err(c.err_hdr(format!("only MSH 4.1 is supported, found '{hdr}'")));
+    }
+    c.binary = v[1] == "1";
+    c.size_t = v[2]
+        .parse()
+        .ok()
+        .filter(|s| *s == 4 || *s == 8)
+        .ok_or_else(|| c.err_hdr("bad data size"))?;
+    if c.binary {
+        if c.raw::<4>()? != 1i32.to_le_bytes() {
+            return Err(c.err("big-endian binary mesh not supported"));
+        }
+        c.next_line();
+    }
+    Ok(())
+}
+
+/// $PhysicalNames: (dim, tag) → name, upper-cased.
+fn physical_names(c: &mut Cur, names: &mut HashMap<(u8, i64), String>) -> Result<(), ImportError> {
+    c.section = "$PhysicalNames";
+    let n: usize = c
+        .next_line()
+        .and_then(|s| s.trim().parse().ok())
+        .ok_or_else(|| c.err_hdr("bad count"))?;
+    for _ in 0..n {
+        let s = c
+            .next_line()
+            .ok_or_else(|| c.err("unexpected end of file"))?;
+        let mut it = s.splitn(3, ' ');
+        let dim = it.next().and_then(|x| x.parse::<u8>().ok());
+        let tag = it.next().and_then(|x| x.parse::<i64>().ok());
+        let name = it
+            .next()
+            .map(|x| x.trim().trim_matches('"').to_ascii_uppercase());
+        match (dim, tag, name) {
+            (Some(d), Some(t), Some(nm)) => names.insert((d, t), nm),
+            _ => return Err(c.err_hdr(format!("bad physical name line '{s}'"))),
+        };
+    }
+    c.end_section("PhysicalNames")?;
+    Ok(())
+}
+
+/// $Entities: the physical groups of every entity (bounding boxes skipped).
+fn entities(
+    c: &mut Cur,
+    entity_phys: &mut HashMap<(u8, i64), Vec<i64>>,
+) -> Result<(), ImportError> {
+    c.section = "$Entities";
+    let counts = [c.count()?, c.count()?, c.count()?, c.count()?];
+    for (dim, &n) in counts.iter().enumerate() {
+        for _ in 0..n {
+            let tag = c.int()?;
+            let nbox = if dim == 0 { 3 } else { 6 };
+            // Bounding boxes are ignored, and Gmsh may write ±DBL_MAX for an
+            // empty one: parsed, not range-checked.
+            for _ in 0..nbox {
+                c.dbl_any()?;
+            }
+            let np = c.count()?;
+            let mut phys = Vec::with_capacity(np);
+            for _ in 0..np {
+                phys.push(c.int()?);
+            }
+            if dim > 0 {
+                let nb = c.count()?;
+                for _ in 0..nb {
+                    c.int()?;
+                }
+            }
+            entity_phys.insert((dim as u8, tag), phys);
+        }
+    }
+    c.end_section("Entities")?;
+    Ok(())
+}
+
+/// $Nodes: node blocks (tags, then coordinates; parametric coordinates skipped).
+fn nodes(c: &mut Cur, b: &mut Builder) -> Result<(), ImportError> {
+    c.section = "$Nodes";
+    // A node takes at least a tag and three coordinates.
+    let per_node = if c.binary { c.size_t as u64 + 24 } else { 8 };
+    let (blocks, total) = (c.count()?, c.count_of(per_node, "nodes")?);
+    c.size()?;
+    c.size()?;
+    b.model.nodes.reserve(total);
+    for _ in 0..blocks {
+        let dim = c.int()?;
+        c.int()?;
+        let parametric = c.int()? != 0;
+        let n = c.count_of(per_node, "nodes")?;
+        let start = b.model.nodes.len();
+        let loc = Loc {
+            file: 0,
+            line: c.line,
+        };
+        for _ in 0..n {
+            let id = c.size()?;
+            b.add_node(id, [0.0; 3], loc);
+        }
+        let extra = if parametric {
+            dim.clamp(0, 3) as usize
+        } else {
+            0
+        };
+        for k in 0..n {
+            let x = [c.dbl()?, c.dbl()?, c.dbl()?];
+            for _ in 0..extra {
+                c.dbl_any()?;
+            }
+            b.model.nodes[start + k].x = x;
+            b.node_loc[start + k] = Loc {
+                file: 0,
+                line: c.line,
+            };
+        }
+    }
+    c.end_section("Nodes")?;
+    Ok(())
+}
+
+/// $Elements: the top dimension's elements become the model's; lower-dimensional blocks are
+/// kept for the node sets of their physical groups.
+fn elements(c: &mut Cur, s: &mut Sections) -> Result<(), ImportError> {
+    c.section = "$Elements";
+    let blocks = c.count()?;
+    c.size()?;
+    c.size()?;
+    c.size()?;
+    let mut pending = Vec::new();
+    for _ in 0..blocks {
+        let dim = c.int()?;
+        let ent = c.int()?;
+        let ty = c.int()?;
+        let (tdim, nn, kind, perm) = element_type(ty as i32)
+            .ok_or_else(|| c.err(format!("unsupported element type {ty}")))?;
+        // An element takes at least its tag and its node tags.
+        let per_elem = (nn as u64 + 1) * if c.binary { c.size_t as u64 } else { 2 };
+        let n = c.count_of(per_elem, "elements")?;
+        if dim != tdim as i64 {
+            return Err(c.err(format!("element type {ty} in an entity of dimension {dim}")));
+        }
+        let mut ids = Vec::with_capacity(n * (nn + 1));
+        let mut locs = Vec::with_capacity(n);
+        for _ in 0..n {
+            locs.push(Loc {
+                file: 0,
+                line: c.line + u32::from(!c.binary),
+            });
+            for _ in 0..=nn {
+                ids.push(c.size()?);
             }
         }
+        pending.push((tdim, ent, nn, kind, perm, ids, locs));
     }
-    for s in node_sets.values_mut() {
-        s.sort_unstable();
-        s.dedup();
-    }
-    let mut element_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    for (k, (dim, ent)) in vol_entity.iter().enumerate() {
-        for &t in entity_phys
-            .get(&(*dim, *ent))
-            .map(Vec::as_slice)
-            .unwrap_or(&[])
-        {
-            element_sets.entry(group_name(*dim, t)).or_default().push(k);
+    c.end_section("Elements")?;
+    let top = pending.iter().map(|p| p.0).max().unwrap_or(0);
+    for (dim, ent, nn, kind, perm, ids, locs) in pending {
+        if dim == top {
+            let kind = kind.ok_or_else(|| {
+                c.err(format!(
+                    "top-dimension element of {nn} nodes is not a model element"
+                ))
+            })?;
+            for (e, chunk) in ids.chunks_exact(nn + 1).enumerate() {
+                let nodes: Vec<usize> = match perm {
+                    Some(p) => p.iter().map(|&k| chunk[1 + k] as usize).collect(),
+                    None => chunk[1..].iter().map(|&v| v as usize).collect(),
+                };
+                s.vol_entity.push((dim, ent));
+                s.b.add_element(chunk[0], kind, nodes, None, "element", locs[e]);
+            }
+        } else {
+            s.low_dim_tags
+                .extend(ids.chunks_exact(nn + 1).map(|ch| ch[0]).zip(locs));
+            let nodes = ids
+                .chunks_exact(nn + 1)
+                .flat_map(|ch| ch[1..].iter().copied())
+                .collect();
+            s.low_dim.push((dim, ent, nodes));
         }
     }
-    b.model.node_sets = node_sets;
-    b.model.element_sets = element_sets;
-    b.model.files = b.files.clone();
-    b.record_element_sources();
-    Ok(b.model)
+    Ok(())
+}
+
+impl Sections<'_> {
+    /// Ids → indices; physical groups of the lower-dimensional blocks → node sets, of the
+    /// model elements → element sets.
+    fn into_model(self) -> Result<Model, ImportError> {
+        let Sections {
+            mut b,
+            names,
+            entity_phys,
+            low_dim,
+            low_dim_tags,
+            vol_entity,
+            file,
+        } = self;
+        let nodes = b.node_map("node")?;
+        b.resolve_element_nodes(&nodes)?;
+        let elements = b.element_map()?;
+        duplicate_low_dim_tag(&b, &elements, &low_dim_tags)?;
+        let group_name = |d: u8, t: i64| {
+            names
+                .get(&(d, t))
+                .cloned()
+                .unwrap_or_else(|| format!("PHYSICAL_{d}_{t}"))
+        };
+        let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        for (dim, ent, ids) in low_dim {
+            for &t in entity_phys
+                .get(&(dim, ent))
+                .map(Vec::as_slice)
+                .unwrap_or(&[])
+            {
+                let set = node_sets.entry(group_name(dim, t)).or_default();
+                for &id in &ids {
+                    set.push(nodes.get(id).ok_or_else(|| {
+                        parse_err(
+                            file,
+                            1,
+                            "$Elements",
+                            format!(
+                                "element of entity {ent} (dim {dim}) references unknown node {id}"
+                            ),
+                        )
+                    })?);
+                }
+            }
+        }
+        for s in node_sets.values_mut() {
+            s.sort_unstable();
+            s.dedup();
+        }
+        let mut element_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        for (k, (dim, ent)) in vol_entity.iter().enumerate() {
+            for &t in entity_phys
+                .get(&(*dim, *ent))
+                .map(Vec::as_slice)
+                .unwrap_or(&[])
+            {
+                element_sets.entry(group_name(*dim, t)).or_default().push(k);
+            }
+        }
+        b.model.node_sets = node_sets;
+        b.model.element_sets = element_sets;
+        b.model.files = b.files.clone();
+        b.record_element_sources();
+        Ok(b.model)
+    }
 }
 
 /// Gmsh's element tags are unique across all dimensions (its API calls them "unique, strictly
