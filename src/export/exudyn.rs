@@ -68,7 +68,6 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
         )));
     }
     let n = body.node_count();
-    let big_m = body.mode_count();
     let flex = flexible_modes(body);
     let m = flex.len();
     if m == 0 {
@@ -77,10 +76,78 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
     if n == 0 {
         return Err(unsupported("the file stores no nodes"));
     }
-    let shapes = &body.modes.shapes;
+    let rigid = RigidTerms::of(inv)?;
     let mut notes = Vec::new();
+    let mut entries = ffrf_entries(body, &flex, &rigid, &mut notes);
+    // flexbody's own keys (LoadFromFile ignores keys it does not know).
+    entries.extend(flexbody_entries(body, &flex));
+    if let Some(d) = &body.damping {
+        // Modal damping as exudyn takes it: a reduced damping matrix D = diag(2 ζ_j ω_j)
+        // (mass-orthonormal modes), for ObjectFFRFreducedOrder's dampingMatrixReduced.
+        let mut dmat = vec![0.0; m * m];
+        for (i, &j) in flex.iter().enumerate() {
+            dmat[i * m + i] = 2.0 * d.ratio[j] * body.modes.omega2[j].max(0.0).sqrt();
+        }
+        entries.push(("dampingMatrixReduced", f64s(vec![m, m], dmat)));
+        entries.push((
+            "modalDampingRatio",
+            f64s(vec![m], flex.iter().map(|&j| d.ratio[j]).collect()),
+        ));
+        notes.push(
+            "modal damping is in key dampingMatrixReduced (diag 2ζω); LoadFromFile does not apply it: set the object's dampingMatrixReduced".into(),
+        );
+    }
+    let bytes = npz_bytes(&entries).map_err(|e| ExportError::Archive {
+        path: "<memory>".into(),
+        detail: e.to_string(),
+    })?;
+    Ok((
+        bytes,
+        ExportSummary {
+            modes: m,
+            nodes: n,
+            notes,
+        },
+    ))
+}
 
-    // Mode basis: 3 translations per node (node-major), one column per flexible mode.
+/// The rigid-body terms: total mass I1 (must be positive), centre of mass χ_u = I2/I1 and the
+/// translational mass block M_tt = I1·E.
+struct RigidTerms {
+    total_mass: f64,
+    chi_u: [f64; 3],
+    mtt: Vec<f64>,
+}
+
+impl RigidTerms {
+    fn of(inv: &flexbody_reader::Invariants) -> Result<RigidTerms, ExportError> {
+        let total_mass = inv.i1[0];
+        if total_mass.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return Err(unsupported(format!(
+                "the body's mass I1 = {total_mass} is not positive"
+            )));
+        }
+        let chi_u = [
+            inv.i2[0] / total_mass,
+            inv.i2[1] / total_mass,
+            inv.i2[2] / total_mass,
+        ];
+        let mut mtt = vec![0.0; 9];
+        for a in 0..3 {
+            mtt[a * 3 + a] = total_mass;
+        }
+        Ok(RigidTerms {
+            total_mass,
+            chi_u,
+            mtt,
+        })
+    }
+}
+
+/// Mode basis: 3 translations per node (node-major), one column per flexible mode.
+fn mode_basis(body: &ReducedBody, flex: &[usize]) -> Vec<f64> {
+    let (n, m) = (body.node_count(), flex.len());
+    let shapes = &body.modes.shapes;
     let mut mode_basis = vec![0.0; 3 * n * m];
     for (i, &j) in flex.iter().enumerate() {
         for p in 0..n {
@@ -89,62 +156,82 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
             }
         }
     }
-    let x_ref: Vec<f64> = body.nodes.iter().flat_map(|nd| nd.xyz).collect();
+    mode_basis
+}
 
-    let sub = |mat: &[f64]| -> Vec<f64> {
-        let mut out = vec![0.0; m * m];
-        for (i, &j) in flex.iter().enumerate() {
-            for (k, &l) in flex.iter().enumerate() {
-                out[i * m + k] = mat[j * big_m + l];
-            }
-        }
-        out
-    };
-    let mass_reduced = sub(&inv.i6);
-    let stiffness_reduced = sub(&body.modes.generalized_stiffness);
-
-    let total_mass = inv.i1[0];
-    if total_mass.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-        return Err(unsupported(format!(
-            "the body's mass I1 = {total_mass} is not positive"
-        )));
-    }
-    let chi_u = [
-        inv.i2[0] / total_mass,
-        inv.i2[1] / total_mass,
-        inv.i2[2] / total_mass,
-    ];
-    let mut mtt = vec![0.0; 9];
-    for a in 0..3 {
-        mtt[a * 3 + a] = total_mass;
-    }
-
-    let mut m_phit_psi = vec![0.0; 3 * m];
-    let mut m_xref_tilde_psi = vec![0.0; 3 * m];
-    let mut m_phit_psi_tilde = vec![0.0; 9 * m];
-    let mut m_xref_tilde_psi_tilde = vec![0.0; 9 * m];
-    let mut m_psi_tilde_psi = vec![0.0; 3 * m * m];
-    let mut m_psi_tilde_psi_tilde = vec![0.0; 9 * m * m];
+/// The flexible modes' block of a modes × modes matrix (row-major, `big_m` modes).
+fn flexible_block(mat: &[f64], flex: &[usize], big_m: usize) -> Vec<f64> {
+    let m = flex.len();
+    let mut out = vec![0.0; m * m];
     for (i, &j) in flex.iter().enumerate() {
-        let i3j = [inv.i3[j], inv.i3[big_m + j], inv.i3[2 * big_m + j]];
-        let s = skew(i3j);
-        for a in 0..3 {
-            m_phit_psi[a * m + i] = inv.i3[a * big_m + j];
-            m_xref_tilde_psi[a * m + i] = -inv.i4[a * big_m + j];
-            for b in 0..3 {
-                m_phit_psi_tilde[a * 3 * m + 3 * i + b] = s[a][b];
-                m_xref_tilde_psi_tilde[a * 3 * m + 3 * i + b] = -inv.i8[(j * 3 + a) * 3 + b];
-            }
-            for (k, &l) in flex.iter().enumerate() {
-                m_psi_tilde_psi[(3 * i + a) * m + k] = -inv.i5[(j * 3 + a) * big_m + l];
+        for (k, &l) in flex.iter().enumerate() {
+            out[i * m + k] = mat[j * big_m + l];
+        }
+    }
+    out
+}
+
+/// exudyn's inertia terms from the invariants, with its signs (the module doc's table).
+struct InertiaTerms {
+    m_phit_psi: Vec<f64>,
+    m_xref_tilde_psi: Vec<f64>,
+    m_phit_psi_tilde: Vec<f64>,
+    m_xref_tilde_psi_tilde: Vec<f64>,
+    m_psi_tilde_psi: Vec<f64>,
+    m_psi_tilde_psi_tilde: Vec<f64>,
+}
+
+impl InertiaTerms {
+    fn of(inv: &flexbody_reader::Invariants, flex: &[usize], big_m: usize) -> InertiaTerms {
+        let m = flex.len();
+        let mut m_phit_psi = vec![0.0; 3 * m];
+        let mut m_xref_tilde_psi = vec![0.0; 3 * m];
+        let mut m_phit_psi_tilde = vec![0.0; 9 * m];
+        let mut m_xref_tilde_psi_tilde = vec![0.0; 9 * m];
+        let mut m_psi_tilde_psi = vec![0.0; 3 * m * m];
+        let mut m_psi_tilde_psi_tilde = vec![0.0; 9 * m * m];
+        for (i, &j) in flex.iter().enumerate() {
+            let i3j = [inv.i3[j], inv.i3[big_m + j], inv.i3[2 * big_m + j]];
+            let s = skew(i3j);
+            for a in 0..3 {
+                m_phit_psi[a * m + i] = inv.i3[a * big_m + j];
+                m_xref_tilde_psi[a * m + i] = -inv.i4[a * big_m + j];
                 for b in 0..3 {
-                    m_psi_tilde_psi_tilde[(3 * i + a) * 3 * m + 3 * k + b] =
-                        -inv.i9[((j * big_m + l) * 3 + a) * 3 + b];
+                    m_phit_psi_tilde[a * 3 * m + 3 * i + b] = s[a][b];
+                    m_xref_tilde_psi_tilde[a * 3 * m + 3 * i + b] = -inv.i8[(j * 3 + a) * 3 + b];
+                }
+                for (k, &l) in flex.iter().enumerate() {
+                    m_psi_tilde_psi[(3 * i + a) * m + k] = -inv.i5[(j * 3 + a) * big_m + l];
+                    for b in 0..3 {
+                        m_psi_tilde_psi_tilde[(3 * i + a) * 3 * m + 3 * k + b] =
+                            -inv.i9[((j * big_m + l) * 3 + a) * 3 + b];
+                    }
                 }
             }
         }
+        InertiaTerms {
+            m_phit_psi,
+            m_xref_tilde_psi,
+            m_phit_psi_tilde,
+            m_xref_tilde_psi_tilde,
+            m_psi_tilde_psi,
+            m_psi_tilde_psi_tilde,
+        }
     }
+}
 
+/// The keys `LoadFromFile` reads (its `SaveToFile` layout), in its order; notes about the
+/// surface triangles and rotary inertia into `notes`.
+fn ffrf_entries(
+    body: &ReducedBody,
+    flex: &[usize],
+    rigid: &RigidTerms,
+    notes: &mut Vec<String>,
+) -> Vec<(&'static str, NpyValue)> {
+    let inv = &body.invariants;
+    let (n, m, big_m) = (body.node_count(), flex.len(), body.mode_count());
+    let x_ref: Vec<f64> = body.nodes.iter().flat_map(|nd| nd.xyz).collect();
+    let terms = InertiaTerms::of(inv, flex, big_m);
     let (triangles, corners) = surface_triangles(body);
     if body.faces.is_empty() {
         notes.push("the file has no graphics faces: trigList is empty".into());
@@ -157,9 +244,9 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
     let trig_count = triangles.len() / corners;
 
     let post = match (&body.stress_shapes, &body.strain_shapes) {
-        (Some(s), _) => post_processing(s, n, &flex, "OutputVariableType.StressLocal", 1.0),
+        (Some(s), _) => post_processing(s, n, flex, "OutputVariableType.StressLocal", 1.0),
         // exudyn's StrainLocal is the tensor strain: the file's engineering shear γ = 2ε.
-        (None, Some(s)) => post_processing(s, n, &flex, "OutputVariableType.StrainLocal", 0.5),
+        (None, Some(s)) => post_processing(s, n, flex, "OutputVariableType.StrainLocal", 0.5),
         (None, None) => Vec::new(),
     };
 
@@ -175,8 +262,8 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
 
     let node_rot = 4;
     let n_rigid = 3 + node_rot;
-    let mut entries: Vec<(&str, NpyValue)> = vec![
-        ("modeBasis", f64s(vec![3 * n, m], mode_basis)),
+    vec![
+        ("modeBasis", f64s(vec![3 * n, m], mode_basis(body, flex))),
         (
             "trigList",
             NpyValue::I64 {
@@ -185,10 +272,16 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
             },
         ),
         ("postProcessingModes", NpyValue::Dict(post)),
-        ("massMatrixReduced", f64s(vec![m, m], mass_reduced)),
+        (
+            "massMatrixReduced",
+            f64s(vec![m, m], flexible_block(&inv.i6, flex, big_m)),
+        ),
         (
             "stiffnessMatrixReduced",
-            f64s(vec![m, m], stiffness_reduced),
+            f64s(
+                vec![m, m],
+                flexible_block(&body.modes.generalized_stiffness, flex, big_m),
+            ),
         ),
         (
             "infoList",
@@ -203,24 +296,30 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
         ),
         ("xRef", f64s(vec![3 * n], x_ref)),
         ("inertiaLocal", f64s(vec![3, 3], inv.i7.clone())),
-        ("Mtt", f64s(vec![3, 3], mtt)),
-        ("totalMass", f64s(vec![], vec![total_mass])),
-        ("chiU", f64s(vec![3], chi_u.to_vec())),
+        ("Mtt", f64s(vec![3, 3], rigid.mtt.clone())),
+        ("totalMass", f64s(vec![], vec![rigid.total_mass])),
+        ("chiU", f64s(vec![3], rigid.chi_u.to_vec())),
         (
             "chiUtilde",
-            f64s(vec![3, 3], skew(chi_u).iter().flatten().copied().collect()),
+            f64s(
+                vec![3, 3],
+                skew(rigid.chi_u).iter().flatten().copied().collect(),
+            ),
         ),
-        ("mPsiTildePsi", f64s(vec![3 * m, m], m_psi_tilde_psi)),
+        ("mPsiTildePsi", f64s(vec![3 * m, m], terms.m_psi_tilde_psi)),
         (
             "mPsiTildePsiTilde",
-            f64s(vec![3 * m, 3 * m], m_psi_tilde_psi_tilde),
+            f64s(vec![3 * m, 3 * m], terms.m_psi_tilde_psi_tilde),
         ),
-        ("mPhitTPsi", f64s(vec![3, m], m_phit_psi)),
-        ("mPhitTPsiTilde", f64s(vec![3, 3 * m], m_phit_psi_tilde)),
-        ("mXRefTildePsi", f64s(vec![3, m], m_xref_tilde_psi)),
+        ("mPhitTPsi", f64s(vec![3, m], terms.m_phit_psi)),
+        (
+            "mPhitTPsiTilde",
+            f64s(vec![3, 3 * m], terms.m_phit_psi_tilde),
+        ),
+        ("mXRefTildePsi", f64s(vec![3, m], terms.m_xref_tilde_psi)),
         (
             "mXRefTildePsiTilde",
-            f64s(vec![3, 3 * m], m_xref_tilde_psi_tilde),
+            f64s(vec![3, 3 * m], terms.m_xref_tilde_psi_tilde),
         ),
         (
             "fileVersion",
@@ -233,7 +332,14 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
             "type",
             NpyValue::Str("ObjectFFRFreducedOrderInterface".into()),
         ),
-        // flexbody's own keys (LoadFromFile ignores keys it does not know).
+    ]
+}
+
+/// flexbody's own keys: node ids, interface nodes, nodal masses, the flexible modes' indices
+/// and frequencies, units.
+fn flexbody_entries(body: &ReducedBody, flex: &[usize]) -> Vec<(&'static str, NpyValue)> {
+    let (n, m) = (body.node_count(), flex.len());
+    vec![
         (
             "nodeIds",
             NpyValue::I64 {
@@ -281,35 +387,7 @@ pub fn exudyn_npz(body: &ReducedBody) -> Result<(Vec<u8>, ExportSummary), Export
                 body.units.force.name
             )),
         ),
-    ];
-    if let Some(d) = &body.damping {
-        // Modal damping as exudyn takes it: a reduced damping matrix D = diag(2 ζ_j ω_j)
-        // (mass-orthonormal modes), for ObjectFFRFreducedOrder's dampingMatrixReduced.
-        let mut dmat = vec![0.0; m * m];
-        for (i, &j) in flex.iter().enumerate() {
-            dmat[i * m + i] = 2.0 * d.ratio[j] * body.modes.omega2[j].max(0.0).sqrt();
-        }
-        entries.push(("dampingMatrixReduced", f64s(vec![m, m], dmat)));
-        entries.push((
-            "modalDampingRatio",
-            f64s(vec![m], flex.iter().map(|&j| d.ratio[j]).collect()),
-        ));
-        notes.push(
-            "modal damping is in key dampingMatrixReduced (diag 2ζω); LoadFromFile does not apply it: set the object's dampingMatrixReduced".into(),
-        );
-    }
-    let bytes = npz_bytes(&entries).map_err(|e| ExportError::Archive {
-        path: "<memory>".into(),
-        detail: e.to_string(),
-    })?;
-    Ok((
-        bytes,
-        ExportSummary {
-            modes: m,
-            nodes: n,
-            notes,
-        },
-    ))
+    ]
 }
 
 /// exudyn's `postProcessingModes` dict: `matrix` (nodes × 6·modes, exudyn's component order,

@@ -133,12 +133,35 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
         )));
     }
     let flex = flexible_modes(body);
-    let nq = flex.len();
-    if nq == 0 {
+    if flex.is_empty() {
         return Err(unsupported("the file has no flexible modes"));
     }
+    let (frames, notes) = frames(body);
+    let mut s = String::new();
+    write_refmod(&mut s, body, &flex, frames.len());
+    write_frames(&mut s, body, &flex, &frames);
+    let terms = Terms {
+        inv,
+        m: body.mode_count(),
+    };
+    write_inertia_terms(&mut s, &terms, &flex);
+    write_stiffness_and_damping(&mut s, body, &flex);
+    let _ = writeln!(s, "      end modal");
+    let _ = writeln!(s, " end part");
+    Ok((
+        s,
+        ExportSummary {
+            modes: flex.len(),
+            nodes: frames.len(),
+            notes,
+        },
+    ))
+}
+
+/// The stored nodes written as SID frames — the interface nodes, or every node when the file
+/// flags none — and the notes about them.
+fn frames(body: &ReducedBody) -> (Vec<usize>, Vec<String>) {
     let n = body.node_count();
-    let big_m = body.mode_count();
     let mut notes = Vec::new();
     let mut frames: Vec<usize> = (0..n).filter(|&p| body.nodes[p].interface).collect();
     if frames.is_empty() {
@@ -158,23 +181,16 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
             nd.id
         ));
     }
-    let m = big_m;
-    let i3 = |a: usize, j: usize| inv.i3[a * m + j];
-    let i4 = |a: usize, j: usize| inv.i4[a * m + j];
-    let i5 = |j: usize, a: usize, k: usize| inv.i5[(j * 3 + a) * m + k];
-    let i8 = |j: usize| &inv.i8[j * 9..j * 9 + 9];
-    let i9 = |j: usize, k: usize| &inv.i9[(j * m + k) * 9..(j * m + k) * 9 + 9];
-    let shapes = &body.modes.shapes;
-    let shape = |j: usize, p: usize, c: usize| shapes[(j * n + p) * 6 + c];
+    (frames, notes)
+}
 
-    let mut s = String::new();
+/// The header and `refmod`: mass, the flexible modes with their frequencies.
+fn write_refmod(s: &mut String, body: &ReducedBody, flex: &[usize], frames: usize) {
+    let nq = flex.len();
     let _ = writeln!(
         s,
         "{:6} {:4}    :No. nodes, No. modes: written by {} {}",
-        frames.len(),
-        nq,
-        body.generator.name,
-        body.generator.version
+        frames, nq, body.generator.name, body.generator.version
     );
     let _ = writeln!(s, " part");
     let _ = writeln!(s, "      new modal                                 =");
@@ -182,7 +198,7 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
     let _ = writeln!(
         s,
         "                mass                            ={}",
-        fortran(inv.i1[0])
+        fortran(body.invariants.i1[0])
     );
     let _ = writeln!(
         s,
@@ -198,9 +214,16 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
         );
     }
     let _ = writeln!(s, "           end refmod");
+}
+
+/// `frame`: per frame node its `origin`, `phi`, `psi` and `AP`.
+fn write_frames(s: &mut String, body: &ReducedBody, flex: &[usize], frames: &[usize]) {
+    let (n, nq) = (body.node_count(), flex.len());
+    let shapes = &body.modes.shapes;
+    let shape = |j: usize, p: usize, c: usize| shapes[(j * n + p) * 6 + c];
     let _ = writeln!(s, "           frame");
     const NODE: &str = "                     ";
-    for &p in &frames {
+    for &p in frames {
         let nd = &body.nodes[p];
         let _ = writeln!(
             s,
@@ -208,7 +231,7 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
             nd.id
         );
         let _ = writeln!(s, "{NODE}rframe                     =    body ref");
-        let mut t = Taylor::open(&mut s, NODE, "origin", 1, 3, 1, nq, 3);
+        let mut t = Taylor::open(s, NODE, "origin", 1, 3, 1, nq, 3);
         for a in 0..3 {
             t.m0(a, 0, nd.xyz[a]);
         }
@@ -219,7 +242,7 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
         }
         t.close("origin");
         for (name, c0) in [("phi", 0), ("psi", 3)] {
-            let mut t = Taylor::open(&mut s, NODE, name, 0, 3, nq, nq, 3);
+            let mut t = Taylor::open(s, NODE, name, 0, 3, nq, nq, 3);
             for a in 0..3 {
                 for (r, &j) in flex.iter().enumerate() {
                     t.m0(a, r, shape(j, p, c0 + a));
@@ -227,7 +250,7 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
             }
             t.close(name);
         }
-        let mut t = Taylor::open(&mut s, NODE, "AP", 1, 3, 3, nq, 3);
+        let mut t = Taylor::open(s, NODE, "AP", 1, 3, 3, nq, 3);
         for a in 0..3 {
             t.m0(a, a, 1.0);
         }
@@ -244,27 +267,56 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
         let _ = writeln!(s, "                end node");
     }
     let _ = writeln!(s, "           end frame");
-    const BODY: &str = "           ";
+}
 
-    let mut t = Taylor::open(&mut s, BODY, "mdCM", 1, 3, 1, nq, 3);
+/// The invariants of the file by index (m modes), as the SID terms read them.
+struct Terms<'a> {
+    inv: &'a flexbody_reader::Invariants,
+    m: usize,
+}
+
+impl Terms<'_> {
+    fn i3(&self, a: usize, j: usize) -> f64 {
+        self.inv.i3[a * self.m + j]
+    }
+    fn i4(&self, a: usize, j: usize) -> f64 {
+        self.inv.i4[a * self.m + j]
+    }
+    fn i5(&self, j: usize, a: usize, k: usize) -> f64 {
+        self.inv.i5[(j * 3 + a) * self.m + k]
+    }
+    fn i8(&self, j: usize) -> &[f64] {
+        &self.inv.i8[j * 9..j * 9 + 9]
+    }
+    fn i9(&self, j: usize, k: usize) -> &[f64] {
+        let at = (j * self.m + k) * 9;
+        &self.inv.i9[at..at + 9]
+    }
+}
+
+/// The inertia terms from the invariants: `mdCM`, `J`, `Ct`, `Cr`, `Me`, `Gr`, `Ge`, `Oe`.
+fn write_inertia_terms(s: &mut String, terms: &Terms, flex: &[usize]) {
+    let (inv, m, nq) = (terms.inv, terms.m, flex.len());
+    const BODY: &str = "           ";
+    let mut t = Taylor::open(s, BODY, "mdCM", 1, 3, 1, nq, 3);
     for a in 0..3 {
         t.m0(a, 0, inv.i2[a]);
     }
     for a in 0..3 {
         for (r, &j) in flex.iter().enumerate() {
-            t.m1(a, r, 0, i3(a, j));
+            t.m1(a, r, 0, terms.i3(a, j));
         }
     }
     t.close("mdCM");
 
-    let mut t = Taylor::open(&mut s, BODY, "J", 1, 6, 1, nq, 3);
+    let mut t = Taylor::open(s, BODY, "J", 1, 6, 1, nq, 3);
     for (c, v) in j_order(&inv.i7).into_iter().enumerate() {
         t.m0(c, 0, v);
     }
     let j1: Vec<[f64; 6]> = flex
         .iter()
         .map(|&j| {
-            let c = i8(j);
+            let c = terms.i8(j);
             let mut sym = [0.0; 9];
             for a in 0..3 {
                 for b in 0..3 {
@@ -281,20 +333,20 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
     }
     t.close("J");
 
-    let mut t = Taylor::open(&mut s, BODY, "Ct", 0, nq, 3, nq, 3);
+    let mut t = Taylor::open(s, BODY, "Ct", 0, nq, 3, nq, 3);
     for (r, &j) in flex.iter().enumerate() {
         for a in 0..3 {
-            t.m0(r, a, i3(a, j));
+            t.m0(r, a, terms.i3(a, j));
         }
     }
     t.close("Ct");
 
     // Cr¹(r, s, a) = (Σ m φ̃_k φ_j)_a with k = F(s), j = F(r).
-    let cr1 = |r: usize, s_: usize, a: usize| i5(flex[s_], a, flex[r]);
-    let mut t = Taylor::open(&mut s, BODY, "Cr", 1, nq, 3, nq, 3);
+    let cr1 = |r: usize, s_: usize, a: usize| terms.i5(flex[s_], a, flex[r]);
+    let mut t = Taylor::open(s, BODY, "Cr", 1, nq, 3, nq, 3);
     for (r, &j) in flex.iter().enumerate() {
         for a in 0..3 {
-            t.m0(r, a, i4(a, j));
+            t.m0(r, a, terms.i4(a, j));
         }
     }
     for r in 0..nq {
@@ -306,9 +358,7 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
     }
     t.close("Cr");
 
-    let gm = &body.modes.generalized_mass;
-    let gk = &body.modes.generalized_stiffness;
-    let mut t = Taylor::open(&mut s, BODY, "Me", 0, nq, nq, nq, 3);
+    let mut t = Taylor::open(s, BODY, "Me", 0, nq, nq, nq, 3);
     for (r, &j) in flex.iter().enumerate() {
         for (c, &k) in flex.iter().enumerate() {
             t.m0(r, c, inv.i6[j * m + k]);
@@ -316,9 +366,9 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
     }
     t.close("Me");
 
-    let mut t = Taylor::open(&mut s, BODY, "Gr", 0, 3, 3 * nq, nq, 3);
+    let mut t = Taylor::open(s, BODY, "Gr", 0, 3, 3 * nq, nq, 3);
     for (r, &j) in flex.iter().enumerate() {
-        let c = i8(j);
+        let c = terms.i8(j);
         for a in 0..3 {
             for b in 0..3 {
                 t.m0(a, 3 * r + b, -2.0 * c[a * 3 + b]);
@@ -327,7 +377,7 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
     }
     t.close("Gr");
 
-    let mut t = Taylor::open(&mut s, BODY, "Ge", 0, nq, 3 * nq, nq, 3);
+    let mut t = Taylor::open(s, BODY, "Ge", 0, nq, 3 * nq, nq, 3);
     for r in 0..nq {
         for s_ in 0..nq {
             for a in 0..3 {
@@ -337,25 +387,32 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
     }
     t.close("Ge");
 
-    let mut t = Taylor::open(&mut s, BODY, "Oe", 1, nq, 6, nq, 3);
+    let mut t = Taylor::open(s, BODY, "Oe", 1, nq, 6, nq, 3);
     for (r, &j) in flex.iter().enumerate() {
-        for (c, v) in oe_order(i8(j)).into_iter().enumerate() {
+        for (c, v) in oe_order(terms.i8(j)).into_iter().enumerate() {
             t.m0(r, c, v);
         }
     }
     for (r, &j) in flex.iter().enumerate() {
         for (s_, &k) in flex.iter().enumerate() {
-            for (c, v) in oe_order(i9(k, j)).into_iter().enumerate() {
+            for (c, v) in oe_order(terms.i9(k, j)).into_iter().enumerate() {
                 t.m1(r, s_, c, v);
             }
         }
     }
     t.close("Oe");
+}
 
-    let t = Taylor::open(&mut s, BODY, "ksigma", 0, nq, 1, nq, 0);
+/// `ksigma` (no preload), `Ke` = Φᵀ K Φ and `De` (diag 2 ζ ω m, when the file has damping).
+fn write_stiffness_and_damping(s: &mut String, body: &ReducedBody, flex: &[usize]) {
+    let (m, nq) = (body.mode_count(), flex.len());
+    let gm = &body.modes.generalized_mass;
+    let gk = &body.modes.generalized_stiffness;
+    const BODY: &str = "           ";
+    let t = Taylor::open(s, BODY, "ksigma", 0, nq, 1, nq, 0);
     t.close("ksigma");
 
-    let mut t = Taylor::open(&mut s, BODY, "Ke", 0, nq, nq, nq, 3);
+    let mut t = Taylor::open(s, BODY, "Ke", 0, nq, nq, nq, 3);
     for (r, &j) in flex.iter().enumerate() {
         for (c, &k) in flex.iter().enumerate() {
             t.m0(r, c, gk[j * m + k]);
@@ -365,7 +422,7 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
 
     match &body.damping {
         Some(d) => {
-            let mut t = Taylor::open(&mut s, BODY, "De", 0, nq, nq, nq, 3);
+            let mut t = Taylor::open(s, BODY, "De", 0, nq, nq, nq, 3);
             for (r, &j) in flex.iter().enumerate() {
                 let omega = body.modes.omega2[j].max(0.0).sqrt();
                 t.m0(r, r, 2.0 * d.ratio[j] * omega * gm[j * m + j]);
@@ -373,18 +430,8 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
             t.close("De");
         }
         None => {
-            let t = Taylor::open(&mut s, BODY, "De", 0, nq, nq, nq, 0);
+            let t = Taylor::open(s, BODY, "De", 0, nq, nq, nq, 0);
             t.close("De");
         }
     }
-    let _ = writeln!(s, "      end modal");
-    let _ = writeln!(s, " end part");
-    Ok((
-        s,
-        ExportSummary {
-            modes: nq,
-            nodes: frames.len(),
-            notes,
-        },
-    ))
 }
