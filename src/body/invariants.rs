@@ -130,10 +130,45 @@ pub fn compute_invariants(
             mass: p.mass,
         });
     }
-    let nm = shapes.ncols();
     let mask = set.mask();
+    let (i1, i2, i7) = rigid_terms(points);
+    // W_c = diag(√m) Φ^c, c = x, y, z (N×M each).
+    let sqrt_m: Vec<f64> = points.iter().map(|p| p.mass.sqrt()).collect();
+    let w: [Mat<f64>; 3] = std::array::from_fn(|c| {
+        Mat::from_fn(n, shapes.ncols(), |p, j| sqrt_m[p] * shapes[(6 * p + c, j)])
+    });
 
-    // Rigid-body (constant) terms: I1, I2, I7 = Σ m ((s·s)E − s sᵀ) + I_p.
+    let (i3, i4, i8) = first_order_terms(points, shapes, &w, mask, par);
+    let (i5, i6, i9) = second_order_terms(points, shapes, &w, mask, par);
+    Ok(Invariants {
+        set,
+        i1,
+        i2,
+        i3,
+        i4,
+        i5,
+        i6,
+        i7,
+        i8,
+        i9,
+    })
+}
+
+/// I3, I4, I8 (those selected).
+type FirstOrder = (
+    Option<Mat<f64>>,
+    Option<Mat<f64>>,
+    Option<Vec<[[f64; 3]; 3]>>,
+);
+/// I5, I6, I9 (those selected).
+type SecondOrder = (
+    Option<Vec<Mat<f64>>>,
+    Option<Mat<f64>>,
+    Option<Vec<[[f64; 3]; 3]>>,
+);
+
+/// The constant terms: I1 = Σ m, I2 = Σ m s, I7 = Σ m ((s·s)E − s sᵀ) + I_p.
+fn rigid_terms(points: &[MassPoint]) -> (f64, [f64; 3], [[f64; 3]; 3]) {
     let mut i1 = 0.0;
     let mut i2 = [0.0; 3];
     let mut i7 = [[0.0; 3]; 3];
@@ -150,11 +185,20 @@ pub fn compute_invariants(
         }
     }
 
-    // W_c = diag(√m) Φ^c, c = x, y, z (N×M each).
-    let sqrt_m: Vec<f64> = points.iter().map(|p| p.mass.sqrt()).collect();
-    let w: [Mat<f64>; 3] =
-        std::array::from_fn(|c| Mat::from_fn(n, nm, |p, j| sqrt_m[p] * shapes[(6 * p + c, j)]));
+    (i1, i2, i7)
+}
 
+/// The selected invariants of first order in the modes, I3, I4 and I8, from P^r = W_rᵀ √m [s 1]
+/// (`w`: W_c = diag(√m) Φ^c).
+fn first_order_terms(
+    points: &[MassPoint],
+    shapes: MatRef<'_, f64>,
+    w: &[Mat<f64>; 3],
+    mask: [bool; 9],
+    par: Par,
+) -> FirstOrder {
+    let (n, nm) = (points.len(), shapes.ncols());
+    let sqrt_m: Vec<f64> = points.iter().map(|p| p.mass.sqrt()).collect();
     // P^r = Φ^rᵀ diag(m) [s 1] (M×4): column c < 3 is Σ m φ^r s^c, column 3 is Σ m φ^r.
     let need_p = mask[2] || mask[3] || mask[7];
     let p_mats: Option<[Mat<f64>; 3]> = need_p.then(|| {
@@ -218,6 +262,19 @@ pub fn compute_invariants(
             .collect()
     });
 
+    (i3, i4, i8)
+}
+
+/// The selected invariants of second order in the modes, I5, I6 and I9, from the Gram blocks
+/// G^{cd} = W_cᵀ W_d (`w`: W_c = diag(√m) Φ^c).
+fn second_order_terms(
+    points: &[MassPoint],
+    shapes: MatRef<'_, f64>,
+    w: &[Mat<f64>; 3],
+    mask: [bool; 9],
+    par: Par,
+) -> SecondOrder {
+    let (n, nm) = (points.len(), shapes.ncols());
     // Gram blocks G^{cd} = W_cᵀ W_d, only when an M×M invariant is selected.
     let need_g = mask[4] || mask[5] || mask[8];
     let gram = |c: usize, d: usize| {
@@ -297,18 +354,7 @@ pub fn compute_invariants(
         out
     });
 
-    Ok(Invariants {
-        set,
-        i1,
-        i2,
-        i3,
-        i4,
-        i5,
-        i6,
-        i7,
-        i8,
-        i9,
-    })
+    (i5, i6, i9)
 }
 
 #[cfg(test)]
