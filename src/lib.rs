@@ -4,18 +4,23 @@
 //! The library is a pipeline of plain stages, each a module with one job:
 //!
 //! ```text
-//! import ─► Model ─► fe (assemble) ─► (K, M, DofMap) ─► reduce ─► ModeSet ─► invariants ─► write
+//! import ─► Model ─► fe (assemble) ─► (K, M, DofMap) ─► reduce ─► ModeSet ─► body ─► write
 //! ```
 //!
-//! * [`model`] — the resolved FE model (nodes, elements, sections, materials, sets, rigid elements).
 //! * [`import`] — readers for Abaqus/CalculiX `.inp`, Nastran `.bdf`, Gmsh `.msh`, Matrix Market.
-//! * [`fe`] — element matrices and sparse assembly of K and M.
+//! * [`model`] — the resolved FE model (nodes, elements, sections, materials, sets, rigid elements).
+//! * [`fe`] — element matrices and sparse assembly of K and M; constraint elimination.
 //! * [`solve`] — sparse Cholesky with METIS ordering and the block shift-invert eigensolver.
 //! * [`reduce`] — normal modes, Craig–Bampton, Craig–Chang, Dietz, reference conditions.
-//! * [`write`](mod@write) — the reduced-body file writer (types from the `flexbody-reader` crate).
 //! * [`body`] — faces, inertia invariants, modal stress/strain shapes (solids, shell fibres),
 //!   damping.
-//! * [`inspect`] — the summary `flexbody inspect` prints (mass properties, modes, entries).
+//! * [`write`](mod@write) — the reduced-body file writer (types from the `flexbody-reader`
+//!   crate) and the Matrix Market writer of K and M.
+//! * [`pipeline`] — `flexbody build` as the list of those stages ([`build::build`], also
+//!   [`build`]), and what they share: deck defaults, interfaces, scene loads, checks, recipe.
+//! * [`cli`] — the command line: arguments, the commands, what they print ([`check`](mod@check),
+//!   [`inspect`](mod@inspect)).
+//! * [`export`] — a `.flexbody` file → other solvers' formats.
 //!
 //! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.
 #![allow(non_snake_case)]

@@ -1,4 +1,4 @@
-//! Every CLI option parser (src/options.rs, --damping, --interface against a small model):
+//! Every CLI option parser (src/pipeline/options.rs, --damping, --interface against a small model):
 //! `data[0]` picks the parser, the rest is the option's text (lines = repeated values).
 #![no_main]
 use std::sync::OnceLock;

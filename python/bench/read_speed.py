@@ -36,7 +36,7 @@ def vec(a, dtype):
     return struct.pack("<Q", len(a)) + a.tobytes()
 
 
-# The writer's rule (src/write.rs: AUTO_STORE_MIN_BYTES, AUTO_STORE_MIN_SAVING).
+# The writer's rule (src/write/mod.rs: AUTO_STORE_MIN_BYTES, AUTO_STORE_MIN_SAVING).
 AUTO_STORE_MIN_BYTES = 1 << 20
 AUTO_STORE_MIN_SAVING = 16
 AUTO = "auto"
