@@ -146,13 +146,13 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
     )
     .map_err(BuildError::from)?;
     // as `build`: RBE3 spiders at interface nodes keep their centre independent
-    let with = WithInterfaces {
+    let interfaced = WithInterfaces {
         interface_nodes: interfaces.iter().flat_map(|i| i.nodes.clone()).collect(),
         interfaces,
         model,
     };
-    let red = eliminate_constraints(&with, &a)?;
-    let model = with.model;
+    let red = eliminate_constraints(&interfaced, &a)?;
+    let model = interfaced.model;
     let by_id = model.node_index_by_id();
     // Reference-condition dofs in the reduced numbering.
     let mut reduced_index = vec![usize::MAX; a.dofs.n_dofs];

@@ -46,10 +46,10 @@ pub fn constrained_system_of_model(
     model: Model,
 ) -> Result<ConstrainedSystem, BuildError> {
     let plan = Plan::resolve(spec, &model);
-    let with = attach(&plan, model)?;
-    let assembled = assemble(&with.model, &plan.assembly)?;
-    let reduced = eliminate_constraints(&with, &assembled)?;
-    let model = &with.model;
+    let interfaced = attach(&plan, model)?;
+    let assembled = assemble(&interfaced.model, &plan.assembly)?;
+    let reduced = eliminate_constraints(&interfaced, &assembled)?;
+    let model = &interfaced.model;
     let d = &assembled.dofs;
     // Physical dof → (node, component): dofs are numbered node-major from `first`.
     let mut owner = vec![(0u64, 0u8); d.n_dofs];

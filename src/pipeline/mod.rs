@@ -87,29 +87,35 @@ pub fn build_model_with_hook(
         ..Default::default()
     };
     let mut clock = StageClock::new(progress);
-    let with = clock.run(Stage::Interfaces, || interfaces::interfaces(&plan, model))?;
+    let interfaced = clock.run(Stage::Interfaces, || interfaces::interfaces(&plan, model))?;
     let assembled = clock.run(Stage::Assembly, || {
-        assembly::assembly(&plan, &with, &mut report)
+        assembly::assembly(&plan, &interfaced, &mut report)
     })?;
     let mut constrained = clock.run(Stage::Constraints, || {
-        constraints::constraints(&plan, &with, assembled, &mut report)
+        constraints::constraints(&plan, &interfaced, assembled, &mut report)
     })?;
     // A preload stage (static solve under the scene's loads → geometric stiffness added to K_r)
     // belongs here: it takes the constrained system and returns one for the reduction.
     let basis = clock.run(Stage::Reduction, || {
-        reduction::reduction(&plan, &with.model, &mut constrained, hook, &mut report)
+        reduction::reduction(
+            &plan,
+            &interfaced.model,
+            &mut constrained,
+            hook,
+            &mut report,
+        )
     })?;
     let mass = clock.run(Stage::Invariants, || {
-        invariants::invariants(&plan, &with.model, &mut constrained, &basis)
+        invariants::invariants(&plan, &interfaced.model, &mut constrained, &basis)
     })?;
-    let stored = file::stored_nodes(&plan, &with, &constrained)?;
+    let stored = file::stored_nodes(&plan, &interfaced, &constrained)?;
     let fields = if plan.spec.fields.is_empty() {
         fields::FieldShapes::default()
     } else {
         clock.run(Stage::StressShapes, || {
             fields::fields(
                 &plan,
-                &with.model,
+                &interfaced.model,
                 &constrained,
                 &basis,
                 &stored,
@@ -118,13 +124,21 @@ pub fn build_model_with_hook(
         })?
     };
     let body = clock.run(Stage::AssembleFile, || {
-        file::assemble_file(&plan, &with, &constrained, &basis, &mass, &stored, &fields)
+        file::assemble_file(
+            &plan,
+            &interfaced,
+            &constrained,
+            &basis,
+            &mass,
+            &stored,
+            &fields,
+        )
     })?;
     let body = clock.run(Stage::Verify, || {
         stages::verify::verify(&plan, body, &constrained, &basis)
     })?;
     report.stages = clock.times;
-    report.interfaces = with.interfaces;
+    report.interfaces = interfaced.interfaces;
     Ok(BuildOutput { body, report })
 }
 

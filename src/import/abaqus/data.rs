@@ -72,6 +72,14 @@ impl Parser {
         parse_f64(s).ok_or_else(|| self.err(loc, ent.to_owned(), bad_number(s)))
     }
 
+    /// The non-empty fields of `line` as real numbers of entity `ent`.
+    fn reals(&self, line: &str, ent: &str, loc: Loc) -> Result<Vec<f64>, ImportError> {
+        fields(line)
+            .filter(|s| !s.is_empty())
+            .map(|s| self.real(s, ent, loc))
+            .collect()
+    }
+
     /// A `*CLOAD`/`*DLOAD` line, kept raw with its step for loads.rs.
     fn load_line(&mut self, keyword: loads::LoadKeyword, line: &str, loc: Loc) {
         let step = (
@@ -280,10 +288,7 @@ impl Parser {
         loc: Loc,
     ) -> Result<(), ImportError> {
         let ent = format!("*SECTION ELSET={}", self.sections[k].elset);
-        let v: Vec<f64> = fields(line)
-            .filter(|s| !s.is_empty())
-            .map(|s| self.real(s, &ent, loc))
-            .collect::<Result<_, _>>()?;
+        let v = self.reals(line, &ent, loc)?;
         self.block = Block::SectionLine(k, n + 1);
         let sec = &mut self.sections[k];
         match &mut sec.section {
@@ -372,10 +377,7 @@ impl Parser {
         loc: Loc,
     ) -> Result<(), ImportError> {
         let ent = format!("*MASS ELSET={set}");
-        let v: Vec<f64> = fields(line)
-            .filter(|s| !s.is_empty())
-            .map(|s| self.real(s, &ent, loc))
-            .collect::<Result<_, _>>()?;
+        let v = self.reals(line, &ent, loc)?;
         if mass {
             self.masses
                 .push((set, v.first().copied().unwrap_or(0.0), loc));
@@ -399,10 +401,7 @@ impl Parser {
         loc: Loc,
     ) -> Result<(), ImportError> {
         let ent = format!("*TRANSFORM NSET={nset}");
-        let v: Vec<f64> = fields(line)
-            .filter(|s| !s.is_empty())
-            .map(|s| self.real(s, &ent, loc))
-            .collect::<Result<_, _>>()?;
+        let v = self.reals(line, &ent, loc)?;
         let [a1, a2, a3, b1, b2, b3] = v[..] else {
             return Err(self.err(loc, ent, "needs a1, a2, a3, b1, b2, b3"));
         };

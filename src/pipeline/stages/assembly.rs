@@ -10,10 +10,10 @@ use crate::pipeline::{BuildError, BuildReport};
 /// The assembly stage.
 pub fn assembly(
     plan: &Plan,
-    with: &WithInterfaces,
+    interfaced: &WithInterfaces,
     report: &mut BuildReport,
 ) -> Result<Assembled, BuildError> {
-    let assembled = assemble(&with.model, &plan.assembly)?;
-    report.constraints = constraint_summary(&with.model, &assembled.dofs);
+    let assembled = assemble(&interfaced.model, &plan.assembly)?;
+    report.constraints = constraint_summary(&interfaced.model, &assembled.dofs);
     Ok(assembled)
 }

@@ -38,22 +38,23 @@ pub struct Constrained {
 /// The constraints stage.
 pub fn constraints(
     plan: &Plan,
-    with: &WithInterfaces,
+    interfaced: &WithInterfaces,
     mut assembled: Assembled,
     report: &mut BuildReport,
 ) -> Result<Constrained, BuildError> {
-    let reduced = eliminate_constraints(with, &assembled)?;
+    let reduced = eliminate_constraints(interfaced, &assembled)?;
     // The physical K is not used past the elimination (the reduction works on reduced.k; the
     // invariants and mass points use M): free it before the factorization, the build's peak
     // (issue 22: 16 bytes per non-zero, ~0.6 GB at 519k tet10 dofs).
     assembled.k = empty_matrix();
     report.dofs = (assembled.dofs.n_dofs, reduced.retained.len());
-    let independent = Independent::new(plan, &with.model, &assembled.dofs, &reduced);
+    let independent = Independent::new(plan, &interfaced.model, &assembled.dofs, &reduced);
     // Interface and reference dofs: the free components (held ones drop out of plain ids; a
     // held component given explicitly is an error naming its constraint).
     let mut dropped: Vec<String> = Vec::new();
-    let (interface_dofs, interface_masks) = interface_dofs(&independent, with, &mut dropped)?;
-    let (reference_dofs, mut reference_nodes) = reference_dofs(&independent, with, &mut dropped)?;
+    let (interface_dofs, interface_masks) = interface_dofs(&independent, interfaced, &mut dropped)?;
+    let (reference_dofs, mut reference_nodes) =
+        reference_dofs(&independent, interfaced, &mut dropped)?;
     if !dropped.is_empty() {
         report.notes.push(format!(
             "held components (GRID PS / GRDSET / selected SPC) are not interface or reference dofs: {}",
@@ -62,15 +63,20 @@ pub fn constraints(
     }
     // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
     before_reduction(
-        &with.model,
+        &interfaced.model,
         &assembled.dofs,
         &assembled.m,
         plan.spec.method,
-        &with.interface_nodes,
+        &interfaced.interface_nodes,
         &reference_nodes,
     )
     .map_err(|e| plan.request_error(e))?;
-    hold_model_spcs(&with.model, &assembled.dofs, &mut reference_nodes, report);
+    hold_model_spcs(
+        &interfaced.model,
+        &assembled.dofs,
+        &mut reference_nodes,
+        report,
+    );
     Ok(Constrained {
         assembled,
         reduced,
@@ -84,16 +90,16 @@ pub fn constraints(
 /// u = T u_r for the model's rigid elements, SPCs and held components; RBE3 spiders at
 /// interface nodes keep their centre independent (UM-style).
 pub fn eliminate_constraints(
-    with: &WithInterfaces,
+    interfaced: &WithInterfaces,
     assembled: &Assembled,
 ) -> Result<Reduced, BuildError> {
     Ok(eliminate(
-        &with.model,
+        &interfaced.model,
         &assembled.dofs,
         &assembled.k,
         &assembled.m,
         &ConstraintSpec {
-            independent_rbe3_reference: with.interface_nodes.clone(),
+            independent_rbe3_reference: interfaced.interface_nodes.clone(),
             ..Default::default()
         },
     )?)
@@ -168,18 +174,18 @@ impl<'a> Independent<'a> {
 /// The interface dofs (independent numbering) and each interface node's components.
 fn interface_dofs(
     independent: &Independent,
-    with: &WithInterfaces,
+    interfaced: &WithInterfaces,
     dropped: &mut Vec<String>,
 ) -> Result<(Vec<usize>, Vec<DofMask>), BuildError> {
     let mut dofs = Vec::new();
     let mut masks = Vec::new();
-    for r in &with.interfaces {
+    for r in &interfaced.interfaces {
         for &n in &r.nodes {
             let (mask, held) = independent.mask(n, r.dofs, "interface")?;
             if held.0 != 0 {
                 dropped.push(format!(
                     "interface node {} ({})",
-                    with.model.nodes[n].id,
+                    interfaced.model.nodes[n].id,
                     held.digits()
                 ));
             }
@@ -195,16 +201,16 @@ fn interface_dofs(
 /// sets.
 fn reference_dofs(
     independent: &Independent,
-    with: &WithInterfaces,
+    interfaced: &WithInterfaces,
     dropped: &mut Vec<String>,
 ) -> Result<(Vec<usize>, ReferenceNodes), BuildError> {
-    let (model, plan) = (&with.model, independent.plan);
+    let (model, plan) = (&interfaced.model, independent.plan);
     let by_id = model.node_index_by_id();
     let mut dofs = Vec::new();
     let mut nodes = Vec::new();
     // Reference conditions by interface name (`BIG_END:123456`) are node ids from here on.
     let (named_references, reference_sets) =
-        reference_names(model, &with.interfaces, &plan.spec.reference_sets)?;
+        reference_names(model, &interfaced.interfaces, &plan.spec.reference_sets)?;
     for &(id, mask) in plan
         .spec
         .reference_conditions

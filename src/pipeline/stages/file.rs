@@ -37,17 +37,17 @@ pub struct StoredNodes {
 /// The nodes whose shapes go into the file (`--keep-nodes`).
 pub fn stored_nodes(
     plan: &Plan,
-    with: &WithInterfaces,
+    interfaced: &WithInterfaces,
     constrained: &Constrained,
 ) -> Result<StoredNodes, BuildError> {
-    let faces = graphics_faces(&with.model);
-    let always: Vec<NodeIndex> = with
+    let faces = graphics_faces(&interfaced.model);
+    let always: Vec<NodeIndex> = interfaced
         .interface_nodes
         .iter()
         .copied()
         .chain(constrained.reference_nodes.iter().map(|r| r.0))
         .collect();
-    let nodes = select_nodes(&with.model, &plan.spec.keep_nodes, &always, &faces)
+    let nodes = select_nodes(&interfaced.model, &plan.spec.keep_nodes, &always, &faces)
         .map_err(|e| plan.request_error(e))?;
     Ok(StoredNodes { faces, nodes })
 }
@@ -55,20 +55,20 @@ pub fn stored_nodes(
 /// The assemble-file stage.
 pub fn assemble_file(
     plan: &Plan,
-    with: &WithInterfaces,
+    interfaced: &WithInterfaces,
     constrained: &Constrained,
     basis: &ReducedBasis,
     mass: &MassProperties,
     stored: &StoredNodes,
     fields: &FieldShapes,
 ) -> Result<file::ReducedBody, BuildError> {
-    let (spec, model, set) = (&plan.spec, &with.model, &basis.set);
+    let (spec, model, set) = (&plan.spec, &interfaced.model, &basis.set);
     let position = positions(model, &stored.nodes);
-    let is_interface: HashSet<NodeIndex> = with.interface_nodes.iter().copied().collect();
+    let is_interface: HashSet<NodeIndex> = interfaced.interface_nodes.iter().copied().collect();
     let (nodes, faces, lines) = geometry(model, stored, &position, &is_interface);
     let dofs = &constrained.assembled.dofs;
     let modes = modes_record(set, &stored.nodes, dofs, &basis.phi);
-    let method = method_record(spec, set, with, constrained, &position, &modes.labels);
+    let method = method_record(spec, set, interfaced, constrained, &position, &modes.labels);
     let top = fields.top.as_ref();
     let mut body = file::ReducedBody {
         version: flexbody_reader::FORMAT_VERSION,
@@ -108,13 +108,14 @@ pub fn assemble_file(
     };
     body.modal_loads = modal_loads(&basis.scene, set);
     let band = accuracy_band(spec, set);
-    let recipe = recipe(spec, model, &with.interfaces, band).map_err(|e| plan.request_error(e))?;
+    let recipe =
+        recipe(spec, model, &interfaced.interfaces, band).map_err(|e| plan.request_error(e))?;
     body.recipe = Some(recipe);
     if let Some(b) = &fields.bottom {
         body.stress_shapes_bottom = field_shapes(b, b.stress.as_ref(), &position);
         body.strain_shapes_bottom = field_shapes(b, b.strain.as_ref(), &position);
     }
-    body.interfaces = interfaces_entry(model, &with.interfaces, &body.nodes);
+    body.interfaces = interfaces_entry(model, &interfaced.interfaces, &body.nodes);
     body.version = file::version_for(&body);
     Ok(body)
 }
@@ -207,7 +208,7 @@ fn modes_record(set: &ModeSet, stored: &[NodeIndex], dofs: &DofMap, phi: &Mat<f6
 fn method_record(
     spec: &BuildSpec,
     set: &ModeSet,
-    with: &WithInterfaces,
+    interfaced: &WithInterfaces,
     constrained: &Constrained,
     position: &[u32],
     labels: &[file::ModeLabel],
@@ -215,7 +216,7 @@ fn method_record(
     let dofs = &constrained.assembled.dofs;
     let (method, interface_count, fixed_count) = method_counts(set);
     let identity3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    let interface = with
+    let interface = interfaced
         .interface_nodes
         .iter()
         .zip(&constrained.interface_masks)

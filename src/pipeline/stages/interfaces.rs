@@ -35,9 +35,9 @@ pub fn interfaces(plan: &Plan, model: Model) -> Result<WithInterfaces, BuildErro
     {
         return Err(plan.request_error("reference conditions are defined for normal modes and Craig–Bampton (improved CB methods 1 and 2), not for Craig–Chang or Dietz".into()));
     }
-    let with = attach(plan, model)?;
-    scene_loads(&with.model, &spec.scene).map_err(|e| plan.request_error(e.to_string()))?;
-    Ok(with)
+    let interfaced = attach(plan, model)?;
+    scene_loads(&interfaced.model, &spec.scene).map_err(|e| plan.request_error(e.to_string()))?;
+    Ok(interfaced)
 }
 
 /// The interfaces attached to `model` as `plan` asks, nothing checked.
