@@ -1,5 +1,5 @@
 //! `flexbody inspect`: a plain summary of a reduced-body file — header, units, counts, mass
-//! properties, modes, invariant set, entry sizes. Computed here, printed by `main.rs`.
+//! properties, modes, invariant set, entry sizes. Computed here, printed by `command` (`flexbody inspect`).
 //!
 //! The JSON form of [`Summary`] is also the expected-content file of each golden fixture
 //! (`fixtures/golden/v1.0/*.json`) that `format-spec/reference_reader.py` reproduces.
