@@ -210,7 +210,7 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
         .arg("build")
         .arg(
             Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("../shared/reference/e_matrices/hex8_block_coarse/ccx_matrix_free.inp"),
+                .join("fixtures/reference/e_matrices/hex8_block_coarse/ccx_matrix_free.inp"),
         )
         .args([
             "--method",

@@ -10,10 +10,48 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 use flexbody::model::{Material, Model};
 
+/// A file of the CalculiX reference cases the repository holds (`fixtures/reference/`, made by
+/// `fixtures/reference/regenerate.py` from the decks beside them).
 pub fn reference(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference")
+        .join("fixtures/reference")
         .join(rel)
+}
+
+/// The environment variable naming the folder of reference data the project may not
+/// redistribute (real Nastran decks with their f06 results, CalculiX's own test decks).
+pub const EXTERNAL_REFERENCE_ENV: &str = "FLEXBODY_REFERENCE";
+
+/// The external reference folder: `$FLEXBODY_REFERENCE`, else `../shared/reference` beside the
+/// repository.
+pub fn external_reference_dir() -> PathBuf {
+    match std::env::var_os(EXTERNAL_REFERENCE_ENV) {
+        Some(dir) if !dir.is_empty() => PathBuf::from(dir),
+        _ => Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference"),
+    }
+}
+
+/// `rel` inside the external reference folder, or `None` after printing a SKIPPED line for
+/// `test` that names the variable to set. Tests that need the data return early on `None`.
+pub fn external_reference(test: &str, rel: &str) -> Option<PathBuf> {
+    let path = external_reference_dir().join(rel);
+    if path.exists() {
+        return Some(path);
+    }
+    skipped(&format!(
+        "{test}: needs {rel} from the external reference data (not redistributable, not in the \
+         repository); set {EXTERNAL_REFERENCE_ENV} to the folder that holds it (default \
+         ../shared/reference beside the repository; looked in {})",
+        external_reference_dir().display()
+    ));
+    None
+}
+
+/// Prints `SKIPPED <what>` where the test runner shows it: straight to the process's stderr,
+/// past the harness's capture of `println!`/`eprintln!`, so a skip is never silent.
+pub fn skipped(what: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "SKIPPED {what}");
 }
 
 pub fn steel() -> Material {
