@@ -16,15 +16,7 @@ fn over_string_limit(mut bytes: Vec<u8>) -> Vec<u8> {
     bytes
 }
 
-pub fn cases(base: &ReducedBody) -> Vec<Case> {
-    let mut out = Vec::new();
-    let mut add = |name, bytes, expect| {
-        out.push(Case {
-            name,
-            bytes,
-            expect,
-        })
-    };
+pub fn cases(base: &ReducedBody, add: &mut Add) {
     let good = entries(base);
     let good_manifest = manifest(base, &good);
     let bytes_of = |e: &Entries, name: &str| {
@@ -146,5 +138,4 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
             "damping.bin: damaged zip data (the local header names another entry)",
         )),
     );
-    out
 }

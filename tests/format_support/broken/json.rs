@@ -13,15 +13,7 @@ fn nested(depth: usize) -> String {
     format!("{}{}", "[".repeat(depth), "]".repeat(depth))
 }
 
-pub fn cases(base: &ReducedBody) -> Vec<Case> {
-    let mut out = Vec::new();
-    let mut add = |name, bytes, expect| {
-        out.push(Case {
-            name,
-            bytes,
-            expect,
-        })
-    };
+pub fn cases(base: &ReducedBody, add: &mut Add) {
     let good = entries(base);
     let manifest_text =
         serde_json::to_string_pretty(&manifest(base, &good)).expect("manifest json");
@@ -125,5 +117,4 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
         )),
         Some(("Decode", "nested deeper than 64")),
     );
-    out
 }

@@ -19,16 +19,7 @@ fn craig_chang(base: &ReducedBody) -> ReducedBody {
     b
 }
 
-pub fn cases(base: &ReducedBody) -> Vec<Case> {
-    let mut out = Vec::new();
-    let mut add = |name, bytes, expect| {
-        out.push(Case {
-            name,
-            bytes,
-            expect,
-        })
-    };
-
+pub fn cases(base: &ReducedBody, add: &mut Add) {
     // Item 10: the sums of rule 8 are exact: 1 + (2⁶⁴−1) + 2 − (2⁶⁴−1) = 3 basis vectors for
     // 3 modes (accepted), not a saturated 0.
     let mut b = craig_chang(base);
@@ -216,5 +207,4 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
             "label_shares.bin: share[0] = 0.5 must be 1 (a Rigid mode)",
         )),
     );
-    out
 }
