@@ -2,7 +2,8 @@
 //! same outcome on mutants of the conformance fixtures (issue 37: both readers follow the one
 //! procedure of SPEC §7.1 and §4.1): zip headers, end record and central directory bytes
 //! changed, files cut and extended, manifest and recipe JSON edited (numbers beyond binary64,
-//! members twice, deep nesting, wrong types). Each mutant the Rust reader refuses goes into a
+//! members twice, deep nesting, wrong types), and the golden files rewritten in Zip64 form
+//! (both must accept them). Each mutant the Rust reader refuses goes into a
 //! scratch `broken/` folder with its error name, each it accepts into `compat/` with its
 //! summary; the reference reader's `--check-fixtures` must agree with every one.
 use std::io::{Cursor, Read};
@@ -21,7 +22,7 @@ fn pick<T: Copy>(state: &mut u64, from: &[T]) -> T {
     from[(xorshift(state) % from.len() as u64) as usize]
 }
 
-/// The fixtures every mutant starts from: golden and compat files.
+/// The fixtures every mutant starts from: golden files (first) and compat files.
 fn seeds() -> Vec<Vec<u8>> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
     let mut files = Vec::new();
@@ -186,6 +187,58 @@ fn entry_mutant(state: &mut u64, file: &[u8]) -> Vec<u8> {
     zip_entries(&entries, Compression::Deflate(6)).expect("zip")
 }
 
+fn u16_at(b: &[u8], i: usize) -> usize {
+    u16::from_le_bytes([b[i], b[i + 1]]) as usize
+}
+
+fn u32_at(b: &[u8], i: usize) -> u64 {
+    u32::from_le_bytes(b[i..i + 4].try_into().expect("4 bytes")).into()
+}
+
+/// `file` (no comment, no prefix) rewritten in Zip64 form: every central header's sizes and
+/// local offset moved to a Zip64 extra field, a Zip64 end record and locator before an end
+/// record whose count, size and offset fields all say "see Zip64".
+fn zip64_form(file: &[u8]) -> Vec<u8> {
+    let e = file.len() - 22;
+    let (count, cd) = (u16_at(file, e + 10), u32_at(file, e + 16) as usize);
+    let mut out = file[..cd].to_vec();
+    let mut at = cd;
+    for _ in 0..count {
+        let (n, x, c) = (
+            u16_at(file, at + 28),
+            u16_at(file, at + 30),
+            u16_at(file, at + 32),
+        );
+        let mut h = file[at..at + 46 + n + x + c].to_vec();
+        let values = [u32_at(&h, 24), u32_at(&h, 20), u32_at(&h, 42)];
+        for k in [20, 24, 42] {
+            h[k..k + 4].copy_from_slice(&[0xFF; 4]);
+        }
+        h[30..32].copy_from_slice(&((x + 28) as u16).to_le_bytes());
+        let mut extra = vec![1, 0, 24, 0];
+        for v in values {
+            extra.extend_from_slice(&v.to_le_bytes());
+        }
+        h.splice(46 + n + x..46 + n + x, extra);
+        out.extend_from_slice(&h);
+        at += 46 + n + x + c;
+    }
+    let (size, record) = ((out.len() - cd) as u64, out.len() as u64);
+    out.extend_from_slice(b"PK\x06\x06");
+    out.extend_from_slice(&44u64.to_le_bytes());
+    out.extend_from_slice(&[45, 0, 45, 0, 0, 0, 0, 0, 0, 0, 0, 0]);
+    for v in [count as u64, count as u64, size, cd as u64] {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out.extend_from_slice(b"PK\x06\x07\0\0\0\0");
+    out.extend_from_slice(&record.to_le_bytes());
+    out.extend_from_slice(&1u32.to_le_bytes());
+    out.extend_from_slice(b"PK\x05\x06\0\0\0\0");
+    out.extend_from_slice(&[0xFF; 12]);
+    out.extend_from_slice(&[0; 2]);
+    out
+}
+
 #[test]
 fn rust_and_reference_readers_give_the_same_outcome_on_mutants() {
     let dir = std::env::temp_dir().join(format!("flexbody-agree-{}", std::process::id()));
@@ -194,15 +247,19 @@ fn rust_and_reference_readers_give_the_same_outcome_on_mutants() {
     let seeds = seeds();
     let mut state = 0x2545f4914f6cdd1du64;
     let (mut refused, mut accepted) = (0, 0);
-    for k in 0..600 {
-        let seed = &seeds[k % seeds.len()];
-        let bytes = if k % 3 == 0 {
-            entry_mutant(&mut state, seed)
+    // The golden files in Zip64 form (read as they are), then the mutants.
+    let golden = 5; // golden/v1.0 (2 files), v1.2, v1.4, v1.6
+    for k in 0..golden + 600 {
+        let bytes = if k < golden {
+            zip64_form(&seeds[k])
+        } else if k % 3 == 0 {
+            entry_mutant(&mut state, &seeds[k % seeds.len()])
         } else {
-            container_mutant(&mut state, seed)
+            container_mutant(&mut state, &seeds[k % seeds.len()])
         };
         let stem = format!("m{k:04}");
         match flexbody_reader::from_bytes_with_manifest(&bytes, &Default::default()) {
+            Err(e) if k < golden => panic!("golden file {k} in Zip64 form is refused: {e}"),
             Err(e) => {
                 let expect = serde_json::json!({"variant": e.variant(), "message": ""});
                 std::fs::write(

@@ -387,10 +387,11 @@ def open_archive(data):
     if e < 0:
         not_zip("no end-of-central-directory record ends the file")
     disk, cd_disk, here, count, size, offset = struct.unpack("<4H2I", data[e + 4:e + 20])
-    if disk or cd_disk or here != count:
-        not_zip("a multi-disk archive (no meaning in v1)")
     end = e
-    if e >= 20 and data[e - 20:e - 16] == b"PK\x06\x07":  # Zip64: the end record before the locator
+    if e < 20 or data[e - 20:e - 16] != b"PK\x06\x07":
+        if disk or cd_disk or here != count:
+            not_zip("a multi-disk archive (no meaning in v1)")
+    else:  # a Zip64 locator: the Zip64 end record before it gives the values
         r = e - 76
         if r < 0 or data[r:r + 4] != b"PK\x06\x06" or le(data, r + 4, 8) != 44:
             not_zip("damaged Zip64 end-of-central-directory record or locator")

@@ -84,19 +84,17 @@ fn find_end(b: &[u8]) -> Result<u64, ReadError> {
 
 /// (entry count, directory size, directory offset, where the end records begin).
 fn directory_location(b: &[u8], e: u64) -> Result<(u64, u64, u64, u64), ReadError> {
-    let bad = || not_zip("damaged end-of-central-directory record");
-    let f16 = |at| le::<2>(b, e + at).ok_or_else(bad);
-    let (disk, cd_disk, here, total) = (f16(4)?, f16(6)?, f16(8)?, f16(10)?);
-    if disk != 0 || cd_disk != 0 || here != total {
-        return Err(not_zip("a multi-disk archive (no meaning in v1)"));
-    }
-    let (size, offset) = (
-        le::<4>(b, e + 12).ok_or_else(bad)?,
-        le::<4>(b, e + 16).ok_or_else(bad)?,
-    );
     let locator = e.checked_sub(20);
     let is_zip64 = locator.and_then(|l| slice(b, l, 4)) == Some(&ZIP64_LOCATOR[..]);
     if !is_zip64 {
+        let bad = || not_zip("damaged end-of-central-directory record");
+        let f16 = |at| le::<2>(b, e + at).ok_or_else(bad);
+        let (disk, cd_disk, here, total) = (f16(4)?, f16(6)?, f16(8)?, f16(10)?);
+        if disk != 0 || cd_disk != 0 || here != total {
+            return Err(not_zip("a multi-disk archive (no meaning in v1)"));
+        }
+        let size = le::<4>(b, e + 12).ok_or_else(bad)?;
+        let offset = le::<4>(b, e + 16).ok_or_else(bad)?;
         return Ok((total, size, offset, e));
     }
     // Zip64: the 56-byte end record right before the locator replaces the three fields.
