@@ -11,6 +11,7 @@ pub mod eigen;
 pub mod inertia;
 pub mod memory;
 pub mod ordering;
+pub mod progress;
 mod rows;
 pub mod slepc;
 pub mod sparse_ops;
