@@ -6,9 +6,12 @@
 //!
 //! The rigid-body motions the constraints leave free are found from geometry, not from an
 //! eigensolve: the six rigid motions of the nodes (translations t + θ × (x − x̄) and rotations
-//! θ, in the displacement frames) on the independent dofs, X (n_r × 6), M_r-orthonormalized
-//! and rotated to the eigenvectors of XᵀK_rX; those with Rayleigh quotient below
-//! [`RIGID_TOL`] × (the model's stiffness-over-mass scale) are free.
+//! θ, in the displacement frames); the combinations the elimination reproduces exactly
+//! (T X_r = X: no held dof moves, every rigid element fits) on the independent dofs,
+//! M_r-orthonormalized and rotated to the eigenvectors of X_rᵀK_rX_r; those with Rayleigh
+//! quotient below [`RIGID_TOL`] × (the model's stiffness-over-mass scale) are free. (A motion
+//! that is rigid only on the independent dofs — a lateral motion of a rod node between held
+//! ends — is a mechanism, not a rigid-body mode.)
 
 use faer::Mat;
 
@@ -62,42 +65,59 @@ fn geometric_rigid_motions(model: &Model, dofs: &DofMap) -> Mat<f64> {
     x
 }
 
+/// Eigen-decomposition of a small symmetric matrix (its symmetric part).
+fn small_eigen(a: &Mat<f64>, what: &str) -> Result<(Vec<f64>, Mat<f64>), PreloadError> {
+    let s = Mat::from_fn(a.nrows(), a.ncols(), |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+    let e = s
+        .self_adjoint_eigen(faer::Side::Lower)
+        .map_err(|e| SolveError::DenseEigen(format!("{what}: {e:?}")))?;
+    Ok(((0..a.nrows()).map(|i| e.S()[i]).collect(), e.U().to_owned()))
+}
+
 /// The rigid-body modes the constraints of `red` leave free (module doc): M_r-orthonormal
-/// columns on the independent dofs.
+/// columns on the independent dofs. A rigid motion is free when the elimination reproduces it
+/// (T X_r = X: it moves no held dof and fits every rigid element) and K_r does not resist it.
 pub fn free_rigid_modes(
     model: &Model,
     dofs: &DofMap,
     red: &Reduced,
 ) -> Result<Mat<f64>, PreloadError> {
-    let x_phys = geometric_rigid_motions(model, dofs);
+    let mut x_phys = geometric_rigid_motions(model, dofs);
+    for j in 0..6 {
+        let n = x_phys.col(j).norm_l2();
+        if n > 0.0 {
+            x_phys.as_mut().col_mut(j).iter_mut().for_each(|v| *v /= n);
+        }
+    }
     let nr = red.retained.len();
     let x = Mat::from_fn(nr, 6, |i, j| x_phys[(red.retained[i], j)]);
+    // the combinations the elimination reproduces: null space of D = T X_r − X
+    let d = &red.expand(x.as_ref()) - &x_phys;
+    let (dv, du) = small_eigen(&(d.transpose() * &d), "rigid-mode constraints")?;
+    let kept: Vec<usize> = (0..6).filter(|&i| dv[i] <= 1e-18).collect();
+    let c0 = Mat::from_fn(6, kept.len(), |i, j| du[(i, kept[j])]);
+    let x = &x * &c0;
     let kx = crate::solve::sparse_ops::spmm(red.k.as_ref(), x.as_ref());
     let mx = crate::solve::sparse_ops::spmm(red.m.as_ref(), x.as_ref());
-    let g = x.transpose() * &mx;
-    let r = x.transpose() * &kx;
-    // a motion without mass (e.g. every rotation of a model of point masses on a line) cannot be
-    // balanced by its inertia: keep the motions with mass, by the eigenvectors of G
-    let ge = g
-        .self_adjoint_eigen(faer::Side::Lower)
-        .map_err(|e| SolveError::DenseEigen(format!("rigid-mode mass: {e:?}")))?;
-    let gmax = (0..6).map(|i| ge.S()[i]).fold(0.0f64, f64::max);
-    let keep: Vec<usize> = (0..6).filter(|&i| ge.S()[i] > 1e-12 * gmax).collect();
-    // G^{-1/2} on the massive directions
-    let w = Mat::from_fn(6, keep.len(), |i, j| {
-        ge.U()[(i, keep[j])] / ge.S()[keep[j]].sqrt()
+    // a motion without mass (e.g. every rotation of point masses on a line) cannot be balanced
+    // by its inertia: keep the motions with mass, by the eigenvectors of G = XᵀM_rX
+    let (gv, gu) = small_eigen(&(x.transpose() * &mx), "rigid-mode mass")?;
+    let gmax = gv.iter().copied().fold(0.0f64, f64::max);
+    let massive: Vec<usize> = (0..gv.len()).filter(|&i| gv[i] > 1e-12 * gmax).collect();
+    // G^{-1/2} on the massive directions, then the eigenvectors of XᵀK_rX there
+    let w = Mat::from_fn(gv.len(), massive.len(), |i, j| {
+        gu[(i, massive[j])] / gv[massive[j]].sqrt()
     });
-    let a = w.transpose() * &r * &w;
-    let a = Mat::from_fn(a.nrows(), a.ncols(), |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
-    let ae = a
-        .self_adjoint_eigen(faer::Side::Lower)
-        .map_err(|e| SolveError::DenseEigen(format!("rigid-mode stiffness: {e:?}")))?;
+    let (av, au) = small_eigen(
+        &(w.transpose() * (x.transpose() * &kx) * &w),
+        "rigid-mode stiffness",
+    )?;
     let scale = trace_ratio(&red.k, &red.m);
-    let free: Vec<usize> = (0..a.nrows())
-        .filter(|&i| ae.S()[i] <= RIGID_TOL * scale)
+    let free: Vec<usize> = (0..av.len())
+        .filter(|&i| av[i] <= RIGID_TOL * scale)
         .collect();
-    let coeff = &w * ae.U();
-    let c = Mat::from_fn(6, free.len(), |i, j| coeff[(i, free[j])]);
+    let coeff = &w * &au;
+    let c = Mat::from_fn(coeff.nrows(), free.len(), |i, j| coeff[(i, free[j])]);
     Ok(&x * &c)
 }
 
