@@ -2,7 +2,8 @@
 //! compression and tension (Euler: f(P)/f(0) = √(1 − P/P_cr), P_cr = π²EI/L²), refused past
 //! P_cr with the buckling factor; the Timoshenko beam-column against the shear-corrected P_cr;
 //! a thermally preloaded clamped–clamped bar (N = −EAαΔT) against the beam-column's frequency
-//! equation.
+//! equation; a pinned beam with a cooled rod alongside (a pretensioned tie: the rods' string
+//! stiffness N/L (I − e eᵀ)) against f(T)/f(0) = √(1 + T/P_cr).
 
 mod common;
 mod preload_support;
@@ -234,4 +235,59 @@ fn thermally_preloaded_clamped_clamped_bar_matches_beam_column_frequency_equatio
     );
     assert!(err.abs() < 1e-3, "{got} vs {exact}");
     assert!(((w / want).sqrt() - 1.0).abs() < 1e-3);
+}
+
+/// A pinned-pinned beam with a rod along the same nodes, both ends held axially; the rod is
+/// cooled (its α alone is non-zero), so it carries the tension T = E A_rod α |ΔT| and the beam
+/// none. The transverse mode stays sin(πx/L): ω² ∝ EI k⁴ + T k², f(T)/f(0) = √(1 + T/P_cr).
+#[test]
+fn beam_with_a_pretensioned_rod_alongside_matches_string_plus_beam_closed_form() {
+    let (ne, l) = (40, 1.2);
+    let mut model = pinned_pinned(ne, l, false);
+    hold(&mut model, ne, "1");
+    let rod_area = 2e-5;
+    model.materials.push(steel());
+    model.properties.push(Property {
+        id: 2,
+        name: "TIE".into(),
+        material: 1,
+        section: Section::Rod {
+            area: rod_area,
+            j: 0.0,
+            nsm: 0.0,
+        },
+    });
+    for e in 0..ne {
+        model.elements.push(Element {
+            id: (ne + e) as u64 + 1,
+            kind: ElementKind::Rod2,
+            nodes: vec![e, e + 1],
+            property: Some(1),
+            orientation: None,
+        });
+    }
+    let b = Built::new(model, spec(BeamTheory::EulerBernoulli));
+    let mat = steel();
+    let p_cr = PI * PI * mat.e * section(false).i2 / (l * l);
+    let alpha = 1.2e-5;
+    let w0 = eigenvalues(&b.red.k, &b.red.m)[0];
+    for ratio in [0.5, 2.0] {
+        let tension = ratio * p_cr;
+        let thermal = Thermal {
+            delta_t: Temperature::Uniform(-tension / (mat.e * rod_area * alpha)),
+            // the beam's material does not expand, the rod's does
+            alpha: vec![0.0, alpha],
+        };
+        let case = PreloadCase {
+            thermal: Some(thermal),
+            ..Default::default()
+        };
+        let pre = preload(&b.system(), &case, &PreloadSpec::default()).unwrap();
+        let w = eigenvalues(&pre.k_t, &b.red.m)[0];
+        let got = (w / w0).sqrt();
+        let want = (1.0 + ratio).sqrt();
+        let err = (got - want) / want;
+        eprintln!("beam + tie, T/P_cr = {ratio}: f/f0 = {got:.8}, closed form {want:.8}, rel. error {err:+.2e}");
+        assert!(err.abs() < 1e-3, "{ratio}: {got} vs {want}");
+    }
 }

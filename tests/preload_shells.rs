@@ -5,11 +5,12 @@
 //! §9.2; Leissa, *Vibration of Plates* (1969) §4.3 for the frequency with in-plane force).
 //! MITC4 quadrilaterals and DKT triangles, the membrane force from the static solve of edge
 //! forces (the resultants checked uniform), tension and compression: within 1e-3 (quads) and
-//! 3e-3 (triangles) at 24×24.
+//! 3e-3 (triangles) at 24×24. And the same plate heated with its edges held in-plane: the
+//! biaxial N = −E t αΔT/(1 − ν) gives ρt ω² = D k⁴ + N k², f/f0 = √(1 + N/(D k²)).
 
 mod preload_support;
 
-use flexbody::fe::geometric::{element_stresses, ElementStress};
+use flexbody::fe::geometric::{element_stresses, ElementStress, Temperature, Thermal};
 use flexbody::fe::preload::{preload, PreloadCase, PreloadSpec};
 use flexbody::fe::{AssemblySpec, MassKind};
 use flexbody::model::{
@@ -171,5 +172,66 @@ fn simply_supported_plate_under_in_plane_force_matches_closed_form() {
             let tol = if tris { 3e-3 } else { 1e-3 };
             assert!(err.abs() < tol, "tris = {tris}, {ratio}: {got} vs {want}");
         }
+    }
+}
+
+#[test]
+fn heated_plate_with_held_edges_matches_biaxial_closed_form() {
+    let m = Material::isotropic(1, "ALU", 70e9, 0.33, 2700.0);
+    let d = m.e * T.powi(3) / (12.0 * (1.0 - m.nu * m.nu));
+    let k2 = (PI / A).powi(2) + (PI / B).powi(2);
+    let n_cr = d * k2;
+    let alpha = 2.3e-5;
+    for tris in [false, true] {
+        let mut model = plate(tris);
+        for k in 0..model.nodes.len() {
+            let [x, y, _] = model.nodes[k].x;
+            let edge = |v: f64, e: f64| (v - e).abs() < 1e-9;
+            if edge(x, 0.0) || edge(x, A) || edge(y, 0.0) || edge(y, B) {
+                hold(&mut model, k, "12");
+            }
+        }
+        let b = Built::new(
+            model,
+            AssemblySpec {
+                mass: MassKind::Consistent,
+                ..Default::default()
+            },
+        );
+        let w0 = eigenvalues(&b.red.k, &b.red.m)[0];
+        let ratio = -0.5;
+        let n = ratio * n_cr;
+        let dt = -n * (1.0 - m.nu) / (m.e * T * alpha);
+        let thermal = Thermal {
+            delta_t: Temperature::Uniform(dt),
+            alpha: vec![alpha],
+        };
+        let case = PreloadCase {
+            thermal: Some(thermal.clone()),
+            ..Default::default()
+        };
+        let pre = preload(&b.system(), &case, &PreloadSpec::default()).unwrap();
+        let stresses =
+            element_stresses(&b.model, &b.asm.dofs, &b.spec, &pre.u, Some(&thermal)).unwrap();
+        for (e, s) in &stresses {
+            let ElementStress::Shell(res) = s else {
+                panic!("{s:?}")
+            };
+            for r in res {
+                let dev = (r[0] - n).abs().max((r[1] - n).abs()).max(r[2].abs());
+                assert!(dev < 1e-8 * n.abs(), "element {e}: {r:?} vs N = {n}");
+            }
+        }
+        let w = eigenvalues(&pre.k_t, &b.red.m)[0];
+        let got = (w / w0).sqrt();
+        let want = (1.0 + ratio).sqrt();
+        let err = (got - want) / want;
+        eprintln!(
+            "heated SS plate {} {N}×{N}: N/(D k²) = {ratio:+} (ΔT = {dt:.3} K): f/f0 = {got:.6}, \
+             closed form {want:.6}, rel. error {err:+.2e}",
+            if tris { "triangles" } else { "quads" }
+        );
+        let tol = if tris { 3e-3 } else { 1e-3 };
+        assert!(err.abs() < tol, "tris = {tris}: {got} vs {want}");
     }
 }
