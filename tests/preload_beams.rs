@@ -9,11 +9,13 @@ mod common;
 mod preload_support;
 
 use common::steel;
-use flexbody::fe::geometric::{element_stresses, ElementStress, Temperature, Thermal};
+use flexbody::fe::geometric::{ElementStress, Temperature, Thermal};
 use flexbody::fe::preload::{preload, PreloadCase, PreloadError, PreloadSpec};
 use flexbody::fe::{AssemblySpec, BeamTheory, MassKind};
-use flexbody::model::{BeamSection, Element, ElementKind, Model, Node, Property, Section};
-use preload_support::{eigenvalues, hold, nodal_load, Built};
+use flexbody::model::{BeamSection, Element, ElementKind, Model, Property, Section};
+use preload_support::{
+    check_ratio, eigenvalues, frequency_ratio, heated, hold, nodal_load, straight_line, Built,
+};
 use std::f64::consts::PI;
 
 const W: f64 = 0.03; // local y
@@ -34,34 +36,15 @@ fn section(shear: bool) -> BeamSection {
 
 /// A straight beam along x of length `l` with `ne` elements.
 fn beam(ne: usize, l: f64, shear: bool) -> Model {
-    let mut model = Model {
-        source: "beam".into(),
-        ..Model::default()
-    };
-    model.materials.push(steel());
-    model.properties.push(Property {
-        id: 1,
-        name: "B".into(),
-        material: 0,
-        section: Section::Beam(section(shear)),
-    });
-    for i in 0..=ne {
-        model.nodes.push(Node {
-            id: i as u64 + 1,
-            x: [l * i as f64 / ne as f64, 0.0, 0.0],
-            displacement_frame: None,
-        });
-    }
-    for e in 0..ne {
-        model.elements.push(Element {
-            id: e as u64 + 1,
-            kind: ElementKind::Beam2,
-            nodes: vec![e, e + 1],
-            property: Some(0),
-            orientation: Some([0.0, 1.0, 0.0]),
-        });
-    }
-    model
+    straight_line(
+        ne,
+        [0.0; 3],
+        [l, 0.0, 0.0],
+        ElementKind::Beam2,
+        Section::Beam(section(shear)),
+        steel(),
+        [0.0, 1.0, 0.0],
+    )
 }
 
 fn spec(theory: BeamTheory) -> AssemblySpec {
@@ -80,14 +63,12 @@ fn pinned_pinned(ne: usize, l: f64, shear: bool) -> Model {
     m
 }
 
-/// Lowest ω² of the preloaded model under an axial end force −`p` (compression for p > 0).
-fn lowest_under_axial(b: &Built, ne: usize, p: f64) -> Result<f64, PreloadError> {
-    let case = PreloadCase {
+/// The case of an axial end force −`p` at node `ne` (compression for p > 0).
+fn axial(ne: usize, p: f64) -> PreloadCase {
+    PreloadCase {
         loads: vec![nodal_load(ne, [-p, 0.0, 0.0, 0.0, 0.0, 0.0])],
         ..Default::default()
-    };
-    let pre = preload(&b.system(), &case, &PreloadSpec::default())?;
-    Ok(eigenvalues(&pre.k_t, &b.red.m)[0])
+    }
 }
 
 #[test]
@@ -101,12 +82,13 @@ fn pinned_pinned_beam_column_frequency_ratio_matches_euler_within_1e3() {
     let p_cr = PI * PI * mat.e * section(false).i2 / (l * l);
     let w0 = eigenvalues(&b.red.k, &b.red.m)[0];
     for ratio in [0.25, 0.5, 0.9, -0.5, -2.0] {
-        let w = lowest_under_axial(&b, ne, ratio * p_cr).unwrap();
-        let got = (w / w0).sqrt();
-        let want = (1.0 - ratio).sqrt();
-        let err = (got - want) / want;
-        eprintln!("Euler beam P/P_cr = {ratio:+}: f/f0 = {got:.8}, closed form {want:.8}, rel. error {err:+.2e}");
-        assert!(err.abs() < 1e-3, "P/P_cr = {ratio}: {got} vs {want}");
+        let got = frequency_ratio(&b, &axial(ne, ratio * p_cr), w0).unwrap();
+        check_ratio(
+            &format!("Euler beam P/P_cr = {ratio:+}"),
+            got,
+            (1.0 - ratio).sqrt(),
+            1e-3,
+        );
     }
 }
 
@@ -124,12 +106,13 @@ fn timoshenko_beam_column_frequency_ratio_matches_shear_corrected_euler() {
     eprintln!("Timoshenko: P_cr / P_E = {:.5}", p_cr / p_e);
     let w0 = eigenvalues(&b.red.k, &b.red.m)[0];
     for ratio in [0.5, 0.9, -1.0] {
-        let w = lowest_under_axial(&b, ne, ratio * p_cr).unwrap();
-        let got = (w / w0).sqrt();
-        let want = (1.0 - ratio).sqrt();
-        let err = (got - want) / want;
-        eprintln!("Timoshenko beam P/P_cr = {ratio:+}: f/f0 = {got:.8}, closed form {want:.8}, rel. error {err:+.2e}");
-        assert!(err.abs() < 1e-3, "P/P_cr = {ratio}: {got} vs {want}");
+        let got = frequency_ratio(&b, &axial(ne, ratio * p_cr), w0).unwrap();
+        check_ratio(
+            &format!("Timoshenko beam P/P_cr = {ratio:+}"),
+            got,
+            (1.0 - ratio).sqrt(),
+            1e-3,
+        );
     }
 }
 
@@ -141,7 +124,12 @@ fn compression_beyond_euler_load_is_refused_with_the_buckling_factor() {
         spec(BeamTheory::EulerBernoulli),
     );
     let p_cr = PI * PI * steel().e * section(false).i2 / (l * l);
-    let err = lowest_under_axial(&b, ne, 1.25 * p_cr).unwrap_err();
+    let err = preload(
+        &b.system(),
+        &axial(ne, 1.25 * p_cr),
+        &PreloadSpec::default(),
+    )
+    .unwrap_err();
     let msg = err.to_string();
     eprintln!("{msg}");
     let PreloadError::Buckling {
@@ -202,18 +190,8 @@ fn thermally_preloaded_clamped_clamped_bar_matches_beam_column_frequency_equatio
     // half the clamped–clamped buckling load 4π²EI/L²
     let p = 0.5 * 4.0 * PI * PI * ei / (l * l);
     let dt = p / (mat.e * s.area * alpha);
-    let thermal = Thermal {
-        delta_t: Temperature::Uniform(dt),
-        alpha: vec![alpha],
-    };
-    let case = PreloadCase {
-        thermal: Some(thermal.clone()),
-        ..Default::default()
-    };
-    let pre = preload(&b.system(), &case, &PreloadSpec::default()).unwrap();
+    let (pre, stresses) = heated(&b, vec![alpha], dt);
     // held ends: no axial strain, N = −EAαΔT in every element
-    let stresses =
-        element_stresses(&b.model, &b.asm.dofs, &b.spec, &pre.u, Some(&thermal)).unwrap();
     for (_, st) in &stresses {
         let ElementStress::Axial(n) = st else {
             panic!("beam stress {st:?}")
@@ -282,12 +260,12 @@ fn beam_with_a_pretensioned_rod_alongside_matches_string_plus_beam_closed_form()
             thermal: Some(thermal),
             ..Default::default()
         };
-        let pre = preload(&b.system(), &case, &PreloadSpec::default()).unwrap();
-        let w = eigenvalues(&pre.k_t, &b.red.m)[0];
-        let got = (w / w0).sqrt();
-        let want = (1.0 + ratio).sqrt();
-        let err = (got - want) / want;
-        eprintln!("beam + tie, T/P_cr = {ratio}: f/f0 = {got:.8}, closed form {want:.8}, rel. error {err:+.2e}");
-        assert!(err.abs() < 1e-3, "{ratio}: {got} vs {want}");
+        let got = frequency_ratio(&b, &case, w0).unwrap();
+        check_ratio(
+            &format!("beam + tie, T/P_cr = {ratio}"),
+            got,
+            (1.0 + ratio).sqrt(),
+            1e-3,
+        );
     }
 }

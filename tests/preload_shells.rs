@@ -8,15 +8,15 @@
 //! 3e-3 (triangles) at 24×24. And the same plate heated with its edges held in-plane: the
 //! biaxial N = −E t αΔT/(1 − ν) gives ρt ω² = D k⁴ + N k², f/f0 = √(1 + N/(D k²)).
 
+mod common;
 mod preload_support;
 
-use flexbody::fe::geometric::{element_stresses, ElementStress, Temperature, Thermal};
+use common::shell_grid;
+use flexbody::fe::geometric::{element_stresses, ElementStress};
 use flexbody::fe::preload::{preload, PreloadCase, PreloadSpec};
 use flexbody::fe::{AssemblySpec, MassKind};
-use flexbody::model::{
-    Element, ElementKind, Load, LoadPart, Material, Model, Node, Property, Section, ShellSection,
-};
-use preload_support::{eigenvalues, hold, Built};
+use flexbody::model::{Load, LoadPart, Material, Model};
+use preload_support::{check_ratio, eigenvalues, heated, hold, Built};
 use std::f64::consts::PI;
 
 const A: f64 = 1.0; // along x, the loaded direction
@@ -25,54 +25,8 @@ const T: f64 = 0.01;
 const N: usize = 24;
 
 fn plate(tris: bool) -> Model {
-    let mut model = Model {
-        source: "plate".into(),
-        ..Model::default()
-    };
-    let (nx, ny) = (N, N);
-    for j in 0..=ny {
-        for i in 0..=nx {
-            model.nodes.push(Node {
-                id: (j * (nx + 1) + i + 1) as u64,
-                x: [A * i as f64 / nx as f64, B * j as f64 / ny as f64, 0.0],
-                displacement_frame: None,
-            });
-        }
-    }
-    model
-        .materials
-        .push(Material::isotropic(1, "ALU", 70e9, 0.33, 2700.0));
-    model.properties.push(Property {
-        id: 1,
-        name: "PLATE".into(),
-        material: 0,
-        section: Section::Shell(ShellSection::homogeneous(T, 0)),
-    });
-    let idx = |i: usize, j: usize| j * (nx + 1) + i;
-    let mut push = |kind, nodes: Vec<usize>| {
-        let id = model.elements.len() as u64 + 1;
-        model.elements.push(Element {
-            id,
-            kind,
-            nodes,
-            property: Some(0),
-            orientation: None,
-        });
-    };
-    for j in 0..ny {
-        for i in 0..nx {
-            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
-            if !tris {
-                push(ElementKind::Quad4, vec![a, b, c, d]);
-            } else if (i + j) % 2 == 0 {
-                push(ElementKind::Tri3, vec![a, b, c]);
-                push(ElementKind::Tri3, vec![a, c, d]);
-            } else {
-                push(ElementKind::Tri3, vec![a, b, d]);
-                push(ElementKind::Tri3, vec![b, c, d]);
-            }
-        }
-    }
+    let alu = Material::isotropic(1, "ALU", 70e9, 0.33, 2700.0);
+    let mut model = shell_grid(N, N, tris, T, alu, |s, r| [A * s, B * r, 0.0]);
     // simply supported edges; in-plane: u = 0 along x = 0, v = 0 at the origin (the plate
     // contracts freely across)
     for k in 0..model.nodes.len() {
@@ -89,6 +43,14 @@ fn plate(tris: bool) -> Model {
         }
     }
     model
+}
+
+fn kind(tris: bool) -> &'static str {
+    if tris {
+        "triangles"
+    } else {
+        "quads"
+    }
 }
 
 /// N_x (force per length) along the edge x = A: consistent nodal forces of a uniform traction.
@@ -158,19 +120,15 @@ fn simply_supported_plate_under_in_plane_force_matches_closed_form() {
                     );
                 }
             }
-            let w = eigenvalues(&pre.k_t, &b.red.m)[0];
-            let got = (w / w0).sqrt();
-            let want = (1.0 + ratio).sqrt();
-            let err = (got - want) / want;
-            eprintln!(
-                "SS plate {} {N}×{N}: N_x/N_cr = {ratio:+}: f/f0 = {got:.6}, closed form \
-                 {want:.6}, rel. error {err:+.2e}",
-                if tris { "triangles" } else { "quads" }
-            );
+            let got = (eigenvalues(&pre.k_t, &b.red.m)[0] / w0).sqrt();
             // measured at 24×24: quads ≤ 5.7e-4, triangles ≤ 2.1e-3 (at N_x = −0.9 N_cr, where
             // the ratio is most sensitive to the mesh's own N_cr)
-            let tol = if tris { 3e-3 } else { 1e-3 };
-            assert!(err.abs() < tol, "tris = {tris}, {ratio}: {got} vs {want}");
+            check_ratio(
+                &format!("SS plate {} {N}×{N}: N_x/N_cr = {ratio:+}", kind(tris)),
+                got,
+                (1.0 + ratio).sqrt(),
+                if tris { 3e-3 } else { 1e-3 },
+            );
         }
     }
 }
@@ -202,17 +160,7 @@ fn heated_plate_with_held_edges_matches_biaxial_closed_form() {
         let ratio = -0.5;
         let n = ratio * n_cr;
         let dt = -n * (1.0 - m.nu) / (m.e * T * alpha);
-        let thermal = Thermal {
-            delta_t: Temperature::Uniform(dt),
-            alpha: vec![alpha],
-        };
-        let case = PreloadCase {
-            thermal: Some(thermal.clone()),
-            ..Default::default()
-        };
-        let pre = preload(&b.system(), &case, &PreloadSpec::default()).unwrap();
-        let stresses =
-            element_stresses(&b.model, &b.asm.dofs, &b.spec, &pre.u, Some(&thermal)).unwrap();
+        let (pre, stresses) = heated(&b, vec![alpha], dt);
         for (e, s) in &stresses {
             let ElementStress::Shell(res) = s else {
                 panic!("{s:?}")
@@ -222,16 +170,15 @@ fn heated_plate_with_held_edges_matches_biaxial_closed_form() {
                 assert!(dev < 1e-8 * n.abs(), "element {e}: {r:?} vs N = {n}");
             }
         }
-        let w = eigenvalues(&pre.k_t, &b.red.m)[0];
-        let got = (w / w0).sqrt();
-        let want = (1.0 + ratio).sqrt();
-        let err = (got - want) / want;
-        eprintln!(
-            "heated SS plate {} {N}×{N}: N/(D k²) = {ratio:+} (ΔT = {dt:.3} K): f/f0 = {got:.6}, \
-             closed form {want:.6}, rel. error {err:+.2e}",
-            if tris { "triangles" } else { "quads" }
+        let got = (eigenvalues(&pre.k_t, &b.red.m)[0] / w0).sqrt();
+        check_ratio(
+            &format!(
+                "heated SS plate {} {N}×{N}: N/(D k²) = {ratio:+} (ΔT = {dt:.3} K)",
+                kind(tris)
+            ),
+            got,
+            (1.0 + ratio).sqrt(),
+            if tris { 3e-3 } else { 1e-3 },
         );
-        let tol = if tris { 3e-3 } else { 1e-3 };
-        assert!(err.abs() < tol, "tris = {tris}: {got} vs {want}");
     }
 }

@@ -10,13 +10,13 @@ mod preload_support;
 
 use std::collections::HashMap;
 
-use flexbody::fe::geometric::{element_stresses, ElementStress, Temperature, Thermal};
+use flexbody::fe::geometric::ElementStress;
 use flexbody::fe::preload::{buckling_factor, preload, PreloadCase, PreloadSpec};
 use flexbody::fe::{AssemblySpec, MassKind};
 use flexbody::model::generate::{block, BlockElement, BlockSpec};
 use flexbody::model::load::{face_nodes, solid_faces};
 use flexbody::model::{Element, ElementKind, Load, LoadPart, Material, Model, Node};
-use preload_support::{eigenvalues, hold, Built};
+use preload_support::{check_ratio, eigenvalues, frequency_ratio, heated, hold, Built};
 use std::f64::consts::PI;
 
 const L: f64 = 1.0;
@@ -141,27 +141,26 @@ fn check_column(name: &str, model: Model) {
     let p_e = PI * PI * m.e * (B * H.powi(3) / 12.0) / (L * L);
     let p_cr = p_e / (1.0 + p_e / (5.0 / 6.0 * m.g * B * H));
     let w0 = eigenvalues(&b.red.k, &b.red.m)[0];
+    let case = |ratio: f64| PreloadCase {
+        loads: vec![end_pressure(&b.model, ratio * p_cr / (B * H))],
+        ..Default::default()
+    };
+    let pre = preload(&b.system(), &case(0.5), &PreloadSpec::default()).unwrap();
+    let l1 = buckling_factor(&b.system(), &pre, faer::Par::Seq)
+        .unwrap()
+        .unwrap();
+    eprintln!(
+        "{name}: the mesh's own P_cr = {:.6} × the shear-corrected Euler load",
+        0.5 * l1
+    );
     for ratio in [0.5, 0.9, -1.0] {
-        let case = PreloadCase {
-            loads: vec![end_pressure(&b.model, ratio * p_cr / (B * H))],
-            ..Default::default()
-        };
-        let pre = preload(&b.system(), &case, &PreloadSpec::default()).unwrap();
-        if ratio == 0.5 {
-            let l1 = buckling_factor(&b.system(), &pre, faer::Par::Seq)
-                .unwrap()
-                .unwrap();
-            eprintln!(
-                "{name}: the mesh's own P_cr = {:.6} × the shear-corrected Euler load",
-                0.5 * l1
-            );
-        }
-        let w = eigenvalues(&pre.k_t, &b.red.m)[0];
-        let got = (w / w0).sqrt();
-        let want = (1.0 - ratio).sqrt();
-        let err = (got - want) / want;
-        eprintln!("{name}: P/P_cr = {ratio:+}: f/f0 = {got:.6}, closed form {want:.6}, rel. error {err:+.2e}");
-        assert!(err.abs() < 1e-3, "{name} P/P_cr = {ratio}: {got} vs {want}");
+        let got = frequency_ratio(&b, &case(ratio), w0).unwrap();
+        check_ratio(
+            &format!("{name}: P/P_cr = {ratio:+}"),
+            got,
+            (1.0 - ratio).sqrt(),
+            1e-3,
+        );
     }
 }
 
@@ -211,19 +210,9 @@ fn heated_bar_between_rollers_carries_the_thermal_stress() {
     }
     let b = Built::new(m, AssemblySpec::default());
     let (alpha, dt) = (1.2e-5, 10.0);
-    let thermal = Thermal {
-        delta_t: Temperature::Uniform(dt),
-        alpha: vec![alpha],
-    };
-    let case = PreloadCase {
-        thermal: Some(thermal.clone()),
-        ..Default::default()
-    };
-    let pre = preload(&b.system(), &case, &PreloadSpec::default()).unwrap();
+    let (pre, stresses) = heated(&b, vec![alpha], dt);
     assert_eq!(pre.rigid_modes, 0);
     let want = -210e9 * alpha * dt;
-    let stresses =
-        element_stresses(&b.model, &b.asm.dofs, &b.spec, &pre.u, Some(&thermal)).unwrap();
     let mut worst = 0.0f64;
     for (_, s) in &stresses {
         let ElementStress::Solid(points) = s else {

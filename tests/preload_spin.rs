@@ -27,9 +27,9 @@ use flexbody::fe::preload::{
     modal_geometric_stiffness, preload, spin_softening, PreloadCase, PreloadSpec, Spin,
 };
 use flexbody::fe::{AssemblySpec, BeamTheory, MassKind};
-use flexbody::model::{BeamSection, Element, ElementKind, Model, Node, Property, Section};
+use flexbody::model::{BeamSection, ElementKind, Section};
 use flexbody::solve::sparse_ops;
-use preload_support::{eigenvalues, hold, lowest, Built};
+use preload_support::{eigenvalues, hold, lowest, straight_line, Built};
 
 const L: f64 = 2.0;
 const W: f64 = 0.04; // along y: in-plane (lead-lag) bending uses I₁ = H W³/12
@@ -63,42 +63,25 @@ enum Plane {
 }
 
 fn cantilever(plane: Plane) -> Built {
-    let mut model = Model {
-        source: "spinning cantilever".into(),
-        ..Model::default()
-    };
-    model.materials.push(steel());
-    model.properties.push(Property {
-        id: 1,
-        name: "BLADE".into(),
-        material: 0,
-        section: Section::Beam(BeamSection {
-            area: W * H,
-            i1: H * W.powi(3) / 12.0,
-            i2: W * H.powi(3) / 12.0,
-            i12: 0.0,
-            j: 0.229 * W * H.powi(3),
-            shear_factors: None,
-            nsm: 0.0,
-            shape: None,
-        }),
+    let section = Section::Beam(BeamSection {
+        area: W * H,
+        i1: H * W.powi(3) / 12.0,
+        i2: W * H.powi(3) / 12.0,
+        i12: 0.0,
+        j: 0.229 * W * H.powi(3),
+        shear_factors: None,
+        nsm: 0.0,
+        shape: None,
     });
-    for i in 0..=NE {
-        model.nodes.push(Node {
-            id: i as u64 + 1,
-            x: [L * i as f64 / NE as f64, 0.0, 0.0],
-            displacement_frame: None,
-        });
-    }
-    for e in 0..NE {
-        model.elements.push(Element {
-            id: e as u64 + 1,
-            kind: ElementKind::Beam2,
-            nodes: vec![e, e + 1],
-            property: Some(0),
-            orientation: Some([0.0, 1.0, 0.0]),
-        });
-    }
+    let mut model = straight_line(
+        NE,
+        [0.0; 3],
+        [L, 0.0, 0.0],
+        ElementKind::Beam2,
+        section,
+        steel(),
+        [0.0, 1.0, 0.0],
+    );
     hold(&mut model, 0, "123456");
     for n in 1..=NE {
         hold(

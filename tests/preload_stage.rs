@@ -3,7 +3,8 @@
 //! * a free beam spinning about its midpoint: inertia relief against its six rigid-body modes,
 //!   the axial force against the closed form N(s) = ½ρAΩ²(L²/4 − s²) (element means);
 //! * gravity on a free body is balanced by its inertia: no stress;
-//! * `Support::Held` on a free body, and a mechanism, are errors naming what is wrong;
+//! * `Support::Held` on a free body, a mechanism and a load the importer could not use are
+//!   errors naming what is wrong;
 //! * the file's unit inertia terms: Σ_{i≤j} ω_iω_j K̂_G,ij equals K̂_G of the spin ω on a free
 //!   body (linearity of the preload, the fields' decomposition).
 
@@ -18,10 +19,8 @@ use flexbody::fe::preload::{
     PreloadError, PreloadSpec, Spin, Support,
 };
 use flexbody::fe::{AssemblySpec, MassKind};
-use flexbody::model::{
-    BeamSection, Element, ElementKind, Load, LoadPart, Model, Node, Property, Section,
-};
-use preload_support::{hold, lowest, nodal_load, Built};
+use flexbody::model::{BeamSection, ElementKind, Load, LoadPart, Model, Section};
+use preload_support::{hold, lowest, nodal_load, straight_line, Built};
 
 const L: f64 = 2.0;
 const NE: usize = 40;
@@ -29,22 +28,18 @@ const AREA: f64 = 8e-4;
 
 /// A free beam along x centred at the origin (rod: `rod` elements instead of beams).
 fn free_beam(rod: bool) -> Model {
-    let mut model = Model {
-        source: "free beam".into(),
-        ..Model::default()
-    };
-    model.materials.push(steel());
-    model.properties.push(Property {
-        id: 1,
-        name: "B".into(),
-        material: 0,
-        section: if rod {
+    let (kind, section) = if rod {
+        (
+            ElementKind::Rod2,
             Section::Rod {
                 area: AREA,
                 j: 1e-8,
                 nsm: 0.0,
-            }
-        } else {
+            },
+        )
+    } else {
+        (
+            ElementKind::Beam2,
             Section::Beam(BeamSection {
                 area: AREA,
                 i1: 1e-8,
@@ -54,30 +49,18 @@ fn free_beam(rod: bool) -> Model {
                 shear_factors: None,
                 nsm: 0.0,
                 shape: None,
-            })
-        },
-    });
-    for i in 0..=NE {
-        model.nodes.push(Node {
-            id: i as u64 + 1,
-            x: [L * (i as f64 / NE as f64 - 0.5), 0.0, 0.0],
-            displacement_frame: None,
-        });
-    }
-    for e in 0..NE {
-        model.elements.push(Element {
-            id: e as u64 + 1,
-            kind: if rod {
-                ElementKind::Rod2
-            } else {
-                ElementKind::Beam2
-            },
-            nodes: vec![e, e + 1],
-            property: Some(0),
-            orientation: Some([0.0, 1.0, 0.0]),
-        });
-    }
-    model
+            }),
+        )
+    };
+    straight_line(
+        NE,
+        [-0.5 * L, 0.0, 0.0],
+        [0.5 * L, 0.0, 0.0],
+        kind,
+        section,
+        steel(),
+        [0.0, 1.0, 0.0],
+    )
 }
 
 fn consistent() -> AssemblySpec {
@@ -220,4 +203,19 @@ fn unit_angular_velocity_terms_combine_into_the_spin_term_on_a_free_body() {
         diff / scale
     );
     assert!(scale > 0.0 && diff < 1e-10 * scale);
+}
+
+#[test]
+fn a_load_the_importer_could_not_use_is_refused_not_dropped() {
+    let b = Built::new(free_beam(false), consistent());
+    let mut load = nodal_load(3, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    load.problem = Some("deck.bdf:12 PLOAD4 with a non-uniform pressure".into());
+    let case = PreloadCase {
+        loads: vec![load],
+        ..Default::default()
+    };
+    let err = preload(&b.system(), &case, &PreloadSpec::default()).unwrap_err();
+    eprintln!("{err}");
+    assert!(matches!(err, PreloadError::Load { .. }), "{err}");
+    assert!(err.to_string().contains("deck.bdf:12"));
 }

@@ -15,7 +15,7 @@
 //!   Plesha & Witt, *Concepts and Applications of FEA*, 4th ed. (2002) §18.2).
 //! * Thermal load: ±EA αΔT e_x at the two nodes.
 
-use crate::fe::elements::beam::{local_frame, to_basic, BeamProps};
+use crate::fe::elements::beam::{local_frame, shear_parameters, to_basic, BeamProps};
 use crate::fe::elements::{ElementError, Isotropic, Xyz};
 use crate::fe::quadrature::gauss_legendre;
 
@@ -82,17 +82,7 @@ pub fn beam_geometric_stiffness(
 ) -> Result<Vec<f64>, ElementError> {
     let v = v.ok_or(ElementError::BadOrientation { v: [0.0; 3] })?;
     let (r, l) = local_frame(x, Some(v))?;
-    let phi = |i: f64, ks: f64| {
-        if ks > 0.0 {
-            12.0 * mat.e * i / (mat.g * ks * p.area * l * l)
-        } else {
-            0.0
-        }
-    };
-    let (phy, phz) = match p.shear {
-        Some([ky, kz]) => (phi(p.iz, ky), phi(p.iy, kz)),
-        None => (0.0, 0.0),
-    };
+    let (phy, phz) = shear_parameters(l, mat, p);
     let mut k = [[0.0; 12]; 12];
     for (dofs, ph, s) in [([1, 5, 7, 11], phy, 1.0), ([2, 4, 8, 10], phz, -1.0)] {
         let m = slope_products(l, ph);

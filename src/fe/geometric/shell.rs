@@ -198,7 +198,11 @@ impl ShellElement {
                     add(pt.w, &pt.g, res);
                 }
             }
-            ShellKind::Tri { area, gl } => add(*area, gl, &n[0]),
+            ShellKind::Tri { area, gl } => {
+                if let Some(res) = n.first() {
+                    add(*area, gl, res);
+                }
+            }
         }
         shell::apply_warping(&mut k, &self.h);
         shell::to_basic(&k, nn, &self.axes)

@@ -70,6 +70,19 @@ pub enum PreloadError {
     /// A factorization or a small eigenproblem failed.
     #[error("preload: {0}")]
     Solve(#[from] SolveError),
+    /// A load of the case cannot be applied (its `problem`, e.g. a card the importer could not
+    /// use): refused, never dropped.
+    #[error("{source_file}: preload load {name} ({origin}) cannot be applied: {problem}")]
+    Load {
+        /// Model file.
+        source_file: String,
+        /// The load's name.
+        name: String,
+        /// Where it came from.
+        origin: String,
+        /// Why it cannot be used.
+        problem: String,
+    },
     /// The static problem is singular away from the rigid-body motions: a mechanism.
     #[error(
         "{source_file}: the preload's static problem is singular at node {node} dof {dof}: the \
@@ -200,6 +213,14 @@ pub struct Preload {
 pub fn load_vector(sys: &System, case: &PreloadCase) -> Result<Vec<f64>, PreloadError> {
     let (model, asm) = (sys.model, sys.assembled);
     let mut f = vec![0.0; asm.dofs.n_dofs];
+    if let Some(l) = case.loads.iter().find(|l| l.problem.is_some()) {
+        return Err(PreloadError::Load {
+            source_file: model.source.clone(),
+            name: l.name.clone(),
+            origin: l.source.clone(),
+            problem: l.problem.clone().unwrap_or_default(),
+        });
+    }
     if !case.loads.is_empty() {
         let lv = super::loads::load_vectors(model, &asm.dofs, &asm.m, &case.loads)?;
         for j in 0..lv.ncols() {
@@ -251,6 +272,25 @@ pub fn static_displacements(
     Ok((red.expand(u_r.as_ref()), rigid, support))
 }
 
+/// Column `j` of the static displacements `u` and the physical K_G of its stress (with the
+/// case's thermal strain).
+fn case_geometric_stiffness(
+    sys: &System,
+    u: &Mat<f64>,
+    j: usize,
+    case: &PreloadCase,
+) -> Result<(Vec<f64>, SparseColMat<usize, f64>), PreloadError> {
+    let uj: Vec<f64> = (0..u.nrows()).map(|i| u[(i, j)]).collect();
+    let kg = geometric::geometric_stiffness(
+        sys.model,
+        &sys.assembled.dofs,
+        sys.assembly,
+        &uj,
+        case.thermal.as_ref(),
+    )?;
+    Ok((uj, kg))
+}
+
 /// The preload of `case` (module doc): static solve, K_G(σ₀), K_T and its check.
 pub fn preload(
     sys: &System,
@@ -258,14 +298,7 @@ pub fn preload(
     spec: &PreloadSpec,
 ) -> Result<Preload, PreloadError> {
     let (u, rigid_modes, support) = static_displacements(sys, std::slice::from_ref(case), spec)?;
-    let u: Vec<f64> = (0..u.nrows()).map(|i| u[(i, 0)]).collect();
-    let kg_phys = geometric::geometric_stiffness(
-        sys.model,
-        &sys.assembled.dofs,
-        sys.assembly,
-        &u,
-        case.thermal.as_ref(),
-    )?;
+    let (u, kg_phys) = case_geometric_stiffness(sys, &u, 0, case)?;
     let red = sys.reduced;
     let kg = sparse_ops::congruence(red.t.as_ref(), kg_phys.as_ref(), spec.par)?;
     let k_t = sparse_ops::add_scaled(red.k.as_ref(), kg.as_ref(), 1.0)?;
@@ -279,6 +312,19 @@ pub fn preload(
     })
 }
 
+/// The free part A[free, free] (A itself without a support).
+fn free_part(
+    a: &SparseColMat<usize, f64>,
+    support: &[usize],
+    free: &[usize],
+) -> Result<SparseColMat<usize, f64>, SolveError> {
+    if support.is_empty() {
+        Ok(a.clone())
+    } else {
+        sparse_ops::submatrix(a.as_ref(), free, free)
+    }
+}
+
 /// The buckling check (module doc): K_T (support dofs held) must be positive definite; if not,
 /// [`PreloadError::Buckling`] with the lowest buckling factor.
 pub fn check_stability(
@@ -290,18 +336,15 @@ pub fn check_stability(
 ) -> Result<(), PreloadError> {
     let red = sys.reduced;
     let free = crate::reduce::complement(support, k_t.nrows());
-    let restrict = |a: &SparseColMat<usize, f64>| -> Result<_, SolveError> {
-        if support.is_empty() {
-            Ok(a.clone())
-        } else {
-            sparse_ops::submatrix(a.as_ref(), &free, &free)
-        }
-    };
-    let k_t_ff = restrict(k_t)?;
+    let k_t_ff = free_part(k_t, support, &free)?;
     match SparseLlt::factor(k_t_ff.as_ref(), None, par) {
         Ok(_) => Ok(()),
         Err(SolveError::NonPositivePivot { dof }) => {
-            let factor = buckling::lowest_buckling_factor(&restrict(&red.k)?, &restrict(kg)?, par)
+            let (k, kg) = (
+                free_part(&red.k, support, &free)?,
+                free_part(kg, support, &free)?,
+            );
+            let factor = buckling::lowest_buckling_factor(&k, &kg, par)
                 .ok()
                 .flatten();
             let (node, comp) = (free.get(dof))
@@ -325,9 +368,10 @@ pub fn buckling_factor(
     preload: &Preload,
     par: Par,
 ) -> Result<Option<f64>, PreloadError> {
-    let free = crate::reduce::complement(&preload.support, preload.k_t.nrows());
-    let k = sparse_ops::submatrix(sys.reduced.k.as_ref(), &free, &free)?;
-    let kg = sparse_ops::submatrix(preload.kg.as_ref(), &free, &free)?;
+    let support = &preload.support;
+    let free = crate::reduce::complement(support, preload.k_t.nrows());
+    let k = free_part(&sys.reduced.k, support, &free)?;
+    let kg = free_part(&preload.kg, support, &free)?;
     Ok(buckling::lowest_buckling_factor(&k, &kg, par)?)
 }
 
@@ -345,14 +389,7 @@ pub fn modal_geometric_stiffness(
         .iter()
         .enumerate()
         .map(|(j, case)| {
-            let uj: Vec<f64> = (0..u.nrows()).map(|i| u[(i, j)]).collect();
-            let kg = geometric::geometric_stiffness(
-                sys.model,
-                &sys.assembled.dofs,
-                sys.assembly,
-                &uj,
-                case.thermal.as_ref(),
-            )?;
+            let (_, kg) = case_geometric_stiffness(sys, &u, j, case)?;
             let kphi = sparse_ops::spmm(kg.as_ref(), phi.as_ref());
             let g = phi.transpose() * &kphi;
             Ok(Mat::from_fn(g.nrows(), g.ncols(), |a, b| {
