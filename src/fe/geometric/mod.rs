@@ -8,8 +8,8 @@
 //!   K_G = ∫ Gᵀ S G dV with the 3×3 stress at the stiffness integration points.
 //! * [`shell`] — MITC4 quadrilateral, DKT/DKMT triangle: membrane resultants N on the gradients
 //!   of the deflection and of the in-plane displacements.
-//! * [`line`] — beams (consistent beam-column K_G, Euler–Bernoulli or Timoshenko) and rods
-//!   (N/L (I − e eᵀ)).
+//! * [`line`](mod@line) — beams (consistent beam-column K_G, Euler–Bernoulli or Timoshenko)
+//!   and rods (N/L (I − e eᵀ)).
 //!
 //! The stress is linear in (u₀, ΔT), so K_G is too: K_G(s·u₀) = s K_G(u₀). Elements without a
 //! formulation here (quadratic shells, prism15 — which the assembler refuses too) are an error,
