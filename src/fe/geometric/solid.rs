@@ -59,7 +59,8 @@ fn compatible<const N: usize>(
 
 impl SolidElement {
     /// The element of `kind` through the points `x` (model node order), with incompatible modes
-    /// for hex8 and prism6 when `incompatible` (Nastran CHEXA/CPENTA, `ModelParams::solid_bubbles`).
+    /// for hex8 and prism6 when `incompatible` (Nastran CHEXA/CPENTA,
+    /// `ModelParams::solid_bubbles`).
     pub fn new(
         kind: ElementKind,
         x: &[Xyz],

@@ -115,7 +115,10 @@ pub enum PreloadError {
          definite at node {node} dof {dof}): the part buckles under it{}; the modes of a buckled \
          part are not defined — reduce the preload below the first buckling load",
         match factor {
-            Some(l) => format!(" (lowest buckling factor λ₁ = {l:.6}: λ₁ × the preload is the first buckling load)"),
+            Some(l) => format!(
+                " (lowest buckling factor λ₁ = {l:.6}: λ₁ × the preload is the first buckling \
+                 load)"
+            ),
             None => String::new(),
         }
     )]
