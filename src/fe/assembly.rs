@@ -286,7 +286,12 @@ pub fn element_matrices(
 }
 
 /// Rotate an element matrix into the nodes' displacement frames: A' = T A Tᵀ, T = diag(R_a).
-fn to_frames(a: &mut [f64], nodes: &[usize], dpn: usize, frames: &[Option<[[f64; 3]; 3]>]) {
+pub(crate) fn to_frames(
+    a: &mut [f64],
+    nodes: &[usize],
+    dpn: usize,
+    frames: &[Option<[[f64; 3]; 3]>],
+) {
     let nd = nodes.len() * dpn;
     let blocks: Vec<Option<&[[f64; 3]; 3]>> = nodes
         .iter()

@@ -12,6 +12,9 @@
 //! * [`shell_section`] — shell section + materials → element shell constants.
 //! * [`assembly::assemble`] — parallel assembly into faer `SparseColMat` (full symmetric).
 //! * [`constraints::eliminate`] — RBE2/RBE3/SPC elimination, keeps T for shape recovery.
+//! * [`geometric`] — geometric (initial-stress) stiffness K_G(σ₀) of every element family.
+//! * [`preload`] — the preload stage: static solve of a preload case, K_T = K + K_G, the
+//!   buckling check, the modal geometric-stiffness terms.
 
 // Index loops mirror the subscripts of the formulas they implement.
 #![allow(clippy::needless_range_loop)]
@@ -20,9 +23,11 @@ pub mod assembly;
 pub mod constraints;
 pub mod dofs;
 pub mod elements;
+pub mod geometric;
 pub mod loads;
 pub mod mass;
 pub mod pattern;
+pub mod preload;
 pub mod quadrature;
 pub mod shell_section;
 

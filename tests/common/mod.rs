@@ -8,7 +8,9 @@ use std::process::Command;
 
 use faer::sparse::SparseColMat;
 use faer::Mat;
-use flexbody::model::{Material, Model};
+use flexbody::model::{
+    Element, ElementKind, Material, Model, Node, Property, Section, ShellSection,
+};
 
 /// A file of the CalculiX reference cases the repository holds (`fixtures/reference/`, made by
 /// `fixtures/reference/regenerate.py` from the decks beside them).
@@ -127,4 +129,62 @@ pub fn python_has(module: &str) -> bool {
         .args(["-c", &format!("import {module}")])
         .output()
         .is_ok_and(|o| o.status.success())
+}
+
+/// Structured n×m mesh of the map (s, r) ∈ [0,1]² → `at(s, r)`; quads, or each quad split
+/// into two triangles along alternating diagonals.
+pub fn shell_grid(
+    n: usize,
+    m: usize,
+    tris: bool,
+    t: f64,
+    mat: Material,
+    at: impl Fn(f64, f64) -> [f64; 3],
+) -> Model {
+    let mut model = Model {
+        source: "generated".into(),
+        ..Model::default()
+    };
+    for j in 0..=m {
+        for i in 0..=n {
+            model.nodes.push(Node {
+                id: (j * (n + 1) + i + 1) as u64,
+                x: at(i as f64 / n as f64, j as f64 / m as f64),
+                displacement_frame: None,
+            });
+        }
+    }
+    model.materials.push(mat);
+    model.properties.push(Property {
+        id: 1,
+        name: "SHELL".into(),
+        material: 0,
+        section: Section::Shell(ShellSection::homogeneous(t, 0)),
+    });
+    let idx = |i: usize, j: usize| j * (n + 1) + i;
+    let mut push = |kind, nodes: Vec<usize>| {
+        let id = model.elements.len() as u64 + 1;
+        model.elements.push(Element {
+            id,
+            kind,
+            nodes,
+            property: Some(0),
+            orientation: None,
+        });
+    };
+    for j in 0..m {
+        for i in 0..n {
+            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
+            if !tris {
+                push(ElementKind::Quad4, vec![a, b, c, d]);
+            } else if (i + j) % 2 == 0 {
+                push(ElementKind::Tri3, vec![a, b, c]);
+                push(ElementKind::Tri3, vec![a, c, d]);
+            } else {
+                push(ElementKind::Tri3, vec![a, b, d]);
+                push(ElementKind::Tri3, vec![b, c, d]);
+            }
+        }
+    }
+    model
 }
