@@ -24,11 +24,10 @@ pub(crate) struct LoadCards<'a> {
     pub cards: Vec<&'a Card>,
 }
 
-fn cc<'a>(card: &'a Card, files: &'a [String]) -> C<'a> {
-    C {
-        card,
-        file: &files[card.loc.file as usize],
-    }
+/// Reader of FORCE, MOMENT, GRAV, PLOAD4 and LOAD: kept for [`resolve`].
+pub(super) fn card<'a>(d: &mut super::bulk::Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    d.loads.cards.push(g.card);
+    Ok(())
 }
 
 /// A direction given in coordinate system `cid` (0 = basic) → basic.
@@ -220,7 +219,7 @@ pub(crate) fn resolve(
     };
     let mut problems: BTreeMap<u64, String> = BTreeMap::new();
     for &card in &cards.cards {
-        let g = cc(card, files);
+        let g = C::new(card, files);
         let name = card.name.as_str();
         if name == "LOAD" {
             combos.push(card);
@@ -254,7 +253,7 @@ pub(crate) fn resolve(
         })
         .collect();
     for card in combos {
-        let g = cc(card, files);
+        let g = C::new(card, files);
         let sid = g.id(0, "SID")?;
         if let Some(other) = loads.get(&sid) {
             return Err(g.err(

@@ -1,0 +1,300 @@
+//! Constraint and dof-set cards: SPC, SPC1, SPCADD (applied when the case control selects
+//! them), ASET/ASET1/BSET/BSET1 (interface dofs), QSET/QSET1 (the component-mode count).
+//!
+//! * `SPC SID G1 C1 D1 G2 C2 D2`; `SPC1 SID C G1 G2 … | G1 THRU G2`; `SPCADD SID S1 S2 …`.
+//!   Every set becomes a node set `SPC_<sid>`, selected or not (the reference `.bdf` files
+//!   write one SPC1 per named node set); only the set `SPC = n` selects is applied (MSC QRG,
+//!   "Case Control": no `SPC` command, no SPC set).
+//! * `ASET ID1 C1 ID2 C2 …`, `ASET1 C G1 G2 … | G1 THRU G2` (BSET, QSET alike).
+
+use std::collections::BTreeMap;
+
+use super::bulk::Bulk;
+use super::case_control::{CaseControl, Effective};
+use super::fields::C;
+use super::lex::Card;
+use crate::import::error::{parse_err, ImportError};
+use crate::model::{ConstraintSource, DofMask, InterfaceDofs, Spc};
+
+/// SPCADD: (SID, [(set id, field index)], card).
+type SpcAdd<'a> = (u64, Vec<(u64, usize)>, &'a Card);
+
+/// The raw records of the set cards.
+#[derive(Default)]
+pub(super) struct SetCards<'a> {
+    /// SPC/SPC1 set id → (node, components, card).
+    pub spc: BTreeMap<u64, Vec<(usize, DofMask, &'a Card)>>,
+    /// SPCADD: (SID, [(set id, field index)], card).
+    pub spcadd: Vec<SpcAdd<'a>>,
+    /// How many ASET/ASET1/BSET/BSET1 cards were read, by card.
+    pub aset_cards: BTreeMap<&'static str, usize>,
+    /// QSET/QSET1 dofs.
+    pub qset: Vec<(usize, DofMask)>,
+    /// How many QSET/QSET1 cards were read, by card.
+    pub qset_cards: BTreeMap<&'static str, usize>,
+}
+
+/// Reader of SPC.
+pub(super) fn spc<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let sid = g.id(0, "SID")?;
+    for k in [1, 4] {
+        if g.text(k).is_empty() {
+            continue;
+        }
+        let n = d.node(g, k, g.id(k, "G")?)?;
+        let m =
+            DofMask::from_digits(g.text(k + 1)).ok_or_else(|| g.err(k + 1, "bad dof digits"))?;
+        if g.real_or(k + 2, 0.0)? != 0.0 {
+            return Err(g.err(k + 2, "enforced displacement not supported"));
+        }
+        d.sets.spc.entry(sid).or_default().push((n, m, g.card));
+    }
+    Ok(())
+}
+
+/// Reader of SPC1 (ids of a THRU range that name no grid are skipped).
+pub(super) fn spc1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let sid = g.id(0, "SID")?;
+    let m = DofMask::from_digits(g.text(1)).ok_or_else(|| g.err(1, "bad dof digits"))?;
+    let thru = (2..g.card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
+    for (id, k) in g.id_list(2, &d.thru)? {
+        match d.nodes.get(id) {
+            Some(n) => d.sets.spc.entry(sid).or_default().push((n, m, g.card)),
+            None if thru => {}
+            None => return Err(g.err(k, format!("references unknown node {id}"))),
+        }
+    }
+    Ok(())
+}
+
+/// Reader of SPCADD.
+pub(super) fn spcadd<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let entry = (g.id(0, "SID")?, g.id_list(1, &d.thru)?, g.card);
+    d.sets.spcadd.push(entry);
+    Ok(())
+}
+
+/// Reader of ASET, BSET and QSET (pairs of grid and components).
+pub(super) fn aset<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let qset = g.card.name == "QSET";
+    let mut k = 0;
+    while !g.text(k).is_empty() {
+        let n = d.node(g, k, g.id(k, "G")?)?;
+        let m = DofMask::from_digits(g.text(k + 1))
+            .filter(|m| m.0 != 0)
+            .ok_or_else(|| g.err(k + 1, "bad dof digits"))?;
+        if qset {
+            d.sets.qset.push((n, m));
+        } else {
+            d.b.model.interface.push(InterfaceDofs { node: n, dofs: m });
+        }
+        k += 2;
+    }
+    d.sets.count_card(&g.card.name);
+    Ok(())
+}
+
+/// Reader of ASET1, BSET1 and QSET1 (components, then grids; ids of a THRU range that name no
+/// grid are skipped).
+pub(super) fn aset1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let qset = g.card.name == "QSET1";
+    let m = DofMask::from_digits(g.text(0))
+        .filter(|m| m.0 != 0)
+        .ok_or_else(|| g.err(0, "bad dof digits"))?;
+    let thru = (1..g.card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
+    for (id, k) in g.id_list(1, &d.thru)? {
+        let n = match d.nodes.get(id) {
+            Some(n) => n,
+            None if thru => continue,
+            None => return Err(g.err(k, format!("references unknown node {id}"))),
+        };
+        if qset {
+            d.sets.qset.push((n, m));
+        } else {
+            d.b.model.interface.push(InterfaceDofs { node: n, dofs: m });
+        }
+    }
+    d.sets.count_card(&g.card.name);
+    Ok(())
+}
+
+impl SetCards<'_> {
+    fn count_card(&mut self, name: &str) {
+        let (key, to) = match name {
+            "ASET" => ("ASET", &mut self.aset_cards),
+            "ASET1" => ("ASET1", &mut self.aset_cards),
+            "BSET" => ("BSET", &mut self.aset_cards),
+            "BSET1" => ("BSET1", &mut self.aset_cards),
+            "QSET" => ("QSET", &mut self.qset_cards),
+            _ => ("QSET1", &mut self.qset_cards),
+        };
+        *to.entry(key).or_default() += 1;
+    }
+}
+
+/// SPC sets into node sets `SPC_<sid>` and `deck.spc_sets`; the set the case control selects
+/// into `Model::spcs` with its sources; a note naming the sets that are not applied.
+pub(super) fn resolve_spc(
+    d: &mut Bulk,
+    case: &CaseControl,
+    effective: &Effective,
+) -> Result<(), ImportError> {
+    let files = d.files;
+    let sets = &d.sets;
+    let model = &mut d.b.model;
+    let mut node_sets = BTreeMap::new();
+    for (sid, list) in &sets.spc {
+        let mut ns: Vec<usize> = list.iter().map(|p| p.0).collect();
+        ns.sort_unstable();
+        ns.dedup();
+        node_sets.insert(format!("SPC_{sid}"), ns);
+    }
+    let mut spcadd_members: BTreeMap<u64, (Vec<u64>, &Card)> = BTreeMap::new();
+    for (sid, members, card) in &sets.spcadd {
+        let entry = spcadd_members.entry(*sid).or_insert((Vec::new(), card));
+        for &(s, k) in members {
+            if !sets.spc.contains_key(&s) {
+                return Err(C::new(card, files).err(k, format!("references unknown SPC set {s}")));
+            }
+            if !entry.0.contains(&s) {
+                entry.0.push(s);
+            }
+        }
+        let mut ns: Vec<usize> = entry
+            .0
+            .iter()
+            .flat_map(|s| sets.spc[s].iter().map(|p| p.0))
+            .collect();
+        ns.sort_unstable();
+        ns.dedup();
+        node_sets.insert(format!("SPC_{sid}"), ns);
+    }
+    for (sid, list) in &sets.spc {
+        model.deck.spc_sets.insert(
+            format!("SPC_{sid}"),
+            list.iter().map(|&(n, m, _)| (n, m)).collect(),
+        );
+    }
+    for (sid, (members, _)) in &spcadd_members {
+        let all = members
+            .iter()
+            .flat_map(|s| sets.spc[s].iter().map(|&(n, m, _)| (n, m)))
+            .collect();
+        model.deck.spc_sets.insert(format!("SPC_{sid}"), all);
+    }
+    let mut applied: Vec<u64> = Vec::new();
+    if let Some(sel) = effective.scope.spc {
+        let members = match spcadd_members.get(&sel.id) {
+            Some((m, _)) => m.clone(),
+            None if sets.spc.contains_key(&sel.id) => vec![sel.id],
+            None => {
+                return Err(parse_err(
+                    &files[sel.loc.file as usize],
+                    sel.loc.line as usize,
+                    format!("SPC = {}", sel.id),
+                    format!(
+                        "the case control selects SPC set {}, but the bulk data has no SPC, SPC1 or SPCADD with that id",
+                        sel.id
+                    ),
+                ))
+            }
+        };
+        for s in members {
+            applied.push(s);
+            for &(node, dofs, card) in &sets.spc[&s] {
+                let at = model.spcs.len();
+                model.spcs.push(Spc {
+                    node,
+                    dofs,
+                    set_id: sel.id,
+                });
+                match model.constraint_sources.last_mut() {
+                    Some(last)
+                        if !last.permanent
+                            && last.spcs.end == at
+                            && last.line == card.loc.line as usize
+                            && last.file == files[card.loc.file as usize] =>
+                    {
+                        last.spcs.end = at + 1;
+                    }
+                    _ => model.constraint_sources.push(ConstraintSource {
+                        card: card.name.clone(),
+                        id: if s == sel.id {
+                            format!("set {s}")
+                        } else {
+                            format!("set {s} (SPCADD {})", sel.id)
+                        },
+                        file: files[card.loc.file as usize].clone(),
+                        line: card.loc.line as usize,
+                        set: Some(format!("SPC_{s}")),
+                        spcs: at..at + 1,
+                        permanent: false,
+                    }),
+                }
+            }
+        }
+    }
+    let unselected: Vec<String> = sets
+        .spc
+        .keys()
+        .chain(spcadd_members.keys())
+        .filter(|s| !applied.contains(s) && effective.scope.spc.is_none_or(|x| x.id != **s))
+        .map(|s| format!("SPC_{s}"))
+        .collect();
+    if !unselected.is_empty() {
+        let why = if !case.present {
+            "the file has no case control (bare bulk data), so no SPC set is selected".to_owned()
+        } else {
+            match effective.scope.spc {
+                None => "the case control selects no SPC set (free-free)".to_owned(),
+                Some(s) => format!("the case control selects SPC = {}", s.id),
+            }
+        };
+        model.deck.notes.push(format!(
+            "{}: SPC sets {} in the bulk data are not applied: {why}; their nodes are node sets of these names (for --interface / --reference-conditions)",
+            files[0],
+            unselected.join(", ")
+        ));
+    }
+    model.node_sets = node_sets;
+    Ok(())
+}
+
+/// The deck's interface (ASET/BSET) description and QSET mode count.
+pub(super) fn resolve_dof_sets(d: &mut Bulk) {
+    let sets = &d.sets;
+    let model = &mut d.b.model;
+    if !sets.aset_cards.is_empty() {
+        let cards: Vec<String> = sets
+            .aset_cards
+            .iter()
+            .map(|(c, n)| format!("{n} {c}"))
+            .collect();
+        let mut ns: Vec<usize> = model.interface.iter().map(|i| i.node).collect();
+        ns.sort_unstable();
+        ns.dedup();
+        model.deck.interface_source = Some(format!(
+            "{} ({} dofs at {} nodes)",
+            cards.join(", "),
+            model
+                .interface
+                .iter()
+                .map(|i| i.dofs.0.count_ones() as usize)
+                .sum::<usize>(),
+            ns.len()
+        ));
+    }
+    if !sets.qset.is_empty() {
+        let cards: Vec<String> = sets
+            .qset_cards
+            .iter()
+            .map(|(c, n)| format!("{n} {c}"))
+            .collect();
+        let mut per_node: BTreeMap<usize, u8> = BTreeMap::new();
+        for (n, m) in &sets.qset {
+            *per_node.entry(*n).or_default() |= m.0;
+        }
+        let q = per_node.values().map(|m| m.count_ones() as usize).sum();
+        model.deck.qset_modes = Some((q, cards.join(", ")));
+    }
+}
