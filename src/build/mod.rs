@@ -281,6 +281,7 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
             material: spec.material.clone(),
             subcase: spec.subcase,
             shell_thickness: spec.thickness,
+            ..Default::default()
         },
     )?;
     let import_s = clock.elapsed().as_secs_f64();

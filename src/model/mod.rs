@@ -406,6 +406,9 @@ pub struct ModelParams {
     /// Nastran forms them for PSOLID ISOP blank (`fe::elements::solid_incompatible`); `false`:
     /// fully integrated (CalculiX/Abaqus C3D8, C3D6).
     pub solid_bubbles: bool,
+    /// Nastran `PARAM,K6ROT`: the drilling stiffness of CQUAD4/CTRIA3 shells is the penalty
+    /// γ_d = K6ROT·10⁻⁶·G t (`fe::elements::shell`); `None` = MSC's default 100.
+    pub k6rot: Option<f64>,
 }
 
 /// A whole FE model, resolved to dense indices.

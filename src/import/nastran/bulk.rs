@@ -1,7 +1,8 @@
 //! The bulk data of a deck, read in three passes: the geometry cards place the nodes; every
-//! other card goes through its reader in [`super::cards::CARDS`] into the raw records of its
-//! family; then one resolve pass per family builds the [`Model`] (ids → indices, coordinate
-//! systems → basic, WTMASS applied, the case control's selections).
+//! other card goes through its rule in the card table (`cards`) — honoured by its family's
+//! reader into raw records, a note, or refused (every refused card of the deck in one error);
+//! then one resolve pass per family builds the [`Model`] (ids → indices, coordinate systems →
+//! basic, WTMASS applied, the case control's selections).
 
 use std::collections::BTreeMap;
 
@@ -15,8 +16,8 @@ use super::properties::PropertyCards;
 use super::sets::SetCards;
 use super::solution::SolutionCards;
 use super::{cards, CardCounts};
-use crate::import::error::ImportError;
-use crate::import::text::{Builder, IdMap};
+use crate::import::error::{ImportError, RefusedCard};
+use crate::import::text::{Builder, IdMap, Loc};
 use crate::model::{ImportWarning, Model};
 
 /// What the card readers fill: the model under construction, the node map, and the raw records
@@ -32,8 +33,10 @@ pub(super) struct Bulk<'a> {
     pub coords: CoordIndex,
     /// How many ids `THRU` ranges may still expand to.
     pub thru: ThruBudget,
-    /// Cards (and `PARAM,NAME`s) not interpreted, with their counts.
-    pub unsupported: BTreeMap<String, usize>,
+    /// Cards not read because they cannot change the body: key → (reason, places).
+    pub notes: BTreeMap<String, (&'static str, Vec<Loc>)>,
+    /// Every refused card, in deck order.
+    pub refused: Vec<RefusedCard>,
     pub elements: ElementCards<'a>,
     pub properties: PropertyCards<'a>,
     pub masses: MassCards<'a>,
@@ -49,13 +52,61 @@ impl Bulk<'_> {
             .get(id)
             .ok_or_else(|| g.err(k, format!("references unknown node {id}")))
     }
+
+    /// Card `g` is not read because it cannot change the body, for `reason`.
+    pub(super) fn note(&mut self, g: &C, reason: &'static str) {
+        let entry = self
+            .notes
+            .entry(cards::key(g))
+            .or_insert_with(|| (reason, Vec::new()));
+        entry.1.push(g.card.loc);
+    }
+
+    /// Card `g` is refused, for `reason`.
+    pub(super) fn refuse(&mut self, g: &C, reason: impl Into<String>) {
+        self.refused.push(RefusedCard {
+            file: g.file.to_owned(),
+            line: g.card.loc.line as usize,
+            entity: if g.card.name.is_empty() {
+                "(a line without a card name)".to_owned()
+            } else {
+                g.entity()
+            },
+            key: cards::key(g),
+            reason: reason.into(),
+        });
+    }
+}
+
+/// At most this many places are listed per card type in a note or warning.
+const LISTED_PLACES: usize = 8;
+
+/// "3 CDAMP1 (a.bdf:12, 14; b.bdf:3)": the count and the first places, lines grouped by file.
+pub(super) fn places(key: &str, locs: &[Loc], files: &[String]) -> String {
+    let mut groups: Vec<(u32, Vec<String>)> = Vec::new();
+    for l in locs.iter().take(LISTED_PLACES) {
+        match groups.last_mut() {
+            Some((f, lines)) if *f == l.file => lines.push(l.line.to_string()),
+            _ => groups.push((l.file, vec![l.line.to_string()])),
+        }
+    }
+    let mut list: Vec<String> = groups
+        .iter()
+        .map(|(f, lines)| format!("{}:{}", files[*f as usize], lines.join(", ")))
+        .collect();
+    if locs.len() > LISTED_PLACES {
+        list.push("…".into());
+    }
+    format!("{} {key} ({})", locs.len(), list.join("; "))
 }
 
 /// Build the model from lexed cards; `subcase` picks the case-control subcase whose SPC and
-/// METHOD selections apply.
+/// METHOD selections apply; cards named in `ignore` are dropped on purpose (module
+/// `cards`: names or `PARAM:NAME`, case-insensitive).
 pub(crate) fn build(
     lexer: Lexer,
     subcase: Option<u64>,
+    ignore: &[String],
 ) -> Result<(Model, CardCounts), ImportError> {
     let Lexer {
         files,
@@ -71,27 +122,39 @@ pub(crate) fn build(
     b.model.deck.title = case.title.clone();
     b.model.deck.subcase = effective.subcase;
 
-    // Pass 1: the geometry cards place the nodes.
+    // Pass 1: cards dropped on purpose set aside; the geometry cards place the nodes.
+    let ignore: Vec<String> = ignore
+        .iter()
+        .map(|s| s.trim().to_ascii_uppercase().replacen(',', ":", 1))
+        .collect();
+    let mut ignored: BTreeMap<String, Vec<Loc>> = BTreeMap::new();
     let mut counts = CardCounts::new();
     let mut geometry = GeometryCards::default();
     let mut others: Vec<&Card> = Vec::new();
     for card in &all {
         *counts.entry(card.name.clone()).or_default() += 1;
-        match cards::rule(&card.name) {
+        let g = C::new(card, &files);
+        let key = cards::key(&g);
+        if ignore.iter().any(|i| *i == key || *i == card.name) {
+            ignored.entry(key).or_default().push(card.loc);
+            continue;
+        }
+        match cards::rule(&g) {
             Some(cards::Rule::Geometry) => geometry.take(card, &files)?,
             _ => others.push(card),
         }
     }
     let (coords, nodes) = super::geometry::place_nodes(&geometry, &files, &mut b)?;
 
-    // Pass 2: every other card through its reader.
+    // Pass 2: every other card through its rule.
     let mut d = Bulk {
         files: &files,
         b,
         nodes,
         coords,
         thru: ThruBudget::for_bytes(bytes),
-        unsupported: BTreeMap::new(),
+        notes: BTreeMap::new(),
+        refused: Vec::new(),
         elements: ElementCards::default(),
         properties: PropertyCards::default(),
         masses: MassCards::new(),
@@ -101,15 +164,24 @@ pub(crate) fn build(
     };
     for card in others {
         let g = C::new(card, &files);
-        match cards::rule(&card.name) {
+        match cards::rule(&g) {
             Some(cards::Rule::Read(read)) => read(&mut d, &g)?,
-            _ => *d.unsupported.entry(card.name.clone()).or_default() += 1,
+            Some(cards::Rule::Note(why)) => d.note(&g, why),
+            Some(cards::Rule::Refuse(why)) => d.refuse(&g, *why),
+            Some(cards::Rule::Geometry) | None => d.refuse(&g, cards::NOT_READ),
         }
     }
+    if !d.refused.is_empty() {
+        return Err(ImportError::Refused {
+            file: files[0].clone(),
+            cards: std::mem::take(&mut d.refused),
+        });
+    }
+    ignored_and_notes(&mut d, &ignored, &ignore);
 
     // Pass 3: resolve, family by family.
     d.b.resolve_element_nodes(&d.nodes)?;
-    super::elements::check_ids(&d)?;
+    super::elements::check_ids(&mut d)?;
     let pids = super::properties::resolve(&mut d)?;
     let element_sets = super::elements::assign_properties(&mut d, &pids)?;
     super::elements::orient(&mut d)?;
@@ -120,12 +192,6 @@ pub(crate) fn build(
     super::properties::warnings(&mut d);
     d.b.model.element_sets = element_sets;
     d.b.model.params.wtmass = d.solution.wtmass;
-    for (name, n) in std::mem::take(&mut d.unsupported) {
-        d.b.model.warnings.push(ImportWarning {
-            file: files[0].clone(),
-            message: format!("unsupported card {name} ignored ({n} cards)"),
-        });
-    }
     let elements = d.b.element_map()?;
     let load_sel = case.load_selections(effective.subcase);
     let mut b = d.b;
@@ -136,4 +202,41 @@ pub(crate) fn build(
     b.model.files = b.files.clone();
     b.record_element_sources();
     Ok((b.model, counts))
+}
+
+/// One warning per card type dropped on purpose (and per `ignore` name the deck does not
+/// have), one note per card type not read because it cannot change the body.
+fn ignored_and_notes(d: &mut Bulk, ignored: &BTreeMap<String, Vec<Loc>>, ignore: &[String]) {
+    let files = d.files;
+    let model = &mut d.b.model;
+    if !ignored.is_empty() {
+        let list: Vec<String> = ignored
+            .iter()
+            .map(|(k, locs)| places(k, locs, files))
+            .collect();
+        model.warnings.push(ImportWarning {
+            file: files[0].clone(),
+            message: format!(
+                "cards dropped on request (--ignore), whatever they carry: {}",
+                list.join("; ")
+            ),
+        });
+    }
+    for name in ignore {
+        let used = ignored
+            .keys()
+            .any(|k| k == name || k.split(':').next() == Some(name.as_str()));
+        if !used {
+            model.warnings.push(ImportWarning {
+                file: files[0].clone(),
+                message: format!("--ignore {name}: the deck has no such card"),
+            });
+        }
+    }
+    for (key, (why, locs)) in &d.notes {
+        model
+            .deck
+            .notes
+            .push(format!("{} not read: {why}", places(key, locs, files)));
+    }
 }

@@ -16,7 +16,7 @@ use super::lex::Card;
 use super::shell::ElementThickness;
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::{IdMap, Loc};
-use crate::model::{CoordKind, ElementKind, ImportWarning};
+use crate::model::{CoordKind, ElementKind};
 
 /// The raw records of the element cards.
 #[derive(Default)]
@@ -27,8 +27,10 @@ pub(super) struct ElementCards<'a> {
     pub shell_t: Vec<ElementThickness>,
     /// Orientation of bars and beams: (element index, as given, card location).
     pub orient: Vec<(usize, Orientation, Loc)>,
-    /// Ids of the other cards in the element id space (CONM2, rigid elements).
+    /// Ids of the other cards in the element id space (concentrated masses, springs).
     pub other_ids: Vec<(u64, &'a Card)>,
+    /// Ids of the rigid elements: unique among themselves.
+    pub rigid_ids: Vec<(u64, &'a Card)>,
 }
 
 /// A bar/beam orientation as the card gives it.
@@ -75,14 +77,6 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
     d.b.add_element(eid, kind, ids, None, name, g.card.loc);
     d.elements.pid.push((pid, g.card.loc));
     Ok(())
-}
-
-/// CQUAD8, CTRIA6, CQUADR, CTRIAR: an error naming the supported shells.
-pub(super) fn unsupported_shell<'a>(_: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
-    Err(g.err_card(format!(
-        "{}: quadratic and CQUADR/CTRIAR shells are not supported (use CQUAD4/CTRIA3)",
-        g.card.name
-    )))
 }
 
 /// An element card read: card name, kind, external node ids in Abaqus order, orientation.
@@ -151,67 +145,82 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
     Ok((name, kind, ids, orientation))
 }
 
-/// One element id space (MSC/NX Nastran): structural elements, CONM2 and rigid elements.
-pub(super) fn check_ids(d: &Bulk) -> Result<(), ImportError> {
+/// Element ids: structural, mass and spring elements share one id space (MSC/NX Nastran);
+/// rigid elements are unique among themselves. A rigid element with the id of another element
+/// is a warning naming both lines: MSC Nastran keeps the two apart and runs such a deck.
+pub(super) fn check_ids(d: &mut Bulk) -> Result<(), ImportError> {
     let b = &d.b;
+    fn at<'c>(&(id, c): &(u64, &'c Card)) -> (u64, &'c str, Loc) {
+        (id, c.name.as_str(), c.loc)
+    }
     let eids: Vec<(u64, &str, Loc)> = (b.model.elements.iter().enumerate())
         .map(|(k, e)| (e.id, b.elem_card[k], b.elem_loc[k]))
-        .chain((d.elements.other_ids.iter()).map(|(id, c)| (*id, c.name.as_str(), c.loc)))
+        .chain(d.elements.other_ids.iter().map(at))
         .collect();
     unique_ids(
         &eids,
         d.files,
         "element id",
-        "elements, CONM2 and rigid elements share one id space",
-    )
+        "elements and concentrated masses share one id space",
+    )?;
+    let rigid: Vec<(u64, &str, Loc)> = d.elements.rigid_ids.iter().map(at).collect();
+    unique_ids(
+        &rigid,
+        d.files,
+        "rigid element id",
+        "rigid elements share one id space",
+    )?;
+    let by_id: std::collections::HashMap<u64, (&str, Loc)> =
+        eids.iter().map(|&(id, c, l)| (id, (c, l))).collect();
+    let place = |l: Loc| format!("{}:{}", d.files[l.file as usize], l.line);
+    let mut warnings = Vec::new();
+    for &(id, card, loc) in &rigid {
+        if let Some(&(other, oloc)) = by_id.get(&id) {
+            warnings.push(crate::model::ImportWarning {
+                file: place(loc),
+                message: format!(
+                    "{card} {id} has the id of {other} {id} ({}): MSC Nastran keeps rigid \
+                     elements apart from the others and runs the deck; both are kept",
+                    place(oloc)
+                ),
+            });
+        }
+    }
+    d.b.model.warnings.extend(warnings);
+    Ok(())
 }
 
-/// Give every element its property (`pids`: property id → index); elements of unsupported
-/// property types get none and a warning. Returns the element sets `PID_<pid>`.
+/// Give every element its property (`pids`: property id → index of the structural
+/// properties). Returns the element sets `PID_<pid>`.
 pub(super) fn assign_properties(
     d: &mut Bulk,
     pids: &IdMap,
 ) -> Result<BTreeMap<String, Vec<usize>>, ImportError> {
     let b = &mut d.b;
     let mut element_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    let mut no_prop: BTreeMap<(&str, String), (usize, u64)> = BTreeMap::new();
     for (k, (pid, loc)) in d.elements.pid.iter().enumerate() {
-        let id = b.model.elements[k].id;
-        match pids.get(*pid) {
-            Some(p) => {
-                b.model.elements[k].property = Some(p);
-                element_sets
-                    .entry(format!("PID_{pid}"))
-                    .or_default()
-                    .push(k);
-            }
-            None => match d.properties.unsupported.get(pid) {
-                Some(card) => {
-                    let entry = no_prop
-                        .entry((b.elem_card[k], card.clone()))
-                        .or_insert((0, id));
-                    entry.0 += 1;
-                }
-                None => {
-                    return Err(parse_err(
-                        b.file_name(*loc),
-                        loc.line as usize,
-                        format!("{} {}", b.elem_card[k], id),
-                        format!("references unknown property {pid}"),
-                    ))
-                }
-            },
-        }
+        let Some(p) = pids.get(*pid) else {
+            let other = d.properties.others.iter().find(|o| o.0 == *pid);
+            return Err(parse_err(
+                b.file_name(*loc),
+                loc.line as usize,
+                format!("{} {}", b.elem_card[k], b.model.elements[k].id),
+                match other {
+                    Some((_, c)) => format!(
+                        "references property {pid}, a {} ({}:{}) of another element family",
+                        c.name, d.files[c.loc.file as usize], c.loc.line
+                    ),
+                    None => format!("references unknown property {pid}"),
+                },
+            ));
+        };
+        b.model.elements[k].property = Some(p);
+        element_sets
+            .entry(format!("PID_{pid}"))
+            .or_default()
+            .push(k);
     }
     super::shell::apply_thickness(&mut b.model, &d.elements.shell_t)?;
-    for ((elem, card), (n, first)) in no_prop {
-        b.model.warnings.push(ImportWarning {
-            file: d.files[0].clone(),
-            message: format!(
-                "{n} {elem} elements (first: {first}) reference {card} properties (unsupported): no property"
-            ),
-        });
-    }
     Ok(element_sets)
 }
 

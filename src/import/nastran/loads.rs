@@ -24,7 +24,9 @@ pub(crate) struct LoadCards<'a> {
     pub cards: Vec<&'a Card>,
 }
 
-/// Reader of FORCE, MOMENT, GRAV, PLOAD4 and LOAD: kept for [`resolve`].
+/// Reader of the static load cards (FORCE, MOMENT, GRAV, PLOAD4, LOAD, and the ones the
+/// scene does not read — PLOAD1, FORCE1, … — whose set is then kept by name, unusable): kept
+/// for [`resolve`]. A load does not change the body.
 pub(super) fn card<'a>(d: &mut super::bulk::Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     d.loads.cards.push(g.card);
     Ok(())
@@ -193,7 +195,11 @@ fn card_parts(
                 });
             }
         }
-        _ => {}
+        other => {
+            return Err(g.err_card(format!(
+                "{other} is not read as a scene load (FORCE, MOMENT, GRAV, PLOAD4 and LOAD are)"
+            )))
+        }
     }
     Ok(parts)
 }

@@ -41,6 +41,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::error::ImportError;
+use super::ImportOptions;
 use crate::model::Model;
 
 /// Card counts by card name (`GRID`, `CHEXA`, `PARAM`, …), supported or not.
@@ -59,7 +60,23 @@ pub fn read_with_counts(path: &Path) -> Result<(Model, CardCounts), ImportError>
 /// [`read_with_counts`] with the SPC and METHOD selections of case-control subcase `subcase`
 /// (needed when the deck's subcases select different sets).
 pub fn read_subcase(path: &Path, subcase: Option<u64>) -> Result<(Model, CardCounts), ImportError> {
+    read_with_options(
+        path,
+        &ImportOptions {
+            subcase,
+            ..Default::default()
+        },
+    )
+}
+
+/// [`read_with_counts`] with the options that apply to a Nastran deck: the case-control
+/// subcase ([`ImportOptions::subcase`]) and the cards to drop on purpose
+/// ([`ImportOptions::ignore_cards`]).
+pub fn read_with_options(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<(Model, CardCounts), ImportError> {
     let mut lexer = lex::Lexer::new(&path.display().to_string());
     lexer.lex_file(path, 0, 0)?;
-    bulk::build(lexer, subcase)
+    bulk::build(lexer, opts.subcase, &opts.ignore_cards)
 }

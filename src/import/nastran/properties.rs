@@ -8,8 +8,6 @@
 //! * `PSOLID PID MID CORDM IN STRESS ISOP FCTN`: ISOP blank means MSC's CHEXA/CPENTA with
 //!   bubble functions, FULL (or 2) full integration.
 
-use std::collections::HashMap;
-
 use super::bulk::Bulk;
 use super::elements::unique_ids;
 use super::fields::C;
@@ -23,17 +21,16 @@ use crate::model::{BeamSection, ImportWarning, Material, Property, Section, Sect
 pub(super) struct PropertyCards<'a> {
     /// (PID, MID, section with external material ids, card).
     pub props: Vec<(u64, u64, Section, &'a Card)>,
-    /// Property id → card name of property types that are not read (elements using them get
-    /// no property and a warning).
-    pub unsupported: HashMap<u64, String>,
-    /// Their cards: they share the property id space.
-    pub unsupported_cards: Vec<(u64, &'a Card)>,
+    /// Property cards of the other element families (dampers, springs, masses, bushes): they
+    /// share the property id space; a structural element may not name them.
+    pub others: Vec<(u64, &'a Card)>,
     /// (MID, material, card).
     pub mats: Vec<(u64, Material, &'a Card)>,
     /// PBARL/PBEAML whose shape has no Nastran shear factors here, for one warning.
     pub shear_rigid: Vec<String>,
-    /// PSOLID ISOP: (FULL, other) property ids — MSC's CHEXA/CPENTA default has bubble modes.
-    pub isop: (Vec<u64>, Vec<u64>),
+    /// PSOLID ISOP: (FULL, other) property ids with their `file:line` — MSC's CHEXA/CPENTA
+    /// default has bubble modes.
+    pub isop: (Vec<String>, Vec<String>),
 }
 
 /// Reader of PSOLID, PSHELL, PROD, PBAR, PBARL, PBEAM, PBEAML.
@@ -42,9 +39,10 @@ pub(super) fn property<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportErro
     let p = &mut d.properties;
     let pid = g.id(0, "PID")?;
     if name == "PSOLID" {
+        let at = format!("{pid} ({}:{})", g.file, g.card.loc.line);
         match g.text(5).to_ascii_uppercase().as_str() {
-            "FULL" | "2" => p.isop.0.push(pid),
-            _ => p.isop.1.push(pid),
+            "FULL" | "2" => p.isop.0.push(at),
+            _ => p.isop.1.push(at),
         }
     }
     let (mid, section) = match name {
@@ -73,14 +71,21 @@ pub(super) fn pcomp<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> 
     Ok(())
 }
 
-/// Property types that are not read: their id is kept (one id space) and elements using them
-/// get no property.
-pub(super) fn unsupported_property<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+/// Reader of the property cards of element families that are read elsewhere or refused
+/// (PELAS, PMASS, PBUSH): the id is kept (one property id space); a property alone changes
+/// nothing, the elements naming it are honoured or refused.
+pub(super) fn other_family<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let pid = g.id(0, "PID")?;
-    let name = g.card.name.clone();
-    d.properties.unsupported.insert(pid, name.clone());
-    d.properties.unsupported_cards.push((pid, g.card));
-    *d.unsupported.entry(name).or_default() += 1;
+    d.properties.others.push((pid, g.card));
+    Ok(())
+}
+
+/// Reader of the damper properties PDAMP, PDAMP5, PDAMPT, PVISC: their id is kept (one
+/// property id space); damping is a note.
+pub(super) fn damper<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let pid = g.id(0, "PID")?;
+    d.properties.others.push((pid, g.card));
+    d.note(g, super::cards::DAMPING);
     Ok(())
 }
 
@@ -126,7 +131,7 @@ pub(super) fn resolve(d: &mut Bulk) -> Result<IdMap, ImportError> {
     }
     // Supported and unsupported property types share one id space.
     let prop_ids: Vec<(u64, &str, Loc)> = (p.props.iter().map(|p| (p.0, p.3)))
-        .chain(p.unsupported_cards.iter().copied())
+        .chain(p.others.iter().copied())
         .map(|(id, c)| (id, c.name.as_str(), c.loc))
         .collect();
     unique_ids(
@@ -180,10 +185,11 @@ pub(super) fn warnings(d: &mut Bulk) {
         model.warnings.push(ImportWarning {
             file: d.files[0].clone(),
             message: format!(
-                "PSOLID {:?} ask for full integration (ISOP = FULL), PSOLID {:?} for MSC's default \
+                "PSOLID {} ask for full integration (ISOP = FULL), PSOLID {} for MSC's default \
                  bubble functions: one formulation per model is implemented, every CHEXA/CPENTA \
                  is fully integrated (stiffer than MSC Nastran on the others)",
-                p.isop.0, p.isop.1
+                p.isop.0.join(", "),
+                p.isop.1.join(", ")
             ),
         });
     }

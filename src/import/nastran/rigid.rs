@@ -12,7 +12,7 @@ use crate::model::{DofMask, RigidElement};
 /// Reader of RBE2.
 pub(super) fn rbe2<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let eid = g.id(0, "EID")?;
-    d.elements.other_ids.push((eid, g.card));
+    d.elements.rigid_ids.push((eid, g.card));
     let gn = d.node(g, 1, g.id(1, "GN")?)?;
     let cm = DofMask::from_digits(g.text(2))
         .filter(|m| m.0 != 0)
@@ -36,7 +36,7 @@ pub(super) fn rbe2<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
 /// Reader of RBE3.
 pub(super) fn rbe3<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let eid = g.id(0, "EID")?;
-    d.elements.other_ids.push((eid, g.card));
+    d.elements.rigid_ids.push((eid, g.card));
     let reference = d.node(g, 2, g.id(2, "REFGRID")?)?;
     let ref_dofs = DofMask::from_digits(g.text(3))
         .filter(|m| m.0 != 0)

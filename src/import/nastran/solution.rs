@@ -3,7 +3,7 @@
 //!
 //! * `EIGRL SID V1 V2 ND`; `EIGR SID METHOD F1 F2 NE ND`: the band and the number of roots.
 //! * `PARAM,WTMASS,w`: every structural and concentrated mass times w; `PARAM,COUPMASS,c`:
-//!   c > 0 asks for consistent mass.
+//!   c > 0 asks for consistent mass; `PARAM,K6ROT,k`: the shells' drilling stiffness.
 
 use std::collections::BTreeMap;
 
@@ -46,19 +46,37 @@ pub(super) fn eigr<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     Ok(())
 }
 
-/// Reader of PARAM.
-pub(super) fn param<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
-    let p = g.text(0).to_ascii_uppercase();
-    match p.as_str() {
-        "WTMASS" => {
-            d.solution.wtmass = g
-                .real(1)?
-                .filter(|w| *w > 0.0)
-                .ok_or_else(|| g.err(1, "WTMASS must be > 0"))?;
-        }
-        "COUPMASS" => d.b.model.params.coupled_mass = Some(g.real_or(1, -1.0)? > 0.0),
-        _ => *d.unsupported.entry(format!("PARAM,{p}")).or_default() += 1,
+/// Reader of PARAM,WTMASS.
+pub(super) fn wtmass<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    d.solution.wtmass = g
+        .real(1)?
+        .filter(|w| *w > 0.0)
+        .ok_or_else(|| g.err(1, "WTMASS must be > 0"))?;
+    Ok(())
+}
+
+/// Reader of PARAM,K6ROT: the drilling stiffness factor of CQUAD4/CTRIA3 (MSC QRG
+/// "Parameters": K6ROT, default 100), γ_d = K6ROT·10⁻⁶·G t (`fe::elements::shell`). K6ROT = 0
+/// (no drilling stiffness: Nastran's AUTOSPC then holds the normal rotation of flat shell
+/// grids) is refused.
+pub(super) fn k6rot<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let k = g.real(1)?.unwrap_or(100.0);
+    if k <= 0.0 {
+        return Err(g.err(
+            1,
+            format!(
+                "K6ROT = {k}: a shell without drilling stiffness (Nastran then holds the normal \
+                 rotations by AUTOSPC) is not supported; give K6ROT > 0 (MSC's default is 100)"
+            ),
+        ));
     }
+    d.b.model.params.k6rot = Some(k);
+    Ok(())
+}
+
+/// Reader of PARAM,COUPMASS.
+pub(super) fn coupmass<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    d.b.model.params.coupled_mass = Some(g.real_or(1, -1.0)? > 0.0);
     Ok(())
 }
 
