@@ -495,6 +495,11 @@ pub fn build_model_with_hook(
             dropped.join(", ")
         ));
     }
+    // what a flexible body cannot hold of springs, scalar masses and scalar points
+    let lumped = spec.mass == fe::MassKind::Lumped;
+    if let Some(why) = fe::connectors::body_restrictions(&model, dofs, &assembled.m, lumped) {
+        return Err(request_err(why));
+    }
     // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
     crate::precheck::before_reduction(
         &model,
