@@ -6,6 +6,7 @@
 
 use std::collections::BTreeMap;
 
+use super::bush::BushCards;
 use super::elements::ElementCards;
 use super::fields::{ThruBudget, C};
 use super::geometry::{CoordIndex, GeometryCards};
@@ -13,12 +14,13 @@ use super::lex::{Card, Lexer};
 use super::loads::LoadCards;
 use super::mass::MassCards;
 use super::properties::PropertyCards;
+use super::scalar::ScalarCards;
 use super::sets::SetCards;
 use super::solution::SolutionCards;
 use super::{cards, CardCounts};
 use crate::import::error::{ImportError, RefusedCard};
 use crate::import::text::{Builder, IdMap, Loc};
-use crate::model::{ImportWarning, Model};
+use crate::model::{DofMask, ImportWarning, Model, NodeDof};
 
 /// What the card readers fill: the model under construction, the node map, and the raw records
 /// of each card family that the resolve pass turns into the model.
@@ -40,6 +42,8 @@ pub(super) struct Bulk<'a> {
     pub elements: ElementCards<'a>,
     pub properties: PropertyCards<'a>,
     pub masses: MassCards<'a>,
+    pub scalars: ScalarCards<'a>,
+    pub bushes: BushCards<'a>,
     pub sets: SetCards<'a>,
     pub solution: SolutionCards<'a>,
     pub loads: LoadCards<'a>,
@@ -53,11 +57,95 @@ impl Bulk<'_> {
             .ok_or_else(|| g.err(k, format!("references unknown node {id}")))
     }
 
+    /// Index of grid `id`, named in field `k` of card `g`: a scalar point is an error.
+    pub(super) fn grid(&self, g: &C, k: usize, id: u64) -> Result<usize, ImportError> {
+        let n = self.node(g, k, id)?;
+        if self.b.model.is_scalar_point(n) {
+            return Err(g.err(
+                k,
+                format!("{id} is a scalar point (SPOINT), where a grid is needed"),
+            ));
+        }
+        Ok(n)
+    }
+
+    /// The dof of the grid or scalar point in field `kg` with the component in field `kc`: a
+    /// digit 1–6 for a grid, 0 or blank for a scalar point (`kc = None`: scalar points only).
+    /// `None` when field `kg` is blank or 0 (ground).
+    pub(super) fn dof(
+        &self,
+        g: &C,
+        kg: usize,
+        kc: Option<usize>,
+    ) -> Result<Option<NodeDof>, ImportError> {
+        let id = match g.int(kg)? {
+            None | Some(0) => return Ok(None),
+            Some(v) if v < 0 => return Err(g.err(kg, format!("bad grid or scalar point id {v}"))),
+            Some(v) => v as u64,
+        };
+        let node = self.node(g, kg, id)?;
+        let c = kc.map_or("", |k| g.text(k));
+        let component = if self.b.model.is_scalar_point(node) {
+            if !matches!(c, "" | "0") {
+                return Err(g.err(
+                    kc.unwrap_or(kg),
+                    format!("component {c} of scalar point {id}: a scalar point has only 0"),
+                ));
+            }
+            0
+        } else {
+            let Some(kc) = kc else {
+                return Err(g.err(
+                    kg,
+                    format!(
+                        "{id} is a grid; {} connects scalar points only",
+                        g.card.name
+                    ),
+                ));
+            };
+            match c.as_bytes() {
+                [d @ b'1'..=b'6'] => d - b'1',
+                _ => {
+                    return Err(g.err(
+                        kc,
+                        format!("component '{c}' of grid {id}: one digit 1–6 is needed"),
+                    ))
+                }
+            }
+        };
+        Ok(Some(NodeDof { node, component }))
+    }
+
+    /// The components named by the digits in field `k` for `node`: Nastran digits 1–6 for a
+    /// grid, 0 or blank for a scalar point (its one dof, bit 0). `nonzero`: an empty set is an
+    /// error.
+    pub(super) fn components(
+        &self,
+        g: &C,
+        k: usize,
+        node: usize,
+        nonzero: bool,
+    ) -> Result<DofMask, ImportError> {
+        let text = g.text(k);
+        let mask = if self.b.model.is_scalar_point(node) {
+            matches!(text, "" | "0").then_some(DofMask(1))
+        } else {
+            DofMask::from_digits(text).filter(|m| m.0 != 0 || !nonzero)
+        };
+        mask.ok_or_else(|| g.err(k, "bad dof digits"))
+    }
+
     /// Card `g` is not read because it cannot change the body, for `reason`.
     pub(super) fn note(&mut self, g: &C, reason: &'static str) {
+        self.note_as(cards::key(g), g, reason);
+    }
+
+    /// A field of card `g` is not read because it cannot change the body (e.g. `PBUSH B`),
+    /// noted under `key`.
+    pub(super) fn note_as(&mut self, key: String, g: &C, reason: &'static str) {
         let entry = self
             .notes
-            .entry(cards::key(g))
+            .entry(key)
             .or_insert_with(|| (reason, Vec::new()));
         entry.1.push(g.card.loc);
     }
@@ -144,7 +232,8 @@ pub(crate) fn build(
             _ => others.push(card),
         }
     }
-    let (coords, nodes) = super::geometry::place_nodes(&geometry, &files, &mut b)?;
+    let thru = ThruBudget::for_bytes(bytes);
+    let (coords, nodes) = super::geometry::place_nodes(&geometry, &files, &thru, &mut b)?;
 
     // Pass 2: every other card through its rule.
     let mut d = Bulk {
@@ -152,12 +241,14 @@ pub(crate) fn build(
         b,
         nodes,
         coords,
-        thru: ThruBudget::for_bytes(bytes),
+        thru,
         notes: BTreeMap::new(),
         refused: Vec::new(),
         elements: ElementCards::default(),
         properties: PropertyCards::default(),
-        masses: MassCards::new(),
+        masses: MassCards::default(),
+        scalars: ScalarCards::default(),
+        bushes: BushCards::default(),
         sets: SetCards::default(),
         solution: SolutionCards::default(),
         loads: LoadCards::default(),
@@ -181,12 +272,16 @@ pub(crate) fn build(
 
     // Pass 3: resolve, family by family.
     d.b.resolve_element_nodes(&d.nodes)?;
+    super::elements::no_scalar_points(&d)?;
     super::elements::check_ids(&mut d)?;
-    let pids = super::properties::resolve(&mut d)?;
-    let element_sets = super::elements::assign_properties(&mut d, &pids)?;
+    let (pids, mids) = super::properties::resolve(&mut d)?;
+    let element_sets = super::elements::assign_properties(&mut d, &pids, &mids)?;
     super::elements::orient(&mut d)?;
     super::mass::resolve(&mut d)?;
+    super::scalar::resolve(&mut d)?;
+    super::bush::resolve(&mut d)?;
     super::sets::resolve_spc(&mut d, &case, &effective)?;
+    super::sets::resolve_mpc(&mut d, &effective)?;
     super::solution::resolve_method(&mut d, &effective)?;
     super::sets::resolve_dof_sets(&mut d);
     super::properties::warnings(&mut d);
@@ -194,6 +289,10 @@ pub(crate) fn build(
     d.b.model.params.wtmass = d.solution.wtmass;
     let elements = d.b.element_map()?;
     let load_sel = case.load_selections(effective.subcase);
+    // masses and springs are in the element id space: their lines are looked up by id too
+    let others: Vec<(u64, u32, u32)> = (d.elements.other_ids.iter())
+        .map(|(id, c)| (*id, c.loc.file, c.loc.line))
+        .collect();
     let mut b = d.b;
     b.model.loads =
         super::loads::resolve(&d.loads, &files, &b.model, &d.nodes, &elements, &load_sel)?;
@@ -201,6 +300,10 @@ pub(crate) fn build(
     b.model.warnings.extend(load_warnings);
     b.model.files = b.files.clone();
     b.record_element_sources();
+    b.model.element_sources.extend(others);
+    b.model
+        .element_sources
+        .sort_unstable_by_key(|&(id, _, _)| id);
     Ok((b.model, counts))
 }
 

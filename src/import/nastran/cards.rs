@@ -16,7 +16,7 @@
 
 use super::bulk::Bulk;
 use super::fields::C;
-use super::{elements, mass, properties, rigid, sets, solution};
+use super::{bush, elements, mass, properties, rigid, scalar, sets, solution};
 use crate::import::error::ImportError;
 
 /// A card reader: one card into its family's raw records (external ids, resolved later).
@@ -44,7 +44,7 @@ pub(super) const DAMPING: &str =
 const DYNAMIC: &str =
     "dynamic excitation or steps of a response analysis: not part of the body or its modes";
 /// Reason of the notes on output and bookkeeping cards.
-const OUTPUT: &str = "output, plotting or bookkeeping: does not change the body";
+pub(super) const OUTPUT: &str = "output, plotting or bookkeeping: does not change the body";
 /// Reason of the notes on thermal cards.
 const THERMAL: &str =
     "thermal data: neither thermal strain nor temperature-dependent properties are modelled, and a normal-modes analysis has no thermal load";
@@ -64,17 +64,29 @@ const CARDS: &[(&str, Rule)] = &[
     ("BSET1", Read(sets::aset1)),
     ("CBAR", Read(elements::element)),
     ("CBEAM", Read(elements::element)),
+    ("CBUSH", Read(bush::cbush)),
     ("CDAMP1", Note(DAMPING)),
     ("CDAMP2", Note(DAMPING)),
     ("CDAMP3", Note(DAMPING)),
     ("CDAMP4", Note(DAMPING)),
     ("CDAMP5", Note(DAMPING)),
+    ("CELAS1", Read(scalar::element)),
+    ("CELAS2", Read(scalar::element)),
+    ("CELAS3", Read(scalar::element)),
+    ("CELAS4", Read(scalar::element)),
     ("CHEXA", Read(elements::element)),
+    ("CMASS1", Read(scalar::element)),
+    ("CMASS2", Read(scalar::element)),
+    ("CMASS3", Read(scalar::element)),
+    ("CMASS4", Read(scalar::element)),
+    ("CONM1", Read(mass::conm1)),
     ("CONM2", Read(mass::conm2)),
+    ("CONROD", Read(elements::conrod)),
     ("CORD2C", Geometry),
     ("CORD2R", Geometry),
     ("CORD2S", Geometry),
     ("CPENTA", Read(elements::element)),
+    ("CPYRAM", Read(elements::element)),
     ("CQUAD4", Read(elements::element)),
     ("CQUAD8", Refuse(SHELLS)),
     ("CQUADR", Refuse(SHELLS)),
@@ -115,24 +127,26 @@ const CARDS: &[(&str, Rule)] = &[
     ("MOMENT1", Read(super::loads::card)),
     ("MOMENT2", Read(super::loads::card)),
     ("MONPNT1", Note(OUTPUT)),
+    ("MPC", Read(sets::mpc)),
+    ("MPCADD", Read(sets::mpcadd)),
     ("NLPARM", Note(DYNAMIC)),
     ("PBAR", Read(properties::property)),
     ("PBARL", Read(properties::property)),
     ("PBEAM", Read(properties::property)),
     ("PBEAML", Read(properties::property)),
-    ("PBUSH", Read(properties::other_family)),
+    ("PBUSH", Read(bush::pbush)),
     ("PCOMP", Read(properties::pcomp)),
     // damper properties keep their id (one property id space) and are a note
     ("PDAMP", Read(properties::damper)),
     ("PDAMP5", Read(properties::damper)),
     ("PDAMPT", Read(properties::damper)),
-    ("PELAS", Read(properties::other_family)),
+    ("PELAS", Read(scalar::property)),
     ("PLOAD", Read(super::loads::card)),
     ("PLOAD1", Read(super::loads::card)),
     ("PLOAD2", Read(super::loads::card)),
     ("PLOAD4", Read(super::loads::card)),
     ("PLOTEL", Note(OUTPUT)),
-    ("PMASS", Read(properties::other_family)),
+    ("PMASS", Read(scalar::property)),
     ("PROD", Read(properties::property)),
     ("PSHELL", Read(properties::property)),
     ("PSOLID", Read(properties::property)),
@@ -141,6 +155,9 @@ const CARDS: &[(&str, Rule)] = &[
     ("QSET1", Read(sets::aset1)),
     ("RANDPS", Note(DYNAMIC)),
     ("RANDT1", Note(DYNAMIC)),
+    ("RBAR", Read(rigid::rbar)),
+    ("RBAR1", Read(rigid::rbar1)),
+    ("RBE1", Read(rigid::rbe1)),
     ("RBE2", Read(rigid::rbe2)),
     ("RBE3", Read(rigid::rbe3)),
     ("RFORCE", Read(super::loads::card)),
@@ -152,6 +169,7 @@ const CARDS: &[(&str, Rule)] = &[
     ("SPC1", Read(sets::spc1)),
     ("SPCADD", Read(sets::spcadd)),
     ("SPCD", Read(super::loads::card)),
+    ("SPOINT", Geometry),
     (
         "SUPORT",
         Note("the r-set Nastran computes its rigid-body modes on: it does not hold the body"),

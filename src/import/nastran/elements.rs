@@ -5,7 +5,10 @@
 //!   nodes are permuted to Abaqus order (Nastran lists the vertical edges before the top edges).
 //! * `CBAR/CBEAM EID PID GA GB X1/G0 X2 X3`: the orientation vector v from GA, or towards grid
 //!   G0; X1–X3 are in the displacement frame of GA (MSC QRG "CBAR").
+//! * `CPYRAM EID PID G1 … G5 G6 … G13`: 5 or 13 nodes (base, apex, mid-sides 1-2 2-3 3-4 4-1
+//!   1-5 2-5 3-5 4-5), with a PSOLID.
 //! * `CROD EID PID G1 G2`; `CQUAD4/CTRIA3 EID PID G1 …` (thickness fields: `shell`).
+//! * `CONROD EID G1 G2 MID A J C NSM`: a rod with its property on the card (as CROD + PROD).
 
 use std::collections::BTreeMap;
 
@@ -16,13 +19,13 @@ use super::lex::Card;
 use super::shell::ElementThickness;
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::{IdMap, Loc};
-use crate::model::{CoordKind, ElementKind};
+use crate::model::{CoordKind, ElementKind, Property, Section};
 
 /// The raw records of the element cards.
 #[derive(Default)]
 pub(super) struct ElementCards<'a> {
-    /// Property id of each element of the builder, in element order, with its card's location.
-    pub pid: Vec<(u64, Loc)>,
+    /// Property of each element of the builder, in element order, with its card's location.
+    pub pid: Vec<(ElementProperty, Loc)>,
     /// Corner thicknesses of shell elements.
     pub shell_t: Vec<ElementThickness>,
     /// Orientation of bars and beams: (element index, as given, card location).
@@ -31,6 +34,14 @@ pub(super) struct ElementCards<'a> {
     pub other_ids: Vec<(u64, &'a Card)>,
     /// Ids of the rigid elements: unique among themselves.
     pub rigid_ids: Vec<(u64, &'a Card)>,
+}
+
+/// The property of an element as its card gives it.
+pub(super) enum ElementProperty {
+    /// By property id.
+    Id(u64),
+    /// On the card (CONROD): material id and the rod section.
+    Rod { mid: u64, section: Section },
 }
 
 /// A bar/beam orientation as the card gives it.
@@ -49,6 +60,7 @@ const ELEMENTS: &[ElementCard] = &[
     ("CTETRA", 10, &[(4, Tet4), (10, Tet10)]),
     ("CHEXA", 20, &[(8, Hex8), (20, Hex20)]),
     ("CPENTA", 15, &[(6, Prism6), (15, Prism15)]),
+    ("CPYRAM", 13, &[(5, Pyram5), (13, Pyram13)]),
     ("CBAR", 2, &[(2, Bar2)]),
     ("CBEAM", 2, &[(2, Beam2)]),
     ("CROD", 2, &[(2, Rod2)]),
@@ -75,7 +87,30 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
             .extend(super::shell::element_fields(g, k)?);
     }
     d.b.add_element(eid, kind, ids, None, name, g.card.loc);
-    d.elements.pid.push((pid, g.card.loc));
+    d.elements.pid.push((ElementProperty::Id(pid), g.card.loc));
+    Ok(())
+}
+
+/// Reader of CONROD.
+pub(super) fn conrod<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let eid = g.id(0, "EID")?;
+    let mut ids = Vec::with_capacity(2);
+    for k in [1, 2] {
+        match g.int(k)? {
+            Some(v) if v > 0 => ids.push(v as usize),
+            _ => return Err(g.err(k, "a CONROD needs grids G1 and G2")),
+        }
+    }
+    let mid = g.id(3, "MID")?;
+    let section = Section::Rod {
+        area: g.real_or(4, 0.0)?,
+        j: g.real_or(5, 0.0)?,
+        nsm: g.real_or(7, 0.0)?,
+    };
+    d.b.add_element(eid, Rod2, ids, None, "CONROD", g.card.loc);
+    d.elements
+        .pid
+        .push((ElementProperty::Rod { mid, section }, g.card.loc));
     Ok(())
 }
 
@@ -145,6 +180,27 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
     Ok((name, kind, ids, orientation))
 }
 
+/// A structural element on a scalar point is an error naming its card and the point.
+pub(super) fn no_scalar_points(d: &Bulk) -> Result<(), ImportError> {
+    let b = &d.b;
+    if b.model.scalar_points.is_empty() {
+        return Ok(());
+    }
+    for (k, e) in b.model.elements.iter().enumerate() {
+        if let Some(&n) = e.nodes.iter().find(|&&n| b.model.is_scalar_point(n)) {
+            return Err(b.err(
+                b.elem_loc[k],
+                format!("{} {}", b.elem_card[k], e.id),
+                format!(
+                    "node {} is a scalar point (SPOINT), where a grid is needed",
+                    b.model.nodes[n].id
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Element ids: structural, mass and spring elements share one id space (MSC/NX Nastran);
 /// rigid elements are unique among themselves. A rigid element with the id of another element
 /// is a warning naming both lines: MSC Nastran keeps the two apart and runs such a deck.
@@ -191,34 +247,70 @@ pub(super) fn check_ids(d: &mut Bulk) -> Result<(), ImportError> {
 }
 
 /// Give every element its property (`pids`: property id → index of the structural
-/// properties). Returns the element sets `PID_<pid>`.
+/// properties; `mids`: material id → index). A CONROD gets a property of its own (one per
+/// distinct material and section, named after the first CONROD that has it). Returns the
+/// element sets `PID_<pid>`.
 pub(super) fn assign_properties(
     d: &mut Bulk,
     pids: &IdMap,
+    mids: &IdMap,
 ) -> Result<BTreeMap<String, Vec<usize>>, ImportError> {
-    let b = &mut d.b;
+    let (b, wtmass) = (&mut d.b, d.solution.wtmass);
     let mut element_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    for (k, (pid, loc)) in d.elements.pid.iter().enumerate() {
-        let Some(p) = pids.get(*pid) else {
-            let other = d.properties.others.iter().find(|o| o.0 == *pid);
-            return Err(parse_err(
-                b.file_name(*loc),
+    let mut rods: Vec<(u64, Section, usize)> = Vec::new();
+    for (k, (property, loc)) in d.elements.pid.iter().enumerate() {
+        let entity = || format!("{} {}", b.elem_card[k], b.model.elements[k].id);
+        let fail = |msg: String| {
+            parse_err(
+                &d.files[loc.file as usize],
                 loc.line as usize,
-                format!("{} {}", b.elem_card[k], b.model.elements[k].id),
-                match other {
-                    Some((_, c)) => format!(
-                        "references property {pid}, a {} ({}:{}) of another element family",
-                        c.name, d.files[c.loc.file as usize], c.loc.line
-                    ),
-                    None => format!("references unknown property {pid}"),
-                },
-            ));
+                entity(),
+                msg,
+            )
+        };
+        let p = match property {
+            ElementProperty::Id(pid) => {
+                let Some(p) = pids.get(*pid) else {
+                    let other = d.properties.others.iter().find(|o| o.0 == *pid);
+                    return Err(fail(match other {
+                        Some((_, c)) => format!(
+                            "references property {pid}, a {} ({}:{}) of another element family",
+                            c.name, d.files[c.loc.file as usize], c.loc.line
+                        ),
+                        None => format!("references unknown property {pid}"),
+                    }));
+                };
+                element_sets
+                    .entry(format!("PID_{pid}"))
+                    .or_default()
+                    .push(k);
+                p
+            }
+            ElementProperty::Rod { mid, section } => {
+                let material = mids
+                    .get(*mid)
+                    .ok_or_else(|| fail(format!("references unknown material {mid}")))?;
+                let mut section = section.clone();
+                if let Section::Rod { nsm, .. } = &mut section {
+                    *nsm *= wtmass;
+                }
+                match rods.iter().find(|r| r.0 == *mid && r.1 == section) {
+                    Some(r) => r.2,
+                    None => {
+                        let eid = b.model.elements[k].id;
+                        b.model.properties.push(Property {
+                            id: eid,
+                            name: format!("CONROD {eid}"),
+                            material,
+                            section: section.clone(),
+                        });
+                        rods.push((*mid, section, b.model.properties.len() - 1));
+                        b.model.properties.len() - 1
+                    }
+                }
+            }
         };
         b.model.elements[k].property = Some(p);
-        element_sets
-            .entry(format!("PID_{pid}"))
-            .or_default()
-            .push(k);
     }
     super::shell::apply_thickness(&mut b.model, &d.elements.shell_t)?;
     Ok(element_sets)

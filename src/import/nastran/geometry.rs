@@ -6,11 +6,13 @@
 //! * `GRDSET – CP – – – CD PS SEID`: the CP, CD and PS of every GRID that leaves them blank.
 //! * `CORD2R CID RID A1 A2 A3 B1 B2 B3 / C1 C2 C3`: origin A, z axis towards B, x–z plane
 //!   through C, all given in system RID.
+//! * `SPOINT ID1 ID2 … | ID1 THRU ID2`: scalar points, nodes with one dof and no position, in
+//!   the grids' id space (MSC QRG "SPOINT"); an id listed twice is one scalar point.
 
 use std::collections::HashMap;
 
 use super::coord::{from_points, to_basic};
-use super::fields::C;
+use super::fields::{ThruBudget, C};
 use super::lex::Card;
 use crate::import::error::ImportError;
 use crate::import::text::{Builder, IdMap};
@@ -22,6 +24,7 @@ pub(super) struct GeometryCards<'a> {
     pub grids: Vec<&'a Card>,
     pub coords: Vec<&'a Card>,
     pub grdset: Option<&'a Card>,
+    pub spoints: Vec<&'a Card>,
 }
 
 impl<'a> GeometryCards<'a> {
@@ -29,6 +32,7 @@ impl<'a> GeometryCards<'a> {
     pub(super) fn take(&mut self, card: &'a Card, files: &[String]) -> Result<(), ImportError> {
         match card.name.as_str() {
             "GRID" => self.grids.push(card),
+            "SPOINT" => self.spoints.push(card),
             "GRDSET" => {
                 if let Some(first) = self.grdset {
                     return Err(C::new(card, files).err_card(format!(
@@ -48,11 +52,12 @@ impl<'a> GeometryCards<'a> {
 pub(super) type CoordIndex = HashMap<i64, usize>;
 
 /// Place the nodes: coordinate systems resolved to basic, every GRID added to `b` in its basic
-/// position with its displacement frame; then the node map (duplicate ids are an error) and the
-/// permanent constraints of GRID PS / GRDSET PS.
+/// position with its displacement frame, then the scalar points; then the node map (duplicate
+/// ids are an error) and the permanent constraints of GRID PS / GRDSET PS.
 pub(super) fn place_nodes(
     geom: &GeometryCards,
     files: &[String],
+    thru: &ThruBudget,
     b: &mut Builder,
 ) -> Result<(CoordIndex, IdMap), ImportError> {
     // GRDSET: defaults for the blank CP, CD and PS fields of every GRID.
@@ -104,6 +109,16 @@ pub(super) fn place_nodes(
     }
     for (n, cs) in grid_cd {
         b.model.nodes[n].displacement_frame = Some(cs);
+    }
+    let mut spoints = std::collections::HashSet::new();
+    for card in &geom.spoints {
+        let g = C::new(card, files);
+        for (id, _) in g.id_list(0, thru)? {
+            if spoints.insert(id) {
+                b.model.scalar_points.push(b.model.nodes.len());
+                b.add_node(id, [0.0; 3], card.loc);
+            }
+        }
     }
     let nodes = b.node_map("GRID")?;
     for (n, m, card) in perm_spc {

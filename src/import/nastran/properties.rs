@@ -71,15 +71,6 @@ pub(super) fn pcomp<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> 
     Ok(())
 }
 
-/// Reader of the property cards of element families that are read elsewhere or refused
-/// (PELAS, PMASS, PBUSH): the id is kept (one property id space); a property alone changes
-/// nothing, the elements naming it are honoured or refused.
-pub(super) fn other_family<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
-    let pid = g.id(0, "PID")?;
-    d.properties.others.push((pid, g.card));
-    Ok(())
-}
-
 /// Reader of the damper properties PDAMP, PDAMP5, PDAMPT, PVISC: their id is kept (one
 /// property id space); damping is a note.
 pub(super) fn damper<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
@@ -114,8 +105,8 @@ pub(super) fn mat1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
 }
 
 /// Materials and properties into the model (WTMASS on densities and non-structural masses);
-/// returns the property id map.
-pub(super) fn resolve(d: &mut Bulk) -> Result<IdMap, ImportError> {
+/// returns the property and material id maps.
+pub(super) fn resolve(d: &mut Bulk) -> Result<(IdMap, IdMap), ImportError> {
     let (files, wtmass) = (d.files, d.solution.wtmass);
     let p = &d.properties;
     // Only MAT1 is read; other MATi cards may legally share a MAT1 id (e.g. MAT4 holds the
@@ -164,7 +155,7 @@ pub(super) fn resolve(d: &mut Bulk) -> Result<IdMap, ImportError> {
             section,
         });
     }
-    Ok(pids)
+    Ok((pids, mids))
 }
 
 /// The findings about properties: shapes without Nastran's shear factors, mixed PSOLID ISOP.

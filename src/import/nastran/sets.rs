@@ -6,6 +6,11 @@
 //!   write one SPC1 per named node set); only the set `SPC = n` selects is applied (MSC QRG,
 //!   "Case Control": no `SPC` command, no SPC set).
 //! * `ASET ID1 C1 ID2 C2 …`, `ASET1 C G1 G2 … | G1 THRU G2` (BSET, QSET alike).
+//! * `MPC SID G1 C1 A1 G2 C2 A2 / – G3 C3 A3 G4 C4 A4 …`: one equation Σ Aᵢ uᵢ = 0, the first
+//!   dof dependent; `MPCADD SID S1 S2 …`. Only the set `MPC = n` selects is applied; the
+//!   others are a note.
+//!
+//! On a scalar point (SPOINT) the component is 0 or blank (its one dof).
 
 use std::collections::BTreeMap;
 
@@ -14,10 +19,13 @@ use super::case_control::{CaseControl, Effective};
 use super::fields::C;
 use super::lex::Card;
 use crate::import::error::{parse_err, ImportError};
-use crate::model::{ConstraintSource, DofMask, InterfaceDofs, Spc};
+use crate::model::{ConstraintSource, DofMask, InterfaceDofs, Mpc, NodeDof, Spc};
 
 /// SPCADD: (SID, [(set id, field index)], card).
 type SpcAdd<'a> = (u64, Vec<(u64, usize)>, &'a Card);
+
+/// One MPC equation read: its terms (dof, coefficient) and its card.
+type MpcCard<'a> = (Vec<(NodeDof, f64)>, &'a Card);
 
 /// The raw records of the set cards.
 #[derive(Default)]
@@ -32,6 +40,10 @@ pub(super) struct SetCards<'a> {
     pub qset: Vec<(usize, DofMask)>,
     /// How many QSET/QSET1 cards were read, by card.
     pub qset_cards: BTreeMap<&'static str, usize>,
+    /// MPC set id → its equations (terms, card).
+    pub mpc: BTreeMap<u64, Vec<MpcCard<'a>>>,
+    /// MPCADD: (SID, [(set id, field index)], card).
+    pub mpcadd: Vec<SpcAdd<'a>>,
 }
 
 /// Reader of SPC.
@@ -42,8 +54,7 @@ pub(super) fn spc<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
             continue;
         }
         let n = d.node(g, k, g.id(k, "G")?)?;
-        let m =
-            DofMask::from_digits(g.text(k + 1)).ok_or_else(|| g.err(k + 1, "bad dof digits"))?;
+        let m = d.components(g, k + 1, n, false)?;
         if g.real_or(k + 2, 0.0)? != 0.0 {
             return Err(g.err(k + 2, "enforced displacement not supported"));
         }
@@ -55,11 +66,13 @@ pub(super) fn spc<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
 /// Reader of SPC1 (ids of a THRU range that name no grid are skipped).
 pub(super) fn spc1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let sid = g.id(0, "SID")?;
-    let m = DofMask::from_digits(g.text(1)).ok_or_else(|| g.err(1, "bad dof digits"))?;
     let thru = (2..g.card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
     for (id, k) in g.id_list(2, &d.thru)? {
         match d.nodes.get(id) {
-            Some(n) => d.sets.spc.entry(sid).or_default().push((n, m, g.card)),
+            Some(n) => {
+                let m = d.components(g, 1, n, false)?;
+                d.sets.spc.entry(sid).or_default().push((n, m, g.card))
+            }
             None if thru => {}
             None => return Err(g.err(k, format!("references unknown node {id}"))),
         }
@@ -74,15 +87,49 @@ pub(super) fn spcadd<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError>
     Ok(())
 }
 
+/// Reader of MPC: one equation.
+pub(super) fn mpc<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let sid = g.id(0, "SID")?;
+    let mut terms = Vec::new();
+    // (G, C, A) at fields 1 and 4 of the first line, 9 and 12 of each continuation
+    let lines = g.card.fields.len().div_ceil(8);
+    for at in (0..lines).flat_map(|l| [8 * l + 1, 8 * l + 4]) {
+        if g.text(at).is_empty() {
+            continue;
+        }
+        let Some(dof) = d.dof(g, at, Some(at + 1))? else {
+            return Err(g.err(at, "a term on ground (grid 0)"));
+        };
+        let a = g
+            .real(at + 2)?
+            .ok_or_else(|| g.err(at + 2, "blank coefficient"))?;
+        terms.push((dof, a));
+    }
+    match terms.first() {
+        None => return Err(g.err_card("an MPC without terms")),
+        Some(&(_, 0.0)) => {
+            return Err(g.err(3, "the first coefficient (of the dependent dof) is 0"))
+        }
+        _ => {}
+    }
+    d.sets.mpc.entry(sid).or_default().push((terms, g.card));
+    Ok(())
+}
+
+/// Reader of MPCADD.
+pub(super) fn mpcadd<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let entry = (g.id(0, "SID")?, g.id_list(1, &d.thru)?, g.card);
+    d.sets.mpcadd.push(entry);
+    Ok(())
+}
+
 /// Reader of ASET, BSET and QSET (pairs of grid and components).
 pub(super) fn aset<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let qset = g.card.name == "QSET";
     let mut k = 0;
     while !g.text(k).is_empty() {
         let n = d.node(g, k, g.id(k, "G")?)?;
-        let m = DofMask::from_digits(g.text(k + 1))
-            .filter(|m| m.0 != 0)
-            .ok_or_else(|| g.err(k + 1, "bad dof digits"))?;
+        let m = d.components(g, k + 1, n, true)?;
         if qset {
             d.sets.qset.push((n, m));
         } else {
@@ -98,9 +145,6 @@ pub(super) fn aset<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
 /// grid are skipped).
 pub(super) fn aset1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let qset = g.card.name == "QSET1";
-    let m = DofMask::from_digits(g.text(0))
-        .filter(|m| m.0 != 0)
-        .ok_or_else(|| g.err(0, "bad dof digits"))?;
     let thru = (1..g.card.fields.len()).any(|k| g.text(k).eq_ignore_ascii_case("THRU"));
     for (id, k) in g.id_list(1, &d.thru)? {
         let n = match d.nodes.get(id) {
@@ -108,6 +152,7 @@ pub(super) fn aset1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> 
             None if thru => continue,
             None => return Err(g.err(k, format!("references unknown node {id}"))),
         };
+        let m = d.components(g, 0, n, true)?;
         if qset {
             d.sets.qset.push((n, m));
         } else {
@@ -257,6 +302,67 @@ pub(super) fn resolve_spc(
         ));
     }
     model.node_sets = node_sets;
+    Ok(())
+}
+
+/// The MPC set the case control selects (with an MPCADD's members) into `Model::mpcs`; a
+/// note naming the sets that are not applied.
+pub(super) fn resolve_mpc(d: &mut Bulk, effective: &Effective) -> Result<(), ImportError> {
+    let files = d.files;
+    let sets = &d.sets;
+    let mut adds: BTreeMap<u64, Vec<u64>> = BTreeMap::new();
+    for (sid, members, card) in &sets.mpcadd {
+        let entry = adds.entry(*sid).or_default();
+        for &(s, k) in members {
+            if !sets.mpc.contains_key(&s) {
+                return Err(C::new(card, files).err(k, format!("references unknown MPC set {s}")));
+            }
+            if !entry.contains(&s) {
+                entry.push(s);
+            }
+        }
+    }
+    let mut applied: Vec<u64> = Vec::new();
+    if let Some(sel) = effective.scope.mpc {
+        applied = match adds.get(&sel.id) {
+            Some(m) => m.clone(),
+            None if sets.mpc.contains_key(&sel.id) => vec![sel.id],
+            None => {
+                return Err(parse_err(
+                    &files[sel.loc.file as usize],
+                    sel.loc.line as usize,
+                    format!("MPC = {}", sel.id),
+                    format!(
+                        "the case control selects MPC set {}, but the bulk data has no MPC or MPCADD with that id",
+                        sel.id
+                    ),
+                ))
+            }
+        };
+        for s in &applied {
+            for (terms, _) in &sets.mpc[s] {
+                d.b.model.mpcs.push(Mpc {
+                    id: *s,
+                    terms: terms.clone(),
+                });
+            }
+        }
+    }
+    let unselected: Vec<String> = (sets.mpc.keys().chain(adds.keys()))
+        .filter(|s| !applied.contains(s) && effective.scope.mpc.is_none_or(|x| x.id != **s))
+        .map(|s| s.to_string())
+        .collect();
+    if !unselected.is_empty() {
+        d.b.model.deck.notes.push(format!(
+            "{}: MPC sets {} in the bulk data are not applied: {}",
+            files[0],
+            unselected.join(", "),
+            match effective.scope.mpc {
+                None => "the case control selects no MPC set".to_owned(),
+                Some(s) => format!("the case control selects MPC = {}", s.id),
+            }
+        ));
+    }
     Ok(())
 }
 
