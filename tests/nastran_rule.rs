@@ -228,3 +228,40 @@ fn cli_refuses_a_deck_with_an_unknown_stiffness_card_and_the_library_builds_it_i
     // a free beam: 6 rigid modes first
     assert_eq!(built.body.method.counts.rigid, 6);
 }
+
+/// A case-control command that changes the body (a preload, a matrix added by DMIG) is refused
+/// with the cards, first, naming its line; it too can be dropped on purpose.
+#[test]
+fn case_control_preload_and_added_matrices_are_refused() {
+    let text = base().replace("METHOD = 1\n", "METHOD = 1\nSTATSUB = 2\nK2GG = KAAX\n")
+        + "CGAP,50,60,3,4\nENDDATA\n";
+    let path = write("rule_case", "statsub.bdf", &text);
+    let e = read_model(&path, &ImportOptions::default()).unwrap_err();
+    let ImportError::Refused { cards, .. } = &e else {
+        panic!("not a refusal: {e}")
+    };
+    let got: Vec<(usize, &str)> = cards.iter().map(|c| (c.line, c.entity.as_str())).collect();
+    assert_eq!(
+        got,
+        vec![
+            (line_of(&text, "STATSUB"), "STATSUB (case control)"),
+            (line_of(&text, "K2GG"), "K2GG (case control)"),
+            (line_of(&text, "CGAP"), "CGAP 50"),
+        ]
+    );
+    assert!(e.to_string().contains("static preload"), "{e}");
+    let opts = ImportOptions {
+        ignore_cards: vec!["STATSUB".into(), "K2GG".into(), "CGAP".into()],
+        ..Default::default()
+    };
+    let m = read_model(&path, &opts).unwrap();
+    assert!(
+        m.warnings.iter().any(|w| w.message.contains(&format!(
+            "1 STATSUB ({}:{})",
+            path.display(),
+            line_of(&text, "STATSUB")
+        ))),
+        "{:?}",
+        m.warnings
+    );
+}

@@ -262,6 +262,22 @@ pub(crate) fn build(
             Some(cards::Rule::Geometry) | None => d.refuse(&g, cards::NOT_READ),
         }
     }
+    // the case control's refused commands first: they come first in the deck
+    let mut refused: Vec<RefusedCard> = Vec::new();
+    for (command, why, loc) in &case.refused {
+        if ignore.contains(command) {
+            ignored.entry(command.clone()).or_default().push(*loc);
+        } else {
+            refused.push(RefusedCard {
+                file: files[loc.file as usize].clone(),
+                line: loc.line as usize,
+                entity: format!("{command} (case control)"),
+                key: command.clone(),
+                reason: (*why).to_owned(),
+            });
+        }
+    }
+    d.refused.splice(0..0, refused);
     if !d.refused.is_empty() {
         return Err(ImportError::Refused {
             file: files[0].clone(),

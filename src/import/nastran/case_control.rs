@@ -1,6 +1,8 @@
 //! Nastran case control: the part of a deck between `CEND` and `BEGIN BULK` that says which
 //! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC`, `MPC`, `METHOD` and `LOAD`
-//! (global, i.e. above the first subcase, or inside a subcase, which overrides the global value). Every other
+//! (global, i.e. above the first subcase, or inside a subcase, which overrides the global value).
+//! Refused: the commands that would change the body and are not modelled (`K2GG`, `M2GG`,
+//! `K2PP`, `M2PP`, `STATSUB`). Every other
 //! command is output or solution control this tool has no use for and is skipped.
 //!
 //! Nastran's rule (MSC QRG, "Case Control Commands"): a bulk-data SPC set is applied only when
@@ -35,6 +37,31 @@ pub(crate) struct Subcase {
     pub scope: Scope,
 }
 
+/// Case-control commands that change the body and are not modelled: (command, why). They are
+/// refused with the bulk-data cards (`cards`), and may be dropped on purpose by name.
+const REFUSED: &[(&str, &str)] = &[
+    (
+        "K2GG",
+        "adds a stiffness matrix (DMIG) to the model: not modelled",
+    ),
+    (
+        "K2PP",
+        "adds a stiffness matrix (DMIG) to the model: not modelled",
+    ),
+    (
+        "M2GG",
+        "adds a mass matrix (DMIG) to the model: not modelled",
+    ),
+    (
+        "M2PP",
+        "adds a mass matrix (DMIG) to the model: not modelled",
+    ),
+    (
+        "STATSUB",
+        "a static preload (differential stiffness) of the normal modes: not modelled",
+    ),
+];
+
 /// The parsed case control.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct CaseControl {
@@ -43,6 +70,8 @@ pub(crate) struct CaseControl {
     pub title: Option<String>,
     pub global: Scope,
     pub subcases: Vec<Subcase>,
+    /// Commands that change the body and are not modelled: (command, why, where).
+    pub refused: Vec<(String, &'static str, Loc)>,
 }
 
 /// The selections the build uses: of the one (or the chosen) subcase, global values filled in.
@@ -121,6 +150,10 @@ pub(crate) fn parse(
         let value = value.trim();
         if word == "TITLE" && current.is_none() {
             cc.title = Some(value.to_owned());
+            continue;
+        }
+        if let Some(&(command, why)) = REFUSED.iter().find(|r| r.0 == word) {
+            cc.refused.push((command.to_owned(), why, loc));
             continue;
         }
         let describer = key.trim().to_ascii_uppercase();

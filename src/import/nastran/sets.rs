@@ -339,14 +339,23 @@ pub(super) fn resolve_mpc(d: &mut Bulk, effective: &Effective) -> Result<(), Imp
                 ))
             }
         };
+        let mut cards = Vec::new();
         for s in &applied {
-            for (terms, _) in &sets.mpc[s] {
+            for (terms, card) in &sets.mpc[s] {
                 d.b.model.mpcs.push(Mpc {
                     id: *s,
                     terms: terms.clone(),
                 });
+                cards.push(card.loc);
             }
         }
+        d.b.model.deck.notes.push(format!(
+            "MPC = {} ({}:{}) applies {}",
+            sel.id,
+            files[sel.loc.file as usize],
+            sel.loc.line,
+            super::bulk::places("MPC", &cards, files)
+        ));
     }
     let unselected: Vec<String> = (sets.mpc.keys().chain(adds.keys()))
         .filter(|s| !applied.contains(s) && effective.scope.mpc.is_none_or(|x| x.id != **s))
