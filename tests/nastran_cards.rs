@@ -6,47 +6,16 @@
 //! CBUSH of 1e12 equal to a clamp, SPOINT spring–mass systems in closed form).
 
 mod common;
+mod nastran_support;
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use common::{exe, generalized_eigenvalues, hz, scratch};
+use common::{generalized_eigenvalues, hz};
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody::model::Model;
-
-fn write(dir: &str, name: &str, text: &str) -> PathBuf {
-    let p = scratch(dir).join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
-
-/// Frequencies (Hz) of `flexbody build DECK --units si --method normal --modes n --json`.
-fn built_hz(deck: &Path, modes: usize, extra: &[&str]) -> Vec<f64> {
-    let out = exe()
-        .arg("build")
-        .arg(deck)
-        .args(["--units", "si", "--method", "normal", "--json", "--modes"])
-        .arg(modes.to_string())
-        .args(extra)
-        .arg("-o")
-        .arg(deck.with_extension("flexbody"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}: {}",
-        deck.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    v["frequency_hz"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|f| f.as_f64().unwrap())
-        .collect()
-}
+use nastran_support::{build_refused, built_hz, write};
 
 /// Frequencies (Hz) of the constrained model by a dense generalized eigen-solve (small models),
 /// independent of the build's eigensolver.
@@ -411,15 +380,7 @@ fn grounded_cbush_of_1e12_equals_a_clamp() {
     let all = rel(&fb, &fa);
     println!("first four (bending) {bending:.1e}, all {all:.1e}");
     assert!(bending < 1e-7 && all < 2e-5, "{bending:e} {all:e}");
-    let out = exe()
-        .arg("build")
-        .arg(&bush)
-        .args(["--units", "si", "--method", "normal", "-o"])
-        .arg(bush.with_extension("flexbody"))
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = build_refused(&bush);
     assert!(
         err.contains("springs or bushes to ground hold the body")
             && err.contains(&format!("bush 50 ({}:", bush.display())),
@@ -561,15 +522,7 @@ fn spoint_spring_mass_equals_the_closed_form() {
     println!("grid-coupled: {f:?}: {:.1e}", rel(&f, &exact));
     assert!(rel(&f, &exact) < 1e-12);
     assert_eq!(model.deck.qset_modes.as_ref().map(|q| q.0), Some(1));
-    let out = exe()
-        .arg("build")
-        .arg(&tied)
-        .args(["--units", "si", "--method", "normal", "-o"])
-        .arg(tied.with_extension("flexbody"))
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = build_refused(&tied);
     assert!(
         err.contains("scalar points (SPOINT 1, 2) carry dofs"),
         "{err}"

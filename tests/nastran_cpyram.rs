@@ -4,11 +4,11 @@
 //! pyramids split into CTETRA.
 
 mod common;
+mod nastran_support;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use common::{exe, scratch};
 use flexbody::fe::{assemble, AssemblySpec};
 use flexbody::import::{read_model, ImportOptions};
 
@@ -160,9 +160,7 @@ fn join(ids: &[u64]) -> String {
 }
 
 fn write(name: &str, text: &str) -> PathBuf {
-    let p = scratch("cpyram").join(name);
-    std::fs::write(&p, text).unwrap();
-    p
+    nastran_support::write("cpyram", name, text)
 }
 
 /// Constant-strain patch test: on a unit cube of six pyramids around an off-centre apex, the
@@ -226,38 +224,10 @@ fn cpyram_passes_the_constant_strain_patch_test() {
     }
 }
 
-/// Frequencies (Hz) of a free block through the CLI, rigid modes dropped.
+/// Frequencies (Hz) of a free block through the CLI with consistent mass, its six rigid
+/// modes dropped.
 fn flexible_hz(path: &Path, modes: usize) -> Vec<f64> {
-    let out = exe()
-        .arg("build")
-        .arg(path)
-        .args([
-            "--units",
-            "si",
-            "--method",
-            "normal",
-            "--mass",
-            "consistent",
-            "--json",
-        ])
-        .arg("--modes")
-        .arg((modes + 6).to_string())
-        .arg("-o")
-        .arg(path.with_extension("flexbody"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let f: Vec<f64> = v["frequency_hz"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|f| f.as_f64().unwrap())
-        .collect();
+    let f = nastran_support::built_hz(path, modes + 6, &["--mass", "consistent"]);
     assert!(
         f[..6].iter().all(|&x| x < 1e-3 * f[6]),
         "six rigid modes: {f:?}"

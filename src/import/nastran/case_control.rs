@@ -20,6 +20,28 @@ pub(crate) struct Select {
     pub loc: Loc,
 }
 
+impl Select {
+    /// The error of a selection the bulk data does not define: `command = id` selects `what`,
+    /// which none of `cards` defines.
+    pub(crate) fn undefined(
+        &self,
+        files: &[String],
+        command: &str,
+        what: &str,
+        cards: &str,
+    ) -> ImportError {
+        parse_err(
+            &files[self.loc.file as usize],
+            self.loc.line as usize,
+            format!("{command} = {}", self.id),
+            format!(
+                "the case control selects {what} {}, but the bulk data has no {cards} with that id",
+                self.id
+            ),
+        )
+    }
+}
+
 /// The selections of one scope (the global part or one subcase).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(crate) struct Scope {

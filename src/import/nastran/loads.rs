@@ -13,7 +13,7 @@ use super::case_control::Select;
 use super::coord::dir_to_basic;
 use super::fields::C;
 use super::lex::Card;
-use crate::import::error::{parse_err, ImportError};
+use crate::import::error::ImportError;
 use crate::import::text::IdMap;
 use crate::model::load::{face_nodes, solid_faces};
 use crate::model::{CoordKind, ElementKind, Load, LoadPart, Model};
@@ -303,14 +303,11 @@ pub(crate) fn resolve(
     }
     for sel in selected {
         let load = loads.get_mut(&sel.id).ok_or_else(|| {
-            parse_err(
-                &files[sel.loc.file as usize],
-                sel.loc.line as usize,
-                format!("LOAD = {}", sel.id),
-                format!(
-                    "the case control selects load set {}, but the bulk data has no FORCE, MOMENT, GRAV, PLOAD4 or LOAD with that id",
-                    sel.id
-                ),
+            sel.undefined(
+                files,
+                "LOAD",
+                "load set",
+                "FORCE, MOMENT, GRAV, PLOAD4 or LOAD",
             )
         })?;
         load.selected = true;

@@ -113,8 +113,8 @@ fn six_independent(g: &C, independent: &[(usize, DofMask)]) -> Result<(), Import
     Ok(())
 }
 
-/// Reader of RBAR.
-pub(super) fn rbar<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+/// EID, GA and GB of a rigid bar (RBAR, RBAR1), the id kept in the rigid id space.
+fn bar<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(u64, usize, usize), ImportError> {
     let eid = g.id(0, "EID")?;
     d.elements.rigid_ids.push((eid, g.card));
     let ga = d.grid(g, 1, g.id(1, "GA")?)?;
@@ -122,6 +122,12 @@ pub(super) fn rbar<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     if ga == gb {
         return Err(g.err(2, "GA and GB are the same grid"));
     }
+    Ok((eid, ga, gb))
+}
+
+/// Reader of RBAR.
+pub(super) fn rbar<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let (eid, ga, gb) = bar(d, g)?;
     let (cna, cnb) = (components(g, 3)?, components(g, 4)?);
     let (mut cma, mut cmb) = (components(g, 5)?, components(g, 6)?);
     if cma.0 == 0 && cmb.0 == 0 {
@@ -159,13 +165,7 @@ pub(super) fn rbar<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
 
 /// Reader of RBAR1.
 pub(super) fn rbar1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
-    let eid = g.id(0, "EID")?;
-    d.elements.rigid_ids.push((eid, g.card));
-    let ga = d.grid(g, 1, g.id(1, "GA")?)?;
-    let gb = d.grid(g, 2, g.id(2, "GB")?)?;
-    if ga == gb {
-        return Err(g.err(2, "GA and GB are the same grid"));
-    }
+    let (eid, ga, gb) = bar(d, g)?;
     let cb = components(g, 3)?;
     if cb.0 == 0 {
         return Err(g.err(3, "CB is blank: no dependent component"));

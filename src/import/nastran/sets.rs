@@ -18,7 +18,7 @@ use super::bulk::Bulk;
 use super::case_control::{CaseControl, Effective};
 use super::fields::C;
 use super::lex::Card;
-use crate::import::error::{parse_err, ImportError};
+use crate::import::error::ImportError;
 use crate::model::{ConstraintSource, DofMask, InterfaceDofs, Mpc, NodeDof, Spc};
 
 /// SPCADD: (SID, [(set id, field index)], card).
@@ -130,11 +130,7 @@ pub(super) fn aset<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     while !g.text(k).is_empty() {
         let n = d.node(g, k, g.id(k, "G")?)?;
         let m = d.components(g, k + 1, n, true)?;
-        if qset {
-            d.sets.qset.push((n, m));
-        } else {
-            d.b.model.interface.push(InterfaceDofs { node: n, dofs: m });
-        }
+        d.sets.add_dofs(&mut d.b.model, qset, n, m);
         k += 2;
     }
     d.sets.count_card(&g.card.name);
@@ -153,17 +149,28 @@ pub(super) fn aset1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> 
             None => return Err(g.err(k, format!("references unknown node {id}"))),
         };
         let m = d.components(g, 0, n, true)?;
-        if qset {
-            d.sets.qset.push((n, m));
-        } else {
-            d.b.model.interface.push(InterfaceDofs { node: n, dofs: m });
-        }
+        d.sets.add_dofs(&mut d.b.model, qset, n, m);
     }
     d.sets.count_card(&g.card.name);
     Ok(())
 }
 
 impl SetCards<'_> {
+    /// Dofs of an ASET/BSET (the model's interface) or a QSET.
+    fn add_dofs(
+        &mut self,
+        model: &mut crate::model::Model,
+        qset: bool,
+        node: usize,
+        dofs: DofMask,
+    ) {
+        if qset {
+            self.qset.push((node, dofs));
+        } else {
+            model.interface.push(InterfaceDofs { node, dofs });
+        }
+    }
+
     fn count_card(&mut self, name: &str) {
         let (key, to) = match name {
             "ASET" => ("ASET", &mut self.aset_cards),
@@ -177,6 +184,63 @@ impl SetCards<'_> {
     }
 }
 
+/// The members of every SPCADD/MPCADD of `adds` by its SID, each named set checked against
+/// `defined` (`what`: SPC, MPC).
+fn combinations<'a>(
+    adds: &[SpcAdd<'a>],
+    defined: impl Fn(u64) -> bool,
+    what: &str,
+    files: &[String],
+) -> Result<BTreeMap<u64, (Vec<u64>, &'a Card)>, ImportError> {
+    let mut out: BTreeMap<u64, (Vec<u64>, &Card)> = BTreeMap::new();
+    for (sid, members, card) in adds {
+        let entry = out.entry(*sid).or_insert((Vec::new(), card));
+        for &(s, k) in members {
+            if !defined(s) {
+                return Err(
+                    C::new(card, files).err(k, format!("references unknown {what} set {s}"))
+                );
+            }
+            if !entry.0.contains(&s) {
+                entry.0.push(s);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The sets a case-control selection applies: an ADD's members, or the set itself; `None`
+/// without a selection. `names` = (command, what it selects, the cards defining it).
+fn applied_sets(
+    selection: Option<super::case_control::Select>,
+    adds: &BTreeMap<u64, (Vec<u64>, &Card)>,
+    defined: impl Fn(u64) -> bool,
+    files: &[String],
+    names: (&str, &str, &str),
+) -> Result<Vec<u64>, ImportError> {
+    let Some(sel) = selection else {
+        return Ok(Vec::new());
+    };
+    match adds.get(&sel.id) {
+        Some((m, _)) => Ok(m.clone()),
+        None if defined(sel.id) => Ok(vec![sel.id]),
+        None => Err(sel.undefined(files, names.0, names.1, names.2)),
+    }
+}
+
+/// The ids of `sets` and `adds` neither applied nor selected.
+fn unapplied<T>(
+    sets: &BTreeMap<u64, T>,
+    adds: &BTreeMap<u64, (Vec<u64>, &Card)>,
+    applied: &[u64],
+    selection: Option<super::case_control::Select>,
+) -> Vec<u64> {
+    (sets.keys().chain(adds.keys()))
+        .filter(|s| !applied.contains(s) && selection.is_none_or(|x| x.id != **s))
+        .copied()
+        .collect()
+}
+
 /// SPC sets into node sets `SPC_<sid>` and `deck.spc_sets`; the set the case control selects
 /// into `Model::spcs` with its sources; a note naming the sets that are not applied.
 pub(super) fn resolve_spc(
@@ -187,32 +251,22 @@ pub(super) fn resolve_spc(
     let files = d.files;
     let sets = &d.sets;
     let model = &mut d.b.model;
-    let mut node_sets = BTreeMap::new();
-    for (sid, list) in &sets.spc {
-        let mut ns: Vec<usize> = list.iter().map(|p| p.0).collect();
-        ns.sort_unstable();
-        ns.dedup();
-        node_sets.insert(format!("SPC_{sid}"), ns);
-    }
-    let mut spcadd_members: BTreeMap<u64, (Vec<u64>, &Card)> = BTreeMap::new();
-    for (sid, members, card) in &sets.spcadd {
-        let entry = spcadd_members.entry(*sid).or_insert((Vec::new(), card));
-        for &(s, k) in members {
-            if !sets.spc.contains_key(&s) {
-                return Err(C::new(card, files).err(k, format!("references unknown SPC set {s}")));
-            }
-            if !entry.0.contains(&s) {
-                entry.0.push(s);
-            }
-        }
-        let mut ns: Vec<usize> = entry
-            .0
-            .iter()
+    let defined = |s: u64| sets.spc.contains_key(&s);
+    let spcadd_members = combinations(&sets.spcadd, defined, "SPC", files)?;
+    let nodes_of = |members: &[u64]| {
+        let mut ns: Vec<usize> = (members.iter())
             .flat_map(|s| sets.spc[s].iter().map(|p| p.0))
             .collect();
         ns.sort_unstable();
         ns.dedup();
-        node_sets.insert(format!("SPC_{sid}"), ns);
+        ns
+    };
+    let mut node_sets = BTreeMap::new();
+    for sid in sets.spc.keys() {
+        node_sets.insert(format!("SPC_{sid}"), nodes_of(&[*sid]));
+    }
+    for (sid, (members, _)) in &spcadd_members {
+        node_sets.insert(format!("SPC_{sid}"), nodes_of(members));
     }
     for (sid, list) in &sets.spc {
         model.deck.spc_sets.insert(
@@ -227,70 +281,52 @@ pub(super) fn resolve_spc(
             .collect();
         model.deck.spc_sets.insert(format!("SPC_{sid}"), all);
     }
-    let mut applied: Vec<u64> = Vec::new();
-    if let Some(sel) = effective.scope.spc {
-        let members = match spcadd_members.get(&sel.id) {
-            Some((m, _)) => m.clone(),
-            None if sets.spc.contains_key(&sel.id) => vec![sel.id],
-            None => {
-                return Err(parse_err(
-                    &files[sel.loc.file as usize],
-                    sel.loc.line as usize,
-                    format!("SPC = {}", sel.id),
-                    format!(
-                        "the case control selects SPC set {}, but the bulk data has no SPC, SPC1 or SPCADD with that id",
-                        sel.id
-                    ),
-                ))
-            }
-        };
-        for s in members {
-            applied.push(s);
-            for &(node, dofs, card) in &sets.spc[&s] {
-                let at = model.spcs.len();
-                model.spcs.push(Spc {
-                    node,
-                    dofs,
-                    set_id: sel.id,
-                });
-                match model.constraint_sources.last_mut() {
-                    Some(last)
-                        if !last.permanent
-                            && last.spcs.end == at
-                            && last.line == card.loc.line as usize
-                            && last.file == files[card.loc.file as usize] =>
-                    {
-                        last.spcs.end = at + 1;
-                    }
-                    _ => model.constraint_sources.push(ConstraintSource {
-                        card: card.name.clone(),
-                        id: if s == sel.id {
-                            format!("set {s}")
-                        } else {
-                            format!("set {s} (SPCADD {})", sel.id)
-                        },
-                        file: files[card.loc.file as usize].clone(),
-                        line: card.loc.line as usize,
-                        set: Some(format!("SPC_{s}")),
-                        spcs: at..at + 1,
-                        permanent: false,
-                    }),
+    let selection = effective.scope.spc;
+    let names = ("SPC", "SPC set", "SPC, SPC1 or SPCADD");
+    let applied = applied_sets(selection, &spcadd_members, defined, files, names)?;
+    let sel_id = selection.map_or(0, |s| s.id);
+    for &s in &applied {
+        for &(node, dofs, card) in &sets.spc[&s] {
+            let at = model.spcs.len();
+            model.spcs.push(Spc {
+                node,
+                dofs,
+                set_id: sel_id,
+            });
+            match model.constraint_sources.last_mut() {
+                Some(last)
+                    if !last.permanent
+                        && last.spcs.end == at
+                        && last.line == card.loc.line as usize
+                        && last.file == files[card.loc.file as usize] =>
+                {
+                    last.spcs.end = at + 1;
                 }
+                _ => model.constraint_sources.push(ConstraintSource {
+                    card: card.name.clone(),
+                    id: if s == sel_id {
+                        format!("set {s}")
+                    } else {
+                        format!("set {s} (SPCADD {sel_id})")
+                    },
+                    file: files[card.loc.file as usize].clone(),
+                    line: card.loc.line as usize,
+                    set: Some(format!("SPC_{s}")),
+                    spcs: at..at + 1,
+                    permanent: false,
+                }),
             }
         }
     }
-    let unselected: Vec<String> = sets
-        .spc
-        .keys()
-        .chain(spcadd_members.keys())
-        .filter(|s| !applied.contains(s) && effective.scope.spc.is_none_or(|x| x.id != **s))
+    let unselected: Vec<String> = unapplied(&sets.spc, &spcadd_members, &applied, selection)
+        .iter()
         .map(|s| format!("SPC_{s}"))
         .collect();
     if !unselected.is_empty() {
         let why = if !case.present {
             "the file has no case control (bare bulk data), so no SPC set is selected".to_owned()
         } else {
-            match effective.scope.spc {
+            match selection {
                 None => "the case control selects no SPC set (free-free)".to_owned(),
                 Some(s) => format!("the case control selects SPC = {}", s.id),
             }
@@ -305,50 +341,27 @@ pub(super) fn resolve_spc(
     Ok(())
 }
 
-/// The MPC set the case control selects (with an MPCADD's members) into `Model::mpcs`; a
-/// note naming the sets that are not applied.
+/// The MPC set the case control selects (with an MPCADD's members) into `Model::mpcs`, with a
+/// note naming its equations; a note naming the sets that are not applied.
 pub(super) fn resolve_mpc(d: &mut Bulk, effective: &Effective) -> Result<(), ImportError> {
     let files = d.files;
     let sets = &d.sets;
-    let mut adds: BTreeMap<u64, Vec<u64>> = BTreeMap::new();
-    for (sid, members, card) in &sets.mpcadd {
-        let entry = adds.entry(*sid).or_default();
-        for &(s, k) in members {
-            if !sets.mpc.contains_key(&s) {
-                return Err(C::new(card, files).err(k, format!("references unknown MPC set {s}")));
-            }
-            if !entry.contains(&s) {
-                entry.push(s);
-            }
+    let defined = |s: u64| sets.mpc.contains_key(&s);
+    let adds = combinations(&sets.mpcadd, defined, "MPC", files)?;
+    let selection = effective.scope.mpc;
+    let names = ("MPC", "MPC set", "MPC or MPCADD");
+    let applied = applied_sets(selection, &adds, defined, files, names)?;
+    let mut cards = Vec::new();
+    for s in &applied {
+        for (terms, card) in &sets.mpc[s] {
+            d.b.model.mpcs.push(Mpc {
+                id: *s,
+                terms: terms.clone(),
+            });
+            cards.push(card.loc);
         }
     }
-    let mut applied: Vec<u64> = Vec::new();
-    if let Some(sel) = effective.scope.mpc {
-        applied = match adds.get(&sel.id) {
-            Some(m) => m.clone(),
-            None if sets.mpc.contains_key(&sel.id) => vec![sel.id],
-            None => {
-                return Err(parse_err(
-                    &files[sel.loc.file as usize],
-                    sel.loc.line as usize,
-                    format!("MPC = {}", sel.id),
-                    format!(
-                        "the case control selects MPC set {}, but the bulk data has no MPC or MPCADD with that id",
-                        sel.id
-                    ),
-                ))
-            }
-        };
-        let mut cards = Vec::new();
-        for s in &applied {
-            for (terms, card) in &sets.mpc[s] {
-                d.b.model.mpcs.push(Mpc {
-                    id: *s,
-                    terms: terms.clone(),
-                });
-                cards.push(card.loc);
-            }
-        }
+    if let Some(sel) = selection {
         d.b.model.deck.notes.push(format!(
             "MPC = {} ({}:{}) applies {}",
             sel.id,
@@ -357,8 +370,8 @@ pub(super) fn resolve_mpc(d: &mut Bulk, effective: &Effective) -> Result<(), Imp
             super::bulk::places("MPC", &cards, files)
         ));
     }
-    let unselected: Vec<String> = (sets.mpc.keys().chain(adds.keys()))
-        .filter(|s| !applied.contains(s) && effective.scope.mpc.is_none_or(|x| x.id != **s))
+    let unselected: Vec<String> = unapplied(&sets.mpc, &adds, &applied, selection)
+        .iter()
         .map(|s| s.to_string())
         .collect();
     if !unselected.is_empty() {
@@ -366,7 +379,7 @@ pub(super) fn resolve_mpc(d: &mut Bulk, effective: &Effective) -> Result<(), Imp
             "{}: MPC sets {} in the bulk data are not applied: {}",
             files[0],
             unselected.join(", "),
-            match effective.scope.mpc {
+            match selection {
                 None => "the case control selects no MPC set".to_owned(),
                 Some(s) => format!("the case control selects MPC = {}", s.id),
             }

@@ -11,7 +11,7 @@ use super::bulk::Bulk;
 use super::case_control::Effective;
 use super::fields::C;
 use super::lex::Card;
-use crate::import::error::{parse_err, ImportError};
+use crate::import::error::ImportError;
 use crate::model::EigenRequest;
 
 /// The raw records of the solution cards.
@@ -86,17 +86,8 @@ pub(super) fn resolve_method(d: &mut Bulk, effective: &Effective) -> Result<(), 
         return Ok(());
     };
     let files = d.files;
-    let card = d.solution.eigen.get(&sel.id).ok_or_else(|| {
-        parse_err(
-            &files[sel.loc.file as usize],
-            sel.loc.line as usize,
-            format!("METHOD = {}", sel.id),
-            format!(
-                "the case control selects eigenvalue method {}, but the bulk data has no EIGRL or EIGR with that id",
-                sel.id
-            ),
-        )
-    })?;
+    let card = (d.solution.eigen.get(&sel.id))
+        .ok_or_else(|| sel.undefined(files, "METHOD", "eigenvalue method", "EIGRL or EIGR"))?;
     let g = C::new(card, files);
     // EIGRL: SID V1 V2 ND; EIGR: SID METHOD F1 F2 NE ND.
     let (lo, hi, nd) = if card.name == "EIGRL" {
