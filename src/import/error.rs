@@ -89,13 +89,19 @@ fn refusal_text(file: &str, cards: &[RefusedCard]) -> String {
         let list: Vec<String> = rest.iter().map(|(k, n)| format!("{n} {k}")).collect();
         s.push_str(&format!("\n  … and {}", list.join(", ")));
     }
-    let mut keys: Vec<&str> = cards.iter().map(|c| c.key.as_str()).collect();
+    // a line without a card name has no name to ignore it by
+    let mut keys: Vec<&str> = (cards.iter())
+        .map(|c| c.key.as_str())
+        .filter(|k| !k.is_empty())
+        .collect();
     keys.sort_unstable();
     keys.dedup();
-    s.push_str(&format!(
-        "\nto drop them on purpose, ignore them by name: --ignore {} (recorded in the recipe)",
-        keys.join(",")
-    ));
+    if !keys.is_empty() {
+        s.push_str(&format!(
+            "\nto drop them on purpose, ignore them by name: --ignore {} (recorded in the recipe)",
+            keys.join(",")
+        ));
+    }
     s
 }
 

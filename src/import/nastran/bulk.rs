@@ -211,10 +211,7 @@ pub(crate) fn build(
     b.model.deck.subcase = effective.subcase;
 
     // Pass 1: cards dropped on purpose set aside; the geometry cards place the nodes.
-    let ignore: Vec<String> = ignore
-        .iter()
-        .map(|s| s.trim().to_ascii_uppercase().replacen(',', ":", 1))
-        .collect();
+    let ignore: Vec<String> = ignore.iter().map(|s| ignore_key(s)).collect();
     let mut ignored: BTreeMap<String, Vec<Loc>> = BTreeMap::new();
     let mut counts = CardCounts::new();
     let mut geometry = GeometryCards::default();
@@ -222,10 +219,12 @@ pub(crate) fn build(
     for card in &all {
         *counts.entry(card.name.clone()).or_default() += 1;
         let g = C::new(card, &files);
-        let key = cards::key(&g);
-        if ignore.iter().any(|i| *i == key || *i == card.name) {
-            ignored.entry(key).or_default().push(card.loc);
-            continue;
+        if !ignore.is_empty() {
+            let key = cards::key(&g);
+            if ignore.iter().any(|i| *i == key || *i == card.name) {
+                ignored.entry(key).or_default().push(card.loc);
+                continue;
+            }
         }
         match cards::rule(&g) {
             Some(cards::Rule::Geometry) => geometry.take(card, &files)?,
@@ -323,6 +322,18 @@ pub(crate) fn build(
     Ok((b.model, counts))
 }
 
+/// An `ignore_cards` name as the card table knows it: upper case; a parameter as
+/// `PARAM:NAME` whether given as `PARAM:NAME`, `PARAM,NAME` or `PARAM NAME`.
+fn ignore_key(name: &str) -> String {
+    let up = name.trim().to_ascii_uppercase();
+    match up.strip_prefix("PARAM") {
+        Some(rest) if !rest.trim_start_matches([':', ',', ' ']).is_empty() => {
+            format!("PARAM:{}", rest.trim_start_matches([':', ',', ' ']).trim())
+        }
+        _ => up,
+    }
+}
+
 /// One warning per card type dropped on purpose (and per `ignore` name the deck does not
 /// have), one note per card type not read because it cannot change the body.
 fn ignored_and_notes(d: &mut Bulk, ignored: &BTreeMap<String, Vec<Loc>>, ignore: &[String]) {
@@ -357,5 +368,23 @@ fn ignored_and_notes(d: &mut Bulk, ignored: &BTreeMap<String, Vec<Loc>>, ignore:
             .deck
             .notes
             .push(format!("{} not read: {why}", places(key, locs, files)));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ignore_key;
+
+    #[test]
+    fn ignore_names_are_card_names_or_param_keys() {
+        for (given, key) in [
+            ("cgap", "CGAP"),
+            (" PARAM:snorm", "PARAM:SNORM"),
+            ("param,SNORM", "PARAM:SNORM"),
+            ("PARAM SNORM", "PARAM:SNORM"),
+            ("PARAM", "PARAM"),
+        ] {
+            assert_eq!(ignore_key(given), key);
+        }
     }
 }
