@@ -244,3 +244,31 @@ fn case_control_preload_and_added_matrices_are_refused() {
         m.warnings
     );
 }
+
+/// Every warning of a deck names file and line: an implausible material, shells with uneven
+/// corner thicknesses, an RBE2 with a CBAR's id, cross-section shapes without Nastran's shear
+/// factors, mixed PSOLID formulations, an unusable load set.
+#[test]
+fn every_warning_names_file_and_line() {
+    let text = base().replace("MAT1,1,2.1e11,,.3,7850.", "MAT1,1,2.1e11,,.3,7.85e-9")
+        + "PSHELL,3,1,.002\nCQUAD4,40,3,1,2,3,4,,,+\n+,,,.002,.003,.002,.002\n\
+           RBE2,5,13,123456,12\nPBARL,6,1,,BAR\n,.01,.02\nCBAR,41,6,1,2,0.,0.,1.\n\
+           PSOLID,7,1,,,,FULL\nPSOLID,8,1\nPLOAD1,9,1,FZ,FR,0.,1.,1.,1.\nENDDATA\n";
+    let path = write("rule_warnings", "warnings.bdf", &text);
+    let m = match read_model(&path, &ImportOptions::default()) {
+        Ok(m) => m,
+        Err(e) => panic!("{e}"),
+    };
+    assert!(m.warnings.len() >= 6, "{:?}", m.warnings);
+    let file = path.display().to_string();
+    for w in &m.warnings {
+        let at_line = w
+            .file
+            .strip_prefix(&format!("{file}:"))
+            .is_some_and(|l| l.parse::<usize>().is_ok());
+        assert!(
+            at_line || w.message.contains(&format!("{file}:")),
+            "no line: {w:?}"
+        );
+    }
+}

@@ -467,6 +467,9 @@ pub struct Model {
     pub params: ModelParams,
     /// Non-fatal findings.
     pub warnings: Vec<ImportWarning>,
+    /// Where each material was defined, parallel to [`Model::materials`]: (index into
+    /// [`Model::files`], 1-based line); shorter (or empty) where unknown.
+    pub material_sources: Vec<(u32, u32)>,
     /// Where each element was defined, for messages after import: (external element id,
     /// index into [`Model::files`], 1-based line), sorted by id. Empty for models built in
     /// memory; see [`Model::element_location`].

@@ -117,6 +117,9 @@ pub(super) fn resolve(d: &mut Bulk) -> Result<(IdMap, IdMap), ImportError> {
         .map_err(|(_, k)| C::new(p.mats[k].2, files).err_card("duplicate material id"))?;
     let model = &mut d.b.model;
     model.materials = p.mats.iter().map(|m| m.1.clone()).collect();
+    model.material_sources = (p.mats.iter())
+        .map(|m| (m.2.loc.file, m.2.loc.line))
+        .collect();
     for m in &mut model.materials {
         m.rho *= wtmass;
     }
