@@ -21,8 +21,8 @@ use super::lex::Card;
 use crate::import::error::ImportError;
 use crate::model::{ConstraintSource, DofMask, InterfaceDofs, Mpc, NodeDof, Spc};
 
-/// SPCADD: (SID, [(set id, field index)], card).
-type SpcAdd<'a> = (u64, Vec<(u64, usize)>, &'a Card);
+/// An SPCADD or MPCADD: (SID, [(set id, field index)], card).
+type SetAdd<'a> = (u64, Vec<(u64, usize)>, &'a Card);
 
 /// One MPC equation read: its terms (dof, coefficient) and its card.
 type MpcCard<'a> = (Vec<(NodeDof, f64)>, &'a Card);
@@ -32,8 +32,8 @@ type MpcCard<'a> = (Vec<(NodeDof, f64)>, &'a Card);
 pub(super) struct SetCards<'a> {
     /// SPC/SPC1 set id → (node, components, card).
     pub spc: BTreeMap<u64, Vec<(usize, DofMask, &'a Card)>>,
-    /// SPCADD: (SID, [(set id, field index)], card).
-    pub spcadd: Vec<SpcAdd<'a>>,
+    /// SPCADD cards.
+    pub spcadd: Vec<SetAdd<'a>>,
     /// How many ASET/ASET1/BSET/BSET1 cards were read, by card.
     pub aset_cards: BTreeMap<&'static str, usize>,
     /// QSET/QSET1 dofs.
@@ -42,8 +42,8 @@ pub(super) struct SetCards<'a> {
     pub qset_cards: BTreeMap<&'static str, usize>,
     /// MPC set id → its equations (terms, card).
     pub mpc: BTreeMap<u64, Vec<MpcCard<'a>>>,
-    /// MPCADD: (SID, [(set id, field index)], card).
-    pub mpcadd: Vec<SpcAdd<'a>>,
+    /// MPCADD cards.
+    pub mpcadd: Vec<SetAdd<'a>>,
 }
 
 /// Reader of SPC.
@@ -187,7 +187,7 @@ impl SetCards<'_> {
 /// The members of every SPCADD/MPCADD of `adds` by its SID, each named set checked against
 /// `defined` (`what`: SPC, MPC).
 fn combinations<'a>(
-    adds: &[SpcAdd<'a>],
+    adds: &[SetAdd<'a>],
     defined: impl Fn(u64) -> bool,
     what: &str,
     files: &[String],
