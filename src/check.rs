@@ -508,6 +508,7 @@ fn model_checks(
             material: input.material.clone(),
             shell_thickness: input.thickness,
             subcase: input.subcase,
+            ..Default::default()
         },
     )
     .map_err(BuildError::from)?;

@@ -281,6 +281,7 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
             material: spec.material.clone(),
             subcase: spec.subcase,
             shell_thickness: spec.thickness,
+            ..Default::default()
         },
     )?;
     let import_s = clock.elapsed().as_secs_f64();
@@ -493,6 +494,11 @@ pub fn build_model_with_hook(
             "held components (GRID PS / GRDSET / selected SPC) are not interface or reference dofs: {}",
             dropped.join(", ")
         ));
+    }
+    // what a flexible body cannot hold of springs, scalar masses and scalar points
+    let lumped = spec.mass == fe::MassKind::Lumped;
+    if let Some(why) = fe::connectors::body_restrictions(&model, dofs, &assembled.m, lumped) {
+        return Err(request_err(why));
     }
     // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
     crate::precheck::before_reduction(

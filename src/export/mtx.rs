@@ -79,6 +79,7 @@ pub fn constrained_system(spec: &BuildSpec) -> Result<ConstrainedSystem, BuildEr
             material: spec.material.clone(),
             subcase: spec.subcase,
             shell_thickness: spec.thickness,
+            ..Default::default()
         },
     )?;
     let resolved = BuildSpec {

@@ -9,10 +9,11 @@ use crate::model::{ImportWarning, Model};
 /// Wave speeds √(E/ρ) outside this range (in any length/time units) are warned about.
 const WAVE_SPEED_RANGE: (f64, f64) = (0.6, 2e8);
 
-/// Warnings for implausible materials of `model`, attributed to `file`.
+/// Warnings for implausible materials of `model`, attributed to the material's `file:line`
+/// when the importer recorded it ([`Model::material_sources`]), else to `file`.
 pub fn material_warnings(model: &Model, file: &str) -> Vec<ImportWarning> {
     let mut out = Vec::new();
-    for m in &model.materials {
+    for (k, m) in model.materials.iter().enumerate() {
         let mut why = Vec::new();
         if !(m.nu > -1.0 && m.nu < 0.5) {
             why.push(format!("Poisson's ratio ν = {} is outside (−1, 0.5)", m.nu));
@@ -33,8 +34,14 @@ pub fn material_warnings(model: &Model, file: &str) -> Vec<ImportWarning> {
             }
         }
         if !why.is_empty() {
+            let place = match model.material_sources.get(k) {
+                Some(&(f, line)) => {
+                    format!("{}:{line}", model.files.get(f as usize).map_or(file, |s| s))
+                }
+                None => file.to_owned(),
+            };
             out.push(ImportWarning {
-                file: file.to_owned(),
+                file: place,
                 message: format!("material {}: {}", m.name, why.join("; ")),
             });
         }
