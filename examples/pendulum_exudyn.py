@@ -11,6 +11,8 @@ From the FE model to a plot, in three steps:
    deflection in the body frame (the modal part of its motion) and the swing angle.
 
 usage: python3 examples/pendulum_exudyn.py [OUT.png]
+   (default OUT.png: pendulum_exudyn.png in the current folder; the plot in the docs is made
+   with `python3 examples/pendulum_exudyn.py docs/pendulum_exudyn.png`)
    (FLEXBODY=path/to/flexbody; default target/release/flexbody, built by `cargo build --release`)
 Needs exudyn, numpy, matplotlib (pip install exudyn matplotlib). Runs in a few seconds.
 """
@@ -27,7 +29,7 @@ from exudyn.FEM import ObjectFFRFreducedOrderInterface
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 flexbody = os.environ.get("FLEXBODY", os.path.join(root, "target", "release", "flexbody"))
-png = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "docs", "pendulum_exudyn.png")
+png = sys.argv[1] if len(sys.argv) > 1 else "pendulum_exudyn.png"
 work = tempfile.mkdtemp(prefix="flexbody-pendulum-")
 body = os.path.join(work, "conrod.flexbody")
 npz = os.path.join(work, "conrod.npz")

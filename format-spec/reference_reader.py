@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.5), written from SPEC.md alone.
+"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.6), written from SPEC.md alone.
 
-Standard library only (zipfile, json, hashlib, struct). Usage:
+Standard library only (zlib, json, hashlib, struct; the zip container is read by SPEC §7.1's
+procedure here, not by zipfile). Usage:
 
     reference_reader.py FILE                 print the summary JSON of FILE
     reference_reader.py --check-fixtures DIR golden/compat files must match their .json
@@ -9,34 +10,31 @@ Standard library only (zipfile, json, hashlib, struct). Usage:
                                              error name of their .expect; exit 1 otherwise
 """
 import hashlib
-import io
 import json
 import math
+import re
 import struct
 import sys
-import zipfile
 import zlib
 from pathlib import Path
 
 FORMAT_NAME = "flexbody-reduced-body"
 SUPPORTED_MAJOR = 1
 MANIFEST = "manifest.json"
-ENTRIES = [  # SPEC §2: name, required
-    ("header.bin", True), ("nodes.bin", True), ("faces.bin", True), ("nodal_mass.bin", True),
-    ("modes.bin", True), ("invariants.bin", True), ("method.bin", True),
-    ("stress_shapes.bin", False), ("strain_shapes.bin", False), ("damping.bin", False),
-    ("lines.bin", False),  # format 1.1
-    ("recipe.json", False),  # format 1.2
-    ("label_shares.bin", False),  # format 1.2
-    ("interfaces.bin", False),  # format 1.3
-    ("modal_loads.bin", False),  # format 1.4
-    ("stress_shapes_bottom.bin", False), ("strain_shapes_bottom.bin", False),  # format 1.5
+ENTRIES = [  # SPEC §2: name, required, the minor version that introduced it
+    ("header.bin", True, 0), ("nodes.bin", True, 0), ("faces.bin", True, 0), ("nodal_mass.bin", True, 0),
+    ("modes.bin", True, 0), ("invariants.bin", True, 0), ("method.bin", True, 0),
+    ("stress_shapes.bin", False, 0), ("strain_shapes.bin", False, 0), ("damping.bin", False, 0),
+    ("lines.bin", False, 1), ("recipe.json", False, 2), ("label_shares.bin", False, 2),
+    ("interfaces.bin", False, 3), ("modal_loads.bin", False, 4),
+    ("stress_shapes_bottom.bin", False, 5), ("strain_shapes_bottom.bin", False, 5),
 ]
-KNOWN = dict(ENTRIES)
+KNOWN = {name: (req, minor) for name, req, minor in ENTRIES}
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
               max_entries=64, max_nodes=10_000_000, max_faces=50_000_000, max_modes=100_000,
               max_expansion=64, max_expansion_floor=64 << 20)
 STRING_LIMIT = 16 << 20
+JSON_DEPTH = 64
 REL_TOL, FRAME_TOL = 1e-9, 1e-6
 UNIT_KEYS = ["mass", "length", "time", "force"]
 
@@ -220,16 +218,16 @@ def decode_modal_loads(d):
 DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin": decode_faces,
             "nodal_mass.bin": decode_nodal_mass, "modes.bin": decode_modes,
             "invariants.bin": decode_invariants, "method.bin": decode_method,
-            "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field, "lines.bin": decode_lines,
+            "stress_shapes.bin": decode_field, "strain_shapes.bin": decode_field,
+            "damping.bin": decode_damping, "lines.bin": decode_lines,
             "label_shares.bin": lambda d: d.f64s(), "interfaces.bin": decode_interfaces,
             "modal_loads.bin": decode_modal_loads,
-            "stress_shapes_bottom.bin": decode_field, "strain_shapes_bottom.bin": decode_field,
-            "damping.bin": decode_damping}
+            "stress_shapes_bottom.bin": decode_field, "strain_shapes_bottom.bin": decode_field}
 
 
 # SPEC §5.11: recipe.json member types. ("opt", T) may be null or absent; ("omit", T) may be
-# absent (left out of the summary when absent or null); ("list", T); a dict is
-# an object with those members (unknown members ignored); ("arr", T, k) a fixed-length array.
+# absent (then left out of the summary), present it is a T (null is not); ("list", T); a dict
+# is an object with those members (unknown members ignored); ("arr", T, k) a fixed-length array.
 U64, U8, F64, STR = ("uint", 64), ("uint", 8), "number", "string"
 UNITS_T = {k: {"name": STR, "si": F64} for k in UNIT_KEYS}
 RECIPE_T = {
@@ -260,7 +258,7 @@ def typed(v, t, at):
         out = {}
         for k, tk in t.items():
             if isinstance(tk, tuple) and tk[0] == "omit":
-                if v.get(k) is not None:  # absent or null: left out of the summary
+                if k in v:
                     out[k] = typed(v[k], tk[1], f"{at}.{k}")
                 continue
             if k not in v and not (isinstance(tk, tuple) and tk[0] == "opt"):
@@ -288,6 +286,47 @@ def typed(v, t, at):
     raise AssertionError(t)
 
 
+# A string (to its closing quote, or to the end of a text that never closes it: every match
+# succeeds, so the scan is linear whatever the text) or a bracket outside strings.
+_JSON_TOKENS = re.compile(r'"(?:[^"\\]|\\.|\\\Z)*(?:"|\Z)|([][{}])', re.DOTALL)
+
+
+def load_json(text):
+    """SPEC §4.1: strict JSON. At most JSON_DEPTH nested arrays and objects, no member name twice
+    in an object, no lone surrogate; integers (no fraction, no exponent) exact, other numbers the
+    nearest binary64 (1e999 → inf). Raises ValueError."""
+    depth = 0
+    for m in _JSON_TOKENS.finditer(text):
+        depth += {None: 0, "[": 1, "{": 1, "]": -1, "}": -1}[m.group(1)]
+        if depth > JSON_DEPTH:
+            raise ValueError(f"arrays and objects nested deeper than {JSON_DEPTH}")
+
+    def no_constants(c):  # JSON has no NaN/Infinity; Python's json would accept them
+        raise ValueError(f"{c} is not JSON")
+
+    def unique(pairs):
+        out = {}
+        for k, v in pairs:
+            if k in out:
+                raise ValueError(f"member {k!r} occurs twice")
+            out[k] = v
+        return out
+
+    def no_lone_surrogate(v):
+        for x in (v.items() if isinstance(v, dict) else v if isinstance(v, list) else [v]):
+            for y in (x if isinstance(x, tuple) else (x,)):
+                if isinstance(y, str):
+                    y.encode("utf-8")  # UnicodeEncodeError (a ValueError) on a lone surrogate
+                elif isinstance(y, (list, dict)):
+                    no_lone_surrogate(y)
+    # Integers of more than 40 digits are beyond every integer member (u64): read them as the
+    # number they are (float() is exact-rounding; int() refuses more than 4300 digits).
+    v = json.loads(text, parse_constant=no_constants, object_pairs_hook=unique,
+                   parse_int=lambda t: int(t) if len(t) <= 40 else float(t))
+    no_lone_surrogate(v)
+    return v
+
+
 def decode_recipe(data):
     """SPEC §5.11: UTF-8 JSON, at most 16 MiB, members of RECIPE_T (unknown ones ignored)."""
     def fail(msg):
@@ -298,31 +337,139 @@ def decode_recipe(data):
         text = data.decode("utf-8")
     except UnicodeDecodeError as e:
         fail(f"not UTF-8: {e}")
-
-    def no_constants(c):
-        raise ValueError(f"{c} is not JSON")
     try:
-        v = json.loads(text, parse_constant=no_constants)
-    except (ValueError, RecursionError) as e:
-        fail(f"not a valid recipe: {e}")
+        v = load_json(text)
+    except ValueError as e:
+        fail(f"not JSON: {e}")
     return typed(v, RECIPE_T, "recipe")
 
 
-def read_entry(zf, info, declared):
-    if info.file_size != declared:  # checked before inflating anything (a bomb's directory lies)
-        raise ReadError("SizeMismatch", f"{info.filename}: size {info.file_size} differs from the manifest's {declared}")
-    if info.flag_bits & 0x41:  # bit 0: encrypted, bit 6: strong encryption
-        raise ReadError("Container", f"{info.filename}: damaged zip data (encrypted entry; encryption has no meaning in v1)")
-    if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
-        raise ReadError("Compression", f"{info.filename}: compression method {info.compress_type} not supported")
-    try:
-        with zf.open(info) as f:
-            data = f.read(declared + 1)
-    except (zipfile.BadZipFile, OSError, EOFError, ValueError, NotImplementedError, zlib.error) as e:
-        raise ReadError("Container", f"{info.filename}: damaged zip data ({e})")
-    if len(data) != declared:
-        raise ReadError("SizeMismatch", f"{info.filename}: size {len(data)} differs from the manifest's {declared}")
-    return data
+class ZipEntry:
+    """One central-directory record (SPEC §7.1 step 1); `local` is the local header's offset in
+    the file (the archive offset added)."""
+    __slots__ = ("name", "flags", "method", "crc", "csize", "size", "local")
+
+    def __init__(self, name, flags, method, crc, csize, size, local):
+        self.name, self.flags, self.method, self.crc = name, flags, method, crc
+        self.csize, self.size, self.local = csize, size, local
+
+
+def le(data, at, n):
+    """The little-endian unsigned integer of n bytes at `at`, or None past the end."""
+    return int.from_bytes(data[at:at + n], "little") if 0 <= at and at + n <= len(data) else None
+
+
+def zip64_values(extra, wanted):
+    """The first `wanted` 8-byte values of the Zip64 extra field (id 1), or None."""
+    k = 0
+    while k < len(extra):
+        if k + 4 > len(extra):
+            return None
+        xid, xlen = struct.unpack("<2H", extra[k:k + 4])
+        if k + 4 + xlen > len(extra):
+            return None
+        if xid == 1:
+            values = [le(extra[k + 4:k + 4 + xlen], 8 * j, 8) for j in range(wanted)]
+            return None if None in values else values
+        k += 4 + xlen
+    return None
+
+
+def open_archive(data):
+    """SPEC §7.1 step 1: {name: ZipEntry} in central-directory order."""
+    def not_zip(msg):
+        raise ReadError("NotZip", f"not a zip container ({msg})")
+    n = len(data)
+    lo = max(n - 22 - 65535, 0)
+    e = data.rfind(b"PK\x05\x06", lo, n - 18) if n >= 22 else -1
+    while e >= 0 and le(data, e + 20, 2) != n - e - 22:  # the record must end the file
+        e = data.rfind(b"PK\x05\x06", lo, e + 3)
+    if e < 0:
+        not_zip("no end-of-central-directory record ends the file")
+    disk, cd_disk, here, count, size, offset = struct.unpack("<4H2I", data[e + 4:e + 20])
+    end = e
+    if e < 20 or data[e - 20:e - 16] != b"PK\x06\x07":
+        if disk or cd_disk or here != count:
+            not_zip("a multi-disk archive (no meaning in v1)")
+    else:  # a Zip64 locator: the Zip64 end record before it gives the values
+        r = e - 76
+        if r < 0 or data[r:r + 4] != b"PK\x06\x06" or le(data, r + 4, 8) != 44:
+            not_zip("damaged Zip64 end-of-central-directory record or locator")
+        if le(data, e - 16, 4) or le(data, e - 4, 4) > 1 or le(data, r + 16, 4) or le(data, r + 20, 4) \
+                or le(data, r + 24, 8) != le(data, r + 32, 8):
+            not_zip("a multi-disk archive (no meaning in v1)")
+        count, size, offset, end = le(data, r + 32, 8), le(data, r + 40, 8), le(data, r + 48, 8), r
+    start = end - size
+    if start < offset:
+        not_zip("the central directory does not fit before its end record")
+    if count > LIMITS["max_entries"] + 1:
+        raise ReadError("LimitExceeded", "zip entry count")
+    entries, at = {}, start
+    for i in range(count):
+        head = data[at:at + 46]
+        if len(head) != 46 or head[:4] != b"PK\x01\x02":
+            not_zip(f"damaged central directory header #{i}")
+        flags, method, _, _, crc, csize, usize, nn, nx, nc = struct.unpack("<4H3I3H", head[8:34])
+        local = le(head, 42, 4)
+        name, extra = data[at + 46:at + 46 + nn], data[at + 46 + nn:at + 46 + nn + nx]
+        if at + 46 + nn + nx + nc > n:
+            not_zip(f"damaged central directory header #{i}")
+        sentinels = [v == 0xFFFFFFFF for v in (usize, csize, local)]
+        if any(sentinels):  # the Zip64 extra field (id 1) holds those values, 8 bytes each
+            values = zip64_values(extra, sum(sentinels))
+            if values is None:
+                not_zip(f"damaged central directory header #{i}")
+            it = iter(values)
+            usize, csize, local = [next(it) if big else v for v, big in zip((usize, csize, local), sentinels)]
+        try:
+            name = name.decode("utf-8")
+        except UnicodeDecodeError:
+            not_zip(f"entry #{i} has a name that is not UTF-8")
+        entries.setdefault(name, []).append(ZipEntry(name, flags, method, crc, csize, usize, local + start - offset))
+        at += 46 + nn + nx + nc
+    for name, same in entries.items():
+        if len(same) > 1:
+            raise ReadError("DuplicateEntry", f"{name}: occurs more than once")
+    return {name: same[0] for name, same in entries.items()}
+
+
+def entry_data(data, z):
+    """The stored or deflated bytes of entry z, found through its local header (SPEC §7.1 step 6)."""
+    sig, nn, nx = data[z.local:z.local + 4], le(data, z.local + 26, 2), le(data, z.local + 28, 2)
+    if sig != b"PK\x03\x04" or nn is None or nx is None:
+        raise ReadError("Container", f"{z.name}: damaged zip data (no local header where the directory points)")
+    if data[z.local + 30:z.local + 30 + nn] != z.name.encode("utf-8"):
+        raise ReadError("Container", f"{z.name}: damaged zip data (the local header names another entry)")
+    start = z.local + 30 + nn + nx
+    if start + z.csize > len(data):
+        raise ReadError("Container", f"{z.name}: damaged zip data (its data runs past the end of the file)")
+    return memoryview(data)[start:start + z.csize]
+
+
+def read_entry(data, z, declared):
+    """SPEC §7.1 step 6 (step 2 for the manifest, `declared` its directory size): the bytes of z."""
+    if z.flags & 0x61:  # bits 0 and 6: encryption; bit 5: patched data
+        raise ReadError("Container", f"{z.name}: damaged zip data (encrypted or patched data has no meaning in v1)")
+    if z.method not in (0, 8):
+        raise ReadError("Compression", f"{z.name}: compression method {z.method} not supported")
+    if z.size != declared:  # checked before inflating anything (a bomb's directory lies)
+        raise ReadError("SizeMismatch", f"{z.name}: size {z.size} differs from the manifest's {declared}")
+    raw = entry_data(data, z)
+    if z.method == 0:
+        out = bytes(raw[:declared + 1])
+    else:  # inflate at most one byte beyond the declared size
+        d = zlib.decompressobj(-15)
+        try:
+            out = d.decompress(raw, declared + 1)
+        except zlib.error as e:
+            raise ReadError("Container", f"{z.name}: damaged zip data (invalid deflate data: {e})")
+        if len(out) <= declared and not d.eof:
+            raise ReadError("Container", f"{z.name}: damaged zip data (the deflate data ends before its stream does)")
+    if len(out) != declared:
+        raise ReadError("SizeMismatch", f"{z.name}: size {len(out)} differs from the manifest's {declared}")
+    if zlib.crc32(out) != z.crc:
+        raise ReadError("Container", f"{z.name}: damaged zip data (CRC-32 differs from the directory's)")
+    return out
 
 
 def parse_manifest(text):
@@ -342,11 +489,8 @@ def parse_manifest(text):
             raise ReadError("Manifest", f"{what} must be a string")
         return v
 
-    def no_constants(c):  # JSON has no NaN/Infinity; Python's json would accept them
-        raise ValueError(f"{c} is not JSON")
-
     try:
-        m = json.loads(text, parse_constant=no_constants)
+        m = load_json(text)
     except ValueError as e:
         raise ReadError("Manifest", f"not valid manifest JSON: {e}")
     # SPEC §7.1 step 3: format and version first, before the other members (a newer major
@@ -373,6 +517,7 @@ def parse_manifest(text):
         text_(u["name"], f"units.{k}.name")
         if not isinstance(u["si"], (int, float)) or isinstance(u["si"], bool):
             raise ReadError("Manifest", f"units.{k}.si must be a number")
+        u["si"] = float(u["si"])
     if not isinstance(m["entries"], list):
         raise ReadError("Manifest", "entries must be a list")
     for e in m["entries"]:
@@ -402,8 +547,10 @@ def check_manifest(m, file_bytes):
         seen.add(name)
         if len(e["sha256"]) != 64 or any(c not in "0123456789abcdef" for c in e["sha256"]):
             raise ReadError("Manifest", f"entry {name}: sha256 must be 64 lowercase hex digits")
-        if name in KNOWN and KNOWN[name] != e["required"]:
-            raise ReadError("Manifest", f"entry {name}: required flag must be {KNOWN[name]}")
+        if name in KNOWN and KNOWN[name][0] != e["required"]:
+            raise ReadError("Manifest", f"entry {name}: required flag must be {KNOWN[name][0]}")
+        if name in KNOWN and KNOWN[name][1] > minor:
+            raise ReadError("Manifest", f"entry {name} came with format 1.{KNOWN[name][1]}, but the file says {major}.{minor}")
         if name not in KNOWN and e["required"]:
             raise ReadError("UnknownRequiredEntry", f"{name}: unknown entry marked required")
         if e["size"] > LIMITS["max_entry_bytes"]:
@@ -413,32 +560,21 @@ def check_manifest(m, file_bytes):
             raise ReadError("LimitExceeded", f"{name}: total declared size exceeds the limit")
         if total > cap:
             raise ReadError("LimitExceeded", f"{name}: total declared size {total} of a {file_bytes}-byte file exceeds {cap}")
-    for name, req in ENTRIES:
+    for name, req, _ in ENTRIES:
         if req and name not in seen:
             raise ReadError("MissingEntry", f"{name}: required in v1 but not listed")
 
 
 def open_container(data):
-    """SPEC §7.1 steps 1–5: (zipfile, {entry name: ZipInfo}, manifest dict), the manifest checked
-    and no entry outside it."""
-    try:
-        zf = zipfile.ZipFile(io.BytesIO(data))
-        infos = zf.infolist()
-    except (zipfile.BadZipFile, OSError, EOFError, ValueError, NotImplementedError) as e:
-        raise ReadError("NotZip", f"not a zip container ({e})")
-    if len(infos) > LIMITS["max_entries"] + 1:
-        raise ReadError("LimitExceeded", "zip entry count")
-    by_name = {}
-    for info in infos:
-        if info.filename in by_name:
-            raise ReadError("DuplicateEntry", info.filename)
-        by_name[info.filename] = info
-    if MANIFEST not in by_name:
+    """SPEC §7.1 steps 1–5: ({entry name: ZipEntry}, manifest dict), the manifest checked, no
+    entry outside it and every listed entry present."""
+    entries = open_archive(data)
+    if MANIFEST not in entries:
         raise ReadError("MissingEntry", f"{MANIFEST}: absent")
-    mi = by_name[MANIFEST]
-    if mi.file_size > LIMITS["max_manifest_bytes"]:
+    mz = entries[MANIFEST]
+    if mz.size > LIMITS["max_manifest_bytes"]:
         raise ReadError("LimitExceeded", "manifest.json size")
-    raw = read_entry(zf, mi, mi.file_size)
+    raw = read_entry(data, mz, mz.size)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as e:
@@ -446,37 +582,42 @@ def open_container(data):
     m = parse_manifest(text)
     check_manifest(m, len(data))
     listed = {e["name"] for e in m["entries"]}
-    for name in by_name:
+    for name in entries:
         if name != MANIFEST and name not in listed:
             raise ReadError("UnlistedEntry", name)
-    return zf, by_name, m
+    for e in m["entries"]:
+        if e["name"] not in entries:
+            raise ReadError("MissingEntry", f"{e['name']}: listed but absent")
+    return entries, m
 
 
 def read_container(data):
     """SPEC §7.1 steps 1–6: (manifest dict, {entry name: verified bytes})."""
-    zf, by_name, m = open_container(data)
+    entries, m = open_container(data)
     blobs = {}
     for e in m["entries"]:
-        if e["name"] not in by_name:
-            raise ReadError("MissingEntry", f"{e['name']}: listed but absent")
-        b = read_entry(zf, by_name[e["name"]], e["size"])
+        b = read_entry(data, entries[e["name"]], e["size"])
         if hashlib.sha256(b).hexdigest() != e["sha256"]:
             raise ReadError("Checksum", f"{e['name']}: SHA-256 differs from the manifest")
         blobs[e["name"]] = b
     return m, blobs
 
 
+def decode(name, blob):
+    """SPEC §7.1 step 7 for one known entry."""
+    if name == "recipe.json":
+        return decode_recipe(blob)
+    d = Decoder(name, blob)
+    out = DECODERS[name](d)
+    d.end()
+    return out
+
+
 def read_bytes(data):
     """SPEC §7.1. Returns (body dict, manifest dict)."""
     m, blobs = read_container(data)
-    body = {}
-    for name, fn in DECODERS.items():
-        if name in blobs:
-            d = Decoder(name, blobs[name])
-            body[name] = fn(d)
-            d.end()
-    if "recipe.json" in blobs:
-        body["recipe.json"] = decode_recipe(blobs["recipe.json"])
+    # decoded in container order (§2), so the first record that fails is the one named
+    body = {name: decode(name, blobs[name]) for name, _, _ in ENTRIES if name in blobs}
     validate(body, m)
     return body, m
 
@@ -593,7 +734,7 @@ def validate(b, m):
     for q, rc in enumerate(me["reference_conditions"]):
         index("method.bin", f"reference_conditions[{q}].node", rc["node"], n)
     finite("method.bin", "cutoffs", [c for c in me["cutoffs"] if c is not None])
-    counts_and_cutoffs(me, modes, req, err)
+    counts_and_cutoffs(me, modes, req, m["version"], err)
     for entry in ["stress_shapes.bin", "strain_shapes.bin", "stress_shapes_bottom.bin", "strain_shapes_bottom.bin"]:
         s = b.get(entry)
         if s is None:
@@ -616,11 +757,10 @@ def validate(b, m):
     if sh is not None:
         count("label_shares.bin", "shares", len(sh), nm)
         finite("label_shares.bin", "shares", sh)
-        if any(not 0.0 <= v <= 1.0 for v in sh):
-            err("Inconsistent", "label_shares.bin", "share outside 0..1")
+        label_shares(sh, modes["labels"], me["method"], b.get("modal_loads.bin"), err)
     ml = b.get("modal_loads.bin")
     if ml is not None:
-        validate_modal_loads(ml, nm, err, count, finite)
+        validate_modal_loads(ml, modes["labels"], err, count, finite)
     rc = b.get("recipe.json")
     if rc is not None:
         validate_recipe(rc, b, m, err, finite)
@@ -639,8 +779,21 @@ def bottom_fibre_nodes(entry, nodes, b, err):
         err("Inconsistent", entry, f"node {min(missing)} has a bottom fibre but no value in {top}")
 
 
-def validate_modal_loads(ml, nm, err, count, finite):
-    """SPEC §6 rule 12: names non-empty and unique, M finite values per load, residual flags."""
+def label_shares(sh, labels, method, ml, err):
+    """SPEC §6 rule 11 after the count and finiteness: each share in 0…1, and 1 for a Rigid mode
+    and for every mode of normal modes without a residual-vector mode."""
+    single_stage = method == "NormalModes" and (ml is None or not any(ml["residual"]))
+    for j, (v, label) in enumerate(zip(sh, labels)):
+        if not 0.0 <= v <= 1.0:
+            err("Inconsistent", "label_shares.bin", f"share[{j}] = {v} is outside 0..1")
+        if v != 1.0 and (label == "Rigid" or single_stage):
+            err("Inconsistent", "label_shares.bin", f"share[{j}] = {v} must be 1")
+
+
+def validate_modal_loads(ml, labels, err, count, finite):
+    """SPEC §6 rule 12: names non-empty and unique, M finite values per load, residual flags
+    0 or 1, and 1 only for a mode labelled Attachment."""
+    nm = len(labels)
     names = set()
     for q, ld in enumerate(ml["loads"]):
         if not ld["name"]:
@@ -650,14 +803,17 @@ def validate_modal_loads(ml, nm, err, count, finite):
         names.add(ld["name"])
         count("modal_loads.bin", "values", len(ld["values"]), nm)
         finite("modal_loads.bin", "values", ld["values"])
-    if ml["residual"]:
+    if len(ml["residual"]):
         count("modal_loads.bin", "residual", len(ml["residual"]), nm)
-        if any(r > 1 for r in ml["residual"]):
-            err("Inconsistent", "modal_loads.bin", "residual flag not 0 or 1")
+        for j, (r, label) in enumerate(zip(ml["residual"], labels)):
+            if r > 1:
+                err("Inconsistent", "modal_loads.bin", f"residual[{j}] = {r} is not 0 or 1")
+            if r == 1 and label != "Attachment":
+                err("Inconsistent", "modal_loads.bin", f"residual[{j}] = 1 but mode {j} is labelled {label}")
 
 
-def counts_and_cutoffs(me, modes, req, err):
-    """SPEC §6 rule 8, second part (§5.7): counts add up, cutoffs are the method's."""
+def counts_and_cutoffs(me, modes, req, version, err):
+    """SPEC §6 rule 8, second part (§5.7): counts add up (exact sums), cutoffs are the method's."""
     rigid, normal, constraint, fixed, attachment, removed = me["counts"]
     nm = len(modes["omega2"])
     labelled = sum(1 for x in modes["labels"] if x == "Rigid")
@@ -665,9 +821,7 @@ def counts_and_cutoffs(me, modes, req, err):
         err("Inconsistent", "method.bin", f"counts.rigid = {rigid} but {labelled} modes are labelled Rigid")
     method = me["method"]
     if method == "NormalModes":
-        zero = [("constraint", constraint), ("fixed_interface", fixed), ("attachment", attachment),
-                ("removed_dependent", removed)]
-        basis = rigid + normal
+        zero, basis = [("constraint", constraint), ("fixed_interface", fixed), ("attachment", attachment)], rigid + normal
     elif method == "CraigBampton":
         zero, basis = [("normal", normal), ("attachment", attachment)], constraint + fixed
     else:
@@ -675,9 +829,11 @@ def counts_and_cutoffs(me, modes, req, err):
     for name, v in zero:
         if v != 0:
             err("Inconsistent", "method.bin", f"counts.{name} = {v} must be 0 for {method}")
-    ok = basis == nm if method == "NormalModes" else basis >= removed and basis - removed >= nm
+    if method == "NormalModes" and removed > 0 and (version["major"], version["minor"]) < (1, 6):
+        err("Inconsistent", "method.bin", f"counts.removed_dependent = {removed} must be 0 for NormalModes before 1.6")
+    ok = basis == nm + removed if method == "NormalModes" else basis >= nm + removed
     if not ok:
-        err("Inconsistent", "method.bin", f"counts give {basis} basis vectors ({removed} removed) for {nm} modes")
+        err("Inconsistent", "method.bin", f"counts give {basis - removed} basis vectors (after {removed} removed) for {nm} modes")
     fmax, shift, dep = me["cutoffs"]
     if fmax != req["fmax_hz"]:
         err("Inconsistent", "method.bin", "cutoffs.fmax_hz differs from the requested fmax")
@@ -703,6 +859,7 @@ def validate_recipe(rc, b, m, err, finite):
         finite("recipe.json", "options.fmax_hz", [f])
         if f <= 0:
             err("Inconsistent", "recipe.json", "options.fmax_hz must be > 0")
+    finite("recipe.json", "options.thickness", [rc["options"]["thickness"]] if "thickness" in rc["options"] else [])
     stored = {x["id"] for x in b["nodes.bin"] if x["interface"]}
     for q, itf in enumerate(rc["interfaces"]):
         for nid in itf["nodes"]:
@@ -716,6 +873,8 @@ def validate_recipe(rc, b, m, err, finite):
     finite("recipe.json", "accuracy_band.fmax_hz", [band])
     if band <= 0:
         err("Inconsistent", "recipe.json", "accuracy_band.fmax_hz must be > 0")
+    cutoff = rc["accuracy_band"]["basis_cutoff_hz"]
+    finite("recipe.json", "accuracy_band.basis_cutoff_hz", [] if cutoff is None else [cutoff])
 
 
 def validate_interfaces(itf, b, err, finite):

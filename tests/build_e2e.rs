@@ -14,11 +14,8 @@ use flexbody::import::{read_model, ImportOptions};
 use flexbody::interface::SpiderKind;
 use flexbody_reader as file;
 
-fn shared(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared")
-        .join(p)
-}
+mod common;
+use common::{external_reference, reference};
 
 fn conrod() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp")
@@ -75,7 +72,7 @@ fn max_abs(v: impl Iterator<Item = f64>) -> f64 {
 /// space the eigensolver returned; it means I3_r/√I1 has orthonormal rows).
 #[test]
 fn a_block_free_body_invariants_equal_mesh_mass_properties() {
-    let model_path = shared("reference/a_block_hex8/ccx_free.inp");
+    let model_path = reference("a_block_hex8/ccx_free.inp");
     let mut s = spec(model_path.clone(), BuildMethod::Normal, &[]);
     s.modes = Some(10);
     let out = build(&s, &mut |_| {}).unwrap();
@@ -189,7 +186,7 @@ fn a_block_free_body_invariants_equal_mesh_mass_properties() {
 /// (same spiders) and within 1% below fmax; `check --model` passes.
 #[test]
 fn a_block_cb_on_end_faces_is_rayleigh_ritz_and_within_1pc_below_fmax() {
-    let model_path = shared("reference/a_block_hex8/ccx_free.inp");
+    let model_path = reference("a_block_hex8/ccx_free.inp");
     let mut s = spec(
         model_path.clone(),
         BuildMethod::CraigBampton,
@@ -393,7 +390,7 @@ fn conrod_consistent_normal_modes_equal_calculix() {
 /// face (the weighted least-squares fit with equal weights about the face centroid).
 #[test]
 fn a_block_cb_on_rbe3_spiders_keeps_centres_independent_and_matches_calculix() {
-    let model_path = shared("reference/a_block_hex8/ccx_free.inp");
+    let model_path = reference("a_block_hex8/ccx_free.inp");
     let mut s = spec(model_path, BuildMethod::CraigBampton, &["FIXED", "TIP"]);
     s.spider = SpiderKind::Rbe3;
     s.mass = MassKind::Consistent;
@@ -576,7 +573,12 @@ fn conrod_invariants_equal_node_by_node_recomputation_from_the_file() {
 /// carry the 1.2 recipe and label shares, so they say 1.2; without them the same body is 1.1.
 #[test]
 fn beam_model_is_drawn_with_lines_and_written_as_format_1_1() {
-    let model_path = shared("reference/nastran/beam_modes/beam_modes.dat");
+    let Some(model_path) = external_reference(
+        "beam_model_is_drawn_with_lines_and_written_as_format_1_1",
+        "nastran/beam_modes/beam_modes.dat",
+    ) else {
+        return;
+    };
     let mut s = spec(model_path.clone(), BuildMethod::Normal, &[]);
     s.modes = Some(4);
     let out = build(&s, &mut |_| {}).unwrap();
@@ -652,7 +654,12 @@ fn conrod_cb_with_two_threads_equals_one_thread() {
 /// element) the closed form √(GJ/(L·I_xx))/2π of the CONM2 on the shaft, 4226.5 Hz.
 #[test]
 fn nastran_deck_beam_mass_auto_is_nastran_lumping_and_none_is_the_closed_form() {
-    let path = shared("reference/nastran/beam_modes/beam_modes.dat");
+    let Some(path) = external_reference(
+        "nastran_deck_beam_mass_auto_is_nastran_lumping_and_none_is_the_closed_form",
+        "nastran/beam_modes/beam_modes.dat",
+    ) else {
+        return;
+    };
     let mut s = spec(path, BuildMethod::Normal, &[]);
     s.modes = Some(10);
     assert_eq!(s.beam_lumping(), flexbody::fe::BeamLumping::Nastran);

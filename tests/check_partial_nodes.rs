@@ -13,7 +13,7 @@ use flexbody_reader as file;
 #[test]
 fn check_on_a_partial_node_file_skips_what_the_nodes_cannot_support() {
     let model =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/a_block_hex8/ccx_free.inp");
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/reference/a_block_hex8/ccx_free.inp");
     let mut s = BuildSpec {
         method: BuildMethod::CraigBampton,
         ..BuildSpec::new(model.clone(), file::Units::si(), &["FIXED"])

@@ -1,7 +1,7 @@
 //! Issue 16, consistent-mass invariants: with `--mass consistent` all nine invariants come from the
 //! consistent M the modes are orthonormal in (SPEC §5.6), so I6 = ΦᵀMΦ = I, and I1, I2, I7 are
 //! the rigid-body projections of that M. On the straight-edged tet10 block of
-//! /work/shared/reference/b_block_tet10 (0.5 × 0.05 × 0.05 m steel, ρ = 7850 kg/m³) those
+//! fixtures/reference/b_block_tet10 (0.5 × 0.05 × 0.05 m steel, ρ = 7850 kg/m³) those
 //! projections are the box's exact mass, first moment and inertia tensor: the isoparametric
 //! integrands are polynomials of degree ≤ 2 on straight tets, which the 4-point rule integrates
 //! exactly. Lumped builds keep the lumped nodal-mass invariants.
@@ -38,8 +38,8 @@ fn box_properties() -> (f64, [f64; 3], [[f64; 3]; 3]) {
 }
 
 fn block_body(method: BuildMethod, mass: flexbody::fe::MassKind) -> file::ReducedBody {
-    let model = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference/b_block_tet10/ccx_free.inp");
+    let model =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/reference/b_block_tet10/ccx_free.inp");
     let interface: &[&str] = if method == BuildMethod::Normal {
         &[]
     } else {

@@ -1,6 +1,6 @@
 //! K/M export in Matrix Market (`build --write-matrices`, the `mtx` export target) against
 //! CalculiX 2.20's own matrix dumps of the shared reference blocks
-//! (`../shared/reference/e_matrices/`, `*FREQUENCY, SOLVER=MATRIXSTORAGE`): entry by entry,
+//! (`fixtures/reference/e_matrices/`, `*FREQUENCY, SOLVER=MATRIXSTORAGE`): entry by entry,
 //! matched through the two dof tables, relative to the largest entry; plus the written matrices
 //! against the modes `build` wrote (Φᵀ M Φ = I, Φᵀ K Φ = diag ω²), which shows they are the
 //! matrices the build reduced.

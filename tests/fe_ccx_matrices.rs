@@ -1,5 +1,5 @@
 //! Element and assembled K, M against CalculiX 2.20's dumped matrices
-//! (`../shared/reference/e_matrices/`, `*FREQUENCY, SOLVER=MATRIXSTORAGE`), entry-wise, relative
+//! (`fixtures/reference/e_matrices/`, `*FREQUENCY, SOLVER=MATRIXSTORAGE`), entry-wise, relative
 //! to the largest entry; ccx equations are mapped to our dofs through its `.dof` table.
 
 mod common;

@@ -1,4 +1,4 @@
-//! Consistent-mass frequencies of the CalculiX reference blocks (`../shared/reference/`,
+//! Consistent-mass frequencies of the CalculiX reference blocks (`fixtures/reference/`,
 //! ccx 2.20 `*FREQUENCY`): free-free modes 7–16 and the first 10 fixed modes agree with
 //! `case.json` to 2e-6 relative (ccx prints 7 significant digits). The models are read with the
 //! `.inp` importer from the very decks ccx ran; the eigen-solve is `solve::lowest_modes`.

@@ -1,5 +1,5 @@
 //! A real Nastran deck through the Nastran importer and the assembler:
-//! `../shared/reference/nastran/beam_modes` (Simcenter Nastran 2019.2 SOL SEMODES; 9 CBAR + 1
+//! `nastran/beam_modes` of the external reference data (`FLEXBODY_REFERENCE`) (Simcenter Nastran 2019.2 SOL SEMODES; 9 CBAR + 1
 //! CBEAM on PBARL/PBEAML ROD r = 1, a CONM2 tip mass, GRID 1 clamped, lumped mass).
 //!
 //! What Nastran does, as reproduced here: transverse shear flexibility with shear factor
@@ -11,14 +11,17 @@
 
 mod common;
 
-use common::{hz, reference};
+use common::{external_reference, hz};
 use flexbody::fe::{assemble, eliminate, AssemblySpec, BeamLumping, ConstraintSpec, MassKind};
 use flexbody::import::{read_model, Format, ImportOptions};
 use flexbody::model::{Model, Section};
 use flexbody::solve::{lowest_modes, EigenSpec};
+use std::path::Path;
 
-fn f06_freqs() -> Vec<f64> {
-    let text = std::fs::read_to_string(reference("nastran/beam_modes/case.json")).unwrap();
+const CASE: &str = "nastran/beam_modes";
+
+fn f06_freqs(dir: &Path) -> Vec<f64> {
+    let text = std::fs::read_to_string(dir.join("case.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     v["freq_hz"]
         .as_array()
@@ -28,8 +31,8 @@ fn f06_freqs() -> Vec<f64> {
         .collect()
 }
 
-fn deck() -> Model {
-    let path = reference("nastran/beam_modes/beam_modes.dat");
+fn deck(dir: &Path) -> Model {
+    let path = dir.join("beam_modes.dat");
     let model = read_model(
         &path,
         &ImportOptions {
@@ -70,8 +73,13 @@ fn freqs(model: &Model, beam_lumping: BeamLumping) -> Vec<f64> {
 
 #[test]
 fn nastran_beam_modes_lumped_per_element_card_match_f06() {
-    let want = f06_freqs();
-    let model = deck();
+    let Some(dir) =
+        external_reference("nastran_beam_modes_lumped_per_element_card_match_f06", CASE)
+    else {
+        return;
+    };
+    let want = f06_freqs(&dir);
+    let model = deck(&dir);
     let ours = freqs(&model, BeamLumping::Nastran);
     for (i, (f, w)) in ours.iter().zip(&want).enumerate() {
         let err = (f - w) / w;
@@ -88,8 +96,14 @@ fn nastran_beam_modes_lumped_per_element_card_match_f06() {
 /// f = √(GJ/(L I_xx))/2π = 4226.5 Hz, 19% above Nastran's 3554.9 Hz.
 #[test]
 fn nastran_beam_modes_with_cbar_lumping_everywhere_give_the_closed_form_torsion() {
-    let want = f06_freqs();
-    let model = deck();
+    let Some(dir) = external_reference(
+        "nastran_beam_modes_with_cbar_lumping_everywhere_give_the_closed_form_torsion",
+        CASE,
+    ) else {
+        return;
+    };
+    let want = f06_freqs(&dir);
+    let model = deck(&dir);
     let ours = freqs(&model, BeamLumping::TranslationsOnly);
     for i in [0, 1, 2, 3, 5, 6, 7, 8, 9] {
         let err = (ours[i] - want[i]) / want[i];

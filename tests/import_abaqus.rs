@@ -1,4 +1,4 @@
-//! Abaqus/CalculiX `.inp` import against the reference decks in `../shared/reference/` (written by
+//! Abaqus/CalculiX `.inp` import against the reference decks in `fixtures/reference/` (written by
 //! gmsh + make_reference.py and run by ccx 2.20), plus small inline decks for the keywords the
 //! reference meshes do not use.
 
@@ -10,7 +10,7 @@ use flexbody::model::{DofMask, ElementKind, Material, Model, RigidElement, Secti
 
 fn reference(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference")
+        .join("fixtures/reference")
         .join(rel)
 }
 
@@ -33,7 +33,7 @@ fn node_by_id(m: &Model, id: u64) -> [f64; 3] {
 #[test]
 fn a_block_hex8_mesh_counts_coordinates_connectivity_sets() {
     let m = abaqus::read(&reference("a_block_hex8/mesh.inp")).unwrap();
-    // Counts from ../shared/reference/format_consistency.json.
+    // Counts from fixtures/reference/format_consistency.json.
     assert_eq!((m.nodes.len(), m.elements.len()), (2009, 1440));
     assert!(m.elements.iter().all(|e| e.kind == ElementKind::Hex8));
     assert_eq!(node_by_id(&m, 9), [0.0, 0.0, 0.008333333333333349]);

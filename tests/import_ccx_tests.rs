@@ -1,20 +1,21 @@
-//! The CalculiX test-suite decks in `../shared/reference/ccx_tests/` (real ccx inputs: C3D8,
+//! The CalculiX test-suite decks in `ccx_tests/` of the external reference data
+//! (`FLEXBODY_REFERENCE`; skipped visibly without it) (real ccx inputs: C3D8,
 //! C3D8I, C3D20R, C3D10, S8/S8R, B32R, SPRINGA, cyclic symmetry): node and element counts
 //! (counted from the decks' data lines) or, for unsupported element types, a clean error.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use common::external_reference;
 use flexbody::import::abaqus;
 use flexbody::model::ElementKind;
 
-fn deck(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference/ccx_tests")
-        .join(name)
-}
-
 #[test]
 fn ccx_test_decks_node_and_element_counts() {
+    let Some(dir) = external_reference("ccx_test_decks_node_and_element_counts", "ccx_tests")
+    else {
+        return;
+    };
+    let deck = |name: &str| dir.join(name);
     for (name, nodes, elements) in [
         ("beam8f.inp", 425, 256),
         ("beamdy1.inp", 261, 32),
@@ -59,6 +60,11 @@ fn ccx_test_decks_node_and_element_counts() {
 
 #[test]
 fn unsupported_element_types_are_clean_errors() {
+    let Some(dir) = external_reference("unsupported_element_types_are_clean_errors", "ccx_tests")
+    else {
+        return;
+    };
+    let deck = |name: &str| dir.join(name);
     for (name, line, ty) in [
         ("simplebeampipe3.inp", 28, "B32R"),
         ("spring5.inp", 17, "SPRINGA"),

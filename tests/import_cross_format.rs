@@ -10,7 +10,7 @@ use flexbody::model::Model;
 
 fn reference(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference")
+        .join("fixtures/reference")
         .join(rel)
 }
 

@@ -169,11 +169,11 @@ fn malformed_matrix_market_and_node_table() {
 fn corrupted_files_never_panic() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let files = [
-        root.join("../shared/reference/e_matrices/hex8_single/mesh.inp"),
-        root.join("../shared/reference/e_matrices/hex8_single/mesh.bdf"),
-        root.join("../shared/reference/e_matrices/tet10_single/mesh.msh"),
-        root.join("../shared/reference/nastran/tet10_simple_example/Simple_Example.bdf"),
-        root.join("../shared/reference/nastran/beam_modes/cbar_cbeam.blk"),
+        root.join("fixtures/reference/e_matrices/hex8_single/mesh.inp"),
+        root.join("fixtures/reference/e_matrices/hex8_single/mesh.bdf"),
+        root.join("fixtures/reference/e_matrices/tet10_single/mesh.msh"),
+        root.join("fixtures/import/nastran/free_cbar_line_cd30.bdf"),
+        root.join("fixtures/models/planar_beam/beam.blk"),
         root.join("fixtures/import/hex8_block_coarse_bin.msh"),
     ];
     let dir = tmp_dir().join("corrupt");

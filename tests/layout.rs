@@ -22,14 +22,6 @@ const MAX_FUNCTION_LINES: usize = 200;
 /// Functions allowed to be longer than [`MAX_FUNCTION_LINES`]: (file, function, why).
 const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
     (
-        // ~750 lines: one match over every Nastran card; DESIGN §6 wants it a table of small
-        // per-family readers. Work on the Nastran cards (spring, mass, bush elements) is
-        // changing this file concurrently, so the split waits for it.
-        "src/import/nastran/cards.rs",
-        "build",
-        "the Nastran card match, to become a table of per-family readers after the card work",
-    ),
-    (
         // ~200 lines: a match over element kinds that reads as a table (one arm per element
         // formulation); the spring, mass and bush elements add arms here.
         "src/fe/assembly.rs",

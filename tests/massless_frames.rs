@@ -156,10 +156,16 @@ fn displacement_frames_at_interface_nodes_do_not_change_the_body() {
             a.len(),
             b.len()
         );
+        // above the accuracy band, the top of a Dietz set depends on one direction at the edge
+        // of the dependency test (25 modes in the basic frame, 24 turned): it is kept as a mode
+        // in one frame and condensed statically in the other, which moves the highest common
+        // mode (3165 Hz) by 1.9e-9
+        let band = plain.body.recipe.as_ref().unwrap().accuracy_band.fmax_hz;
         for q in 0..n {
             let e = (a[q] - b[q]).abs() / a[q];
+            let limit = if a[q] <= band { 1e-9 } else { 1e-8 };
             assert!(
-                e < 1e-9,
+                e < limit,
                 "{method:?} mode {q}: {} vs {} ({e:e})",
                 a[q],
                 b[q]

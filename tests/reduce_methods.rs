@@ -19,7 +19,7 @@ type Sparse = SparseColMat<usize, f64>;
 
 fn case(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference/e_matrices")
+        .join("fixtures/reference/e_matrices")
         .join(name)
 }
 

@@ -12,6 +12,7 @@
 mod common;
 
 use common::dense;
+use common::shell_grid as grid;
 use faer::Mat;
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
 use flexbody::model::{
@@ -23,64 +24,6 @@ use std::f64::consts::PI;
 const E: f64 = 210e9;
 const NU: f64 = 0.3;
 const RHO: f64 = 7850.0;
-
-/// Structured n×m mesh of the map (s, r) ∈ [0,1]² → `at(s, r)`; quads, or each quad split
-/// into two triangles along alternating diagonals.
-fn grid(
-    n: usize,
-    m: usize,
-    tris: bool,
-    t: f64,
-    mat: Material,
-    at: impl Fn(f64, f64) -> [f64; 3],
-) -> Model {
-    let mut model = Model {
-        source: "generated".into(),
-        ..Model::default()
-    };
-    for j in 0..=m {
-        for i in 0..=n {
-            model.nodes.push(Node {
-                id: (j * (n + 1) + i + 1) as u64,
-                x: at(i as f64 / n as f64, j as f64 / m as f64),
-                displacement_frame: None,
-            });
-        }
-    }
-    model.materials.push(mat);
-    model.properties.push(Property {
-        id: 1,
-        name: "SHELL".into(),
-        material: 0,
-        section: Section::Shell(ShellSection::homogeneous(t, 0)),
-    });
-    let idx = |i: usize, j: usize| j * (n + 1) + i;
-    let mut push = |kind, nodes: Vec<usize>| {
-        let id = model.elements.len() as u64 + 1;
-        model.elements.push(Element {
-            id,
-            kind,
-            nodes,
-            property: Some(0),
-            orientation: None,
-        });
-    };
-    for j in 0..m {
-        for i in 0..n {
-            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
-            if !tris {
-                push(ElementKind::Quad4, vec![a, b, c, d]);
-            } else if (i + j) % 2 == 0 {
-                push(ElementKind::Tri3, vec![a, b, c]);
-                push(ElementKind::Tri3, vec![a, c, d]);
-            } else {
-                push(ElementKind::Tri3, vec![a, b, d]);
-                push(ElementKind::Tri3, vec![b, c, d]);
-            }
-        }
-    }
-    model
-}
 
 fn steel() -> Material {
     Material::isotropic(1, "STEEL", E, NU, RHO)

@@ -9,7 +9,7 @@ use std::path::Path;
 
 fn tet10_free_k() -> SparseColMat<usize, f64> {
     let stem = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference/e_matrices/tet10_block_coarse/ccx_matrix_free");
+        .join("fixtures/reference/e_matrices/tet10_block_coarse/ccx_matrix_free");
     let c = read_ccx_matrices(&stem).unwrap();
     let t: Vec<_> =
         c.k.full()

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 fn case(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference/e_matrices")
+        .join("fixtures/reference/e_matrices")
         .join(name)
 }
 

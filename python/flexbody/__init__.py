@@ -35,7 +35,9 @@ class Body:
     ``method`` (method.bin dict), ``stress_nodes``/``stress_shapes`` (K,), (M, K, 6) or None
     (likewise ``strain_*``; ``stress_bottom_nodes``/``stress_shapes_bottom`` the shells' bottom
     fibre, SPEC §5.15), ``damping_ratio`` (M,) or None, ``label_shares`` (M,) or None,
-    ``recipe`` (dict) or None, ``interfaces`` (list of dicts) or None, ``modal_loads`` (dict with
+    ``recipe`` (dict) or None, ``interfaces`` (list of dicts: ``node`` the interface node's index
+    into the stored nodes, ``node_id`` its id, ``name``, ``kind``, ``dependent`` the ids of the
+    mesh nodes it depends on, ``fit``) or None, ``modal_loads`` (dict with
     ``loads`` [{name, source, values}] and ``residual``) or None, ``entries`` (manifest).
     """
 
@@ -79,7 +81,12 @@ class Body:
         self.damping_ratio = b.get("damping.bin")
         self.label_shares = b.get("label_shares.bin")
         self.recipe = b.get("recipe.json")
-        self.interfaces = b.get("interfaces.bin")
+        # SPEC §5.13 stores each interface's node as a stored-node index (`node`) and the mesh
+        # nodes it depends on by id (`dependent`); `node_id` gives the interface node's id too,
+        # so that ids can be compared with ids.
+        itf = b.get("interfaces.bin")
+        self.interfaces = None if itf is None else [
+            dict(i, node_id=int(self.node_ids[i["node"]])) for i in itf]
         self.modal_loads = b.get("modal_loads.bin")
 
     @property
@@ -137,7 +144,8 @@ class Body:
                          self.damping_ratio is not None, self.lines is not None],
             "entries": [{k: e[k] for k in ("name", "size", "sha256", "required")} for e in m["entries"]],
             "recipe": self.recipe,
-            "interfaces": self.interfaces,
+            "interfaces": None if self.interfaces is None else [
+                {k: v for k, v in i.items() if k != "node_id"} for i in self.interfaces],
             **({"modal_loads": self.modal_loads} if self.modal_loads is not None else {}),
         }
 

@@ -8,7 +8,6 @@ vectorized, in the same order — so both readers refuse a file with the same er
 """
 import hashlib
 import math
-import zipfile
 import zlib
 from concurrent.futures import ThreadPoolExecutor
 
@@ -130,13 +129,8 @@ def _decode(name, data):
         out = c.vec("<f8")
     elif name == "lines.bin":
         out = c.vec("<u4", 2)
-    elif name == "label_shares.bin":
+    else:  # label_shares.bin
         out = c.vec("<f8")
-    else:  # small records with strings and enums: the reference decoders
-        d = _spec.Decoder(name, data)
-        out = _spec.DECODERS[name](d)
-        d.end()
-        return out
     c.end()
     return out
 
@@ -145,16 +139,15 @@ def read_container(data):
     """SPEC §7.1 steps 1–6: the reference reader opens the container and checks the manifest
     (`open_container`); the listed entries are then inflated and hashed here, in parallel
     threads: (manifest, {entry name: bytes})."""
-    zf, by_name, m = _spec.open_container(data)
-    view = memoryview(data)
+    entries, m = _spec.open_container(data)
 
     def entry(e):
         # Returns the bytes or the ReadError the reference would raise for this entry.
         try:
-            info = by_name[e["name"]]
-            b, sha = _inflate(view, info, e["size"]) or (None, None)
+            z = entries[e["name"]]
+            b, sha = _inflate(data, z, e["size"]) or (None, None)
             if b is None:  # anything irregular: the reference's own code and errors
-                b = _spec.read_entry(zf, info, e["size"])
+                b = _spec.read_entry(data, z, e["size"])
                 sha = hashlib.sha256(b).hexdigest()
             if sha != e["sha256"]:
                 raise ReadError("Checksum", f"{e['name']}: SHA-256 differs from the manifest")
@@ -162,51 +155,37 @@ def read_container(data):
         except ReadError as err:
             return err
 
-    present = [e for e in m["entries"] if e["name"] in by_name]
     # zlib and hashlib release the GIL on large buffers: the entries inflate and hash in
     # parallel; errors are raised below in the manifest's order, as the reference raises them.
-    with ThreadPoolExecutor(max_workers=min(4, max(1, len(present)))) as pool:
-        done = dict(zip((e["name"] for e in present), pool.map(entry, present)))
+    with ThreadPoolExecutor(max_workers=min(4, max(1, len(m["entries"])))) as pool:
+        done = list(pool.map(entry, m["entries"]))
     blobs = {}
-    for e in m["entries"]:
-        if e["name"] not in by_name:
-            raise ReadError("MissingEntry", f"{e['name']}: listed but absent")
-        b = done[e["name"]]
+    for e, b in zip(m["entries"], done):
         if isinstance(b, ReadError):
             raise b
         blobs[e["name"]] = b
     return m, blobs
 
 
-def _inflate(view, info, declared):
-    """(bytes, SHA-256 hex) of an entry straight from the container, or None when anything is
-    irregular — then the caller reads it with the reference's code (zipfile), which raises the
-    reference's error. Only a regular entry takes this path: sizes as declared, no encryption
-    or patch flags, stored or deflated, a local header with the central directory's name, data
-    inside the container, and an inflated stream that ends exactly at the declared size with
-    the directory's CRC-32. A large entry inflates chunk by chunk into one buffer while another
-    thread hashes the chunks already inflated (zlib and hashlib release the GIL); a large stored
-    one is checked in place (`_check_stored`)."""
-    if (info.file_size != declared or info.flag_bits & 0x61
-            or info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED)):
-        return None
-    off = info.header_offset
-    head = bytes(view[off:off + 30])
-    if len(head) != 30 or head[:4] != b"PK\x03\x04":
-        return None
-    n_name = int.from_bytes(head[26:28], "little")
-    n_extra = int.from_bytes(head[28:30], "little")
-    name = bytes(view[off + 30:off + 30 + n_name])
-    if name not in (info.orig_filename.encode("utf-8"), info.orig_filename.encode("cp437", "replace")):
-        return None
-    start = off + 30 + n_name + n_extra
-    raw = view[start:start + info.compress_size]
-    if len(raw) != info.compress_size:
+def _inflate(data, z, declared):
+    """(bytes, SHA-256 hex) of entry z straight from the container, or None when anything is
+    irregular — then the caller reads it with the reference's code, which raises the reference's
+    error. Only a regular entry takes this path: sizes as declared, no encryption or patch
+    flags, stored or deflated, its data found through its local header (`_spec.entry_data`),
+    and an inflated stream that ends exactly at the declared size with the directory's CRC-32.
+    A large entry inflates chunk by chunk into one buffer while another thread hashes the
+    chunks already inflated (zlib and hashlib release the GIL); a large stored one is checked in
+    place (`_check_stored`)."""
+    if z.size != declared or z.flags & 0x61 or z.method not in (0, 8):
         return None
     try:
-        if info.compress_type == zipfile.ZIP_STORED:
-            if declared > _CHUNK and info.filename in _NUMPY_DECODED:
-                return _check_stored(raw, info.CRC, declared)
+        raw = _spec.entry_data(data, z)
+    except ReadError:
+        return None
+    try:
+        if z.method == 0:
+            if declared > _CHUNK and z.name in _NUMPY_DECODED:
+                return _check_stored(raw, z.crc, declared)
             out = bytes(raw)
         elif declared <= _CHUNK:
             d = zlib.decompressobj(-15)
@@ -214,10 +193,10 @@ def _inflate(view, info, declared):
             if not d.eof or d.unconsumed_tail:
                 return None
         else:
-            return _inflate_hashing(raw, info.CRC, declared)
+            return _inflate_hashing(raw, z.crc, declared)
     except zlib.error:
         return None
-    if len(out) != declared or zlib.crc32(out) != info.CRC:
+    if len(out) != declared or zlib.crc32(out) != z.crc:
         return None
     return out, hashlib.sha256(out).hexdigest()
 
@@ -274,14 +253,9 @@ def _inflate_hashing(raw, crc_expected, declared):
 
 
 def decode_all(m, blobs):
-    """SPEC §7.1 step 7: decode every known entry (views into `blobs`)."""
-    body = {}
-    for name in list(_spec.DECODERS) + ["faces.bin"]:
-        if name in blobs and name not in body:
-            body[name] = _decode(name, blobs[name])
-    if "recipe.json" in blobs:
-        body["recipe.json"] = _spec.decode_recipe(blobs["recipe.json"])
-    return body
+    """SPEC §7.1 step 7: decode every known entry in container order (views into `blobs`)."""
+    return {name: (_decode(name, blobs[name]) if name in _NUMPY_DECODED else _spec.decode(name, blobs[name]))
+            for name, _, _ in _spec.ENTRIES if name in blobs}
 
 
 def _err(variant, entry, msg):
@@ -421,8 +395,8 @@ def validate(b, m):
     for q, rc in enumerate(me["reference_conditions"]):
         _index("method.bin", f"reference_conditions[{q}].node", [rc["node"]], n)
     _finite("method.bin", "cutoffs", [c for c in me["cutoffs"] if c is not None])
-    labels = {**modes, "labels": list(LABELS[modes["labels"]])}
-    _spec.counts_and_cutoffs(me, labels, req, _err)
+    label_names = list(LABELS[modes["labels"]])
+    _spec.counts_and_cutoffs(me, {**modes, "labels": label_names}, req, m["version"], _err)
     for entry in ["stress_shapes.bin", "strain_shapes.bin", "stress_shapes_bottom.bin",
                   "strain_shapes_bottom.bin"]:
         s = b.get(entry)
@@ -446,14 +420,17 @@ def validate(b, m):
         if (dmp < 0).any():
             _err("Inconsistent", "damping.bin", "negative ratio")
     sh = b.get("label_shares.bin")
+    ml = b.get("modal_loads.bin")
     if sh is not None:
         _count("label_shares.bin", "shares", len(sh), nm)
         _finite("label_shares.bin", "shares", sh)
         if ((sh < 0) | (sh > 1)).any():
             _err("Inconsistent", "label_shares.bin", "share outside 0..1")
-    ml = b.get("modal_loads.bin")
+        single_stage = me["method"] == "NormalModes" and (ml is None or not any(ml["residual"]))
+        if ((sh != 1) & ((modes["labels"] == 0) | single_stage)).any():
+            _err("Inconsistent", "label_shares.bin", "a share that must be 1 is not")
     if ml is not None:
-        _spec.validate_modal_loads(ml, nm, _err, _count, _finite_list)
+        _spec.validate_modal_loads(ml, label_names, _err, _count, _finite_list)
     rc = b.get("recipe.json")
     if rc is not None:
         stored = [dict(id=int(i), interface=True) for i in ids[nodes["interface"] == 1]]

@@ -104,9 +104,26 @@ def stored(root):
     return 1 if bad or n == 0 else 0
 
 
+def interface_ids(root):
+    """`interfaces[k]["node_id"]` is the id of the stored node `interfaces[k]["node"]` indexes,
+    and the fixture's interfaces name it as the reference reader does."""
+    bad = n = 0
+    for f in sorted(Path(root).glob("golden/*/*.flexbody")):
+        body = flexbody.read(f)
+        for itf in body.interfaces or []:
+            n += 1
+            ok = itf["node_id"] == int(body.node_ids[itf["node"]]) and body.interface_flags[itf["node"]]
+            if not ok:
+                print(f"FAIL {f}: interface {itf['name']}: node_id {itf['node_id']}, node index {itf['node']}")
+            bad += not ok
+    print(f"{n - bad}/{n} interface records: node_id is the indexed node's id")
+    return 1 if bad or n == 0 else 0
+
+
 if __name__ == "__main__":
     root = sys.argv[1] if len(sys.argv) > 1 else "fixtures"
     status = main(root)
+    status = interface_ids(root) or status
     _reader._CHUNK = 7  # every deflated entry through the chunked inflate, 7-byte input pieces
     print("again, with the chunked inflate on every entry:")
     status = main(root) or status

@@ -14,26 +14,30 @@ pub const FORMAT_NAME: &str = "flexbody-reduced-body";
 /// Name of the manifest entry.
 pub const MANIFEST: &str = "manifest.json";
 
-/// Payload entries known to v1, in the fixed container order, with their required flag.
-pub const ENTRIES: [(&str, bool); 17] = [
-    (HEADER, true),
-    (NODES, true),
-    (FACES, true),
-    (NODAL_MASS, true),
-    (MODES, true),
-    (INVARIANTS, true),
-    (METHOD, true),
-    (STRESS_SHAPES, false),
-    (STRAIN_SHAPES, false),
-    (DAMPING, false),
-    (LINES, false),
-    (RECIPE, false),
-    (LABEL_SHARES, false),
-    (INTERFACES, false),
-    (MODAL_LOADS, false),
-    (STRESS_SHAPES_BOTTOM, false),
-    (STRAIN_SHAPES_BOTTOM, false),
+/// Payload entries known to v1, in the fixed container order: name, required flag, and the
+/// minor version that introduced the entry (a file stamped older must not hold it, SPEC §7.1).
+pub const ENTRIES: [(&str, bool, u32); 17] = [
+    (HEADER, true, 0),
+    (NODES, true, 0),
+    (FACES, true, 0),
+    (NODAL_MASS, true, 0),
+    (MODES, true, 0),
+    (INVARIANTS, true, 0),
+    (METHOD, true, 0),
+    (STRESS_SHAPES, false, 0),
+    (STRAIN_SHAPES, false, 0),
+    (DAMPING, false, 0),
+    (LINES, false, 1),
+    (RECIPE, false, 2),
+    (LABEL_SHARES, false, 2),
+    (INTERFACES, false, 3),
+    (MODAL_LOADS, false, 4),
+    (STRESS_SHAPES_BOTTOM, false, 5),
+    (STRAIN_SHAPES_BOTTOM, false, 5),
 ];
+/// The `.bin` records that hold strings: each, as a whole, at most [`STRING_RECORD_LIMIT`]
+/// bytes (SPEC §7.2), so a string's length prefix can never claim more.
+pub const STRING_RECORDS: [&str; 3] = [HEADER, INTERFACES, MODAL_LOADS];
 /// `header.bin`.
 pub const HEADER: &str = "header.bin";
 /// `nodes.bin`.
@@ -116,25 +120,31 @@ fn config() -> bincode::config::Configuration<bincode::config::LittleEndian, bin
         .with_fixed_int_encoding()
 }
 
-/// Byte limit for records that hold strings (`header.bin`, and `interfaces.bin` since 1.3): bincode allocates a string's
-/// buffer from its length prefix before reading it, so this bounds that allocation.
+/// Byte limit of the records that hold strings ([`STRING_RECORDS`]) and of `recipe.json`:
+/// bincode allocates a string's buffer from its length prefix before reading it, so bounding
+/// the whole record bounds that allocation.
 pub const STRING_RECORD_LIMIT: usize = 16 << 20;
 
-/// Decodes `recipe.json`: UTF-8 JSON with the members of SPEC.md §5.11 (unknown members
-/// ignored), at most [`STRING_RECORD_LIMIT`] bytes; anything else is `Decode`.
+fn over_limit(entry: &str, len: usize) -> Option<ReadError> {
+    (len > STRING_RECORD_LIMIT).then(|| ReadError::Decode {
+        entry: entry.to_string(),
+        detail: format!("{len} bytes exceed the {STRING_RECORD_LIMIT}-byte record limit"),
+    })
+}
+
+/// Decodes `recipe.json`: UTF-8 JSON (read as SPEC.md §4.1 says) with the members of §5.11
+/// (unknown members ignored), at most [`STRING_RECORD_LIMIT`] bytes; anything else is `Decode`.
 pub fn decode_recipe(bytes: &[u8]) -> Result<crate::Recipe, ReadError> {
     let fail = |detail: String| ReadError::Decode {
         entry: RECIPE.to_string(),
         detail,
     };
-    if bytes.len() > STRING_RECORD_LIMIT {
-        return Err(fail(format!(
-            "{} bytes exceed the {STRING_RECORD_LIMIT}-byte record limit",
-            bytes.len()
-        )));
+    if let Some(e) = over_limit(RECIPE, bytes.len()) {
+        return Err(e);
     }
     let text = std::str::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8: {e}")))?;
-    serde_json::from_str(text).map_err(|e| fail(format!("not a valid recipe: {e}")))
+    let value = crate::json::parse(text).map_err(|e| fail(format!("not JSON: {e}")))?;
+    crate::json::from_json(&value).map_err(|e| fail(format!("not a valid recipe: {e}")))
 }
 
 /// Encodes `recipe.json`: pretty JSON (two-space indent, members in declaration order) and a
@@ -156,7 +166,8 @@ pub fn encode<T: Serialize>(value: &T) -> Vec<u8> {
 
 /// Decodes a payload record with the v1 layout; the entry must be consumed exactly.
 ///
-/// Allocation is bounded: records with strings use a [`STRING_RECORD_LIMIT`] bincode limit;
+/// Allocation is bounded: a record with strings (`has_strings`, the [`STRING_RECORDS`]) is at
+/// most [`STRING_RECORD_LIMIT`] bytes as a whole and decodes under that bincode limit;
 /// sequences of numbers and structs go through serde's cautious preallocation (at most 1 MiB)
 /// and grow only as elements are actually read from `bytes`, whose size the caller bounded.
 pub fn decode<T: DeserializeOwned>(
@@ -164,6 +175,9 @@ pub fn decode<T: DeserializeOwned>(
     bytes: &[u8],
     has_strings: bool,
 ) -> Result<T, ReadError> {
+    if let Some(e) = over_limit(entry, bytes.len()).filter(|_| has_strings) {
+        return Err(e);
+    }
     let result = if has_strings {
         let cfg = config().with_limit::<STRING_RECORD_LIMIT>();
         bincode::serde::decode_from_slice::<T, _>(bytes, cfg)

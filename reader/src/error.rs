@@ -200,7 +200,13 @@ pub enum ReadError {
 }
 
 impl ReadError {
-    /// The variant name, as used in `fixtures/broken/*.expect`.
+    /// The error with its SPEC §8 name in front (`Checksum: entry modes.bin: SHA-256 …`), for a
+    /// program that prints it: `.map_err(ReadError::named)` where it reads a file.
+    pub fn named(self) -> NamedError {
+        NamedError(self)
+    }
+
+    /// The variant name (SPEC §8), as used in `fixtures/broken/*.expect`.
     pub fn variant(&self) -> &'static str {
         match self {
             ReadError::Io { .. } => "Io",
@@ -225,5 +231,22 @@ impl ReadError {
             ReadError::NotSymmetric { .. } => "NotSymmetric",
             ReadError::Inconsistent { .. } => "Inconsistent",
         }
+    }
+}
+
+/// A [`ReadError`] displayed with its SPEC §8 name in front, so that a reader of the text need
+/// not map messages to names. Its `source` is the `ReadError`'s own.
+#[derive(Debug)]
+pub struct NamedError(pub ReadError);
+
+impl std::fmt::Display for NamedError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.0.variant(), self.0)
+    }
+}
+
+impl std::error::Error for NamedError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        std::error::Error::source(&self.0)
     }
 }

@@ -89,7 +89,7 @@ fn finite(field: String, values: &[f64]) -> Result<(), ReadError> {
 /// Tolerance of the unit-axis and centre-at-node rules (relative).
 pub const FIT_TOL: f64 = 1e-9;
 
-/// Rule 13 (SPEC.md §6): `interfaces.bin` describes exactly the interface nodes of `method.bin`.
+/// Rule 14 (SPEC.md §6): `interfaces.bin` describes exactly the interface nodes of `method.bin`.
 pub(crate) fn validate_interfaces(
     list: &[InterfaceInfo],
     body: &ReducedBody,

@@ -7,7 +7,11 @@
 //! * [`read`] / [`from_bytes`] → [`ReducedBody`], every checksum and consistency rule checked;
 //!   [`from_bytes_with_limits`] takes explicit [`ReadLimits`].
 //! * [`ReadError`] names the entry and the rule broken; a hostile file never panics the reader
-//!   and never makes it allocate beyond the limits.
+//!   and never makes it allocate beyond the limits. [`ReadError::variant`] is its SPEC §8 name
+//!   and [`ReadError::named`] prints it in front of the message (`Checksum: entry …`).
+//! * The container is read by the one procedure of SPEC §7.1 (`archive`, no zip library) and
+//!   `manifest.json`/`recipe.json` by the strict JSON rules of §4.1 (`json`), so that every
+//!   conforming reader sees the same file.
 //! * [`validate`] runs the consistency rules on an in-memory body (the writer uses it), and
 //!   [`codec`] holds the entry names, the manifest type and the v1 payload encoding.
 //!
@@ -18,10 +22,12 @@
 //! ```
 #![deny(missing_docs)]
 
+mod archive;
 pub mod codec;
 mod container;
 mod error;
 mod interfaces;
+mod json;
 mod limits;
 mod recipe;
 mod types;
@@ -29,7 +35,7 @@ mod validate;
 
 use std::path::Path;
 
-pub use error::ReadError;
+pub use error::{NamedError, ReadError};
 pub use interfaces::{CentreFit, FitMethod, InterfaceInfo, InterfaceKind, FIT_TOL};
 pub use limits::ReadLimits;
 pub use recipe::*;
@@ -37,26 +43,44 @@ pub use types::*;
 pub use validate::{validate, FRAME_TOL, REL_TOL};
 
 /// The newest format version this crate writes and fully understands. A writer stamps the
-/// oldest version whose entries the file uses ([`version_for`]): 1.0 unless `lines.bin` is
-/// present.
-pub const FORMAT_VERSION: Version = Version { major: 1, minor: 5 };
+/// oldest version that has everything the file holds ([`version_for`]).
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 6 };
 
-/// The oldest format version that has every entry `body` holds (1.1 added `lines.bin`, 1.2
-/// `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`, 1.4 `modal_loads.bin`, 1.5 the
-/// shells' bottom-fibre field shapes).
+/// The oldest format version that has everything `body` holds (SPEC §7.3): 1.1 added
+/// `lines.bin`, 1.2 `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`, 1.4
+/// `modal_loads.bin`, 1.5 the shells' bottom-fibre field shapes, 1.6 normal modes that count
+/// residual vectors removed as dependent (`method.counts.removed_dependent` > 0).
 pub fn version_for(body: &ReducedBody) -> Version {
-    let minor = if body.stress_shapes_bottom.is_some() || body.strain_shapes_bottom.is_some() {
-        5
-    } else if body.modal_loads.is_some() {
-        4
-    } else if body.interfaces.is_some() {
-        3
-    } else if body.recipe.is_some() || body.label_shares.is_some() {
-        2
-    } else {
-        u32::from(body.lines.is_some())
-    };
+    let normal_removed =
+        body.method.method == Method::NormalModes && body.method.counts.removed_dependent > 0;
+    let entry_minor = encoded_names(body)
+        .filter_map(|name| codec::ENTRIES.iter().find(|e| e.0 == name))
+        .map(|e| e.2)
+        .max()
+        .unwrap_or(0);
+    let minor = if normal_removed { 6 } else { entry_minor };
     Version { major: 1, minor }
+}
+
+/// The names of the entries `body` writes, in container order (manifest excluded).
+fn encoded_names(body: &ReducedBody) -> impl Iterator<Item = &'static str> {
+    use codec::*;
+    let optional = [
+        (STRESS_SHAPES, body.stress_shapes.is_some()),
+        (STRAIN_SHAPES, body.strain_shapes.is_some()),
+        (DAMPING, body.damping.is_some()),
+        (LINES, body.lines.is_some()),
+        (RECIPE, body.recipe.is_some()),
+        (LABEL_SHARES, body.label_shares.is_some()),
+        (INTERFACES, body.interfaces.is_some()),
+        (MODAL_LOADS, body.modal_loads.is_some()),
+        (STRESS_SHAPES_BOTTOM, body.stress_shapes_bottom.is_some()),
+        (STRAIN_SHAPES_BOTTOM, body.strain_shapes_bottom.is_some()),
+    ];
+    ENTRIES[..7]
+        .iter()
+        .map(|e| e.0)
+        .chain(optional.into_iter().filter(|x| x.1).map(|x| x.0))
 }
 
 /// Reads and validates a file with the default [`ReadLimits`].
@@ -90,7 +114,7 @@ fn optional<T: serde::de::DeserializeOwned>(
 ) -> Result<Option<T>, ReadError> {
     c.entries
         .get(name)
-        .map(|b| codec::decode(name, b, false))
+        .map(|b| codec::decode(name, b, codec::STRING_RECORDS.contains(&name)))
         .transpose()
 }
 
@@ -107,40 +131,50 @@ pub fn from_bytes_with_manifest(
 ) -> Result<(ReducedBody, codec::Manifest), ReadError> {
     use codec::*;
     let c = container::open(bytes, limits)?;
+    // SPEC §7.1 step 7: decoded in container order (§2), so the first record that does not
+    // decode is the one every reader names.
+    let header = decode(HEADER, entry(&c, HEADER)?, true)?;
+    let nodes = decode(NODES, entry(&c, NODES)?, false)?;
+    let faces = decode(FACES, entry(&c, FACES)?, false)?;
+    let nodal_mass = decode(NODAL_MASS, entry(&c, NODAL_MASS)?, false)?;
+    let modes = decode(MODES, entry(&c, MODES)?, false)?;
+    let invariants = decode(INVARIANTS, entry(&c, INVARIANTS)?, false)?;
+    let method = decode(METHOD, entry(&c, METHOD)?, false)?;
+    let stress_shapes = optional(&c, STRESS_SHAPES)?;
+    let strain_shapes = optional(&c, STRAIN_SHAPES)?;
+    let damping = optional(&c, DAMPING)?;
+    let lines = optional(&c, LINES)?;
+    let recipe = c
+        .entries
+        .get(RECIPE)
+        .map(|b| decode_recipe(b))
+        .transpose()?;
+    let label_shares = optional(&c, LABEL_SHARES)?;
+    let interfaces = optional(&c, INTERFACES)?;
+    let modal_loads = optional(&c, MODAL_LOADS)?;
+    let stress_shapes_bottom = optional(&c, STRESS_SHAPES_BOTTOM)?;
+    let strain_shapes_bottom = optional(&c, STRAIN_SHAPES_BOTTOM)?;
     let body = ReducedBody {
         version: c.manifest.version,
         generator: c.manifest.generator.clone(),
         units: c.manifest.units.clone(),
-        header: decode(HEADER, entry(&c, HEADER)?, true)?,
-        nodes: decode(NODES, entry(&c, NODES)?, false)?,
-        faces: decode(FACES, entry(&c, FACES)?, false)?,
-        nodal_mass: decode(NODAL_MASS, entry(&c, NODAL_MASS)?, false)?,
-        modes: decode(MODES, entry(&c, MODES)?, false)?,
-        invariants: decode(INVARIANTS, entry(&c, INVARIANTS)?, false)?,
-        method: decode(METHOD, entry(&c, METHOD)?, false)?,
-        stress_shapes: optional(&c, STRESS_SHAPES)?,
-        strain_shapes: optional(&c, STRAIN_SHAPES)?,
-        damping: optional(&c, DAMPING)?,
-        lines: optional(&c, LINES)?,
-        recipe: c
-            .entries
-            .get(RECIPE)
-            .map(|b| decode_recipe(b))
-            .transpose()?,
-        label_shares: optional(&c, LABEL_SHARES)?,
-        interfaces: c
-            .entries
-            .get(INTERFACES)
-            .map(|b| decode(INTERFACES, b, true))
-            .transpose()?,
-        stress_shapes_bottom: optional(&c, STRESS_SHAPES_BOTTOM)?,
-        strain_shapes_bottom: optional(&c, STRAIN_SHAPES_BOTTOM)?,
-        // names and sources are strings: the string-record limit bounds their allocation
-        modal_loads: c
-            .entries
-            .get(MODAL_LOADS)
-            .map(|b| decode(MODAL_LOADS, b, true))
-            .transpose()?,
+        header,
+        nodes,
+        faces,
+        nodal_mass,
+        modes,
+        invariants,
+        method,
+        stress_shapes,
+        strain_shapes,
+        damping,
+        lines,
+        recipe,
+        label_shares,
+        interfaces,
+        stress_shapes_bottom,
+        strain_shapes_bottom,
+        modal_loads,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))

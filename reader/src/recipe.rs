@@ -36,7 +36,9 @@ pub struct ModelFile {
     pub sha256: String,
 }
 
-/// The build options, each in the form `flexbody build` accepts.
+/// The build options, each in the form `flexbody build` accepts. A member written `name?: T` in
+/// SPEC §5.11 (`thickness` … `select`) is absent when not given; present, it is a `T` (`null`
+/// is not).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RecipeOptions {
     /// `--format` as given (`null`: from the extension).
@@ -72,23 +74,43 @@ pub struct RecipeOptions {
     /// `--damping` as given (`null`: no damping entry).
     pub damping: Option<String>,
     /// `--thickness` of shells without a section (absent: not given).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "crate::json::present",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub thickness: Option<f64>,
     /// `--subcase` of a Nastran deck (absent: not given).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "crate::json::present",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub subcase: Option<u64>,
     /// `--gravity` as given (absent: not given; format 1.4).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "crate::json::present",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub gravity: Option<String>,
     /// `--load` entries as given (absent: none; format 1.4).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub loads: Vec<String>,
     /// `--residual-vectors`: `loads`, `interface` or `both` (absent: none; format 1.4).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "crate::json::present",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub residual_vectors: Option<String>,
     /// `--select`: `participation:ε` (absent: not given; the modes were selected by the
     /// scene's participation, so modes inside the band may be missing).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "crate::json::present",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub select: Option<String>,
 }
 

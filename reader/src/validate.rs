@@ -440,21 +440,10 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
         }
     }
     if let Some(s) = &body.label_shares {
-        count(LABEL_SHARES, "shares", s.len(), m, "one per mode")?;
-        finite(LABEL_SHARES, "shares", s)?;
-        if let Some((j, v)) = s
-            .iter()
-            .enumerate()
-            .find(|(_, v)| !(0.0..=1.0).contains(*v))
-        {
-            return Err(inconsistent(
-                LABEL_SHARES,
-                format!("share[{j}] = {v} is outside 0…1"),
-            ));
-        }
+        label_shares(s, body)?;
     }
     if let Some(ml) = &body.modal_loads {
-        modal_loads(ml, m)?;
+        modal_loads(ml, &body.modes.labels)?;
     }
     if let Some(r) = &body.recipe {
         recipe(r, body)?;
@@ -484,43 +473,50 @@ fn counts_and_cutoffs(body: &ReducedBody) -> Result<(), ReadError> {
             c.rigid
         ));
     }
-    let (zero, basis): (&[(&str, u64)], u64) = match me.method {
+    // Exact sums (u128: three u64 cannot overflow it), so every reader computes the same.
+    let sum = |v: &[u64]| v.iter().map(|&x| u128::from(x)).sum::<u128>();
+    let (zero, basis): (&[(&str, u64)], u128) = match me.method {
         Method::NormalModes => (
             &[
                 ("constraint", c.constraint),
                 ("fixed_interface", c.fixed_interface),
                 ("attachment", c.attachment),
-                ("removed_dependent", c.removed_dependent),
             ],
-            c.rigid.saturating_add(c.normal),
+            sum(&[c.rigid, c.normal]),
         ),
         Method::CraigBampton => (
             &[("normal", c.normal), ("attachment", c.attachment)],
-            c.constraint.saturating_add(c.fixed_interface),
+            sum(&[c.constraint, c.fixed_interface]),
         ),
         Method::CraigChang | Method::Dietz => (
             &[
                 ("constraint", c.constraint),
                 ("fixed_interface", c.fixed_interface),
             ],
-            c.rigid
-                .saturating_add(c.normal)
-                .saturating_add(c.attachment),
+            sum(&[c.rigid, c.normal, c.attachment]),
         ),
     };
     if let Some((name, v)) = zero.iter().find(|(_, v)| *v != 0) {
         return bad(format!("counts.{name} = {v} must be 0 for {:?}", me.method));
     }
-    let kept = basis.saturating_sub(c.removed_dependent);
+    // Normal modes count residual vectors removed as dependent since 1.6 (0 before).
+    let v = body.version;
+    if me.method == Method::NormalModes && c.removed_dependent > 0 && (v.major, v.minor) < (1, 6) {
+        return bad(format!(
+            "counts.removed_dependent = {} must be 0 for NormalModes in a {}.{} file (counted since 1.6)",
+            c.removed_dependent, v.major, v.minor
+        ));
+    }
+    let (removed, m) = (u128::from(c.removed_dependent), u128::from(m));
     let ok = if me.method == Method::NormalModes {
-        basis == m
+        basis == m + removed
     } else {
-        basis >= c.removed_dependent && kept >= m
+        basis >= m + removed
     };
     if !ok {
         return bad(format!(
-            "counts give {kept} basis vectors (after {} removed) for {m} modes",
-            c.removed_dependent
+            "counts give {} basis vectors (after {removed} removed) for {m} modes",
+            basis as i128 - removed as i128
         ));
     }
     let cut = &me.cutoffs;
@@ -556,7 +552,7 @@ fn counts_and_cutoffs(body: &ReducedBody) -> Result<(), ReadError> {
     Ok(())
 }
 
-/// Rule 11 (SPEC.md §6): `recipe.json` agrees with itself and with the rest of the file.
+/// Rule 13 (SPEC.md §6): `recipe.json` agrees with itself and with the rest of the file.
 fn recipe(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
     for (q, f) in r.model_files.iter().enumerate() {
         let hex_ok = f.sha256.len() == 64
@@ -592,6 +588,7 @@ fn recipe(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
             ));
         }
     }
+    finite(RECIPE, "options.thickness", r.options.thickness.iter())?;
     for (q, itf) in r.interfaces.iter().enumerate() {
         for &id in &itf.nodes {
             if !body.nodes.iter().any(|p| p.id == id && p.interface) {
@@ -621,12 +618,63 @@ fn recipe(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
             format!("accuracy_band.fmax_hz {band} must be > 0"),
         ));
     }
+    finite(
+        RECIPE,
+        "accuracy_band.basis_cutoff_hz",
+        r.accuracy_band.basis_cutoff_hz.iter(),
+    )?;
     Ok(())
 }
 
-/// SPEC §5.14: one value per mode per load, finite; names non-empty and unique; `residual`
-/// empty or one 0/1 per mode.
-fn modal_loads(ml: &crate::types::ModalLoads, m: usize) -> Result<(), ReadError> {
+/// Rule 11 (SPEC §5.12): one share per mode in 0…1; 1 for a `Rigid` mode and for every mode of
+/// a single-stage basis (normal modes without a residual-vector mode).
+fn label_shares(s: &[f64], body: &ReducedBody) -> Result<(), ReadError> {
+    use crate::types::{Method, ModeLabel};
+    let labels = &body.modes.labels;
+    count(
+        LABEL_SHARES,
+        "shares",
+        s.len(),
+        labels.len(),
+        "one per mode",
+    )?;
+    finite(LABEL_SHARES, "shares", s)?;
+    let single_stage = body.method.method == Method::NormalModes
+        && body
+            .modal_loads
+            .as_ref()
+            .is_none_or(|ml| ml.residual.iter().all(|&r| r == 0));
+    for (j, (&v, &label)) in s.iter().zip(labels).enumerate() {
+        if !(0.0..=1.0).contains(&v) {
+            return Err(inconsistent(
+                LABEL_SHARES,
+                format!("share[{j}] = {v} is outside 0…1"),
+            ));
+        }
+        if v != 1.0 && (label == ModeLabel::Rigid || single_stage) {
+            return Err(inconsistent(
+                LABEL_SHARES,
+                format!(
+                    "share[{j}] = {v} must be 1 ({})",
+                    if label == ModeLabel::Rigid {
+                        "a Rigid mode"
+                    } else {
+                        "normal modes without residual vectors"
+                    }
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Rule 12 (SPEC §5.14): one value per mode per load, finite; names non-empty and unique;
+/// `residual` empty or one 0/1 per mode, 1 only for a mode labelled `Attachment`.
+fn modal_loads(
+    ml: &crate::types::ModalLoads,
+    labels: &[crate::types::ModeLabel],
+) -> Result<(), ReadError> {
+    let m = labels.len();
     for (q, l) in ml.loads.iter().enumerate() {
         if l.name.is_empty() {
             return Err(inconsistent(
@@ -643,18 +691,27 @@ fn modal_loads(ml: &crate::types::ModalLoads, m: usize) -> Result<(), ReadError>
         count(MODAL_LOADS, "values", l.values.len(), m, "one per mode")?;
         finite(MODAL_LOADS, "values", &l.values)?;
     }
-    if !ml.residual.is_empty() {
-        count(
-            MODAL_LOADS,
-            "residual",
-            ml.residual.len(),
-            m,
-            "one per mode or none",
-        )?;
-        if let Some((j, v)) = ml.residual.iter().enumerate().find(|(_, v)| **v > 1) {
+    if ml.residual.is_empty() {
+        return Ok(());
+    }
+    count(
+        MODAL_LOADS,
+        "residual",
+        ml.residual.len(),
+        m,
+        "one per mode or none",
+    )?;
+    for (j, (&v, &label)) in ml.residual.iter().zip(labels).enumerate() {
+        if v > 1 {
             return Err(inconsistent(
                 MODAL_LOADS,
                 format!("residual[{j}] = {v} is not 0 or 1"),
+            ));
+        }
+        if v == 1 && label != crate::types::ModeLabel::Attachment {
+            return Err(inconsistent(
+                MODAL_LOADS,
+                format!("residual[{j}] = 1 but mode {j} is labelled {label:?}, not Attachment"),
             ));
         }
     }

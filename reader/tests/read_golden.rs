@@ -61,3 +61,39 @@ fn a_missing_file_is_an_io_error_naming_the_path() {
     assert_eq!(err.variant(), "Io");
     assert!(err.to_string().contains("no_such.flexbody"), "{err}");
 }
+
+/// Format 1.6: normal modes that count a residual vector removed as dependent read back (a
+/// 1.5 reader refused them: its rule 8 wanted `removed_dependent` = 0 for normal modes).
+#[test]
+fn v1_6_golden_counts_the_removed_residual_vector() {
+    let b = flexbody_reader::read(golden_in(
+        "v1.6",
+        "three_node_chain_residual_vectors.flexbody",
+    ))
+    .expect("golden file reads");
+    assert_eq!(b.version, flexbody_reader::FORMAT_VERSION);
+    assert_eq!(flexbody_reader::version_for(&b), b.version);
+    let c = b.method.counts;
+    assert_eq!((c.rigid, c.normal, c.removed_dependent), (1, 3, 1));
+    assert_eq!(b.modal_loads.map(|m| m.residual), Some(vec![0, 0, 1]));
+    let share = b.label_shares.expect("shares")[2];
+    assert!((share - 28.0 / 55.0).abs() < 1e-15, "{share}");
+}
+
+/// A refusal printed for people carries its SPEC §8 name (issue 37): `ReadError::named`.
+#[test]
+fn a_named_error_prints_its_spec_name_first() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/broken/checksum_mismatch.flexbody");
+    let err = flexbody_reader::read(path).expect_err("refused");
+    assert_eq!(err.variant(), "Checksum");
+    let text = err.to_string();
+    assert_eq!(err.named().to_string(), format!("Checksum: {text}"));
+    let io = flexbody_reader::read(golden("no_such.flexbody")).expect_err("missing");
+    let named = io.named();
+    assert!(named.to_string().starts_with("Io: cannot read "));
+    assert!(
+        std::error::Error::source(&named).is_some(),
+        "the io::Error stays the source"
+    );
+}

@@ -13,6 +13,7 @@
 //! tet   : 1-2-3  1-4-2  2-4-3  3-4-1
 //! prism : 1-2-3  4-6-5  1-4-5-2  2-5-6-3  3-6-4-1
 //! hex   : 1-2-3-4  5-8-7-6  1-5-6-2  2-6-7-3  3-7-8-4  4-8-5-1
+//! pyram : 1-2-3-4  1-5-2  2-5-3  3-5-4  4-5-1
 //!
 //!        8-------7          6            4
 //!       /|      /|         /|\          /|\
@@ -33,6 +34,13 @@ const PRISM_FACES: &[&[usize]] = &[
     &[0, 3, 4, 1],
     &[1, 4, 5, 2],
     &[2, 5, 3, 0],
+];
+const PYRAM_FACES: &[&[usize]] = &[
+    &[0, 1, 2, 3],
+    &[0, 4, 1],
+    &[1, 4, 2],
+    &[2, 4, 3],
+    &[3, 4, 0],
 ];
 const HEX_FACES: &[&[usize]] = &[
     &[0, 1, 2, 3],
@@ -56,6 +64,7 @@ fn solid_faces(kind: ElementKind) -> Option<&'static [&'static [usize]]> {
     match kind {
         ElementKind::Tet4 | ElementKind::Tet10 => Some(TET_FACES),
         ElementKind::Prism6 | ElementKind::Prism15 => Some(PRISM_FACES),
+        ElementKind::Pyram5 | ElementKind::Pyram13 => Some(PYRAM_FACES),
         ElementKind::Hex8 | ElementKind::Hex20 | ElementKind::Hex20R => Some(HEX_FACES),
         _ => None,
     }

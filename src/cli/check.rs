@@ -122,6 +122,7 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
             material: input.material.clone(),
             shell_thickness: input.thickness,
             subcase: input.subcase,
+            ..Default::default()
         },
     )
     .map_err(BuildError::from)?;

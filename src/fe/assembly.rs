@@ -3,7 +3,8 @@
 //! built once per `DofMap` (no triplet list, so a 10⁶-dof model stays within a few GB).
 //!
 //! K = Σ_e A_eᵀ K_e A_e and M = Σ_e A_eᵀ M_e A_e + Σ_p M_p (A_e the Boolean gather of element e's
-//! dofs; M_p point masses), both stored full symmetric (both triangles). The scatter is parallel
+//! dofs; M_p point masses; springs, scalar masses and bushes as small elements,
+//! [`super::connectors`]), both stored full symmetric (both triangles). The scatter is parallel
 //! over disjoint column ranges, so no two threads write the same value.
 
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
@@ -13,8 +14,8 @@ use super::dofs::DofMap;
 use super::elements::beam::{BeamLumping, BeamProps};
 use super::elements::tet10::Tet10MassRule;
 use super::elements::{
-    beam, hex20, hex8, prism6, quad4_shell, rod, solid_incompatible, tet10, tet4, tri3_shell,
-    ElementError, Isotropic, Xyz,
+    beam, hex20, hex8, prism6, pyram13, pyram5, quad4_shell, rod, solid_incompatible, tet10, tet4,
+    tri3_shell, ElementError, Isotropic, Xyz,
 };
 use super::mass::{self, MassKind};
 use super::pattern::Pattern;
@@ -209,6 +210,24 @@ pub fn element_matrices(
                 false,
             )
         }
+        ElementKind::Pyram5 => {
+            let x = coords::<5>(model, n);
+            solid(
+                pyram5::stiffness(&x, &iso).map_err(elem_err)?,
+                pyram5::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                5,
+                false,
+            )
+        }
+        ElementKind::Pyram13 => {
+            let x = coords::<13>(model, n);
+            solid(
+                pyram13::stiffness(&x, &iso).map_err(elem_err)?,
+                pyram13::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                13,
+                true,
+            )
+        }
         ElementKind::Beam2 | ElementKind::Bar2 => {
             let Section::Beam(s) = &prop.section else {
                 return Err(fail(format!(
@@ -286,7 +305,12 @@ pub fn element_matrices(
 }
 
 /// Rotate an element matrix into the nodes' displacement frames: A' = T A Tᵀ, T = diag(R_a).
-fn to_frames(a: &mut [f64], nodes: &[usize], dpn: usize, frames: &[Option<[[f64; 3]; 3]>]) {
+pub(crate) fn to_frames(
+    a: &mut [f64],
+    nodes: &[usize],
+    dpn: usize,
+    frames: &[Option<[[f64; 3]; 3]>],
+) {
     let nd = nodes.len() * dpn;
     let blocks: Vec<Option<&[[f64; 3]; 3]>> = nodes
         .iter()
@@ -324,9 +348,10 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
         .filter(|(_, e)| e.property.is_some() || is_structural(e.kind))
         .map(|(i, _)| i)
         .collect();
-    let conn: Vec<&[usize]> = elems
-        .iter()
+    let connectors = super::connectors::connector_matrices(model)?;
+    let conn: Vec<&[usize]> = (elems.iter())
         .map(|&e| model.elements[e].nodes.as_slice())
+        .chain(connectors.iter().map(|c| c.nodes.as_slice()))
         .collect();
     if let Some(&e) = elems.iter().find(|&&e| {
         model.elements[e]
@@ -461,6 +486,10 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
         }
     }
 
+    for c in connectors {
+        scatter_connector(model, &dofs, &pattern, &moff, lumped, c, &mut kv, &mut mv)?;
+    }
+
     let n = dofs.n_dofs;
     let m = match spec.mass {
         MassKind::Consistent => {
@@ -495,6 +524,69 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
         kv,
     );
     Ok(Assembled { dofs, k, m })
+}
+
+/// Add one connector's matrices ([`super::connectors`]) into the values of K (`kv`, full
+/// pattern) and M (`mv`: node blocks when `lumped`, else the full pattern). A coupling mass
+/// between two nodes has no place in a lumped (node-block) M: an error naming it.
+#[allow(clippy::too_many_arguments)]
+fn scatter_connector(
+    model: &Model,
+    dofs: &DofMap,
+    pattern: &Pattern,
+    moff: &[usize],
+    lumped: bool,
+    mut c: super::connectors::ConnectorMatrices,
+    kv: &mut [f64],
+    mv: &mut [f64],
+) -> Result<(), FeError> {
+    if c.basic && c.nodes.iter().any(|&n| dofs.frames[n].is_some()) {
+        to_frames(&mut c.k, &c.nodes, 6, &dofs.frames);
+        to_frames(&mut c.m, &c.nodes, 6, &dofs.frames);
+    }
+    let nd = 6 * c.nodes.len();
+    let fail = |message: String| FeError::BadReference {
+        source_file: model.source.clone(),
+        message: format!("{}: {message}", c.what),
+    };
+    for (la, &a) in c.nodes.iter().enumerate() {
+        let na = usize::from(dofs.count[a]);
+        for col in 0..6 {
+            for (lb, &b) in c.nodes.iter().enumerate() {
+                let nb = usize::from(dofs.count[b]);
+                for r in 0..6 {
+                    let (kij, mij) = (
+                        c.k[(6 * lb + r) * nd + 6 * la + col],
+                        c.m[(6 * lb + r) * nd + 6 * la + col],
+                    );
+                    if kij == 0.0 && mij == 0.0 {
+                        continue;
+                    }
+                    if col >= na || r >= nb {
+                        return Err(fail(format!(
+                            "acts on a component node {} or {} does not have",
+                            model.nodes[a].id, model.nodes[b].id
+                        )));
+                    }
+                    let p = pattern.block(a, col, b) + r;
+                    kv[p] += kij;
+                    if !lumped {
+                        mv[p] += mij;
+                    } else if a == b {
+                        mv[moff[a] + col * na + r] += mij;
+                    } else if mij != 0.0 {
+                        return Err(fail(format!(
+                            "couples the motion of nodes {} and {} by mass, which a lumped \
+                             (node-block) mass matrix cannot hold; ground one end or use \
+                             consistent mass (--mass consistent)",
+                            model.nodes[a].id, model.nodes[b].id
+                        )));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Copy a CSC matrix without its explicit zeros (diagonal entries are always kept).

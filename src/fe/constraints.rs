@@ -12,12 +12,14 @@
 //!   Craig–Bampton reduction), the same relation q = A u is solved instead for as many dofs u_m
 //!   of the weighted nodes (Nastran's UM set), chosen by column-pivoted Gram–Schmidt on A so
 //!   that A_m is well conditioned: u_m = A_m⁻¹ (q − A_o u_o).
+//! * RBAR, RBAR1, RBE1 (rigid bodies with chosen independent dofs) and MPCs: the rows of
+//!   [`super::rigid_body`].
 //! * SPCs: the dofs are dropped (their T rows are empty).
 //! * AUTOSPC (on by default): retained dofs whose K_r and M_r diagonals are both exactly zero
 //!   (e.g. bending rotations of rod-only nodes) are dropped too, and listed.
 //!
 //! Chains (a dependent dof referring to another dependent dof) are resolved by substitution;
-//! a cycle or a dof made dependent twice is an error naming the elements.
+//! a cycle or a dof made dependent twice is an error naming the elements (or MPC sets).
 
 use std::collections::HashMap;
 
@@ -86,7 +88,26 @@ impl Reduced {
     }
 }
 
-type Expr = Vec<(usize, f64)>;
+/// A linear expression over physical dofs: Σ (dof, coefficient).
+pub(super) type Expr = Vec<(usize, f64)>;
+
+/// What made a dof dependent, for messages.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Owner {
+    /// A rigid element (RBE2, RBE3, RBAR, RBAR1, RBE1) by id.
+    Rigid(u64),
+    /// An MPC set by id.
+    Mpc(u64),
+}
+
+impl std::fmt::Display for Owner {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Owner::Rigid(id) => write!(f, "rigid element {id}"),
+            Owner::Mpc(id) => write!(f, "MPC {id}"),
+        }
+    }
+}
 
 /// Build T and the reduced K, M.
 pub fn eliminate(
@@ -134,18 +155,22 @@ pub fn eliminate(
         fix(node, mask);
     }
 
-    // Dependent dof → (expression over physical dofs, owning rigid element id).
-    let mut dep: HashMap<usize, (Expr, u64)> = HashMap::new();
-    let mut add_dep = |d: usize, e: Expr, id: u64| -> Result<(), FeError> {
+    // Dependent dof → (expression over physical dofs, what made it dependent).
+    let mut dep: HashMap<usize, (Expr, Owner)> = HashMap::new();
+    let mut add_dep = |d: usize, e: Expr, owner: Owner| -> Result<(), FeError> {
         if let Some((_, other)) = dep.get(&d) {
             let (node, c) = dofs.node_of(d).unwrap_or((usize::MAX, 0));
+            let both = match (other, owner) {
+                (Owner::Rigid(a), Owner::Rigid(b)) => format!("rigid elements {a} and {b}"),
+                _ => format!("{other} and {owner}"),
+            };
             return Err(err(format!(
-                "dof {} of node {} is dependent in rigid elements {other} and {id}",
+                "dof {} of node {} is dependent in {both}",
                 c + 1,
                 model.nodes.get(node).map_or(0, |n| n.id)
             )));
         }
-        dep.insert(d, (e, id));
+        dep.insert(d, (e, owner));
         Ok(())
     };
     for r in &model.rigid_elements {
@@ -173,7 +198,7 @@ pub fn eliminate(
                             .filter_map(|q| dofs.dof(i, q).map(|di| (di, h[c][q])))
                             .filter(|t| t.1 != 0.0)
                             .collect();
-                        add_dep(dd, e, *id)?;
+                        add_dep(dd, e, Owner::Rigid(*id))?;
                     }
                 }
             }
@@ -201,21 +226,39 @@ pub fn eliminate(
                             model.nodes[*reference].id
                         ))
                     })? {
-                        add_dep(dd, e, *id)?;
+                        add_dep(dd, e, Owner::Rigid(*id))?;
                     }
                 } else {
                     for (dd, e) in rows {
-                        add_dep(dd, e, *id)?;
+                        add_dep(dd, e, Owner::Rigid(*id))?;
                     }
                 }
             }
         }
     }
+    for body in &model.rigid_bodies {
+        for node in body.nodes() {
+            node_ok(node, "rigid element")?;
+        }
+        let rows = super::rigid_body::rigid_body_rows(model, dofs, body)
+            .map_err(|m| err(format!("rigid element {}: {m}", body.id)))?;
+        for (dd, e) in rows {
+            add_dep(dd, e, Owner::Rigid(body.id))?;
+        }
+    }
+    for mpc in &model.mpcs {
+        for (d, _) in &mpc.terms {
+            node_ok(d.node, "MPC")?;
+        }
+        let (dd, e) = super::rigid_body::mpc_row(model, dofs, mpc)
+            .map_err(|m| err(format!("MPC {}: {m}", mpc.id)))?;
+        add_dep(dd, e, Owner::Mpc(mpc.id))?;
+    }
     for (&d, (_, id)) in &dep {
         if fixed[d] {
             let (node, c) = dofs.node_of(d).unwrap_or((0, 0));
             return Err(err(format!(
-                "dof {} of node {} is constrained by an SPC and is dependent in rigid element {id}",
+                "dof {} of node {} is constrained by an SPC and is dependent in {id}",
                 c + 1,
                 model.nodes[node].id
             )));
@@ -237,7 +280,7 @@ pub fn eliminate(
         resolve(d, &dep, &fixed, &red, &mut rows, &mut state).map_err(|(d, id)| {
             let (node, c) = dofs.node_of(d).unwrap_or((0, 0));
             err(format!(
-                "rigid element {id}: dependency cycle through dof {} of node {}",
+                "{id}: dependency cycle through dof {} of node {}",
                 c + 1,
                 model.nodes[node].id
             ))
@@ -294,12 +337,12 @@ pub fn eliminate(
 /// Resolve the T row of dof d over retained dofs; Err((dof, element id)) on a cycle.
 fn resolve(
     d: usize,
-    dep: &HashMap<usize, (Expr, u64)>,
+    dep: &HashMap<usize, (Expr, Owner)>,
     fixed: &[bool],
     red: &[usize],
     rows: &mut [Option<Expr>],
     state: &mut [u8],
-) -> Result<(), (usize, u64)> {
+) -> Result<(), (usize, Owner)> {
     if state[d] == 2 {
         return Ok(());
     }
@@ -390,22 +433,9 @@ fn rbe3_rows(
                 model.nodes[node].id
             ));
         }
-        let f = dofs.frames[node].unwrap_or(eye);
-        let r = sub(model.nodes[node].x, xr);
         for c in mask.dofs() {
             let Some(d) = dofs.dof(node, c) else { continue };
-            let mut g = [0.0; 6];
-            if c < 3 {
-                let e = f[c];
-                g[..3].copy_from_slice(&e);
-                // e · (θ × r) = θ · (r × e)
-                g[3] = r[1] * e[2] - r[2] * e[1];
-                g[4] = r[2] * e[0] - r[0] * e[2];
-                g[5] = r[0] * e[1] - r[1] * e[0];
-            } else {
-                g[3..].copy_from_slice(&f[c - 3]);
-            }
-            obs.push((g, w, d));
+            obs.push((super::rigid_body::rigid_row(model, dofs, node, c, xr), w, d));
         }
     }
     let want_rot = ref_dofs.dofs().any(|c| c >= 3);

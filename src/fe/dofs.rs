@@ -1,6 +1,10 @@
 //! `DofMap`: node ↔ global dof index, node-major, 3 dofs per solid-only node and 6 where beams,
 //! rods, shells (with a property), rigid elements or point masses with inertia attach; nodes
-//! that nothing uses get none.
+//! that nothing uses get none. Springs, scalar masses, MPCs and rigid bodies ask for the
+//! components they name (3 for a translation, 6 for a rotation; a bush with rotational
+//! stiffness or an offset spring point 6). A scalar point (Nastran SPOINT) has 1 dof when
+//! something attaches to it; a scalar point named as a grid (by an element, a rigid element,
+//! a component other than 0) is an error.
 //!
 //! Dofs are expressed in each node's displacement frame (Nastran GRID CD): for a node with a
 //! frame, `frames[node]` holds R whose rows are the local unit axes at the node in the basic
@@ -11,14 +15,14 @@
 use super::elements::beam::{cross, dot, norm, scale, sub};
 use super::mass::point_mass_has_rotary;
 use super::FeError;
-use crate::model::{CoordKind, ElementKind, Model, RigidElement};
+use crate::model::{CoordKind, ElementKind, Model, NodeDof, RigidElement};
 
 /// Node ↔ dof numbering of a model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DofMap {
     /// First global dof of each node (meaningful when `count[node] > 0`).
     pub first: Vec<usize>,
-    /// Dofs per node: 0, 3 or 6 (`[ux uy uz]` or `[ux uy uz rx ry rz]`).
+    /// Dofs per node: 0, 3 or 6 (`[ux uy uz]` or `[ux uy uz rx ry rz]`); 1 for a scalar point.
     pub count: Vec<u8>,
     /// Displacement-frame rotation per node (rows = local axes in the basic frame).
     pub frames: Vec<Option<[[f64; 3]; 3]>>,
@@ -37,6 +41,22 @@ impl DofMap {
         };
         let mut raise = |node: usize, n: u8, what: &dyn Fn() -> String| -> Result<(), FeError> {
             let c = count.get_mut(node).ok_or_else(|| bad_node(node, what()))?;
+            if (n == 1) != model.is_scalar_point(node) {
+                return Err(FeError::BadReference {
+                    source_file: model.source.clone(),
+                    message: format!(
+                        "{} names {} {} as {}",
+                        what(),
+                        if n == 1 { "grid" } else { "scalar point" },
+                        model.nodes[node].id,
+                        if n == 1 {
+                            "a scalar point (component 0)"
+                        } else {
+                            "a grid (a scalar point has one dof, component 0)"
+                        }
+                    ),
+                });
+            }
             *c = (*c).max(n);
             Ok(())
         };
@@ -90,6 +110,61 @@ impl DofMap {
                         raise(node, 3, &|| format!("RBE3 {id}"))?;
                     }
                 }
+            }
+        }
+        // The dofs a component needs: 1 on a scalar point (component 0), else 3 or 6.
+        let need = |d: NodeDof| -> u8 {
+            match d.component {
+                _ if model.is_scalar_point(d.node) && d.component == 0 => 1,
+                0..=2 => 3,
+                _ => 6,
+            }
+        };
+        let check = |d: NodeDof, what: &dyn Fn() -> String| -> Result<(), FeError> {
+            if d.component > 5 {
+                return Err(FeError::BadReference {
+                    source_file: model.source.clone(),
+                    message: format!(
+                        "{} names component {} (0-based, at most 5)",
+                        what(),
+                        d.component
+                    ),
+                });
+            }
+            Ok(())
+        };
+        let ends = |a: NodeDof, b: Option<NodeDof>| std::iter::once(a).chain(b);
+        for s in &model.springs {
+            for d in ends(s.a, s.b) {
+                check(d, &|| format!("spring {}", s.id))?;
+                raise(d.node, need(d), &|| format!("spring {}", s.id))?;
+            }
+        }
+        for s in &model.scalar_masses {
+            for d in ends(s.a, s.b) {
+                check(d, &|| format!("scalar mass {}", s.id))?;
+                raise(d.node, need(d), &|| format!("scalar mass {}", s.id))?;
+            }
+        }
+        for m in &model.mpcs {
+            for (d, _) in &m.terms {
+                check(*d, &|| format!("MPC {}", m.id))?;
+                raise(d.node, need(*d), &|| format!("MPC {}", m.id))?;
+            }
+        }
+        for r in &model.rigid_bodies {
+            for &(node, mask) in r.independent.iter().chain(&r.dependent) {
+                let n = if mask.dofs().any(|c| c >= 3) { 6 } else { 3 };
+                raise(node, n, &|| format!("rigid element {}", r.id))?;
+            }
+        }
+        for bush in &model.bushes {
+            let rotational = bush.k[3..].iter().any(|&k| k != 0.0);
+            for node in std::iter::once(bush.a).chain(bush.b) {
+                let x = model.nodes.get(node).map_or([0.0; 3], |n| n.x);
+                let offset = (0..3).any(|i| bush.location[i] != x[i]);
+                let n = if rotational || offset { 6 } else { 3 };
+                raise(node, n, &|| format!("bush {}", bush.id))?;
             }
         }
         let mut first = vec![0usize; nn];
@@ -231,6 +306,44 @@ mod tests {
         assert_eq!(d.node_of(14), Some((3, 5)));
         assert_eq!(d.node_of(29), Some((6, 5)));
         assert_eq!(d.node_of(30), None);
+    }
+
+    /// A spring from a grid's rotation to a scalar point: 6 dofs at the grid, 1 at the point;
+    /// a scalar mass on a translation: 3; a scalar point named with component 3 is an error.
+    #[test]
+    fn connectors_ask_for_their_components_and_scalar_points_have_one_dof() {
+        use crate::model::{NodeDof, ScalarMass, ScalarSpring};
+        let mut m = Model::default();
+        for i in 0..3 {
+            m.nodes.push(Node {
+                id: 10 + i as u64,
+                x: [0.0; 3],
+                displacement_frame: None,
+            });
+        }
+        m.scalar_points = vec![1];
+        let dof = |node, component| NodeDof { node, component };
+        m.springs.push(ScalarSpring {
+            id: 1,
+            a: dof(0, 4),
+            b: Some(dof(1, 0)),
+            k: 1.0,
+        });
+        m.scalar_masses.push(ScalarMass {
+            id: 2,
+            a: dof(2, 1),
+            b: None,
+            m: 1.0,
+        });
+        let d = DofMap::from_model(&m).unwrap();
+        assert_eq!((d.count.clone(), d.n_dofs), (vec![6, 1, 3], 10));
+        assert_eq!(d.node_of(6), Some((1, 0)));
+        m.springs[0].b = Some(dof(1, 3));
+        let e = DofMap::from_model(&m).unwrap_err().to_string();
+        assert!(
+            e.contains("spring 1 names scalar point 11 as a grid"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -7,23 +7,33 @@
 //!                                     └──► constraints::eliminate ──► (K_r = TᵀKT, M_r = TᵀMT, T)
 //! ```
 //! * [`elements`] — one file per element kind: shape functions, quadrature, formulas.
-//! * [`dofs::DofMap`] — node ↔ dof numbering (3 or 6 per node, node-major, CD frames).
+//! * [`dofs::DofMap`] — node ↔ dof numbering (3 or 6 per node, 1 per scalar point,
+//!   node-major, CD frames).
 //! * [`mass`] — lumping (row-sum, HRZ) and point masses.
 //! * [`shell_section`] — shell section + materials → element shell constants.
+//! * [`connectors`] — springs, scalar masses and bushes.
 //! * [`assembly::assemble`] — parallel assembly into faer `SparseColMat` (full symmetric).
-//! * [`constraints::eliminate`] — RBE2/RBE3/SPC elimination, keeps T for shape recovery.
+//! * [`constraints::eliminate`] — RBE2/RBE3/RBAR/RBE1/MPC/SPC elimination, keeps T for shape
+//!   recovery.
+//! * [`geometric`] — geometric (initial-stress) stiffness K_G(σ₀) of every element family.
+//! * [`preload`] — the preload stage: static solve of a preload case, K_T = K + K_G, the
+//!   buckling check, the modal geometric-stiffness terms.
 
 // Index loops mirror the subscripts of the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
 pub mod assembly;
+pub mod connectors;
 pub mod constraints;
 pub mod dofs;
 pub mod elements;
+pub mod geometric;
 pub mod loads;
 pub mod mass;
 pub mod pattern;
+pub mod preload;
 pub mod quadrature;
+mod rigid_body;
 pub mod shell_section;
 
 pub use assembly::{assemble, Assembled, AssemblySpec, BeamTheory};

@@ -19,7 +19,8 @@ fn iso(model: &Model, m: usize) -> Result<Isotropic, String> {
 
 /// Element constants of a shell property: membrane from the property's material when the
 /// section has one (Nastran MID1), bending and shear from their own materials; density from
-/// the property's material.
+/// the property's material; the drilling factor K6ROT·10⁻⁶ from the model's `PARAM,K6ROT`
+/// (default [`DRILL_FACTOR`](super::elements::shell::DRILL_FACTOR), K6ROT = 100).
 pub fn shell_props(model: &Model, prop: &Property, s: &ShellSection) -> Result<ShellProps, String> {
     if s.thickness.is_nan() {
         return Err(format!(
@@ -43,7 +44,10 @@ pub fn shell_props(model: &Model, prop: &Property, s: &ShellSection) -> Result<S
         shear,
         rho: primary.rho,
         nsm: s.nsm,
-        drill_factor: super::elements::shell::DRILL_FACTOR,
+        drill_factor: model
+            .params
+            .k6rot
+            .map_or(super::elements::shell::DRILL_FACTOR, |k| k * 1e-6),
         lumped_rotary: true,
     })
 }

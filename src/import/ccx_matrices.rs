@@ -1,7 +1,7 @@
 //! CalculiX matrix dump reader: `JOB.sti` (K), `JOB.mas` (M) and `JOB.dof`, as written by
 //! `*FREQUENCY, SOLVER=MATRIXSTORAGE`.
 //!
-//! Layout (checked against `../shared/reference/e_matrices/`): each line of `.sti`/`.mas` is
+//! Layout (checked against `fixtures/reference/e_matrices/`): each line of `.sti`/`.mas` is
 //! `row col value` with 1-based *equation* numbers, upper triangle including the diagonal
 //! (row ≤ col), column by column; line k of `.dof` is `node.direction` for equation k
 //! (e.g. `17.2` = node 17, uy). Constrained dofs are absent from the equation system.
@@ -220,7 +220,7 @@ mod tests {
     #[test]
     fn reads_hex8_single_dump() {
         let stem = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../shared/reference/e_matrices/hex8_single/ccx_matrix_free");
+            .join("fixtures/reference/e_matrices/hex8_single/ccx_matrix_free");
         let d = read_ccx_matrices(&stem).unwrap();
         assert_eq!(d.dofs.len(), 24);
         assert_eq!(d.dofs[0], EquationDof { node: 1, dir: 0 });

@@ -36,6 +36,73 @@ pub enum ImportError {
     /// A CalculiX matrix dump could not be read.
     #[error(transparent)]
     CcxMatrix(#[from] CcxMatrixError),
+    /// Cards or keywords that can change the body's stiffness, mass, constraints or preload
+    /// which the importer does not model: every one of the deck, with its place ("honoured or
+    /// refused, never dropped"). [`crate::import::ImportOptions::ignore_cards`] drops them on
+    /// purpose.
+    #[error("{}", refusal_text(file, cards))]
+    Refused {
+        /// The main model file.
+        file: String,
+        /// Every refused card, in deck order.
+        cards: Vec<RefusedCard>,
+    },
+}
+
+/// One card or keyword the importer refuses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RefusedCard {
+    /// File it is in.
+    pub file: String,
+    /// 1-based line.
+    pub line: usize,
+    /// The card and its id, e.g. `CGAP 12`, `PARAM SNORM`.
+    pub entity: String,
+    /// The name that drops it on purpose in `ignore_cards` (`--ignore`): `CGAP`, `PARAM:SNORM`.
+    pub key: String,
+    /// Why it is refused.
+    pub reason: String,
+}
+
+/// At most this many refused cards are listed one per line; the rest are counted per card.
+const LISTED_REFUSALS: usize = 100;
+
+/// The message of [`ImportError::Refused`]: one line per card (up to [`LISTED_REFUSALS`]),
+/// then the counts of the rest, then how to drop them on purpose.
+fn refusal_text(file: &str, cards: &[RefusedCard]) -> String {
+    let mut s = format!(
+        "{file}: {} card(s) that can change the body's stiffness, mass or constraints are not \
+         supported (each is honoured or refused, never dropped):",
+        cards.len()
+    );
+    for c in cards.iter().take(LISTED_REFUSALS) {
+        s.push_str(&format!(
+            "\n  {}:{}: {}: {}",
+            c.file, c.line, c.entity, c.reason
+        ));
+    }
+    let mut rest: std::collections::BTreeMap<&str, usize> = Default::default();
+    for c in cards.iter().skip(LISTED_REFUSALS) {
+        *rest.entry(&c.key).or_default() += 1;
+    }
+    if !rest.is_empty() {
+        let list: Vec<String> = rest.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        s.push_str(&format!("\n  … and {}", list.join(", ")));
+    }
+    // a line without a card name has no name to ignore it by
+    let mut keys: Vec<&str> = (cards.iter())
+        .map(|c| c.key.as_str())
+        .filter(|k| !k.is_empty())
+        .collect();
+    keys.sort_unstable();
+    keys.dedup();
+    if !keys.is_empty() {
+        s.push_str(&format!(
+            "\nto drop them on purpose, ignore them by name: --ignore {} (recorded in the recipe)",
+            keys.join(",")
+        ));
+    }
+    s
 }
 
 impl ImportError {
@@ -45,6 +112,8 @@ impl ImportError {
             ImportError::Io { file, .. }
             | ImportError::Parse { file, .. }
             | ImportError::UnknownFormat { file } => Some(file),
+            // the first refused card's file, so that file() and line() name one place
+            ImportError::Refused { file, cards } => Some(cards.first().map_or(file, |c| &c.file)),
             ImportError::CcxMatrix(_) => None,
         }
     }
@@ -53,6 +122,7 @@ impl ImportError {
     pub fn line(&self) -> Option<usize> {
         match self {
             ImportError::Parse { line, .. } => Some(*line),
+            ImportError::Refused { cards, .. } => cards.first().map(|c| c.line),
             _ => None,
         }
     }
@@ -61,6 +131,7 @@ impl ImportError {
     pub fn entity(&self) -> Option<&str> {
         match self {
             ImportError::Parse { entity, .. } => Some(entity),
+            ImportError::Refused { cards, .. } => cards.first().map(|c| c.entity.as_str()),
             _ => None,
         }
     }

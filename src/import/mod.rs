@@ -14,7 +14,7 @@ pub mod nastran;
 pub mod plausibility;
 pub(crate) mod text;
 
-pub use error::ImportError;
+pub use error::{ImportError, RefusedCard};
 pub use material_file::read_material_file;
 
 use std::path::Path;
@@ -70,6 +70,11 @@ pub struct ImportOptions {
     /// Thickness of shell elements (S3/S4-type 2D elements, Gmsh triangles and quadrangles)
     /// without a section: with `material`, they become homogeneous shells of that material.
     pub shell_thickness: Option<f64>,
+    /// Cards to drop on purpose, by name (`CGAP`; a Nastran parameter as `PARAM:SNORM`;
+    /// case-insensitive): not read even when supported, so a card that would be refused does
+    /// not stop the import. Each dropped card type becomes a warning naming its lines and
+    /// count (`--ignore CARD[,CARD…]`, recorded in the recipe). Nastran decks only.
+    pub ignore_cards: Vec<String>,
 }
 
 /// Read a model file in any supported format.
@@ -82,7 +87,7 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
         })?;
     let mut model = match format {
         Format::Abaqus => abaqus::read(path)?,
-        Format::Nastran => nastran::read_subcase(path, opts.subcase)?.0,
+        Format::Nastran => nastran::read_with_options(path, opts)?.0,
         Format::Gmsh => gmsh::read(path, None)?,
     };
     if model.files.is_empty() {

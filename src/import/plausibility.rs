@@ -9,10 +9,11 @@ use crate::model::{ImportWarning, Model};
 /// Wave speeds √(E/ρ) outside this range (in any length/time units) are warned about.
 const WAVE_SPEED_RANGE: (f64, f64) = (0.6, 2e8);
 
-/// Warnings for implausible materials of `model`, attributed to `file`.
+/// Warnings for implausible materials of `model`, attributed to the material's `file:line`
+/// when the importer recorded it ([`Model::material_sources`]), else to `file`.
 pub fn material_warnings(model: &Model, file: &str) -> Vec<ImportWarning> {
     let mut out = Vec::new();
-    for m in &model.materials {
+    for (k, m) in model.materials.iter().enumerate() {
         let mut why = Vec::new();
         if !(m.nu > -1.0 && m.nu < 0.5) {
             why.push(format!("Poisson's ratio ν = {} is outside (−1, 0.5)", m.nu));
@@ -33,11 +34,74 @@ pub fn material_warnings(model: &Model, file: &str) -> Vec<ImportWarning> {
             }
         }
         if !why.is_empty() {
+            let place = match model.material_sources.get(k) {
+                Some(&(f, line)) => {
+                    format!("{}:{line}", model.files.get(f as usize).map_or(file, |s| s))
+                }
+                None => file.to_owned(),
+            };
             out.push(ImportWarning {
-                file: file.to_owned(),
+                file: place,
                 message: format!("material {}: {}", m.name, why.join("; ")),
             });
         }
+    }
+    out
+}
+
+/// Young's moduli of real solids in Pa: soft foams and elastomers (~1e5) … diamond (1.2e12),
+/// one decade wider.
+const E_PA_RANGE: (f64, f64) = (1e4, 1e13);
+/// Densities of real solids in kg/m³: foams and aerogels (~10) … osmium (2.26e4), a decade wider.
+const RHO_KG_M3_RANGE: (f64, f64) = (1.0, 3e5);
+
+/// E in Pa and ρ in kg/m³ of numbers `e`, `rho` read in `units`.
+fn in_si(e: f64, rho: f64, u: &flexbody_reader::Units) -> (f64, f64) {
+    let l = u.length.si;
+    (e * u.force.si / (l * l), rho * u.mass.si / (l * l * l))
+}
+
+fn plausible_in_si(e: f64, rho: f64) -> bool {
+    let inside = |x: f64, (lo, hi): (f64, f64)| x >= lo && x <= hi;
+    inside(e, E_PA_RANGE) && (rho == 0.0 || inside(rho, RHO_KG_M3_RANGE))
+}
+
+/// Warnings for materials whose E and ρ, read in the declared unit system `units` (named
+/// `units_name`), are no real solid's — the mark of a wrong `--units` (steel's 7850 read as
+/// t/mm³, 210e9 read as MPa) — naming the material and the systems of `candidates` in which
+/// its numbers are plausible.
+pub fn unit_system_warnings(
+    model: &Model,
+    units: &flexbody_reader::Units,
+    units_name: &str,
+    candidates: &[(&str, flexbody_reader::Units)],
+) -> Vec<String> {
+    let mut out = Vec::new();
+    for m in &model.materials {
+        if !(m.e > 0.0 && m.rho >= 0.0 && m.e.is_finite() && m.rho.is_finite()) {
+            continue; // material_warnings says what is wrong with these
+        }
+        let (e, rho) = in_si(m.e, m.rho, units);
+        if plausible_in_si(e, rho) {
+            continue;
+        }
+        let fits: Vec<String> = candidates
+            .iter()
+            .filter(|(_, u)| {
+                let (e, rho) = in_si(m.e, m.rho, u);
+                plausible_in_si(e, rho)
+            })
+            .map(|(name, _)| (*name).to_owned())
+            .collect();
+        let hint = if fits.is_empty() {
+            "in none of the unit systems --units offers".to_owned()
+        } else {
+            format!("they fit --units {}", fits.join(" or "))
+        };
+        out.push(format!(
+            "material {}: E = {:e}, ρ = {:e} read in {units_name} ({}, {}, {}, {}) are E = {e:.3e} Pa and ρ = {rho:.3e} kg/m³, which no solid has; {hint}: check --units",
+            m.name, m.e, m.rho, units.mass.name, units.length.name, units.time.name, units.force.name
+        ));
     }
     out
 }
@@ -46,6 +110,46 @@ pub fn material_warnings(model: &Model, file: &str) -> Vec<ImportWarning> {
 mod tests {
     use super::*;
     use crate::model::Material;
+
+    fn units(mass: (&str, f64), length: (&str, f64), force: (&str, f64)) -> flexbody_reader::Units {
+        let u = |(name, si): (&str, f64)| flexbody_reader::Unit {
+            name: name.into(),
+            si,
+        };
+        flexbody_reader::Units {
+            mass: u(mass),
+            length: u(length),
+            time: u(("s", 1.0)),
+            force: u(force),
+        }
+    }
+
+    /// Steel in SI read as t/mm/s is refused with si named; in t/mm/s it passes; the same
+    /// numbers read as SI pass.
+    #[test]
+    fn a_unit_system_that_contradicts_the_material_is_named() {
+        let si = units(("kg", 1.0), ("m", 1.0), ("N", 1.0));
+        let mmts = units(("t", 1000.0), ("mm", 1e-3), ("N", 1.0));
+        let candidates = [("si", si.clone()), ("mm-t-s", mmts.clone())];
+        let model = |m: Material| Model {
+            materials: vec![m],
+            ..Default::default()
+        };
+        let steel_si = model(Material::steel());
+        let w = unit_system_warnings(&steel_si, &mmts, "mm-t-s", &candidates);
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].contains("material STEEL") && w[0].contains("fit --units si"),
+            "{}",
+            w[0]
+        );
+        assert!(w[0].contains("ρ = 7.850e15 kg/m³"), "{}", w[0]);
+        assert!(unit_system_warnings(&steel_si, &si, "si", &candidates).is_empty());
+        let steel_mm = model(Material::isotropic(1, "S", 2.1e5, 0.3, 7.85e-9));
+        assert!(unit_system_warnings(&steel_mm, &mmts, "mm-t-s", &candidates).is_empty());
+        let w = unit_system_warnings(&steel_mm, &si, "si", &candidates);
+        assert!(w.len() == 1 && w[0].contains("fit --units mm-t-s"), "{w:?}");
+    }
 
     fn warn(m: Material) -> Vec<ImportWarning> {
         let model = Model {

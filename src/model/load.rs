@@ -96,6 +96,13 @@ pub(crate) const HEX_FACES: &[&[usize]] = &[
     &[2, 6, 7, 3],
     &[3, 7, 4, 0],
 ];
+pub(crate) const PYRAM_FACES: &[&[usize]] = &[
+    &[0, 1, 2, 3],
+    &[0, 4, 1],
+    &[1, 4, 2],
+    &[2, 4, 3],
+    &[3, 4, 0],
+];
 /// Mid-side node edges (0-based corners) of the quadratic solids, in node order after the corners.
 pub(crate) const TET10_EDGES: &[(usize, usize)] = &[(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)];
 pub(crate) const PRISM15_EDGES: &[(usize, usize)] = &[
@@ -108,6 +115,16 @@ pub(crate) const PRISM15_EDGES: &[(usize, usize)] = &[
     (0, 3),
     (1, 4),
     (2, 5),
+];
+pub(crate) const PYRAM13_EDGES: &[(usize, usize)] = &[
+    (0, 1),
+    (1, 2),
+    (2, 3),
+    (3, 0),
+    (0, 4),
+    (1, 4),
+    (2, 4),
+    (3, 4),
 ];
 pub(crate) const HEX20_EDGES: &[(usize, usize)] = &[
     (0, 1),
@@ -137,6 +154,8 @@ pub fn solid_faces(kind: ElementKind) -> Option<(FaceTable, EdgeTable)> {
         ElementKind::Tet10 => (TET_FACES, TET10_EDGES),
         ElementKind::Prism6 => (PRISM_FACES, &[]),
         ElementKind::Prism15 => (PRISM_FACES, PRISM15_EDGES),
+        ElementKind::Pyram5 => (PYRAM_FACES, &[]),
+        ElementKind::Pyram13 => (PYRAM_FACES, PYRAM13_EDGES),
         ElementKind::Hex8 => (HEX_FACES, &[]),
         ElementKind::Hex20 | ElementKind::Hex20R => (HEX_FACES, HEX20_EDGES),
         _ => return None,

@@ -13,11 +13,13 @@
 
 use std::collections::BTreeMap;
 
+pub mod connector;
 pub mod deck;
 pub mod generate;
 pub mod load;
 pub mod section;
 
+pub use connector::{Bush, Mpc, NodeDof, RigidBody, ScalarMass, ScalarSpring};
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
 pub use load::{Load, LoadPart};
 pub use section::ShellSection;
@@ -68,6 +70,7 @@ pub struct CoordSystem {
 /// Tet4  : 1-4 corners                Tet10 : 1-4 corners, 5:(1,2) 6:(2,3) 7:(1,3) 8:(1,4) 9:(2,4) 10:(3,4)
 /// Hex8  : 1-4 bottom face, 5-8 top   Hex20 : 1-8 corners, 9-12 bottom edges, 13-16 top edges, 17-20 verticals
 /// Prism6: 1-3 bottom, 4-6 top        Prism15: 1-6 corners, 7-9 bottom edges, 10-12 top edges, 13-15 verticals
+/// Pyram5: 1-4 base, 5 apex           Pyram13: 1-5 corners, 6-9 base edges (1-2 … 4-1), 10-13 edges 1-5 … 4-5
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum ElementKind {
@@ -86,6 +89,10 @@ pub enum ElementKind {
     Prism6,
     /// 15-node wedge (C3D15, CPENTA 15).
     Prism15,
+    /// 5-node pyramid (CPYRAM 5, C3D5).
+    Pyram5,
+    /// 13-node pyramid (CPYRAM 13).
+    Pyram13,
     /// 2-node 3D beam (B31, CBEAM): 6 dofs per node.
     Beam2,
     /// 2-node 3D bar (Nastran CBAR): the beam formulation of [`ElementKind::Beam2`]; kept apart
@@ -115,6 +122,8 @@ impl ElementKind {
             ElementKind::Hex20 | ElementKind::Hex20R => 20,
             ElementKind::Prism6 => 6,
             ElementKind::Prism15 => 15,
+            ElementKind::Pyram5 => 5,
+            ElementKind::Pyram13 => 13,
             ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2 => 2,
             ElementKind::Tri3 => 3,
             ElementKind::Quad4 => 4,
@@ -134,6 +143,8 @@ impl ElementKind {
                 | ElementKind::Hex20R
                 | ElementKind::Prism6
                 | ElementKind::Prism15
+                | ElementKind::Pyram5
+                | ElementKind::Pyram13
         )
     }
 }
@@ -280,7 +291,8 @@ impl DofMask {
     pub const TRANSLATIONS: DofMask = DofMask(0b00_0111);
 
     /// From Nastran dof digits, e.g. "123456" or "12". Returns `None` on a character other than
-    /// 1–6 (0 means "scalar point" in Nastran and is not accepted here).
+    /// 1–6 (0 means "scalar point" in Nastran and is not accepted here; the one dof of a scalar
+    /// point is bit 0).
     pub fn from_digits(s: &str) -> Option<DofMask> {
         let mut m = 0u8;
         for c in s.trim().chars() {
@@ -406,6 +418,9 @@ pub struct ModelParams {
     /// Nastran forms them for PSOLID ISOP blank (`fe::elements::solid_incompatible`); `false`:
     /// fully integrated (CalculiX/Abaqus C3D8, C3D6).
     pub solid_bubbles: bool,
+    /// Nastran `PARAM,K6ROT`: the drilling stiffness of CQUAD4/CTRIA3 shells is the penalty
+    /// γ_d = K6ROT·10⁻⁶·G t (`fe::elements::shell`); `None` = MSC's default 100.
+    pub k6rot: Option<f64>,
 }
 
 /// A whole FE model, resolved to dense indices.
@@ -429,6 +444,19 @@ pub struct Model {
     pub element_sets: BTreeMap<String, Vec<usize>>,
     /// Rigid elements.
     pub rigid_elements: Vec<RigidElement>,
+    /// Rigid bodies with chosen independent dofs (RBAR, RBAR1, RBE1).
+    pub rigid_bodies: Vec<RigidBody>,
+    /// Linear multipoint constraints (the selected MPC set).
+    pub mpcs: Vec<Mpc>,
+    /// Scalar springs (CELAS1–4).
+    pub springs: Vec<ScalarSpring>,
+    /// Bushes (CBUSH).
+    pub bushes: Vec<Bush>,
+    /// Scalar masses (CMASS1–4).
+    pub scalar_masses: Vec<ScalarMass>,
+    /// The nodes that are scalar points (Nastran SPOINT: one dof, no position; their `x` is
+    /// the origin and means nothing), ascending.
+    pub scalar_points: Vec<NodeIndex>,
     /// Concentrated masses.
     pub point_masses: Vec<PointMass>,
     /// Single-point constraints.
@@ -439,6 +467,9 @@ pub struct Model {
     pub params: ModelParams,
     /// Non-fatal findings.
     pub warnings: Vec<ImportWarning>,
+    /// Where each material was defined, parallel to [`Model::materials`]: (index into
+    /// [`Model::files`], 1-based line); shorter (or empty) where unknown.
+    pub material_sources: Vec<(u32, u32)>,
     /// Where each element was defined, for messages after import: (external element id,
     /// index into [`Model::files`], 1-based line), sorted by id. Empty for models built in
     /// memory; see [`Model::element_location`].
@@ -456,6 +487,33 @@ pub struct Model {
 }
 
 impl Model {
+    /// Whether node `n` is a scalar point.
+    pub fn is_scalar_point(&self, n: NodeIndex) -> bool {
+        self.scalar_points.binary_search(&n).is_ok()
+    }
+
+    /// The node groups that springs, bushes, scalar masses, MPCs and rigid bodies join (one
+    /// group per item with more than one node), for connectivity.
+    pub fn connector_node_groups(&self) -> Vec<Vec<NodeIndex>> {
+        let pair = |a: NodeIndex, b: Option<NodeIndex>| b.filter(|&b| b != a).map(|b| vec![a, b]);
+        let mut out: Vec<Vec<NodeIndex>> = Vec::new();
+        out.extend((self.springs.iter()).filter_map(|s| pair(s.a.node, s.b.map(|b| b.node))));
+        out.extend((self.scalar_masses.iter()).filter_map(|s| pair(s.a.node, s.b.map(|b| b.node))));
+        out.extend(self.bushes.iter().filter_map(|s| pair(s.a, s.b)));
+        for nodes in (self.mpcs.iter())
+            .map(|m| m.terms.iter().map(|t| t.0.node).collect::<Vec<_>>())
+            .chain(self.rigid_bodies.iter().map(|r| r.nodes().collect()))
+        {
+            let mut nodes = nodes;
+            nodes.sort_unstable();
+            nodes.dedup();
+            if nodes.len() > 1 {
+                out.push(nodes);
+            }
+        }
+        out
+    }
+
     /// `file:line` where element `id` was defined, when the importer recorded it.
     pub fn element_location(&self, id: u64) -> Option<String> {
         let k = self

@@ -86,7 +86,7 @@ impl SectionShape {
     /// The transverse shear factors (K1, K2) Nastran's beam library gives this shape in the
     /// equivalent PBAR/PBEAM it derives from a PBARL/PBEAML. ROD: K1 = K2 = 0.9, as Simcenter
     /// Nastran 2019.2 prints it (User Information Message 4379 of
-    /// `../shared/reference/nastran/beam_modes/beam_modes.f06`). `None` for the shapes whose
+    /// `nastran/beam_modes/beam_modes.f06` of the external reference data). `None` for the shapes whose
     /// library values are not established here (TUBE, BAR, BOX, I): those stay shear-rigid and
     /// the importer says so.
     pub fn nastran_shear_factors(&self) -> Option<[f64; 2]> {

@@ -83,6 +83,10 @@ pub fn parts(model: &Model, dofs: &DofMap) -> Vec<Part> {
             ),
         }
     }
+    // springs, bushes, scalar masses, MPCs and RBAR/RBE1 join their nodes too
+    for group in model.connector_node_groups() {
+        join(&mut parent, &mut group.into_iter());
+    }
     let mut index = vec![usize::MAX; nn];
     let mut out: Vec<Part> = Vec::new();
     for n in 0..nn {
@@ -153,6 +157,10 @@ fn describe_elements(model: &Model, elements: &[usize]) -> String {
 /// rotations. Solids meeting only at a node or along an edge are a mechanism (3 or 1 extra zero
 /// modes).
 pub fn solid_groups(model: &Model, part: &Part) -> Option<(Vec<Part>, Vec<NodeIndex>)> {
+    // springs, MPCs and RBAR/RBE1 may hold groups together in ways the face test cannot judge
+    if !model.connector_node_groups().is_empty() {
+        return None;
+    }
     if part
         .elements
         .iter()

@@ -196,6 +196,7 @@ fn constraint_and_fixed(
 ) -> Result<(Mat<f64>, EigenSolution, f64, f64), ReduceError> {
     let t1 = Instant::now();
     let mut x = sparse_ops::to_dense(kib.as_ref());
+    crate::solve::progress::report(crate::solve::progress::Event::Solves { columns: x.ncols() });
     llt.solve_refined_in_place(kii.as_ref(), x.as_mut(), REFINE_F64)?;
     let t_constraint = t1.elapsed().as_secs_f64();
     let t2 = Instant::now();

@@ -61,7 +61,31 @@ pub fn analyse(
             is_fixed[d] = true;
         }
     }
-    let mut set: Vec<usize> = massless.iter().copied().filter(|&d| !is_fixed[d]).collect();
+    let set: Vec<usize> = massless.iter().copied().filter(|&d| !is_fixed[d]).collect();
+    let mut held = factor_holding(k, set, &is_protected, par)?.held;
+    held.sort_unstable();
+    Ok(MasslessDofs { massless, held })
+}
+
+/// The block K_ss of a set of massless dofs factored once its zero-energy motions are held.
+struct HeldFactor {
+    /// Dofs held, one per motion with neither mass nor stiffness (in the order found).
+    held: Vec<usize>,
+    /// The rest of the set (ascending), the rows and columns of `llt`.
+    free: Vec<usize>,
+    /// LLᵀ of K over `free` (`None` when nothing is left).
+    llt: Option<SparseLlt>,
+}
+
+/// Factors K_ss over the massless dofs `set`, holding one dof per zero pivot (an unprotected one
+/// of the same motion where `is_protected` marks the pivot's dof) until K_ss factors.
+fn factor_holding(
+    k: &SparseColMat<usize, f64>,
+    mut set: Vec<usize>,
+    is_protected: &[bool],
+    par: Par,
+) -> Result<HeldFactor, ReduceError> {
+    let total = set.len();
     let mut held = Vec::new();
     while !set.is_empty() {
         let kss = sparse_ops::submatrix(k.as_ref(), &set, &set)?;
@@ -69,25 +93,106 @@ pub fn analyse(
             Err(SolveError::NonPositivePivot { dof }) => dof,
             Err(e) => return Err(e.into()),
             Ok(l) if l.min_pivot().0 <= SINGULAR_PIVOT => l.min_pivot().1,
-            Ok(_) => break,
+            Ok(l) => {
+                return Ok(HeldFactor {
+                    held,
+                    free: set,
+                    llt: Some(l),
+                })
+            }
         };
         if held.len() == MAX_HELD {
             return Err(ReduceError::Rigid(format!(
-                "more than {MAX_HELD} motions of the {} massless dofs have no stiffness either: \
-                 the massless dofs are not connected to the structure (e.g. rotations of nodes \
-                 that only solids or rods attach to); remove them or give them mass",
-                massless.len()
+                "more than {MAX_HELD} motions of the {total} massless dofs have no stiffness \
+                 either: the massless dofs are not connected to the structure (e.g. rotations of \
+                 nodes that only solids or rods attach to); remove them or give them mass"
             )));
         }
         let zero = if is_protected[set[zero]] {
-            unprotected_dof_of_motion(&kss, zero, &set, &is_protected, par)?.unwrap_or(zero)
+            unprotected_dof_of_motion(&kss, zero, &set, is_protected, par)?.unwrap_or(zero)
         } else {
             zero
         };
         held.push(set.remove(zero));
     }
-    held.sort_unstable();
-    Ok(MasslessDofs { massless, held })
+    Ok(HeldFactor {
+        held,
+        free: set,
+        llt: None,
+    })
+}
+
+/// A basis with its massless dofs statically condensed, from [`condense_basis`].
+pub struct CondensedBasis {
+    /// T with the rows of the condensed massless dofs replaced.
+    pub t: Mat<f64>,
+    /// Massless dofs condensed.
+    pub condensed: usize,
+    /// Massless dofs kept as they were, one per motion with neither mass nor stiffness.
+    pub held: usize,
+}
+
+/// Static condensation of the massless dofs in every column of a basis T (Guyan 1965, exact on
+/// a set without inertia): T_s ← T_s − K_ss⁻¹ (K T)_s, i.e. u_s = −K_ss⁻¹ K_sm u_m, so that
+/// (K T)_s = 0. With `kt` = K T. The massless dofs are those of [`massless_dofs`] except
+/// `fixed` (held at zero by every column: reference conditions), less one dof per motion with
+/// neither mass nor stiffness (kept as it is: such a motion changes no energy).
+///
+/// This is the K-orthogonal projection of each column onto {u : (K u)_s = 0}, where the model's
+/// finite modes live: M T is unchanged (M has no entry in a massless row or column) and TᵀKT
+/// can only decrease, so every Ritz value lies in the finite spectrum and no basis direction is
+/// (nearly) massless motion. Uncondensed, the constraint modes of the drilling rotations of two
+/// shell nodes with lumped translational mass (20 × 20 CQUAD4 plate, `--interface 1,441`) made
+/// modes at 2.1 and 2.4 MHz, where λ_max(K_mm, M_mm) is 34.5 kHz; condensed, 10.5 and 11.6 kHz.
+/// `None` when no column violates (K T)_s = 0 beyond the rounding of K T
+/// (ROUNDING_FACTOR·ε·‖|K||t_j|‖): eigenvectors, and the constraint and fixed-interface modes of
+/// an interface without massless dofs, are condensed already.
+pub fn condense_basis(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    t: &Mat<f64>,
+    kt: &Mat<f64>,
+    fixed: &[usize],
+    par: Par,
+) -> Result<Option<CondensedBasis>, ReduceError> {
+    let mut is_fixed = vec![false; k.nrows()];
+    for &d in fixed {
+        if d < is_fixed.len() {
+            is_fixed[d] = true;
+        }
+    }
+    let set: Vec<usize> = massless_dofs(m)
+        .into_iter()
+        .filter(|&d| !is_fixed[d])
+        .collect();
+    if set.is_empty() {
+        return Ok(None);
+    }
+    let (_, abs_norms) = sparse_ops::abs_products(k.as_ref(), t.as_ref());
+    let violates = (0..t.ncols()).any(|j| {
+        let r2: f64 = set.iter().map(|&i| kt[(i, j)] * kt[(i, j)]).sum();
+        r2.sqrt() > sparse_ops::ROUNDING_FACTOR * f64::EPSILON * abs_norms[j]
+    });
+    if !violates {
+        return Ok(None);
+    }
+    let HeldFactor { held, free, llt } = factor_holding(k, set, &vec![false; k.nrows()], par)?;
+    let Some(llt) = llt else {
+        return Ok(None);
+    };
+    let mut x = Mat::from_fn(free.len(), t.ncols(), |r, j| kt[(free[r], j)]);
+    llt.solve_in_place(x.as_mut());
+    let mut out = t.clone();
+    for j in 0..t.ncols() {
+        for (r, &i) in free.iter().enumerate() {
+            out[(i, j)] -= x[(r, j)];
+        }
+    }
+    Ok(Some(CondensedBasis {
+        t: out,
+        condensed: free.len(),
+        held: held.len(),
+    }))
 }
 
 /// The local index of the unprotected dof with the largest component in the null vector of

@@ -212,21 +212,49 @@ pub fn diagnose(
 }
 
 /// Solves K̂N = M̂NΛ for the basis `t` (n × p, columns labelled by `labels`) and returns
-/// Φ = T·N with ΦᵀMΦ = I, ΦᵀKΦ = diag(ω²).
-///
-/// Dependent columns are removed first: with D = diag(M̂)^-½, a pivoted Cholesky of D M̂ D keeps
-/// columns while their remaining M-norm² exceeds [`DEPENDENCY_TOL`]; the others are reported in
-/// `diagnostics.removed`. A second Rayleigh–Ritz pass on Φ restores orthonormality to rounding.
+/// Φ = T·N with ΦᵀMΦ = I, ΦᵀKΦ = diag(ω²); [`orthonormalize_held`] with no dof held.
 pub fn orthonormalize(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     t: &Mat<f64>,
     labels: &[ModeLabel],
 ) -> Result<Orthonormalized, ReduceError> {
-    let p = t.ncols();
-    let kt = spmm(k.as_ref(), t.as_ref());
+    orthonormalize_held(k, m, t, labels, &[])
+}
+
+/// Solves K̂N = M̂NΛ for the basis `t` (n × p, columns labelled by `labels`, zero at the `held`
+/// dofs: reference conditions) and returns Φ = T·N with ΦᵀMΦ = I, ΦᵀKΦ = diag(ω²).
+///
+/// The massless dofs of T (zero mass row and column, not held) are first condensed statically
+/// ([`super::massless::condense_basis`]: T_s ← −K_ss⁻¹K_sm T_m), so that the Ritz problem is
+/// that of the model with its massless dofs condensed, whose eigenvalues are the model's finite
+/// ones. Dependent columns are removed next: with D = diag(M̂)^-½, a pivoted Cholesky of D M̂ D
+/// keeps columns while their remaining M-norm² exceeds [`DEPENDENCY_TOL`]; the others are
+/// reported in `diagnostics.removed`, except massless directions, condensed ([`condense_massless`]).
+/// A second Rayleigh–Ritz pass on Φ restores orthonormality to rounding.
+pub fn orthonormalize_held(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    t_in: &Mat<f64>,
+    labels: &[ModeLabel],
+    held: &[usize],
+) -> Result<Orthonormalized, ReduceError> {
+    let p = t_in.ncols();
+    // K̂ of the basis as given (the stiffness scale of its columns), and the basis with its
+    // massless dofs condensed
+    let (kh_given, condensed) = {
+        let kt = spmm(k.as_ref(), t_in.as_ref());
+        let kh = dense::sym((t_in.transpose() * &kt).as_ref());
+        let c =
+            super::massless::condense_basis(k, m, t_in, &kt, held, faer::get_global_parallelism())?;
+        (kh, c)
+    };
+    let t = condensed.as_ref().map_or(t_in, |c| &c.t);
+    let kh_condensed = condensed
+        .as_ref()
+        .map(|_| dense::sym((t.transpose() * spmm(k.as_ref(), t.as_ref())).as_ref()));
+    let kh = kh_condensed.as_ref().unwrap_or(&kh_given);
     let mt = spmm(m.as_ref(), t.as_ref());
-    let kh = dense::sym((t.transpose() * &kt).as_ref());
     let mh = dense::sym((t.transpose() * &mt).as_ref());
     // a column whose M-norm² is rounding (≤ MASSLESS_COLUMN_TOL of ‖t‖²·max M_ii: a rotation
     // field of a lumped beam without rotary inertia) is massless: kept out of the pivoting, it
@@ -241,7 +269,7 @@ pub fn orthonormalize(
         })
         .fold(0.0f64, f64::max);
     let massless_column = |j: usize| -> bool {
-        let norm2: f64 = (0..t.nrows()).map(|i| t[(i, j)] * t[(i, j)]).sum();
+        let norm2: f64 = (0..t_in.nrows()).map(|i| t_in[(i, j)] * t_in[(i, j)]).sum();
         mh[(j, j)] <= MASSLESS_COLUMN_TOL * norm2 * m_diag_max
     };
     let dscale: Vec<f64> = (0..p)
@@ -274,7 +302,7 @@ pub fn orthonormalize(
     // Columns left out of the M-independent set are either dependent (T x ≈ 0) or carry a
     // massless direction (M T x = 0 with stiffness): the latter are condensed statically.
     let q = kept.len();
-    let cond = condense_massless(&kh, &mh, &kept, &removed)?;
+    let cond = condense_massless(&kh_given, kh_condensed.as_ref(), &mh, &kept, &removed)?;
     let g = &cond.g;
     let removed: Vec<RemovedVector> = removed
         .into_iter()
@@ -288,7 +316,7 @@ pub fn orthonormalize(
         )
     } else {
         (
-            dense::sym((g.transpose() * &kh * g).as_ref()),
+            dense::sym((g.transpose() * kh * g).as_ref()),
             dense::sym((g.transpose() * &mh * g).as_ref()),
             t * g,
         )
@@ -311,6 +339,22 @@ pub fn orthonormalize(
     diagnostics.removed = removed;
     diagnostics.dependency_tol = DEPENDENCY_TOL;
     diagnostics.label_shares = shares;
+    if let Some(c) = &condensed {
+        diagnostics.notes.push(format!(
+            "the basis vectors' {} massless dofs condensed statically (u_s = -K_ss^-1 K_sm u_m{}): \
+             no mode of a (nearly) massless direction, e.g. an interface rotation without \
+             rotary inertia",
+            c.condensed,
+            if c.held > 0 {
+                format!(
+                    "; {} dof(s) of motions with neither mass nor stiffness kept as they were",
+                    c.held
+                )
+            } else {
+                String::new()
+            }
+        ));
+    }
     if !cond.massless.is_empty() {
         diagnostics.massless_directions = cond.massless.len();
         diagnostics.notes.push(format!(
@@ -360,14 +404,19 @@ struct Condensation {
 
 /// The condensed coefficients G: x = G x_kept with the massless residuals z_j = e_j − kept·C_j
 /// (C = M̂_kk⁻¹M̂_kj, so M̂z ≈ 0) at their static optimum z-part = −K_zz⁺K_zk (Guyan on the
-/// massless set: exact for it, since it carries no inertia).
+/// massless set: exact for it, since it carries no inertia). `kh_given` is K̂ of the basis before
+/// [`super::massless::condense_basis`], `kh_condensed` after it (`None`: nothing condensed): a
+/// residual is massless by the stiffness it had (after that condensation a massless direction
+/// has next to none left, and is then dropped here by the pseudo-inverse); K_zz and K_zk are
+/// taken from the condensed K̂, on the scale of the given one.
 fn condense_massless(
-    kh: &Mat<f64>,
+    kh_given: &Mat<f64>,
+    kh_condensed: Option<&Mat<f64>>,
     mh: &Mat<f64>,
     kept: &[usize],
     removed: &[RemovedVector],
 ) -> Result<Condensation, ReduceError> {
-    let (p, q) = (kh.nrows(), kept.len());
+    let (p, q) = (kh_given.nrows(), kept.len());
     let mut g = Mat::<f64>::zeros(p, q);
     for (r, &c) in kept.iter().enumerate() {
         g[(c, r)] = 1.0;
@@ -407,11 +456,11 @@ fn condense_massless(
             z_all[(c, j)] -= rhs[(r, j)] * dk[r];
         }
     }
-    let kz = kh * &z_all;
+    let kz = kh_given * &z_all;
     let massless_idx: Vec<usize> = (0..s_all)
         .filter(|&j| {
             let c = removed[j].column;
-            let own = kh[(c, c)];
+            let own = kh_given[(c, c)];
             let left: f64 = (0..p).map(|i| z_all[(i, j)] * kz[(i, j)]).sum();
             own > 0.0 && left > MASSLESS_ENERGY_TOL * own
         })
@@ -425,16 +474,24 @@ fn condense_massless(
     }
     let s = massless_idx.len();
     let z = Mat::from_fn(p, s, |i, j| z_all[(i, massless_idx[j])]);
-    let kzz = dense::sym((z.transpose() * kh * &z).as_ref());
-    // pseudo-inverse of K_zz on the unit-diagonal scaling: directions with no stiffness either
-    // (rigid motions without mass) are dropped
+    // pseudo-inverse of K_zz on the unit-diagonal scaling of the given K̂: directions with no
+    // stiffness either (rigid motions without mass), or none left after the condensation of the
+    // massless dofs, are dropped
+    let kzz_given = dense::sym((z.transpose() * kh_given * &z).as_ref());
     let d: Vec<f64> = (0..s)
-        .map(|i| 1.0 / kzz[(i, i)].max(f64::MIN_POSITIVE).sqrt())
+        .map(|i| 1.0 / kzz_given[(i, i)].max(f64::MIN_POSITIVE).sqrt())
         .collect();
-    let kzs = Mat::from_fn(s, s, |i, j| kzz[(i, j)] * d[i] * d[j]);
-    let (vals, vecs) = dense::eigh(kzs.as_ref())?;
-    let top = vals.iter().fold(0.0f64, |a, &b| a.max(b));
-    let zero_energy = vals.iter().filter(|&&v| v <= ZERO_ENERGY_TOL * top).count();
+    let scaled = |a: &Mat<f64>| Mat::from_fn(s, s, |i, j| a[(i, j)] * d[i] * d[j]);
+    let (vals_given, vecs_given) = dense::eigh(scaled(&kzz_given).as_ref())?;
+    let top = vals_given.iter().fold(0.0f64, |a, &b| a.max(b));
+    let zero_energy = (vals_given.iter())
+        .filter(|&&v| v <= ZERO_ENERGY_TOL * top)
+        .count();
+    let kh = kh_condensed.unwrap_or(kh_given);
+    let (vals, vecs) = match kh_condensed {
+        Some(kc) => dense::eigh(scaled(&dense::sym((z.transpose() * kc * &z).as_ref())).as_ref())?,
+        None => (vals_given, vecs_given),
+    };
     let kzk = Mat::from_fn(s, q, |i, j| {
         (0..p).map(|r| z[(r, i)] * kh[(r, kept[j])]).sum::<f64>() * d[i]
     });

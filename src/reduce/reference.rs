@@ -11,7 +11,7 @@
 //! conditions are [`super::normal::normal_modes`] with `fixed` = the reference dofs.
 
 use super::craig_bampton::{craig_bampton, craig_bampton_basis};
-use super::orthonormalize::orthonormalize;
+use super::orthonormalize::orthonormalize_held;
 use super::select::ModeCount;
 use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
 use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
@@ -49,7 +49,7 @@ pub fn improved_cb_method1(
         .collect();
     let t = Mat::from_fn(n, keep.len(), |i, j| basis.t[(i, keep[j])]);
     let labels: Vec<ModeLabel> = keep.iter().map(|&c| basis.labels[c].clone()).collect();
-    let mut o = orthonormalize(k, m, &t, &labels)?;
+    let mut o = orthonormalize_held(k, m, &t, &labels, reference)?;
     o.diagnostics.basis_top_omega2 = basis.fixed_omega2.last().copied();
     let set = ModeSet {
         phi: o.phi,

@@ -8,11 +8,11 @@
 //! rigid-body content (XrᵀM r = 0). Dofs the set holds at zero (reference conditions) are held
 //! in the solve too. The set's rigid modes are kept as they are; its flexible modes and the
 //! residual vectors are made independent and orthonormalized together in the second
-//! eigenproblem of [`orthonormalize`]; dependent residual vectors (already in the span) are
+//! eigenproblem of [`orthonormalize_held`]; dependent residual vectors (already in the span) are
 //! removed and reported.
 
 use super::craig_chang::InertiaRelief;
-use super::orthonormalize::{diagnose, orthonormalize};
+use super::orthonormalize::{diagnose, orthonormalize_held};
 use super::{complement, ModeLabel, ModeSet, ReduceError};
 use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
 use faer::Mat;
@@ -187,7 +187,7 @@ pub fn add_residual_vectors(
         }
         labels.push(ModeLabel::Residual { load: j });
     }
-    let o = orthonormalize(k, m, &basis, &labels)?;
+    let o = orthonormalize_held(k, m, &basis, &labels, &set.reference_dofs)?;
     let mut report = ResidualReport::default();
     for rv in &o.diagnostics.removed {
         if let ModeLabel::Residual { load } = rv.label {

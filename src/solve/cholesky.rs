@@ -307,7 +307,14 @@ impl SparseLlt {
         }
         check_memory(factor_memory(&symbolic, par), a.nrows())?;
         let mut values = vec![0.0f64; symbolic.len_val()];
-        factor_numeric(&symbolic, &mut values, a, par)?;
+        super::progress::report(super::progress::Event::FactorStart {
+            n: a.nrows(),
+            flops: stats.flops,
+            single: false,
+        });
+        let factored = factor_numeric(&symbolic, &mut values, a, par);
+        super::progress::report(super::progress::Event::FactorEnd);
+        factored?;
         let min_pivot = min_pivot(&symbolic, |p| values[p], a);
         Ok(Self {
             symbolic,
@@ -348,7 +355,14 @@ impl SparseLlt {
                 ));
             }
             let a32 = SparseColMatRef::<usize, f32>::new(pattern, &rounded);
-            factor_numeric(&symbolic, &mut values, a32, par)?;
+            super::progress::report(super::progress::Event::FactorStart {
+                n: a.nrows(),
+                flops: stats.flops,
+                single: true,
+            });
+            let factored = factor_numeric(&symbolic, &mut values, a32, par);
+            super::progress::report(super::progress::Event::FactorEnd);
+            factored?;
         }
         let min_pivot = min_pivot(&symbolic, |p| f64::from(values[p]), a);
         let factor_bytes = values.len() * std::mem::size_of::<f32>();

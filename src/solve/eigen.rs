@@ -315,6 +315,10 @@ pub fn block_shift_invert(
                 theta[j] > 0.0 && r <= prm.tol * theta[j].abs()
             })
             .count();
+        super::progress::report(super::progress::Event::Eigen {
+            converged: nconv,
+            wanted: count,
+        });
         // band mode: done at the first converged value above `upper`, or grow the count
         let lambda = |j: usize| sigma + 1.0 / theta[j];
         let done = match prm.upper {

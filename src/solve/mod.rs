@@ -3,14 +3,17 @@
 //! [`lowest_modes`] returns the lowest eigenpairs of K φ = ω² M φ for full symmetric sparse K, M
 //! (M positive semi-definite: lumped, consistent, massless dofs allowed), M-orthonormal, each
 //! result checked (ΦᵀMΦ, ΦᵀKΦ, residuals) before it is returned. Problems with n ≤
-//! [`DENSE_MAX`] go to a dense solver.
+//! [`DENSE_MAX`] go to a dense solver. [`buckling`] gives the lowest buckling factor of a
+//! preload (K φ = −λ K_G φ).
 
+pub mod buckling;
 pub mod cholesky;
 pub mod dense;
 pub mod eigen;
 pub mod inertia;
 pub mod memory;
 pub mod ordering;
+pub mod progress;
 mod rows;
 pub mod slepc;
 pub mod sparse_ops;

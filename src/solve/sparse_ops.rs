@@ -247,6 +247,31 @@ fn add_scaled_triplets(
         .map_err(|e| SolveError::Dimension(format!("K + sM: {e:?}")))
 }
 
+/// The congruence Tᵀ A T of a symmetric A (n × n) with a rectangular T (n × r), e.g. a
+/// matrix of the physical dofs on the independent dofs of an elimination u = T u_r (faer's
+/// sparse products; rows sorted).
+pub fn congruence(
+    t: SparseColMatRef<'_, usize, f64>,
+    a: SparseColMatRef<'_, usize, f64>,
+    par: faer::Par,
+) -> Result<SparseColMat<usize, f64>, SolveError> {
+    use faer::sparse::linalg::matmul::sparse_sparse_matmul;
+    if a.nrows() != t.nrows() || a.ncols() != t.nrows() {
+        return Err(SolveError::Dimension(format!(
+            "TᵀAT: A is {}x{}, T is {}x{}",
+            a.nrows(),
+            a.ncols(),
+            t.nrows(),
+            t.ncols()
+        )));
+    }
+    let oom = |e| SolveError::Invalid(format!("TᵀAT: {e:?}"));
+    let at = sparse_sparse_matmul(a, t, 1.0, par).map_err(oom)?;
+    // Tᵀ as a column-major matrix: the row-major T read transposed
+    let t_rows = t.to_row_major().map_err(oom)?;
+    sparse_sparse_matmul(t_rows.as_ref().transpose(), at.as_ref(), 1.0, par).map_err(oom)
+}
+
 /// The symmetric sub-matrix A[rows, cols] as a sparse matrix (`rows`, `cols` are index lists;
 /// a row listed twice keeps its last position).
 ///

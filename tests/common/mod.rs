@@ -8,12 +8,52 @@ use std::process::Command;
 
 use faer::sparse::SparseColMat;
 use faer::Mat;
-use flexbody::model::{Material, Model};
+use flexbody::model::{
+    Element, ElementKind, Material, Model, Node, Property, Section, ShellSection,
+};
 
+/// A file of the CalculiX reference cases the repository holds (`fixtures/reference/`, made by
+/// `fixtures/reference/regenerate.py` from the decks beside them).
 pub fn reference(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/reference")
+        .join("fixtures/reference")
         .join(rel)
+}
+
+/// The environment variable naming the folder of reference data the project may not
+/// redistribute (real Nastran decks with their f06 results, CalculiX's own test decks).
+pub const EXTERNAL_REFERENCE_ENV: &str = "FLEXBODY_REFERENCE";
+
+/// The external reference folder: `$FLEXBODY_REFERENCE`, else `../shared/reference` beside the
+/// repository.
+pub fn external_reference_dir() -> PathBuf {
+    match std::env::var_os(EXTERNAL_REFERENCE_ENV) {
+        Some(dir) if !dir.is_empty() => PathBuf::from(dir),
+        _ => Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference"),
+    }
+}
+
+/// `rel` inside the external reference folder, or `None` after printing a SKIPPED line for
+/// `test` that names the variable to set. Tests that need the data return early on `None`.
+pub fn external_reference(test: &str, rel: &str) -> Option<PathBuf> {
+    let path = external_reference_dir().join(rel);
+    if path.exists() {
+        return Some(path);
+    }
+    skipped(&format!(
+        "{test}: needs {rel} from the external reference data (not redistributable, not in the \
+         repository); set {EXTERNAL_REFERENCE_ENV} to the folder that holds it (default \
+         ../shared/reference beside the repository; looked in {})",
+        external_reference_dir().display()
+    ));
+    None
+}
+
+/// Prints `SKIPPED <what>` where the test runner shows it: straight to the process's stderr,
+/// past the harness's capture of `println!`/`eprintln!`, so a skip is never silent.
+pub fn skipped(what: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "SKIPPED {what}");
 }
 
 pub fn steel() -> Material {
@@ -89,4 +129,62 @@ pub fn python_has(module: &str) -> bool {
         .args(["-c", &format!("import {module}")])
         .output()
         .is_ok_and(|o| o.status.success())
+}
+
+/// Structured n×m mesh of the map (s, r) ∈ [0,1]² → `at(s, r)`; quads, or each quad split
+/// into two triangles along alternating diagonals.
+pub fn shell_grid(
+    n: usize,
+    m: usize,
+    tris: bool,
+    t: f64,
+    mat: Material,
+    at: impl Fn(f64, f64) -> [f64; 3],
+) -> Model {
+    let mut model = Model {
+        source: "generated".into(),
+        ..Model::default()
+    };
+    for j in 0..=m {
+        for i in 0..=n {
+            model.nodes.push(Node {
+                id: (j * (n + 1) + i + 1) as u64,
+                x: at(i as f64 / n as f64, j as f64 / m as f64),
+                displacement_frame: None,
+            });
+        }
+    }
+    model.materials.push(mat);
+    model.properties.push(Property {
+        id: 1,
+        name: "SHELL".into(),
+        material: 0,
+        section: Section::Shell(ShellSection::homogeneous(t, 0)),
+    });
+    let idx = |i: usize, j: usize| j * (n + 1) + i;
+    let mut push = |kind, nodes: Vec<usize>| {
+        let id = model.elements.len() as u64 + 1;
+        model.elements.push(Element {
+            id,
+            kind,
+            nodes,
+            property: Some(0),
+            orientation: None,
+        });
+    };
+    for j in 0..m {
+        for i in 0..n {
+            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
+            if !tris {
+                push(ElementKind::Quad4, vec![a, b, c, d]);
+            } else if (i + j) % 2 == 0 {
+                push(ElementKind::Tri3, vec![a, b, c]);
+                push(ElementKind::Tri3, vec![a, c, d]);
+            } else {
+                push(ElementKind::Tri3, vec![a, b, d]);
+                push(ElementKind::Tri3, vec![b, c, d]);
+            }
+        }
+    }
+    model
 }

@@ -1,6 +1,10 @@
 //! Broken (and forward-compatible) files derived from the 3-node golden body, each with the
 //! error a reader must give. Entries are re-encoded after the mutation, and the manifest is
 //! rebuilt from the mutated bytes unless the point is a stale manifest.
+mod container;
+mod json;
+mod rules;
+
 use flexbody::write::{zip_entries, Compression};
 use flexbody_reader::codec;
 use flexbody_reader::*;
@@ -18,6 +22,9 @@ pub struct Case {
 }
 
 type Entries = Vec<(String, bool, Vec<u8>)>;
+
+/// What `cases` hands its topic modules: adds one case (stem, bytes, expected error).
+type Add<'a> = dyn FnMut(&'static str, Vec<u8>, Option<(&'static str, &'static str)>) + 'a;
 
 fn entries(body: &ReducedBody) -> Entries {
     encode_entries(body)
@@ -60,62 +67,60 @@ fn set_entry(e: &mut Entries, name: &str, bytes: Vec<u8>) {
     }
 }
 
-/// Rewrites the compression-method field of entry `name` in its local header (offset 8) and
-/// central-directory header (offset 10) — APPNOTE 4.3.7 / 4.3.12.
-fn patch_method(mut zip: Vec<u8>, name: &str, method: u16) -> Vec<u8> {
+/// The offsets in `zip` of entry `name`'s local header (APPNOTE 4.3.7) and central-directory
+/// header (4.3.12), in that order.
+fn headers(zip: &[u8], name: &str) -> [usize; 2] {
     let n = name.as_bytes();
-    for (sig, at, name_at) in [(0x04034b50u32, 8usize, 30usize), (0x02014b50, 10, 46)] {
+    [(0x04034b50u32, 30usize), (0x02014b50, 46)].map(|(sig, name_at)| {
         let sig = sig.to_le_bytes();
-        let pos = (0..zip.len().saturating_sub(name_at + n.len()))
+        (0..zip.len().saturating_sub(name_at + n.len()))
             .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + n.len()] == n)
-            .expect("entry header present");
-        zip[pos + at..pos + at + 2].copy_from_slice(&method.to_le_bytes());
-    }
+            .expect("entry header present")
+    })
+}
+
+/// Applies `f` to the `len`-byte field at offset `local` of entry `name`'s local header and at
+/// `central` of its central-directory header.
+fn patch(
+    mut zip: Vec<u8>,
+    name: &str,
+    [local, central]: [usize; 2],
+    len: usize,
+    f: impl Fn(&mut [u8]),
+) -> Vec<u8> {
+    let [l, c] = headers(&zip, name);
+    f(&mut zip[l + local..l + local + len]);
+    f(&mut zip[c + central..c + central + len]);
     zip
 }
 
-/// Flips the low bit of entry `name`'s CRC-32 in its local header (offset 14) and
-/// central-directory header (offset 16): the zip layer's own integrity check must fail.
-fn patch_crc(mut zip: Vec<u8>, name: &str) -> Vec<u8> {
-    let n = name.as_bytes();
-    for (sig, at, name_at) in [(0x04034b50u32, 14usize, 30usize), (0x02014b50, 16, 46)] {
-        let sig = sig.to_le_bytes();
-        let pos = (0..zip.len().saturating_sub(name_at + n.len()))
-            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + n.len()] == n)
-            .expect("entry header present");
-        zip[pos + at] ^= 1;
-    }
-    zip
+/// Rewrites the compression-method field of entry `name` in both its headers.
+fn patch_method(zip: Vec<u8>, name: &str, method: u16) -> Vec<u8> {
+    patch(zip, name, [8, 10], 2, |b| {
+        b.copy_from_slice(&method.to_le_bytes())
+    })
 }
 
-/// Renames every occurrence of entry name `from` to `to` (same length) in the local and
-/// central-directory headers: the zip writer refuses duplicate names, so a file with two
-/// entries of one name is made by renaming a uniquely named one (APPNOTE 4.3.7 / 4.3.12).
-fn patch_name(mut zip: Vec<u8>, from: &str, to: &str) -> Vec<u8> {
+/// Flips the low bit of entry `name`'s CRC-32 in both its headers: the zip layer's own
+/// integrity check must fail.
+fn patch_crc(zip: Vec<u8>, name: &str) -> Vec<u8> {
+    patch(zip, name, [14, 16], 1, |b| b[0] ^= 1)
+}
+
+/// Renames entry `from` to `to` (same length) in both its headers: the zip writer refuses
+/// duplicate names, so a file with two entries of one name is made by renaming a uniquely
+/// named one.
+fn patch_name(zip: Vec<u8>, from: &str, to: &str) -> Vec<u8> {
     assert_eq!(from.len(), to.len());
-    let (f, t) = (from.as_bytes(), to.as_bytes());
-    for (sig, name_at) in [(0x04034b50u32, 30usize), (0x02014b50, 46)] {
-        let sig = sig.to_le_bytes();
-        let pos = (0..zip.len().saturating_sub(name_at + f.len()))
-            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + f.len()] == f)
-            .expect("entry header present");
-        zip[pos + name_at..pos + name_at + f.len()].copy_from_slice(t);
-    }
-    zip
+    patch(zip, from, [30, 46], to.len(), |b| {
+        b.copy_from_slice(to.as_bytes())
+    })
 }
 
-/// Sets the general-purpose "encrypted" flag (bit 0) of entry `name` in its local header
-/// (offset 6) and central-directory header (offset 8) — APPNOTE 4.4.4.
-fn patch_encrypted(mut zip: Vec<u8>, name: &str) -> Vec<u8> {
-    let n = name.as_bytes();
-    for (sig, at, name_at) in [(0x04034b50u32, 6usize, 30usize), (0x02014b50, 8, 46)] {
-        let sig = sig.to_le_bytes();
-        let pos = (0..zip.len().saturating_sub(name_at + n.len()))
-            .find(|&i| zip[i..i + 4] == sig && &zip[i + name_at..i + name_at + n.len()] == n)
-            .expect("entry header present");
-        zip[pos + at] |= 1;
-    }
-    zip
+/// Sets the general-purpose "encrypted" flag (bit 0) of entry `name` in both its headers
+/// (APPNOTE 4.4.4).
+fn patch_encrypted(zip: Vec<u8>, name: &str) -> Vec<u8> {
+    patch(zip, name, [6, 8], 1, |b| b[0] |= 1)
 }
 
 /// Every case, in a fixed order.
@@ -581,6 +586,10 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
             "interfaces.bin: interfaces[1] (RIGHT_END): centre [2.0, 0.001, 0.0] is not node 103's position",
         )),
     );
+    // Issue 37, round 2: container reading, JSON, and the rules settled there.
+    container::cases(base, &mut add);
+    json::cases(base, &mut add);
+    rules::cases(base, &mut add);
     out
 }
 

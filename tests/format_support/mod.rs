@@ -5,6 +5,9 @@
 #![allow(dead_code)]
 
 pub mod broken;
+mod residual;
+
+pub use residual::body_3node_residual_vectors;
 
 use std::path::{Path, PathBuf};
 
@@ -210,7 +213,7 @@ pub fn lumped_modes(mass_dof: &[f64], k: &[Vec<f64>], keep: usize) -> (Vec<f64>,
     (vals.into_iter().take(keep).collect(), phis)
 }
 
-fn hz(w2: f64) -> f64 {
+pub(crate) fn hz(w2: f64) -> f64 {
     w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
 }
 
@@ -739,6 +742,10 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         ("three_node_chain_interfaces", body_3node_interfaces()),
         ("three_node_chain_modal_loads", body_3node_modal_loads()),
         ("three_node_chain_shell_fibres", body_3node_shell_fibres()),
+        (
+            "three_node_chain_residual_vectors",
+            body_3node_residual_vectors(),
+        ),
     ]
 }
 

@@ -64,13 +64,9 @@ pub fn local_frame(x: &[Xyz; 2], v: Option<Xyz>) -> Result<([Xyz; 3], f64), Elem
     Ok(([ex, ey, cross(ex, ey)], l))
 }
 
-/// Local 12×12 stiffness, Przemieniecki eq. 5.116.
-pub fn stiffness_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 12]; 12] {
-    let mut k = [[0.0; 12]; 12];
-    let ea = mat.e * p.area / l;
-    let gj = mat.g * p.j / l;
-    add2(&mut k, 0, 6, [[ea, -ea], [-ea, ea]]);
-    add2(&mut k, 3, 9, [[gj, -gj], [-gj, gj]]);
+/// The shear parameters (Φ_y, Φ_z) = (12EI_z/(G k_y A L²), 12EI_y/(G k_z A L²)) of the two
+/// bending planes (module doc); zero for Euler–Bernoulli.
+pub fn shear_parameters(l: f64, mat: &Isotropic, p: &BeamProps) -> (f64, f64) {
     let phi = |i: f64, ks: f64| {
         if ks > 0.0 {
             12.0 * mat.e * i / (mat.g * ks * p.area * l * l)
@@ -78,10 +74,20 @@ pub fn stiffness_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 12]; 12
             0.0
         }
     };
-    let (phy, phz) = match p.shear {
+    match p.shear {
         Some([ky, kz]) => (phi(p.iz, ky), phi(p.iy, kz)),
         None => (0.0, 0.0),
-    };
+    }
+}
+
+/// Local 12×12 stiffness, Przemieniecki eq. 5.116.
+pub fn stiffness_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 12]; 12] {
+    let mut k = [[0.0; 12]; 12];
+    let ea = mat.e * p.area / l;
+    let gj = mat.g * p.j / l;
+    add2(&mut k, 0, 6, [[ea, -ea], [-ea, ea]]);
+    add2(&mut k, 3, 9, [[gj, -gj], [-gj, gj]]);
+    let (phy, phz) = shear_parameters(l, mat, p);
     // Bending in x–y: dofs (v1, θz1, v2, θz2) = (1, 5, 7, 11); s = +1.
     // Bending in x–z: dofs (w1, θy1, w2, θy2) = (2, 4, 8, 10); s = −1.
     for (dofs, i, ph, s) in [

@@ -15,6 +15,8 @@ pub mod hex20;
 pub mod hex8;
 pub mod planar_frame;
 pub mod prism6;
+pub mod pyram13;
+pub mod pyram5;
 pub mod quad4_shell;
 pub mod rod;
 pub mod shell;

@@ -84,30 +84,31 @@ fn covariant_shear(p: &[[f64; 2]; 4], xi: f64, eta: f64, k: usize) -> [f64; 12] 
     row
 }
 
-/// Local 24×24 stiffness of the flat element (before warping links and rotation).
-fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, ElementError> {
-    const ND: usize = 24;
-    let mut k = vec![0.0; ND * ND];
-    let p = &f.p;
-    let dm = props.d_membrane();
-    let db = props.d_bending();
-    let ds = props.shear_modulus();
-    let gd = props.drill();
+/// One 2×2 Gauss point of the flat element: weight det J (the Gauss weights are 1), shape
+/// values, J⁻¹, physical gradients and the membrane strain rows (ε_x, ε_y, γ_xy) of the
+/// compatible dofs `bc` ([u1 v1 u2 v2 …], 3 × 8) and of the incompatible modes `bi`
+/// ([a1u a1v a2u a2v], 3 × 4; QM6, module doc).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct MembranePoint {
+    /// det J.
+    pub w: f64,
+    /// N_a.
+    pub n: [f64; 4],
+    /// J⁻¹.
+    pub inv: [[f64; 2]; 2],
+    /// [N_a,x N_a,y].
+    pub g: [[f64; 2]; 4],
+    /// Compatible membrane strain rows.
+    pub bc: [Vec<f64>; 3],
+    /// Incompatible-mode membrane strain rows.
+    pub bi: [Vec<f64>; 3],
+}
+
+/// The four Gauss points of the projected element `p` (module doc).
+pub(crate) fn membrane_points(p: &[[f64; 2]; 4]) -> Result<Vec<MembranePoint>, ElementError> {
     let (_, d0) = shape(0.0, 0.0);
     let (_, det0, inv0) = jacobian(p, &d0);
-    // Membrane: compatible (8) + incompatible (4) modes, then condensation.
-    let mem_dofs: Vec<usize> = (0..4).flat_map(|a| [6 * a, 6 * a + 1]).collect();
-    let mut kcc = vec![0.0; 64];
-    let mut kci = vec![0.0; 32];
-    let mut kii = vec![0.0; 16];
-    let plate_dofs: Vec<usize> = (0..4)
-        .flat_map(|a| [6 * a + 2, 6 * a + 3, 6 * a + 4])
-        .collect();
-    // Shear tying rows.
-    let eb = covariant_shear(p, 0.0, -1.0, 0);
-    let ed = covariant_shear(p, 0.0, 1.0, 0);
-    let ec = covariant_shear(p, -1.0, 0.0, 1);
-    let ea = covariant_shear(p, 1.0, 0.0, 1);
+    let mut out = Vec::with_capacity(4);
     for (gp, &[xi, eta]) in GAUSS.iter().enumerate() {
         let (n, d) = shape(xi, eta);
         let (_, det, inv) = jacobian(p, &d);
@@ -115,7 +116,6 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
             return Err(ElementError::NonPositiveJacobian { det, point: gp });
         }
         let g: [[f64; 2]; 4] = std::array::from_fn(|a| grad(&inv, &d[a]));
-        // Membrane B (compatible part) on [u1 v1 u2 v2 …].
         let mut bc = [vec![0.0; 8], vec![0.0; 8], vec![0.0; 8]];
         for a in 0..4 {
             bc[0][2 * a] = g[a][0];
@@ -123,7 +123,7 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
             bc[2][2 * a] = g[a][1];
             bc[2][2 * a + 1] = g[a][0];
         }
-        // Incompatible modes P1 = 1 − ξ², P2 = 1 − η² on [a1u a1v a2u a2v] via J₀ (QM6).
+        // Incompatible modes P1 = 1 − ξ², P2 = 1 − η² via J₀ (QM6).
         let s = det0 / det;
         let pg = [
             grad(&inv0, &[-2.0 * xi, 0.0]),
@@ -136,7 +136,28 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
             bi[2][2 * m] = s * pg[m][1];
             bi[2][2 * m + 1] = s * pg[m][0];
         }
-        let w = det; // Gauss weights are 1
+        out.push(MembranePoint {
+            w: det,
+            n,
+            inv,
+            g,
+            bc,
+            bi,
+        });
+    }
+    Ok(out)
+}
+
+/// The membrane blocks ∫ Bᵀ D_m B dA over the compatible (c, 8 dofs) and incompatible (i, 4)
+/// parts: (K_cc 8×8, K_ci 8×4, K_ii 4×4), row-major.
+pub(crate) fn membrane_blocks(
+    points: &[MembranePoint],
+    dm: &[[f64; 3]; 3],
+) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let mut kcc = vec![0.0; 64];
+    let mut kci = vec![0.0; 32];
+    let mut kii = vec![0.0; 16];
+    for MembranePoint { w, bc, bi, .. } in points {
         for r in 0..3 {
             let dbc: Vec<f64> = (0..8)
                 .map(|j| (0..3).map(|l| dm[r][l] * bc[l][j]).sum())
@@ -158,6 +179,34 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
                 }
             }
         }
+    }
+    (kcc, kci, kii)
+}
+
+/// Local 24×24 stiffness of the flat element (before warping links and rotation).
+fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, ElementError> {
+    const ND: usize = 24;
+    let mut k = vec![0.0; ND * ND];
+    let p = &f.p;
+    let dm = props.d_membrane();
+    let db = props.d_bending();
+    let ds = props.shear_modulus();
+    let gd = props.drill();
+    // Membrane: compatible (8) + incompatible (4) modes, then condensation.
+    let mem_dofs: Vec<usize> = (0..4).flat_map(|a| [6 * a, 6 * a + 1]).collect();
+    let points = membrane_points(p)?;
+    let (kcc, kci, kii) = membrane_blocks(&points, &dm);
+    let plate_dofs: Vec<usize> = (0..4)
+        .flat_map(|a| [6 * a + 2, 6 * a + 3, 6 * a + 4])
+        .collect();
+    // Shear tying rows.
+    let eb = covariant_shear(p, 0.0, -1.0, 0);
+    let ed = covariant_shear(p, 0.0, 1.0, 0);
+    let ec = covariant_shear(p, -1.0, 0.0, 1);
+    let ea = covariant_shear(p, 1.0, 0.0, 1);
+    for (pt, &[xi, eta]) in points.iter().zip(&GAUSS) {
+        let MembranePoint { n, g, inv, .. } = pt;
+        let w = pt.w;
         // Bending: κ = (βx,x, βy,y, βx,y + βy,x) on [w θx θy] per node.
         let mut bb = [vec![0.0; 12], vec![0.0; 12], vec![0.0; 12]];
         for a in 0..4 {
@@ -206,7 +255,7 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
 }
 
 /// Kii⁻¹ Kciᵀ (4×8) by Gaussian elimination with partial pivoting.
-fn solve4(kii: &[f64], kci: &[f64]) -> Result<Vec<f64>, ElementError> {
+pub(crate) fn solve4(kii: &[f64], kci: &[f64]) -> Result<Vec<f64>, ElementError> {
     let mut a = kii.to_vec();
     let mut b = vec![0.0; 32];
     for m in 0..4 {

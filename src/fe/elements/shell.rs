@@ -18,9 +18,9 @@
 //! Π_d = ½ ∫ γ_d (θz − ω)² dA with γ_d = [`DRILL_FACTOR`]·G₁t, integrated at as many points as
 //! the element has nodes (no spurious drilling modes). A rigid rotation about the normal has
 //! θz = ω and costs nothing, so a free flat plate has exactly 6 zero modes; a shell node joined to
-//! a beam or a rigid element is not singular about its normal. The factor plays the role of
-//! Nastran's `PARAM,K6ROT` (default 100, scaled by 10⁻⁶ in MSC's formula): 10⁻⁴ is
-//! K6ROT = 100 × 10⁻⁶. It does not enter flat-plate bending or membrane patch tests (θz = ω
+//! a beam or a rigid element is not singular about its normal. The factor is Nastran's
+//! `PARAM,K6ROT` × 10⁻⁶ (MSC's formula; the deck's value in `ModelParams::k6rot`): the
+//! default 10⁻⁴ is K6ROT = 100 × 10⁻⁶. It does not enter flat-plate bending or membrane patch tests (θz = ω
 //! there); on folded and curved shells it changes frequencies by far less than the
 //! discretisation error (test `shell_drilling_factor_barely_moves_folded_plate_frequencies`
 //! in tests/shell_plates.rs).

@@ -32,30 +32,18 @@ fn wedge_modes(p: &Xyz) -> Vec<Xyz> {
 
 /// Stiffness of the 8-node hexahedron with incompatible modes (24×24, 2×2×2 Gauss).
 pub fn hex8_stiffness(x: &[Xyz; 8], mat: &Isotropic) -> Result<Vec<f64>, ElementError> {
-    stiffness(
-        x,
-        super::hex8::shape,
-        &quadrature::cube(2),
-        [0.0; 3],
-        hex_modes,
-        mat,
-    )
+    check_solid_material(mat)?;
+    condense(&full_stiffness(&hex8_points(x)?, mat), 24, 9)
 }
 
 /// Stiffness of the 6-node wedge with the incompatible mode 1 − ζ² (18×18, 3×2 points).
 pub fn prism6_stiffness(x: &[Xyz; 6], mat: &Isotropic) -> Result<Vec<f64>, ElementError> {
-    stiffness(
-        x,
-        super::prism6::shape,
-        &quadrature::wedge(2),
-        [1.0 / 3.0, 1.0 / 3.0, 0.0],
-        wedge_modes,
-        mat,
-    )
+    check_solid_material(mat)?;
+    condense(&full_stiffness(&prism6_points(x)?, mat), 18, 3)
 }
 
 /// Strain rows (6 × 3n: εxx εyy εzz γxy γyz γzx) of gradients g.
-fn strain_rows(g: &[Xyz]) -> Vec<[f64; 6]> {
+pub(crate) fn strain_rows(g: &[Xyz]) -> Vec<[f64; 6]> {
     let mut b = vec![[0.0; 6]; 3 * g.len()];
     for (a, gr) in g.iter().enumerate() {
         b[3 * a][0] = gr[0];
@@ -71,16 +59,73 @@ fn strain_rows(g: &[Xyz]) -> Vec<[f64; 6]> {
     b
 }
 
-/// Module formula for an N-node element with the incompatible modes `modes` (centre `centre`).
-fn stiffness<const N: usize>(
+/// One integration point of an element with incompatible modes: the weight w = w_q det J, the
+/// nodal shape values N_a and the physical gradients of the N nodal shape functions followed by
+/// those of the modes (Taylor's correction, module doc).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModePoint {
+    /// w_q det J.
+    pub w: f64,
+    /// N_a at the point.
+    pub n: Vec<f64>,
+    /// ∂N_a/∂x for the N nodes, then ∂P_m/∂x for the modes.
+    pub grads: Vec<Xyz>,
+}
+
+/// The integration points of an N-node element with the incompatible modes `modes` (centre
+/// `centre`): nodal gradients, then the modes' ∂P/∂x = det J₀/det J · J₀⁻¹ ∂P/∂ξ (Taylor).
+pub(crate) fn mode_points<const N: usize>(
     x: &[Xyz; N],
     shape: ShapeFn<N>,
     rule: &[QuadPoint],
     centre: Xyz,
     modes: ModeGradients,
-    mat: &Isotropic,
-) -> Result<Vec<f64>, ElementError> {
-    check_solid_material(mat)?;
+) -> Result<Vec<ModePoint>, ElementError> {
+    let (_, _, det0) = map_point(x, shape, &centre, 0)?;
+    let inv0 = jacobian_inverse(x, shape, &centre);
+    let mut out = Vec::with_capacity(rule.len());
+    for (p, q) in rule.iter().enumerate() {
+        let (n, g, det) = map_point(x, shape, &q.xi, p)?;
+        let mut grads: Vec<Xyz> = g.to_vec();
+        for m in modes(&q.xi) {
+            grads.push(std::array::from_fn(|i| {
+                det0 / det * (0..3).map(|c| inv0[i][c] * m[c]).sum::<f64>()
+            }));
+        }
+        out.push(ModePoint {
+            w: q.w * det,
+            n: n.to_vec(),
+            grads,
+        });
+    }
+    Ok(out)
+}
+
+/// Integration points of the 8-node hexahedron with Wilson's three modes (2×2×2 Gauss).
+pub(crate) fn hex8_points(x: &[Xyz; 8]) -> Result<Vec<ModePoint>, ElementError> {
+    mode_points(
+        x,
+        super::hex8::shape,
+        &quadrature::cube(2),
+        [0.0; 3],
+        hex_modes,
+    )
+}
+
+/// Integration points of the 6-node wedge with the mode 1 − ζ² (3×2 points).
+pub(crate) fn prism6_points(x: &[Xyz; 6]) -> Result<Vec<ModePoint>, ElementError> {
+    mode_points(
+        x,
+        super::prism6::shape,
+        &quadrature::wedge(2),
+        [1.0 / 3.0, 1.0 / 3.0, 0.0],
+        wedge_modes,
+    )
+}
+
+/// The uncondensed stiffness ∫ Bᵀ D B dV over nodal and mode dofs ((3N + 3m)², row-major; the
+/// nodal dofs first), module formula.
+pub(crate) fn full_stiffness(points: &[ModePoint], mat: &Isotropic) -> Vec<f64> {
     let (lam, mu) = mat.lame();
     let d: [[f64; 6]; 6] = std::array::from_fn(|i| {
         std::array::from_fn(|j| match (i < 3, j < 3) {
@@ -89,31 +134,18 @@ fn stiffness<const N: usize>(
             _ => 0.0,
         })
     });
-    let (_, _, det0) = map_point(x, shape, &centre, 0)?;
-    let inv0 = jacobian_inverse(x, shape, &centre);
-    let nc = 3 * N;
-    let ni = 3 * modes(&centre).len();
-    let nt = nc + ni;
+    let nt = 3 * points.first().map_or(0, |p| p.grads.len());
     let mut k = vec![0.0; nt * nt];
-    for (p, q) in rule.iter().enumerate() {
-        let (_, g, det) = map_point(x, shape, &q.xi, p)?;
-        let mut grads: Vec<Xyz> = g.to_vec();
-        for m in modes(&q.xi) {
-            // Taylor: ∂P/∂x = det J₀/det J · J₀⁻¹ ∂P/∂ξ
-            grads.push(std::array::from_fn(|i| {
-                det0 / det * (0..3).map(|c| inv0[i][c] * m[c]).sum::<f64>()
-            }));
-        }
-        let b = strain_rows(&grads);
+    for pt in points {
+        let b = strain_rows(&pt.grads);
         let db: Vec<[f64; 6]> = b
             .iter()
             .map(|bj| std::array::from_fn(|r| (0..6).map(|c| d[r][c] * bj[c]).sum()))
             .collect();
-        let w = q.w * det;
         for i in 0..nt {
             for j in i..nt {
                 let v: f64 = (0..6).map(|r| b[i][r] * db[j][r]).sum();
-                k[i * nt + j] += w * v;
+                k[i * nt + j] += pt.w * v;
             }
         }
     }
@@ -122,7 +154,7 @@ fn stiffness<const N: usize>(
             k[i * nt + j] = k[j * nt + i];
         }
     }
-    condense(&k, nc, ni)
+    k
 }
 
 /// ∂ξ/∂x (J⁻¹, J_ki = ∂x_i/∂ξ_k) at a reference point, as rows i: ∂N/∂x_i = Σ_k inv[i][k] ∂N/∂ξ_k.
@@ -158,17 +190,19 @@ fn jacobian_inverse<const N: usize>(x: &[Xyz; N], shape: ShapeFn<N>, xi: &Xyz) -
     ]
 }
 
-/// K_cc − K_ci K_ii⁻¹ K_ic of a (nc + ni)² matrix, by Gaussian elimination with partial pivoting.
-fn condense(k: &[f64], nc: usize, ni: usize) -> Result<Vec<f64>, ElementError> {
+/// K_ii⁻¹ B for the mode block K_ii of a (nc + ni)² matrix `k` and `cols` right-hand sides B
+/// (ni × cols, row-major), by Gaussian elimination with partial pivoting.
+pub(crate) fn solve_modes(
+    k: &[f64],
+    nc: usize,
+    ni: usize,
+    mut b: Vec<f64>,
+    cols: usize,
+) -> Result<Vec<f64>, ElementError> {
     let nt = nc + ni;
     let mut a: Vec<f64> = (0..ni)
         .flat_map(|i| (0..ni).map(move |j| (i, j)))
         .map(|(i, j)| k[(nc + i) * nt + nc + j])
-        .collect();
-    // right-hand sides K_ic (ni × nc)
-    let mut b: Vec<f64> = (0..ni)
-        .flat_map(|i| (0..nc).map(move |j| (i, j)))
-        .map(|(i, j)| k[(nc + i) * nt + j])
         .collect();
     let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
     for c in 0..ni {
@@ -184,25 +218,37 @@ fn condense(k: &[f64], nc: usize, ni: usize) -> Result<Vec<f64>, ElementError> {
         for j in 0..ni {
             a.swap(c * ni + j, piv * ni + j);
         }
-        for j in 0..nc {
-            b.swap(c * nc + j, piv * nc + j);
+        for j in 0..cols {
+            b.swap(c * cols + j, piv * cols + j);
         }
         for r in c + 1..ni {
             let f = a[r * ni + c] / a[c * ni + c];
             for j in c..ni {
                 a[r * ni + j] -= f * a[c * ni + j];
             }
-            for j in 0..nc {
-                b[r * nc + j] -= f * b[c * nc + j];
+            for j in 0..cols {
+                b[r * cols + j] -= f * b[c * cols + j];
             }
         }
     }
     for c in (0..ni).rev() {
-        for j in 0..nc {
-            let s: f64 = (c + 1..ni).map(|m| a[c * ni + m] * b[m * nc + j]).sum();
-            b[c * nc + j] = (b[c * nc + j] - s) / a[c * ni + c];
+        for j in 0..cols {
+            let s: f64 = (c + 1..ni).map(|m| a[c * ni + m] * b[m * cols + j]).sum();
+            b[c * cols + j] = (b[c * cols + j] - s) / a[c * ni + c];
         }
     }
+    Ok(b)
+}
+
+/// K_cc − K_ci K_ii⁻¹ K_ic of a (nc + ni)² matrix.
+fn condense(k: &[f64], nc: usize, ni: usize) -> Result<Vec<f64>, ElementError> {
+    let nt = nc + ni;
+    // right-hand sides K_ic (ni × nc)
+    let kic: Vec<f64> = (0..ni)
+        .flat_map(|i| (0..nc).map(move |j| (i, j)))
+        .map(|(i, j)| k[(nc + i) * nt + j])
+        .collect();
+    let b = solve_modes(k, nc, ni, kic, nc)?;
     let mut out = vec![0.0; nc * nc];
     for i in 0..nc {
         for j in 0..nc {

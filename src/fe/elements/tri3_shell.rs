@@ -45,7 +45,7 @@ const RULE: [[f64; 3]; 3] = [
 const EDGES: [(usize, usize); 3] = [(0, 1), (1, 2), (2, 0)];
 
 /// Area and gradients ∂L_i/∂(x, y) of the area coordinates of a triangle.
-fn linear(p: &[[f64; 2]; 3]) -> (f64, [[f64; 2]; 3]) {
+pub(crate) fn linear(p: &[[f64; 2]; 3]) -> (f64, [[f64; 2]; 3]) {
     let a2 = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
     let mut g = [[0.0; 2]; 3];
     for i in 0..3 {

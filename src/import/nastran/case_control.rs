@@ -1,11 +1,14 @@
 //! Nastran case control: the part of a deck between `CEND` and `BEGIN BULK` that says which
-//! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC`, `METHOD` and `LOAD` (global, i.e.
-//! above the first subcase, or inside a subcase, which overrides the global value). Every other
+//! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC`, `MPC`, `METHOD` and `LOAD`
+//! (global, i.e. above the first subcase, or inside a subcase, which overrides the global value).
+//! Refused: the commands that would change the body and are not modelled (`K2GG`, `M2GG`,
+//! `K2PP`, `M2PP`, `STATSUB`). Every other
 //! command is output or solution control this tool has no use for and is skipped.
 //!
 //! Nastran's rule (MSC QRG, "Case Control Commands"): a bulk-data SPC set is applied only when
-//! `SPC = n` selects it; no `SPC` command means no SPC set. A deck whose subcases select
-//! different constraint or eigenvalue sets describes several analyses; the build needs one.
+//! `SPC = n` selects it; no `SPC` command means no SPC set; `MPC = n` alike for MPC sets. A deck
+//! whose subcases select different constraint or eigenvalue sets describes several analyses;
+//! the build needs one.
 
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::Loc;
@@ -17,10 +20,33 @@ pub(crate) struct Select {
     pub loc: Loc,
 }
 
+impl Select {
+    /// The error of a selection the bulk data does not define: `command = id` selects `what`,
+    /// which none of `cards` defines.
+    pub(crate) fn undefined(
+        &self,
+        files: &[String],
+        command: &str,
+        what: &str,
+        cards: &str,
+    ) -> ImportError {
+        parse_err(
+            &files[self.loc.file as usize],
+            self.loc.line as usize,
+            format!("{command} = {}", self.id),
+            format!(
+                "the case control selects {what} {}, but the bulk data has no {cards} with that id",
+                self.id
+            ),
+        )
+    }
+}
+
 /// The selections of one scope (the global part or one subcase).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(crate) struct Scope {
     pub spc: Option<Select>,
+    pub mpc: Option<Select>,
     pub method: Option<Select>,
     pub load: Option<Select>,
 }
@@ -33,6 +59,31 @@ pub(crate) struct Subcase {
     pub scope: Scope,
 }
 
+/// Case-control commands that change the body and are not modelled: (command, why). They are
+/// refused with the bulk-data cards (`cards`), and may be dropped on purpose by name.
+const REFUSED: &[(&str, &str)] = &[
+    (
+        "K2GG",
+        "adds a stiffness matrix (DMIG) to the model: not modelled",
+    ),
+    (
+        "K2PP",
+        "adds a stiffness matrix (DMIG) to the model: not modelled",
+    ),
+    (
+        "M2GG",
+        "adds a mass matrix (DMIG) to the model: not modelled",
+    ),
+    (
+        "M2PP",
+        "adds a mass matrix (DMIG) to the model: not modelled",
+    ),
+    (
+        "STATSUB",
+        "a static preload (differential stiffness) of the normal modes: not modelled",
+    ),
+];
+
 /// The parsed case control.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct CaseControl {
@@ -41,6 +92,8 @@ pub(crate) struct CaseControl {
     pub title: Option<String>,
     pub global: Scope,
     pub subcases: Vec<Subcase>,
+    /// Commands that change the body and are not modelled: (command, why, where).
+    pub refused: Vec<(String, &'static str, Loc)>,
 }
 
 /// The selections the build uses: of the one (or the chosen) subcase, global values filled in.
@@ -121,11 +174,16 @@ pub(crate) fn parse(
             cc.title = Some(value.to_owned());
             continue;
         }
+        if let Some(&(command, why)) = REFUSED.iter().find(|r| r.0 == word) {
+            cc.refused.push((command.to_owned(), why, loc));
+            continue;
+        }
         let describer = key.trim().to_ascii_uppercase();
         let slot = match word {
             "SPC" => 0,
             "METHOD" | "METH" if !describer.contains("FLUID") => 1,
             "LOAD" => 2,
+            "MPC" => 3,
             _ => continue,
         };
         let id = value.parse::<u64>().map_err(|_| {
@@ -144,7 +202,8 @@ pub(crate) fn parse(
         match slot {
             0 => scope.spc = s,
             1 => scope.method = s,
-            _ => scope.load = s,
+            2 => scope.load = s,
+            _ => scope.mpc = s,
         }
     }
     Ok(cc)
@@ -156,6 +215,7 @@ impl CaseControl {
         let s = self.subcases[k].scope;
         Scope {
             spc: s.spc.or(self.global.spc),
+            mpc: s.mpc.or(self.global.mpc),
             method: s.method.or(self.global.method),
             load: s.load.or(self.global.load),
         }
@@ -190,6 +250,7 @@ impl CaseControl {
         main_file: &str,
     ) -> Result<Effective, ImportError> {
         let show = |s: Option<Select>| s.map_or("none".to_owned(), |s| s.id.to_string());
+        let mpc = |s: Scope| s.mpc.map_or(String::new(), |m| format!(", MPC = {}", m.id));
         if let Some(n) = choice {
             if self.subcases.is_empty() {
                 if n == 1 {
@@ -235,20 +296,28 @@ impl CaseControl {
         let s0 = self.scope_of(0);
         for (k, sc) in self.subcases.iter().enumerate().skip(1) {
             let s = self.scope_of(k);
-            let ids = |s: Scope| (s.spc.map(|x| x.id), s.method.map(|x| x.id));
+            let ids = |s: Scope| {
+                (
+                    s.spc.map(|x| x.id),
+                    s.method.map(|x| x.id),
+                    s.mpc.map(|x| x.id),
+                )
+            };
             if ids(s) != ids(s0) {
                 return Err(err(
                     files,
                     sc.loc,
                     &format!("SUBCASE {}", sc.id),
                     format!(
-                        "subcases {} (SPC = {}, METHOD = {}) and {} (SPC = {}, METHOD = {}) describe different analyses; pick one with --subcase {} or --subcase {}",
+                        "subcases {} (SPC = {}, METHOD = {}{}) and {} (SPC = {}, METHOD = {}{}) describe different analyses; pick one with --subcase {} or --subcase {}",
                         first.id,
                         show(s0.spc),
                         show(s0.method),
+                        mpc(s0),
                         sc.id,
                         show(s.spc),
                         show(s.method),
+                        mpc(s),
                         first.id,
                         sc.id
                     ),

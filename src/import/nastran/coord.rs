@@ -47,7 +47,8 @@ pub(crate) fn dir_to_basic(cs: &CoordSystem, v: [f64; 3]) -> [f64; 3] {
     x
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+/// a × b.
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -55,7 +56,13 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
+/// a − b.
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// a / |a|; `None` for a zero or non-finite vector.
+pub(crate) fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
     let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
     (n > 0.0 && n.is_finite()).then(|| a.map(|c| c / n))
 }
@@ -69,7 +76,6 @@ pub(crate) fn from_points(
     b: [f64; 3],
     c: [f64; 3],
 ) -> Option<CoordSystem> {
-    let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
     let e3 = unit(sub(b, a))?;
     let e2 = unit(cross(e3, sub(c, a)))?;
     let e1 = cross(e2, e3);

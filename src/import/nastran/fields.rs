@@ -58,6 +58,14 @@ pub(crate) struct C<'a> {
 }
 
 impl<'a> C<'a> {
+    /// The card with the name of the file it is in (`files` as the lexer numbered them).
+    pub(crate) fn new(card: &'a Card, files: &'a [String]) -> C<'a> {
+        C {
+            card,
+            file: &files[card.loc.file as usize],
+        }
+    }
+
     pub(crate) fn text(&self, k: usize) -> &'a str {
         self.card.fields.get(k).map_or("", |f| f.text.as_str())
     }

@@ -13,7 +13,7 @@ use super::case_control::Select;
 use super::coord::dir_to_basic;
 use super::fields::C;
 use super::lex::Card;
-use crate::import::error::{parse_err, ImportError};
+use crate::import::error::ImportError;
 use crate::import::text::IdMap;
 use crate::model::load::{face_nodes, solid_faces};
 use crate::model::{CoordKind, ElementKind, Load, LoadPart, Model};
@@ -24,11 +24,12 @@ pub(crate) struct LoadCards<'a> {
     pub cards: Vec<&'a Card>,
 }
 
-fn cc<'a>(card: &'a Card, files: &'a [String]) -> C<'a> {
-    C {
-        card,
-        file: &files[card.loc.file as usize],
-    }
+/// Reader of the static load cards (FORCE, MOMENT, GRAV, PLOAD4, LOAD, and the ones the
+/// scene does not read — PLOAD1, FORCE1, … — whose set is then kept by name, unusable): kept
+/// for [`resolve`]. A load does not change the body.
+pub(super) fn card<'a>(d: &mut super::bulk::Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    d.loads.cards.push(g.card);
+    Ok(())
 }
 
 /// A direction given in coordinate system `cid` (0 = basic) → basic.
@@ -194,7 +195,11 @@ fn card_parts(
                 });
             }
         }
-        _ => {}
+        other => {
+            return Err(g.err_card(format!(
+                "{other} is not read as a scene load (FORCE, MOMENT, GRAV, PLOAD4 and LOAD are)"
+            )))
+        }
     }
     Ok(parts)
 }
@@ -220,7 +225,7 @@ pub(crate) fn resolve(
     };
     let mut problems: BTreeMap<u64, String> = BTreeMap::new();
     for &card in &cards.cards {
-        let g = cc(card, files);
+        let g = C::new(card, files);
         let name = card.name.as_str();
         if name == "LOAD" {
             combos.push(card);
@@ -254,7 +259,7 @@ pub(crate) fn resolve(
         })
         .collect();
     for card in combos {
-        let g = cc(card, files);
+        let g = C::new(card, files);
         let sid = g.id(0, "SID")?;
         if let Some(other) = loads.get(&sid) {
             return Err(g.err(
@@ -298,14 +303,11 @@ pub(crate) fn resolve(
     }
     for sel in selected {
         let load = loads.get_mut(&sel.id).ok_or_else(|| {
-            parse_err(
-                &files[sel.loc.file as usize],
-                sel.loc.line as usize,
-                format!("LOAD = {}", sel.id),
-                format!(
-                    "the case control selects load set {}, but the bulk data has no FORCE, MOMENT, GRAV, PLOAD4 or LOAD with that id",
-                    sel.id
-                ),
+            sel.undefined(
+                files,
+                "LOAD",
+                "load set",
+                "FORCE, MOMENT, GRAV, PLOAD4 or LOAD",
             )
         })?;
         load.selected = true;

@@ -1,33 +1,50 @@
 //! Nastran bulk-data reader → [`Model`].
 //!
-//! Cards: GRID (CP/CD), CORD2R/CORD2C/CORD2S (chained), CTETRA (4/10), CHEXA (8/20),
-//! CPENTA (6/15), CBAR, CBEAM, CROD, CQUAD4, CTRIA3, PSOLID, PBAR, PBARL, PBEAM, PBEAML, PROD,
-//! PSHELL, PCOMP (one isotropic material), MAT1, CONM2, RBE2, RBE3, SPC, SPC1, SPCADD, GRDSET, ASET, ASET1, BSET, BSET1, QSET,
-//! QSET1, EIGRL, EIGR, PARAM WTMASS/COUPMASS; the load cards FORCE, MOMENT, GRAV, PLOAD4 and LOAD
-//! (`loads`: named scene loads `LOAD_<sid>`); the case control's TITLE, SUBCASE, SPC, METHOD and
-//! LOAD (`case_control`).
-//! Every other card is counted and reported once per card type as a warning; elements that
-//! reference a property of an unsupported type (e.g. PCOMPG) get no property and a warning.
+//! Cards honoured: GRID (CP/CD), SPOINT, CORD2R/CORD2C/CORD2S (chained), CTETRA (4/10),
+//! CHEXA (8/20), CPENTA (6/15), CPYRAM (5/13), CBAR, CBEAM, CROD, CONROD, CQUAD4, CTRIA3,
+//! CELAS1–4, CMASS1–4, CBUSH, PSOLID, PBAR, PBARL, PBEAM, PBEAML, PROD, PSHELL, PCOMP (one
+//! isotropic material), PELAS, PMASS, PBUSH, MAT1, CONM1, CONM2, RBE2, RBE3, RBAR, RBAR1, RBE1,
+//! MPC, MPCADD, SPC, SPC1, SPCADD, GRDSET, ASET, ASET1, BSET, BSET1, QSET, QSET1, EIGRL, EIGR,
+//! PARAM WTMASS/COUPMASS/K6ROT; the load cards FORCE, MOMENT, GRAV, PLOAD4 and LOAD (`loads`:
+//! named scene loads `LOAD_<sid>`); the case control's TITLE, SUBCASE, SPC, MPC, METHOD and
+//! LOAD (`case_control`). What every other card is — a note (it cannot change the body) or
+//! refused — is the card table's (`cards`): honoured or refused, never dropped.
+//!
+//! Layout: `lex` (text → cards), `cards` (the card table: each card's rule), one file per
+//! card family with its reader and its resolve step (`geometry`, `elements`, `properties`,
+//! `shell`, `mass`, `scalar`, `bush`, `rigid`, `sets`, `solution`, `loads`), and `bulk` (the
+//! three passes: geometry, readers, resolve).
 //!
 //! Constraints as Nastran applies them: GRID PS / GRDSET always; an SPC/SPC1/SPCADD set only
 //! when the case control selects it (`SPC = n`, global or in the one or chosen subcase; bare
 //! bulk data selects none). Node sets: `SPC_<sid>` holds the nodes of SPC/SPC1/SPCADD set `sid`,
-//! selected or not (the reference `.bdf` files write one SPC1 per named node set). Element sets: `PID_<pid>` per property.
-//! CHEXA20/CPENTA15 mid-side nodes are permuted to Abaqus order (Nastran lists the vertical
-//! edges before the top edges).
+//! selected or not (the reference `.bdf` files write one SPC1 per named node set). Element
+//! sets: `PID_<pid>` per property. CHEXA20/CPENTA15 mid-side nodes are permuted to Abaqus order
+//! (Nastran lists the vertical edges before the top edges).
 
+mod bulk;
+mod bush;
 mod cards;
 mod case_control;
 mod coord;
+mod elements;
 mod fields;
+mod geometry;
 mod lex;
 mod loads;
+mod mass;
+mod properties;
+mod rigid;
+mod scalar;
+mod sets;
 mod shell;
+mod solution;
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::error::ImportError;
+use super::ImportOptions;
 use crate::model::Model;
 
 /// Card counts by card name (`GRID`, `CHEXA`, `PARAM`, …), supported or not.
@@ -46,7 +63,23 @@ pub fn read_with_counts(path: &Path) -> Result<(Model, CardCounts), ImportError>
 /// [`read_with_counts`] with the SPC and METHOD selections of case-control subcase `subcase`
 /// (needed when the deck's subcases select different sets).
 pub fn read_subcase(path: &Path, subcase: Option<u64>) -> Result<(Model, CardCounts), ImportError> {
+    read_with_options(
+        path,
+        &ImportOptions {
+            subcase,
+            ..Default::default()
+        },
+    )
+}
+
+/// [`read_with_counts`] with the options that apply to a Nastran deck: the case-control
+/// subcase ([`ImportOptions::subcase`]) and the cards to drop on purpose
+/// ([`ImportOptions::ignore_cards`]).
+pub fn read_with_options(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<(Model, CardCounts), ImportError> {
     let mut lexer = lex::Lexer::new(&path.display().to_string());
     lexer.lex_file(path, 0, 0)?;
-    cards::build(lexer, subcase)
+    bulk::build(lexer, opts.subcase, &opts.ignore_cards)
 }

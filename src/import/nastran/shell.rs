@@ -216,7 +216,7 @@ pub(super) fn apply_thickness(
         let mean = ts.iter().sum::<f64>() / ts.len() as f64;
         if ts.iter().any(|t| (t - mean).abs() > 1e-9 * mean) {
             varying += 1;
-            first_varying.get_or_insert(eid);
+            first_varying.get_or_insert((eid, format!("{}:{}", et.file, et.line)));
         }
         if (mean - base).abs() <= 1e-12 * mean {
             continue;
@@ -239,9 +239,9 @@ pub(super) fn apply_thickness(
         derived_of.insert(key, d);
         model.elements[et.elem].property = Some(d);
     }
-    if let Some(first) = first_varying {
+    if let Some((first, place)) = first_varying {
         model.warnings.push(ImportWarning {
-            file: list[0].file.clone(),
+            file: place,
             message: format!(
                 "{varying} shell elements (first: {first}) have different corner thicknesses: \
                  each uses the mean of its corners"

@@ -61,6 +61,16 @@ pub fn constraints(
             dropped.join(", ")
         ));
     }
+    // what a flexible body cannot hold of springs, scalar masses and scalar points
+    let lumped = plan.spec.mass == crate::fe::MassKind::Lumped;
+    if let Some(why) = crate::fe::connectors::body_restrictions(
+        &interfaced.model,
+        &assembled.dofs,
+        &assembled.m,
+        lumped,
+    ) {
+        return Err(plan.request_error(why));
+    }
     // parts, masses, interface and reference restraints, named by ids (docs/stability.md)
     before_reduction(
         &interfaced.model,

@@ -1,0 +1,390 @@
+//! The bulk data of a deck, read in three passes: the geometry cards place the nodes; every
+//! other card goes through its rule in the card table (`cards`) — honoured by its family's
+//! reader into raw records, a note, or refused (every refused card of the deck in one error);
+//! then one resolve pass per family builds the [`Model`] (ids → indices, coordinate systems →
+//! basic, WTMASS applied, the case control's selections).
+
+use std::collections::BTreeMap;
+
+use super::bush::BushCards;
+use super::elements::ElementCards;
+use super::fields::{ThruBudget, C};
+use super::geometry::{CoordIndex, GeometryCards};
+use super::lex::{Card, Lexer};
+use super::loads::LoadCards;
+use super::mass::MassCards;
+use super::properties::PropertyCards;
+use super::scalar::ScalarCards;
+use super::sets::SetCards;
+use super::solution::SolutionCards;
+use super::{cards, CardCounts};
+use crate::import::error::{ImportError, RefusedCard};
+use crate::import::text::{Builder, IdMap, Loc};
+use crate::model::{DofMask, ImportWarning, Model, NodeDof};
+
+/// What the card readers fill: the model under construction, the node map, and the raw records
+/// of each card family that the resolve pass turns into the model.
+pub(super) struct Bulk<'a> {
+    /// Files of the deck (main file first), for messages.
+    pub files: &'a [String],
+    /// The model under construction (nodes placed, elements with external node ids).
+    pub b: Builder,
+    /// Node id → index.
+    pub nodes: IdMap,
+    /// Coordinate system id → index.
+    pub coords: CoordIndex,
+    /// How many ids `THRU` ranges may still expand to.
+    pub thru: ThruBudget,
+    /// Cards not read because they cannot change the body: key → (reason, places).
+    pub notes: BTreeMap<String, (&'static str, Vec<Loc>)>,
+    /// Every refused card, in deck order.
+    pub refused: Vec<RefusedCard>,
+    pub elements: ElementCards<'a>,
+    pub properties: PropertyCards<'a>,
+    pub masses: MassCards<'a>,
+    pub scalars: ScalarCards<'a>,
+    pub bushes: BushCards<'a>,
+    pub sets: SetCards<'a>,
+    pub solution: SolutionCards<'a>,
+    pub loads: LoadCards<'a>,
+}
+
+impl Bulk<'_> {
+    /// Index of node `id`, named in field `k` of card `g`.
+    pub(super) fn node(&self, g: &C, k: usize, id: u64) -> Result<usize, ImportError> {
+        self.nodes
+            .get(id)
+            .ok_or_else(|| g.err(k, format!("references unknown node {id}")))
+    }
+
+    /// Index of grid `id`, named in field `k` of card `g`: a scalar point is an error.
+    pub(super) fn grid(&self, g: &C, k: usize, id: u64) -> Result<usize, ImportError> {
+        let n = self.node(g, k, id)?;
+        if self.b.model.is_scalar_point(n) {
+            return Err(g.err(
+                k,
+                format!("{id} is a scalar point (SPOINT), where a grid is needed"),
+            ));
+        }
+        Ok(n)
+    }
+
+    /// The dof of the grid or scalar point in field `kg` with the component in field `kc`: a
+    /// digit 1–6 for a grid, 0 or blank for a scalar point (`kc = None`: scalar points only).
+    /// `None` when field `kg` is blank or 0 (ground).
+    pub(super) fn dof(
+        &self,
+        g: &C,
+        kg: usize,
+        kc: Option<usize>,
+    ) -> Result<Option<NodeDof>, ImportError> {
+        let id = match g.int(kg)? {
+            None | Some(0) => return Ok(None),
+            Some(v) if v < 0 => return Err(g.err(kg, format!("bad grid or scalar point id {v}"))),
+            Some(v) => v as u64,
+        };
+        let node = self.node(g, kg, id)?;
+        let c = kc.map_or("", |k| g.text(k));
+        let component = if self.b.model.is_scalar_point(node) {
+            if !matches!(c, "" | "0") {
+                return Err(g.err(
+                    kc.unwrap_or(kg),
+                    format!("component {c} of scalar point {id}: a scalar point has only 0"),
+                ));
+            }
+            0
+        } else {
+            let Some(kc) = kc else {
+                return Err(g.err(
+                    kg,
+                    format!(
+                        "{id} is a grid; {} connects scalar points only",
+                        g.card.name
+                    ),
+                ));
+            };
+            match c.as_bytes() {
+                [d @ b'1'..=b'6'] => d - b'1',
+                _ => {
+                    return Err(g.err(
+                        kc,
+                        format!("component '{c}' of grid {id}: one digit 1–6 is needed"),
+                    ))
+                }
+            }
+        };
+        Ok(Some(NodeDof { node, component }))
+    }
+
+    /// The components named by the digits in field `k` for `node`: Nastran digits 1–6 for a
+    /// grid, 0 or blank for a scalar point (its one dof, bit 0). `nonzero`: an empty set is an
+    /// error.
+    pub(super) fn components(
+        &self,
+        g: &C,
+        k: usize,
+        node: usize,
+        nonzero: bool,
+    ) -> Result<DofMask, ImportError> {
+        let text = g.text(k);
+        let mask = if self.b.model.is_scalar_point(node) {
+            matches!(text, "" | "0").then_some(DofMask(1))
+        } else {
+            DofMask::from_digits(text).filter(|m| m.0 != 0 || !nonzero)
+        };
+        mask.ok_or_else(|| g.err(k, "bad dof digits"))
+    }
+
+    /// Card `g` is not read because it cannot change the body, for `reason`.
+    pub(super) fn note(&mut self, g: &C, reason: &'static str) {
+        self.note_as(cards::key(g), g, reason);
+    }
+
+    /// A field of card `g` is not read because it cannot change the body (e.g. `PBUSH B`),
+    /// noted under `key`.
+    pub(super) fn note_as(&mut self, key: String, g: &C, reason: &'static str) {
+        let entry = self
+            .notes
+            .entry(key)
+            .or_insert_with(|| (reason, Vec::new()));
+        entry.1.push(g.card.loc);
+    }
+
+    /// Card `g` is refused, for `reason`.
+    pub(super) fn refuse(&mut self, g: &C, reason: impl Into<String>) {
+        self.refused.push(RefusedCard {
+            file: g.file.to_owned(),
+            line: g.card.loc.line as usize,
+            entity: if g.card.name.is_empty() {
+                "(a line without a card name)".to_owned()
+            } else {
+                g.entity()
+            },
+            key: cards::key(g),
+            reason: reason.into(),
+        });
+    }
+}
+
+/// At most this many places are listed per card type in a note or warning.
+const LISTED_PLACES: usize = 8;
+
+/// "3 CDAMP1 (a.bdf:12, 14; b.bdf:3)": the count and the first places, lines grouped by file.
+pub(super) fn places(key: &str, locs: &[Loc], files: &[String]) -> String {
+    let mut groups: Vec<(u32, Vec<String>)> = Vec::new();
+    for l in locs.iter().take(LISTED_PLACES) {
+        match groups.last_mut() {
+            Some((f, lines)) if *f == l.file => lines.push(l.line.to_string()),
+            _ => groups.push((l.file, vec![l.line.to_string()])),
+        }
+    }
+    let mut list: Vec<String> = groups
+        .iter()
+        .map(|(f, lines)| format!("{}:{}", files[*f as usize], lines.join(", ")))
+        .collect();
+    if locs.len() > LISTED_PLACES {
+        list.push("…".into());
+    }
+    format!("{} {key} ({})", locs.len(), list.join("; "))
+}
+
+/// Build the model from lexed cards; `subcase` picks the case-control subcase whose SPC and
+/// METHOD selections apply; cards named in `ignore` are dropped on purpose (module
+/// `cards`: names or `PARAM:NAME`, case-insensitive).
+pub(crate) fn build(
+    lexer: Lexer,
+    subcase: Option<u64>,
+    ignore: &[String],
+) -> Result<(Model, CardCounts), ImportError> {
+    let Lexer {
+        files,
+        cards: all,
+        case_lines,
+        has_case_control,
+        bytes,
+    } = lexer;
+    let case = super::case_control::parse(&case_lines, has_case_control, &files)?;
+    let effective = case.effective(subcase, &files, &files[0])?;
+    let mut b = Builder::new(&files[0]);
+    b.files = files.clone();
+    b.model.deck.title = case.title.clone();
+    b.model.deck.subcase = effective.subcase;
+
+    // Pass 1: cards dropped on purpose set aside; the geometry cards place the nodes.
+    let ignore: Vec<String> = ignore.iter().map(|s| ignore_key(s)).collect();
+    let mut ignored: BTreeMap<String, Vec<Loc>> = BTreeMap::new();
+    let mut counts = CardCounts::new();
+    let mut geometry = GeometryCards::default();
+    let mut others: Vec<&Card> = Vec::new();
+    for card in &all {
+        *counts.entry(card.name.clone()).or_default() += 1;
+        let g = C::new(card, &files);
+        if !ignore.is_empty() {
+            let key = cards::key(&g);
+            if ignore.iter().any(|i| *i == key || *i == card.name) {
+                ignored.entry(key).or_default().push(card.loc);
+                continue;
+            }
+        }
+        match cards::rule(&g) {
+            Some(cards::Rule::Geometry) => geometry.take(card, &files)?,
+            _ => others.push(card),
+        }
+    }
+    let thru = ThruBudget::for_bytes(bytes);
+    let (coords, nodes) = super::geometry::place_nodes(&geometry, &files, &thru, &mut b)?;
+
+    // Pass 2: every other card through its rule.
+    let mut d = Bulk {
+        files: &files,
+        b,
+        nodes,
+        coords,
+        thru,
+        notes: BTreeMap::new(),
+        refused: Vec::new(),
+        elements: ElementCards::default(),
+        properties: PropertyCards::default(),
+        masses: MassCards::default(),
+        scalars: ScalarCards::default(),
+        bushes: BushCards::default(),
+        sets: SetCards::default(),
+        solution: SolutionCards::default(),
+        loads: LoadCards::default(),
+    };
+    for card in others {
+        let g = C::new(card, &files);
+        match cards::rule(&g) {
+            Some(cards::Rule::Read(read)) => read(&mut d, &g)?,
+            Some(cards::Rule::Note(why)) => d.note(&g, why),
+            Some(cards::Rule::Refuse(why)) => d.refuse(&g, *why),
+            Some(cards::Rule::Geometry) | None => d.refuse(&g, cards::NOT_READ),
+        }
+    }
+    // the case control's refused commands first: they come first in the deck
+    let mut refused: Vec<RefusedCard> = Vec::new();
+    for (command, why, loc) in &case.refused {
+        if ignore.contains(command) {
+            ignored.entry(command.clone()).or_default().push(*loc);
+        } else {
+            refused.push(RefusedCard {
+                file: files[loc.file as usize].clone(),
+                line: loc.line as usize,
+                entity: format!("{command} (case control)"),
+                key: command.clone(),
+                reason: (*why).to_owned(),
+            });
+        }
+    }
+    d.refused.splice(0..0, refused);
+    if !d.refused.is_empty() {
+        return Err(ImportError::Refused {
+            file: files[0].clone(),
+            cards: std::mem::take(&mut d.refused),
+        });
+    }
+    ignored_and_notes(&mut d, &ignored, &ignore);
+
+    // Pass 3: resolve, family by family.
+    d.b.resolve_element_nodes(&d.nodes)?;
+    super::elements::no_scalar_points(&d)?;
+    super::elements::check_ids(&mut d)?;
+    let (pids, mids) = super::properties::resolve(&mut d)?;
+    let element_sets = super::elements::assign_properties(&mut d, &pids, &mids)?;
+    super::elements::orient(&mut d)?;
+    super::mass::resolve(&mut d)?;
+    super::scalar::resolve(&mut d)?;
+    super::bush::resolve(&mut d)?;
+    super::sets::resolve_spc(&mut d, &case, &effective)?;
+    super::sets::resolve_mpc(&mut d, &effective)?;
+    super::solution::resolve_method(&mut d, &effective)?;
+    super::sets::resolve_dof_sets(&mut d);
+    super::properties::warnings(&mut d);
+    d.b.model.element_sets = element_sets;
+    d.b.model.params.wtmass = d.solution.wtmass;
+    let elements = d.b.element_map()?;
+    let load_sel = case.load_selections(effective.subcase);
+    // masses and springs are in the element id space: their lines are looked up by id too
+    let others: Vec<(u64, u32, u32)> = (d.elements.other_ids.iter())
+        .map(|(id, c)| (*id, c.loc.file, c.loc.line))
+        .collect();
+    let mut b = d.b;
+    b.model.loads =
+        super::loads::resolve(&d.loads, &files, &b.model, &d.nodes, &elements, &load_sel)?;
+    let load_warnings = crate::model::load::problem_warnings(&b.model.loads, &files[0]);
+    b.model.warnings.extend(load_warnings);
+    b.model.files = b.files.clone();
+    b.record_element_sources();
+    b.model.element_sources.extend(others);
+    b.model
+        .element_sources
+        .sort_unstable_by_key(|&(id, _, _)| id);
+    Ok((b.model, counts))
+}
+
+/// An `ignore_cards` name as the card table knows it: upper case; a parameter as
+/// `PARAM:NAME` whether given as `PARAM:NAME`, `PARAM,NAME` or `PARAM NAME`.
+fn ignore_key(name: &str) -> String {
+    let up = name.trim().to_ascii_uppercase();
+    match up.strip_prefix("PARAM") {
+        Some(rest) if !rest.trim_start_matches([':', ',', ' ']).is_empty() => {
+            format!("PARAM:{}", rest.trim_start_matches([':', ',', ' ']).trim())
+        }
+        _ => up,
+    }
+}
+
+/// One warning per card type dropped on purpose (and per `ignore` name the deck does not
+/// have), one note per card type not read because it cannot change the body.
+fn ignored_and_notes(d: &mut Bulk, ignored: &BTreeMap<String, Vec<Loc>>, ignore: &[String]) {
+    let files = d.files;
+    let model = &mut d.b.model;
+    if !ignored.is_empty() {
+        let list: Vec<String> = ignored
+            .iter()
+            .map(|(k, locs)| places(k, locs, files))
+            .collect();
+        model.warnings.push(ImportWarning {
+            file: files[0].clone(),
+            message: format!(
+                "cards dropped on request (--ignore), whatever they carry: {}",
+                list.join("; ")
+            ),
+        });
+    }
+    for name in ignore {
+        let used = ignored
+            .keys()
+            .any(|k| k == name || k.split(':').next() == Some(name.as_str()));
+        if !used {
+            model.warnings.push(ImportWarning {
+                file: files[0].clone(),
+                message: format!("--ignore {name}: the deck has no such card"),
+            });
+        }
+    }
+    for (key, (why, locs)) in &d.notes {
+        model
+            .deck
+            .notes
+            .push(format!("{} not read: {why}", places(key, locs, files)));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ignore_key;
+
+    #[test]
+    fn ignore_names_are_card_names_or_param_keys() {
+        for (given, key) in [
+            ("cgap", "CGAP"),
+            (" PARAM:snorm", "PARAM:SNORM"),
+            ("param,SNORM", "PARAM:SNORM"),
+            ("PARAM SNORM", "PARAM:SNORM"),
+            ("PARAM", "PARAM"),
+        ] {
+            assert_eq!(ignore_key(given), key);
+        }
+    }
+}

@@ -1,0 +1,371 @@
+//! Structural element cards — CTETRA, CHEXA, CPENTA, CBAR, CBEAM, CROD, CQUAD4, CTRIA3 — and
+//! their resolution: one element id space, the property of every element, bar/beam orientation.
+//!
+//! * `CTETRA/CHEXA/CPENTA EID PID G1 …`: 4/10, 8/20, 6/15 nodes. CHEXA20/CPENTA15 mid-side
+//!   nodes are permuted to Abaqus order (Nastran lists the vertical edges before the top edges).
+//! * `CBAR/CBEAM EID PID GA GB X1/G0 X2 X3`: the orientation vector v from GA, or towards grid
+//!   G0; X1–X3 are in the displacement frame of GA (MSC QRG "CBAR").
+//! * `CPYRAM EID PID G1 … G5 G6 … G13`: 5 or 13 nodes (base, apex, mid-sides 1-2 2-3 3-4 4-1
+//!   1-5 2-5 3-5 4-5), with a PSOLID.
+//! * `CROD EID PID G1 G2`; `CQUAD4/CTRIA3 EID PID G1 …` (thickness fields: `shell`).
+//! * `CONROD EID G1 G2 MID A J C NSM`: a rod with its property on the card (as CROD + PROD).
+
+use std::collections::BTreeMap;
+
+use super::bulk::Bulk;
+use super::coord::dir_to_basic;
+use super::fields::C;
+use super::lex::Card;
+use super::shell::ElementThickness;
+use crate::import::error::{parse_err, ImportError};
+use crate::import::text::{IdMap, Loc};
+use crate::model::{CoordKind, ElementKind, Property, Section};
+
+/// The raw records of the element cards.
+#[derive(Default)]
+pub(super) struct ElementCards<'a> {
+    /// Property of each element of the builder, in element order, with its card's location.
+    pub pid: Vec<(ElementProperty, Loc)>,
+    /// Corner thicknesses of shell elements.
+    pub shell_t: Vec<ElementThickness>,
+    /// Orientation of bars and beams: (element index, as given, card location).
+    pub orient: Vec<(usize, Orientation, Loc)>,
+    /// Ids of the other cards in the element id space (concentrated masses, springs).
+    pub other_ids: Vec<(u64, &'a Card)>,
+    /// Ids of the rigid elements: unique among themselves.
+    pub rigid_ids: Vec<(u64, &'a Card)>,
+}
+
+/// The property of an element as its card gives it.
+pub(super) enum ElementProperty {
+    /// By property id.
+    Id(u64),
+    /// On the card (CONROD): material id and the rod section.
+    Rod { mid: u64, section: Section },
+}
+
+/// A bar/beam orientation as the card gives it.
+pub(super) enum Orientation {
+    /// X1–X3, in the displacement frame of GA.
+    Vector([f64; 3]),
+    /// Towards grid G0.
+    Node(u64),
+}
+
+use ElementKind::*;
+/// An element card: its name, how many node fields it has, its kind by node count.
+type ElementCard = (&'static str, usize, &'static [(usize, ElementKind)]);
+/// The element cards.
+const ELEMENTS: &[ElementCard] = &[
+    ("CTETRA", 10, &[(4, Tet4), (10, Tet10)]),
+    ("CHEXA", 20, &[(8, Hex8), (20, Hex20)]),
+    ("CPENTA", 15, &[(6, Prism6), (15, Prism15)]),
+    ("CPYRAM", 13, &[(5, Pyram5), (13, Pyram13)]),
+    ("CBAR", 2, &[(2, Bar2)]),
+    ("CBEAM", 2, &[(2, Beam2)]),
+    ("CROD", 2, &[(2, Rod2)]),
+    ("CQUAD4", 4, &[(4, Quad4)]),
+    ("CTRIA3", 3, &[(3, Tri3)]),
+];
+
+/// Reader of the structural element cards (module doc).
+pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let (name, kind, ids, o) = parse(g)?;
+    let eid = g.id(0, "EID")?;
+    let pid = match g.int(1)? {
+        Some(p) if p > 0 => p as u64,
+        Some(_) => return Err(g.err(1, "bad property id")),
+        None => eid,
+    };
+    let k = d.b.model.elements.len();
+    if let Some(o) = o {
+        d.elements.orient.push((k, o, g.card.loc));
+    }
+    if matches!(name, "CQUAD4" | "CTRIA3") {
+        d.elements
+            .shell_t
+            .extend(super::shell::element_fields(g, k)?);
+    }
+    d.b.add_element(eid, kind, ids, None, name, g.card.loc);
+    d.elements.pid.push((ElementProperty::Id(pid), g.card.loc));
+    Ok(())
+}
+
+/// Reader of CONROD.
+pub(super) fn conrod<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let eid = g.id(0, "EID")?;
+    let mut ids = Vec::with_capacity(2);
+    for k in [1, 2] {
+        match g.int(k)? {
+            Some(v) if v > 0 => ids.push(v as usize),
+            _ => return Err(g.err(k, "a CONROD needs grids G1 and G2")),
+        }
+    }
+    let mid = g.id(3, "MID")?;
+    let section = Section::Rod {
+        area: g.real_or(4, 0.0)?,
+        j: g.real_or(5, 0.0)?,
+        nsm: g.real_or(7, 0.0)?,
+    };
+    d.b.add_element(eid, Rod2, ids, None, "CONROD", g.card.loc);
+    d.elements
+        .pid
+        .push((ElementProperty::Rod { mid, section }, g.card.loc));
+    Ok(())
+}
+
+/// An element card read: card name, kind, external node ids in Abaqus order, orientation.
+type Parsed = (&'static str, ElementKind, Vec<usize>, Option<Orientation>);
+
+/// Element card → [`Parsed`].
+fn parse(g: &C) -> Result<Parsed, ImportError> {
+    let &(name, range, kinds) = ELEMENTS
+        .iter()
+        .find(|e| e.0 == g.card.name)
+        .ok_or_else(|| g.err_card("not an element card"))?;
+    let mut ids = Vec::with_capacity(range);
+    let mut last = 0;
+    for k in 2..2 + range {
+        if let Some(v) = g.int(k)? {
+            if v <= 0 {
+                return Err(g.err(k, format!("bad node id {v}")));
+            }
+            if ids.len() != k - 2 {
+                return Err(g.err(
+                    k,
+                    "blank node field before a given node (partial mid-side nodes not supported)",
+                ));
+            }
+            ids.push(v as usize);
+            last = k;
+        }
+    }
+    let Some(&(_, kind)) = kinds.iter().find(|(n, _)| *n == ids.len()) else {
+        let want: Vec<String> = kinds.iter().map(|k| k.0.to_string()).collect();
+        return Err(g.err(
+            last.max(2),
+            format!(
+                "{name} needs {} nodes, has {} (missing continuation line?)",
+                want.join(" or "),
+                ids.len()
+            ),
+        ));
+    };
+    // Nastran CHEXA20 / CPENTA15: vertical edges before top edges; Abaqus: top edges first.
+    if kind == Hex20 {
+        ids = [&ids[..12], &ids[16..20], &ids[12..16]].concat();
+    } else if kind == Prism15 {
+        ids = [&ids[..9], &ids[12..15], &ids[9..12]].concat();
+    }
+    let orientation = if kind == Beam2 || kind == Bar2 {
+        let s = g.text(4);
+        if s.is_empty() {
+            return Err(g.err(
+                4,
+                "orientation X1/G0 is blank (BAROR defaults not supported)",
+            ));
+        }
+        if !s.contains('.') && !s.contains(['e', 'E']) {
+            Some(Orientation::Node(g.id(4, "G0")?))
+        } else {
+            Some(Orientation::Vector([
+                g.real_or(4, 0.0)?,
+                g.real_or(5, 0.0)?,
+                g.real_or(6, 0.0)?,
+            ]))
+        }
+    } else {
+        None
+    };
+    Ok((name, kind, ids, orientation))
+}
+
+/// A structural element on a scalar point is an error naming its card and the point.
+pub(super) fn no_scalar_points(d: &Bulk) -> Result<(), ImportError> {
+    let b = &d.b;
+    if b.model.scalar_points.is_empty() {
+        return Ok(());
+    }
+    for (k, e) in b.model.elements.iter().enumerate() {
+        if let Some(&n) = e.nodes.iter().find(|&&n| b.model.is_scalar_point(n)) {
+            return Err(b.err(
+                b.elem_loc[k],
+                format!("{} {}", b.elem_card[k], e.id),
+                format!(
+                    "node {} is a scalar point (SPOINT), where a grid is needed",
+                    b.model.nodes[n].id
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Element ids: structural, mass and spring elements share one id space (MSC/NX Nastran);
+/// rigid elements are unique among themselves. A rigid element with the id of another element
+/// is a warning naming both lines: MSC Nastran keeps the two apart and runs such a deck.
+pub(super) fn check_ids(d: &mut Bulk) -> Result<(), ImportError> {
+    let b = &d.b;
+    fn at<'c>(&(id, c): &(u64, &'c Card)) -> (u64, &'c str, Loc) {
+        (id, c.name.as_str(), c.loc)
+    }
+    let eids: Vec<(u64, &str, Loc)> = (b.model.elements.iter().enumerate())
+        .map(|(k, e)| (e.id, b.elem_card[k], b.elem_loc[k]))
+        .chain(d.elements.other_ids.iter().map(at))
+        .collect();
+    unique_ids(
+        &eids,
+        d.files,
+        "element id",
+        "elements and concentrated masses share one id space",
+    )?;
+    let rigid: Vec<(u64, &str, Loc)> = d.elements.rigid_ids.iter().map(at).collect();
+    unique_ids(
+        &rigid,
+        d.files,
+        "rigid element id",
+        "rigid elements share one id space",
+    )?;
+    let by_id: std::collections::HashMap<u64, (&str, Loc)> =
+        eids.iter().map(|&(id, c, l)| (id, (c, l))).collect();
+    let place = |l: Loc| format!("{}:{}", d.files[l.file as usize], l.line);
+    let mut warnings = Vec::new();
+    for &(id, card, loc) in &rigid {
+        if let Some(&(other, oloc)) = by_id.get(&id) {
+            warnings.push(crate::model::ImportWarning {
+                file: place(loc),
+                message: format!(
+                    "{card} {id} has the id of {other} {id} ({}): MSC Nastran keeps rigid \
+                     elements apart from the others and runs the deck; both are kept",
+                    place(oloc)
+                ),
+            });
+        }
+    }
+    d.b.model.warnings.extend(warnings);
+    Ok(())
+}
+
+/// Give every element its property (`pids`: property id → index of the structural
+/// properties; `mids`: material id → index). A CONROD gets a property of its own (one per
+/// distinct material and section, named after the first CONROD that has it). Returns the
+/// element sets `PID_<pid>`.
+pub(super) fn assign_properties(
+    d: &mut Bulk,
+    pids: &IdMap,
+    mids: &IdMap,
+) -> Result<BTreeMap<String, Vec<usize>>, ImportError> {
+    let (b, wtmass) = (&mut d.b, d.solution.wtmass);
+    let mut element_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    let mut rods: Vec<(u64, Section, usize)> = Vec::new();
+    for (k, (property, loc)) in d.elements.pid.iter().enumerate() {
+        let entity = || format!("{} {}", b.elem_card[k], b.model.elements[k].id);
+        let fail = |msg: String| {
+            parse_err(
+                &d.files[loc.file as usize],
+                loc.line as usize,
+                entity(),
+                msg,
+            )
+        };
+        let p = match property {
+            ElementProperty::Id(pid) => {
+                let Some(p) = pids.get(*pid) else {
+                    let other = d.properties.others.iter().find(|o| o.0 == *pid);
+                    return Err(fail(match other {
+                        Some((_, c)) => format!(
+                            "references property {pid}, a {} ({}:{}) of another element family",
+                            c.name, d.files[c.loc.file as usize], c.loc.line
+                        ),
+                        None => format!("references unknown property {pid}"),
+                    }));
+                };
+                element_sets
+                    .entry(format!("PID_{pid}"))
+                    .or_default()
+                    .push(k);
+                p
+            }
+            ElementProperty::Rod { mid, section } => {
+                let material = mids
+                    .get(*mid)
+                    .ok_or_else(|| fail(format!("references unknown material {mid}")))?;
+                let mut section = section.clone();
+                if let Section::Rod { nsm, .. } = &mut section {
+                    *nsm *= wtmass;
+                }
+                match rods.iter().find(|r| r.0 == *mid && r.1 == section) {
+                    Some(r) => r.2,
+                    None => {
+                        let eid = b.model.elements[k].id;
+                        b.model.properties.push(Property {
+                            id: eid,
+                            name: format!("CONROD {eid}"),
+                            material,
+                            section: section.clone(),
+                        });
+                        rods.push((*mid, section, b.model.properties.len() - 1));
+                        b.model.properties.len() - 1
+                    }
+                }
+            }
+        };
+        b.model.elements[k].property = Some(p);
+    }
+    super::shell::apply_thickness(&mut b.model, &d.elements.shell_t)?;
+    Ok(element_sets)
+}
+
+/// Bar/beam orientation vectors to basic: X1–X3 from GA's displacement frame, or towards G0.
+pub(super) fn orient(d: &mut Bulk) -> Result<(), ImportError> {
+    let b = &mut d.b;
+    for (k, o, loc) in std::mem::take(&mut d.elements.orient) {
+        let e = &b.model.elements[k];
+        let ga = e.nodes[0];
+        let v = match o {
+            Orientation::Vector(v) => match b.model.nodes[ga].displacement_frame {
+                Some(cs) if b.model.coord_systems[cs].kind == CoordKind::Rectangular => {
+                    dir_to_basic(&b.model.coord_systems[cs], v)
+                }
+                _ => v,
+            },
+            Orientation::Node(g0) => {
+                let n0 = d.nodes.get(g0).ok_or_else(|| {
+                    parse_err(
+                        b.file_name(loc),
+                        loc.line as usize,
+                        format!("{} {}", b.elem_card[k], e.id),
+                        format!("orientation node G0 {g0} unknown"),
+                    )
+                })?;
+                let (x0, xa) = (b.model.nodes[n0].x, b.model.nodes[ga].x);
+                [x0[0] - xa[0], x0[1] - xa[1], x0[2] - xa[2]]
+            }
+        };
+        b.model.elements[k].orientation = Some(v);
+    }
+    Ok(())
+}
+
+/// Fail on the first id of `items` (id, card name, location) seen twice, naming both places.
+pub(super) fn unique_ids(
+    items: &[(u64, &str, Loc)],
+    files: &[String],
+    what: &str,
+    rule: &str,
+) -> Result<(), ImportError> {
+    IdMap::build(items.iter().map(|i| i.0))
+        .map(|_| ())
+        .map_err(|(a, k)| {
+            let ((id, card, loc), (_, first, floc)) = (items[k], items[a]);
+            parse_err(
+                &files[loc.file as usize],
+                loc.line as usize,
+                format!("{card} {id}"),
+                format!(
+                    "duplicate {what} {id}: also {first} {id} at {}:{} ({rule})",
+                    files[floc.file as usize], floc.line
+                ),
+            )
+        })
+}

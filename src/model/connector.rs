@@ -1,0 +1,101 @@
+//! What joins dofs besides elements and RBE2/RBE3: scalar springs and masses, bushes, linear
+//! multipoint constraints and rigid bodies with chosen independent dofs. Importers fill them
+//! (Nastran CELAS1–4, CMASS1–4, CBUSH, MPC, RBAR, RBAR1, RBE1; Abaqus `*SPRING`, `*MASS`,
+//! `*EQUATION` alike); `fe` assembles and eliminates them.
+//!
+//! A component is 0 … 5 = `[ux uy uz rx ry rz]` of a grid in its displacement frame (Nastran
+//! CD), or 0 for the one dof of a scalar point ([`super::Model::scalar_points`]).
+
+use super::{DofMask, NodeIndex};
+
+/// One dof: a node and a component (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct NodeDof {
+    /// The node (a grid or a scalar point).
+    pub node: NodeIndex,
+    /// 0 … 5 for a grid, 0 for a scalar point.
+    pub component: u8,
+}
+
+/// A scalar spring between two dofs, or from one dof to ground: strain energy
+/// ½ k (u_a − u_b)², u_b = 0 when grounded (MSC QRG "CELAS1": the components are those of the
+/// grids' displacement frames).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScalarSpring {
+    /// External element id.
+    pub id: u64,
+    /// First end.
+    pub a: NodeDof,
+    /// Second end; `None` = grounded.
+    pub b: Option<NodeDof>,
+    /// Stiffness k (force/length or moment/radian).
+    pub k: f64,
+}
+
+/// A scalar mass between two dofs, or on one dof: kinetic energy ½ m (u̇_a − u̇_b)² (MSC QRG
+/// "CMASS1"; grounded, the common case, it is a mass on one component).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScalarMass {
+    /// External element id.
+    pub id: u64,
+    /// First end.
+    pub a: NodeDof,
+    /// Second end; `None` = grounded.
+    pub b: Option<NodeDof>,
+    /// Mass m (already scaled by WTMASS).
+    pub m: f64,
+}
+
+/// A bush: six stiffnesses along and about the axes of an element frame, acting at a spring
+/// point rigidly attached to both ends (Nastran CBUSH/PBUSH, MSC QRG "CBUSH").
+///
+/// With d_n = x_s − x_n and H_n = [I, −d̃_n; 0, I] (the motion of the spring point carried by
+/// node n), E = diag(R, R) (R's rows the element axes in basic), the deformation is
+/// δ = E (H_b q_b − H_a q_a) and the strain energy ½ δᵀ diag(k) δ (q_b = 0 when grounded).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bush {
+    /// External element id.
+    pub id: u64,
+    /// End A (GA).
+    pub a: NodeIndex,
+    /// End B (GB); `None` = grounded.
+    pub b: Option<NodeIndex>,
+    /// Rows: the element's x, y and z axes, unit vectors in basic.
+    pub axes: [[f64; 3]; 3],
+    /// K1 … K6: along x, y, z (force/length) and about x, y, z (moment/radian).
+    pub k: [f64; 6],
+    /// The spring point x_s, basic.
+    pub location: [f64; 3],
+}
+
+/// A linear multipoint constraint Σ cᵢ uᵢ = 0; the first term's dof is the dependent one
+/// (Nastran MPC, MSC QRG "MPC": u₁ = −Σᵢ₌₂ (cᵢ/c₁) uᵢ).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mpc {
+    /// The set id (Nastran SID), for messages.
+    pub id: u64,
+    /// (dof, coefficient); at least one, the first coefficient non-zero.
+    pub terms: Vec<(NodeDof, f64)>,
+}
+
+/// A rigid body whose independent dofs are chosen among its nodes (Nastran RBAR, RBAR1, RBE1):
+/// the six independent dofs fix its rigid motion; every dependent dof follows that motion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidBody {
+    /// External element id.
+    pub id: u64,
+    /// Independent components per node (six in all, determining the rigid motion).
+    pub independent: Vec<(NodeIndex, DofMask)>,
+    /// Dependent components per node.
+    pub dependent: Vec<(NodeIndex, DofMask)>,
+}
+
+impl RigidBody {
+    /// Every node of the body, independent ones first.
+    pub fn nodes(&self) -> impl Iterator<Item = NodeIndex> + '_ {
+        self.independent
+            .iter()
+            .chain(&self.dependent)
+            .map(|&(n, _)| n)
+    }
+}
