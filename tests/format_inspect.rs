@@ -80,7 +80,42 @@ fn inspect_on_a_broken_file_exits_2_with_the_reason() {
     assert!(
         err.starts_with("flexbody: ")
             && err.contains("checksum_mismatch.flexbody")
+            && err.contains("Checksum: ")
             && err.contains("modes.bin: SHA-256"),
         "{err}"
     );
+}
+
+/// SPEC §8: `check` and `export` name the error as `inspect` does (`Checksum: …`).
+#[test]
+fn check_and_export_name_the_read_error_by_its_spec_name() {
+    let broken =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/broken/checksum_mismatch.flexbody");
+    let dir = std::env::temp_dir().join(format!("flexbody-named-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let runs: [Vec<std::ffi::OsString>; 2] = [
+        vec!["check".into(), broken.clone().into()],
+        vec![
+            "export".into(),
+            broken.clone().into(),
+            "--to".into(),
+            "mbdyn".into(),
+            "-o".into(),
+            dir.join("x.fem").into(),
+        ],
+    ];
+    for args in runs {
+        let out = Command::new(env!("CARGO_BIN_EXE_flexbody"))
+            .args(&args)
+            .output()
+            .expect("run");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("Checksum: ") && err.contains("modes.bin: SHA-256"),
+            "{args:?}: {err}"
+        );
+    }
+    assert!(!dir.join("x.fem").exists(), "no output from a broken file");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -272,3 +272,46 @@ fn writer_refuses_a_header_the_reader_would_refuse() {
         "{err}"
     );
 }
+
+/// SPEC §4: every record that holds strings, and `recipe.json`, is at most 16 MiB; the writer
+/// refuses what the reader would refuse, naming the entry.
+#[test]
+fn writer_refuses_string_records_and_recipe_over_16_mib() {
+    let limit = flexbody_reader::codec::STRING_RECORD_LIMIT;
+    // interfaces.bin: 2^21 + 1 dependent ids of 8 bytes are just over 16 MiB
+    let mut body = format_support::body_3node_interfaces();
+    if let Some(interfaces) = body.interfaces.as_mut() {
+        interfaces[1].dependent = (1000..1000 + (limit / 8 + 1) as u64).collect();
+    }
+    let err = to_bytes(&body, &WriteOptions::default()).expect_err("interfaces.bin > 16 MiB");
+    assert!(
+        err.to_string()
+            .contains("interfaces.bin: encoded size (bytes)")
+            && err
+                .to_string()
+                .contains(&format!("exceeds the limit {limit}")),
+        "{err}"
+    );
+    // recipe.json: a model path of 16 MiB + 1
+    let mut body = format_support::body_3node_recipe();
+    if let Some(recipe) = body.recipe.as_mut() {
+        recipe.model_files[0].path = "p".repeat(limit + 1);
+    }
+    let err = to_bytes(&body, &WriteOptions::default()).expect_err("recipe.json > 16 MiB");
+    assert!(
+        err.to_string()
+            .contains("recipe.json: encoded size (bytes)")
+            && err
+                .to_string()
+                .contains(&format!("exceeds the limit {limit}")),
+        "{err}"
+    );
+    // just under the limit still writes and reads back
+    let mut body = format_support::body_3node_recipe();
+    if let Some(recipe) = body.recipe.as_mut() {
+        recipe.model_files[0].path = "p".repeat(limit / 2);
+    }
+    let bytes = to_bytes(&body, &WriteOptions::default()).expect("an 8 MiB path writes");
+    let back = flexbody_reader::from_bytes(&bytes).expect("and reads back");
+    assert_eq!(back.recipe, body.recipe);
+}

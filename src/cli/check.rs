@@ -363,6 +363,7 @@ fn identities_against_model(body: &file::ReducedBody, rebuilt: &Rebuilt, r: &mut
 pub(crate) fn command(a: &CheckArgs) -> anyhow::Result<bool> {
     use anyhow::Context;
     let body = flexbody_reader::read(&a.file)
+        .map_err(flexbody_reader::ReadError::named)
         .with_context(|| format!("{} is not a valid flexbody file", a.file.display()))?;
     let model = match &a.model {
         None => None,

@@ -19,6 +19,7 @@ pub(crate) fn command(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result
     let target = crate::export::Target::from_name(to)
         .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn, mbdyn, sid or mtx"))?;
     let body = flexbody_reader::read(file)
+        .map_err(flexbody_reader::ReadError::named)
         .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
     if target == crate::export::Target::Mtx {
         let model = a.model.ok_or_else(|| {

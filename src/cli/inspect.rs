@@ -437,6 +437,7 @@ pub(crate) fn command(file: &std::path::Path, json: bool) -> anyhow::Result<()> 
     let bytes = std::fs::read(file).with_context(|| format!("cannot read {}", file.display()))?;
     let limits = flexbody_reader::ReadLimits::default();
     let (body, manifest) = flexbody_reader::from_bytes_with_manifest(&bytes, &limits)
+        .map_err(flexbody_reader::ReadError::named)
         .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
     let summary = summarize(&body, &manifest);
     if json {

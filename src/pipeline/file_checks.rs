@@ -65,8 +65,9 @@ impl CheckReport {
     }
 }
 
-/// Limit on ‖ΦᵀMΦ − I‖ and the stored-data identities (relative).
-pub const ORTHO_LIMIT: f64 = 1e-8;
+/// Limit on ‖ΦᵀMΦ − I‖, ‖ΦᵀKΦ − diag ω²‖/max ω² and the stored-data identities (relative):
+/// the one limit of SPEC §5 (`modes.bin`), which the orthonormalization enforces before writing.
+pub const ORTHO_LIMIT: f64 = crate::reduce::orthonormalize::CHECK_LIMIT;
 
 /// Every check the file's own data allows, in the order run.
 pub fn file_checks(body: &file::ReducedBody) -> CheckReport {

@@ -178,7 +178,7 @@ fn to_bytes_at(
     // Refuse what the reader's default limits would refuse, so every written file reads back.
     let limits = ReadLimits::default();
     for (name, _, bytes) in &payload {
-        let limit = if *name == codec::HEADER {
+        let limit = if codec::STRING_RECORDS.contains(name) || *name == codec::RECIPE {
             codec::STRING_RECORD_LIMIT as u64
         } else {
             limits.max_entry_bytes
