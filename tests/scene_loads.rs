@@ -432,6 +432,7 @@ fn free_body_residual_vectors_are_balanced_and_exact() {
         plain.method.counts.removed_dependent + 4,
         "{report}"
     );
+
     // rigid modes unchanged
     let n = res.nodes.len();
     for j in 0..rigid {
@@ -789,4 +790,141 @@ fn consistent_mass_craig_bampton_uses_the_consistent_m_for_gravity_and_invariant
         .sum();
     let i1 = out.body.invariants.i1[0];
     assert!((i1 - mass).abs() <= 1e-12 * mass, "I1 {i1} vs 1ᵀM1 {mass}");
+}
+
+/// SPEC §5.7 (1.6) for normal modes with residual vectors: a dependent residual vector is a
+/// basis vector removed — `normal` counts it, `removed_dependent` too, and
+/// `rigid + normal − removed_dependent = M` — while gravity on the free body (no static
+/// response) is reported as "no residual vector" and counted nowhere. SIDE2 is SIDE doubled
+/// (its response is SIDE's, so it is removed as dependent).
+#[test]
+fn normal_modes_count_removed_residual_vectors_as_basis_vectors() {
+    let path = write_deck("free_nm", false);
+    let side = format!("SIDE:{}:0,800,0", nid(NX / 2, 0, 0));
+    let side2 = format!("SIDE2:{}:0,1600,0", nid(NX / 2, 0, 0));
+    let axial = format!("AXIAL:{}:500,0,0", nid(NX, NY, NZ));
+    let out = path.parent().unwrap().join("free_nm_res.flexbody");
+    let o = std::process::Command::new(exe())
+        .args([
+            "build",
+            path.to_str().unwrap(),
+            "--method",
+            "normal",
+            "--modes",
+            "10",
+            "--units",
+            "si",
+            "--gravity",
+            "0,0,-9.81",
+            "--load",
+            &side,
+            "--load",
+            &side2,
+            "--load",
+            &axial,
+            "--residual-vectors",
+            "loads",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let report =
+        String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{report}");
+    let body = file::read(&out).unwrap();
+    let c = &body.method.counts;
+    let m = body.mode_count() as u64;
+    assert_eq!(c.rigid, 6, "{report}");
+    assert_eq!(c.removed_dependent, 1, "SIDE2 dependent on SIDE: {report}");
+    assert_eq!(c.rigid + c.normal - c.removed_dependent, m, "{c:?}");
+    assert_eq!(
+        file::version_for(&body).minor,
+        6,
+        "a removed count in a normal-modes file is 1.6"
+    );
+    // SPEC §5.11: the normal-modes band is the highest mode not flagged residual; the
+    // residual modes' pseudo-frequencies lie beyond it
+    let band = &body.recipe.as_ref().unwrap().accuracy_band;
+    let ml = body.modal_loads.as_ref().unwrap();
+    let f = &body.modes.frequency_hz;
+    let top_eigen = (0..f.len())
+        .filter(|&j| ml.residual[j] == 0)
+        .map(|j| f[j])
+        .fold(0.0, f64::max);
+    let top_residual = (0..f.len())
+        .filter(|&j| ml.residual[j] == 1)
+        .map(|j| f[j])
+        .fold(0.0, f64::max);
+    assert_eq!(band.rule, "normal-modes");
+    assert!(
+        (band.fmax_hz - top_eigen).abs() <= 1e-12 * top_eigen && top_residual > 0.0,
+        "band {band:?}, highest eigenmode {top_eigen} Hz, highest residual mode {top_residual} Hz"
+    );
+    assert!(
+        report.contains("SIDE2 (remaining")
+            && report.contains("no residual vector for GRAVITY")
+            && !report.contains("GRAVITY (remaining"),
+        "{report}"
+    );
+}
+
+/// SPEC §5.11 on the bundled conrod: normal modes `--modes 8` with a scene load and its
+/// residual vector. The accuracy band is the highest eigenmode kept (2881.8 Hz), that of the
+/// same build without loads — not the residual mode's static pseudo-frequency (17.9 kHz).
+#[test]
+fn normal_modes_band_ignores_the_residual_mode_on_the_conrod() {
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp");
+    let dir = std::env::temp_dir().join(format!("flexbody-band-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let build = |name: &str, extra: &[&str]| -> file::ReducedBody {
+        let out = dir.join(name);
+        let mut args = vec![
+            "build",
+            model.to_str().unwrap(),
+            "--method",
+            "normal",
+            "--modes",
+            "8",
+            "--units",
+            "si",
+            "--interface",
+            "BIG_END,SMALL_END",
+            "-q",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let o = std::process::Command::new(exe())
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        file::read(&out).unwrap()
+    };
+    let plain = build("plain.flexbody", &[]);
+    let loaded = build(
+        "loaded.flexbody",
+        &["--load", "P:1:0,0,1000", "--residual-vectors", "loads"],
+    );
+    let band = |b: &file::ReducedBody| b.recipe.as_ref().unwrap().accuracy_band.fmax_hz;
+    let ml = loaded.modal_loads.as_ref().unwrap();
+    let residual_top = (0..loaded.mode_count())
+        .filter(|&j| ml.residual[j] == 1)
+        .map(|j| loaded.modes.frequency_hz[j])
+        .fold(0.0, f64::max);
+    println!(
+        "conrod normal --modes 8: band {:.4} Hz plain, {:.4} Hz with the residual mode at {residual_top:.1} Hz",
+        band(&plain),
+        band(&loaded)
+    );
+    assert_eq!(loaded.mode_count(), plain.mode_count() + 1);
+    assert!(
+        (band(&loaded) - band(&plain)).abs() <= 1e-6 * band(&plain),
+        "{} vs {}",
+        band(&loaded),
+        band(&plain)
+    );
+    assert!(residual_top > 2.0 * band(&plain), "{residual_top}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

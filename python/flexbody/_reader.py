@@ -426,7 +426,11 @@ def validate(b, m):
         _finite("label_shares.bin", "shares", sh)
         if ((sh < 0) | (sh > 1)).any():
             _err("Inconsistent", "label_shares.bin", "share outside 0..1")
-        single_stage = me["method"] == "NormalModes" and (ml is None or not any(ml["residual"]))
+        if (m["version"]["major"], m["version"]["minor"]) < (1, 6):  # rule 11 before 1.6
+            no_residual = ml is None or not any(ml["residual"])
+        else:
+            no_residual = ml is None or len(ml["residual"]) == 0
+        single_stage = me["method"] == "NormalModes" and no_residual
         if ((sh != 1) & ((modes["labels"] == 0) | single_stage)).any():
             _err("Inconsistent", "label_shares.bin", "a share that must be 1 is not")
     if ml is not None:

@@ -757,7 +757,7 @@ def validate(b, m):
     if sh is not None:
         count("label_shares.bin", "shares", len(sh), nm)
         finite("label_shares.bin", "shares", sh)
-        label_shares(sh, modes["labels"], me["method"], b.get("modal_loads.bin"), err)
+        label_shares(sh, modes["labels"], me["method"], b.get("modal_loads.bin"), m["version"], err)
     ml = b.get("modal_loads.bin")
     if ml is not None:
         validate_modal_loads(ml, modes["labels"], err, count, finite)
@@ -779,10 +779,14 @@ def bottom_fibre_nodes(entry, nodes, b, err):
         err("Inconsistent", entry, f"node {min(missing)} has a bottom fibre but no value in {top}")
 
 
-def label_shares(sh, labels, method, ml, err):
+def label_shares(sh, labels, method, ml, version, err):
     """SPEC §6 rule 11 after the count and finiteness: each share in 0…1, and 1 for a Rigid mode
-    and for every mode of normal modes without a residual-vector mode."""
-    single_stage = method == "NormalModes" and (ml is None or not any(ml["residual"]))
+    and for every mode of normal modes without residual vectors (before 1.6: without a mode
+    flagged residual)."""
+    if (version["major"], version["minor"]) < (1, 6):
+        single_stage = method == "NormalModes" and (ml is None or not any(ml["residual"]))
+    else:
+        single_stage = method == "NormalModes" and (ml is None or len(ml["residual"]) == 0)
     for j, (v, label) in enumerate(zip(sh, labels)):
         if not 0.0 <= v <= 1.0:
             err("Inconsistent", "label_shares.bin", f"share[{j}] = {v} is outside 0..1")

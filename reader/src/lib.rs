@@ -53,12 +53,27 @@ pub const FORMAT_VERSION: Version = Version { major: 1, minor: 6 };
 pub fn version_for(body: &ReducedBody) -> Version {
     let normal_removed =
         body.method.method == Method::NormalModes && body.method.counts.removed_dependent > 0;
+    // a normal mode mixed with residual vectors below half (share < 1, no mode flagged): 1.6
+    let normal_mixed = body.method.method == Method::NormalModes
+        && body.modal_loads.as_ref().is_some_and(|ml| {
+            !ml.residual.is_empty()
+                && ml.residual.iter().all(|&r| r == 0)
+                && body.label_shares.as_ref().is_some_and(|s| {
+                    (s.iter().zip(&body.modes.labels))
+                        .any(|(&v, &l)| v != 1.0 && l != ModeLabel::Rigid)
+                })
+        });
+    let normal_removed = normal_removed || normal_mixed;
     let entry_minor = encoded_names(body)
         .filter_map(|name| codec::ENTRIES.iter().find(|e| e.0 == name))
         .map(|e| e.2)
         .max()
         .unwrap_or(0);
-    let minor = if normal_removed { 6 } else { entry_minor };
+    let minor = if normal_removed {
+        entry_minor.max(6)
+    } else {
+        entry_minor
+    };
     Version { major: 1, minor }
 }
 

@@ -627,7 +627,7 @@ fn recipe(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
 }
 
 /// Rule 11 (SPEC §5.12): one share per mode in 0…1; 1 for a `Rigid` mode and for every mode of
-/// a single-stage basis (normal modes without a residual-vector mode).
+/// a single-stage basis (normal modes without residual vectors: `modal_loads.residual` empty).
 fn label_shares(s: &[f64], body: &ReducedBody) -> Result<(), ReadError> {
     use crate::types::{Method, ModeLabel};
     let labels = &body.modes.labels;
@@ -639,11 +639,17 @@ fn label_shares(s: &[f64], body: &ReducedBody) -> Result<(), ReadError> {
         "one per mode",
     )?;
     finite(LABEL_SHARES, "shares", s)?;
+    // before 1.6: no mode flagged residual; since 1.6: no residual vectors in the basis
+    let v = body.version;
+    let no_residual = |ml: &crate::ModalLoads| {
+        if (v.major, v.minor) < (1, 6) {
+            ml.residual.iter().all(|&r| r == 0)
+        } else {
+            ml.residual.is_empty()
+        }
+    };
     let single_stage = body.method.method == Method::NormalModes
-        && body
-            .modal_loads
-            .as_ref()
-            .is_none_or(|ml| ml.residual.iter().all(|&r| r == 0));
+        && body.modal_loads.as_ref().is_none_or(no_residual);
     for (j, (&v, &label)) in s.iter().zip(labels).enumerate() {
         if !(0.0..=1.0).contains(&v) {
             return Err(inconsistent(

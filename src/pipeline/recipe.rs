@@ -36,7 +36,7 @@ pub const BAND_FMAX: &str = "fmax";
 /// Craig–Bampton, the same factor read backwards (the highest retained fixed-interface frequency
 /// divided by [`FMAX_FACTOR`]); for Craig–Chang and Dietz, whose basis holds the free-free modes
 /// exactly, the highest retained free-free frequency; for normal modes, which are exact
-/// eigenpairs, the highest mode kept.
+/// eigenpairs, the highest mode kept that is not a residual-vector mode.
 pub fn accuracy_band(spec: &BuildSpec, set: &ModeSet) -> file::AccuracyBand {
     let hz = |w2: f64| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI);
     if let Some(f) = spec.fmax_hz {
@@ -46,7 +46,12 @@ pub fn accuracy_band(spec: &BuildSpec, set: &ModeSet) -> file::AccuracyBand {
             basis_cutoff_hz: Some(FMAX_FACTOR * f),
         };
     }
-    let top_kept = set.omega2.iter().copied().fold(0.0f64, f64::max);
+    // the highest eigenmode kept: a residual-vector mode is a static correction whose
+    // pseudo-frequency lies far beyond the band (SPEC §5.11)
+    let top_kept = (set.omega2.iter().zip(&set.labels))
+        .filter(|(_, l)| !matches!(l, crate::reduce::ModeLabel::Residual { .. }))
+        .map(|(&w2, _)| w2)
+        .fold(0.0f64, f64::max);
     let (w2, rule) = match (spec.method, set.diagnostics.basis_top_omega2) {
         (BuildMethod::Normal, _) | (_, None) => (top_kept, BAND_NORMAL_MODES),
         (BuildMethod::CraigBampton, Some(w2)) => (w2, BAND_FIXED_INTERFACE),

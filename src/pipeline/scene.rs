@@ -447,21 +447,30 @@ pub fn select_by_scene(
 
 /// The build-report note for residual vectors removed as dependent.
 pub fn removed_note(rep: &crate::reduce::residual::ResidualReport, scene: &SceneLoads) -> String {
-    let names: Vec<String> = rep
-        .removed
-        .iter()
-        .map(|&(j, rem)| match scene.loads.get(j) {
-            Some(l) => format!("{} (remaining {rem:.1e})", l.name),
-            None => format!(
-                "interface unit load {} (remaining {rem:.1e})",
-                j - scene.loads.len() + 1
-            ),
-        })
-        .collect();
-    format!(
-        "residual vectors removed as dependent (their static response is already in the basis): {}",
-        names.join(", ")
-    )
+    let name = |j: usize| match scene.loads.get(j) {
+        Some(l) => l.name.clone(),
+        None => format!("interface unit load {}", j - scene.loads.len() + 1),
+    };
+    let mut parts = Vec::new();
+    if !rep.removed.is_empty() {
+        let names: Vec<String> = (rep.removed.iter())
+            .map(|&(j, rem)| format!("{} (remaining {rem:.1e})", name(j)))
+            .collect();
+        parts.push(format!(
+            "residual vectors removed as dependent (their static response is already in the \
+             basis): {}",
+            names.join(", ")
+        ));
+    }
+    if !rep.no_response.is_empty() {
+        let names: Vec<String> = rep.no_response.iter().map(|&j| name(j)).collect();
+        parts.push(format!(
+            "no residual vector for {} (zero static response: the body's inertia balances it, \
+             or the held dofs take it)",
+            names.join(", ")
+        ));
+    }
+    parts.join("; ")
 }
 
 /// `modal_loads.bin`: Φᵀf_r per scene load (= Φ_physᵀ f_phys, since f_r = Tᵀf and Φ_phys = TΦ)

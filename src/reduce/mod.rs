@@ -171,11 +171,25 @@ pub struct Diagnostics {
     /// Per mode: the participation share of the origin its label names (see
     /// [`orthonormalize::origin_labels`]); empty = every mode is pure (share 1).
     pub label_shares: Vec<f64>,
+    /// The modes' weights on the method's original basis vectors (rows), from which the labels
+    /// and shares come; `None` when every mode is its own basis vector (normal modes). Kept so
+    /// that a later stage (residual vectors) composes its coefficients with them (SPEC §5.5).
+    pub origin: Option<OriginWeights>,
     /// Elastic free-free normal modes in the basis (Craig–Chang, Dietz); `None` otherwise.
     pub basis_normal_modes: Option<usize>,
     /// Residual vectors (static load responses) added to the basis, dependent ones included
     /// (they are also in `removed`), see [`residual`].
     pub residual_vectors: usize,
+}
+
+/// w_cj = N_cj·√(T_cᵀMT_c): mode j's weight on basis vector T_c (SPEC.md §5.5), one row per
+/// basis vector, one column per mode of the set.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OriginWeights {
+    /// The basis vectors' labels (their origin kinds), one per row of `weights`.
+    pub basis: Vec<ModeLabel>,
+    /// basis × modes.
+    pub weights: faer::Mat<f64>,
 }
 
 /// Which method produced a mode set.

@@ -105,6 +105,8 @@ pub struct Orthonormalized {
     pub labels: Vec<ModeLabel>,
     /// Kept basis columns (indices into T).
     pub kept: Vec<usize>,
+    /// N: the modes' coefficients on the columns of T (Φ = T N), T's columns × modes.
+    pub coefficients: Mat<f64>,
     /// Checked diagnostics (orthonormality, stiffness, residuals, removed vectors).
     pub diagnostics: Diagnostics,
 }
@@ -339,6 +341,10 @@ pub fn orthonormalize_held(
     diagnostics.removed = removed;
     diagnostics.dependency_tol = DEPENDENCY_TOL;
     diagnostics.label_shares = shares;
+    diagnostics.origin = Some(super::OriginWeights {
+        basis: labels.to_vec(),
+        weights,
+    });
     if let Some(c) = &condensed {
         diagnostics.notes.push(format!(
             "the basis vectors' {} massless dofs condensed statically (u_s = -K_ss^-1 K_sm u_m{}): \
@@ -377,6 +383,7 @@ pub fn orthonormalize_held(
         omega2,
         labels: labels_out,
         kept,
+        coefficients: n,
         diagnostics,
     })
 }

@@ -120,6 +120,7 @@ pub fn improved_cb_method2(
     diagnostics.notes = set.diagnostics.notes;
     diagnostics.basis_top_omega2 = set.diagnostics.basis_top_omega2;
     diagnostics.label_shares = set.diagnostics.label_shares;
+    diagnostics.origin = set.diagnostics.origin;
     let out = ModeSet {
         phi,
         omega2: set.omega2,

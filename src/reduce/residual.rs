@@ -12,7 +12,8 @@
 //! removed and reported.
 
 use super::craig_chang::InertiaRelief;
-use super::orthonormalize::{diagnose, orthonormalize_held};
+use super::orthonormalize::{diagnose, origin_labels, orthonormalize_held, Orthonormalized};
+use super::OriginWeights;
 use super::{complement, ModeLabel, ModeSet, ReduceError};
 use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
 use faer::Mat;
@@ -44,6 +45,9 @@ pub struct ResidualReport {
     pub removed: Vec<(usize, f64)>,
     /// Residual vectors kept.
     pub kept: usize,
+    /// Load columns with no static response (the body's inertia balances the load entirely,
+    /// or the held dofs take it): no residual vector, and counted nowhere (SPEC §5.7).
+    pub no_response: Vec<usize>,
 }
 
 /// The static responses r (n × L) to the loads `f` (n × L) of the body `set` describes (module
@@ -158,6 +162,10 @@ pub fn add_residual_vectors(
     let nonzero: Vec<usize> = (0..nl)
         .filter(|&j| (0..n).any(|i| r[(i, j)] != 0.0))
         .collect();
+    // √(rᵀMr) of each response itself: its basis-vector weight scale (SPEC §5.5)
+    let m_norms: Vec<f64> = (0..nl)
+        .map(|j| energy(&r, &mr, j).max(0.0).sqrt())
+        .collect();
     let r = r_perp;
     let norms: Vec<f64> = (0..nl)
         .map(|j| (0..n).map(|i| r[(i, j)] * r[(i, j)]).sum::<f64>().sqrt())
@@ -195,7 +203,11 @@ pub fn add_residual_vectors(
         }
     }
     for j in (0..nl).filter(|j| !live.contains(j)) {
-        report.removed.push((j, missing[j]));
+        if nonzero.contains(&j) {
+            report.removed.push((j, missing[j]));
+        } else {
+            report.no_response.push(j);
+        }
     }
     report.removed.sort_by_key(|x| x.0);
     report.kept = live.len()
@@ -212,13 +224,24 @@ pub fn add_residual_vectors(
     phi.as_mut().subcols_mut(nr, q).copy_from(o.phi.as_ref());
     let mut omega2: Vec<f64> = rigid.iter().map(|&j| set.omega2[j]).collect();
     omega2.extend(&o.omega2);
-    let mut out_labels: Vec<ModeLabel> = vec![ModeLabel::Rigid; nr];
-    out_labels.extend(o.labels.iter().cloned());
+    let stages = StageCoefficients {
+        first: &set,
+        rigid: &rigid,
+        flex: &flex,
+        live: &live,
+        projection: &coeff,
+        norms: &norms,
+        m_norms: &m_norms,
+    };
+    let origin = composed_origin(&stages, &o);
+    let is_rigid: Vec<bool> = (0..nr + q)
+        .map(|j| j < nr || o.labels[j - nr] == ModeLabel::Rigid)
+        .collect();
+    let (out_labels, shares) = origin_labels(&is_rigid, &origin.weights, &origin.basis);
     let mut diagnostics = diagnose(k, m, &phi, &omega2)?;
     let old = set.diagnostics;
-    let mut shares = vec![1.0; nr];
-    shares.extend(o.diagnostics.label_shares.iter().copied());
     diagnostics.label_shares = shares;
+    diagnostics.origin = Some(origin);
     diagnostics.removed = old.removed;
     diagnostics
         .removed
@@ -232,19 +255,25 @@ pub fn add_residual_vectors(
     diagnostics.basis_normal_modes = old.basis_normal_modes;
     diagnostics.notes = old.notes;
     diagnostics.residual_vectors = old.residual_vectors + nonzero.len();
-    diagnostics.notes.push(format!(
-        "residual vectors: {} of {nl} static load responses added{}",
-        report.kept,
-        if report.removed.is_empty() {
-            String::new()
-        } else {
-            format!(
-                "; {} removed as dependent (already in the basis): load columns {:?}",
-                report.removed.len(),
-                report.removed.iter().map(|x| x.0).collect::<Vec<_>>()
-            )
-        }
-    ));
+    let mut note = format!(
+        "residual vectors: {} of {nl} static load responses added",
+        report.kept
+    );
+    if !report.removed.is_empty() {
+        note += &format!(
+            "; {} removed as dependent (already in the basis): load columns {:?}",
+            report.removed.len(),
+            report.removed.iter().map(|x| x.0).collect::<Vec<_>>()
+        );
+    }
+    if !report.no_response.is_empty() {
+        note += &format!(
+            "; no residual vector for load columns {:?} (zero static response: balanced by the \
+             body's inertia or taken by the held dofs)",
+            report.no_response
+        );
+    }
+    diagnostics.notes.push(note);
     Ok((
         ModeSet {
             phi,
@@ -257,4 +286,63 @@ pub fn add_residual_vectors(
         },
         report,
     ))
+}
+
+/// What the two stages of a residual-vector build know about their coefficients.
+struct StageCoefficients<'a> {
+    /// The method's mode set (stage 1).
+    first: &'a ModeSet,
+    /// Its rigid and flexible columns.
+    rigid: &'a [usize],
+    flex: &'a [usize],
+    /// The responses put into the stage-2 basis, as r⊥_j / ‖r⊥_j‖.
+    live: &'a [usize],
+    /// C = Φ_fᵀ M r (flexible modes × loads): r⊥ = r − Φ_f C.
+    projection: &'a Mat<f64>,
+    /// ‖r⊥_j‖ (Euclidean) and √(r_jᵀ M r_j).
+    norms: &'a [f64],
+    m_norms: &'a [f64],
+}
+
+/// The final modes' weights on the original basis vectors, SPEC §5.5: with stage 2's
+/// φ = Φ_f N_f + Σ_i r⊥_i/‖r⊥_i‖ N_i and r⊥ = r − Φ_f C, φ = Φ_f (N_f − C D⁻¹ N_r) + r D⁻¹ N_r,
+/// and Φ_f's own weights W₁ on the method's basis (identity for normal modes) compose:
+/// w = [W₁ (N_f − C D⁻¹ N_r) ; diag(√(rᵀMr)) D⁻¹ N_r]. Columns: the rigid modes (unchanged,
+/// their stage-1 weights) then stage 2's modes.
+fn composed_origin(s: &StageCoefficients<'_>, o: &Orthonormalized) -> OriginWeights {
+    let set = s.first;
+    let (nm, nf, nr) = (set.len(), s.flex.len(), s.rigid.len());
+    // W₁ over every column of stage 1; each mode its own basis vector when stage 1 has none
+    let first = match &set.diagnostics.origin {
+        Some(w) if w.weights.ncols() == nm => w.clone(),
+        _ => OriginWeights {
+            basis: set.labels.clone(),
+            weights: Mat::identity(nm, nm),
+        },
+    };
+    let b = first.basis.len();
+    let n2 = &o.coefficients;
+    let q = n2.ncols();
+    // A = N_f − C D⁻¹ N_r (nf × q)
+    let a = Mat::from_fn(nf, q, |c, j| {
+        n2[(c, j)]
+            - (s.live.iter().enumerate())
+                .map(|(i, &l)| s.projection[(c, l)] / s.norms[l] * n2[(nf + i, j)])
+                .sum::<f64>()
+    });
+    let w1_flex = Mat::from_fn(b, nf, |row, c| first.weights[(row, s.flex[c])]);
+    let top = &w1_flex * &a;
+    let rows = b + s.live.len();
+    let weights = Mat::from_fn(rows, nr + q, |row, col| match (row < b, col < nr) {
+        (true, true) => first.weights[(row, s.rigid[col])],
+        (true, false) => top[(row, col - nr)],
+        (false, true) => 0.0,
+        (false, false) => {
+            let l = s.live[row - b];
+            s.m_norms[l] / s.norms[l] * n2[(nf + row - b, col - nr)]
+        }
+    });
+    let mut basis = first.basis;
+    basis.extend(s.live.iter().map(|&l| ModeLabel::Residual { load: l }));
+    OriginWeights { basis, weights }
 }

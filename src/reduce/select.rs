@@ -193,6 +193,15 @@ pub(crate) fn pick(mut set: ModeSet, keep: &[usize], sel: Selection) -> ModeSet 
     if s.len() >= keep.iter().max().map_or(0, |&x| x + 1) {
         set.diagnostics.label_shares = keep.iter().map(|&j| s[j]).collect();
     }
+    if let Some(o) = set.diagnostics.origin.as_mut() {
+        if o.weights.ncols() >= keep.iter().max().map_or(0, |&x| x + 1) {
+            o.weights = faer::Mat::from_fn(o.weights.nrows(), keep.len(), |c, j| {
+                o.weights[(c, keep[j])]
+            });
+        } else {
+            set.diagnostics.origin = None;
+        }
+    }
     set.selection = Some(sel);
     set
 }

@@ -249,9 +249,12 @@ fn method_record(
             .collect(),
         // SPEC §5.7: rigid = modes labelled Rigid; the others count basis vectors by origin.
         counts: match method {
+            // every basis vector kept is a mode; residual vectors removed as dependent were
+            // basis vectors too (SPEC §5.7, since 1.6)
             file::Method::NormalModes => file::ModeCounts {
                 rigid: count_of(file::ModeLabel::Rigid),
-                normal: nm as u64 - count_of(file::ModeLabel::Rigid),
+                normal: nm as u64 - count_of(file::ModeLabel::Rigid) + removed,
+                removed_dependent: removed,
                 ..Default::default()
             },
             file::Method::CraigBampton => file::ModeCounts {

@@ -275,7 +275,7 @@ fn fit_to_scene(
             .map_err(|e| plan.request_error(e))?;
         let (s, rep) = reduce::residual::add_residual_vectors(k_r, m_r, set, &f, eig)?;
         set = s;
-        if !rep.removed.is_empty() {
+        if !rep.removed.is_empty() || !rep.no_response.is_empty() {
             report.notes.push(removed_note(&rep, scene));
         }
     }
