@@ -102,5 +102,26 @@ fn damping_option_fills_the_damping_entry() {
     let o = build_with("lots", &gap);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--damping lots"));
+    // ζ ≥ 1 is no vibration mode (issue 31: 200% went through): refused before the build,
+    // as a band ratio too, and where Rayleigh damping reaches it (ζ = β ω/2 ≥ 1 at 2.47 kHz
+    // for β = 1e-3: ω = 15.5e3 rad/s, ζ = 7.8)
+    for (value, says) in [
+        (
+            "200%",
+            "--damping 200%: a modal damping ratio must be below 1",
+        ),
+        ("1", "--damping 1: a modal damping ratio must be below 1"),
+        (
+            "0-:150%",
+            "--damping 0-:150%: a modal damping ratio must be below 1",
+        ),
+        ("rayleigh:0,1e-3", "mode 7 at 2473.2"),
+    ] {
+        let o = build_with(value, &gap);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{value}: {err}");
+        assert!(err.contains(says), "{value}: {err}");
+        assert!(!gap.exists());
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

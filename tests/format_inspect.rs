@@ -119,3 +119,19 @@ fn check_and_export_name_the_read_error_by_its_spec_name() {
     assert!(!dir.join("x.fem").exists(), "no output from a broken file");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 31: the recipe's options read as options a user can type: `--units si`, not the
+/// unit names `kg/m/s/N` that `--units` does not accept.
+#[test]
+fn inspect_shows_the_recipe_units_as_the_preset_name() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/golden/v1.2/three_node_chain_recipe.flexbody");
+    let out = Command::new(env!("CARGO_BIN_EXE_flexbody"))
+        .arg("inspect")
+        .arg(&file)
+        .output()
+        .expect("run");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("--units si") && !text.contains("kg/m/s/N"), "{text}");
+}

@@ -40,6 +40,15 @@ fn ratio(s: &str) -> Option<f64> {
     (v.is_finite() && v >= 0.0).then_some(v)
 }
 
+/// A modal damping ratio ζ ≥ 1 is critical or overdamped: the mode does not oscillate, and
+/// a modal-damping solver's ζ·2ω term is meant for ζ well below 1 (2% is typical of steel).
+fn underdamped(v: f64) -> bool {
+    v < 1.0
+}
+
+const OVERDAMPED: &str = "a modal damping ratio must be below 1 (100%): ζ ≥ 1 is critical or \
+                          overdamped, no vibration mode (typical ratios are 0.5%–5%)";
+
 /// Parses `2%`, `0.02`, `0-1000:1%,1000-:3%` or `rayleigh:α,β`.
 pub fn parse_damping(value: &str) -> Result<DampingSpec, DampingError> {
     let err = |message: &str| DampingError {
@@ -62,9 +71,12 @@ pub fn parse_damping(value: &str) -> Result<DampingSpec, DampingError> {
         };
     }
     if !v.contains(':') {
-        return ratio(v)
-            .map(DampingSpec::Constant)
-            .ok_or_else(|| err("expected a ratio ≥ 0 such as 2% or 0.02"));
+        let r = ratio(v).ok_or_else(|| err("expected a ratio ≥ 0 such as 2% or 0.02"))?;
+        return if underdamped(r) {
+            Ok(DampingSpec::Constant(r))
+        } else {
+            Err(err(OVERDAMPED))
+        };
     }
     let mut bands = Vec::new();
     for part in v.split(',') {
@@ -88,6 +100,9 @@ pub fn parse_damping(value: &str) -> Result<DampingSpec, DampingError> {
         let r = ratio(r).ok_or_else(|| err("a band's ratio must be ≥ 0, e.g. 1% or 0.01"))?;
         if !(lo >= 0.0 && hi > lo) {
             return Err(err("each band needs 0 ≤ LO < HI"));
+        }
+        if !underdamped(r) {
+            return Err(err(OVERDAMPED));
         }
         bands.push((lo, hi, r));
     }
@@ -137,6 +152,17 @@ pub fn apply(body: &mut file::ReducedBody, value: &str) -> Result<(), DampingErr
         value: value.to_string(),
         message: e.message,
     })?;
+    // Rayleigh's ζ grows without bound at both ends of the spectrum
+    if let Some((j, &z)) = ratio.iter().enumerate().find(|(_, &z)| !underdamped(z)) {
+        return Err(DampingError {
+            value: value.to_string(),
+            message: format!(
+                "mode {} at {:.6} Hz gets ζ = {z:.4}; {OVERDAMPED}",
+                j + 1,
+                body.modes.frequency_hz[j]
+            ),
+        });
+    }
     body.damping = Some(file::Damping { ratio });
     if let Some(r) = body.recipe.as_mut() {
         r.options.damping = Some(value.to_string());

@@ -68,7 +68,7 @@ pub(crate) struct ModelArgs {
     pub(crate) material: Option<String>,
     /// Thickness of shell elements without a section (Gmsh triangles/quadrangles), with
     /// --material.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) thickness: Option<f64>,
     /// Interface nodes: node ids (every free component), NODE:DOFS with Nastran component digits
     /// (e.g. 1:126) and/or node-set names, comma separated. Default: the deck's ASET/BSET.
@@ -103,7 +103,7 @@ pub(crate) struct BuildArgs {
     #[arg(long)]
     pub(crate) modes: Option<usize>,
     /// Highest frequency of the scene in Hz: modes are kept up to 3× it.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) fmax: Option<f64>,
     /// Reference conditions NODE:DOFS (Nastran dof digits), e.g. 1:12,9:2; a plain node id (its
     /// free components) or a set name (a node set, or a deck's constraint set such as SPC_1
@@ -244,6 +244,13 @@ pub(crate) fn import_format(
 /// clap arguments → the library's build spec (the one conversion point).
 pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
     use crate::pipeline::options::*;
+    check_numbers(a.fmax, a.model_args.thickness)?;
+    if !matches!(a.reference_method, 1 | 2) {
+        anyhow::bail!(
+            "--reference-method {}: expected 1 or 2 (Wang, Niu & Feng 2023, methods 1 and 2)",
+            a.reference_method
+        );
+    }
     Ok(BuildSpec {
         model: a.model.clone(),
         format: import_format(&a.model_args.format)?,
@@ -306,6 +313,26 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
     })
 }
 
+/// Numeric options checked before any model work (issue 31/32: `--fmax=-5` was refused only
+/// after the reduction): finite and positive.
+fn check_numbers(fmax: Option<f64>, thickness: Option<f64>) -> anyhow::Result<()> {
+    for (name, value, what) in [
+        ("--fmax", fmax, "a positive frequency in Hz"),
+        (
+            "--thickness",
+            thickness,
+            "a positive length in the model's units",
+        ),
+    ] {
+        if let Some(v) = value {
+            if !(v.is_finite() && v > 0.0) {
+                anyhow::bail!("{name} {v}: must be {what}");
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The `--threads` default: the cores this process may use (1 when unknown).
 fn default_threads() -> usize {
     std::thread::available_parallelism().map_or(1, usize::from)
@@ -336,6 +363,7 @@ fn utc_now() -> String {
 
 /// `--model` options given explicitly; each overrides the file's recipe.
 pub(crate) fn model_overrides(a: &ModelArgs) -> anyhow::Result<ModelOverrides> {
+    check_numbers(None, a.thickness)?;
     Ok(ModelOverrides {
         format: import_format(&a.format)?,
         material: a

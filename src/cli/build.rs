@@ -20,7 +20,12 @@ pub(crate) fn command(a: &BuildArgs) -> anyhow::Result<()> {
     crate::write::check_output_path(&a.output)?;
     let mut progress = StageProgress::new(a.quiet || a.json);
     let mut run = || -> anyhow::Result<BuildOutput> {
-        let out = crate::pipeline::build(&spec, &mut |stage| progress.stage(stage))
+        let out = crate::pipeline::build_reporting(&spec, &mut |stage| progress.stage(stage))
+            .map_err(|f| {
+                // what the stages found before the failure is often its cause: print it too
+                print_findings(&f.warnings, &f.notes);
+                f.error
+            })
             .with_context(|| format!("cannot build {}", a.model.display()))?;
         let mut out = out;
         if let Some(d) = &a.damping {
@@ -73,15 +78,27 @@ fn json_report(a: &BuildArgs, out: &BuildOutput) -> serde_json::Value {
     })
 }
 
+/// Warnings and notes on stderr. The reduction's phase times ("time factorization: …") are in
+/// `--json`'s notes only: the stage lines already showed the time of each stage.
+fn print_findings(warnings: &[String], notes: &[String]) {
+    for w in warnings {
+        eprintln!("flexbody: warning: {w}");
+    }
+    for n in notes.iter().filter(|n| !n.starts_with("time ")) {
+        eprintln!("flexbody: note: {n}");
+    }
+}
+
 /// The report on stderr: warnings, notes, constraints, spiders, sizes and the first modes.
 fn print_report(a: &BuildArgs, out: &BuildOutput) {
     let r = &out.report;
-    for w in &r.warnings {
-        eprintln!("flexbody: warning: {w}");
-    }
-    for n in r.notes.iter().chain(&r.diagnostics.notes) {
-        eprintln!("flexbody: note: {n}");
-    }
+    let notes: Vec<String> = r
+        .notes
+        .iter()
+        .chain(&r.diagnostics.notes)
+        .cloned()
+        .collect();
+    print_findings(&r.warnings, &notes);
     for c in &r.constraints {
         eprintln!("flexbody: constraint: {c}");
     }

@@ -378,13 +378,15 @@ pub(crate) fn command(a: &CheckArgs) -> anyhow::Result<bool> {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         for i in &report.items {
+            // an item without a limit is a figure for information, not a check
+            let (tag, limit) = match (i.limit.is_finite(), i.pass) {
+                (false, _) => ("info", "(no limit) ".to_string()),
+                (true, true) => ("ok  ", format!("(limit {:.1e})", i.limit)),
+                (true, false) => ("FAIL", format!("(limit {:.1e})", i.limit)),
+            };
             println!(
-                "{} {:<52} {:>12.3e} (limit {:.1e})  {}",
-                if i.pass { "ok  " } else { "FAIL" },
-                i.name,
-                i.value,
-                i.limit,
-                i.detail
+                "{tag} {:<52} {:>12.3e} {limit}  {}",
+                i.name, i.value, i.detail
             );
         }
         for s in &report.skipped {
@@ -393,7 +395,7 @@ pub(crate) fn command(a: &CheckArgs) -> anyhow::Result<bool> {
         let failed = report.items.iter().filter(|i| !i.pass).count();
         println!(
             "{} checks, {} failed: {}",
-            report.items.len(),
+            report.items.iter().filter(|i| i.limit.is_finite()).count(),
             failed,
             if failed == 0 { "PASS" } else { "FAIL" }
         );

@@ -370,16 +370,13 @@ fn render_recipe(o: &mut String, r: &flexbody_reader::Recipe) {
     let opt = |v: &Option<String>| v.clone().unwrap_or_else(|| "-".into());
     let _ = writeln!(
         o,
-        "  options    --method {} --modes {} --fmax {} --mass {} --beam-mass {} --units {}/{}/{}/{}",
+        "  options    (as the build resolved them: defaults and the deck's requests made explicit)\n             --method {} --modes {} --fmax {} --mass {} --beam-mass {} --units {}",
         p.method,
         p.modes.map_or("-".into(), |n| n.to_string()),
         p.fmax_hz.map_or("-".into(), |f| f.to_string()),
         p.mass,
         p.beam_mass,
-        p.units.mass.name,
-        p.units.length.name,
-        p.units.time.name,
-        p.units.force.name
+        units_option(&p.units)
     );
     let _ = writeln!(
         o,
@@ -429,6 +426,23 @@ fn render_recipe(o: &mut String, r: &flexbody_reader::Recipe) {
         "  accurate   0 – {:.6} Hz (rule {})",
         r.accuracy_band.fmax_hz, r.accuracy_band.rule
     );
+}
+
+/// The `--units` value of a unit system: its preset name (`si`, `mm-t-s`, …), or the units
+/// themselves when no preset matches.
+fn units_option(u: &flexbody_reader::Units) -> String {
+    (crate::pipeline::options::UNIT_PRESETS.iter())
+        .map(|(names, _)| names[0])
+        .find(|n| crate::pipeline::options::parse_units(n).is_ok_and(|p| p == *u))
+        .map_or_else(
+            || {
+                format!(
+                    "{}/{}/{}/{} (no preset)",
+                    u.mass.name, u.length.name, u.time.name, u.force.name
+                )
+            },
+            str::to_string,
+        )
 }
 
 /// Runs `flexbody inspect`: the summary as text, or as JSON.

@@ -195,15 +195,45 @@ fn rigid_body_properties(body: &file::ReducedBody, r: &mut CheckReport) {
             1e-12,
             if line {
                 format!(
-                    "principal values {ev:?}: singular, accepted: all mass lies on a line \
+                    "principal values {}: singular, accepted: all mass lies on a line \
                      through the origin with no rotary inertia about it (beam-only or point \
-                     masses on a line)"
+                     masses on a line)",
+                    fmt_values(&ev)
                 )
             } else {
-                format!("principal values {ev:?}")
+                format!(
+                    "principal values about the centre of mass {} (as inspect shows), about \
+                     the origin {}",
+                    fmt_values(&centre_of_mass_principal(&t, inv)),
+                    fmt_values(&ev)
+                )
             },
         );
     }
+}
+
+/// `[a, b, c]` with 6 significant digits.
+fn fmt_values(v: &[f64]) -> String {
+    let parts: Vec<String> = v.iter().map(|x| format!("{x:.6e}")).collect();
+    format!("[{}]", parts.join(", "))
+}
+
+/// Principal values of the inertia about the centre of mass c = I2/I1: the parallel-axis
+/// theorem I_c = I7 − I1((c·c)E − c cᵀ).
+fn centre_of_mass_principal(i7: &Mat<f64>, inv: &file::Invariants) -> Vec<f64> {
+    let (Some(&m), true) = (inv.i1.first(), inv.i2.len() >= 3) else {
+        return Vec::new();
+    };
+    if m <= 0.0 {
+        return Vec::new();
+    }
+    let c = [inv.i2[0] / m, inv.i2[1] / m, inv.i2[2] / m];
+    let cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    let ic = Mat::from_fn(3, 3, |a, b| {
+        i7[(a, b)] - m * (if a == b { cc } else { 0.0 } - c[a] * c[b])
+    });
+    ic.self_adjoint_eigenvalues(faer::Side::Lower)
+        .unwrap_or_default()
 }
 
 /// The rigid-body modes against the expectation: 6 for a free body (less the rotations about a

@@ -48,11 +48,54 @@ use stages::{assembly, constraints, fields, file, import, interfaces, invariants
 
 /// Run the pipeline. `progress(stage)` is called as each stage starts.
 pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOutput, BuildError> {
+    build_reporting(spec, progress).map_err(|f| f.error)
+}
+
+/// [`build`], and when it fails, the warnings and notes the stages run had gathered (issue 32:
+/// a failing build prints them too — an ignored card is often the cause of the failure).
+pub fn build_reporting(
+    spec: &BuildSpec,
+    progress: &mut dyn FnMut(&str),
+) -> Result<BuildOutput, BuildFailure> {
     let mut clock = StageClock::new(progress);
-    let model = clock.run(Stage::Import, || import::import(spec))?;
-    let mut out = build_model(&spec.with_beam_lumping_resolved(), model, clock.progress)?;
-    out.report.stages.splice(0..0, clock.times);
-    Ok(out)
+    let model = clock
+        .run(Stage::Import, || import::import(spec))
+        .map_err(BuildFailure::from)?;
+    let ctx = diagnose::SolverContext::of(&model);
+    let mut report = BuildReport::default();
+    let spec = spec.with_beam_lumping_resolved();
+    match run_stages(&spec, model, clock.progress, &mut |_| {}, &mut report) {
+        Ok(mut out) => {
+            out.report.stages.splice(0..0, clock.times);
+            Ok(out)
+        }
+        Err(e) => Err(BuildFailure {
+            error: ctx.explain(e),
+            warnings: report.warnings,
+            notes: report.notes,
+        }),
+    }
+}
+
+/// A failed build: the error, and the warnings and notes gathered before it.
+#[derive(Debug)]
+pub struct BuildFailure {
+    /// Why the build stopped.
+    pub error: BuildError,
+    /// The model's and the stages' warnings up to the failure.
+    pub warnings: Vec<String>,
+    /// The deck's and the stages' notes up to the failure.
+    pub notes: Vec<String>,
+}
+
+impl From<BuildError> for BuildFailure {
+    fn from(error: BuildError) -> Self {
+        BuildFailure {
+            error,
+            warnings: Vec::new(),
+            notes: Vec::new(),
+        }
+    }
 }
 
 /// The pipeline after import, for a model already in memory (generated meshes, models edited
@@ -77,33 +120,36 @@ pub fn build_model_with_hook(
     progress: &mut dyn FnMut(&str),
     hook: &mut dyn FnMut(&mut ModeSet),
 ) -> Result<BuildOutput, BuildError> {
+    run_stages(spec, model, progress, hook, &mut BuildReport::default())
+}
+
+/// The stages after import, `report` filled as they go (kept by the caller on failure).
+fn run_stages(
+    spec: &BuildSpec,
+    model: Model,
+    progress: &mut dyn FnMut(&str),
+    hook: &mut dyn FnMut(&mut ModeSet),
+    report: &mut BuildReport,
+) -> Result<BuildOutput, BuildError> {
     // The deck's own requests (COUPMASS, METHOD, ASET, TITLE) fill the choices left open.
     let plan = Plan::resolve(spec, &model);
-    let mut report = BuildReport {
-        notes: plan.deck_notes.clone(),
-        warnings: (model.warnings.iter())
-            .map(|w| format!("{}: {}", w.file, w.message))
-            .collect(),
-        ..Default::default()
-    };
+    report.notes = plan.deck_notes.clone();
+    report.warnings = (model.warnings.iter())
+        .map(|w| format!("{}: {}", w.file, w.message))
+        .collect();
+    report.warnings.extend(unit_warnings(spec, &model));
     let mut clock = StageClock::new(progress);
     let interfaced = clock.run(Stage::Interfaces, || interfaces::interfaces(&plan, model))?;
     let assembled = clock.run(Stage::Assembly, || {
-        assembly::assembly(&plan, &interfaced, &mut report)
+        assembly::assembly(&plan, &interfaced, report)
     })?;
     let mut constrained = clock.run(Stage::Constraints, || {
-        constraints::constraints(&plan, &interfaced, assembled, &mut report)
+        constraints::constraints(&plan, &interfaced, assembled, report)
     })?;
     // A preload stage (static solve under the scene's loads → geometric stiffness added to K_r)
     // belongs here: it takes the constrained system and returns one for the reduction.
     let basis = clock.run(Stage::Reduction, || {
-        reduction::reduction(
-            &plan,
-            &interfaced.model,
-            &mut constrained,
-            hook,
-            &mut report,
-        )
+        reduction::reduction(&plan, &interfaced.model, &mut constrained, hook, report)
     })?;
     let mass = clock.run(Stage::Invariants, || {
         invariants::invariants(&plan, &interfaced.model, &mut constrained, &basis)
@@ -119,7 +165,7 @@ pub fn build_model_with_hook(
                 &constrained,
                 &basis,
                 &stored,
-                &mut report,
+                report,
             )
         })?
     };
@@ -139,7 +185,23 @@ pub fn build_model_with_hook(
     })?;
     report.stages = clock.times;
     report.interfaces = interfaced.interfaces;
-    Ok(BuildOutput { body, report })
+    Ok(BuildOutput {
+        body,
+        report: std::mem::take(report),
+    })
+}
+
+/// A declared unit system in which the model's materials are no real solid's (issue 31:
+/// `--units mm-t-s` on the SI conrod went through without a word), with the presets in which
+/// they are.
+fn unit_warnings(spec: &BuildSpec, model: &Model) -> Vec<String> {
+    let presets: Vec<(&str, flexbody_reader::Units)> = (options::UNIT_PRESETS.iter())
+        .filter_map(|(names, _)| Some((names[0], options::parse_units(names[0]).ok()?)))
+        .collect();
+    let name = (presets.iter())
+        .find(|(_, u)| *u == spec.units)
+        .map_or("the declared units", |(n, _)| n);
+    crate::import::plausibility::unit_system_warnings(model, &spec.units, name, &presets)
 }
 
 /// Progress and timing of the stages, in one place: `progress(name)` as a stage starts, its

@@ -34,6 +34,36 @@ pub struct ReducedBasis {
 }
 
 /// The reduction stage; `hook` sees the mode set last, before it is expanded.
+/// A Craig–Bampton set with no fixed-interface mode below the cutoff is a Guyan (static)
+/// reduction: worth a warning, since the user asked for a frequency band (issue 31).
+fn guyan_only(set: &ModeSet, fmax_hz: Option<f64>) -> Option<String> {
+    use crate::reduce::Method;
+    let fixed = match &set.method {
+        Method::CraigBampton {
+            fixed_interface_modes,
+            ..
+        }
+        | Method::ImprovedCraigBampton1 {
+            fixed_interface_modes,
+            ..
+        }
+        | Method::ImprovedCraigBampton2 {
+            fixed_interface_modes,
+            ..
+        } => *fixed_interface_modes,
+        _ => return None,
+    };
+    let f = fmax_hz?;
+    (fixed == 0).then(|| {
+        format!(
+            "no fixed-interface mode lies below the basis cutoff {:.6} Hz (3 × --fmax {f}): the \
+             body holds the constraint (static) modes only, a Guyan reduction with no dynamic \
+             content of its own; raise --fmax or give --modes N",
+            crate::reduce::select::FMAX_FACTOR * f
+        )
+    })
+}
+
 pub fn reduction(
     plan: &Plan,
     model: &Model,
@@ -61,6 +91,9 @@ pub fn reduction(
         constrained.assembled.m = empty_matrix();
     }
     let set = reduce_by_method(plan, constrained, count, &massless)?;
+    if let Some(w) = guyan_only(&set, spec.fmax_hz) {
+        report.warnings.push(w);
+    }
     let mut set = fit_to_scene(plan, constrained, set, &massless, &scene, report)?;
     hook(&mut set);
     report.diagnostics = set.diagnostics.clone();
