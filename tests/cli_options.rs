@@ -126,3 +126,91 @@ fn warnings_are_printed_on_success_and_on_failure() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 31: a missing output folder is the same error for every command and target, before
+/// any work (it was a temp-file error for exudyn and silently created for mtx).
+#[test]
+fn a_missing_output_folder_is_one_error_everywhere() {
+    let golden = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/golden/v1.2/three_node_chain_recipe.flexbody");
+    let g = golden.to_str().unwrap();
+    let missing = std::env::temp_dir().join(format!("flexbody-nofolder-{}", std::process::id()));
+    let file_in = |name: &str| missing.join(name).display().to_string();
+    let model = conrod();
+    let runs: Vec<Vec<String>> = vec![
+        vec![
+            "build".into(),
+            model.clone(),
+            "--units".into(),
+            "si".into(),
+            "-o".into(),
+            file_in("b.flexbody"),
+        ],
+        vec![
+            "export".into(),
+            g.into(),
+            "--to".into(),
+            "exudyn".into(),
+            "-o".into(),
+            file_in("e.npz"),
+        ],
+        vec![
+            "export".into(),
+            g.into(),
+            "--to".into(),
+            "mbdyn".into(),
+            "-o".into(),
+            file_in("e.fem"),
+        ],
+        vec![
+            "export".into(),
+            g.into(),
+            "--to".into(),
+            "sid".into(),
+            "-o".into(),
+            file_in("e.SID_FEM"),
+        ],
+        vec![
+            "export".into(),
+            g.into(),
+            "--to".into(),
+            "mtx".into(),
+            "--model".into(),
+            model.clone(),
+            "-o".into(),
+            missing.join("sub").join("mtx").display().to_string(),
+        ],
+    ];
+    for args in runs {
+        let a: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, err) = run(&a);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(err.contains("does not exist"), "{args:?}: {err}");
+        assert!(!missing.exists(), "{args:?} created {}", missing.display());
+    }
+}
+
+/// Issue 31: a Gmsh mesh built without `--material` says what to give (it said "element 29
+/// (Tet10) has no (valid) property").
+#[test]
+fn a_mesh_without_material_asks_for_material() {
+    let mesh = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/reference/e_matrices/tet10_block_coarse/mesh.msh");
+    let out = std::env::temp_dir().join(format!("flexbody-nomat-{}.flexbody", std::process::id()));
+    let (code, err) = run(&[
+        "build",
+        mesh.to_str().unwrap(),
+        "--units",
+        "si",
+        "--method",
+        "normal",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("the model defines no material") && err.contains("give --material E="),
+        "{err}"
+    );
+    assert!(!out.exists());
+}

@@ -132,6 +132,13 @@ fn inspect_shows_the_recipe_units_as_the_preset_name() {
         .output()
         .expect("run");
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(text.contains("--units si") && !text.contains("kg/m/s/N"), "{text}");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("--units si") && !text.contains("kg/m/s/N"),
+        "{text}"
+    );
 }

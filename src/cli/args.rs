@@ -57,7 +57,7 @@ pub(crate) enum Command {
     },
 }
 
-/// Model options shared by `build` and `check --model`.
+/// Model options shared by `build`, `check --model` and `export --to mtx --model`.
 #[derive(clap::Args, Clone)]
 pub(crate) struct ModelArgs {
     /// Input format (default: from the extension): inp, bdf, msh.
@@ -75,13 +75,13 @@ pub(crate) struct ModelArgs {
     #[arg(long, value_delimiter = ',')]
     pub(crate) interface: Vec<String>,
     /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
-    /// (weighted average) or none (every node of the set is an interface node). `check`: default
-    /// from the file's recipe.
+    /// (weighted average) or none (every node of the set is an interface node). With `check
+    /// --model` and `export --to mtx`: default from the file's recipe.
     #[arg(long)]
     pub(crate) spider: Option<String>,
     /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when
-    /// the deck's subcases select different sets). `check`: default
-    /// from the file's recipe.
+    /// the deck's subcases select different sets). With `check --model` and `export --to mtx`:
+    /// default from the file's recipe.
     #[arg(long, value_name = "N")]
     pub(crate) subcase: Option<u64>,
 }

@@ -21,6 +21,20 @@ pub(crate) fn command(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result
     let body = flexbody_reader::read(file)
         .map_err(flexbody_reader::ReadError::named)
         .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
+    // the same rule for every target, before any work: the output's folder must exist (mtx
+    // writes into a folder of its own, made inside an existing one)
+    if target == crate::export::Target::Mtx {
+        let parent = output.parent().filter(|p| !p.as_os_str().is_empty());
+        if let Some(p) = parent.filter(|p| !p.is_dir()) {
+            anyhow::bail!(
+                "cannot write {}: its folder {} does not exist",
+                output.display(),
+                p.display()
+            );
+        }
+    } else {
+        crate::write::check_output_path(output)?;
+    }
     if target == crate::export::Target::Mtx {
         let model = a.model.ok_or_else(|| {
             anyhow::anyhow!(

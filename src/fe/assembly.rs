@@ -82,6 +82,18 @@ fn coords<const N: usize>(model: &Model, nodes: &[usize]) -> [Xyz; N] {
     std::array::from_fn(|i| model.nodes[nodes[i]].x)
 }
 
+/// Why an element has no property, and what to do: a mesh without any material (a Gmsh mesh)
+/// needs `--material` (issue 31: the bare "no (valid) property" left a user guessing).
+fn no_property_hint(model: &Model) -> String {
+    if model.materials.is_empty() {
+        "has no section and the model defines no material (a mesh such as Gmsh's holds none): \
+         give --material E=…,nu=…,rho=… (and --thickness T for shell elements)"
+            .into()
+    } else {
+        "has no section: no section or property card of the model covers it".into()
+    }
+}
+
 /// Matrices of element `e` of `model` in the basic frame.
 pub fn element_matrices(
     model: &Model,
@@ -111,7 +123,7 @@ pub fn element_matrices(
     let prop = el
         .property
         .and_then(|p| model.properties.get(p))
-        .ok_or_else(|| fail("has no (valid) property".into()))?;
+        .ok_or_else(|| fail(no_property_hint(model)))?;
     let mat = model
         .materials
         .get(prop.material)
