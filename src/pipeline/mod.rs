@@ -56,11 +56,11 @@ pub fn build(spec: &BuildSpec, progress: &mut dyn FnMut(&str)) -> Result<BuildOu
 pub fn build_reporting(
     spec: &BuildSpec,
     progress: &mut dyn FnMut(&str),
-) -> Result<BuildOutput, BuildFailure> {
+) -> Result<BuildOutput, Box<BuildFailure>> {
     let mut clock = StageClock::new(progress);
     let model = clock
         .run(Stage::Import, || import::import(spec))
-        .map_err(BuildFailure::from)?;
+        .map_err(|e| Box::new(BuildFailure::from(e)))?;
     let ctx = diagnose::SolverContext::of(&model);
     let mut report = BuildReport::default();
     let spec = spec.with_beam_lumping_resolved();
@@ -69,11 +69,11 @@ pub fn build_reporting(
             out.report.stages.splice(0..0, clock.times);
             Ok(out)
         }
-        Err(e) => Err(BuildFailure {
+        Err(e) => Err(Box::new(BuildFailure {
             error: ctx.explain(e),
             warnings: report.warnings,
             notes: report.notes,
-        }),
+        })),
     }
 }
 
