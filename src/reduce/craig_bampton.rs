@@ -383,7 +383,7 @@ pub fn craig_bampton(
 ) -> Result<ModeSet, ReduceError> {
     let _par = crate::solve::ParGuard::new(eig.par);
     let basis = craig_bampton_basis(k, m, interface, modes, eig)?;
-    craig_bampton_from_basis(k, m, interface, basis)
+    craig_bampton_from_basis(k, m, interface, modes, basis)
 }
 
 /// [`craig_bampton`] on K and M handed over by value and given back unchanged
@@ -397,7 +397,7 @@ pub fn craig_bampton_owned(
 ) -> Result<WithKm<ModeSet>, ReduceError> {
     let _par = crate::solve::ParGuard::new(eig.par);
     let (basis, k, m) = craig_bampton_basis_owned(k, m, interface, modes, eig)?;
-    let set = craig_bampton_from_basis(&k, &m, interface, basis)?;
+    let set = craig_bampton_from_basis(&k, &m, interface, modes, basis)?;
     Ok((set, k, m))
 }
 
@@ -466,7 +466,7 @@ pub fn craig_bampton_slepc(
         eigen,
         notes: vec![],
     };
-    let mut set = craig_bampton_from_basis(k, m, interface, basis)?;
+    let mut set = craig_bampton_from_basis(k, m, interface, modes, basis)?;
     set.diagnostics.notes.push(format!(
         "engine slepc, {} MPI ranks: {}",
         engine.ranks, sol.report
@@ -474,11 +474,18 @@ pub fn craig_bampton_slepc(
     Ok(set)
 }
 
+/// The note of a set with no fixed-interface mode below the cutoff (the CLI shows it as a
+/// warning instead, with the cutoff).
+pub const GUYAN_NOTE: &str = "no fixed-interface mode lies below the cutoff: the set holds the \
+                              constraint (static) modes only, a Guyan reduction; raise --fmax \
+                              for dynamic content";
+
 /// The Craig–Bampton mode set of a basis (orthonormalization and diagnostics).
 fn craig_bampton_from_basis(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     interface: &[usize],
+    modes: ModeCount,
     basis: CbBasis,
 ) -> Result<ModeSet, ReduceError> {
     let nq = basis.fixed_omega2.len();
@@ -493,6 +500,9 @@ fn craig_bampton_from_basis(
     diagnostics
         .notes
         .extend(super::band_note(&basis.eigen, "fixed-interface"));
+    if nq == 0 && matches!(modes, ModeCount::BelowHz(_)) {
+        diagnostics.notes.push(GUYAN_NOTE.into());
+    }
     diagnostics.notes.push(format!(
         "time orthonormalization: {:.3} s",
         t3.elapsed().as_secs_f64()

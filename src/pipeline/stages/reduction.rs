@@ -90,8 +90,10 @@ pub fn reduction(
     if mass_released {
         constrained.assembled.m = empty_matrix();
     }
-    let set = reduce_by_method(plan, constrained, count, &massless)?;
+    let mut set = reduce_by_method(plan, constrained, count, &massless)?;
     if let Some(w) = guyan_only(&set, spec.fmax_hz) {
+        // a warning with the cutoff, in place of the library's note
+        (set.diagnostics.notes).retain(|n| n != crate::reduce::craig_bampton::GUYAN_NOTE);
         report.warnings.push(w);
     }
     let mut set = fit_to_scene(plan, constrained, set, &massless, &scene, report)?;
