@@ -33,12 +33,13 @@ pub(crate) enum Command {
     Check(CheckArgs),
     /// Export a .flexbody file to another solver's format: exudyn (NPZ for
     /// ObjectFFRFreducedOrderInterface.LoadFromFile), mbdyn (modal element .fem file), sid
-    /// (Standard Input Data, .SID_FEM text) or mtx (the constrained K and M the build reduced,
-    /// Matrix Market, with --model).
+    /// (Standard Input Data, .SID_FEM text), vtu (VTK XML unstructured grid for ParaView: the
+    /// kept mesh, mode shapes and stress/strain shapes) or mtx (the constrained K and M the
+    /// build reduced, Matrix Market, with --model).
     Export {
         /// The .flexbody file.
         file: PathBuf,
-        /// Target format: exudyn, mbdyn, sid or mtx.
+        /// Target format: exudyn, mbdyn, sid, vtu or mtx.
         #[arg(long)]
         to: String,
         /// Output file (mtx: a folder for K.mtx, M.mtx and dofs.txt).
