@@ -56,6 +56,16 @@ pub(crate) enum Command {
         #[arg(long)]
         mass: Option<String>,
     },
+    /// Write one self-contained HTML page (no network) that animates the modes of a .flexbody
+    /// file, marks its interfaces and lists its mass, modes and frequencies. The URL fragment
+    /// #mode=7&t=0.25 selects a mode and freezes the animation.
+    View {
+        /// The .flexbody file.
+        file: PathBuf,
+        /// Output file (.html).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
 }
 
 /// Model options shared by `build` and `check --model`.

@@ -7,6 +7,7 @@
 //! * [`sid`] — Wallrapp's Standard Input Data (`.SID_FEM` text, as EMBSlib reads it).
 //! * [`vtu`] — a VTK XML unstructured grid (`.vtu`) of the kept mesh with the mode shapes and
 //!   stress/strain shapes as point data, for ParaView.
+//! * [`view`] — `flexbody view`: one self-contained HTML page that animates the modes.
 //! * [`mtx`] — the model's K and M in Matrix Market (from the model, not the file: the file's
 //!   recipe says how the model was built, [`mtx::export_body_matrices`]).
 use std::io::Write;
@@ -19,6 +20,7 @@ pub mod mbdyn;
 pub mod mtx;
 pub mod npz;
 pub mod sid;
+pub mod view;
 pub mod vtu;
 
 /// Why an export failed. No output file is left behind in any case.

@@ -46,12 +46,16 @@ pub fn mode_array_name(body: &ReducedBody, j: usize) -> String {
     )
 }
 
-/// `x` with `digits` significant digits in plain decimal notation (no exponent).
+/// `x` with `digits` significant digits: plain decimals from 1e-3 to 1e9, else an exponent.
 pub fn significant(x: f64, digits: i32) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
     let magnitude = x.abs().log10().floor() as i32;
+    if !(-3..9).contains(&magnitude) {
+        let decimals = (digits - 1).max(0) as usize;
+        return format!("{x:.decimals$e}");
+    }
     let decimals = (digits - 1 - magnitude).clamp(0, 17) as usize;
     format!("{x:.decimals$}")
 }
@@ -347,5 +351,6 @@ mod tests {
         assert_eq!(significant(0.00123456, 3), "0.00123");
         assert_eq!(significant(123456.7, 5), "123457");
         assert_eq!(significant(0.0, 5), "0");
+        assert_eq!(significant(-9.9341e-10, 5), "-9.9341e-10");
     }
 }
