@@ -42,7 +42,7 @@ pub(crate) enum Command {
         /// Target format: exudyn, mbdyn, sid, vtu or mtx.
         #[arg(long)]
         to: String,
-        /// Output file (mtx: a folder for K.mtx, M.mtx and dofs.txt).
+        /// Output file (mtx: a folder for K.mtx, M.mtx, dofs.txt and coords.csv).
         #[arg(short, long)]
         output: PathBuf,
         /// mtx: the FE model the file was built from, rebuilt with the options recorded in the
@@ -86,8 +86,9 @@ pub(crate) struct ModelArgs {
     #[arg(long, value_delimiter = ',')]
     pub(crate) interface: Vec<String>,
     /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
-    /// (weighted average) or none (every node of the set is an interface node). `check`: default
-    /// from the file's recipe.
+    /// (weighted average) or none (every node of the set is an interface node). `check`, `export
+    /// --to mtx`: default from the file's recipe; `export --to mtx --spider none` keeps the
+    /// sets' nodes free for a peer's own reduction.
     #[arg(long)]
     pub(crate) spider: Option<String>,
     /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when
@@ -220,7 +221,8 @@ pub(crate) struct BuildArgs {
     #[arg(long)]
     pub(crate) json: bool,
     /// Also write the constrained K and M the reduction starts from (Matrix Market K.mtx,
-    /// M.mtx, lumped or consistent as built) and their dof table dofs.txt into DIR.
+    /// M.mtx, lumped or consistent as built), their dof table dofs.txt and the nodes'
+    /// coordinates coords.csv into DIR.
     #[arg(long, value_name = "DIR")]
     pub(crate) write_matrices: Option<PathBuf>,
 }
