@@ -9,6 +9,11 @@
 //! inertia): the manual's constraint m = Xᵀ M X between records 8, 9 and 11, k_ii = ω_i² m_ii
 //! against the file's frequencies, record 12 against the inertia computed from records 5–7 and
 //! 11, and every value against the `.flexbody` file.
+//!
+//! Issue 36: the file also reads as Blender's Blendyn add-on reads it (`modallib.py`,
+//! `parse_modal_fem_file`, restated below from its logic): that reader walks fixed line counts
+//! (a record's title, then its values; a bare `**` line between records, as femgen writes), so
+//! the export must have femgen's layout, not only the manual's tokens.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -313,7 +318,7 @@ fn run(args: &[&str]) {
 }
 
 /// Builds `model` with `build_args`, exports to MBDyn, parses and checks everything.
-fn check_export(name: &str, model: &str, build_args: &[&str]) -> (Fem, file::ReducedBody) {
+fn check_export(name: &str, model: &str, build_args: &[&str]) -> (Fem, file::ReducedBody, String) {
     let dir = scratch(name);
     let body_path = dir.join("body.flexbody");
     let fem_path = dir.join("body.fem");
@@ -331,7 +336,8 @@ fn check_export(name: &str, model: &str, build_args: &[&str]) -> (Fem, file::Red
         fem_path.to_str().unwrap(),
     ]);
     let body = file::read(&body_path).unwrap();
-    let fem = parse_fem(&std::fs::read_to_string(&fem_path).unwrap()).unwrap();
+    let text = std::fs::read_to_string(&fem_path).unwrap();
+    let fem = parse_fem(&text).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
 
     // Against the .flexbody file: the flexible modes, every node, exactly.
@@ -383,12 +389,12 @@ fn check_export(name: &str, model: &str, build_args: &[&str]) -> (Fem, file::Red
     assert!((gm - nm).abs() < 1e-12 * gm);
     assert!(max_abs_diff(&gc, &nc) < 1e-12);
     assert!(max_abs_diff(&gj, &nj) < 1e-12 * scale);
-    (fem, body)
+    (fem, body, text)
 }
 
 #[test]
 fn the_conrod_fem_file_follows_the_manual() {
-    let (fem, body) = check_export(
+    let (fem, body, text) = check_export(
         "conrod",
         "fixtures/models/conrod/conrod.inp",
         &[
@@ -411,11 +417,156 @@ fn the_conrod_fem_file_follows_the_manual() {
         let w = body.modes.omega2[j].sqrt();
         assert!((d[i * m + i] / (2.0 * 0.02 * w * fem.mass[i * m + i]) - 1.0).abs() < 1e-12);
     }
+    // Blendyn reads every node and every mode, equal to the file's.
+    let b = blendyn_read(&text).unwrap();
+    let n = body.node_count();
+    assert_eq!((b.header_nodes, b.header_modes), (n, m));
+    let ids: Vec<String> = body.nodes.iter().map(|nd| nd.id.to_string()).collect();
+    assert_eq!(b.labels, ids);
+    for (p, nd) in body.nodes.iter().enumerate() {
+        assert_eq!(b.position[p], nd.xyz);
+    }
+    assert_eq!(b.shapes.len(), m);
+    for (i, &j) in flex.iter().enumerate() {
+        assert_eq!(b.shapes[i].0, (i + 1).to_string());
+        for p in 0..n {
+            assert_eq!(
+                b.shapes[i].1[p][..],
+                body.modes.shapes[(j * n + p) * 6..(j * n + p) * 6 + 3]
+            );
+        }
+    }
+    println!(
+        "conrod: Blendyn's reading: {} nodes, {} modes, every value equal to the file",
+        b.labels.len(),
+        b.shapes.len()
+    );
+    // Without femgen's bare `**` lines (the layout before issue 36) Blendyn stops as reported.
+    let without: String = text
+        .lines()
+        .filter(|l| l.trim() != "**")
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(
+        parse_fem(&without).is_ok(),
+        "the manual's tokens alone still parse"
+    );
+    assert_eq!(
+        blendyn_read(&without).unwrap_err(),
+        "could not convert string to float: '**'"
+    );
+}
+
+/// What Blendyn takes from a `.fem`: the header's node and mode counts, the node labels, the
+/// positions (records 5–7) and per mode its name and the translations of every node.
+#[derive(Debug)]
+struct BlendynFem {
+    header_nodes: usize,
+    header_modes: usize,
+    labels: Vec<String>,
+    position: Vec<[f64; 3]>,
+    shapes: Vec<(String, Vec<[f64; 3]>)>,
+}
+
+/// Blendyn's `parse_modal_fem_file` (Blender add-on, `modallib.py`), restated: rows are split
+/// on spaces with leading blanks skipped (Python's csv reader, delimiter ' ',
+/// skipinitialspace); find "RECORD GROUP 1," in fields 2–4, step two rows to the header (NODE,
+/// NORMAL); find group 2 and take labels until an empty row or one starting `**`; find group 5,
+/// then for each coordinate read one value per node (first field), stepping two rows between
+/// X, Y and Z and before group 8's first mode title; per mode the title's last field names it,
+/// then one row per node (first three fields). Running out of rows is a failure (Blendyn's
+/// StopIteration does not mark the element ready); a value that is not a number fails as
+/// Python's float() does.
+fn blendyn_read(text: &str) -> Result<BlendynFem, String> {
+    let mut rows = text.lines().map(|l| {
+        l.split(' ')
+            .filter(|t| !t.is_empty())
+            .map(String::from)
+            .collect::<Vec<String>>()
+    });
+    let mut next = || rows.next().ok_or_else(|| "StopIteration".to_string());
+    let float = |t: &str| {
+        t.parse::<f64>()
+            .map_err(|_| format!("could not convert string to float: '{t}'"))
+    };
+    let int = |t: &str| {
+        t.parse::<usize>()
+            .map_err(|_| format!("invalid literal for int(): '{t}'"))
+    };
+    let is_title = |rw: &[String], group: u32| {
+        rw.len() >= 4
+            && format!("{} {} {}", rw[1], rw[2], rw[3]) == format!("RECORD GROUP {group},")
+    };
+    let mut rw = next()?;
+    while !is_title(&rw, 1) {
+        rw = next()?;
+    }
+    next()?;
+    rw = next()?;
+    let (header_nodes, header_modes) = (int(&rw[1])?, int(&rw[2])?);
+    rw = next()?;
+    while !is_title(&rw, 2) {
+        rw = next()?;
+    }
+    rw = next()?;
+    let mut labels = Vec::new();
+    while !rw.is_empty() && rw[0] != "**" {
+        labels.extend(rw.iter().cloned());
+        rw = next()?;
+    }
+    while !is_title(&rw, 5) {
+        rw = next()?;
+    }
+    let mut position = vec![[0.0; 3]; labels.len()];
+    rw = next()?;
+    for c in 0..3 {
+        if c > 0 {
+            next()?;
+            rw = next()?;
+        }
+        for p in position.iter_mut() {
+            p[c] = float(&rw[0])?;
+            rw = next()?;
+        }
+    }
+    next()?;
+    rw = next()?;
+    let mut shapes = Vec::new();
+    for _ in 0..header_modes {
+        let name = rw.last().cloned().unwrap_or_default();
+        rw = next()?;
+        let mut shape = Vec::with_capacity(labels.len());
+        for _ in 0..labels.len() {
+            shape.push([float(&rw[0])?, float(&rw[1])?, float(&rw[2])?]);
+            rw = next()?;
+        }
+        shapes.push((name, shape));
+    }
+    Ok(BlendynFem {
+        header_nodes,
+        header_modes,
+        labels,
+        position,
+        shapes,
+    })
+}
+
+#[test]
+fn blendyns_reading_matches_the_manuals_example() {
+    // femgen's layout as the manual prints it: the restated reader takes it whole.
+    let b = blendyn_read(MANUAL_EXAMPLE).unwrap();
+    assert_eq!((b.header_nodes, b.header_modes), (3, 2));
+    assert_eq!(b.labels, ["1001", "1002", "1003"]);
+    assert_eq!(b.position, [[0.0, -2.0, 0.0], [0.0; 3], [0.0, 2.0, 0.0]]);
+    assert_eq!(b.shapes[0].0, "1");
+    assert_eq!(b.shapes[0].1, [[0.0, 0.0, 1.0], [0.0; 3], [0.0, 0.0, 1.0]]);
+    assert_eq!(b.shapes[1].0, "2");
+    assert_eq!(b.shapes[1].1, [[1.0, 0.0, 0.0], [0.0; 3], [1.0, 0.0, 0.0]]);
 }
 
 #[test]
 fn the_beam_fem_file_carries_rotations_and_rotary_inertia() {
-    let (fem, _) = check_export(
+    let (fem, body, text) = check_export(
         "beam",
         "fixtures/models/planar_beam/planar_beam.bdf",
         &[
@@ -441,4 +592,6 @@ fn the_beam_fem_file_carries_rotations_and_rotary_inertia() {
         .sum::<f64>();
     assert!(rz > 0.1 && izz > 0.0, "rz {rz}, Izz {izz}");
     assert!(fem.damping.is_none());
+    let b = blendyn_read(&text).unwrap();
+    assert_eq!((b.labels.len(), b.shapes.len()), (body.node_count(), 3));
 }

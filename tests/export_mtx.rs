@@ -68,7 +68,7 @@ fn compare(case: &str, stem: &str) -> (f64, f64) {
     spec.mass_explicit = true;
     let dir = tmp(&format!("{case}-{stem}"));
     let written = export_mtx(&spec, &dir).unwrap();
-    assert_eq!(written.len(), 3);
+    assert_eq!(written.len(), 4, "K.mtx, M.mtx, dofs.txt, coords.csv");
     let d = compare_written(case, stem, &dir);
     std::fs::remove_dir_all(&dir).ok();
     d
@@ -223,13 +223,110 @@ fn conrod_build_write_matrices_are_the_reduced_system() {
         .status()
         .unwrap();
     assert!(status.success());
-    for f in ["K.mtx", "M.mtx", "dofs.txt"] {
+    for f in ["K.mtx", "M.mtx", "dofs.txt", "coords.csv"] {
         assert!(
             std::fs::read(mats.join(f)).unwrap() == std::fs::read(again.join(f)).unwrap(),
             "{f} differs between build --write-matrices and export --to mtx"
         );
     }
+    // coords.csv: each node of dofs.txt once, in the order of its first dof, at the position
+    // the .flexbody file stores for it (spider centres included).
+    let coords = read_coords(&mats.join("coords.csv"));
+    let mut order: Vec<u64> = Vec::new();
+    for &(id, _) in &dofs {
+        if order.last() != Some(&id) {
+            assert!(!order.contains(&id), "node {id}'s dofs are not together");
+            order.push(id);
+        }
+    }
+    assert_eq!(coords.iter().map(|c| c.0).collect::<Vec<_>>(), order);
+    for (id, x) in &coords {
+        assert_eq!(*x, body.nodes[index[id]].xyz, "node {id}");
+    }
+    for c in &centres {
+        assert!(coords.iter().any(|x| x.0 == *c));
+    }
+    eprintln!(
+        "conrod: coords.csv {} nodes, equal to the file's",
+        coords.len()
+    );
+
+    // `--spider none`: the bores stay free (no leg eliminated, no centre added), so a peer can
+    // run its own Craig–Bampton on the same K, M with the bore nodes as its boundary.
+    let free = dir.join("free");
+    let status = Command::new(env!("CARGO_BIN_EXE_flexbody"))
+        .arg("export")
+        .arg(&out)
+        .args(["--to", "mtx", "--spider", "none", "--model"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp"))
+        .arg("-o")
+        .arg(&free)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let free_dofs = read_dofs(&free.join("dofs.txt"));
+    let free_coords = read_coords(&free.join("coords.csv"));
+    let mesh_nodes = body.node_count() - centres.len();
+    assert_eq!(free_coords.len(), mesh_nodes);
+    assert_eq!(
+        free_dofs.len(),
+        3 * mesh_nodes,
+        "tet10: three dofs per node, none held"
+    );
+    for c in &centres {
+        assert!(!free_dofs.iter().any(|x| x.0 == *c), "centre {c} added");
+    }
+    for i in body.interfaces.as_ref().unwrap() {
+        for d in &i.dependent {
+            assert_eq!(free_dofs.iter().filter(|x| x.0 == *d).count(), 3, "leg {d}");
+            assert!(
+                free_coords.iter().any(|x| x.0 == *d),
+                "leg {d}'s coordinates"
+            );
+        }
+    }
+    // The free K, M are the whole mesh: a rigid translation has the body's mass and no strain
+    // energy.
+    let k = read_matrix(&free.join("K.mtx")).unwrap();
+    let m = read_matrix(&free.join("M.mtx")).unwrap();
+    let ex: Vec<Vec<f64>> = vec![free_dofs
+        .iter()
+        .map(|&(_, c)| if c == 0 { 1.0 } else { 0.0 })
+        .collect()];
+    let mass = project(&m, &ex)[0];
+    let energy = project(&k, &ex)[0];
+    let kscale = project(
+        &k,
+        &[free_dofs
+            .iter()
+            .enumerate()
+            .map(|(i, &(_, c))| if c == 0 && i % 2 == 0 { 1.0 } else { 0.0 })
+            .collect()],
+    )[0];
+    let i1 = body.invariants.i1[0];
+    eprintln!(
+        "conrod --spider none: {} dofs, rigid x translation: mass {mass} (file I1 {i1}), energy {:.1e} of a non-rigid field's",
+        free_dofs.len(),
+        energy.abs() / kscale
+    );
+    assert!((mass - i1).abs() < 1e-12 * i1);
+    assert!(energy.abs() < 1e-10 * kscale);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `coords.csv`: (node id, x, y, z) after the `node,x,y,z` header.
+fn read_coords(path: &Path) -> Vec<(u64, [f64; 3])> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("node,x,y,z"));
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            assert_eq!(f.len(), 4, "{l}");
+            let x = |i: usize| f[i].parse::<f64>().unwrap();
+            (f[0].parse().unwrap(), [x(1), x(2), x(3)])
+        })
+        .collect()
 }
 
 /// Runs the CLI; returns (success, stderr).

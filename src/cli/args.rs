@@ -33,15 +33,16 @@ pub(crate) enum Command {
     Check(CheckArgs),
     /// Export a .flexbody file to another solver's format: exudyn (NPZ for
     /// ObjectFFRFreducedOrderInterface.LoadFromFile), mbdyn (modal element .fem file), sid
-    /// (Standard Input Data, .SID_FEM text) or mtx (the constrained K and M the build reduced,
-    /// Matrix Market, with --model).
+    /// (Standard Input Data, .SID_FEM text), vtu (VTK XML unstructured grid for ParaView: the
+    /// kept mesh, mode shapes and stress/strain shapes) or mtx (the constrained K and M the
+    /// build reduced, Matrix Market, with --model).
     Export {
         /// The .flexbody file.
         file: PathBuf,
-        /// Target format: exudyn, mbdyn, sid or mtx.
+        /// Target format: exudyn, mbdyn, sid, vtu or mtx.
         #[arg(long)]
         to: String,
-        /// Output file (mtx: a folder for K.mtx, M.mtx and dofs.txt).
+        /// Output file (mtx: a folder for K.mtx, M.mtx, dofs.txt and coords.csv).
         #[arg(short, long)]
         output: PathBuf,
         /// mtx: the FE model the file was built from, rebuilt with the options recorded in the
@@ -54,6 +55,16 @@ pub(crate) enum Command {
         /// mtx: mass matrix lumped or consistent (default: as the file was built).
         #[arg(long)]
         mass: Option<String>,
+    },
+    /// Write one self-contained HTML page (no network) that animates the modes of a .flexbody
+    /// file, marks its interfaces and lists its mass, modes and frequencies. The URL fragment
+    /// #mode=7&t=0.25 selects a mode and freezes the animation.
+    View {
+        /// The .flexbody file.
+        file: PathBuf,
+        /// Output file (.html).
+        #[arg(short, long)]
+        output: PathBuf,
     },
 }
 
@@ -76,7 +87,8 @@ pub(crate) struct ModelArgs {
     pub(crate) interface: Vec<String>,
     /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
     /// (weighted average) or none (every node of the set is an interface node). With `check
-    /// --model` and `export --to mtx`: default from the file's recipe.
+    /// --model` and `export --to mtx`: default from the file's recipe; `export --to mtx --spider
+    /// none` keeps the sets' nodes free for a peer's own reduction.
     #[arg(long)]
     pub(crate) spider: Option<String>,
     /// Nastran: the case-control subcase whose SPC and METHOD selections apply (needed when
@@ -209,7 +221,8 @@ pub(crate) struct BuildArgs {
     #[arg(long)]
     pub(crate) json: bool,
     /// Also write the constrained K and M the reduction starts from (Matrix Market K.mtx,
-    /// M.mtx, lumped or consistent as built) and their dof table dofs.txt into DIR.
+    /// M.mtx, lumped or consistent as built), their dof table dofs.txt and the nodes'
+    /// coordinates coords.csv into DIR.
     #[arg(long, value_name = "DIR")]
     pub(crate) write_matrices: Option<PathBuf>,
 }

@@ -17,7 +17,7 @@ pub(crate) fn command(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result
     use anyhow::Context;
     let output = a.output;
     let target = crate::export::Target::from_name(to)
-        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn, mbdyn, sid or mtx"))?;
+        .ok_or_else(|| anyhow::anyhow!("--to {to}: expected exudyn, mbdyn, sid, vtu or mtx"))?;
     let body = flexbody_reader::read(file)
         .map_err(flexbody_reader::ReadError::named)
         .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;

@@ -6,6 +6,7 @@
 //! * [`check`](mod@check) — the verification report behind `flexbody check`.
 //! * [`inspect`](mod@inspect) — the summary behind `flexbody inspect`.
 //! * `export` — `flexbody export`: a file to another solver's format.
+//! * `view` — `flexbody view`: the HTML page that animates a file's modes.
 
 pub mod args;
 mod build;
@@ -13,6 +14,7 @@ pub mod check;
 mod export;
 pub mod inspect;
 mod progress;
+mod view;
 
 pub use args::Cli;
 use args::Command;
@@ -42,6 +44,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<bool> {
             },
         )
         .map(|()| true),
+        Command::View { file, output } => view::command(file, output).map(|()| true),
     }
 }
 

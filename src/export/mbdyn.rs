@@ -1,7 +1,9 @@
 //! MBDyn export: the modal element's FEM file (`.fem`, MBDyn input manual, "Modal Element
 //! Data — FEM File Format"): record groups 1–12, and 13 (modal damping) when the file has
 //! damping. Flexible modes only (the modal node carries the rigid-body motion), every stored
-//! node exposed, numbers in Rust's shortest round-trip notation.
+//! node exposed, numbers in Rust's shortest round-trip notation. Laid out as MBDyn's `femgen`
+//! writes it (the manual's example): a bare `**` line before each record group's title, no
+//! trailing blanks — readers that count lines (Blender's Blendyn) need exactly that.
 //!
 //! * 8: mode shapes, 6 components per node (x y z rx ry rz, linearized rotations);
 //! * 9, 10: generalized mass Φᵀ M Φ and stiffness Φᵀ K Φ of the flexible modes;
@@ -54,6 +56,12 @@ pub fn mbdyn_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportEr
     }
     let mut notes = Vec::new();
     let mut s = String::new();
+    // femgen's layout: a bare `**` line closes each record group, before the next title.
+    // Readers that step over fixed line counts (Blender's Blendyn: "title, then values") need
+    // it; MBDyn itself skips every `**` line that is not a title.
+    let sep = |s: &mut String| {
+        let _ = writeln!(s, "**");
+    };
     // `write!` into a String cannot fail; the results are ignored on purpose.
     let u = &body.units;
     let _ = writeln!(s, "** MBDyn MODAL DATA FILE");
@@ -72,28 +80,34 @@ pub fn mbdyn_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportEr
         s,
         "** {m} flexible modes of the file's {big_m} (rigid-body modes are the modal node's motion)"
     );
+    sep(&mut s);
     let _ = writeln!(s, "** RECORD GROUP 1, HEADER");
     let _ = writeln!(
         s,
         "**   REVISION,  NODE,  NORMAL, ATTACHMENT, CONSTRAINT, REJECTED MODES."
     );
     let _ = writeln!(s, "REV0 {n} {m} 0 0 0");
+    sep(&mut s);
     let _ = writeln!(s, "** RECORD GROUP 2, FINITE ELEMENT NODE LIST");
     for chunk in body.nodes.chunks(6) {
         let ids: Vec<String> = chunk.iter().map(|nd| nd.id.to_string()).collect();
         let _ = writeln!(s, "{}", ids.join(" "));
     }
+    sep(&mut s);
     let _ = writeln!(s, "** RECORD GROUP 3, INITIAL MODAL DISPLACEMENTS");
     let zeros = vec!["0"; m].join(" ");
     let _ = writeln!(s, "{zeros}");
+    sep(&mut s);
     let _ = writeln!(s, "** RECORD GROUP 4, INITIAL MODAL VELOCITIES");
     let _ = writeln!(s, "{zeros}");
     for (c, axis) in ["X", "Y", "Z"].iter().enumerate() {
+        sep(&mut s);
         let _ = writeln!(s, "** RECORD GROUP {}, NODAL {axis} COORDINATES", 5 + c);
         for nd in &body.nodes {
             let _ = writeln!(s, "{:e}", nd.xyz[c]);
         }
     }
+    sep(&mut s);
     let _ = writeln!(s, "** RECORD GROUP 8, NON-ORTHOGONALIZED MODE SHAPES");
     let shapes = &body.modes.shapes;
     for (i, &j) in flex.iter().enumerate() {
@@ -108,6 +122,7 @@ pub fn mbdyn_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportEr
         }
     }
     let matrix = |s: &mut String, title: &str, value: &dyn Fn(usize, usize) -> f64| {
+        sep(s);
         let _ = writeln!(s, "{title}");
         // Column-major: line c holds column c (rows 1…m).
         for c in 0..m {
@@ -127,6 +142,7 @@ pub fn mbdyn_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportEr
         "** RECORD GROUP 10, MODAL STIFFNESS MATRIX. COLUMN-MAJOR FORM",
         &|r, c| gk[flex[r] * big_m + flex[c]],
     );
+    sep(&mut s);
     let _ = writeln!(s, "** RECORD GROUP 11, DIAGONAL OF LUMPED MASS MATRIX");
     let mut off_diagonal = 0.0f64;
     let mut diagonal = 0.0f64;
@@ -158,6 +174,7 @@ pub fn mbdyn_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportEr
     }
     let c = [inv.i2[0] / mass, inv.i2[1] / mass, inv.i2[2] / mass];
     let c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    sep(&mut s);
     let _ = writeln!(s, "** RECORD GROUP 12, GLOBAL INERTIA PROPERTIES");
     let _ = writeln!(s, "{mass:e}");
     let _ = writeln!(s, "{:e} {:e} {:e}", c[0], c[1], c[2]);
@@ -188,6 +205,7 @@ pub fn mbdyn_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportEr
             },
         );
     }
+    sep(&mut s);
     let _ = writeln!(s, "** END OF FILE");
     Ok((
         s,

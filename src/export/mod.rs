@@ -5,6 +5,9 @@
 //! * [`exudyn`] — the NPZ that `exudyn.FEM.ObjectFFRFreducedOrderInterface.LoadFromFile` reads.
 //! * [`mbdyn`] — the modal element's FEM file (MBDyn manual, "FEM File Format").
 //! * [`sid`] — Wallrapp's Standard Input Data (`.SID_FEM` text, as EMBSlib reads it).
+//! * [`vtu`] — a VTK XML unstructured grid (`.vtu`) of the kept mesh with the mode shapes and
+//!   stress/strain shapes as point data, for ParaView.
+//! * [`view`] — `flexbody view`: one self-contained HTML page that animates the modes.
 //! * [`mtx`] — the model's K and M in Matrix Market (from the model, not the file: the file's
 //!   recipe says how the model was built, [`mtx::export_body_matrices`]).
 use std::io::Write;
@@ -17,6 +20,8 @@ pub mod mbdyn;
 pub mod mtx;
 pub mod npz;
 pub mod sid;
+pub mod view;
+pub mod vtu;
 
 /// Why an export failed. No output file is left behind in any case.
 #[derive(Debug, thiserror::Error)]
@@ -58,6 +63,8 @@ pub enum Target {
     Mbdyn,
     /// SID (Standard Input Data) `.SID_FEM` text.
     Sid,
+    /// VTK XML unstructured grid `.vtu` (ParaView).
+    Vtu,
     /// The constrained K and M in Matrix Market (`K.mtx`, `M.mtx`, `dofs.txt` in a folder);
     /// needs the FE model: [`mtx::export_body_matrices`].
     Mtx,
@@ -70,6 +77,7 @@ impl Target {
             "exudyn" => Some(Target::Exudyn),
             "mbdyn" => Some(Target::Mbdyn),
             "sid" | "sid_fem" => Some(Target::Sid),
+            "vtu" => Some(Target::Vtu),
             "mtx" => Some(Target::Mtx),
             _ => None,
         }
@@ -97,6 +105,7 @@ pub fn export(
         Target::Exudyn => exudyn::export_exudyn(body, path),
         Target::Mbdyn => mbdyn::export_mbdyn(body, path),
         Target::Sid => sid::export_sid(body, path),
+        Target::Vtu => vtu::export_vtu(body, path),
         Target::Mtx => Err(ExportError::Unsupported {
             target: "mtx",
             reason: "K and M come from the FE model, not from the file: give the model the \
@@ -116,6 +125,19 @@ pub fn flexible_modes(body: &ReducedBody) -> Vec<usize> {
         .filter(|(_, l)| **l != ModeLabel::Rigid)
         .map(|(j, _)| j)
         .collect()
+}
+
+/// A mode label as a word for names and captions: `rigid`, `normal`, `constraint`,
+/// `fixed-interface`, `attachment`, `frequency-response`.
+pub fn mode_label_name(label: ModeLabel) -> &'static str {
+    match label {
+        ModeLabel::Rigid => "rigid",
+        ModeLabel::Normal => "normal",
+        ModeLabel::Constraint => "constraint",
+        ModeLabel::FixedInterface => "fixed-interface",
+        ModeLabel::Attachment => "attachment",
+        ModeLabel::FrequencyResponse => "frequency-response",
+    }
 }
 
 /// Writes `bytes` to `path` through `path`'s folder/.NAME.tmp-PID, fsync and rename; on any

@@ -58,8 +58,19 @@ pub fn constrained_system_of_model(
             owner[first + c] = (model.nodes[node].id, c as u8);
         }
     }
+    let dofs: Vec<(u64, u8)> = reduced.retained.iter().map(|&p| owner[p]).collect();
+    // Each node with a retained dof, once, in the order of its first dof.
+    let position: std::collections::HashMap<u64, [f64; 3]> =
+        model.nodes.iter().map(|nd| (nd.id, nd.x)).collect();
+    let mut seen = std::collections::HashSet::new();
+    let nodes = dofs
+        .iter()
+        .filter(|(id, _)| seen.insert(*id))
+        .filter_map(|(id, _)| position.get(id).map(|&x| (*id, x)))
+        .collect();
     Ok(ConstrainedSystem {
-        dofs: reduced.retained.iter().map(|&p| owner[p]).collect(),
+        dofs,
+        nodes,
         k: reduced.k,
         m: reduced.m,
         mass: plan.spec.mass,

@@ -10,6 +10,11 @@
 //! * `dofs.txt`: equation k (1-based, line k after the `#` comments) = `k node component`, with
 //!   the node's external id and the component 1…6 = ux uy uz rx ry rz in the node's
 //!   displacement frame (Nastran's CD; the basic frame for Abaqus/Gmsh models).
+//! * `coords.csv`: the coordinates of the nodes `dofs.txt` names, for a peer that needs the
+//!   geometry with K and M (a spider fit, its own Craig–Bampton on nodes it picks by place):
+//!   a `node,x,y,z` header, then one line per node in the order of its first dof, the node's
+//!   external id and its position in the basic frame (model units, shortest round-trip
+//!   decimals). Spider centres `build` added are there too.
 //!
 //! **Dof order**: the independent dofs node by node in the model's node order (the order the
 //! deck defines its nodes; spider centre nodes `build` adds come last), and within a node by
@@ -36,6 +41,9 @@ pub struct ConstrainedSystem {
     pub mass: fe::MassKind,
     /// Number of physical dofs before the elimination.
     pub physical_dofs: usize,
+    /// (external id, basic-frame position) of each node with a dof in `dofs`, in the order of
+    /// its first dof.
+    pub nodes: Vec<(u64, [f64; 3])>,
 }
 
 /// A matrix file could not be written.
@@ -48,7 +56,7 @@ pub struct MatrixWriteError {
     pub source: std::io::Error,
 }
 
-/// Writes `K.mtx`, `M.mtx` and `dofs.txt` of `sys` into `dir` (created if missing); each file
+/// Writes `K.mtx`, `M.mtx`, `dofs.txt` and `coords.csv` of `sys` into `dir` (created if missing); each file
 /// goes to a temporary name first and is renamed when complete. Returns the paths written.
 pub fn write_matrices(
     dir: &Path,
@@ -85,6 +93,16 @@ pub fn write_matrices(
         )?;
         for (k, (node, c)) in sys.dofs.iter().enumerate() {
             writeln!(w, "{} {node} {}", k + 1, c + 1)?;
+        }
+        Ok(())
+    })
+    .map_err(io(&path))?;
+    written.push(path);
+    let path = dir.join("coords.csv");
+    write_atomically(&path, |w| {
+        writeln!(w, "node,x,y,z")?;
+        for (id, x) in &sys.nodes {
+            writeln!(w, "{id},{:e},{:e},{:e}", x[0], x[1], x[2])?;
         }
         Ok(())
     })

@@ -1,0 +1,143 @@
+//! Issue 36: the exudyn snippets of `docs/using-in-solvers.md` run as they stand.
+//!
+//! `examples/using_in_exudyn.py` holds the exudyn section's three Python blocks between
+//! `# --- snippet N` and `# --- end`; the first test checks they equal the docs' blocks line for
+//! line (always runs). The second builds the conrod with and without `--damping`, exports the
+//! NPZ and runs the example on both (skipped visibly without exudyn): every block runs, and the
+//! damping block sets diag(2 ζ ω) — its largest entry 2 · 0.02 · 2π f of the highest flexible
+//! mode — only when the NPZ has it (before issue 36 it used an undefined `mbs` and `data` and
+//! raised KeyError without `--damping`).
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use common::{exe, python_has, scratch, skipped};
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The Python blocks of the docs' exudyn section, dedented.
+fn docs_blocks() -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(root().join("docs/using-in-solvers.md")).unwrap();
+    let start = text.find("## exudyn (`--to exudyn`)").unwrap();
+    let end = start + 3 + text[start + 3..].find("\n## ").unwrap();
+    let mut blocks = Vec::new();
+    let mut current: Option<(usize, Vec<String>)> = None;
+    for line in text[start..end].lines() {
+        let trimmed = line.trim_start();
+        match &mut current {
+            None if trimmed == "```python" => current = Some((line.len() - trimmed.len(), vec![])),
+            Some(_) if trimmed == "```" => blocks.push(current.take().unwrap().1),
+            Some((indent, lines)) => lines.push(line.get(*indent..).unwrap_or("").to_string()),
+            None => {}
+        }
+    }
+    blocks
+}
+
+/// The example's `# --- snippet N` … `# --- end` blocks.
+fn example_blocks() -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(root().join("examples/using_in_exudyn.py")).unwrap();
+    let mut blocks = Vec::new();
+    let mut current: Option<Vec<String>> = None;
+    for line in text.lines() {
+        if line.starts_with("# --- snippet") {
+            current = Some(Vec::new());
+        } else if line == "# --- end" {
+            blocks.push(current.take().unwrap());
+        } else if let Some(lines) = &mut current {
+            lines.push(line.to_string());
+        }
+    }
+    blocks
+}
+
+#[test]
+fn the_docs_exudyn_snippets_are_the_examples_line_for_line() {
+    let docs = docs_blocks();
+    let example = example_blocks();
+    assert_eq!(
+        docs.len(),
+        3,
+        "the exudyn section's Python blocks: {docs:?}"
+    );
+    assert_eq!(docs, example);
+    // Each block defines what it uses: the system container before `mbs`.
+    for block in &docs[..2] {
+        let defined = block.iter().position(|l| l.starts_with("mbs = ")).unwrap();
+        let used = block.iter().position(|l| l.contains("(mbs")).unwrap();
+        assert!(defined < used);
+    }
+}
+
+#[test]
+fn the_docs_exudyn_snippets_run_with_and_without_damping() {
+    if !python_has("exudyn") || !python_has("numpy") {
+        skipped(
+            "the docs' exudyn snippets (docs_snippets): python3 cannot import exudyn and numpy \
+             (pip install exudyn)",
+        );
+        return;
+    }
+    let model = root().join("fixtures/models/conrod/conrod.inp");
+    for damping in [true, false] {
+        let dir = scratch(&format!("snippets-{damping}"));
+        let body = dir.join("conrod.flexbody");
+        let npz = dir.join("conrod.npz");
+        let mut build = exe();
+        build.arg("build").arg(&model).args([
+            "--interface",
+            "BIG_END,SMALL_END",
+            "--fmax",
+            "3000",
+            "--units",
+            "si",
+            "-q",
+        ]);
+        if damping {
+            build.args(["--damping", "2%"]);
+        }
+        assert!(build.arg("-o").arg(&body).status().unwrap().success());
+        let export = exe()
+            .arg("export")
+            .arg(&body)
+            .args(["--to", "exudyn", "-o"])
+            .arg(&npz)
+            .output()
+            .unwrap();
+        assert!(export.status.success());
+        let o = Command::new("python3")
+            .arg(root().join("examples/using_in_exudyn.py"))
+            .arg(&npz)
+            .arg(&body)
+            .env("PYTHONPATH", root().join("python"))
+            .output()
+            .unwrap();
+        let out = String::from_utf8_lossy(&o.stdout);
+        println!("damping {damping}:\n{out}");
+        assert!(
+            o.status.success(),
+            "{out}\n{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(out.contains("all snippets ran"));
+        let file = flexbody_reader::read(&body).unwrap();
+        if damping {
+            let f = *file.modes.frequency_hz.last().unwrap();
+            let expected = 2.0 * 0.02 * 2.0 * std::f64::consts::PI * f;
+            let at = out.find("max diagonal ").expect("the damping line") + "max diagonal ".len();
+            let value: f64 = out[at..at + out[at..].find(')').unwrap()].parse().unwrap();
+            println!("2 zeta omega of the highest mode: {value} (expected {expected})");
+            assert!(
+                (value / expected - 1.0).abs() < 1e-12,
+                "{value} vs {expected}"
+            );
+        } else {
+            assert!(out.contains("no dampingMatrixReduced"), "{out}");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
