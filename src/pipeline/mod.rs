@@ -94,8 +94,7 @@ pub fn build_model_with_hook(
     let mut constrained = clock.run(Stage::Constraints, || {
         constraints::constraints(&plan, &interfaced, assembled, &mut report)
     })?;
-    // A preload stage (static solve under the scene's loads → geometric stiffness added to K_r)
-    // belongs here: it takes the constrained system and returns one for the reduction.
+    stages::preload::preload(&plan, &interfaced)?;
     let basis = clock.run(Stage::Reduction, || {
         reduction::reduction(
             &plan,

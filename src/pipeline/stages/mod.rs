@@ -26,6 +26,7 @@ pub mod file;
 pub mod import;
 pub mod interfaces;
 pub mod invariants;
+pub mod preload;
 pub mod reduction;
 pub mod verify;
 
