@@ -50,8 +50,8 @@ fn build(model: &Path, args: &[&str]) -> Output {
 }
 
 /// The build fails, writes nothing, and its message contains every piece of `want`.
-fn assert_refused(deck: &Path, want: &[&str]) {
-    let o = build(deck, &["--modes", "4"]);
+fn assert_refused(deck: &Path, args: &[&str], want: &[&str]) {
+    let o = build(deck, &[&["--modes", "4"], args].concat());
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     for w in want {
@@ -70,6 +70,7 @@ fn nlgeom_preload_step_is_refused_naming_nlgeom() {
     );
     assert_refused(
         &deck,
+        &[],
         &[
             "nlgeom.inp:10: *STEP, NLGEOM",
             "NLGEOM",
@@ -85,7 +86,7 @@ fn preload_from_two_steps_is_refused() {
         "two_steps.inp",
         "*STEP\n*STATIC\n*CLOAD\nTIP, 1, 1000.\n*END STEP\n*STEP\n*STATIC\n*DLOAD\nSOLID, GRAV, 9.81, 0., 0., -1.\n*END STEP\n*STEP, PERTURBATION\n*FREQUENCY\n4\n*END STEP\n",
     );
-    assert_refused(&deck, &["two_steps.inp:17: *DLOAD", "several steps"]);
+    assert_refused(&deck, &[], &["two_steps.inp:17: *DLOAD", "several steps"]);
 }
 
 /// Without PERTURBATION the frequency step is the unloaded body's, as in CalculiX: the build
@@ -106,13 +107,45 @@ fn frequency_step_without_perturbation_is_the_unloaded_body() {
     assert_eq!(hz(&loaded), hz(&plain));
 }
 
-/// A `*STATIC` step with a concentrated load before `*STEP, PERTURBATION` / `*FREQUENCY`:
-/// refused naming the `*CLOAD` line until the preload stage honours it.
+/// A `*STATIC` step with a tip tension before `*STEP, PERTURBATION` / `*FREQUENCY`: the
+/// deck's preload is applied (a note names it; tension raises every bending frequency), and
+/// `--preload STEP_1` on the same loads without PERTURBATION gives the same body, mode for
+/// mode. (The K_G itself is checked against CalculiX's *BUCKLE in `preload_ccx_suite.rs`.)
 #[test]
-fn perturbation_preload_is_refused_naming_the_load() {
+fn perturbation_preload_equals_the_preload_option() {
+    let history = |perturbation: &str| {
+        format!("*STEP\n*STATIC\n*CLOAD\nTIP, 1, 2.e6\n*END STEP\n*STEP{perturbation}\n*FREQUENCY\n4\n*END STEP\n")
+    };
+    let deck = block_deck("cload.inp", &history(", PERTURBATION"));
+    let option = block_deck("cload_option.inp", &history(""));
+    let plain = block_deck("cload_plain.inp", "*STEP\n*FREQUENCY\n4\n*END STEP\n");
+    let hz = |deck: &Path, args: &[&str]| {
+        let o = build(deck, &[&["--modes", "4", "--json"], args].concat());
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let body = flexbody_reader::read(deck.with_extension("flexbody")).unwrap();
+        (body.modes.frequency_hz.clone(), r["deck"].to_string())
+    };
+    let (loaded, note) = hz(&deck, &[]);
+    assert!(note.contains("preloaded: step 1 (*STATIC)"), "{note}");
+    let (by_option, note) = hz(&option, &["--preload", "STEP_1"]);
+    assert!(note.contains("preloaded: --preload STEP_1"), "{note}");
+    let (unloaded, _) = hz(&plain, &[]);
+    for i in 0..4 {
+        assert!((loaded[i] - by_option[i]).abs() <= 1e-12 * loaded[i]);
+        assert!(
+            loaded[i] > unloaded[i] * (1.0 + 1e-4),
+            "{loaded:?} vs {unloaded:?}"
+        );
+    }
+}
+
+/// `--preload` of a name the scene does not have is an error listing the names it has.
+#[test]
+fn unknown_preload_name_is_refused() {
     let deck = block_deck(
-        "cload.inp",
-        "*STEP\n*STATIC\n*CLOAD\nTIP, 1, 1000.\n*END STEP\n*STEP, PERTURBATION\n*FREQUENCY\n4\n*END STEP\n",
+        "unknown.inp",
+        "*STEP\n*STATIC\n*CLOAD\nTIP, 1, 1000.\n*END STEP\n*STEP\n*FREQUENCY\n4\n*END STEP\n",
     );
-    assert_refused(&deck, &["cload.inp:12: *CLOAD", "PERTURBATION"]);
+    assert_refused(&deck, &["--preload", "NOPE"], &["--preload NOPE", "STEP_1"]);
 }

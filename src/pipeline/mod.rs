@@ -2,8 +2,9 @@
 //! ([`ReducedBody`](flexbody_reader::ReducedBody)), as a list of named stages.
 //!
 //! ```text
-//! import ─► interfaces ─► assembly ─► constraints ─► reduction ─► invariants ─► stress shapes
-//! Model     spiders       K, M        K_r, M_r, T    ModeSet, Φ   masses, I1…I9  (when asked)
+//! import ─► interfaces ─► assembly ─► constraints ─► preload ─► reduction ─► invariants ─► stress shapes
+//! Model     spiders       K, M        K_r, M_r, T    K_T,r       ModeSet, Φ   masses, I1…I9  (when asked)
+//!                                                    (when asked)
 //!        ─► assemble file ─► verify
 //!           ReducedBody      checked against the file rules and K_r, M_r
 //! ```
@@ -94,7 +95,11 @@ pub fn build_model_with_hook(
     let mut constrained = clock.run(Stage::Constraints, || {
         constraints::constraints(&plan, &interfaced, assembled, &mut report)
     })?;
-    stages::preload::preload(&plan, &interfaced)?;
+    if stages::preload::has_preload(&plan, &interfaced) {
+        clock.run(Stage::Preload, || {
+            stages::preload::preload(&plan, &interfaced, &mut constrained, &mut report)
+        })?;
+    }
     let basis = clock.run(Stage::Reduction, || {
         reduction::reduction(
             &plan,
