@@ -239,11 +239,13 @@ RECIPE_T = {
                 "reference_method": U8, "keep_nodes": STR, "invariants": STR, "stress_fields": STR,
                 "damping": ("opt", STR), "thickness": ("omit", F64), "subcase": ("omit", U64),
                 "gravity": ("omit", STR), "loads": ("omit", ("list", STR)), "residual_vectors": ("omit", STR),
-                "select": ("omit", STR)},
+                "select": ("omit", STR), "preload": ("omit", ("list", STR))},
     "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
         "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
         "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),
     "accuracy_band": {"fmax_hz": F64, "rule": STR, "basis_cutoff_hz": ("opt", F64)},
+    "preload": ("omit", {"source": STR, "loads": ("list", STR), "max_displacement": F64,
+                         "max_displacement_node": U64, "buckling_factor": ("opt", F64)}),
 }
 RECIPE_KEYS = list(RECIPE_T)  # member order of the summary
 

@@ -21,6 +21,28 @@ pub struct Recipe {
     pub interfaces: Vec<RecipeInterface>,
     /// The band in which the body is meant to be accurate.
     pub accuracy_band: AccuracyBand,
+    /// The preload the modes were computed under (absent: none).
+    #[serde(
+        default,
+        deserialize_with = "crate::json::present",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub preload: Option<RecipePreload>,
+}
+
+/// A linear static preload of the modes (K + K_G of its stress, SPEC §5.11).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RecipePreload {
+    /// Where it came from: `--preload NAMES`, or the deck's step and line.
+    pub source: String,
+    /// The loads it is made of.
+    pub loads: Vec<String>,
+    /// The largest nodal translation of the static solution.
+    pub max_displacement: f64,
+    /// The external id of the node where it is.
+    pub max_displacement_node: u64,
+    /// The lowest buckling factor λ₁ (`null`: nothing in compression).
+    pub buckling_factor: Option<f64>,
 }
 
 /// One model file read by the build.
@@ -112,6 +134,10 @@ pub struct RecipeOptions {
         skip_serializing_if = "Option::is_none"
     )]
     pub select: Option<String>,
+    /// `--preload` load names as given (absent: none; the deck's own preload is recorded by
+    /// the model files' SHA-256 and in [`Recipe::preload`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub preload: Vec<String>,
 }
 
 /// One `--interface` entry as resolved.

@@ -175,6 +175,12 @@ pub(crate) struct BuildArgs {
     /// deck's load set (LOAD_10). The deck's selected loads (LOAD = n) are always included.
     #[arg(long = "load", value_name = "SPEC", allow_hyphen_values = true)]
     pub(crate) loads: Vec<String>,
+    /// Preload the modes with the linear static state of these scene loads (names of --gravity's
+    /// GRAVITY, --load entries or the deck's load sets, comma-separated): the modes are those
+    /// of K + K_G(σ₀); a preload beyond the first buckling load is an error. Default: the
+    /// deck's own preload (CalculiX *STATIC before a *STEP, PERTURBATION frequency step).
+    #[arg(long, value_name = "LOAD[,LOAD…]", value_delimiter = ',')]
+    pub(crate) preload: Vec<String>,
     /// Add residual vectors (static responses) to the basis: loads (each scene load), interface
     /// (unit loads at the interface dofs) or both; inertia-relief balanced for a free body.
     #[arg(long, value_name = "KIND", num_args = 0..=1, default_missing_value = "loads")]
@@ -322,6 +328,7 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
                 .as_deref()
                 .map(crate::pipeline::scene::parse_select)
                 .transpose()?,
+            preload: a.preload.clone(),
         },
     })
 }

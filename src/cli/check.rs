@@ -76,9 +76,51 @@ fn model_checks(
         return Ok(());
     }
     let rebuilt = rebuild(body, input)?;
+    preload_as_built(body, &rebuilt, r);
     frequencies_against_full_solve(body, &rebuilt, r)?;
     identities_against_model(body, &rebuilt, r);
     Ok(())
+}
+
+/// The preload rebuilt from the model and the recipe against the one the recipe records: the
+/// same loads and the same static solution (max |u0|, relative difference ≤ 1e-9).
+fn preload_as_built(body: &file::ReducedBody, rebuilt: &Rebuilt, r: &mut CheckReport) {
+    let recorded = body.recipe.as_ref().and_then(|x| x.preload.as_ref());
+    match (recorded, &rebuilt.preload) {
+        (None, None) => {}
+        (Some(p), Some(q)) => {
+            let scale = p.max_displacement.abs().max(f64::MIN_POSITIVE);
+            let mut diff = (p.max_displacement - q.max_displacement).abs() / scale;
+            if p.loads != q.loads || p.max_displacement_node != q.max_displacement_node {
+                diff = f64::INFINITY;
+            }
+            r.push(
+                "preload as built",
+                diff,
+                1e-9,
+                format!(
+                    "{}: max |u0| {:.6e} at node {} (recorded {:.6e} at node {}, loads {})",
+                    q.source,
+                    q.max_displacement,
+                    q.max_displacement_node,
+                    p.max_displacement,
+                    p.max_displacement_node,
+                    p.loads.join(", ")
+                ),
+            );
+        }
+        (p, q) => r.push(
+            "preload as built",
+            f64::INFINITY,
+            1e-9,
+            format!(
+                "the recipe records {} but the rebuilt model has {}",
+                p.map_or("no preload".into(), |p| format!("the preload {}", p.source)),
+                q.as_ref()
+                    .map_or("none".into(), |q| format!("the preload {}", q.source))
+            ),
+        ),
+    }
 }
 
 /// The model files against the recipe's SHA-256; false when one changed (the model checks stop).
@@ -110,6 +152,8 @@ struct Rebuilt {
     reduced: fe::Reduced,
     /// Reference-condition dofs in the independent numbering.
     fixed: Vec<usize>,
+    /// The preload applied to K_r as `build` did (stages::preload).
+    preload: Option<crate::pipeline::stages::preload::PreloadSummary>,
 }
 
 /// Import, interfaces, assembly and elimination as `build` did them (mass as the file says).
@@ -152,7 +196,21 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
         interfaces,
         model,
     };
-    let red = eliminate_constraints(&interfaced, &a)?;
+    let mut red = eliminate_constraints(&interfaced, &a)?;
+    // as `build`: the preload (the deck's or the recipe's --preload) turns K_r into K_T,r
+    let assembly = AssemblySpec {
+        mass,
+        beam_lumping,
+        ..Default::default()
+    };
+    let preload = crate::pipeline::stages::preload::apply(
+        &interfaced.model,
+        &a,
+        &mut red,
+        &assembly,
+        &input.scene,
+        faer::Par::Seq,
+    )?;
     let model = interfaced.model;
     let by_id = model.node_index_by_id();
     // Reference-condition dofs in the reduced numbering.
@@ -181,6 +239,7 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
         assembled: a,
         reduced: red,
         fixed,
+        preload,
     })
 }
 

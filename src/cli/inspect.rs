@@ -426,6 +426,21 @@ fn render_recipe(o: &mut String, r: &flexbody_reader::Recipe) {
         "  accurate   0 – {:.6} Hz (rule {})",
         r.accuracy_band.fmax_hz, r.accuracy_band.rule
     );
+    if let Some(p) = &r.preload {
+        let factor = p
+            .buckling_factor
+            .map_or("none (nothing in compression)".into(), |l| {
+                format!("{l:.6}")
+            });
+        let _ = writeln!(
+            o,
+            "  preload    {} ({}): linear static, max |u0| {:.6e} at node {}, buckling factor {factor}",
+            p.source,
+            p.loads.join(", "),
+            p.max_displacement,
+            p.max_displacement_node
+        );
+    }
 }
 
 /// The `--units` value of a unit system: its preset name (`si`, `mm-t-s`, …), or the units

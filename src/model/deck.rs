@@ -36,6 +36,30 @@ pub struct DeckRequest {
     /// it holds per node: usable as reference conditions by name.
     pub spc_sets:
         std::collections::BTreeMap<String, Vec<(crate::model::NodeIndex, crate::model::DofMask)>>,
+    /// The preload the deck asks the modes under (CalculiX `*STATIC` then `*STEP,
+    /// PERTURBATION` / `*FREQUENCY`), if any.
+    pub preload: Option<PreloadRequest>,
+}
+
+/// A linear static preload of the deck's modes (issue 35): the base state of a perturbation
+/// frequency step.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PreloadRequest {
+    /// What and where, e.g. `step 1 (*STATIC) at deck.inp:376`.
+    pub source: String,
+    /// The first load keyword of the preload, `file:line: *KEYWORD` (what an error names).
+    pub first_load: String,
+    /// The names of the scene loads (`Model::loads`) the preload is made of.
+    pub loads: Vec<String>,
+    /// Spins (CalculiX CENTRIF): a point of the axis, the axis, Ω in rad per unit time.
+    pub spins: Vec<([f64; 3], [f64; 3], f64)>,
+    /// Temperature change ΔT from the stress-free state per node (indexed like
+    /// `Model::nodes`), with the expansion coefficient α per material (like
+    /// `Model::materials`).
+    pub thermal: Option<(Vec<f64>, Vec<f64>)>,
+    /// What of it the tool cannot honour (`file:line: *KEYWORD: why`): the build refuses the
+    /// deck with it.
+    pub problem: Option<String>,
 }
 
 /// Where a group of [`crate::model::Spc`] records came from.

@@ -40,7 +40,7 @@ pub fn constrained_system(spec: &BuildSpec) -> Result<ConstrainedSystem, BuildEr
 }
 
 /// [`constrained_system`] for a model in memory: the deck's defaults, the interface spiders,
-/// assembly and elimination by the build's own stages.
+/// assembly, elimination and the preload (K_T,r in place of K_r) by the build's own stages.
 pub fn constrained_system_of_model(
     spec: &BuildSpec,
     model: Model,
@@ -48,7 +48,16 @@ pub fn constrained_system_of_model(
     let plan = Plan::resolve(spec, &model);
     let interfaced = attach(&plan, model)?;
     let assembled = assemble(&interfaced.model, &plan.assembly)?;
-    let reduced = eliminate_constraints(&interfaced, &assembled)?;
+    let mut reduced = eliminate_constraints(&interfaced, &assembled)?;
+    // a preloaded build reduces K_T,r = K_r + Tᵀ K_G T: that is the K written
+    crate::pipeline::stages::preload::apply(
+        &interfaced.model,
+        &assembled,
+        &mut reduced,
+        &plan.assembly,
+        &plan.spec.scene,
+        plan.spec.par(),
+    )?;
     let model = &interfaced.model;
     let d = &assembled.dofs;
     // Physical dof → (node, component): dofs are numbered node-major from `first`.
@@ -116,6 +125,7 @@ pub fn spec_from_body_with(
     spec.interface = input.interface;
     spec.spider = input.spider;
     spec.beam_mass = input.beam_mass;
+    spec.scene = input.scene;
     spec.mass = match body.method.mass_kind {
         flexbody_reader::MassKind::Lumped => fe::MassKind::Lumped,
         flexbody_reader::MassKind::Consistent => fe::MassKind::Consistent,

@@ -2,8 +2,9 @@
 //! ([`ReducedBody`](flexbody_reader::ReducedBody)), as a list of named stages.
 //!
 //! ```text
-//! import ─► interfaces ─► assembly ─► constraints ─► reduction ─► invariants ─► stress shapes
-//! Model     spiders       K, M        K_r, M_r, T    ModeSet, Φ   masses, I1…I9  (when asked)
+//! import ─► interfaces ─► assembly ─► constraints ─► preload ─► reduction ─► invariants ─► stress shapes
+//! Model     spiders       K, M        K_r, M_r, T    K_T,r       ModeSet, Φ   masses, I1…I9  (when asked)
+//!                                                    (when asked)
 //!        ─► assemble file ─► verify
 //!           ReducedBody      checked against the file rules and K_r, M_r
 //! ```
@@ -146,8 +147,11 @@ fn run_stages(
     let mut constrained = clock.run(Stage::Constraints, || {
         constraints::constraints(&plan, &interfaced, assembled, report)
     })?;
-    // A preload stage (static solve under the scene's loads → geometric stiffness added to K_r)
-    // belongs here: it takes the constrained system and returns one for the reduction.
+    if stages::preload::has_preload(&plan, &interfaced) {
+        clock.run(Stage::Preload, || {
+            stages::preload::preload(&plan, &interfaced, &mut constrained, &mut report)
+        })?;
+    }
     let basis = clock.run(Stage::Reduction, || {
         reduction::reduction(&plan, &interfaced.model, &mut constrained, hook, report)
     })?;

@@ -16,6 +16,8 @@ use crate::fe::{self, BeamLumping};
 use crate::import::Format;
 use crate::model::{DofMask, Material, Model, RigidElement};
 use crate::pipeline::interface::{InterfaceReport, SpiderKind};
+use crate::pipeline::scene::SceneSpec;
+use crate::pipeline::stages::preload::PreloadSummary;
 use crate::pipeline::{BuildMethod, BuildSpec, KeepNodes};
 use crate::reduce::select::FMAX_FACTOR;
 use crate::reduce::ModeSet;
@@ -142,12 +144,13 @@ pub fn model_files(files: &[String]) -> Result<Vec<file::ModelFile>, String> {
 }
 
 /// The recipe of a build: `spec` as the options, `model` after interface resolution (its files,
-/// node ids and spiders), the interfaces as resolved and the accuracy band.
+/// node ids and spiders), the interfaces as resolved, the accuracy band and the preload.
 pub fn recipe(
     spec: &BuildSpec,
     model: &Model,
     interfaces: &[InterfaceReport],
     band: file::AccuracyBand,
+    preload: Option<&PreloadSummary>,
 ) -> Result<file::Recipe, String> {
     let ids = |nodes: &[usize]| nodes.iter().map(|&n| model.nodes[n].id).collect::<Vec<_>>();
     let options = file::RecipeOptions {
@@ -216,6 +219,7 @@ pub fn recipe(
             .into()
         }),
         select: spec.scene.select.map(crate::pipeline::scene::select_text),
+        preload: spec.scene.preload.clone(),
     };
     let interfaces = interfaces
         .iter()
@@ -264,6 +268,19 @@ pub fn recipe(
         options,
         interfaces,
         accuracy_band: band,
+        preload: preload.map(|p| file::RecipePreload {
+            // the deck's step named by the file name, as `model_files` does
+            source: match Path::new(&model.source).parent() {
+                Some(dir) if !dir.as_os_str().is_empty() => {
+                    p.source.replace(&format!("{}/", dir.display()), "")
+                }
+                _ => p.source.clone(),
+            },
+            loads: p.loads.clone(),
+            max_displacement: p.max_displacement,
+            max_displacement_node: p.max_displacement_node,
+            buckling_factor: p.buckling_factor,
+        }),
     })
 }
 
@@ -321,6 +338,8 @@ pub struct ModelInput {
     pub spider: SpiderKind,
     /// Rotational inertia of lumped beam masses (`None`: as `build` resolves it by default).
     pub beam_mass: Option<crate::fe::BeamLumping>,
+    /// The scene's loads as far as the preload needs them: `--gravity`, `--load`, `--preload`.
+    pub scene: SceneSpec,
 }
 
 /// Model options given explicitly to `check`; each overrides the recipe's.
@@ -387,5 +406,11 @@ pub fn model_input(
         beam_mass,
         thickness: o.thickness.or_else(|| opts.and_then(|r| r.thickness)),
         subcase: o.subcase.or_else(|| opts.and_then(|r| r.subcase)),
+        scene: SceneSpec {
+            gravity: opts.and_then(|r| r.gravity.clone()),
+            loads: opts.map(|r| r.loads.clone()).unwrap_or_default(),
+            preload: opts.map(|r| r.preload.clone()).unwrap_or_default(),
+            ..Default::default()
+        },
     })
 }

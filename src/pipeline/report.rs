@@ -52,6 +52,9 @@ pub enum BuildError {
     /// The reduction failed.
     #[error(transparent)]
     Reduce(#[from] reduce::ReduceError),
+    /// The preload stage failed (its static solve, or the preload buckles the part).
+    #[error(transparent)]
+    Preload(fe::preload::PreloadError),
     /// Invariants could not be formed.
     #[error(transparent)]
     Invariants(#[from] crate::body::invariants::InvariantError),
@@ -77,11 +80,12 @@ pub enum BuildError {
 }
 
 /// Stages reported to the progress callback, in order.
-pub const STAGES: [&str; 9] = [
+pub const STAGES: [&str; 10] = [
     "import",
     "interfaces",
     "assembly",
     "constraints",
+    "preload",
     "reduction",
     "invariants",
     "stress shapes",
@@ -100,6 +104,8 @@ pub enum Stage {
     Assembly,
     /// Elimination u = T u_r, interface and reference dofs, the checks before the reduction.
     Constraints,
+    /// The preload's static solve and K_T = K + K_G (only when the build has a preload).
+    Preload,
     /// The mode set.
     Reduction,
     /// Mass points and the inertia invariants.

@@ -31,6 +31,9 @@ pub struct SceneSpec {
     pub residual_vectors: Option<ResidualKind>,
     /// `--select participation:ε`: the ε (see [`crate::reduce::participation`]).
     pub select: Option<f64>,
+    /// `--preload LOAD[,LOAD…]`: the scene loads whose linear static state preloads the modes
+    /// (the preload stage); empty: the deck's preload, if any.
+    pub preload: Vec<String>,
 }
 
 impl SceneSpec {

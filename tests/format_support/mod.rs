@@ -599,6 +599,7 @@ pub fn recipe_3node() -> Recipe {
             loads: vec![],
             residual_vectors: None,
             select: None,
+            preload: Vec::new(),
         },
         interfaces: vec![
             RecipeInterface {
@@ -624,6 +625,7 @@ pub fn recipe_3node() -> Recipe {
             rule: "normal-modes".into(),
             basis_cutoff_hz: None,
         },
+        preload: None,
     }
 }
 

@@ -63,9 +63,19 @@ impl Parser {
             "SOLID SECTION" | "BEAM SECTION" | "SHELL SECTION" => self.section_keyword(&kw)?,
             "BOUNDARY" => self.boundary_keyword(&kw),
             "STEP" => {
-                self.steps.begin(loc, kw.param("NAME").map(str::to_owned));
+                let nlgeom = kw
+                    .param("NLGEOM")
+                    .is_some_and(|v| !v.eq_ignore_ascii_case("NO"));
+                let perturbation = kw.param("PERTURBATION").is_some();
+                (self.steps).begin(
+                    loc,
+                    kw.param("NAME").map(str::to_owned),
+                    perturbation,
+                    nlgeom,
+                );
                 Block::Skip
             }
+            "TEMPERATURE" if self.steps.current.is_some() => self.temperature_keyword(&kw),
             "END STEP" => {
                 self.steps.finish_current();
                 Block::Skip
@@ -246,6 +256,9 @@ impl Parser {
             if step.procedure.is_none() {
                 step.procedure = Some((p.to_owned(), kw.loc));
             }
+            if kw.param("PERTURBATION").is_some() {
+                step.perturbation = true;
+            }
         }
         if p == "FREQUENCY" {
             Block::Frequency
@@ -263,6 +276,9 @@ impl Parser {
                 "a load is history data: it belongs inside a *STEP",
             ));
         }
+        if let Some(step) = &mut self.steps.current {
+            step.loads.push((format!("*{}", kw.name), kw.loc));
+        }
         match kw.name {
             "CLOAD" => Ok(Block::Load(loads::LoadKeyword::Cload)),
             "DLOAD" => Ok(Block::Load(loads::LoadKeyword::Dload)),
@@ -272,6 +288,15 @@ impl Parser {
                 "loads on element-based surfaces are not supported (element-based *SURFACE is not read): give the pressure with *DLOAD, Pn on the elements",
             )),
         }
+    }
+
+    /// `*TEMPERATURE` inside a step: a thermal load of the step (steps.rs: a preload of a
+    /// perturbation step).
+    fn temperature_keyword(&mut self, kw: &Keyword) -> Block {
+        if let Some(step) = &mut self.steps.current {
+            step.loads.push(("*TEMPERATURE".to_owned(), kw.loc));
+        }
+        Block::Skip
     }
 
     /// `*TRANSFORM, NSET=…, TYPE=R|C`.

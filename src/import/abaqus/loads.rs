@@ -56,6 +56,14 @@ fn num(r: &Resolve, raw: &RawLoad, k: usize, ent: &str, what: &str) -> Result<f6
     })
 }
 
+/// The name of step `k`'s (0-based) load: the step's `NAME=`, else `STEP_<k+1>`.
+pub(super) fn step_load_name(k: usize, name: &Option<String>) -> String {
+    name.as_ref()
+        .map(|n| n.trim().to_ascii_uppercase().replace(' ', "_"))
+        .filter(|n| !n.is_empty())
+        .unwrap_or_else(|| format!("STEP_{}", k + 1))
+}
+
 /// Resolve the load lines into one load per step (module doc).
 pub(super) fn resolve(raws: &[RawLoad], r: &Resolve) -> Result<Vec<Load>, ImportError> {
     let mut steps: BTreeMap<usize, Load> = BTreeMap::new();
@@ -193,11 +201,7 @@ pub(super) fn resolve(raws: &[RawLoad], r: &Resolve) -> Result<Vec<Load>, Import
         };
         let (k, name) = &raw.step;
         let load = steps.entry(*k).or_insert_with(|| Load {
-            name: name
-                .as_ref()
-                .map(|n| n.trim().to_ascii_uppercase().replace(' ', "_"))
-                .filter(|n| !n.is_empty())
-                .unwrap_or_else(|| format!("STEP_{}", k + 1)),
+            name: step_load_name(*k, name),
             source: String::new(),
             selected: true,
             parts: Vec::new(),

@@ -246,6 +246,9 @@ impl Parser {
     fn resolve_boundaries(&mut self, sets: &Sets) -> Result<(), ImportError> {
         self.steps.finish_current();
         let at = |loc: Loc| format!("{}:{}", self.b.file_name(loc), loc.line);
+        let preload = (self.steps.preload(&at))
+            .map_err(|(loc, kw, msg)| self.err(loc, kw, msg))?
+            .map(|k| self.steps.preload_request(k, &at));
         let applied = self.steps.applied(&at);
         let mut bcs: Vec<(Target, DofMask, Loc, String)> = self
             .boundaries
@@ -289,6 +292,7 @@ impl Parser {
                 message,
             });
         }
+        self.b.model.deck.preload = preload;
         if let Some((what, count)) = frequency {
             self.b.model.deck.eigen = count.map(|n| EigenRequest {
                 source: format!("*FREQUENCY of {what}"),

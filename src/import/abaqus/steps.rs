@@ -11,6 +11,7 @@
 
 use super::Target;
 use crate::import::text::Loc;
+use crate::model::deck::PreloadRequest;
 use crate::model::DofMask;
 
 /// One `*BOUNDARY` data line: where, which dofs, the line.
@@ -28,6 +29,13 @@ pub(super) struct Step {
     pub boundaries: Vec<Boundary>,
     /// `*BOUNDARY, OP=NEW` in this step: earlier steps' conditions are removed.
     pub op_new: bool,
+    /// `*STEP, PERTURBATION` (or `*FREQUENCY, PERTURBATION`): the step works on the loaded
+    /// state of the static step before it.
+    pub perturbation: bool,
+    /// `*STEP, NLGEOM` (not `NLGEOM=NO`).
+    pub nlgeom: bool,
+    /// The step's load keywords (`*CLOAD`, `*DLOAD`, `*TEMPERATURE`) and their lines.
+    pub loads: Vec<(String, Loc)>,
 }
 
 /// Procedure keywords that open an analysis inside a step.
@@ -64,7 +72,7 @@ pub(super) struct Applied<'a> {
 }
 
 impl Step {
-    fn describe(&self, number: usize) -> String {
+    pub(super) fn describe(&self, number: usize) -> String {
         let proc = self
             .procedure
             .as_ref()
@@ -77,7 +85,13 @@ impl Step {
 }
 
 impl Steps {
-    pub(super) fn begin(&mut self, loc: Loc, name: Option<String>) {
+    pub(super) fn begin(
+        &mut self,
+        loc: Loc,
+        name: Option<String>,
+        perturbation: bool,
+        nlgeom: bool,
+    ) {
         self.finish_current();
         self.current = Some(Step {
             loc,
@@ -86,7 +100,78 @@ impl Steps {
             eigenvalues: None,
             boundaries: Vec::new(),
             op_new: false,
+            perturbation,
+            nlgeom,
+            loads: Vec::new(),
         });
+    }
+
+    /// The index of the first `*FREQUENCY` step (the one whose modes the body uses).
+    fn frequency_step(&self) -> Option<usize> {
+        self.done
+            .iter()
+            .position(|s| s.procedure.as_ref().is_some_and(|p| p.0 == "FREQUENCY"))
+    }
+
+    /// The static step that preloads the body's modes (module doc): `Ok(None)` when the
+    /// `*FREQUENCY` step is not a perturbation of a loaded state; an error (line, keyword,
+    /// message) for a preload that cannot be honoured — an NLGEOM step (the preload is linear),
+    /// loads in several steps, or loads in a step that is not `*STATIC`.
+    pub(super) fn preload(
+        &self,
+        at: &dyn Fn(Loc) -> String,
+    ) -> Result<Option<usize>, (Loc, String, String)> {
+        let Some(f) = self.frequency_step() else {
+            return Ok(None);
+        };
+        let freq = &self.done[f];
+        if !freq.perturbation {
+            return Ok(None);
+        }
+        let proc_loc = freq.procedure.as_ref().map_or(freq.loc, |p| p.1);
+        let what = format!(
+            "the *FREQUENCY, PERTURBATION {} at {}",
+            freq.describe(f + 1),
+            at(proc_loc)
+        );
+        let loaded: Vec<usize> = (0..f).filter(|&k| !self.done[k].loads.is_empty()).collect();
+        let Some(&k) = loaded.first() else {
+            return Ok(None);
+        };
+        let step = &self.done[k];
+        if step.nlgeom {
+            return Err((
+                step.loc,
+                "*STEP, NLGEOM".to_owned(),
+                format!(
+                    "{} is geometrically nonlinear (NLGEOM) and preloads {what}: flexbody's preload is linear (K + K_G of the linear static state), it cannot reproduce an NLGEOM base state; remove NLGEOM to use the linear preload",
+                    step.describe(k + 1)
+                ),
+            ));
+        }
+        if let Some(&other) = loaded.get(1) {
+            let (kw, loc) = &self.done[other].loads[0];
+            return Err((
+                *loc,
+                kw.clone(),
+                format!(
+                    "{} loads the body too: a preload of {what} made of several steps' loads is not supported (give them in one *STATIC step)",
+                    self.done[other].describe(other + 1)
+                ),
+            ));
+        }
+        if step.procedure.as_ref().is_none_or(|p| p.0 != "STATIC") {
+            let (kw, loc) = &step.loads[0];
+            return Err((
+                *loc,
+                kw.clone(),
+                format!(
+                    "{} preloads {what} but is not a *STATIC step: only a linear static preload is supported",
+                    step.describe(k + 1)
+                ),
+            ));
+        }
+        Ok(Some(k))
     }
 
     pub(super) fn finish_current(&mut self) {
@@ -95,13 +180,35 @@ impl Steps {
         }
     }
 
+    /// The deck's preload request of step `k` (the one [`Steps::preload`] found): its
+    /// `*CLOAD` / `*DLOAD` lines are the scene load named after the step (loads.rs);
+    /// `*TEMPERATURE` is not honoured (the request's problem).
+    pub(super) fn preload_request(&self, k: usize, at: &dyn Fn(Loc) -> String) -> PreloadRequest {
+        let step = &self.done[k];
+        let (kw, loc) = &step.loads[0];
+        let mut request = PreloadRequest {
+            source: format!("{} at {}", step.describe(k + 1), at(step.loc)),
+            first_load: format!("{}: {kw}", at(*loc)),
+            ..Default::default()
+        };
+        if step.loads.iter().any(|(kw, _)| kw != "*TEMPERATURE") {
+            request
+                .loads
+                .push(super::loads::step_load_name(k, &step.name));
+        }
+        if let Some((kw, loc)) = step.loads.iter().find(|(kw, _)| kw == "*TEMPERATURE") {
+            request.problem = Some(format!(
+                "{}: {kw}: a thermal preload from *TEMPERATURE is not supported",
+                at(*loc)
+            ));
+        }
+        request
+    }
+
     /// Split the step conditions into applied (first `*FREQUENCY` step, with what propagates
     /// into it) and ignored (warnings `file:line`-located by `at`).
     pub(super) fn applied(&self, at: &dyn Fn(Loc) -> String) -> Applied<'_> {
-        let freq = self
-            .done
-            .iter()
-            .position(|s| s.procedure.as_ref().is_some_and(|p| p.0 == "FREQUENCY"));
+        let freq = self.frequency_step();
         let mut out = Applied {
             boundaries: Vec::new(),
             ignored: Vec::new(),

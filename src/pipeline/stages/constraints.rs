@@ -33,6 +33,8 @@ pub struct Constrained {
     pub reference_dofs: Vec<usize>,
     /// Reference conditions per node, the model's own SPCs included (what the file records).
     pub reference_nodes: ReferenceNodes,
+    /// The preload `reduced.k` carries (K_T,r; set by the preload stage).
+    pub preload: Option<crate::pipeline::stages::preload::PreloadSummary>,
 }
 
 /// The constraints stage.
@@ -94,6 +96,7 @@ pub fn constraints(
         interface_masks,
         reference_dofs,
         reference_nodes,
+        preload: None,
     })
 }
 

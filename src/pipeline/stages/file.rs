@@ -108,8 +108,14 @@ pub fn assemble_file(
     };
     body.modal_loads = modal_loads(&basis.scene, set);
     let band = accuracy_band(spec, set);
-    let recipe =
-        recipe(spec, model, &interfaced.interfaces, band).map_err(|e| plan.request_error(e))?;
+    let recipe = recipe(
+        spec,
+        model,
+        &interfaced.interfaces,
+        band,
+        constrained.preload.as_ref(),
+    )
+    .map_err(|e| plan.request_error(e))?;
     body.recipe = Some(recipe);
     if let Some(b) = &fields.bottom {
         body.stress_shapes_bottom = field_shapes(b, b.stress.as_ref(), &position);

@@ -7,6 +7,7 @@
 //! | interfaces | [`interfaces`](mod@interfaces) | `Model` → [`WithInterfaces`](interfaces::WithInterfaces) (spiders attached) |
 //! | assembly | [`assembly`](mod@assembly) | → [`Assembled`](crate::fe::Assembled) (K, M, dof map) |
 //! | constraints | [`constraints`](mod@constraints) | → [`Constrained`](constraints::Constrained) (K_r, M_r, T, interface and reference dofs) |
+//! | preload | [`preload`](mod@preload) | → the same, K_T,r = K_r + Tᵀ K_G T in place of K_r (only with a preload) |
 //! | reduction | [`reduction`](mod@reduction) | → [`ReducedBasis`](reduction::ReducedBasis) (mode set, Φ = T Φ_r) |
 //! | invariants | [`invariants`](mod@invariants) | → [`MassProperties`](invariants::MassProperties) (nodal masses, invariants) |
 //! | stress shapes | [`fields`](mod@fields) | → [`FieldShapes`](fields::FieldShapes) (only when asked) |
@@ -26,6 +27,7 @@ pub mod file;
 pub mod import;
 pub mod interfaces;
 pub mod invariants;
+pub mod preload;
 pub mod reduction;
 pub mod verify;
 

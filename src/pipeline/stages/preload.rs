@@ -1,0 +1,213 @@
+//! Preload (issue 35): when the deck asks its modes on a loaded state (CalculiX `*STATIC` with
+//! loads before a `*STEP, PERTURBATION` / `*FREQUENCY`) or the user names scene loads with
+//! `--preload LOAD[,LOAD…]`, the linear static solve of that case on the constrained system,
+//! the geometric stiffness of its stress and K_T,r = K_r + Tᵀ K_G T, which replaces K_r for the
+//! reduction (every method unchanged; `fe::preload`, whose module doc is the design note).
+//! Takes the constrained system, returns it with K_T,r and a [`PreloadSummary`] for the report
+//! and the recipe. `flexbody check --model` rebuilds the same K_T with [`apply`].
+//!
+//! Refused, never dropped: a deck preload the importer could not read (its request's
+//! problem, a load with a problem), a name that is no scene load, a free body (the preload of
+//! a body held only by inertia relief is not supported through the build), and a preload
+//! beyond the first buckling load ([`PreloadError::Buckling`] with the buckling factor).
+
+use faer::Par;
+
+use crate::fe::preload::{self, PreloadCase, PreloadError, PreloadSpec, Spin, System};
+use crate::fe::{Assembled, AssemblySpec, Reduced};
+use crate::model::{Load, Model};
+use crate::pipeline::plan::Plan;
+use crate::pipeline::scene::{scene_loads, SceneSpec};
+use crate::pipeline::stages::constraints::Constrained;
+use crate::pipeline::stages::interfaces::WithInterfaces;
+use crate::pipeline::{BuildError, BuildReport};
+
+/// What the preload was and what it did (report and recipe).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreloadSummary {
+    /// Where it came from: `--preload NAMES` or the deck's step.
+    pub source: String,
+    /// The scene loads it is made of (and `CENTRIF` spins).
+    pub loads: Vec<String>,
+    /// The largest translation |u₀| of the static solution.
+    pub max_displacement: f64,
+    /// The external id of the node where it is.
+    pub max_displacement_node: u64,
+    /// The lowest buckling factor λ₁ (`None`: nothing in compression).
+    pub buckling_factor: Option<f64>,
+}
+
+impl PreloadSummary {
+    /// The build report's note.
+    pub fn note(&self) -> String {
+        let factor = match self.buckling_factor {
+            Some(l) => format!("lowest buckling factor λ₁ = {l:.6}"),
+            None => "no buckling factor (nothing in compression)".into(),
+        };
+        format!(
+            "preloaded: {} ({}): linear static preload, max |u0| {:.6e} at node {}, {factor}; the modes are those of K + K_G",
+            self.source,
+            self.loads.join(", "),
+            self.max_displacement,
+            self.max_displacement_node
+        )
+    }
+}
+
+/// Whether the build has a preload (`--preload` or the deck's).
+pub fn has_preload(plan: &Plan, interfaced: &WithInterfaces) -> bool {
+    !plan.spec.scene.preload.is_empty() || interfaced.model.deck.preload.is_some()
+}
+
+/// The preload stage (module doc): K_T,r in place of `constrained.reduced.k` when the build
+/// has a preload, its summary in `constrained.preload` and the report.
+pub fn preload(
+    plan: &Plan,
+    interfaced: &WithInterfaces,
+    constrained: &mut Constrained,
+    report: &mut BuildReport,
+) -> Result<(), BuildError> {
+    let summary = apply(
+        &interfaced.model,
+        &constrained.assembled,
+        &mut constrained.reduced,
+        &plan.assembly,
+        &plan.spec.scene,
+        plan.spec.par(),
+    )?;
+    if let Some(s) = &summary {
+        report.notes.push(s.note());
+    }
+    constrained.preload = summary;
+    Ok(())
+}
+
+/// The preload of `model` (the `--preload` names of `scene`, else the deck's request) applied
+/// to `reduced` (K_r → K_T,r); `Ok(None)` when there is none.
+pub fn apply(
+    model: &Model,
+    assembled: &Assembled,
+    reduced: &mut Reduced,
+    assembly: &AssemblySpec,
+    scene: &SceneSpec,
+    par: Par,
+) -> Result<Option<PreloadSummary>, BuildError> {
+    let Some((source, names, case)) = preload_case(model, scene)? else {
+        return Ok(None);
+    };
+    let sys = System {
+        model,
+        assembled,
+        reduced,
+        assembly,
+    };
+    let spec = PreloadSpec {
+        par,
+        ..Default::default()
+    };
+    let pl = preload::preload(&sys, &case, &spec)?;
+    if pl.rigid_modes > 0 {
+        return Err(BuildError::Request {
+            file: model.source.clone(),
+            message: format!(
+                "{source}: the body is free ({} rigid-body motion(s) balanced by inertia relief): a preload of a free body is not supported through the build; hold the body (*BOUNDARY / SPC) or drop the preload",
+                pl.rigid_modes
+            ),
+        });
+    }
+    let buckling_factor = preload::buckling_factor(&sys, &pl, par)?;
+    let (max_displacement, node) = max_translation(model, assembled, &pl.u);
+    reduced.k = pl.k_t;
+    Ok(Some(PreloadSummary {
+        source,
+        loads: names,
+        max_displacement,
+        max_displacement_node: model.nodes[node].id,
+        buckling_factor,
+    }))
+}
+
+/// The largest nodal translation |u| of `u` (physical dofs) and its node.
+fn max_translation(model: &Model, assembled: &Assembled, u: &[f64]) -> (f64, usize) {
+    let d = &assembled.dofs;
+    (0..model.nodes.len())
+        .map(|p| {
+            let n = usize::from(d.count[p]).min(3);
+            let s: f64 = (0..n).map(|c| u[d.first[p] + c].powi(2)).sum();
+            (s.sqrt(), p)
+        })
+        .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a })
+}
+
+/// The preload case: `--preload` names (scene loads and the deck's load sets by name), else
+/// the deck's request; with its source and the names of its parts.
+fn preload_case(
+    model: &Model,
+    scene: &SceneSpec,
+) -> Result<Option<(String, Vec<String>, PreloadCase)>, BuildError> {
+    let request_error = |message: String| BuildError::Request {
+        file: model.source.clone(),
+        message,
+    };
+    if !scene.preload.is_empty() {
+        let available = scene_loads(model, scene).map_err(|e| request_error(e.to_string()))?;
+        let mut loads: Vec<Load> = Vec::new();
+        for name in &scene.preload {
+            let found = (available.iter())
+                .chain(&model.loads)
+                .find(|l| l.name.eq_ignore_ascii_case(name.trim()));
+            let Some(l) = found else {
+                let known: Vec<&str> = (available.iter().chain(&model.loads))
+                    .map(|l| l.name.as_str())
+                    .collect();
+                return Err(request_error(format!(
+                    "--preload {name}: no scene load of that name (the scene has: {}; give --gravity or --load for more)",
+                    if known.is_empty() { "none".into() } else { known.join(", ") }
+                )));
+            };
+            loads.push(l.clone());
+        }
+        let names = loads.iter().map(|l| l.name.clone()).collect();
+        let source = format!("--preload {}", scene.preload.join(","));
+        let case = PreloadCase {
+            loads,
+            ..Default::default()
+        };
+        return Ok(Some((source, names, case)));
+    }
+    let Some(request) = &model.deck.preload else {
+        return Ok(None);
+    };
+    if let Some(problem) = &request.problem {
+        return Err(request_error(format!(
+            "{problem} ({} preloads the modes of the *FREQUENCY, PERTURBATION step; a preload the tool cannot apply is refused, never dropped)",
+            request.source
+        )));
+    }
+    let mut case = PreloadCase::default();
+    let mut names = Vec::new();
+    for name in &request.loads {
+        let l = (model.loads.iter())
+            .find(|l| &l.name == name)
+            .ok_or_else(|| {
+                request_error(format!(
+                    "{}: the preload's load {name} was not read",
+                    request.first_load
+                ))
+            })?;
+        case.loads.push(l.clone());
+        names.push(name.clone());
+    }
+    for &(point, axis, omega) in &request.spins {
+        let spin = Spin { point, axis, omega };
+        case.inertia.extend(spin.field());
+        names.push(format!("CENTRIF Ω = {omega} about {axis:?}"));
+    }
+    Ok(Some((request.source.clone(), names, case)))
+}
+
+impl From<PreloadError> for BuildError {
+    fn from(e: PreloadError) -> Self {
+        BuildError::Preload(e)
+    }
+}
