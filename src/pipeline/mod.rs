@@ -149,7 +149,7 @@ fn run_stages(
     })?;
     if stages::preload::has_preload(&plan, &interfaced) {
         clock.run(Stage::Preload, || {
-            stages::preload::preload(&plan, &interfaced, &mut constrained, &mut report)
+            stages::preload::preload(&plan, &interfaced, &mut constrained, report)
         })?;
     }
     let basis = clock.run(Stage::Reduction, || {
