@@ -1,12 +1,16 @@
 //! Keyword lines of the Abaqus reader: `*NAME, KEY=value, …` → the [`Block`] its data lines
-//! fill ([`super::data`]). [`Parser::start_keyword`] is the table: one reader per keyword
-//! family; a keyword it does not know is counted and skipped.
+//! fill ([`super::data`]). [`Parser::start_keyword`] is the table: one reader per honoured
+//! keyword family; every other keyword is a note or refused by the keyword table
+//! ([`super::rules`]). Keywords after the first `*FREQUENCY` step are ignored (one warning):
+//! only that step and what precedes it define the body.
 
+use super::connectors::{RawRigidBody, RawSpring};
 use super::defs::element_kind;
+use super::rules::{self, Rule};
 use super::{
     loads, param, steps, target, Block, CouplingKind, Parser, RawCoupling, RawMaterial, RawSection,
 };
-use crate::import::error::ImportError;
+use crate::import::error::{ImportError, RefusedCard};
 use crate::import::text::Loc;
 use crate::model::{DofMask, Section, SectionShape};
 
@@ -46,6 +50,22 @@ impl Parser {
         loc: Loc,
     ) -> Result<Block, ImportError> {
         let kw = Keyword { name, params, loc };
+        if self.steps.after_frequency() {
+            // only the first *FREQUENCY step and what precedes it define the body
+            self.after_frequency
+                .entry(name.to_owned())
+                .or_default()
+                .push(loc);
+            return Ok(Block::Skip);
+        }
+        let key = rules::blankless(name);
+        if self.ignore.contains(&key) {
+            self.ignored
+                .entry(format!("*{name}"))
+                .or_default()
+                .push(loc);
+            return Ok(Block::Skip);
+        }
         Ok(match name {
             "NODE" => Block::Node(kw.param("NSET").map(|s| s.to_ascii_uppercase())),
             "ELEMENT" => self.element_keyword(&kw)?,
@@ -64,6 +84,7 @@ impl Parser {
             "BOUNDARY" => self.boundary_keyword(&kw),
             "STEP" => {
                 self.steps.begin(loc, kw.param("NAME").map(str::to_owned));
+                self.perturbation = kw.param("PERTURBATION").map(|_| loc);
                 Block::Skip
             }
             "END STEP" => {
@@ -77,12 +98,9 @@ impl Parser {
             "MASS" => Block::Mass(kw.need("ELSET", self)?),
             "ROTARY INERTIA" => Block::RotaryInertia(kw.need("ELSET", self)?),
             "TRANSFORM" => self.transform_keyword(&kw)?,
-            "RIGID BODY" => {
-                let nset = kw.need("NSET", self)?;
-                let r = kw.need("REF NODE", self)?;
-                self.rigid.push((target(&r), nset, loc));
-                Block::Skip
-            }
+            "RIGID BODY" => self.rigid_body_keyword(&kw)?,
+            "SPRING" => self.spring_keyword(&kw)?,
+            "EQUATION" => Block::Equation,
             "SURFACE" => self.surface_keyword(&kw)?,
             "COUPLING" => {
                 let r = kw.need("REF NODE", self)?;
@@ -96,8 +114,81 @@ impl Parser {
                 Block::Skip
             }
             "KINEMATIC" | "DISTRIBUTING" => self.coupling_kind_keyword(&kw)?,
-            _ => return self.skip(name, params),
+            _ => self.table_keyword(&kw),
         })
+    }
+
+    /// A keyword that is not honoured: a note, or refused (listed or not).
+    fn table_keyword(&mut self, kw: &Keyword) -> Block {
+        match rules::rule(kw.name) {
+            Some(Rule::Note(why)) => {
+                let entry = (self.notes)
+                    .entry(kw.name.to_owned())
+                    .or_insert_with(|| (why, Vec::new()));
+                entry.1.push(kw.loc);
+            }
+            Some(Rule::Refuse(why)) => self.refuse(kw.loc, kw.name, why),
+            None => self.refuse(kw.loc, kw.name, rules::NOT_READ),
+        }
+        Block::Skip
+    }
+
+    /// Keyword (or element type `TYPE=…` when `name` is one) `name` at `loc` is refused.
+    pub(super) fn refuse(&mut self, loc: Loc, name: &str, why: &str) {
+        let element_type = name.starts_with("TYPE=");
+        self.refused.push(RefusedCard {
+            file: self.b.file_name(loc).to_owned(),
+            line: loc.line as usize,
+            entity: if element_type {
+                format!("*ELEMENT, {name}")
+            } else {
+                format!("*{name}")
+            },
+            key: if element_type {
+                name.trim_start_matches("TYPE=").to_owned()
+            } else {
+                format!("*{name}")
+            },
+            reason: why.to_owned(),
+        });
+    }
+
+    /// `*RIGID BODY, NSET=… | ELSET=…, REF NODE=…, ROT NODE=…`.
+    fn rigid_body_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let (node_set, set) = match (kw.param("NSET"), kw.param("ELSET")) {
+            (Some(n), None) if !n.is_empty() => (true, n.to_ascii_uppercase()),
+            (None, Some(e)) if !e.is_empty() => (false, e.to_ascii_uppercase()),
+            _ => return Err(self.err(kw.loc, "*RIGID BODY", "needs one of NSET= or ELSET=")),
+        };
+        let node = |key: &str| kw.param(key).filter(|v| !v.is_empty()).map(target);
+        self.rigid.push(RawRigidBody {
+            node_set,
+            set,
+            reference: node("REF NODE"),
+            rotation: node("ROT NODE"),
+            loc: kw.loc,
+        });
+        Ok(Block::Skip)
+    }
+
+    /// `*SPRING, ELSET=…` (linear; ORIENTATION and NONLINEAR refused).
+    fn spring_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let elset = kw.need("ELSET", self)?;
+        for p in ["NONLINEAR", "ORIENTATION"] {
+            if kw.param(p).is_some() {
+                return Err(self.err(
+                    kw.loc,
+                    format!("*SPRING ELSET={elset}"),
+                    format!("{p} is not supported (linear springs in global directions)"),
+                ));
+            }
+        }
+        self.springs.push(RawSpring {
+            elset,
+            lines: Vec::new(),
+            loc: kw.loc,
+        });
+        Ok(Block::Spring(self.springs.len() - 1))
     }
 
     /// A keyword that is not read: counted for the warning.
@@ -112,10 +203,29 @@ impl Parser {
 
     /// `*ELEMENT, TYPE=…`: the element kind (a close relative's, noted, for variants).
     fn element_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
-        let t = kw.need("TYPE", self)?;
+        let t = rules::blankless(&kw.need("TYPE", self)?);
+        let dropped = Block::DroppedElements { continued: false };
+        if self.ignore.contains(&t) {
+            (self.ignored.entry(t)).or_default().push(kw.loc);
+            return Ok(dropped);
+        }
         let Some((kind, card)) = element_kind(&t) else {
-            return Err(self.err(kw.loc, "*ELEMENT", format!("unsupported element type {t}")));
+            self.refuse(
+                kw.loc,
+                &format!("TYPE={t}"),
+                &format!("unsupported element type {t}"),
+            );
+            return Ok(dropped);
         };
+        match card {
+            "C3D8I" => {
+                self.incompatible_hexa.get_or_insert(kw.loc);
+            }
+            "C3D8" | "C3D6" => {
+                self.plain_linear_solid.get_or_insert((kw.loc, card));
+            }
+            _ => {}
+        }
         if t != card {
             *self
                 .substituted
@@ -171,6 +281,35 @@ impl Parser {
         } else {
             Block::Density
         })
+    }
+
+    /// A `*FREQUENCY` step with PERTURBATION after another step: the preload of that step
+    /// (stress stiffening, deformed geometry) is not modelled — refused, not silently dropped.
+    fn perturbation_check(&mut self, kw: &Keyword) {
+        let Some(step_loc) = self.perturbation else {
+            return;
+        };
+        let base = (self.steps.done.iter().rev())
+            .find_map(|s| s.procedure.as_ref().filter(|p| p.0 != "FREQUENCY"));
+        if let Some((proc, at)) = base {
+            let why = format!(
+                "the *FREQUENCY step at line {} is a perturbation of the *{proc} step at line {}: the preload of that step (stress stiffening, deformed geometry) is not modelled",
+                kw.loc.line, at.line
+            );
+            if self.ignore.contains(&"PERTURBATION".to_owned()) {
+                (self.ignored.entry("PERTURBATION".into()))
+                    .or_default()
+                    .push(step_loc);
+            } else {
+                self.refused.push(RefusedCard {
+                    file: self.b.file_name(step_loc).to_owned(),
+                    line: step_loc.line as usize,
+                    entity: "*STEP, PERTURBATION".into(),
+                    key: "PERTURBATION".into(),
+                    reason: why,
+                });
+            }
+        }
     }
 
     /// `*SOLID SECTION` / `*SHELL SECTION` (mid-surface only) / `*BEAM SECTION`.
@@ -248,6 +387,7 @@ impl Parser {
             }
         }
         if p == "FREQUENCY" {
+            self.perturbation_check(kw);
             Block::Frequency
         } else {
             Block::Skip
