@@ -78,20 +78,32 @@ fn ccx_test_decks_node_and_element_counts() {
     assert_eq!(ids, vec![1, 10, 95, 19, 61, 105, 222, 192]);
 }
 
+/// B32R (and its *BEAM GENERAL SECTION) refused in one error, each with its line; spring5's
+/// SPRINGA, *SPRING and *EQUATION read (a bush of k = 10 on the x axis, one equation).
 #[test]
-fn unsupported_element_types_are_clean_errors() {
-    let Some(dir) = external_reference("unsupported_element_types_are_clean_errors", "ccx_tests")
-    else {
+fn unsupported_element_types_are_refused_springs_read() {
+    let Some(dir) = external_reference(
+        "unsupported_element_types_are_refused_springs_read",
+        "ccx_tests",
+    ) else {
         return;
     };
-    let deck = |name: &str| dir.join(name);
-    for (name, line, ty) in [("simplebeampipe3.inp", 28, "B32R")] {
-        let e = abaqus::read(&deck(name)).unwrap_err();
-        assert_eq!(e.line(), Some(line), "{name}");
-        assert!(
-            e.to_string()
-                .contains(&format!("unsupported element type {ty}")),
-            "{e}"
-        );
-    }
+    let e = abaqus::read(&dir.join("simplebeampipe3.inp")).unwrap_err();
+    let flexbody::import::ImportError::Refused { cards, .. } = &e else {
+        panic!("{e}")
+    };
+    let got: Vec<(usize, &str)> = cards.iter().map(|c| (c.line, c.key.as_str())).collect();
+    assert_eq!(
+        got,
+        vec![(28, "B32R"), (46, "*BEAM GENERAL SECTION")],
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("unsupported element type B32R"),
+        "{e}"
+    );
+    let m = abaqus::read(&dir.join("spring5.inp")).unwrap();
+    assert_eq!((m.bushes.len(), m.mpcs.len()), (1, 1));
+    assert_eq!(m.bushes[0].k, [10.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    assert_eq!(m.bushes[0].axes[0], [1.0, 0.0, 0.0]);
 }

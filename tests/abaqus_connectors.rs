@@ -1,0 +1,221 @@
+//! The Abaqus/CalculiX connectors (issue 32) against independent references: a SPRINGA equals
+//! a massless rod of the same EA/L; SPRING1 of 1e12 equals a clamp; *EQUATION tying coincident
+//! nodes equals the merged mesh; a MASS element on a spring gives ω² = k/m; ROTARYI on a
+//! rotational spring ω² = k/I; a *RIGID BODY (ELSET, REF NODE, ROT NODE) of a brick on springs
+//! moves with the brick's mass and its exact inertia ρV(a² + b²)/12; the keyword rule (blanks,
+//! refusals in one error, --ignore, later steps).
+
+mod common;
+
+use common::{dense, generalized_eigenvalues};
+use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
+use flexbody::import::{abaqus, ImportError, ImportOptions};
+use flexbody::model::{Element, ElementKind, Model, Property, Section};
+
+fn write(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = common::scratch(&format!("abaqus-conn-{name}"));
+    let path = dir.join(format!("{name}.inp"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn read(name: &str, text: &str) -> Model {
+    abaqus::read(&write(name, text)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// ω² of the constrained model, ascending (consistent mass).
+fn omega2(model: &Model) -> Vec<f64> {
+    let spec = AssemblySpec {
+        mass: MassKind::Consistent,
+        ..Default::default()
+    };
+    let a = assemble(model, &spec).unwrap();
+    let r = eliminate(model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).unwrap();
+    generalized_eigenvalues(&dense(&r.k), &dense(&r.m))
+}
+
+fn assert_close(got: &[f64], want: &[f64], tol: f64, what: &str) {
+    assert_eq!(got.len(), want.len(), "{what}: {got:?} against {want:?}");
+    // relative, with an absolute floor of 1e-12 of the largest for the zero modes
+    let top = want.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    for (g, w) in got.iter().zip(want) {
+        assert!(
+            (g - w).abs() <= tol * w.abs() + 1e-12 * top,
+            "{what}: {got:?} against {want:?}"
+        );
+    }
+}
+
+/// A unit cube of C3D8 (nodes 1–8, element 1, set BLOCK), E = 1e6, ν = 0.3, ρ = 1000.
+const CUBE: &str = "*NODE, NSET=NALL\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n\
+5, 0, 0, 1\n6, 1, 0, 1\n7, 1, 1, 1\n8, 0, 1, 1\n\
+*ELEMENT, TYPE=C3D8, ELSET=BLOCK\n1, 1, 2, 3, 4, 5, 6, 7, 8\n\
+*MATERIAL, NAME=M\n*ELASTIC\n1e6, 0.3\n*DENSITY\n1000\n*SOLID SECTION, ELSET=BLOCK, MATERIAL=M\n";
+
+#[test]
+fn springa_equals_a_massless_rod_of_the_same_axial_stiffness() {
+    // node 2 at 5·(0.6, 0.8, 0) on a SPRINGA k = 300 from a clamped node 1, mass 2 on node 2
+    let deck = "*NODE\n1, 0, 0, 0\n2, 3, 4, 0\n*ELEMENT, TYPE=SPRINGA, ELSET=S\n10, 1, 2\n\
+*ELEMENT, TYPE=MASS, ELSET=P\n11, 2\n*SPRING, ELSET=S\n\n300.\n*MASS, ELSET=P\n2.\n\
+*BOUNDARY\n1, 1, 6\n2, 4, 6\n";
+    // (node 2's rotations carry no mass: held, so that the dense M is positive definite)
+    let m = read("springa", deck);
+    assert_eq!(m.bushes.len(), 1);
+    let w = omega2(&m);
+    // the rod: EA/L = 300 with L = 5, massless
+    let mut rod = m.clone();
+    rod.bushes.clear();
+    rod.materials.push(flexbody::model::Material::isotropic(
+        9, "ROD", 1.5e3, 0.3, 0.0,
+    ));
+    rod.properties.push(Property {
+        id: 9,
+        name: "ROD".into(),
+        material: rod.materials.len() - 1,
+        section: Section::Rod {
+            area: 1.0,
+            j: 0.0,
+            nsm: 0.0,
+        },
+    });
+    rod.elements.push(Element {
+        id: 10,
+        kind: ElementKind::Rod2,
+        nodes: vec![0, 1],
+        property: Some(rod.properties.len() - 1),
+        orientation: None,
+    });
+    let w_rod = omega2(&rod);
+    assert_close(&w, &w_rod, 1e-12, "SPRINGA against the rod");
+    // and the closed form: one mode k/m along the axis, two without stiffness
+    assert_close(&w, &[0.0, 0.0, 150.0], 1e-12, "SPRINGA k/m");
+}
+
+#[test]
+fn spring1_of_1e12_equals_a_clamp() {
+    let clamped = read(
+        "clamp",
+        &format!("{CUBE}*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n"),
+    );
+    let mut springs = String::from(CUBE);
+    for dof in 1..=3 {
+        springs += &format!("*ELEMENT, TYPE=SPRING1, ELSET=K{dof}\n");
+        for n in 1..=4 {
+            springs += &format!("{}, {n}\n", 100 + 10 * dof + n);
+        }
+        springs += &format!("*SPRING, ELSET=K{dof}\n{dof}\n1e12\n");
+    }
+    let sprung = read("spring1", &springs);
+    assert_eq!(sprung.springs.len(), 12);
+    let (a, b) = (omega2(&clamped), omega2(&sprung));
+    // the twelve stiff modes of the springs lie far above the cube's twelve
+    assert_close(&b[..12], &a, 1e-5, "SPRING1 1e12 against the clamp");
+    assert!(b[12] > 1e3 * a[11]);
+}
+
+#[test]
+fn equation_tying_coincident_nodes_equals_the_merged_mesh() {
+    // two cubes side by side: merged (shared nodes 2, 3, 6, 7) …
+    let second = "*NODE\n9, 2, 0, 0\n10, 2, 1, 0\n11, 2, 0, 1\n12, 2, 1, 1\n";
+    let merged = format!(
+        "{CUBE}{second}*ELEMENT, TYPE=C3D8, ELSET=BLOCK\n2, 2, 9, 10, 3, 6, 11, 12, 7\n\
+*BOUNDARY\n1, 1, 3\n4, 1, 3\n5, 1, 3\n8, 1, 3\n"
+    );
+    // … and with the second cube on its own nodes 22, 23, 26, 27 tied by *EQUATION
+    let mut tied = format!(
+        "{CUBE}{second}*NODE\n22, 1, 0, 0\n23, 1, 1, 0\n26, 1, 0, 1\n27, 1, 1, 1\n\
+*ELEMENT, TYPE=C3D8, ELSET=BLOCK\n2, 22, 9, 10, 23, 26, 11, 12, 27\n\
+*BOUNDARY\n1, 1, 3\n4, 1, 3\n5, 1, 3\n8, 1, 3\n"
+    );
+    for n in [2, 3, 6, 7] {
+        for dof in 1..=3 {
+            tied += &format!("*EQUATION\n2\n{}, {dof}, 1., {n}, {dof}, -1.\n", n + 20);
+        }
+    }
+    let (a, b) = (read("merged", &merged), read("tied", &tied));
+    assert_eq!(b.mpcs.len(), 12);
+    assert_close(
+        &omega2(&b),
+        &omega2(&a),
+        1e-9,
+        "*EQUATION tie against merged nodes",
+    );
+}
+
+#[test]
+fn mass_and_rotary_inertia_on_springs_give_k_over_m_and_k_over_i() {
+    // MASS 4 on SPRING1 k = 100 in x; ROTARYI I33 = 0.5 on SPRING1 k = 8 about z
+    let deck = "*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=MASS, ELSET=P\n1, 1\n\
+*ELEMENT, TYPE=ROTARYI, ELSET=R\n2, 1\n*ELEMENT, TYPE=SPRING1, ELSET=KX\n3, 1\n\
+*ELEMENT, TYPE=SPRING1, ELSET=KR\n4, 1\n*MASS, ELSET=P\n4.\n\
+*ROTARY INERTIA, ELSET=R\n1., 1., 0.5\n*SPRING, ELSET=KX\n1\n100.\n*SPRING, ELSET=KR\n6\n8.\n\
+*BOUNDARY\n1, 2, 5\n";
+    let m = read("mass", deck);
+    assert_close(&omega2(&m), &[16.0, 25.0], 1e-12, "k/I and k/m");
+}
+
+#[test]
+fn rigid_body_with_rot_node_moves_with_the_bricks_mass_and_inertia() {
+    // the cube rigid (ELSET, blanks in the names), reference node 20 at its centre, rotation
+    // node 21; springs: x translation k = 10 on node 20, rotation about z k = 3 on node 21's
+    // x; every other rigid motion held at the reference node
+    let deck = format!(
+        "{CUBE}*NODE\n20, 0.5, 0.5, 0.5\n21, 5, 5, 5\n*RIGIDBODY, ELSET=BLOCK, REFNODE=20, Rot Node=21\n\
+*ELEMENT, TYPE=SPRING1, ELSET=KT\n30, 20\n*ELEMENT, TYPE=SPRING1, ELSET=KR\n31, 21\n\
+*SPRING, ELSET=KT\n1\n10.\n*SPRING, ELSET=KR\n3\n3.\n*BOUNDARY\n20, 2, 5\n"
+    );
+    let m = read("rigid", &deck);
+    assert_eq!((m.rigid_elements.len(), m.mpcs.len()), (1, 3));
+    // mass ρV = 1000, inertia about the centre's z axis ρV(1 + 1)/12
+    let (mass, izz) = (1000.0, 1000.0 * 2.0 / 12.0);
+    assert_close(&omega2(&m), &[10.0 / mass, 3.0 / izz], 1e-10, "rigid brick");
+}
+
+#[test]
+fn keyword_rule_refuses_every_unread_keyword_at_once_and_ignores_later_steps() {
+    let deck = format!(
+        "{CUBE}*TIE, NAME=T\nA, B\n*NODE PRINT, NSET=NALL\nU\n*GAP, ELSET=G\n\
+*ELEMENT, TYPE=GAPUNI, ELSET=G\n5, 1, 2\n*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n\
+*STEP\n*FREQUENCY\n4\n*END STEP\n*STEP\n*MODAL DYNAMIC\n*BOUNDARY\n5, 1, 1, 0.5\n*END STEP\n"
+    );
+    let path = write("rule", &deck);
+    let e = abaqus::read(&path).unwrap_err();
+    let ImportError::Refused { cards, .. } = &e else {
+        panic!("{e}")
+    };
+    let got: Vec<(usize, &str, &str)> = (cards.iter())
+        .map(|c| (c.line, c.entity.as_str(), c.key.as_str()))
+        .collect();
+    assert_eq!(
+        got,
+        vec![
+            (18, "*TIE", "*TIE"),
+            (22, "*GAP", "*GAP"),
+            (23, "*ELEMENT, TYPE=GAPUNI", "GAPUNI")
+        ],
+        "{e}"
+    );
+    // dropped on purpose (names with or without * and blanks), the rest builds: *NODE PRINT a
+    // note, the later step's non-zero *BOUNDARY ignored with one warning
+    let opts = ImportOptions {
+        ignore_cards: ["tie", "*GAP", "GAPUNI"].map(String::from).to_vec(),
+        ..Default::default()
+    };
+    let m = abaqus::read_with_options(&path, &opts).unwrap();
+    assert!(m.deck.notes.iter().any(|n| n.contains("*NODE PRINT")));
+    let w: Vec<&str> = m.warnings.iter().map(|w| w.message.as_str()).collect();
+    assert!(
+        w.iter().any(|w| w.contains("dropped on request")
+            && w.contains("GAPUNI")
+            && w.contains("*TIE")),
+        "{w:?}"
+    );
+    assert!(
+        w.iter()
+            .any(|w| w.contains("after the first *FREQUENCY step")
+                && w.contains("*MODAL DYNAMIC")
+                && w.contains("*BOUNDARY")),
+        "{w:?}"
+    );
+    assert_eq!(m.spcs.len(), 4);
+}
