@@ -175,7 +175,7 @@ fn rigid_body_with_rot_node_moves_with_the_bricks_mass_and_inertia() {
 fn keyword_rule_refuses_every_unread_keyword_at_once_and_ignores_later_steps() {
     let deck = format!(
         "{CUBE}*TIE, NAME=T\nA, B\n*NODE PRINT, NSET=NALL\nU\n*GAP, ELSET=G\n\
-*ELEMENT, TYPE=GAPUNI, ELSET=G\n5, 1, 2\n*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n\
+*ELEMENT, TYPE=GAPUNI, ELSET=G\n5, 1, 2\n*SURFACE, NAME=F\nBLOCK, S1\n*RESTART, WRITE\n*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n\
 *STEP\n*FREQUENCY\n4\n*END STEP\n*STEP\n*MODAL DYNAMIC\n*BOUNDARY\n5, 1, 1, 0.5\n*END STEP\n"
     );
     let path = write("rule", &deck);
@@ -202,7 +202,13 @@ fn keyword_rule_refuses_every_unread_keyword_at_once_and_ignores_later_steps() {
         ..Default::default()
     };
     let m = abaqus::read_with_options(&path, &opts).unwrap();
-    assert!(m.deck.notes.iter().any(|n| n.contains("*NODE PRINT")));
+    for note in ["*NODE PRINT", "*SURFACE", "*RESTART"] {
+        assert!(
+            m.deck.notes.iter().any(|n| n.contains(note)),
+            "{note}: {:?}",
+            m.deck.notes
+        );
+    }
     let w: Vec<&str> = m.warnings.iter().map(|w| w.message.as_str()).collect();
     assert!(
         w.iter().any(|w| w.contains("dropped on request")

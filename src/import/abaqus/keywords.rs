@@ -14,6 +14,9 @@ use crate::import::error::{ImportError, RefusedCard};
 use crate::import::text::Loc;
 use crate::model::{DofMask, Section, SectionShape};
 
+/// The note of `*RESTART, WRITE`.
+const OUTPUT_RESTART: &str = "writing restart data does not change the body";
+
 /// A keyword line: its name, its parameters and where it is.
 struct Keyword<'a> {
     name: &'a str,
@@ -100,6 +103,18 @@ impl Parser {
             "TRANSFORM" => self.transform_keyword(&kw)?,
             "RIGID BODY" => self.rigid_body_keyword(&kw)?,
             "SPRING" => self.spring_keyword(&kw)?,
+            "RESTART" if kw.param("READ").is_some() => {
+                self.refuse(
+                    loc,
+                    name,
+                    "a restart reads a model this importer cannot see",
+                );
+                Block::Skip
+            }
+            "RESTART" => {
+                self.note(&kw, OUTPUT_RESTART);
+                Block::Skip
+            }
             "EQUATION" => Block::Equation,
             "SURFACE" => self.surface_keyword(&kw)?,
             "COUPLING" => {
@@ -121,16 +136,19 @@ impl Parser {
     /// A keyword that is not honoured: a note, or refused (listed or not).
     fn table_keyword(&mut self, kw: &Keyword) -> Block {
         match rules::rule(kw.name) {
-            Some(Rule::Note(why)) => {
-                let entry = (self.notes)
-                    .entry(kw.name.to_owned())
-                    .or_insert_with(|| (why, Vec::new()));
-                entry.1.push(kw.loc);
-            }
+            Some(Rule::Note(why)) => self.note(kw, why),
             Some(Rule::Refuse(why)) => self.refuse(kw.loc, kw.name, why),
             None => self.refuse(kw.loc, kw.name, rules::NOT_READ),
         }
         Block::Skip
+    }
+
+    /// Keyword `kw` is not read because it cannot change the body, for `why`.
+    fn note(&mut self, kw: &Keyword, why: &'static str) {
+        let entry = (self.notes)
+            .entry(kw.name.to_owned())
+            .or_insert_with(|| (why, Vec::new()));
+        entry.1.push(kw.loc);
     }
 
     /// Keyword (or element type `TYPE=…` when `name` is one) `name` at `loc` is refused.
@@ -189,16 +207,6 @@ impl Parser {
             loc: kw.loc,
         });
         Ok(Block::Spring(self.springs.len() - 1))
-    }
-
-    /// A keyword that is not read: counted for the warning.
-    pub(super) fn skip(
-        &mut self,
-        name: &str,
-        _params: &[(String, String)],
-    ) -> Result<Block, ImportError> {
-        *self.skipped.entry(name.to_owned()).or_default() += 1;
-        Ok(Block::Skip)
     }
 
     /// `*ELEMENT, TYPE=…`: the element kind (a close relative's, noted, for variants).
@@ -430,11 +438,15 @@ impl Parser {
         Ok(Block::Transform(kw.need("NSET", self)?, cyl))
     }
 
-    /// `*SURFACE, TYPE=NODE` (element-based surfaces are skipped).
+    /// `*SURFACE, TYPE=NODE` (element-based surfaces are a note).
     fn surface_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let t = kw.param("TYPE").unwrap_or("ELEMENT");
         if !t.eq_ignore_ascii_case("NODE") {
-            return self.skip(kw.name, kw.params);
+            self.note(
+                kw,
+                "element-based surfaces: used only by contact, *TIE and *DSLOAD, which are refused",
+            );
+            return Ok(Block::Skip);
         }
         let n = kw.need("NAME", self)?;
         self.surfaces.entry(n.clone()).or_default();

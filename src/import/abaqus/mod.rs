@@ -194,7 +194,6 @@ struct Parser {
     transforms: Vec<(String, CoordSystem, Loc)>,
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
     couplings: Vec<RawCoupling>,
-    skipped: BTreeMap<String, usize>,
     /// Element types read as a close relative (C3D8I as C3D8, …): "X read as Y" → blocks.
     substituted: BTreeMap<String, usize>,
     /// Elements that listed more node ids than their type takes, by type.
@@ -272,7 +271,6 @@ impl Parser {
             shell_point_notes: Vec::new(),
             surfaces: HashMap::new(),
             couplings: Vec::new(),
-            skipped: BTreeMap::new(),
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),
             input_bytes: 0,

@@ -437,12 +437,6 @@ impl Parser {
                 ),
             });
         }
-        for (name, count) in &self.skipped {
-            self.b.model.warnings.push(ImportWarning {
-                file: self.b.files[0].clone(),
-                message: format!("keyword *{name} ignored ({count}×)"),
-            });
-        }
         let places =
             |key: &str, locs: &[Loc]| crate::import::text::places(key, locs, &self.b.files);
         if !self.ignored.is_empty() {

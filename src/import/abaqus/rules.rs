@@ -45,6 +45,7 @@ pub(super) const HONOURED: &[&str] = &[
     "MATERIAL",
     "NODE",
     "NSET",
+    "RESTART",
     "RIGID BODY",
     "ROTARY INERTIA",
     "SHELL SECTION",
@@ -149,18 +150,23 @@ const KEYWORDS: &[(&str, Rule)] = &[
     ),
     ("PREPRINT", Note(OUTPUT)),
     ("RADIATE", Note(THERMAL)),
+    (
+        "RETAINED NODAL DOFS",
+        Note("the retained dofs of a CalculiX substructure generation: the body's interface is --interface"),
+    ),
     ("SECTION PRINT", Note(OUTPUT)),
-    ("SELECT EIGENMODES", Note(DYNAMIC)),
     (
         "SELECT CYCLIC SYMMETRY MODES",
         Refuse("cyclic symmetry is not supported"),
     ),
+    ("SELECT EIGENMODES", Note(DYNAMIC)),
     ("SENSITIVITY", Note("design sensitivities: do not change the body")),
     ("SPECIFIC HEAT", Note(THERMAL)),
     (
         "SUBMODEL",
         Refuse("submodel boundary conditions are not supported"),
     ),
+    ("SUBSTRUCTURE MATRIX OUTPUT", Note(OUTPUT)),
     ("SURFACE BEHAVIOR", Refuse(CONTACT)),
     ("SURFACE INTERACTION", Refuse(CONTACT)),
     (
