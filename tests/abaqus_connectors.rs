@@ -2,8 +2,9 @@
 //! a massless rod of the same EA/L; SPRING1 of 1e12 equals a clamp; *EQUATION tying coincident
 //! nodes equals the merged mesh; a MASS element on a spring gives ω² = k/m; ROTARYI on a
 //! rotational spring ω² = k/I; a *RIGID BODY (ELSET, REF NODE, ROT NODE) of a brick on springs
-//! moves with the brick's mass and its exact inertia ρV(a² + b²)/12; the keyword rule (blanks,
-//! refusals in one error, --ignore, later steps).
+//! moves with the brick's mass and its exact inertia ρV(a² + b²)/12; SPRING2 between two masses
+//! gives k(1/m₁ + 1/m₂); the keyword rule (blanks, refusals in one error, --ignore, later steps,
+//! a PERTURBATION frequency step after a *STATIC step refused until the preload is read).
 
 mod common;
 
@@ -224,4 +225,56 @@ fn keyword_rule_refuses_every_unread_keyword_at_once_and_ignores_later_steps() {
         "{w:?}"
     );
     assert_eq!(m.spcs.len(), 4);
+}
+
+#[test]
+fn spring2_joins_two_masses_and_refuses_transformed_nodes() {
+    // masses 2 and 3 on x of nodes 1 and 2, SPRING2 k = 12 between x of 1 and y of 2
+    // (SPRING2 joins any two dofs): the two-mass oscillator ω² = k (1/m₁ + 1/m₂) = 10
+    let deck = "*NODE, NSET=BOTH\n1, 0, 0, 0\n2, 1, 0, 0\n*ELEMENT, TYPE=MASS, ELSET=P1\n1, 1\n\
+*ELEMENT, TYPE=MASS, ELSET=P2\n2, 2\n*ELEMENT, TYPE=SPRING2, ELSET=K\n3, 1, 2\n\
+*MASS, ELSET=P1\n2.\n*MASS, ELSET=P2\n3.\n*SPRING, ELSET=K\n1, 2\n12.\n\
+*BOUNDARY\n1, 2, 6\n2, 1, 1\n2, 3, 6\n";
+    let m = read("spring2", deck);
+    assert_close(&omega2(&m), &[0.0, 10.0], 1e-12, "two-mass oscillator");
+    // a *TRANSFORM frame on a spring's node: the global dofs would be misread, refused
+    let framed = format!("{deck}*TRANSFORM, NSET=BOTH\n0, 1, 0, -1, 0, 0\n");
+    let e = abaqus::read(&write("spring2_frame", &framed)).unwrap_err();
+    assert!(
+        e.to_string().contains("*ELEMENT 3 (SPRING2)")
+            && e.to_string().contains("*TRANSFORM frame"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_perturbation_frequency_step_after_a_static_step_is_refused_until_preload_is_read() {
+    let deck = format!(
+        "{CUBE}*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n*STEP\n*STATIC\n*CLOAD\n7, 3, -1.\n\
+*END STEP\n*STEP, PERTURBATION\n*FREQUENCY\n4\n*END STEP\n"
+    );
+    let path = write("perturbation", &deck);
+    let e = abaqus::read(&path).unwrap_err();
+    let ImportError::Refused { cards, .. } = &e else {
+        panic!("{e}")
+    };
+    assert_eq!(
+        (cards.len(), cards[0].line, cards[0].key.as_str()),
+        (1, 28, "PERTURBATION"),
+        "{e}"
+    );
+    assert!(cards[0].reason.contains("*STATIC step at line 24"), "{e}");
+    // dropped on purpose: the unloaded body, with a warning saying so
+    let opts = ImportOptions {
+        ignore_cards: vec!["PERTURBATION".into()],
+        ..Default::default()
+    };
+    let m = abaqus::read_with_options(&path, &opts).unwrap();
+    assert!(m
+        .warnings
+        .iter()
+        .any(|w| w.message.contains("dropped on request") && w.message.contains("PERTURBATION")));
+    // without PERTURBATION the frequency step is the unloaded body's (as in ccx): no refusal
+    let plain = deck.replace("*STEP, PERTURBATION", "*STEP");
+    abaqus::read(&write("plain", &plain)).unwrap();
 }
