@@ -3,7 +3,8 @@
 //! nodes equals the merged mesh; a MASS element on a spring gives ω² = k/m; ROTARYI on a
 //! rotational spring ω² = k/I; a *RIGID BODY (ELSET, REF NODE, ROT NODE) of a brick on springs
 //! moves with the brick's mass and its exact inertia ρV(a² + b²)/12; SPRING2 between two masses
-//! gives k(1/m₁ + 1/m₂); the keyword rule (blanks, refusals in one error, --ignore, later steps,
+//! gives k(1/m₁ + 1/m₂); supports in *TRANSFORM frames (R and C) as CalculiX holds them; the
+//! keyword rule (blanks, refusals in one error, --ignore, later steps,
 //! a PERTURBATION frequency step after a *STATIC step refused until the preload is read).
 
 mod common;
@@ -277,4 +278,51 @@ fn a_perturbation_frequency_step_after_a_static_step_is_refused_until_preload_is
     // without PERTURBATION the frequency step is the unloaded body's (as in ccx): no refusal
     let plain = deck.replace("*STEP, PERTURBATION", "*STEP");
     abaqus::read(&write("plain", &plain)).unwrap();
+}
+
+/// *TRANSFORM frames with supports in them: the a_block cantilever held radially and axially
+/// about an oblique cylinder axis (TYPE=C) at its root and along a rectangular frame's y
+/// (TYPE=R) at its tip — CalculiX 2.20's frequencies of the same deck, to 2e-6.
+#[test]
+fn transform_frames_hold_as_calculix_holds_them() {
+    let deck = format!(
+        "*INCLUDE, INPUT={}\n*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*DENSITY\n7850\n\
+*SOLID SECTION, ELSET=SOLID, MATERIAL=STEEL\n\
+*TRANSFORM, NSET=FIXED, TYPE=C\n0.0, 0.01, 0.02, 0.3, 0.05, 0.04\n\
+*TRANSFORM, NSET=TIP, TYPE=R\n1., 1., 0., 0., 1., 1.\n\
+*BOUNDARY\nFIXED, 1, 1\nFIXED, 3, 3\nTIP, 2, 2\n*STEP\n*FREQUENCY\n8\n*END STEP\n",
+        common::reference("a_block_hex8/mesh.inp").display()
+    );
+    let path = write("transform_ccx", &deck);
+    let out = path.with_extension("flexbody");
+    let o = common::exe()
+        .arg("build")
+        .arg(&path)
+        .args([
+            "--units",
+            "si",
+            "--method",
+            "normal",
+            "--mass",
+            "consistent",
+            "-q",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let body = flexbody_reader::read(&out).unwrap();
+    // ccx 2.20 (Debian calculix-ccx 2.20-1) on this deck
+    let ccx = [
+        174.7557, 823.1897, 980.9745, 1403.720, 2243.561, 2637.578, 2720.346, 3941.905,
+    ];
+    assert_eq!(body.modes.frequency_hz.len(), ccx.len());
+    for (f, c) in body.modes.frequency_hz.iter().zip(ccx) {
+        assert!(
+            (f - c).abs() <= 2e-6 * c,
+            "{:?} against ccx {ccx:?}",
+            body.modes.frequency_hz
+        );
+    }
 }
