@@ -225,7 +225,12 @@ fn keywords_generate_continuation_mass_rigid_coupling_beam() {
         (*reference, *ref_dofs, independent.len(), independent[0].1),
         (5, DofMask::TRANSLATIONS, 3, 2.0)
     );
-    assert!(m.warnings.iter().any(|w| w.message.contains("*HEADING")));
+    // *HEADING cannot change the body: a note naming it
+    assert!(
+        m.deck.notes.iter().any(|n| n.contains("*HEADING")),
+        "{:?}",
+        m.deck.notes
+    );
 }
 
 /// The format comes from the extension unless overridden: an Abaqus deck saved as `.txt` is
@@ -253,8 +258,8 @@ fn format_detection_by_extension_with_override() {
     );
 }
 
-/// *TRANSFORM gives the nodes of its set a displacement frame; C3D8I is read as C3D8 with a
-/// warning.
+/// *TRANSFORM gives the nodes of its set a displacement frame; C3D8I is the incompatible-mode
+/// hexahedron (the model's `solid_bubbles`), and refused beside C3D8.
 #[test]
 fn transform_frames_and_substituted_types() {
     let deck = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, 0, 0, 1\n6, 1, 0, 1\n7, 1, 1, 1\n8, 0, 1, 1\n\
@@ -273,10 +278,18 @@ fn transform_frames_and_substituted_types() {
     );
     assert_eq!(m.nodes[2].displacement_frame, None);
     assert_eq!(m.elements[0].kind, ElementKind::Hex8);
-    assert!(m
-        .warnings
-        .iter()
-        .any(|w| w.message.contains("C3D8I read as C3D8")));
+    assert!(m.params.solid_bubbles);
+    assert!(!m.warnings.iter().any(|w| w.message.contains("C3D8I")));
+    let mixed = deck.replace(
+        "*NSET, NSET=R",
+        "*ELEMENT, TYPE=C3D8, ELSET=F\n2, 1, 2, 3, 4, 5, 6, 7, 8\n*NSET, NSET=R",
+    );
+    let path = write_deck("transform_mixed", &[("t.inp", &mixed)]);
+    let e = abaqus::read(&path).unwrap_err().to_string();
+    assert!(
+        e.contains(":10: *ELEMENT, TYPE=C3D8I: C3D8I beside C3D8 elements"),
+        "{e}"
+    );
 }
 
 /// *NSET from an element set, and named boundary conditions.

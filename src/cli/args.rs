@@ -220,7 +220,7 @@ pub(crate) struct BuildArgs {
     /// Record the creation time in the header (makes the output non-reproducible).
     #[arg(long)]
     pub(crate) timestamp: bool,
-    /// No progress on stderr.
+    /// No progress, notes or summary on stderr (warnings are still printed).
     #[arg(long, short)]
     pub(crate) quiet: bool,
     /// Print the build report as JSON on stdout.

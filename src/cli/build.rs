@@ -45,6 +45,9 @@ pub(crate) fn command(a: &BuildArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&json_report(a, &out))?);
     } else if !a.quiet {
         print_report(a, &out);
+    } else {
+        // quiet: no progress, notes or summary — but a warning is never silent
+        print_findings(&out.report.warnings, &[]);
     }
     Ok(())
 }

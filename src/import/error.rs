@@ -71,8 +71,8 @@ const LISTED_REFUSALS: usize = 100;
 /// then the counts of the rest, then how to drop them on purpose.
 fn refusal_text(file: &str, cards: &[RefusedCard]) -> String {
     let mut s = format!(
-        "{file}: {} card(s) that can change the body's stiffness, mass or constraints are not \
-         supported (each is honoured or refused, never dropped):",
+        "{file}: {} card(s) or keyword(s) that can change the body's stiffness, mass, \
+         constraints or preload are not supported (each is honoured or refused, never dropped):",
         cards.len()
     );
     for c in cards.iter().take(LISTED_REFUSALS) {

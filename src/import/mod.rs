@@ -73,7 +73,9 @@ pub struct ImportOptions {
     /// Cards to drop on purpose, by name (`CGAP`; a Nastran parameter as `PARAM:SNORM`;
     /// case-insensitive): not read even when supported, so a card that would be refused does
     /// not stop the import. Each dropped card type becomes a warning naming its lines and
-    /// count (`--ignore CARD[,CARD…]`, recorded in the recipe). Nastran decks only.
+    /// count (`--ignore CARD[,CARD…]`, recorded in the recipe). Abaqus/CalculiX decks: keyword
+    /// names (`*TIE` or `TIE`, blanks ignored), element types (`B32R`) and `PERTURBATION` (a
+    /// *FREQUENCY step's preload).
     pub ignore_cards: Vec<String>,
 }
 
@@ -86,7 +88,7 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
             file: path.display().to_string(),
         })?;
     let mut model = match format {
-        Format::Abaqus => abaqus::read(path)?,
+        Format::Abaqus => abaqus::read_with_options(path, opts)?,
         Format::Nastran => nastran::read_with_options(path, opts)?.0,
         Format::Gmsh => gmsh::read(path, None)?,
     };

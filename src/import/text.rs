@@ -266,6 +266,28 @@ impl Builder {
     }
 }
 
+/// At most this many places are listed per card type in a note or warning.
+const LISTED_PLACES: usize = 8;
+
+/// "3 CDAMP1 (a.bdf:12, 14; b.bdf:3)": the count and the first places, lines grouped by file.
+pub(crate) fn places(key: &str, locs: &[Loc], files: &[String]) -> String {
+    let mut groups: Vec<(u32, Vec<String>)> = Vec::new();
+    for l in locs.iter().take(LISTED_PLACES) {
+        match groups.last_mut() {
+            Some((f, lines)) if *f == l.file => lines.push(l.line.to_string()),
+            _ => groups.push((l.file, vec![l.line.to_string()])),
+        }
+    }
+    let mut list: Vec<String> = groups
+        .iter()
+        .map(|(f, lines)| format!("{}:{}", files[*f as usize], lines.join(", ")))
+        .collect();
+    if locs.len() > LISTED_PLACES {
+        list.push("…".into());
+    }
+    format!("{} {key} ({})", locs.len(), list.join("; "))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -64,11 +64,40 @@ impl Parser {
                 let k = *k;
                 self.coupling_line(k, line, loc)
             }
+            Block::Spring(k) => {
+                let k = *k;
+                self.spring_line(k, line, loc);
+                Ok(())
+            }
+            Block::Equation => self.equation_line(line, loc),
+            Block::MaterialTable(what) => {
+                let what = *what;
+                let ent = format!(
+                    "*MATERIAL {}",
+                    self.materials.last().map_or("", |m| &m.name)
+                );
+                Err(self.err(
+                    loc,
+                    ent,
+                    format!("a second *{what} data line (a temperature table) is not supported"),
+                ))
+            }
+            Block::DroppedElements { continued } => {
+                if !*continued {
+                    if let Some(id) = fields(line).next().and_then(parse_u64) {
+                        self.dropped_elems.insert(id);
+                    }
+                }
+                self.block = Block::DroppedElements {
+                    continued: line.trim_end().ends_with(','),
+                };
+                Ok(())
+            }
         }
     }
 
     /// A real number of entity `ent` at `loc`.
-    fn real(&self, s: &str, ent: &str, loc: Loc) -> Result<f64, ImportError> {
+    pub(super) fn real(&self, s: &str, ent: &str, loc: Loc) -> Result<f64, ImportError> {
         parse_f64(s).ok_or_else(|| self.err(loc, ent.to_owned(), bad_number(s)))
     }
 
@@ -141,7 +170,10 @@ impl Parser {
             })?;
             vals.push(v);
         }
-        let nn = kind.map_or(1, ElementKind::node_count);
+        let nn = kind.map_or_else(
+            || super::connectors::connector_node_count(card).unwrap_or(1),
+            ElementKind::node_count,
+        );
         if vals.len() < nn + 1 {
             self.pending = Some((start, vals));
             return Ok(());
@@ -161,7 +193,17 @@ impl Parser {
                 self.b.add_element(id, kind, nodes, None, card, start);
             }
             None => {
-                if let Some((_, first)) = self.mass_elems.insert(id, (vals[1], start)) {
+                let first = if matches!(card, "MASS" | "ROTARYI") {
+                    self.mass_elems.insert(id, (vals[1], start)).map(|f| f.1)
+                } else {
+                    let e = super::connectors::ConnElement {
+                        card,
+                        nodes: vals[1..].to_vec(),
+                        loc: start,
+                    };
+                    self.conn_elems.insert(id, e).map(|f| f.loc)
+                };
+                if let Some(first) = first {
                     let at = format!("{}:{}", self.b.file_name(first), first.line);
                     return Err(self.err(
                         start,
@@ -275,7 +317,7 @@ impl Parser {
             let rho = self.real(v[0], &ent, loc)?;
             self.materials[k].rho = Some(rho);
         }
-        self.block = Block::Skip;
+        self.block = Block::MaterialTable(if elastic { "ELASTIC" } else { "DENSITY" });
         Ok(())
     }
 

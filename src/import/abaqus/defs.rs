@@ -3,13 +3,16 @@
 
 use crate::model::{CoordKind, CoordSystem, ElementKind, SectionShape};
 
-/// Abaqus element type → (model kind, `None` for MASS/ROTARYI; canonical type name).
+/// Abaqus element type → (model kind, `None` for the point and connector elements MASS,
+/// ROTARYI, SPRINGA, SPRING1, SPRING2, DASHPOTA; canonical type name).
 pub(super) fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str)> {
     use ElementKind::*;
     Some(match t {
         "C3D4" => (Some(Tet4), "C3D4"),
         "C3D10" | "C3D10M" => (Some(Tet10), "C3D10"),
-        "C3D8" | "C3D8R" | "C3D8I" => (Some(Hex8), "C3D8"),
+        "C3D8" | "C3D8R" => (Some(Hex8), "C3D8"),
+        // incompatible modes: `ModelParams::solid_bubbles` (the reader checks it is model-wide)
+        "C3D8I" => (Some(Hex8), "C3D8I"),
         "C3D20" => (Some(Hex20), "C3D20"),
         "C3D20R" => (Some(Hex20R), "C3D20R"),
         "C3D6" => (Some(Prism6), "C3D6"),
@@ -28,6 +31,10 @@ pub(super) fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str
         "CPS8" | "CPE8" => (Some(Quad8), "CPS8"),
         "MASS" => (None, "MASS"),
         "ROTARYI" => (None, "ROTARYI"),
+        "SPRINGA" => (None, "SPRINGA"),
+        "SPRING1" => (None, "SPRING1"),
+        "SPRING2" => (None, "SPRING2"),
+        "DASHPOTA" => (None, "DASHPOTA"),
         _ => return None,
     })
 }

@@ -1,14 +1,21 @@
 //! Keyword lines of the Abaqus reader: `*NAME, KEY=value, …` → the [`Block`] its data lines
-//! fill ([`super::data`]). [`Parser::start_keyword`] is the table: one reader per keyword
-//! family; a keyword it does not know is counted and skipped.
+//! fill ([`super::data`]). [`Parser::start_keyword`] is the table: one reader per honoured
+//! keyword family; every other keyword is a note or refused by the keyword table
+//! ([`super::rules`]). Keywords after the first `*FREQUENCY` step are ignored (one warning):
+//! only that step and what precedes it define the body.
 
+use super::connectors::{RawRigidBody, RawSpring};
 use super::defs::element_kind;
+use super::rules::{self, Rule};
 use super::{
     loads, param, steps, target, Block, CouplingKind, Parser, RawCoupling, RawMaterial, RawSection,
 };
-use crate::import::error::ImportError;
+use crate::import::error::{ImportError, RefusedCard};
 use crate::import::text::Loc;
 use crate::model::{DofMask, Section, SectionShape};
+
+/// The note of `*RESTART, WRITE`.
+const OUTPUT_RESTART: &str = "writing restart data does not change the body";
 
 /// A keyword line: its name, its parameters and where it is.
 struct Keyword<'a> {
@@ -46,6 +53,22 @@ impl Parser {
         loc: Loc,
     ) -> Result<Block, ImportError> {
         let kw = Keyword { name, params, loc };
+        if self.steps.after_frequency() {
+            // only the first *FREQUENCY step and what precedes it define the body
+            self.after_frequency
+                .entry(name.to_owned())
+                .or_default()
+                .push(loc);
+            return Ok(Block::Skip);
+        }
+        let key = rules::blankless(name);
+        if self.ignore.contains(&key) {
+            self.ignored
+                .entry(format!("*{name}"))
+                .or_default()
+                .push(loc);
+            return Ok(Block::Skip);
+        }
         Ok(match name {
             "NODE" => Block::Node(kw.param("NSET").map(|s| s.to_ascii_uppercase())),
             "ELEMENT" => self.element_keyword(&kw)?,
@@ -87,12 +110,21 @@ impl Parser {
             "MASS" => Block::Mass(kw.need("ELSET", self)?),
             "ROTARY INERTIA" => Block::RotaryInertia(kw.need("ELSET", self)?),
             "TRANSFORM" => self.transform_keyword(&kw)?,
-            "RIGID BODY" => {
-                let nset = kw.need("NSET", self)?;
-                let r = kw.need("REF NODE", self)?;
-                self.rigid.push((target(&r), nset, loc));
+            "RIGID BODY" => self.rigid_body_keyword(&kw)?,
+            "SPRING" => self.spring_keyword(&kw)?,
+            "RESTART" if kw.param("READ").is_some() => {
+                self.refuse(
+                    loc,
+                    name,
+                    "a restart reads a model this importer cannot see",
+                );
                 Block::Skip
             }
+            "RESTART" => {
+                self.note(&kw, OUTPUT_RESTART);
+                Block::Skip
+            }
+            "EQUATION" => Block::Equation,
             "SURFACE" => self.surface_keyword(&kw)?,
             "COUPLING" => {
                 let r = kw.need("REF NODE", self)?;
@@ -106,26 +138,111 @@ impl Parser {
                 Block::Skip
             }
             "KINEMATIC" | "DISTRIBUTING" => self.coupling_kind_keyword(&kw)?,
-            _ => return self.skip(name, params),
+            _ => self.table_keyword(&kw),
         })
     }
 
-    /// A keyword that is not read: counted for the warning.
-    pub(super) fn skip(
-        &mut self,
-        name: &str,
-        _params: &[(String, String)],
-    ) -> Result<Block, ImportError> {
-        *self.skipped.entry(name.to_owned()).or_default() += 1;
+    /// A keyword that is not honoured: a note, or refused (listed or not).
+    fn table_keyword(&mut self, kw: &Keyword) -> Block {
+        match rules::rule(kw.name) {
+            Some(Rule::Note(why)) => self.note(kw, why),
+            Some(Rule::Refuse(why)) => self.refuse(kw.loc, kw.name, why),
+            None => self.refuse(kw.loc, kw.name, rules::NOT_READ),
+        }
+        Block::Skip
+    }
+
+    /// Keyword `kw` is not read because it cannot change the body, for `why`.
+    fn note(&mut self, kw: &Keyword, why: &'static str) {
+        let entry = (self.notes)
+            .entry(kw.name.to_owned())
+            .or_insert_with(|| (why, Vec::new()));
+        entry.1.push(kw.loc);
+    }
+
+    /// Keyword (or element type `TYPE=…` when `name` is one) `name` at `loc` is refused.
+    pub(super) fn refuse(&mut self, loc: Loc, name: &str, why: &str) {
+        let element_type = name.starts_with("TYPE=");
+        self.refused.push(RefusedCard {
+            file: self.b.file_name(loc).to_owned(),
+            line: loc.line as usize,
+            entity: if element_type {
+                format!("*ELEMENT, {name}")
+            } else {
+                format!("*{name}")
+            },
+            key: if element_type {
+                name.trim_start_matches("TYPE=").to_owned()
+            } else {
+                format!("*{name}")
+            },
+            reason: why.to_owned(),
+        });
+    }
+
+    /// `*RIGID BODY, NSET=… | ELSET=…, REF NODE=…, ROT NODE=…`.
+    fn rigid_body_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let (node_set, set) = match (kw.param("NSET"), kw.param("ELSET")) {
+            (Some(n), None) if !n.is_empty() => (true, n.to_ascii_uppercase()),
+            (None, Some(e)) if !e.is_empty() => (false, e.to_ascii_uppercase()),
+            _ => return Err(self.err(kw.loc, "*RIGID BODY", "needs one of NSET= or ELSET=")),
+        };
+        let node = |key: &str| kw.param(key).filter(|v| !v.is_empty()).map(target);
+        self.rigid.push(RawRigidBody {
+            node_set,
+            set,
+            reference: node("REF NODE"),
+            rotation: node("ROT NODE"),
+            loc: kw.loc,
+        });
         Ok(Block::Skip)
+    }
+
+    /// `*SPRING, ELSET=…` (linear; ORIENTATION and NONLINEAR refused).
+    fn spring_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let elset = kw.need("ELSET", self)?;
+        for p in ["NONLINEAR", "ORIENTATION"] {
+            if kw.param(p).is_some() {
+                return Err(self.err(
+                    kw.loc,
+                    format!("*SPRING ELSET={elset}"),
+                    format!("{p} is not supported (linear springs in global directions)"),
+                ));
+            }
+        }
+        self.springs.push(RawSpring {
+            elset,
+            lines: Vec::new(),
+            loc: kw.loc,
+        });
+        Ok(Block::Spring(self.springs.len() - 1))
     }
 
     /// `*ELEMENT, TYPE=…`: the element kind (a close relative's, noted, for variants).
     fn element_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
-        let t = kw.need("TYPE", self)?;
+        let t = rules::blankless(&kw.need("TYPE", self)?);
+        let dropped = Block::DroppedElements { continued: false };
+        if self.ignore.contains(&t) {
+            (self.ignored.entry(t)).or_default().push(kw.loc);
+            return Ok(dropped);
+        }
         let Some((kind, card)) = element_kind(&t) else {
-            return Err(self.err(kw.loc, "*ELEMENT", format!("unsupported element type {t}")));
+            self.refuse(
+                kw.loc,
+                &format!("TYPE={t}"),
+                &format!("unsupported element type {t}"),
+            );
+            return Ok(dropped);
         };
+        match card {
+            "C3D8I" => {
+                self.incompatible_hexa.get_or_insert(kw.loc);
+            }
+            "C3D8" | "C3D6" => {
+                self.plain_linear_solid.get_or_insert((kw.loc, card));
+            }
+            _ => {}
+        }
         if t != card {
             *self
                 .substituted
@@ -315,11 +432,15 @@ impl Parser {
         Ok(Block::Transform(kw.need("NSET", self)?, cyl))
     }
 
-    /// `*SURFACE, TYPE=NODE` (element-based surfaces are skipped).
+    /// `*SURFACE, TYPE=NODE` (element-based surfaces are a note).
     fn surface_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let t = kw.param("TYPE").unwrap_or("ELEMENT");
         if !t.eq_ignore_ascii_case("NODE") {
-            return self.skip(kw.name, kw.params);
+            self.note(
+                kw,
+                "element-based surfaces: used only by contact, *TIE and *DSLOAD, which are refused",
+            );
+            return Ok(Block::Skip);
         }
         let n = kw.need("NAME", self)?;
         self.surfaces.entry(n.clone()).or_default();

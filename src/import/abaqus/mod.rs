@@ -6,35 +6,63 @@
 //! comma continues on the next line; element data continue on following lines until the
 //! element's node count is reached.
 //!
-//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8(R/I), C3D20(R), C3D6, C3D15, B31, T3D2, S3,
-//! S4, S6, S8, MASS, ROTARYI), *NSET/*ELSET (GENERATE; *NSET from ELSET=), *MATERIAL,
-//! *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION, *BOUNDARY (dof ranges, ENCASTRE, PINNED,
-//! X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *RIGID BODY, *SURFACE (TYPE=NODE), *COUPLING +
+//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8, C3D8I, C3D20(R), C3D6, C3D15, B31, T3D2, S3,
+//! S4, S6, S8, MASS, ROTARYI, SPRINGA, SPRING1, SPRING2; DASHPOTA take no part), *NSET/*ELSET
+//! (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION,
+//! *BOUNDARY (dof ranges, ENCASTRE, PINNED, X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *SPRING,
+//! *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE), *COUPLING +
 //! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE; the steps' *CLOAD and *DLOAD
-//! (GRAV, P, Pn) as named scene loads (`loads`).
-//! Reduced/incompatible-mode variants (C3D8R, C3D8I, C3D10M, B31R, S4R, …) are read as the base
-//! type with a warning: their special formulation is not reproduced. Other keywords (steps,
-//! outputs, …) are skipped with one warning per keyword and its count.
+//! (GRAV, P, Pn) as named scene loads (`loads`). C3D8I is the incompatible-mode hexahedron
+//! (`ModelParams::solid_bubbles`, model-wide: refused beside C3D8/C3D6); reduced variants
+//! (C3D8R, C3D10M, B31R, S4R, …) are read as the base type with a warning.
+//!
+//! Every other keyword is a note (it cannot change the body) or refused, by the keyword table
+//! (`rules`); unknown element types are refused; all refusals of a deck come in one error, and
+//! `ImportOptions::ignore_cards` drops keywords or element types on purpose. Blanks in keyword
+//! and parameter names do not matter (as in CalculiX). Only the first `*FREQUENCY` step and what
+//! precedes it define the body: every keyword after it is ignored with one warning; a
+//! `*FREQUENCY` step that is a PERTURBATION of an earlier `*STATIC` step is refused (its preload
+//! is not read).
 
+mod connectors;
 mod data;
 mod defs;
 mod keywords;
 mod loads;
 mod resolve;
+mod rules;
 mod steps;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
-use super::error::ImportError;
+use super::error::{ImportError, RefusedCard};
 use super::text::{parse_u64, read_text, Builder, Loc};
+use super::ImportOptions;
 
 use crate::model::{CoordSystem, DofMask, ElementKind, Model, Section};
 
 /// Read an Abaqus/CalculiX input deck (following `*INCLUDE`s) into a [`Model`].
 pub fn read(path: &Path) -> Result<Model, ImportError> {
+    read_with_options(path, &ImportOptions::default())
+}
+
+/// [`read`] with the keywords and element types to drop on purpose
+/// ([`ImportOptions::ignore_cards`]: `*TIE` or `TIE`, `B32R`).
+pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, ImportError> {
     let mut p = Parser::new(&path.display().to_string());
+    p.ignore = opts
+        .ignore_cards
+        .iter()
+        .map(|s| rules::ignore_key(s))
+        .collect();
     p.read_file(path, 0, 0)?;
+    if !p.refused.is_empty() {
+        return Err(ImportError::Refused {
+            file: p.b.files[0].clone(),
+            cards: std::mem::take(&mut p.refused),
+        });
+    }
     p.finish()
 }
 
@@ -104,6 +132,17 @@ enum Block {
     Frequency,
     /// `*CLOAD` / `*DLOAD` data lines (loads.rs).
     Load(loads::LoadKeyword),
+    /// `*SPRING` data lines of spring definition k (connectors.rs).
+    Spring(usize),
+    /// `*EQUATION` data lines (connectors.rs).
+    Equation,
+    /// A second data line of `*ELASTIC` / `*DENSITY` (a temperature table): refused.
+    MaterialTable(&'static str),
+    /// The data lines of an element block that is refused or dropped: the ids are kept so
+    /// that sets naming them still resolve (a line ending in a comma continues).
+    DroppedElements {
+        continued: bool,
+    },
 }
 
 struct Parser {
@@ -122,16 +161,37 @@ struct Parser {
     loads: Vec<loads::RawLoad>,
     /// MASS / ROTARYI elements: id → (node id, loc).
     mass_elems: HashMap<u64, (u64, Loc)>,
+    /// Spring and dashpot elements (SPRINGA, SPRING1, SPRING2, DASHPOTA): id → element.
+    conn_elems: HashMap<u64, connectors::ConnElement>,
+    /// `*SPRING` definitions (connectors.rs).
+    springs: Vec<connectors::RawSpring>,
+    /// `*EQUATION`s (connectors.rs).
+    equations: Vec<connectors::RawEquation>,
+    /// Ids of elements of refused or dropped element blocks.
+    dropped_elems: std::collections::HashSet<u64>,
+    /// C3D8I elements seen (first block), and the first C3D8/C3D8R/C3D6 block: the
+    /// incompatible-mode formulation is model-wide (`ModelParams::solid_bubbles`).
+    incompatible_hexa: Option<Loc>,
+    plain_linear_solid: Option<(Loc, &'static str)>,
+    /// Keywords and element types refused (all of them listed in one error).
+    refused: Vec<RefusedCard>,
+    /// Keywords not read because they cannot change the body: name → (reason, lines).
+    notes: BTreeMap<String, (&'static str, Vec<Loc>)>,
+    /// Keyword and element-type names dropped on purpose (`ImportOptions::ignore_cards`).
+    ignore: Vec<String>,
+    /// What was dropped on purpose: name → lines.
+    ignored: BTreeMap<String, Vec<Loc>>,
+    /// Keywords after the first `*FREQUENCY` step, ignored: name → lines.
+    after_frequency: BTreeMap<String, Vec<Loc>>,
     masses: Vec<(String, f64, Loc)>,
     rotary: Vec<(String, [f64; 6], Loc)>,
-    rigid: Vec<(Target, String, Loc)>,
+    rigid: Vec<connectors::RawRigidBody>,
     /// *NSET, NSET=A, ELSET=B requests: (A, B, loc).
     nset_from_elset: Vec<(String, String, Loc)>,
     /// *TRANSFORM: node set and its (resolved) nodal displacement frame.
     transforms: Vec<(String, CoordSystem, Loc)>,
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
     couplings: Vec<RawCoupling>,
-    skipped: BTreeMap<String, usize>,
     /// Element types read as a close relative (C3D8I as C3D8, …): "X read as Y" → blocks.
     substituted: BTreeMap<String, usize>,
     /// Elements that listed more node ids than their type takes, by type.
@@ -144,31 +204,27 @@ struct Parser {
     set_members: u64,
 }
 
-fn upper_norm(s: &str) -> String {
-    s.split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ")
-        .to_ascii_uppercase()
-}
-
-/// Split a keyword line into (KEYWORD, [(KEY, value)]).
+/// Split a keyword line into (KEYWORD, [(KEY, value)]): the keyword by its table name
+/// (`rules::canonical`), parameter names upper-cased without blanks (as CalculiX reads them).
 fn keyword(line: &str) -> (String, Vec<(String, String)>) {
     let mut it = line[1..].split(',');
-    let name = upper_norm(it.next().unwrap_or(""));
+    let name = rules::canonical(it.next().unwrap_or(""));
     let params = it
         .filter(|s| !s.trim().is_empty())
         .map(|s| match s.split_once('=') {
-            Some((k, v)) => (upper_norm(k), v.trim().to_owned()),
-            None => (upper_norm(s), String::new()),
+            Some((k, v)) => (rules::blankless(k), v.trim().to_owned()),
+            None => (rules::blankless(s), String::new()),
         })
         .collect();
     (name, params)
 }
 
+/// Parameter `key` (blanks in it do not matter: `REF NODE` = `REFNODE`).
 fn param<'a>(params: &'a [(String, String)], key: &str) -> Option<&'a str> {
+    let key = rules::blankless(key);
     params
         .iter()
-        .find(|(k, _)| k == key)
+        .find(|(k, _)| *k == key)
         .map(|(_, v)| v.as_str())
 }
 
@@ -193,6 +249,17 @@ impl Parser {
             steps: steps::Steps::default(),
             loads: Vec::new(),
             mass_elems: HashMap::new(),
+            conn_elems: HashMap::new(),
+            springs: Vec::new(),
+            equations: Vec::new(),
+            dropped_elems: Default::default(),
+            incompatible_hexa: None,
+            plain_linear_solid: None,
+            refused: Vec::new(),
+            notes: BTreeMap::new(),
+            ignore: Vec::new(),
+            ignored: BTreeMap::new(),
+            after_frequency: BTreeMap::new(),
             masses: Vec::new(),
             rotary: Vec::new(),
             rigid: Vec::new(),
@@ -201,7 +268,6 @@ impl Parser {
             shell_point_notes: Vec::new(),
             surfaces: HashMap::new(),
             couplings: Vec::new(),
-            skipped: BTreeMap::new(),
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),
             input_bytes: 0,
@@ -311,5 +377,10 @@ mod tests {
         assert_eq!(n, "SOLID SECTION");
         assert_eq!(param(&p, "ELSET"), Some("Solid"));
         assert_eq!(param(&p, "MATERIAL"), Some("Steel"));
+        // CalculiX ignores blanks in keyword and parameter names
+        let (n, p) = keyword("*RIGIDBODY, NSET=A, REFNODE=4, Rot Node = 5");
+        assert_eq!(n, "RIGID BODY");
+        assert_eq!(param(&p, "REF NODE"), Some("4"));
+        assert_eq!(param(&p, "ROTNODE"), Some("5"));
     }
 }

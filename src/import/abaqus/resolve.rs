@@ -55,7 +55,9 @@ impl Parser {
         self.resolve_boundaries(&sets)?;
         self.resolve_point_masses(&sets)?;
         self.resolve_transforms(&sets)?;
+        self.resolve_connectors(&sets.nodes, &sets.node_sets, &sets.element_sets)?;
         self.resolve_rigid_elements(&sets)?;
+        self.resolve_incompatible_modes()?;
         self.import_notes();
         self.b.model.loads = self.resolve_loads(&sets)?;
         self.b.model.node_sets = sets.node_sets;
@@ -71,6 +73,17 @@ impl Parser {
         let nodes = self.b.node_map("*NODE")?;
         self.b.resolve_element_nodes(&nodes)?;
         let elems = self.b.element_map()?;
+        for (id, e) in &self.conn_elems {
+            if let Some(k) = elems.get(*id) {
+                let first = self.b.elem_loc[k];
+                let at = format!("{}:{}", self.b.file_name(first), first.line);
+                return Err(self.err(
+                    e.loc,
+                    format!("*ELEMENT {id}"),
+                    format!("duplicate element id (first defined at {at})"),
+                ));
+            }
+        }
         for (id, (node, loc)) in &self.mass_elems {
             if let Some(k) = elems.get(*id) {
                 let first = self.b.elem_loc[k];
@@ -109,7 +122,9 @@ impl Parser {
             for &(id, loc) in members {
                 match elems.get(id) {
                     Some(i) => idx.push(i),
-                    None if self.mass_elems.contains_key(&id) => {}
+                    None if self.mass_elems.contains_key(&id)
+                        || self.conn_elems.contains_key(&id)
+                        || self.dropped_elems.contains(&id) => {}
                     None => {
                         return Err(self.err(
                             loc,
@@ -351,26 +366,10 @@ impl Parser {
         Ok(())
     }
 
-    /// Rigid bodies and couplings → RBE2 / RBE3.
+    /// Couplings → RBE2 / RBE3 (rigid bodies: connectors.rs).
     fn resolve_rigid_elements(&mut self, sets: &Sets) -> Result<(), ImportError> {
-        let mut rid = 0u64;
-        for (r, nset, loc) in &self.rigid {
-            let ind = single(
-                sets.target(r, *loc, "*RIGID BODY", self)?,
-                *loc,
-                "*RIGID BODY",
-                self,
-            )?;
-            let dep = sets.target(&Target::Set(nset.clone()), *loc, "*RIGID BODY", self)?;
-            rid += 1;
-            self.b.model.rigid_elements.push(RigidElement::Rbe2 {
-                id: rid,
-                independent: ind,
-                dependent: dep.into_iter().filter(|&n| n != ind).collect(),
-                dofs: DofMask::ALL,
-            });
-        }
-        for c in &self.couplings {
+        let first = self.b.model.rigid_elements.len() as u64 + 1;
+        for (rid, c) in (first..).zip(&self.couplings) {
             let ent = format!("*COUPLING SURFACE={}", c.surface);
             let reference = single(
                 sets.target(&c.reference, c.loc, &ent, self)?,
@@ -388,7 +387,6 @@ impl Parser {
                     members.push((n, *w));
                 }
             }
-            rid += 1;
             let rigid = match c.kind {
                 Some(CouplingKind::Kinematic(d)) => RigidElement::Rbe2 {
                     id: rid,
@@ -443,12 +441,70 @@ impl Parser {
                 ),
             });
         }
-        for (name, count) in &self.skipped {
+        let places =
+            |key: &str, locs: &[Loc]| crate::import::text::places(key, locs, &self.b.files);
+        if !self.ignored.is_empty() {
+            let list: Vec<String> = (self.ignored.iter())
+                .map(|(k, locs)| places(k, locs))
+                .collect();
             self.b.model.warnings.push(ImportWarning {
                 file: self.b.files[0].clone(),
-                message: format!("keyword *{name} ignored ({count}×)"),
+                message: format!(
+                    "keywords and element types dropped on request (--ignore), whatever they carry: {}",
+                    list.join("; ")
+                ),
             });
         }
+        for name in &self.ignore {
+            let used = (self.ignored.keys())
+                .any(|k| super::rules::blankless(k.trim_start_matches('*')) == *name);
+            if !used {
+                self.b.model.warnings.push(ImportWarning {
+                    file: self.b.files[0].clone(),
+                    message: format!(
+                        "--ignore {name}: the deck has no such keyword or element type"
+                    ),
+                });
+            }
+        }
+        if !self.after_frequency.is_empty() {
+            let list: Vec<String> = (self.after_frequency.iter())
+                .map(|(k, locs)| places(&format!("*{k}"), locs))
+                .collect();
+            self.b.model.warnings.push(ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!(
+                    "the keywords after the first *FREQUENCY step are ignored (only that step and what precedes it define the body): {}",
+                    list.join("; ")
+                ),
+            });
+        }
+        for (name, (why, locs)) in &self.notes {
+            let note = format!("{} not read: {why}", places(&format!("*{name}"), locs));
+            self.b.model.deck.notes.push(note);
+        }
+    }
+
+    /// C3D8I: the incompatible-mode hexahedron (`fe::elements::solid_incompatible`), which the
+    /// model selects for every linear hexahedron and wedge at once: refused beside C3D8,
+    /// C3D8R or C3D6 elements.
+    fn resolve_incompatible_modes(&mut self) -> Result<(), ImportError> {
+        let Some(loc) = self.incompatible_hexa else {
+            return Ok(());
+        };
+        if let Some((other, card)) = self.plain_linear_solid {
+            return Err(self.err(
+                loc,
+                "*ELEMENT, TYPE=C3D8I",
+                format!(
+                    "C3D8I beside {card} elements ({}:{}) is not supported: the incompatible modes apply to every linear hexahedron and wedge of a model",
+                    self.b.file_name(other),
+                    other.line
+                ),
+            ));
+        }
+        self.b.model.params.solid_bubbles = true;
+        Ok(())
     }
 
     /// The steps' loads (loads.rs), their problems as warnings.

@@ -174,6 +174,12 @@ impl Steps {
         Ok(Some(k))
     }
 
+    /// Whether the first `*FREQUENCY` step is over: every keyword after it is ignored (only
+    /// that step and what precedes it define the body).
+    pub(super) fn after_frequency(&self) -> bool {
+        (self.done.iter()).any(|s| s.procedure.as_ref().is_some_and(|p| p.0 == "FREQUENCY"))
+    }
+
     pub(super) fn finish_current(&mut self) {
         if let Some(s) = self.current.take() {
             self.done.push(s);

@@ -166,27 +166,7 @@ impl Bulk<'_> {
     }
 }
 
-/// At most this many places are listed per card type in a note or warning.
-const LISTED_PLACES: usize = 8;
-
-/// "3 CDAMP1 (a.bdf:12, 14; b.bdf:3)": the count and the first places, lines grouped by file.
-pub(super) fn places(key: &str, locs: &[Loc], files: &[String]) -> String {
-    let mut groups: Vec<(u32, Vec<String>)> = Vec::new();
-    for l in locs.iter().take(LISTED_PLACES) {
-        match groups.last_mut() {
-            Some((f, lines)) if *f == l.file => lines.push(l.line.to_string()),
-            _ => groups.push((l.file, vec![l.line.to_string()])),
-        }
-    }
-    let mut list: Vec<String> = groups
-        .iter()
-        .map(|(f, lines)| format!("{}:{}", files[*f as usize], lines.join(", ")))
-        .collect();
-    if locs.len() > LISTED_PLACES {
-        list.push("…".into());
-    }
-    format!("{} {key} ({})", locs.len(), list.join("; "))
-}
+pub(super) use crate::import::text::places;
 
 /// Build the model from lexed cards; `subcase` picks the case-control subcase whose SPC and
 /// METHOD selections apply; cards named in `ignore` are dropped on purpose (module
