@@ -142,3 +142,28 @@ fn inspect_shows_the_recipe_units_as_the_preset_name() {
         "{text}"
     );
 }
+
+/// Issue 37 item 4: `check` holds a file to the one limit of SPEC §5 (1e-9), not 1e-8.
+#[test]
+fn check_uses_the_spec_orthonormality_limit() {
+    let out = Command::new(env!("CARGO_BIN_EXE_flexbody"))
+        .arg("check")
+        .arg(golden("three_node_chain.flexbody"))
+        .output()
+        .expect("run");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = |name: &str| {
+        text.lines()
+            .find(|l| l.contains(name))
+            .unwrap_or_else(|| panic!("no {name} in {text}"))
+            .to_owned()
+    };
+    assert!(
+        line("generalized mass = I").contains("(limit 1.0e-9)"),
+        "{text}"
+    );
+    assert!(
+        line("generalized stiffness = diag").contains("(limit 1.0e-9)"),
+        "{text}"
+    );
+}

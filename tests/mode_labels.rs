@@ -233,4 +233,24 @@ fn residual_vector_shares_refer_to_the_original_basis_vectors() {
         "{:?}",
         set.diagnostics.label_shares
     );
+    // issue 37 item 1: a residual vector already in the basis is removed, and the labels and
+    // shares are those of the build without it (they were all written as 1.0). The chain
+    // grounded at dof 0, interface at the free end: the response to a load there is
+    // K⁻¹e_b = ψ (K_bb − K_bi K_ii⁻¹ K_ib)⁻¹, the constraint mode ψ itself.
+    kt.push(Triplet::new(0, 0, 5000.0));
+    let k = SparseColMat::try_new_from_triplets(n, n, &kt).unwrap();
+    let cb = craig_bampton(&k, &m, &[n - 1], ModeCount::Count(4), &eig).unwrap();
+    let at_interface = Mat::from_fn(n, 1, |i, _| f64::from(u8::from(i == n - 1)));
+    let (same, report) = add_residual_vectors(&k, &m, cb.clone(), &at_interface, &eig).unwrap();
+    assert_eq!((report.kept, report.removed.len()), (0, 1), "{report:?}");
+    assert_eq!(same.labels, cb.labels);
+    for (a, b) in same
+        .diagnostics
+        .label_shares
+        .iter()
+        .zip(&cb.diagnostics.label_shares)
+    {
+        assert!((a - b).abs() < 1e-9, "{a} vs {b}");
+    }
+    assert!(cb.diagnostics.label_shares.iter().any(|&s| s < 0.99));
 }

@@ -197,6 +197,32 @@ pub fn cases(base: &ReducedBody, add: &mut Add) {
             "label_shares.bin: share[1] = 0.9 must be 1 (normal modes without residual vectors)",
         )),
     );
+    // Rule 11 before 1.6: a normal-modes file with residual vectors but no mode flagged is
+    // single-stage, so its shares must be 1 (since 1.6 a normal mode may mix with the residual
+    // vectors below half: the same content is valid when the file says 1.6)
+    let mut b = super::super::body_3node_residual_vectors();
+    b.modes.labels[2] = flexbody_reader::ModeLabel::Normal;
+    b.method.counts.normal = 2;
+    b.method.counts.removed_dependent = 0;
+    b.label_shares = Some(vec![1.0, 1.0, 27.0 / 55.0]);
+    if let Some(ml) = b.modal_loads.as_mut() {
+        ml.residual = vec![0, 0, 0];
+    }
+    assert!(
+        flexbody_reader::validate(&b, &Default::default()).is_ok(),
+        "valid as 1.6"
+    );
+    let e = entries(&b);
+    let mut m = manifest(&b, &e);
+    m["version"] = json!({"major": 1, "minor": 5});
+    add(
+        "label_share_mixed_without_flag_in_1_5",
+        pack(&m, &e),
+        Some((
+            "Inconsistent",
+            "label_shares.bin: share[2] = 0.4909090909090909 must be 1 (normal modes without residual vectors)",
+        )),
+    );
     let mut b = craig_chang(base);
     b.label_shares = Some(vec![0.5, 0.7, 0.8]);
     add(
