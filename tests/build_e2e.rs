@@ -206,6 +206,7 @@ fn a_block_cb_on_end_faces_is_rayleigh_ritz_and_within_1pc_below_fmax() {
         spider: SpiderKind::Rbe2,
         beam_mass: None,
         subcase: None,
+        ignore: Vec::new(),
         scene: Default::default(),
     };
     let report = check(body, Some(&input)).unwrap();
@@ -410,6 +411,7 @@ fn a_block_cb_on_rbe3_spiders_keeps_centres_independent_and_matches_calculix() {
             spider: SpiderKind::Rbe3,
             beam_mass: None,
             subcase: None,
+            ignore: Vec::new(),
             scene: Default::default(),
         }),
     );

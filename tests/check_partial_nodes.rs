@@ -35,6 +35,7 @@ fn check_on_a_partial_node_file_skips_what_the_nodes_cannot_support() {
         spider: SpiderKind::Rbe2,
         beam_mass: None,
         subcase: None,
+        ignore: Vec::new(),
         scene: Default::default(),
     };
     for model in [None, Some(&input)] {

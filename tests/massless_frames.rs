@@ -72,6 +72,7 @@ fn assert_check_passes(body: &file::ReducedBody, model: &Path, method: BuildMeth
         spider: SpiderKind::Rbe2,
         beam_mass: None,
         subcase: None,
+        ignore: Vec::new(),
         scene: Default::default(),
     };
     let report = check(body, Some(&input)).unwrap();

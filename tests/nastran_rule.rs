@@ -272,3 +272,47 @@ fn every_warning_names_file_and_line() {
         );
     }
 }
+
+/// Issue 32 acceptance through the CLI: `--ignore CWELD` builds the deck the plain build
+/// refuses, warns with the card's line, records the list in the recipe, `inspect` shows it and
+/// `check --model` rebuilds the same model from the recipe (the card dropped again).
+#[test]
+fn cli_ignore_builds_records_the_cards_in_the_recipe_and_check_rebuilds() {
+    let text = base() + "CWELD,90,91,1,2\nENDDATA\n";
+    let path = write("rule_cli_ignore", "weld.bdf", &text);
+    let out = path.with_extension("flexbody");
+    let run = |args: &[&str]| common::exe().args(args).output().unwrap();
+    let (p, o) = (path.to_str().unwrap(), out.to_str().unwrap());
+    let built = run(&[
+        "build", p, "--units", "si", "--method", "normal", "--modes", "10", "--ignore", "CWELD",
+        "-o", o,
+    ]);
+    let err = String::from_utf8_lossy(&built.stderr);
+    assert_eq!(built.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("cards dropped on request")
+            && err.contains(&format!(
+                "1 CWELD ({}:{})",
+                path.display(),
+                line_of(&text, "CWELD")
+            )),
+        "{err}"
+    );
+    let body = flexbody_reader::read(&out).unwrap();
+    let recipe = body.recipe.as_ref().unwrap();
+    assert_eq!(recipe.options.ignore, ["CWELD"]);
+    let shown = run(&["inspect", o]);
+    assert!(
+        String::from_utf8_lossy(&shown.stdout).contains("--ignore CWELD"),
+        "{}",
+        String::from_utf8_lossy(&shown.stdout)
+    );
+    let checked = run(&["check", o, "--model", p]);
+    assert_eq!(
+        checked.status.code(),
+        Some(0),
+        "{}{}",
+        String::from_utf8_lossy(&checked.stdout),
+        String::from_utf8_lossy(&checked.stderr)
+    );
+}

@@ -239,7 +239,8 @@ RECIPE_T = {
                 "reference_method": U8, "keep_nodes": STR, "invariants": STR, "stress_fields": STR,
                 "damping": ("opt", STR), "thickness": ("omit", F64), "subcase": ("omit", U64),
                 "gravity": ("omit", STR), "loads": ("omit", ("list", STR)), "residual_vectors": ("omit", STR),
-                "select": ("omit", STR), "preload": ("omit", ("list", STR))},
+                "select": ("omit", STR), "preload": ("omit", ("list", STR)),
+                "ignore": ("omit", ("list", STR))},
     "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
         "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
         "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),

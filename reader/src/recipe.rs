@@ -138,6 +138,10 @@ pub struct RecipeOptions {
     /// the model files' SHA-256 and in [`Recipe::preload`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub preload: Vec<String>,
+    /// `--ignore`: cards or keywords dropped on purpose although they could change the body
+    /// (absent: none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ignore: Vec<String>,
 }
 
 /// One `--interface` entry as resolved.

@@ -96,6 +96,13 @@ pub(crate) struct ModelArgs {
     /// default from the file's recipe.
     #[arg(long, value_name = "N")]
     pub(crate) subcase: Option<u64>,
+    /// Drop these cards or keywords on purpose although they could change stiffness, mass,
+    /// constraints or a preload (a build refuses them otherwise), comma separated: Nastran card
+    /// names (CGAP, PARAM:SNORM), Abaqus keywords (*TIE or TIE) or element types. Each dropped
+    /// card is a warning; the recipe records the list. With `check --model` and `export --to
+    /// mtx`: default from the file's recipe.
+    #[arg(long, value_delimiter = ',', value_name = "CARD")]
+    pub(crate) ignore: Vec<String>,
 }
 
 #[derive(clap::Args)]
@@ -291,6 +298,7 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
         mass: parse_mass(a.mass.as_deref().unwrap_or("lumped"))?,
         mass_explicit: a.mass.is_some(),
         subcase: a.model_args.subcase,
+        ignore: a.model_args.ignore.clone(),
         units: parse_units(&a.units)?,
         keep_nodes: parse_keep_nodes(&a.keep_nodes),
         invariants: parse_invariants(&a.invariants)?,
@@ -399,5 +407,6 @@ pub(crate) fn model_overrides(a: &ModelArgs) -> anyhow::Result<ModelOverrides> {
             .transpose()?,
         thickness: a.thickness,
         subcase: a.subcase,
+        ignore: a.ignore.clone(),
     })
 }

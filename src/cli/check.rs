@@ -166,7 +166,7 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
             material: input.material.clone(),
             shell_thickness: input.thickness,
             subcase: input.subcase,
-            ..Default::default()
+            ignore_cards: input.ignore.clone(),
         },
     )
     .map_err(BuildError::from)?;

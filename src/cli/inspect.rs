@@ -403,6 +403,13 @@ fn render_recipe(o: &mut String, r: &flexbody_reader::Recipe) {
         opt(&p.format),
         opt(&p.material)
     );
+    if !p.ignore.is_empty() {
+        let _ = writeln!(
+            o,
+            "             --ignore {} (dropped on purpose although they could change the body)",
+            p.ignore.join(",")
+        );
+    }
     for i in &r.interfaces {
         let nodes: Vec<String> = i.nodes.iter().map(u64::to_string).collect();
         let _ = write!(o, "  interface  {} → node(s) {}", i.entry, nodes.join(","));

@@ -122,6 +122,7 @@ pub fn spec_from_body_with(
     spec.material = input.material;
     spec.thickness = input.thickness;
     spec.subcase = input.subcase;
+    spec.ignore = input.ignore.clone();
     spec.interface = input.interface;
     spec.spider = input.spider;
     spec.beam_mass = input.beam_mass;

@@ -208,6 +208,7 @@ pub fn recipe(
         damping: None,
         thickness: spec.thickness,
         subcase: spec.subcase,
+        ignore: spec.ignore.clone(),
         gravity: spec.scene.gravity.clone(),
         loads: spec.scene.loads.clone(),
         residual_vectors: spec.scene.residual_vectors.map(|k| {
@@ -332,6 +333,8 @@ pub struct ModelInput {
     pub thickness: Option<f64>,
     /// Nastran subcase whose SPC and METHOD selections apply.
     pub subcase: Option<u64>,
+    /// Cards or keywords the build dropped on purpose (`--ignore`).
+    pub ignore: Vec<String>,
     /// The interface entries given to `build`.
     pub interface: Vec<String>,
     /// The spider kind given to `build`.
@@ -357,6 +360,8 @@ pub struct ModelOverrides {
     pub thickness: Option<f64>,
     /// `--subcase`.
     pub subcase: Option<u64>,
+    /// `--ignore` (empty: not given).
+    pub ignore: Vec<String>,
 }
 
 /// The model `check` rebuilds: the recipe's options where the file has one, explicit overrides
@@ -406,6 +411,11 @@ pub fn model_input(
         beam_mass,
         thickness: o.thickness.or_else(|| opts.and_then(|r| r.thickness)),
         subcase: o.subcase.or_else(|| opts.and_then(|r| r.subcase)),
+        ignore: if o.ignore.is_empty() {
+            opts.map(|r| r.ignore.clone()).unwrap_or_default()
+        } else {
+            o.ignore
+        },
         scene: SceneSpec {
             gravity: opts.and_then(|r| r.gravity.clone()),
             loads: opts.map(|r| r.loads.clone()).unwrap_or_default(),

@@ -89,6 +89,9 @@ pub struct BuildSpec {
     pub beam_mass: Option<BeamLumping>,
     /// Nastran: the case-control subcase whose SPC and METHOD selections apply.
     pub subcase: Option<u64>,
+    /// `--ignore`: cards or keywords dropped on purpose although they could change the body
+    /// ([`crate::import::ImportOptions::ignore_cards`]; recorded in the recipe).
+    pub ignore: Vec<String>,
     /// `mass` was chosen by the user (`--mass`); when false a deck's PARAM,COUPMASS > 0 selects
     /// consistent mass (see [`crate::pipeline::deck`]).
     pub mass_explicit: bool,
@@ -131,6 +134,7 @@ impl BuildSpec {
             threads: 1,
             beam_mass: None,
             subcase: None,
+            ignore: Vec::new(),
             mass_explicit: false,
             scene: Default::default(),
             verify_band: false,

@@ -600,6 +600,7 @@ pub fn recipe_3node() -> Recipe {
             residual_vectors: None,
             select: None,
             preload: Vec::new(),
+            ignore: Vec::new(),
         },
         interfaces: vec![
             RecipeInterface {

@@ -13,7 +13,7 @@ pub fn import(spec: &BuildSpec) -> Result<Model, BuildError> {
             material: spec.material.clone(),
             subcase: spec.subcase,
             shell_thickness: spec.thickness,
-            ..Default::default()
+            ignore_cards: spec.ignore.clone(),
         },
     )?)
 }
