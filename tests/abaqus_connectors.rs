@@ -279,22 +279,7 @@ fn transform_frames_hold_as_calculix_holds_them() {
     );
     let path = write("transform_ccx", &deck);
     let out = path.with_extension("flexbody");
-    let o = common::exe()
-        .arg("build")
-        .arg(&path)
-        .args([
-            "--units",
-            "si",
-            "--method",
-            "normal",
-            "--mass",
-            "consistent",
-            "-q",
-            "-o",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = common::build_as_ccx(&path, &["-q"], &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let body = flexbody_reader::read(&out).unwrap();
     // ccx 2.20 (Debian calculix-ccx 2.20-1) on this deck

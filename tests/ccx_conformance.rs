@@ -21,7 +21,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::{exe, scratch, skipped};
+use common::{scratch, skipped};
 use flexbody_reader as file;
 
 const SUITE_ENV: &str = "FLEXBODY_CCX_TESTS";
@@ -314,22 +314,7 @@ fn classify(suite: &Path, deck: &Path) -> (String, Outcome) {
         },
     };
     let out = dir.join(format!("{name}.flexbody"));
-    let o = exe()
-        .arg("build")
-        .arg(dir.join(format!("{name}.inp")))
-        .args([
-            "--units",
-            "si",
-            "--method",
-            "normal",
-            "--mass",
-            "consistent",
-            "-q",
-            "-o",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = common::build_as_ccx(&dir.join(format!("{name}.inp")), &["-q"], &out);
     let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
     let outcome = if !o.status.success() {
         // the error, and for a refusal its list of keywords (one per line), without the

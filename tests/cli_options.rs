@@ -174,6 +174,15 @@ fn a_missing_output_folder_is_one_error_everywhere() {
             "export".into(),
             g.into(),
             "--to".into(),
+            "vtu".into(),
+            "-o".into(),
+            file_in("e.vtu"),
+        ],
+        vec!["view".into(), g.into(), "-o".into(), file_in("v.html")],
+        vec![
+            "export".into(),
+            g.into(),
+            "--to".into(),
             "mtx".into(),
             "--model".into(),
             model.clone(),
@@ -213,4 +222,40 @@ fn a_mesh_without_material_asks_for_material() {
         "{err}"
     );
     assert!(!out.exists());
+}
+
+/// Issue 31: inside the reduction a log (stderr not a terminal) hears what the solver does —
+/// the factorization's size, the eigenpairs converged of those wanted — every
+/// FLEXBODY_PROGRESS_SECONDS (5 s by default; 0 here: every step), not only a seconds counter.
+#[test]
+fn long_stages_report_the_solver_in_a_log() {
+    let out = std::env::temp_dir().join(format!("flexbody-prog-{}.flexbody", std::process::id()));
+    let o = Command::new(env!("CARGO_BIN_EXE_flexbody"))
+        .env("FLEXBODY_PROGRESS_SECONDS", "0")
+        .args([
+            "build",
+            &conrod(),
+            "--interface",
+            "BIG_END,SMALL_END",
+            "--fmax",
+            "3000",
+            "--units",
+            "si",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("flexbody:   reduction      factorizing K (") && err.contains(" equations, "),
+        "{err}"
+    );
+    let eigen = err
+        .lines()
+        .filter(|l| l.contains("reduction      eigen ") && l.contains(" converged"))
+        .count();
+    assert!(eigen >= 1, "{err}");
+    let _ = std::fs::remove_file(&out);
 }

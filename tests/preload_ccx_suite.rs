@@ -61,24 +61,10 @@ fn ccx(case: &str, key: &str) -> Vec<f64> {
         .collect()
 }
 
-fn build(deck: &PathBuf) -> Output {
+fn build(deck: &std::path::Path) -> Output {
     let out = deck.with_extension("flexbody");
     let _ = std::fs::remove_file(&out);
-    Command::new(env!("CARGO_BIN_EXE_flexbody"))
-        .arg("build")
-        .arg(deck)
-        .args([
-            "--units",
-            "si",
-            "--method",
-            "normal",
-            "--mass",
-            "consistent",
-        ])
-        .args(["--modes", "10", "--json", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap()
+    common::build_as_ccx(deck, &["--modes", "10", "--json"], &out)
 }
 
 /// The number after `λ₁ = ` in `text`.

@@ -5,7 +5,7 @@
 //! PERTURBATION is the unloaded body's (as in CalculiX), whatever static step precedes it.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 mod common;
 use common::reference;
@@ -31,22 +31,7 @@ fn block_deck(name: &str, history: &str) -> PathBuf {
 fn build(model: &Path, args: &[&str]) -> Output {
     let out = model.with_extension("flexbody");
     let _ = std::fs::remove_file(&out);
-    Command::new(env!("CARGO_BIN_EXE_flexbody"))
-        .arg("build")
-        .arg(model)
-        .args(args)
-        .args([
-            "--units",
-            "si",
-            "--method",
-            "normal",
-            "--mass",
-            "consistent",
-        ])
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap()
+    common::build_as_ccx(model, args, &out)
 }
 
 /// The build fails, writes nothing, and its message contains every piece of `want`.

@@ -116,6 +116,27 @@ pub fn exe() -> Command {
     Command::new(env!("CARGO_BIN_EXE_flexbody"))
 }
 
+/// `flexbody build DECK EXTRA… --units si --method normal --mass consistent -o OUT`: a deck
+/// built as CalculiX's `*FREQUENCY` step solves it (consistent mass, the deck's SI numbers).
+pub fn build_as_ccx(deck: &Path, extra: &[&str], out: &Path) -> std::process::Output {
+    exe()
+        .arg("build")
+        .arg(deck)
+        .args(extra)
+        .args([
+            "--units",
+            "si",
+            "--method",
+            "normal",
+            "--mass",
+            "consistent",
+            "-o",
+        ])
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 /// A fresh folder under the system temp dir for one test (`name` unique within the test binary).
 pub fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("flexbody-test-{name}-{}", std::process::id()));
