@@ -82,25 +82,11 @@ fn the_docs_exudyn_snippets_run_with_and_without_damping() {
         );
         return;
     }
-    let model = root().join("fixtures/models/conrod/conrod.inp");
     for damping in [true, false] {
         let dir = scratch(&format!("snippets-{damping}"));
         let body = dir.join("conrod.flexbody");
         let npz = dir.join("conrod.npz");
-        let mut build = exe();
-        build.arg("build").arg(&model).args([
-            "--interface",
-            "BIG_END,SMALL_END",
-            "--fmax",
-            "3000",
-            "--units",
-            "si",
-            "-q",
-        ]);
-        if damping {
-            build.args(["--damping", "2%"]);
-        }
-        assert!(build.arg("-o").arg(&body).status().unwrap().success());
+        common::build_conrod(&body, if damping { &["--damping", "2%"] } else { &[] });
         let export = exe()
             .arg("export")
             .arg(&body)

@@ -12,31 +12,12 @@ use std::process::Command;
 
 mod common;
 
-fn build_conrod(out: &Path, extra: &[&str]) {
-    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp");
-    let o = exe()
-        .arg("build")
-        .arg(&model)
-        .args(["--interface", "BIG_END,SMALL_END", "--fmax", "3000"])
-        .args(["--units", "si", "-q"])
-        .args(extra)
-        .arg("-o")
-        .arg(out)
-        .output()
-        .unwrap();
-    assert!(
-        o.status.success(),
-        "build failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-}
-
 #[test]
 fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_frequencies() {
     let dir = scratch("exudyn-exudyn");
     let body = dir.join("rod.flexbody");
     let npz = dir.join("rod.npz");
-    build_conrod(&body, &["--stress-modes", "--damping", "2%"]);
+    common::build_conrod(&body, &["--stress-modes", "--damping", "2%"]);
     let o = exe()
         .arg("export")
         .arg(&body)
@@ -162,7 +143,7 @@ fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
     let dir = scratch("exudyn-partial");
     let body = dir.join("rod.flexbody");
     let npz = dir.join("rod.npz");
-    build_conrod(&body, &["--invariants", "partial"]);
+    common::build_conrod(&body, &["--invariants", "partial"]);
     let o = exe()
         .arg("export")
         .arg(&body)
@@ -211,7 +192,7 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
     }
     let dir = scratch("exudyn-helper");
     let rod = dir.join("rod.flexbody");
-    build_conrod(&rod, &["--stress-modes", "--damping", "2%"]);
+    common::build_conrod(&rod, &["--stress-modes", "--damping", "2%"]);
     let block = dir.join("block.flexbody");
     let o = exe()
         .arg("build")

@@ -283,29 +283,22 @@ fn writer_refuses_string_records_and_recipe_over_16_mib() {
     if let Some(interfaces) = body.interfaces.as_mut() {
         interfaces[1].dependent = (1000..1000 + (limit / 8 + 1) as u64).collect();
     }
-    let err = to_bytes(&body, &WriteOptions::default()).expect_err("interfaces.bin > 16 MiB");
-    assert!(
-        err.to_string()
-            .contains("interfaces.bin: encoded size (bytes)")
-            && err
-                .to_string()
-                .contains(&format!("exceeds the limit {limit}")),
-        "{err}"
-    );
+    let refused = |body: &ReducedBody, entry: &str| {
+        let err = to_bytes(body, &WriteOptions::default()).expect_err(entry);
+        let text = err.to_string();
+        assert!(
+            text.contains(&format!("{entry}: encoded size (bytes)"))
+                && text.contains(&format!("exceeds the limit {limit}")),
+            "{err}"
+        );
+    };
+    refused(&body, "interfaces.bin");
     // recipe.json: a model path of 16 MiB + 1
     let mut body = format_support::body_3node_recipe();
     if let Some(recipe) = body.recipe.as_mut() {
         recipe.model_files[0].path = "p".repeat(limit + 1);
     }
-    let err = to_bytes(&body, &WriteOptions::default()).expect_err("recipe.json > 16 MiB");
-    assert!(
-        err.to_string()
-            .contains("recipe.json: encoded size (bytes)")
-            && err
-                .to_string()
-                .contains(&format!("exceeds the limit {limit}")),
-        "{err}"
-    );
+    refused(&body, "recipe.json");
     // just under the limit still writes and reads back
     let mut body = format_support::body_3node_recipe();
     if let Some(recipe) = body.recipe.as_mut() {

@@ -137,6 +137,27 @@ pub fn build_as_ccx(deck: &Path, extra: &[&str], out: &Path) -> std::process::Ou
         .unwrap()
 }
 
+/// The README's first build of the bundled conrod (spiders on both bores, `--fmax 3000`, SI,
+/// quiet) with `extra` options, written to `out`; panics with the build's stderr on failure.
+pub fn build_conrod(out: &Path, extra: &[&str]) {
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp");
+    let o = exe()
+        .arg("build")
+        .arg(&model)
+        .args(["--interface", "BIG_END,SMALL_END", "--fmax", "3000"])
+        .args(["--units", "si", "-q"])
+        .args(extra)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "build failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
 /// A fresh folder under the system temp dir for one test (`name` unique within the test binary).
 pub fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("flexbody-test-{name}-{}", std::process::id()));
