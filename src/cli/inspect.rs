@@ -453,18 +453,15 @@ fn render_recipe(o: &mut String, r: &flexbody_reader::Recipe) {
 /// The `--units` value of a unit system: its preset name (`si`, `mm-t-s`, …), or the units
 /// themselves when no preset matches.
 fn units_option(u: &flexbody_reader::Units) -> String {
-    (crate::pipeline::options::UNIT_PRESETS.iter())
-        .map(|(names, _)| names[0])
-        .find(|n| crate::pipeline::options::parse_units(n).is_ok_and(|p| p == *u))
-        .map_or_else(
-            || {
-                format!(
-                    "{}/{}/{}/{} (no preset)",
-                    u.mass.name, u.length.name, u.time.name, u.force.name
-                )
-            },
-            str::to_string,
-        )
+    crate::pipeline::options::unit_preset_name(u).map_or_else(
+        || {
+            format!(
+                "{}/{}/{}/{} (no preset)",
+                u.mass.name, u.length.name, u.time.name, u.force.name
+            )
+        },
+        str::to_string,
+    )
 }
 
 /// Runs `flexbody inspect`: the summary as text, or as JSON.

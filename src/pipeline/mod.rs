@@ -199,12 +199,8 @@ fn run_stages(
 /// `--units mm-t-s` on the SI conrod went through without a word), with the presets in which
 /// they are.
 fn unit_warnings(spec: &BuildSpec, model: &Model) -> Vec<String> {
-    let presets: Vec<(&str, flexbody_reader::Units)> = (options::UNIT_PRESETS.iter())
-        .filter_map(|(names, _)| Some((names[0], options::parse_units(names[0]).ok()?)))
-        .collect();
-    let name = (presets.iter())
-        .find(|(_, u)| *u == spec.units)
-        .map_or("the declared units", |(n, _)| n);
+    let name = options::unit_preset_name(&spec.units).unwrap_or("the declared units");
+    let presets = options::unit_presets();
     crate::import::plausibility::unit_system_warnings(model, &spec.units, name, &presets)
 }
 

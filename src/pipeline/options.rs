@@ -61,6 +61,20 @@ pub const UNIT_PRESETS: &[(&[&str], [UnitDef; 4])] = &[
     ),
 ];
 
+/// Every preset by its first name, as `--units` reads it.
+pub fn unit_presets() -> Vec<(&'static str, file::Units)> {
+    (UNIT_PRESETS.iter())
+        .filter_map(|(names, _)| Some((names[0], parse_units(names[0]).ok()?)))
+        .collect()
+}
+
+/// The `--units` preset `units` are (its first name), if any.
+pub fn unit_preset_name(units: &file::Units) -> Option<&'static str> {
+    (unit_presets().into_iter())
+        .find(|(_, u)| u == units)
+        .map(|(n, _)| n)
+}
+
 /// `--units`: a preset name (see [`UNIT_PRESETS`]).
 pub fn parse_units(s: &str) -> Result<file::Units, OptionError> {
     let key = s.trim().to_ascii_lowercase();
