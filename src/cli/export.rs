@@ -21,9 +21,9 @@ pub(crate) fn command(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result
     let body = flexbody_reader::read(file)
         .map_err(flexbody_reader::ReadError::named)
         .with_context(|| format!("{} is not a valid flexbody file", file.display()))?;
-    // the same rule for every target, before any work: the output's folder must exist (mtx
-    // writes into a folder of its own, made inside an existing one)
+    // every target, before any work: the output's folder must exist
     if target == crate::export::Target::Mtx {
+        // mtx writes into a folder of its own, made inside an existing one
         let parent = output.parent().filter(|p| !p.as_os_str().is_empty());
         if let Some(p) = parent.filter(|p| !p.is_dir()) {
             anyhow::bail!(
@@ -32,10 +32,6 @@ pub(crate) fn command(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result
                 p.display()
             );
         }
-    } else {
-        crate::write::check_output_path(output)?;
-    }
-    if target == crate::export::Target::Mtx {
         let model = a.model.ok_or_else(|| {
             anyhow::anyhow!(
                 "--to mtx writes the FE model's K and M, which the file does not hold: give the \
@@ -73,6 +69,7 @@ pub(crate) fn command(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result
     if let Some(mass) = a.mass {
         anyhow::bail!("--mass {mass}: only --to mtx writes a mass matrix");
     }
+    crate::write::check_output_path(output)?;
     let summary = crate::export::export(&body, target, output)?;
     for n in &summary.notes {
         eprintln!("flexbody: note: {n}");
