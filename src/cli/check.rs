@@ -172,6 +172,7 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
     .map_err(BuildError::from)?;
     let interfaces =
         resolve_interfaces(&mut model, &input.interface, input.spider).map_err(BuildError::from)?;
+    let mass_nodes = crate::model::offset_mass::place_offset_masses(&mut model);
     let beam_lumping = input.beam_mass.unwrap_or_else(|| {
         let mut spec = crate::pipeline::BuildSpec::new(input.path.clone(), file::Units::si(), &[]);
         spec.format = input.format;
@@ -195,6 +196,7 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
         interface_nodes: interfaces.iter().flat_map(|i| i.nodes.clone()).collect(),
         interfaces,
         model,
+        mass_nodes,
     };
     let mut red = eliminate_constraints(&interfaced, &a)?;
     // as `build`: the preload (the deck's or the recipe's --preload) turns K_r into K_T,r

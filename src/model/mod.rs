@@ -17,6 +17,7 @@ pub mod connector;
 pub mod deck;
 pub mod generate;
 pub mod load;
+pub mod offset_mass;
 pub mod section;
 
 pub use connector::{Bush, Mpc, NodeDof, RigidBody, ScalarMass, ScalarSpring};
@@ -487,6 +488,30 @@ pub struct Model {
 }
 
 impl Model {
+    /// The largest node id (scalar points included; 0 for no nodes): a node made after import
+    /// takes the next one.
+    pub fn max_node_id(&self) -> u64 {
+        self.nodes.iter().map(|n| n.id).max().unwrap_or(0)
+    }
+
+    /// The largest id of every element-like entity — elements, rigid elements, rigid bodies
+    /// (RBAR, RBE1), springs, scalar masses, bushes and point masses (0 for none): an element
+    /// made after import takes the next one, so it names no card of the deck.
+    pub fn max_element_id(&self) -> u64 {
+        let rigid = self.rigid_elements.iter().map(|r| match r {
+            RigidElement::Rbe2 { id, .. } | RigidElement::Rbe3 { id, .. } => *id,
+        });
+        (self.elements.iter().map(|e| e.id))
+            .chain(rigid)
+            .chain(self.rigid_bodies.iter().map(|r| r.id))
+            .chain(self.springs.iter().map(|s| s.id))
+            .chain(self.scalar_masses.iter().map(|s| s.id))
+            .chain(self.bushes.iter().map(|b| b.id))
+            .chain(self.point_masses.iter().map(|p| p.id))
+            .max()
+            .unwrap_or(0)
+    }
+
     /// Whether node `n` is a scalar point.
     pub fn is_scalar_point(&self, n: NodeIndex) -> bool {
         self.scalar_points.binary_search(&n).is_ok()

@@ -363,7 +363,12 @@ fn stored_invariants(body: &file::ReducedBody, r: &mut CheckReport) {
                     }
                 }
             }
-            r.push("stored invariants = recomputation from stored nodes", worst, 1e-9, "I1, I2, I6, I7 relative (point masses with offsets are lumped to their node in the file)".into());
+            r.push(
+                "stored invariants = recomputation from stored nodes",
+                worst,
+                1e-9,
+                "I1, I2, I6, I7 relative".into(),
+            );
             if body.method.mass_kind == file::MassKind::Lumped {
                 if let Some(i6) = &re.i6 {
                     let e = (0..m * m)

@@ -175,14 +175,14 @@ pub fn resolve_interfaces(
                     let fit = set_centre(model, &set, faces);
                     let centre = fit.centre;
                     let average = node_average(model, &set);
-                    let centre_node_id = model.nodes.iter().map(|n| n.id).max().unwrap_or(0) + 1;
+                    let centre_node_id = model.max_node_id() + 1;
                     let centre_index = model.nodes.len();
                     model.nodes.push(Node {
                         id: centre_node_id,
                         x: centre,
                         displacement_frame: None,
                     });
-                    let rigid_id = next_rigid_id(model);
+                    let rigid_id = model.max_element_id() + 1;
                     model.rigid_elements.push(match spider {
                         SpiderKind::Rbe3 => RigidElement::Rbe3 {
                             id: rigid_id,
@@ -346,14 +346,6 @@ pub fn reference_names(
         }
     }
     Ok((named, rest))
-}
-
-fn next_rigid_id(model: &Model) -> u64 {
-    let ids = model.rigid_elements.iter().map(|r| match r {
-        RigidElement::Rbe2 { id, .. } | RigidElement::Rbe3 { id, .. } => *id,
-    });
-    let elem_ids = model.elements.iter().map(|e| e.id);
-    ids.chain(elem_ids).max().unwrap_or(0) + 1
 }
 
 fn node_average(model: &Model, set: &[NodeIndex]) -> [f64; 3] {

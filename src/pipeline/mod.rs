@@ -141,6 +141,18 @@ fn run_stages(
     report.warnings.extend(unit_warnings(spec, &model));
     let mut clock = StageClock::new(progress);
     let interfaced = clock.run(Stage::Interfaces, || interfaces::interfaces(&plan, model))?;
+    report.notes.extend(interfaced.mass_nodes.iter().map(|m| {
+        let model = &interfaced.model;
+        format!(
+            "{}: point mass {}: its centre of gravity, off node {}, is node {} of the body, \
+             rigidly linked to it (element {}): the file holds one mass per node",
+            model.element_origin(m.mass_id),
+            m.mass_id,
+            model.nodes[m.attached_to].id,
+            model.nodes[m.node].id,
+            m.link_id
+        )
+    }));
     let assembled = clock.run(Stage::Assembly, || {
         assembly::assembly(&plan, &interfaced, report)
     })?;

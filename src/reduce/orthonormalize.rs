@@ -111,21 +111,34 @@ pub struct Orthonormalized {
     pub diagnostics: Diagnostics,
 }
 
+/// Pivots within this factor of the largest remaining diagonal are numerically equal choices;
+/// among them the stiffest-per-mass column is taken last ([`pivoted_cholesky`]).
+pub const PIVOT_BAND: f64 = 0.5;
+
 /// Pivoted Cholesky of a symmetric positive semi-definite matrix `a` with unit diagonal: the
-/// greedily chosen pivots (largest remaining diagonal first) until it falls below `tol`, and the
-/// remaining diagonal of every column.
-fn pivoted_cholesky(a: &Mat<f64>, tol: f64) -> (Vec<usize>, Vec<f64>) {
+/// greedily chosen pivots until the remaining diagonal falls below `tol`, and the remaining
+/// diagonal of every column. Each pivot is, among the columns whose remaining diagonal is within
+/// [`PIVOT_BAND`] of the largest, the one of least `rayleigh` (K̂_jj/M̂_jj; ties: lowest index):
+/// of two M-dependent columns the softer is kept and the stiffer removed — a rigid motion is
+/// kept exactly, and the stiff column left is what it is, a massless direction to condense
+/// (a lumped beam's twist that moves only an offset mass: the twist of the fixed-interface
+/// mode has no mass of its own).
+fn pivoted_cholesky(a: &Mat<f64>, tol: f64, rayleigh: &[f64]) -> (Vec<usize>, Vec<f64>) {
     let p = a.nrows();
     let mut l = Mat::<f64>::zeros(p, p);
     let mut d: Vec<f64> = (0..p).map(|i| a[(i, i)]).collect();
     let mut chosen = vec![false; p];
     let mut piv = Vec::new();
     for step in 0..p {
-        let (mut best, mut bv) = (usize::MAX, tol);
+        let top = (0..p)
+            .filter(|&j| !chosen[j])
+            .map(|j| d[j])
+            .fold(0.0f64, f64::max);
+        let band = (PIVOT_BAND * top).max(tol);
+        let mut best = usize::MAX;
         for j in 0..p {
-            if !chosen[j] && d[j] > bv {
+            if !chosen[j] && d[j] > band && (best == usize::MAX || rayleigh[j] < rayleigh[best]) {
                 best = j;
-                bv = d[j];
             }
         }
         if best == usize::MAX {
@@ -284,7 +297,16 @@ pub fn orthonormalize_held(
         })
         .collect();
     let ms = Mat::from_fn(p, p, |i, j| mh[(i, j)] * dscale[i] * dscale[j]);
-    let (mut kept, rem) = pivoted_cholesky(&ms, DEPENDENCY_TOL);
+    let rayleigh: Vec<f64> = (0..p)
+        .map(|j| {
+            if dscale[j] > 0.0 {
+                kh[(j, j)] * dscale[j] * dscale[j]
+            } else {
+                f64::INFINITY
+            }
+        })
+        .collect();
+    let (mut kept, rem) = pivoted_cholesky(&ms, DEPENDENCY_TOL, &rayleigh);
     kept.sort_unstable();
     if kept.is_empty() {
         return Err(ReduceError::EmptyBasis);

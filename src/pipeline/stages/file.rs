@@ -47,8 +47,16 @@ pub fn stored_nodes(
         .copied()
         .chain(constrained.reference_nodes.iter().map(|r| r.0))
         .collect();
-    let nodes = select_nodes(&interfaced.model, &plan.spec.keep_nodes, &always, &faces)
+    let mut nodes = select_nodes(&interfaced.model, &plan.spec.keep_nodes, &always, &faces)
         .map_err(|e| plan.request_error(e))?;
+    // A point mass's centre-of-gravity node goes with the node it hangs on.
+    let extra: Vec<NodeIndex> = (interfaced.mass_nodes.iter())
+        .filter(|m| nodes.binary_search(&m.attached_to).is_ok())
+        .map(|m| m.node)
+        .collect();
+    nodes.extend(extra);
+    nodes.sort_unstable();
+    nodes.dedup();
     Ok(StoredNodes { faces, nodes })
 }
 

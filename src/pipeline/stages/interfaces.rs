@@ -1,7 +1,9 @@
 //! Interfaces: the `--interface` entries → interface nodes; a node set becomes a spider to a
 //! new centre node ([`resolve_interfaces`]), so the model leaves this stage with those nodes and
-//! rigid elements added.
+//! rigid elements added, and with a node at each point mass's offset centre of gravity
+//! (`model::offset_mass`).
 
+use crate::model::offset_mass::{place_offset_masses, MassNode};
 use crate::model::{Model, NodeIndex};
 use crate::pipeline::interface::{resolve_interfaces, InterfaceReport};
 use crate::pipeline::plan::Plan;
@@ -17,6 +19,8 @@ pub struct WithInterfaces {
     pub interfaces: Vec<InterfaceReport>,
     /// Every interface's nodes, in entry order (a spider's centre node for a node set).
     pub interface_nodes: Vec<NodeIndex>,
+    /// The nodes made at offset centres of gravity of point masses (`model::offset_mass`).
+    pub mass_nodes: Vec<MassNode>,
 }
 
 /// The interfaces stage: the request checked against the method, the interfaces attached, the
@@ -40,9 +44,12 @@ pub fn interfaces(plan: &Plan, model: Model) -> Result<WithInterfaces, BuildErro
     Ok(interfaced)
 }
 
-/// The interfaces attached to `model` as `plan` asks, nothing checked.
+/// The interfaces attached to `model` as `plan` asks, nothing checked; then the offset point
+/// masses placed on nodes of their own (after the spiders, so that spider centre ids do not
+/// depend on them).
 pub fn attach(plan: &Plan, mut model: Model) -> Result<WithInterfaces, BuildError> {
     let interfaces = resolve_interfaces(&mut model, &plan.spec.interface, plan.spec.spider)?;
+    let mass_nodes = place_offset_masses(&mut model);
     let interface_nodes = interfaces
         .iter()
         .flat_map(|r| r.nodes.iter().copied())
@@ -51,5 +58,6 @@ pub fn attach(plan: &Plan, mut model: Model) -> Result<WithInterfaces, BuildErro
         model,
         interfaces,
         interface_nodes,
+        mass_nodes,
     })
 }
