@@ -291,6 +291,7 @@ pub(crate) fn build(
     let mut b = d.b;
     b.model.loads =
         super::loads::resolve(&d.loads, &files, &b.model, &d.nodes, &elements, &load_sel)?;
+    b.model.deck.preload = statsub_preload(&effective, &b.model.loads, &files)?;
     let load_warnings = crate::model::load::problem_warnings(&b.model.loads, &files[0]);
     b.model.warnings.extend(load_warnings);
     b.model.files = b.files.clone();
@@ -300,6 +301,37 @@ pub(crate) fn build(
         .element_sources
         .sort_unstable_by_key(|&(id, _, _)| id);
     Ok((b.model, counts))
+}
+
+/// The deck's preload (module `case_control`): the LOAD set of the static subcase that
+/// `STATSUB(PRELOAD)` names, by its scene-load name.
+fn statsub_preload(
+    effective: &super::case_control::Effective,
+    loads: &[crate::model::Load],
+    files: &[String],
+) -> Result<Option<crate::model::deck::PreloadRequest>, ImportError> {
+    let Some((id, at, scope)) = effective.preload else {
+        return Ok(None);
+    };
+    let Some(sel) = scope.load else {
+        return Ok(None); // case_control::preload_of refused a static subcase without LOAD
+    };
+    let name = format!("LOAD_{}", sel.id);
+    if !loads.iter().any(|l| l.name == name) {
+        return Err(sel.undefined(
+            files,
+            "LOAD",
+            "load set",
+            "FORCE, MOMENT, GRAV, PLOAD4 or LOAD",
+        ));
+    }
+    let place = |l: Loc| format!("{}:{}", files[l.file as usize], l.line);
+    Ok(Some(crate::model::deck::PreloadRequest {
+        source: format!("static subcase {id} (STATSUB(PRELOAD), {})", place(at)),
+        first_load: format!("{}: LOAD = {}", place(sel.loc), sel.id),
+        loads: vec![name],
+        ..Default::default()
+    }))
 }
 
 /// An `ignore_cards` name as the card table knows it: upper case; a parameter as

@@ -1,9 +1,15 @@
 //! Nastran case control: the part of a deck between `CEND` and `BEGIN BULK` that says which
-//! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC`, `MPC`, `METHOD` and `LOAD`
-//! (global, i.e. above the first subcase, or inside a subcase, which overrides the global value).
-//! Refused: the commands that would change the body and are not modelled (`K2GG`, `M2GG`,
-//! `K2PP`, `M2PP`, `STATSUB`). Every other
+//! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC`, `MPC`, `METHOD`, `LOAD`,
+//! `STATSUB(PRELOAD)` and `TEMP(LOAD)` (global, i.e. above the first subcase, or inside a
+//! subcase, which overrides the global value). Refused: the commands that would change the body
+//! and are not modelled (`K2GG`, `M2GG`, `K2PP`, `M2PP`, `STATSUB(BUCKLE)`). Every other
 //! command is output or solution control this tool has no use for and is skipped.
+//!
+//! `STATSUB(PRELOAD) = n` in the modes' subcase (MSC QRG "STATSUB"; SOL 103 with differential
+//! stiffness) names static subcase n, whose `LOAD` is the preload of the modes: that subcase is
+//! a load case, not an analysis of its own, so it takes no part in the rule below; its `SPC`
+//! must be the modes' (the preload is solved on the modes' supports) and a `TEMP(LOAD)` in it
+//! (a thermal preload) is refused.
 //!
 //! Nastran's rule (MSC QRG, "Case Control Commands"): a bulk-data SPC set is applied only when
 //! `SPC = n` selects it; no `SPC` command means no SPC set; `MPC = n` alike for MPC sets. A deck
@@ -49,6 +55,10 @@ pub(crate) struct Scope {
     pub mpc: Option<Select>,
     pub method: Option<Select>,
     pub load: Option<Select>,
+    /// `STATSUB(PRELOAD) = n`: the static subcase preloading these modes.
+    pub statsub: Option<Select>,
+    /// `TEMP(LOAD) = n` (or `TEMP(BOTH)`, `TEMP = n`): a thermal load set.
+    pub temp_load: Option<Select>,
 }
 
 /// One `SUBCASE n` block.
@@ -79,8 +89,8 @@ const REFUSED: &[(&str, &str)] = &[
         "adds a mass matrix (DMIG) to the model: not modelled",
     ),
     (
-        "STATSUB",
-        "a static preload (differential stiffness) of the normal modes: not modelled",
+        "STATSUB(BUCKLE)",
+        "a buckling preload (SOL 105): flexbody reduces normal modes; use STATSUB(PRELOAD)",
     ),
 ];
 
@@ -101,6 +111,8 @@ pub(crate) struct CaseControl {
 pub(crate) struct Effective {
     pub subcase: Option<u64>,
     pub scope: Scope,
+    /// The static subcase `STATSUB(PRELOAD)` names: its id, where it starts, its selections.
+    pub preload: Option<(u64, Loc, Scope)>,
 }
 
 fn err(files: &[String], loc: Loc, entity: &str, msg: String) -> ImportError {
@@ -174,16 +186,33 @@ pub(crate) fn parse(
             cc.title = Some(value.to_owned());
             continue;
         }
-        if let Some(&(command, why)) = REFUSED.iter().find(|r| r.0 == word) {
+        let describer: String = (key.chars())
+            .filter(|c| !c.is_whitespace())
+            .collect::<String>()
+            .to_ascii_uppercase();
+        let command = if word == "STATSUB" && describer.contains("BUCKLE") {
+            "STATSUB(BUCKLE)"
+        } else {
+            word
+        };
+        if let Some(&(command, why)) = REFUSED.iter().find(|r| r.0 == command) {
             cc.refused.push((command.to_owned(), why, loc));
-            continue;
+            // a refused STATSUB still names its static subcase: not an analysis of its own
+            if word != "STATSUB" {
+                continue;
+            }
         }
-        let describer = key.trim().to_ascii_uppercase();
         let slot = match word {
             "SPC" => 0,
             "METHOD" | "METH" if !describer.contains("FLUID") => 1,
             "LOAD" => 2,
             "MPC" => 3,
+            "STATSUB" => 4,
+            // TEMP(INIT)/TEMP(MATERIAL) set material temperatures (refused elsewhere when a
+            // material depends on them); TEMP(LOAD), TEMP(BOTH) and TEMP = n also load
+            "TEMP" | "TEMPERATURE" if !describer.contains("INIT") && !describer.contains("MAT") => {
+                5
+            }
             _ => continue,
         };
         let id = value.parse::<u64>().map_err(|_| {
@@ -203,7 +232,9 @@ pub(crate) fn parse(
             0 => scope.spc = s,
             1 => scope.method = s,
             2 => scope.load = s,
-            _ => scope.mpc = s,
+            3 => scope.mpc = s,
+            4 => scope.statsub = s,
+            _ => scope.temp_load = s,
         }
     }
     Ok(cc)
@@ -218,6 +249,8 @@ impl CaseControl {
             mpc: s.mpc.or(self.global.mpc),
             method: s.method.or(self.global.method),
             load: s.load.or(self.global.load),
+            statsub: s.statsub.or(self.global.statsub),
+            temp_load: s.temp_load.or(self.global.temp_load),
         }
     }
 
@@ -242,22 +275,54 @@ impl CaseControl {
     }
 
     /// The selections the build uses. `choice` picks a subcase; without it every subcase must
-    /// select the same SPC and METHOD sets.
+    /// select the same SPC and METHOD sets — except the static subcases a `STATSUB(PRELOAD)`
+    /// names, which are the preload of the others (module doc).
     pub(crate) fn effective(
         &self,
         choice: Option<u64>,
         files: &[String],
         main_file: &str,
     ) -> Result<Effective, ImportError> {
+        let (subcase, k) = self.chosen(choice, files, main_file)?;
+        let scope = match k {
+            Some(k) => self.scope_of(k),
+            None => self.global,
+        };
+        // a refused STATSUB(BUCKLE) is reported with the refused cards (or dropped on purpose)
+        let preload = if self.refused.iter().any(|r| r.0.starts_with("STATSUB")) {
+            None
+        } else {
+            self.preload_of(k, scope, files)?
+        };
+        Ok(Effective {
+            subcase,
+            scope,
+            preload,
+        })
+    }
+
+    /// The ids of the subcases another subcase's `STATSUB(PRELOAD)` names.
+    fn static_subcases(&self) -> Vec<u64> {
+        (0..self.subcases.len())
+            .filter_map(|k| self.scope_of(k).statsub.map(|s| s.id))
+            .filter(|&id| self.subcases.iter().any(|s| s.id == id))
+            .collect()
+    }
+
+    /// The subcase the build uses (its id when the deck names one, and its index; `None`: the
+    /// global scope).
+    fn chosen(
+        &self,
+        choice: Option<u64>,
+        files: &[String],
+        main_file: &str,
+    ) -> Result<(Option<u64>, Option<usize>), ImportError> {
         let show = |s: Option<Select>| s.map_or("none".to_owned(), |s| s.id.to_string());
         let mpc = |s: Scope| s.mpc.map_or(String::new(), |m| format!(", MPC = {}", m.id));
         if let Some(n) = choice {
             if self.subcases.is_empty() {
                 if n == 1 {
-                    return Ok(Effective {
-                        subcase: None,
-                        scope: self.global,
-                    });
+                    return Ok((None, None));
                 }
                 return Err(parse_err(
                     main_file,
@@ -282,25 +347,24 @@ impl CaseControl {
                         ),
                     )
                 })?;
-            return Ok(Effective {
-                subcase: Some(n),
-                scope: self.scope_of(k),
-            });
+            return Ok((Some(n), Some(k)));
         }
-        let Some(first) = self.subcases.first() else {
-            return Ok(Effective {
-                subcase: None,
-                scope: self.global,
-            });
+        let statics = self.static_subcases();
+        let analyses: Vec<usize> = (0..self.subcases.len())
+            .filter(|&k| !statics.contains(&self.subcases[k].id))
+            .collect();
+        let Some(&k0) = analyses.first() else {
+            return Ok((None, None));
         };
-        let s0 = self.scope_of(0);
-        for (k, sc) in self.subcases.iter().enumerate().skip(1) {
-            let s = self.scope_of(k);
+        let (first, s0) = (&self.subcases[k0], self.scope_of(k0));
+        for &k in &analyses[1..] {
+            let (sc, s) = (&self.subcases[k], self.scope_of(k));
             let ids = |s: Scope| {
                 (
                     s.spc.map(|x| x.id),
                     s.method.map(|x| x.id),
                     s.mpc.map(|x| x.id),
+                    s.statsub.map(|x| x.id),
                 )
             };
             if ids(s) != ids(s0) {
@@ -324,10 +388,70 @@ impl CaseControl {
                 ));
             }
         }
-        Ok(Effective {
-            subcase: (self.subcases.len() == 1).then_some(first.id),
-            scope: s0,
-        })
+        let one = analyses.len() == 1;
+        Ok((one.then_some(first.id), Some(k0)))
+    }
+
+    /// The static subcase `scope`'s `STATSUB(PRELOAD)` names, checked: it exists, is not the
+    /// modes' own subcase (`k`), selects a LOAD, holds the body as the modes' subcase does and
+    /// has no thermal load.
+    fn preload_of(
+        &self,
+        k: Option<usize>,
+        scope: Scope,
+        files: &[String],
+    ) -> Result<Option<(u64, Loc, Scope)>, ImportError> {
+        let Some(sel) = scope.statsub else {
+            return Ok(None);
+        };
+        let here = |why: String| {
+            err(
+                files,
+                sel.loc,
+                &format!("STATSUB(PRELOAD) = {}", sel.id),
+                why,
+            )
+        };
+        let j = (self.subcases.iter().position(|s| s.id == sel.id)).ok_or_else(|| {
+            here(format!(
+                "the deck has no SUBCASE {} to preload the modes",
+                sel.id
+            ))
+        })?;
+        if Some(j) == k {
+            return Err(here(
+                "names the modes' own subcase: the preload is a static subcase of its own".into(),
+            ));
+        }
+        let mut st = self.scope_of(j);
+        st.statsub = None;
+        let id = |s: Option<Select>| s.map(|x| x.id);
+        let show = |s: Option<Select>| s.map_or("none".to_owned(), |s| s.id.to_string());
+        if id(st.spc) != id(scope.spc) || id(st.mpc) != id(scope.mpc) {
+            return Err(here(format!(
+                "static subcase {} holds the body by SPC = {} (MPC = {}), the modes' subcase by SPC = {} (MPC = {}): flexbody solves the preload on the modes' supports, give both subcases the same SPC and MPC",
+                sel.id,
+                show(st.spc),
+                show(st.mpc),
+                show(scope.spc),
+                show(scope.mpc)
+            )));
+        }
+        if let Some(t) = st.temp_load {
+            return Err(err(
+                files,
+                t.loc,
+                &format!("TEMP(LOAD) = {}", t.id),
+                format!("a thermal preload of the modes (static subcase {} of STATSUB(PRELOAD)) is not supported", sel.id),
+            ));
+        }
+        if st.load.is_none() {
+            return Err(here(format!(
+                "static subcase {} selects no LOAD: nothing preloads the modes",
+                sel.id
+            )));
+        }
+        Ok(Some((sel.id, self.subcases[j].loc, st)))
     }
 }
 

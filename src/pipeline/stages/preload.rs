@@ -215,7 +215,7 @@ fn preload_case(
     };
     if let Some(problem) = &request.problem {
         return Err(request_error(format!(
-            "{problem} ({} preloads the modes of the *FREQUENCY, PERTURBATION step; a preload the tool cannot apply is refused, never dropped)",
+            "{problem} ({} preloads the deck's modes; a preload the tool cannot apply is refused, never dropped)",
             request.source
         )));
     }
