@@ -1,9 +1,10 @@
 //! Nastran `STATSUB(PRELOAD)` (issue 35): SOL 103 modes with the differential stiffness of a
 //! static subcase, through the CLI. A pinned-pinned CBAR column under axial compression P and
 //! tension: f(P)/f(0) = √(1 − P/P_cr) (Euler, P_cr = π²EI/L²) to 1e-3; the same as
-//! `--preload LOAD_10` on the deck without STATSUB; `check --model` rebuilds it. What cannot be
-//! honoured is refused naming the line: STATSUB(BUCKLE), a thermal static subcase, a static
-//! subcase held differently from the modes', a STATSUB naming no subcase.
+//! `--preload LOAD_10` on the deck without STATSUB; `check --model` rebuilds it. A thermal
+//! preload (TEMP(LOAD), MAT1 A/TREF) of a column held at both ends: Euler again. What cannot be
+//! honoured is refused naming the line: STATSUB(BUCKLE), a temperature set the bulk data lacks,
+//! a static subcase held differently from the modes', a STATSUB naming no subcase.
 
 mod common;
 
@@ -148,7 +149,7 @@ fn statsub_preloads_the_tool_cannot_apply_are_refused_by_line() {
         (
             "thermal",
             "SPC = 1\nSUBCASE 1\n  LOAD = 10\n  TEMP(LOAD) = 5\nSUBCASE 2\n  STATSUB(PRELOAD) = 1\n  METHOD = 20\n",
-            "thermal.bdf:6: TEMP(LOAD) = 5",
+            "thermal.bdf:6: TEMP(LOAD) = 5: the bulk data has no TEMP or TEMPD of set 5",
         ),
         (
             "supports",
@@ -169,5 +170,78 @@ fn statsub_preloads_the_tool_cannot_apply_are_refused_by_line() {
         assert!(err.contains(expect), "{name}: {err}");
         assert!(!out.exists(), "{name}");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A thermal preload: the column held axially at both ends and heated by ΔT from TREF
+/// (MAT1 A = α, TREF; TEMPD default or TEMP per grid) carries N = −EAαΔT: f/f0 = √(1 − N/P_cr)
+/// (Euler) to 1e-3, the same with the temperatures given grid by grid; two expanding materials
+/// with different TREF are refused naming the card.
+#[test]
+fn statsub_thermal_preload_compresses_a_held_column_as_euler_says() {
+    let dir = scratch("statsub-thermal");
+    let alpha = 1.2e-5;
+    let dt = 0.5 * p_cr() / (E * W * H * alpha);
+    let held = |name: &str, case: &str, extra: &str| {
+        let path = deck(&dir, name, case, 0.0);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let text = text
+            .replace(
+                &format!("MAT1,1,{E:?},,0.3,7850.\n"),
+                &format!("MAT1,1,{E:?},,0.3,7850.,{alpha:?},20.\n"),
+            )
+            .replace(
+                &format!("SPC1,1,23,{}\n", NE + 1),
+                &format!("SPC1,1,123,{}\n", NE + 1),
+            )
+            .replace("ENDDATA\n", &format!("{extra}ENDDATA\n"));
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let thermal =
+        "SPC = 1\nSUBCASE 1\n  TEMP(LOAD) = 5\nSUBCASE 2\n  STATSUB(PRELOAD) = 1\n  METHOD = 20\n";
+    let plain = held("held.bdf", PLAIN, "");
+    let (ok, err) = build(&plain, &dir.join("f0.flexbody"), &[]);
+    assert!(ok, "{err}");
+    let f0 = first_hz(&dir.join("f0.flexbody"));
+    let exact = 0.5f64.sqrt();
+    let tempd = held("tempd.bdf", thermal, &format!("TEMPD,5,{:?}\n", 20.0 + dt));
+    let by_grid: String = (1..=NE + 1)
+        .map(|g| format!("TEMP,5,{g},{:?}\n", 20.0 + dt))
+        .collect();
+    let temp = held("temp.bdf", thermal, &by_grid);
+    let mut got = Vec::new();
+    for path in [&tempd, &temp] {
+        let out = path.with_extension("flexbody");
+        let (ok, err) = build(path, &out, &[]);
+        assert!(ok, "{err}");
+        let f = first_hz(&out);
+        println!("{}: f/f0 = {} vs Euler {exact}", path.display(), f / f0);
+        assert!(
+            (f / f0 - exact).abs() < 1e-3 * exact,
+            "{} vs {exact}",
+            f / f0
+        );
+        got.push(f);
+    }
+    assert!((got[0] - got[1]).abs() < 1e-12 * got[0], "{got:?}");
+    // two expanding materials from different reference temperatures
+    let two = held(
+        "tref.bdf",
+        thermal,
+        &format!("TEMPD,5,30.\nMAT1,3,{E:?},,0.3,7850.,{alpha:?},0.\n"),
+    );
+    let (ok, err) = build(&two, &dir.join("tref.flexbody"), &[]);
+    assert!(
+        !ok && err.contains("MAT1 3") && err.contains("TREF"),
+        "{err}"
+    );
+    // a grid of an element without a temperature, no TEMPD default
+    let partial = held("partial.bdf", thermal, "TEMP,5,1,30.\n");
+    let (ok, err) = build(&partial, &dir.join("partial.flexbody"), &[]);
+    assert!(
+        !ok && err.contains("grid 2 has no temperature in set 5"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -292,6 +292,19 @@ pub(crate) fn build(
     b.model.loads =
         super::loads::resolve(&d.loads, &files, &b.model, &d.nodes, &elements, &load_sel)?;
     b.model.deck.preload = statsub_preload(&effective, &b.model.loads, &files)?;
+    if let Some(sel) = effective.preload.and_then(|(_, _, scope)| scope.temp_load) {
+        let thermal = super::temperature::thermal_preload(
+            &d.loads.temperatures,
+            &d.properties.mats,
+            sel,
+            &d.nodes,
+            &b.model,
+            &files,
+        )?;
+        if let Some(request) = &mut b.model.deck.preload {
+            request.thermal = Some(thermal);
+        }
+    }
     let load_warnings = crate::model::load::problem_warnings(&b.model.loads, &files[0]);
     b.model.warnings.extend(load_warnings);
     b.model.files = b.files.clone();
@@ -304,7 +317,7 @@ pub(crate) fn build(
 }
 
 /// The deck's preload (module `case_control`): the LOAD set of the static subcase that
-/// `STATSUB(PRELOAD)` names, by its scene-load name.
+/// `STATSUB(PRELOAD)` names, by its scene-load name (its TEMP(LOAD) is added by the caller).
 fn statsub_preload(
     effective: &super::case_control::Effective,
     loads: &[crate::model::Load],
@@ -313,25 +326,27 @@ fn statsub_preload(
     let Some((id, at, scope)) = effective.preload else {
         return Ok(None);
     };
-    let Some(sel) = scope.load else {
-        return Ok(None); // case_control::preload_of refused a static subcase without LOAD
-    };
-    let name = format!("LOAD_{}", sel.id);
-    if !loads.iter().any(|l| l.name == name) {
-        return Err(sel.undefined(
-            files,
-            "LOAD",
-            "load set",
-            "FORCE, MOMENT, GRAV, PLOAD4 or LOAD",
-        ));
-    }
     let place = |l: Loc| format!("{}:{}", files[l.file as usize], l.line);
-    Ok(Some(crate::model::deck::PreloadRequest {
+    let mut request = crate::model::deck::PreloadRequest {
         source: format!("static subcase {id} (STATSUB(PRELOAD), {})", place(at)),
-        first_load: format!("{}: LOAD = {}", place(sel.loc), sel.id),
-        loads: vec![name],
         ..Default::default()
-    }))
+    };
+    if let Some(sel) = scope.load {
+        let name = format!("LOAD_{}", sel.id);
+        if !loads.iter().any(|l| l.name == name) {
+            return Err(sel.undefined(
+                files,
+                "LOAD",
+                "load set",
+                "FORCE, MOMENT, GRAV, PLOAD4 or LOAD",
+            ));
+        }
+        request.first_load = format!("{}: LOAD = {}", place(sel.loc), sel.id);
+        request.loads.push(name);
+    } else if let Some(t) = scope.temp_load {
+        request.first_load = format!("{}: TEMP(LOAD) = {}", place(t.loc), t.id);
+    }
+    Ok(Some(request))
 }
 
 /// An `ignore_cards` name as the card table knows it: upper case; a parameter as

@@ -6,10 +6,10 @@
 //! command is output or solution control this tool has no use for and is skipped.
 //!
 //! `STATSUB(PRELOAD) = n` in the modes' subcase (MSC QRG "STATSUB"; SOL 103 with differential
-//! stiffness) names static subcase n, whose `LOAD` is the preload of the modes: that subcase is
-//! a load case, not an analysis of its own, so it takes no part in the rule below; its `SPC`
-//! must be the modes' (the preload is solved on the modes' supports) and a `TEMP(LOAD)` in it
-//! (a thermal preload) is refused.
+//! stiffness) names static subcase n, whose `LOAD` and `TEMP(LOAD)` (module `temperature`) are
+//! the preload of the modes: that subcase is a load case, not an analysis of its own, so it
+//! takes no part in the rule below; its `SPC` must be the modes' (the preload is solved on the
+//! modes' supports).
 //!
 //! Nastran's rule (MSC QRG, "Case Control Commands"): a bulk-data SPC set is applied only when
 //! `SPC = n` selects it; no `SPC` command means no SPC set; `MPC = n` alike for MPC sets. A deck
@@ -393,8 +393,8 @@ impl CaseControl {
     }
 
     /// The static subcase `scope`'s `STATSUB(PRELOAD)` names, checked: it exists, is not the
-    /// modes' own subcase (`k`), selects a LOAD, holds the body as the modes' subcase does and
-    /// has no thermal load.
+    /// modes' own subcase (`k`), selects a LOAD or a TEMP(LOAD) and holds the body as the modes'
+    /// subcase does.
     fn preload_of(
         &self,
         k: Option<usize>,
@@ -437,17 +437,9 @@ impl CaseControl {
                 show(scope.mpc)
             )));
         }
-        if let Some(t) = st.temp_load {
-            return Err(err(
-                files,
-                t.loc,
-                &format!("TEMP(LOAD) = {}", t.id),
-                format!("a thermal preload of the modes (static subcase {} of STATSUB(PRELOAD)) is not supported", sel.id),
-            ));
-        }
-        if st.load.is_none() {
+        if st.load.is_none() && st.temp_load.is_none() {
             return Err(here(format!(
-                "static subcase {} selects no LOAD: nothing preloads the modes",
+                "static subcase {} selects no LOAD and no TEMP(LOAD): nothing preloads the modes",
                 sel.id
             )));
         }

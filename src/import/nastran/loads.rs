@@ -22,6 +22,8 @@ use crate::model::{CoordKind, ElementKind, Load, LoadPart, Model};
 #[derive(Default)]
 pub(crate) struct LoadCards<'a> {
     pub cards: Vec<&'a Card>,
+    /// TEMP and TEMPD: temperature sets (module `temperature`; a thermal preload's).
+    pub temperatures: Vec<&'a Card>,
 }
 
 /// Reader of the static load cards (FORCE, MOMENT, GRAV, PLOAD4, LOAD, and the ones the
@@ -29,6 +31,21 @@ pub(crate) struct LoadCards<'a> {
 /// for [`resolve`]. A load does not change the body.
 pub(super) fn card<'a>(d: &mut super::bulk::Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     d.loads.cards.push(g.card);
+    Ok(())
+}
+
+/// Reader of TEMP and TEMPD: kept for a thermal preload (they change nothing else of normal
+/// modes).
+pub(super) fn temperature_card<'a>(
+    d: &mut super::bulk::Bulk<'a>,
+    g: &C<'a>,
+) -> Result<(), ImportError> {
+    d.loads.temperatures.push(g.card);
+    d.note(
+        g,
+        "temperatures: used only by a thermal preload (TEMP(LOAD) in the static subcase of a \
+         STATSUB(PRELOAD)); normal modes have no thermal load",
+    );
     Ok(())
 }
 

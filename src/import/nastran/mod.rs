@@ -39,6 +39,7 @@ mod scalar;
 mod sets;
 mod shell;
 mod solution;
+mod temperature;
 
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -13,6 +13,7 @@
 
 use faer::Par;
 
+use crate::fe::geometric::{Temperature, Thermal};
 use crate::fe::preload::{self, PreloadCase, PreloadError, PreloadSpec, Spin, System};
 use crate::fe::{Assembled, AssemblySpec, Reduced};
 use crate::model::{Load, Model};
@@ -232,6 +233,13 @@ fn preload_case(
             })?;
         case.loads.push(l.clone());
         names.push(name.clone());
+    }
+    if let Some((delta_t, alpha)) = &request.thermal {
+        case.thermal = Some(Thermal {
+            delta_t: Temperature::Nodal(delta_t.clone()),
+            alpha: alpha.clone(),
+        });
+        names.push(format!("thermal strain of {}", request.source));
     }
     for &(point, axis, omega) in &request.spins {
         let spin = Spin { point, axis, omega };
