@@ -1,5 +1,6 @@
 //! Issue 18, `flexbody export --to exudyn`: the NPZ checked by exudyn itself
-//! (`tests/python/exudyn_export_check.py`): LoadFromFile reads it, exudyn's own constructor
+//! (`tests/python/exudyn_export_check.py`): LoadFromFile reads it (with flexbody's extra keys,
+//! among them each interface's bore nodes, issue 36, equal to the file's `interfaces.bin`), exudyn's own constructor
 //! recomputes the inertia terms from the exported nodes, masses and shapes (equal to 1e-12),
 //! and an exudyn simulation of the free body vibrating in each of the first 3 flexible modes
 //! gives the stored frequency to 1e-6. Through the real binary on the bundled connecting rod.
@@ -56,6 +57,12 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
         "mXRefTildePsiTilde",
         "fileVersion",
         "type",
+        // flexbody's own: each interface's dependent (bore) nodes, flat with offsets (issue 36)
+        "interfaceDependentOffsets",
+        "interfaceDependentNodeIndices",
+        "interfaceDependentNodeIds",
+        "interfaceNames",
+        "interfaceKinds",
     ] {
         assert!(
             zip.file_names()
@@ -87,6 +94,14 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
     );
     assert!(stdout.contains("all exudyn checks passed"), "{stdout}");
     assert_eq!(stdout.matches("ok   free vibration mode").count(), 3);
+    // The bore nodes a rigid marker needs, equal to the file's interfaces.bin (checked there
+    // node by node): all 510 and 240 legs are stored nodes of the default build.
+    assert!(
+        stdout.contains("interface 0 BIG_END (Rbe2): 510 dependent nodes, 510 stored")
+            && stdout.contains("interface 1 SMALL_END (Rbe2): 240 dependent nodes, 240 stored")
+            && stdout.contains("ok   interfaces' dependent nodes differing"),
+        "{stdout}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -158,6 +158,22 @@ if len(sys.argv) > 2:
         d = raw["dampingMatrixReduced"]
         check("damping matrix diag(2 zeta omega) (rel.)",
               np.abs(d - np.diag(2 * zeta * om)).max() / (2 * zeta * om).max(), 1e-15)
+    # the interfaces' dependent (bore) nodes: the file's interfaces.bin, flat with offsets
+    itf = body.get("interfaces.bin") or []
+    off, idx = raw["interfaceDependentOffsets"], raw["interfaceDependentNodeIndices"]
+    ids, node_ids = raw["interfaceDependentNodeIds"], raw["nodeIds"]
+    names, kinds = str(raw["interfaceNames"]).split("\n"), str(raw["interfaceKinds"]).split("\n")
+    bad = int(len(off) != len(itf) + 1 or off[0] != 0 or len(names) != len(itf) or len(kinds) != len(itf))
+    for k, rec in enumerate(itf):
+        want_ids = np.array(rec["dependent"], dtype=np.int64)
+        bad += int(not np.array_equal(ids[off[k]:off[k + 1]], want_ids))
+        got = idx[off[k]:off[k + 1]]
+        stored = got >= 0
+        bad += int(not np.array_equal(node_ids[got[stored]], want_ids[stored]))
+        bad += int(names[k] != rec["name"]) + int(kinds[k] != rec["kind"])
+        print(f"interface {k} {names[k]} ({kinds[k]}): {len(want_ids)} dependent nodes, "
+              f"{int(stored.sum())} stored")
+    check("interfaces' dependent nodes differing from the file's interfaces.bin", bad, 0)
     trig = np.array(cms.trigList)
     if trig.shape[1] == 6:
         x = cms.xRef.reshape(n, 3)
