@@ -1,0 +1,95 @@
+"""Issue 36's acceptance (run by tests/docs_snippets.rs): the conrod pendulum with the docs'
+revolute recipe (examples/joints_exudyn.py, run here as it stands) equals exudyn's own
+Hurty-Craig-Bampton pendulum with reference conditions at the big end.
+
+The reference is exudyn's, not ours: `FEMinterface.ComputeHurtyCraigBamptonModes` (RBE2 static
+modes, the first boundary excluded = the body frame attached to the big-end bore) on the
+conrod's K and M (`flexbody export --to mtx --spider none`: the bare mesh, every bore node free),
+boundaries = the file's two bore node lists, as many fixed-interface modes as the file's
+Craig-Bampton build kept (so both span the same subspace); `ObjectFFRFreducedOrderInterface(fem)`
+computes its own inertia terms; the pin is a revolute (GenericJoint, rotation z free) on the
+floating frame's node, exact because the bore has no deformation in that frame. Same gravity,
+integrator and end time. Compared: the small end's position (mean of its 240 bore nodes, the same
+mesh nodes in both bodies) at T_END, relative to its distance from the pin; and the difference
+against the pin-relative elastic deflection, so the figure says how much of the elastic effect
+differs.
+
+usage: revolute_hcb_check.py conrod.flexbody MESH_DIR T_END   (python/ on PYTHONPATH)
+Prints one line per measured figure; exits non-zero on any failure.
+"""
+import csv
+import os
+import runpy
+import sys
+import time
+
+import numpy as np
+import scipy.io
+
+import exudyn.itemInterface as eii
+import exudyn as exu
+from exudyn.FEM import FEMinterface, HCBstaticModeSelection, ObjectFFRFreducedOrderInterface
+
+body_path, mesh, t_end = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3]
+example = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "joints_exudyn.py")
+failures = []
+
+
+def check(name, value, limit):
+    ok = value <= limit
+    print(f"{'ok  ' if ok else 'FAIL'} {name}: {value:.3e} (limit {limit:.0e})")
+    if not ok:
+        failures.append(name)
+
+
+# ours: the docs' recipe, as the example runs it
+sys.argv = [example, body_path, t_end]
+ours = runpy.run_path(example, run_name="__main__")
+tip, small_end, big_end = ours["tip"], ours["small_end"], ours["big_end"]
+file = ours["file"]
+
+# the reference: exudyn's HCB on the bare mesh's K, M
+clock = time.perf_counter()
+k = scipy.io.mmread(os.path.join(mesh, "K.mtx")).tocsr()  # symmetric files come back whole
+m = scipy.io.mmread(os.path.join(mesh, "M.mtx")).tocsr()
+with open(os.path.join(mesh, "coords.csv")) as f:
+    rows = list(csv.reader(f))[1:]
+ids = [int(r[0]) for r in rows]
+dofs = np.loadtxt(os.path.join(mesh, "dofs.txt"), dtype=np.int64, comments="#")
+assert np.array_equal(dofs[:, 1], np.repeat(ids, 3)) and np.array_equal(dofs[:, 2], np.tile([1, 2, 3], len(ids)))
+at = {node_id: i for i, node_id in enumerate(ids)}
+fem = FEMinterface()
+fem.nodes = {"Position": np.array([[float(v) for v in r[1:]] for r in rows])}
+fem.stiffnessMatrix, fem.massMatrix = k, m
+fixed_interface = int(np.sum(np.asarray(file.labels) == "FixedInterface"))
+fem.ComputeHurtyCraigBamptonModes(boundaryNodesList=[[at[i] for i in big_end["dependentIds"]],
+                                                     [at[i] for i in small_end["dependentIds"]]],
+                                  nEigenModes=fixed_interface, useSparseSolver=True,
+                                  computationMode=HCBstaticModeSelection.RBE2, timerTreshold=10**9)
+cms = ObjectFFRFreducedOrderInterface(fem)
+print(f"exudyn HCB: {cms.nModes} modes (6 static + {fixed_interface} fixed-interface) of {k.shape[0]} dofs "
+      f"in {time.perf_counter() - clock:.1f} s")
+mbs = exu.SystemContainer().AddSystem()
+ref = cms.AddObjectFFRFreducedOrder(mbs, positionRef=[0, 0, 0], gravity=[0, -9.81, 0])
+ref["interface"] = cms
+ground = mbs.AddObject(eii.ObjectGround())
+on_ground = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+on_frame = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=ref["nRigidBody"]))
+mbs.AddObject(eii.GenericJoint(markerNumbers=[on_ground, on_frame], constrainedAxes=[1, 1, 1, 1, 1, 0]))
+mbs.Assemble()
+clock = time.perf_counter()
+exu.SolveDynamic(mbs, ours["settings"](float(t_end)))
+print(f"reference pendulum solved in {time.perf_counter() - clock:.2f} s; ours in {ours['solve_seconds']:.2f} s")
+tip_ref = ours["global_positions"](mbs, ref, [at[i] for i in small_end["dependentIds"]]).mean(axis=0)
+pin = file.xyz[big_end["node"]]
+difference = float(np.linalg.norm(tip - tip_ref))
+deflection = float(np.linalg.norm(ours["relative"][-1]))
+print(f"small end at t = {t_end} s: recipe {tip}, exudyn HCB {tip_ref}; difference {difference:.3e} m; "
+      f"pin-relative elastic deflection now {deflection:.3e} m")
+check("recipe's revolute pendulum vs exudyn's HCB pendulum: small end position (relative)",
+      difference / float(np.linalg.norm(tip_ref - pin)), 1e-6)
+check("the same difference as a share of the pin-relative elastic deflection", difference / deflection, 0.1)
+if failures:
+    print("FAILED:", ", ".join(failures))
+    sys.exit(1)
+print("revolute acceptance passed")
