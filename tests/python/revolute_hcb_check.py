@@ -14,7 +14,13 @@ mesh nodes in both bodies) at T_END, relative to its distance from the pin; and 
 against the pin-relative elastic deflection, so the figure says how much of the elastic effect
 differs.
 
-usage: revolute_hcb_check.py conrod.flexbody MESH_DIR T_END   (python/ on PYTHONPATH)
+With a --reference-conditions build of the conrod (frame at the BIG_END centre) as a fourth
+argument, the same pendulum with a revolute on that body's frame node against the same reference.
+Last, exudyn's built-in gravity in the attached frame: the clamped HCB body's static modal
+coordinates equal K^-1 Psi^T M g (the modal gravity load is applied).
+
+usage: revolute_hcb_check.py conrod.flexbody MESH_DIR T_END [conrod_rc.flexbody]
+   (python/ on PYTHONPATH)
 Prints one line per measured figure; exits non-zero on any failure.
 """
 import csv
@@ -31,6 +37,7 @@ import exudyn as exu
 from exudyn.FEM import FEMinterface, HCBstaticModeSelection, ObjectFFRFreducedOrderInterface
 
 body_path, mesh, t_end = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3]
+rc_path = os.path.abspath(sys.argv[4]) if len(sys.argv) > 4 else None
 example = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "joints_exudyn.py")
 failures = []
 
@@ -89,6 +96,41 @@ print(f"small end at t = {t_end} s: recipe {tip}, exudyn HCB {tip_ref}; differen
 check("recipe's revolute pendulum vs exudyn's HCB pendulum: small end position (relative)",
       difference / float(np.linalg.norm(tip_ref - pin)), 1e-6)
 check("the same difference as a share of the pin-relative elastic deflection", difference / deflection, 0.1)
+
+# the same pendulum from a --reference-conditions build (frame attached at the BIG_END centre)
+# with the revolute on its frame node, when given
+if rc_path is not None:
+    import flexbody.exudyn
+
+    mbs_rc = exu.SystemContainer().AddSystem()
+    rc = flexbody.exudyn.add_body(mbs_rc, rc_path, gravity=[0, -9.81, 0])
+    ground = mbs_rc.AddObject(eii.ObjectGround())
+    on_ground = mbs_rc.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    on_frame = mbs_rc.AddMarker(eii.MarkerNodeRigid(nodeNumber=rc["nRigidBody"]))
+    mbs_rc.AddObject(eii.GenericJoint(markerNumbers=[on_ground, on_frame], constrainedAxes=[1, 1, 1, 1, 1, 0]))
+    mbs_rc.Assemble()
+    exu.SolveDynamic(mbs_rc, ours["settings"](float(t_end)))
+    tip_rc = ours["global_positions"](mbs_rc, rc, rc["interfaces"][1]["dependentNodes"]).mean(axis=0)
+    check("--reference-conditions build with a frame-node revolute vs exudyn's HCB pendulum (m)",
+          float(np.linalg.norm(tip_rc - tip_ref)), 1e-11)
+
+# exudyn's built-in gravity in the attached (HCB) frame: the body clamped at its frame node, the
+# static modal coordinates K^-1 Psi^T M g (Psi^T M = mPhitTPsi^T) — the modal gravity load is there
+mbs_g = exu.SystemContainer().AddSystem()
+held = cms.AddObjectFFRFreducedOrder(mbs_g, positionRef=[0, 0, 0], gravity=[0, -9.81, 0])
+ground = mbs_g.AddObject(eii.ObjectGround())
+on_ground = mbs_g.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+on_frame = mbs_g.AddMarker(eii.MarkerNodeRigid(nodeNumber=held["nRigidBody"]))
+mbs_g.AddObject(eii.GenericJoint(markerNumbers=[on_ground, on_frame], constrainedAxes=[1, 1, 1, 1, 1, 1]))
+mbs_g.Assemble()
+static = exu.SimulationSettings()
+static.staticSolver.verboseMode = 0
+exu.SolveStatic(mbs_g, static)
+q_static = np.array(mbs_g.GetNodeOutput(held["nGenericODE2"], exu.OutputVariableType.Coordinates))
+q_exact = np.linalg.solve(cms.stiffnessMatrixReduced, cms.mPhitTPsi.T @ np.array([0, -9.81, 0]))
+check("built-in gravity in the attached frame: static modal coordinates vs K^-1 Psi^T M g (relative)",
+      float(np.linalg.norm(q_static - q_exact) / np.linalg.norm(q_exact)), 1e-12)
+
 if failures:
     print("FAILED:", ", ".join(failures))
     sys.exit(1)
