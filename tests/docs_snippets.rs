@@ -1,6 +1,7 @@
 //! Issue 36: the exudyn snippets of `docs/using-in-solvers.md` run as they stand, and the
-//! joints section's revolute recipe (`examples/joints_exudyn.py`) equals exudyn's own
-//! Hurty–Craig–Bampton pendulum (the acceptance, last test).
+//! joints section's recipes (`examples/joints_exudyn.py`: revolute, prismatic, rigid,
+//! marker-based) run and agree with exudyn's own Hurty–Craig–Bampton body (the acceptance,
+//! last test).
 //!
 //! `examples/using_in_exudyn.py` holds the exudyn section's three Python blocks between
 //! `# --- snippet N` and `# --- end`; the first test checks they equal the docs' blocks line for
@@ -141,15 +142,19 @@ fn the_docs_exudyn_snippets_run_with_and_without_damping() {
 }
 
 #[test]
-fn the_docs_joint_recipe_is_the_joints_examples_line_for_line() {
+fn the_docs_joint_recipes_are_the_joints_examples_line_for_line() {
     let docs = section_blocks("## Joints at interfaces in exudyn");
+    // setup, revolute, prismatic, rigid, marker-based revolute
     assert_eq!(
         docs.len(),
-        1,
+        5,
         "the joints section's Python blocks: {docs:?}"
     );
     assert_eq!(docs, snippet_blocks("examples/joints_exudyn.py"));
     assert!(docs[0].iter().any(|l| l.contains("constrainedAxes=axes")));
+    assert!(docs[4]
+        .iter()
+        .any(|l| l.contains("MarkerSuperElementRigid")));
 }
 
 /// Issue 36's acceptance: the conrod pendulum with the docs' revolute recipe (default mean-axis
@@ -208,7 +213,8 @@ fn the_revolute_recipe_pendulum_equals_exudyns_own_hcb_pendulum() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert!(out.contains("revolute acceptance passed"), "{out}");
-    assert_eq!(out.matches("ok   ").count(), 4, "{out}");
+    // revolute (2), frame-node revolute of the attached build, gravity, rigid, prismatic (2)
+    assert_eq!(out.matches("ok   ").count(), 7, "{out}");
     assert!(
         out.contains("exudyn HCB: 8 modes (6 static + 2 fixed-interface) of 20883 dofs"),
         "{out}"

@@ -16,8 +16,10 @@ differs.
 
 With a --reference-conditions build of the conrod (frame at the BIG_END centre) as a fourth
 argument, the same pendulum with a revolute on that body's frame node against the same reference.
-Last, exudyn's built-in gravity in the attached frame: the clamped HCB body's static modal
-coordinates equal K^-1 Psi^T M g (the modal gravity load is applied).
+Then exudyn's built-in gravity in the attached frame: the clamped HCB body's static modal
+coordinates equal K^-1 Psi^T M g (the modal gravity load is applied). Last, the docs' other two
+recipes as the example runs them: the rigid joint's static sag of the small end against the
+clamped HCB body's, and the prismatic joint's free slide (F t^2 / 2m) without rotation.
 
 usage: revolute_hcb_check.py conrod.flexbody MESH_DIR T_END [conrod_rc.flexbody]
    (python/ on PYTHONPATH)
@@ -118,6 +120,7 @@ if rc_path is not None:
 # static modal coordinates K^-1 Psi^T M g (Psi^T M = mPhitTPsi^T) — the modal gravity load is there
 mbs_g = exu.SystemContainer().AddSystem()
 held = cms.AddObjectFFRFreducedOrder(mbs_g, positionRef=[0, 0, 0], gravity=[0, -9.81, 0])
+held["interface"] = cms
 ground = mbs_g.AddObject(eii.ObjectGround())
 on_ground = mbs_g.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
 on_frame = mbs_g.AddMarker(eii.MarkerNodeRigid(nodeNumber=held["nRigidBody"]))
@@ -130,6 +133,19 @@ q_static = np.array(mbs_g.GetNodeOutput(held["nGenericODE2"], exu.OutputVariable
 q_exact = np.linalg.solve(cms.stiffnessMatrixReduced, cms.mPhitTPsi.T @ np.array([0, -9.81, 0]))
 check("built-in gravity in the attached frame: static modal coordinates vs K^-1 Psi^T M g (relative)",
       float(np.linalg.norm(q_static - q_exact) / np.linalg.norm(q_exact)), 1e-12)
+
+# the docs' rigid joint (block 4, default file, node-based) against the clamped HCB body: the
+# small end's static sag under gravity
+small_ref = [at[i] for i in small_end["dependentIds"]]
+sag_ref = (ours["global_positions"](mbs_g, held, small_ref) - fem.nodes["Position"][small_ref]).mean(axis=0)
+print(f"rigid joint: small end's sag {ours['sag']} m; exudyn's clamped HCB body {sag_ref} m")
+check("docs' rigid joint vs exudyn's clamped HCB body: small end's static sag (relative)",
+      float(np.linalg.norm(ours["sag"] - sag_ref) / np.linalg.norm(sag_ref)), 1e-5)
+
+# the docs' prismatic joint (block 3): pushed by 1 N along x it slides as a free mass and turns
+# only elastically (a free pendulum turns 0.1 rad in 0.05 s)
+check("docs' prismatic joint: slide vs F t^2 / 2m (relative)", float(ours["slide_error"]), 1e-6)
+check("docs' prismatic joint: rotation of the frame (largest entry of A - I)", float(ours["slide_turn"]), 1e-5)
 
 if failures:
     print("FAILED:", ", ".join(failures))
