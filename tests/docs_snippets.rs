@@ -274,3 +274,91 @@ fn exudyns_stress_sensor_gives_the_files_stress_shapes_times_the_modal_coordinat
         assert!((a - b).abs() <= 1e-6 * scale, "{a} vs {b}");
     }
 }
+
+/// The `sh` blocks of the whole page, in order (the shell commands a reader types).
+fn shell_blocks() -> Vec<String> {
+    let text = std::fs::read_to_string(root().join("docs/using-in-solvers.md")).unwrap();
+    let mut blocks = Vec::new();
+    let mut current: Option<String> = None;
+    for line in text.lines() {
+        match &mut current {
+            None if line.trim_start() == "```sh" => current = Some(String::new()),
+            Some(_) if line.trim_start() == "```" => blocks.push(current.take().unwrap()),
+            Some(block) => {
+                block.push_str(line.trim_start());
+                block.push('\n');
+            }
+            None => {}
+        }
+    }
+    blocks
+}
+
+/// Every shell block of docs/using-in-solvers.md runs as it stands, in order, in one folder
+/// (with `flexbody` on PATH and the repository's `fixtures/` beside it, as a reader in a
+/// checkout has them): build, the exports (exudyn, MBDyn, VTU, both K/M exports, SID) and view
+/// each make their file; then the exudyn section's Python blocks run on that NPZ and file.
+#[cfg(unix)]
+#[test]
+fn the_docs_shell_blocks_run_as_they_stand_in_order() {
+    let blocks = shell_blocks();
+    assert_eq!(blocks.len(), 5, "{blocks:?}");
+    let dir = scratch("shell-blocks");
+    let bin = dir.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    std::os::unix::fs::symlink(env!("CARGO_BIN_EXE_flexbody"), bin.join("flexbody")).unwrap();
+    std::os::unix::fs::symlink(root().join("fixtures"), dir.join("fixtures")).unwrap();
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    for (k, block) in blocks.iter().enumerate() {
+        let o = Command::new("bash")
+            .args(["-euo", "pipefail", "-c", block])
+            .current_dir(&dir)
+            .env("PATH", &path)
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "sh block {} failed:\n{block}\n{}",
+            k + 1,
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    for made in [
+        "conrod.flexbody",
+        "conrod.npz",
+        "conrod.fem",
+        "conrod.vtu",
+        "conrod.html",
+        "mats/K.mtx",
+        "mats/coords.csv",
+        "mesh/K.mtx",
+        "conrod.SID_FEM",
+    ] {
+        let len = std::fs::metadata(dir.join(made)).map_or(0, |m| m.len());
+        assert!(len > 0, "{made} not made by the docs' shell blocks");
+    }
+    if python_has("exudyn") && python_has("numpy") {
+        let o = Command::new("python3")
+            .arg(root().join("examples/using_in_exudyn.py"))
+            .arg(dir.join("conrod.npz"))
+            .arg(dir.join("conrod.flexbody"))
+            .env("PYTHONPATH", root().join("python"))
+            .output()
+            .unwrap();
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            o.status.success() && out.contains("all snippets ran"),
+            "{out}\n{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        // the first block builds with --damping 2%: the damping block sets the matrix
+        assert!(out.contains("dampingMatrixReduced set (8 modes"), "{out}");
+    } else {
+        skipped("the exudyn blocks on the shell blocks' files (docs_snippets): no exudyn");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
