@@ -174,6 +174,27 @@ if len(sys.argv) > 2:
         print(f"interface {k} {names[k]} ({kinds[k]}): {len(want_ids)} dependent nodes, "
               f"{int(stored.sum())} stored")
     check("interfaces' dependent nodes differing from the file's interfaces.bin", bad, 0)
+    # What the bore nodes are for: an RBE2 bore moves rigidly with its centre, u_i - u_c =
+    # theta x r_i, so a least-squares fit over the NPZ's bore nodes (translations only) gives the
+    # centre's rotation per mode — equal to the file's rotational shapes of the centre node.
+    all_shapes = np.array(modes["shapes"]).reshape(M, n, 6)
+    worst = 0.0
+    for k, rec in enumerate(itf):
+        got = idx[off[k]:off[k + 1]]
+        if rec["kind"] != "Rbe2" or len(got) < 3 or (got < 0).any():
+            continue
+        c = int(raw["interfaceNodeIndices"][k])
+        x = cms.xRef.reshape(n, 3)
+        r = x[got] - x[c]
+        skew = np.zeros((len(got), 3, 3))
+        skew[:, 0, 1], skew[:, 0, 2], skew[:, 1, 2] = -r[:, 2], r[:, 1], -r[:, 0]
+        skew -= skew.transpose(0, 2, 1)
+        basis = cms.modeBasis.reshape(n, 3, m)
+        theta, *_ = np.linalg.lstsq(-skew.reshape(-1, 3), (basis[got] - basis[[c]]).reshape(-1, m), rcond=None)
+        want = all_shapes[flex][:, c, 3:].T
+        worst = max(worst, float(np.abs(theta - want).max() / np.abs(want).max()))
+    check("RBE2 centre rotations fitted over the NPZ's bore nodes vs the file's rotational shapes (rel.)",
+          worst, 1e-12)
     trig = np.array(cms.trigList)
     if trig.shape[1] == 6:
         x = cms.xRef.reshape(n, 3)
