@@ -52,8 +52,8 @@ def flexible_modes(body):
 
 def interface_data(body):
     """The dict `ObjectFFRFreducedOrderInterface.SetWithDictionary` takes (the NPZ's exudyn
-    keys plus flexbody's own: nodeIds, interfaceNodeIndices, nodalMass, flexibleModeIndices,
-    eigenFrequenciesHz, units, and with damping dampingMatrixReduced, modalDampingRatio)."""
+    keys plus flexbody's own: FLEXBODY_KEYS, and with damping dampingMatrixReduced,
+    modalDampingRatio)."""
     body = _body(body)
     missing = [k for k in range(1, 10) if body.invariants[f"I{k}"] is None]
     if missing:
@@ -98,6 +98,7 @@ def interface_data(body):
         "type": "ObjectFFRFreducedOrderInterface",
         "nodeIds": np.array(body.node_ids, dtype=np.int64),
         "interfaceNodeIndices": np.array([i["node"] for i in body.method["interface"]], dtype=np.int64),
+        **_dependent_nodes(body),
         "nodalMass": np.array(body.mass),
         "flexibleModeIndices": flex.astype(np.int64),
         "eigenFrequenciesHz": np.array(body.frequency_hz[flex]),
@@ -108,6 +109,52 @@ def interface_data(body):
         d["dampingMatrixReduced"] = np.diag(2.0 * zeta * np.sqrt(np.maximum(body.omega2[flex], 0.0)))
         d["modalDampingRatio"] = zeta
     return d
+
+
+def _dependent_nodes(body):
+    """Each interface's dependent (bore) nodes, flat in interface order as the export writes
+    them: interface k's are [offsets[k], offsets[k+1]) of the node indices (-1 for a node the
+    file does not store) and ids; names and kinds newline-joined."""
+    ids, offsets, names, kinds = [], [0], [], []
+    if body.interfaces is not None:
+        for i in body.interfaces:
+            ids.extend(int(d) for d in i["dependent"])
+            offsets.append(len(ids))
+            names.append(i["name"])
+            kinds.append(i["kind"])
+    else:
+        for i in body.method["interface"]:
+            offsets.append(0)
+            names.append(f"NODE{int(body.node_ids[i['node']])}")
+            kinds.append("Node")
+    index_of = {int(d): k for k, d in enumerate(body.node_ids)}
+    return {
+        "interfaceDependentOffsets": np.array(offsets, dtype=np.int64),
+        "interfaceDependentNodeIndices": np.array([index_of.get(d, -1) for d in ids], dtype=np.int64),
+        "interfaceDependentNodeIds": np.array(ids, dtype=np.int64),
+        "interfaceNames": "\n".join(names),
+        "interfaceKinds": "\n".join(kinds),
+    }
+
+
+def interfaces_of(data):
+    """Per interface (in --interface order) a dict from the NPZ's (or :func:`interface_data`'s)
+    flexbody keys: name, kind (Rbe2, Rbe3, Node), node (the interface node's index),
+    dependentNodes (indices of its bore nodes, for MarkerSuperElementRigid/Position;
+    -1 for a node the file does not store), dependentIds (their ids)."""
+    get = data.__getitem__
+    off = np.asarray(get("interfaceDependentOffsets"))
+    idx, ids = np.asarray(get("interfaceDependentNodeIndices")), np.asarray(get("interfaceDependentNodeIds"))
+    names, kinds = str(get("interfaceNames")).split("\n"), str(get("interfaceKinds")).split("\n")
+    return [{"name": names[k], "kind": kinds[k], "node": int(node),
+             "dependentNodes": [int(i) for i in idx[off[k]:off[k + 1]]],
+             "dependentIds": [int(i) for i in ids[off[k]:off[k + 1]]]}
+            for k, node in enumerate(np.asarray(get("interfaceNodeIndices")))]
+
+
+FLEXBODY_KEYS = ("nodeIds", "interfaceNodeIndices", "interfaceDependentOffsets",
+                 "interfaceDependentNodeIndices", "interfaceDependentNodeIds", "interfaceNames",
+                 "interfaceKinds", "nodalMass", "flexibleModeIndices", "eigenFrequenciesHz", "units")
 
 
 def interface(body):
@@ -122,8 +169,7 @@ def interface(body):
     cms.massMatrixFFRFreduced = np.zeros((cms.nODE2FFRFreduced, cms.nODE2FFRFreduced))
     cms.massMatrixFFRFreduced[0:3, 0:3] = cms.Mtt
     cms.massMatrixFFRFreduced[cms.nODE2rigid:, cms.nODE2rigid:] = cms.massMatrixReduced
-    cms.flexbody = {k: d[k] for k in ("nodeIds", "interfaceNodeIndices", "nodalMass",
-                                      "flexibleModeIndices", "eigenFrequenciesHz", "units")
+    cms.flexbody = {k: d[k] for k in FLEXBODY_KEYS
                     + (("dampingMatrixReduced", "modalDampingRatio") if "dampingMatrixReduced" in d else ())}
     return cms
 
@@ -134,8 +180,10 @@ def add_body(mbs, body, **kwargs):
     initialVelocity, rotationMatrixRef, initialAngularVelocity, gravity, color, name, ...) and,
     when the file has modal damping, sets the object's dampingMatrixReduced = diag(2 zeta
     omega). Returns exudyn's dict (oFFRFreducedOrder, nRigidBody, nGenericODE2, ...) with
-    "interface" (the ObjectFFRFreducedOrderInterface) and "interfaceNodes" (node indices of
-    the file's interface nodes in --interface order, for markers and joints) added."""
+    "interface" (the ObjectFFRFreducedOrderInterface), "interfaceNodes" (node indices of the
+    file's interface nodes in --interface order, for markers and joints) and "interfaces" (per
+    interface a dict: name, kind, node, dependentNodes = its bore nodes' indices, dependentIds;
+    see :func:`interfaces_of`) added."""
     import exudyn as exu
     cms = interface(body)
     obj = cms.AddObjectFFRFreducedOrder(mbs, **kwargs)
@@ -145,6 +193,7 @@ def add_body(mbs, body, **kwargs):
         mbs.SetObjectParameter(obj["oFFRFreducedOrder"], "dampingMatrixReduced", damping)
     obj["interface"] = cms
     obj["interfaceNodes"] = [int(i) for i in cms.flexbody["interfaceNodeIndices"]]
+    obj["interfaces"] = interfaces_of(cms.flexbody)
     return obj
 
 

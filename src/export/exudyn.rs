@@ -335,10 +335,64 @@ fn ffrf_entries(
     ]
 }
 
-/// flexbody's own keys: node ids, interface nodes, nodal masses, the flexible modes' indices
-/// and frequencies, units.
+/// Each interface's dependent (bore) nodes, flat in interface order: interface k's are
+/// `[offsets[k], offsets[k + 1])` of `indices` (into the NPZ's nodes, −1 for a node the file
+/// does not store) and `ids` (external ids); names and kinds (`Rbe2`, `Rbe3`, `Node`) per
+/// interface. Without `interfaces.bin` (files before 1.3): no dependent nodes, names `NODE<id>`,
+/// kinds `Node`.
+struct DependentNodes {
+    offsets: Vec<i64>,
+    indices: Vec<i64>,
+    ids: Vec<i64>,
+    names: Vec<String>,
+    kinds: Vec<String>,
+}
+
+impl DependentNodes {
+    fn of(body: &ReducedBody) -> DependentNodes {
+        let index_of: std::collections::HashMap<u64, i64> = body
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(i, nd)| (nd.id, i as i64))
+            .collect();
+        let mut out = DependentNodes {
+            offsets: vec![0],
+            indices: Vec::new(),
+            ids: Vec::new(),
+            names: Vec::new(),
+            kinds: Vec::new(),
+        };
+        match &body.interfaces {
+            Some(list) => {
+                for info in list {
+                    for &id in &info.dependent {
+                        out.ids.push(id as i64);
+                        out.indices.push(index_of.get(&id).copied().unwrap_or(-1));
+                    }
+                    out.offsets.push(out.ids.len() as i64);
+                    out.names.push(info.name.clone());
+                    out.kinds.push(format!("{:?}", info.kind));
+                }
+            }
+            None => {
+                for i in &body.method.interface {
+                    out.offsets.push(0);
+                    out.names
+                        .push(format!("NODE{}", body.nodes[i.node as usize].id));
+                    out.kinds.push("Node".into());
+                }
+            }
+        }
+        out
+    }
+}
+
+/// flexbody's own keys: node ids, interface nodes and their dependent (bore) nodes, nodal
+/// masses, the flexible modes' indices and frequencies, units.
 fn flexbody_entries(body: &ReducedBody, flex: &[usize]) -> Vec<(&'static str, NpyValue)> {
     let (n, m) = (body.node_count(), flex.len());
+    let dependent = DependentNodes::of(body);
     vec![
         (
             "nodeIds",
@@ -359,6 +413,29 @@ fn flexbody_entries(body: &ReducedBody, flex: &[usize]) -> Vec<(&'static str, Np
                     .collect(),
             },
         ),
+        (
+            "interfaceDependentOffsets",
+            NpyValue::I64 {
+                shape: vec![dependent.offsets.len()],
+                data: dependent.offsets,
+            },
+        ),
+        (
+            "interfaceDependentNodeIndices",
+            NpyValue::I64 {
+                shape: vec![dependent.indices.len()],
+                data: dependent.indices,
+            },
+        ),
+        (
+            "interfaceDependentNodeIds",
+            NpyValue::I64 {
+                shape: vec![dependent.ids.len()],
+                data: dependent.ids,
+            },
+        ),
+        ("interfaceNames", NpyValue::Str(dependent.names.join("\n"))),
+        ("interfaceKinds", NpyValue::Str(dependent.kinds.join("\n"))),
         (
             "nodalMass",
             f64s(vec![n], body.nodal_mass.iter().map(|nm| nm.mass).collect()),

@@ -158,6 +158,43 @@ if len(sys.argv) > 2:
         d = raw["dampingMatrixReduced"]
         check("damping matrix diag(2 zeta omega) (rel.)",
               np.abs(d - np.diag(2 * zeta * om)).max() / (2 * zeta * om).max(), 1e-15)
+    # the interfaces' dependent (bore) nodes: the file's interfaces.bin, flat with offsets
+    itf = body.get("interfaces.bin") or []
+    off, idx = raw["interfaceDependentOffsets"], raw["interfaceDependentNodeIndices"]
+    ids, node_ids = raw["interfaceDependentNodeIds"], raw["nodeIds"]
+    names, kinds = str(raw["interfaceNames"]).split("\n"), str(raw["interfaceKinds"]).split("\n")
+    bad = int(len(off) != len(itf) + 1 or off[0] != 0 or len(names) != len(itf) or len(kinds) != len(itf))
+    for k, rec in enumerate(itf):
+        want_ids = np.array(rec["dependent"], dtype=np.int64)
+        bad += int(not np.array_equal(ids[off[k]:off[k + 1]], want_ids))
+        got = idx[off[k]:off[k + 1]]
+        stored = got >= 0
+        bad += int(not np.array_equal(node_ids[got[stored]], want_ids[stored]))
+        bad += int(names[k] != rec["name"]) + int(kinds[k] != rec["kind"])
+        print(f"interface {k} {names[k]} ({kinds[k]}): {len(want_ids)} dependent nodes, "
+              f"{int(stored.sum())} stored")
+    check("interfaces' dependent nodes differing from the file's interfaces.bin", bad, 0)
+    # What the bore nodes are for: an RBE2 bore moves rigidly with its centre, u_i - u_c =
+    # theta x r_i, so a least-squares fit over the NPZ's bore nodes (translations only) gives the
+    # centre's rotation per mode — equal to the file's rotational shapes of the centre node.
+    all_shapes = np.array(modes["shapes"]).reshape(M, n, 6)
+    worst = 0.0
+    for k, rec in enumerate(itf):
+        got = idx[off[k]:off[k + 1]]
+        if rec["kind"] != "Rbe2" or len(got) < 3 or (got < 0).any():
+            continue
+        c = int(raw["interfaceNodeIndices"][k])
+        x = cms.xRef.reshape(n, 3)
+        r = x[got] - x[c]
+        skew = np.zeros((len(got), 3, 3))
+        skew[:, 0, 1], skew[:, 0, 2], skew[:, 1, 2] = -r[:, 2], r[:, 1], -r[:, 0]
+        skew -= skew.transpose(0, 2, 1)
+        basis = cms.modeBasis.reshape(n, 3, m)
+        theta, *_ = np.linalg.lstsq(-skew.reshape(-1, 3), (basis[got] - basis[[c]]).reshape(-1, m), rcond=None)
+        want = all_shapes[flex][:, c, 3:].T
+        worst = max(worst, float(np.abs(theta - want).max() / np.abs(want).max()))
+    check("RBE2 centre rotations fitted over the NPZ's bore nodes vs the file's rotational shapes (rel.)",
+          worst, 1e-12)
     trig = np.array(cms.trigList)
     if trig.shape[1] == 6:
         x = cms.xRef.reshape(n, 3)

@@ -67,8 +67,17 @@ check("post-processing keys/type differing", (set(pb) != set(pl)) + (pb.get("out
 if "matrix" in pl:
     check("post-processing matrix (max abs difference)", diff(pb["matrix"], pl["matrix"]), 0.0)
 raw = np.load(npz, allow_pickle=True)
-for key in ["nodeIds", "interfaceNodeIndices", "nodalMass", "eigenFrequenciesHz", "flexibleModeIndices"]:
+for key in ["nodeIds", "interfaceNodeIndices", "nodalMass", "eigenFrequenciesHz", "flexibleModeIndices",
+            "interfaceDependentOffsets", "interfaceDependentNodeIndices", "interfaceDependentNodeIds"]:
     check(f"flexbody key {key} = NPZ's", diff(built.flexbody[key], raw[key]), 0.0)
+for key in ["interfaceNames", "interfaceKinds", "units"]:
+    check(f"flexbody key {key} = NPZ's (differing)", int(str(built.flexbody[key]) != str(raw[key])), 0)
+itf = flexbody.exudyn.interfaces_of(raw)
+check("interfaces_of(NPZ) differing from the file's interfaces (node, name, kind, dependent ids)",
+      sum(int(a["node"] != b["node"] or a["name"] != b["name"] or a["kind"] != b["kind"]
+              or a["dependentIds"] != [int(d) for d in b["dependent"]])
+          for a, b in zip(itf, flexbody.read(path).interfaces or []))
+      + abs(len(itf) - len(flexbody.read(path).interfaces or [])), 0)
 
 # 2. the object in an mbs: add_body against LoadFromFile + AddObjectFFRFreducedOrder
 def added(helper):
@@ -94,6 +103,7 @@ assert compared >= 10, compared
 check("object mass, node position differing",
       diff(par_h["mass"], par_l["mass"]) + diff(mbs_h.GetNode(obj_h["nRigidBody"])["referenceCoordinates"],
                                                mbs_l.GetNode(obj_l["nRigidBody"])["referenceCoordinates"]), 0.0)
+check("add_body's interfaces differing from interfaces_of(NPZ)", int(obj_h["interfaces"] != itf), 0)
 if "dampingMatrixReduced" in raw.files:
     check("object dampingMatrixReduced = NPZ's diag(2 zeta omega)",
           diff(par_h["dampingMatrixReduced"].Convert2DenseMatrix(), raw["dampingMatrixReduced"]), 0.0)
