@@ -11,7 +11,7 @@ mod common;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-use common::{exe, scratch};
+use common::{build_as_ccx, exe, scratch};
 use flexbody_reader as file;
 
 const L: f64 = 2.0;
@@ -55,23 +55,9 @@ const STATSUB: &str =
     "SPC = 1\nSUBCASE 1\n  LOAD = 10\nSUBCASE 2\n  STATSUB(PRELOAD) = 1\n  METHOD = 20\n";
 const PLAIN: &str = "SPC = 1\nMETHOD = 20\n";
 
+/// `common::build_as_ccx` (normal modes, consistent mass, SI): success and stderr.
 fn build(model: &Path, out: &Path, extra: &[&str]) -> (bool, String) {
-    let o = exe()
-        .arg("build")
-        .arg(model)
-        .args([
-            "--units",
-            "si",
-            "--method",
-            "normal",
-            "--mass",
-            "consistent",
-        ])
-        .args(extra)
-        .arg("-o")
-        .arg(out)
-        .output()
-        .unwrap();
+    let o = build_as_ccx(model, extra, out);
     (
         o.status.success(),
         String::from_utf8_lossy(&o.stderr).into(),
