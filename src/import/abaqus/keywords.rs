@@ -218,7 +218,8 @@ impl Parser {
         Ok(Block::Spring(self.springs.len() - 1))
     }
 
-    /// `*ELEMENT, TYPE=…`: the element kind (a close relative's, noted, for variants).
+    /// `*ELEMENT, TYPE=…`: the element kind; a variant flexbody does not form is refused, or read
+    /// as its base type when `--ignore VARIANT=BASE` asks for it (`defs::VARIANTS`).
     fn element_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let t = rules::blankless(&kw.need("TYPE", self)?);
         let dropped = Block::DroppedElements { continued: false };
@@ -226,6 +227,28 @@ impl Parser {
             (self.ignored.entry(t)).or_default().push(kw.loc);
             return Ok(dropped);
         }
+        let t = match super::defs::VARIANTS.iter().find(|v| v.0 == t) {
+            Some(&(variant, base, why)) => {
+                let key = format!("{variant}={base}");
+                if !self.ignore.contains(&key) {
+                    self.refuse(
+                        kw.loc,
+                        &format!("TYPE={t}"),
+                        &format!(
+                            "element type {variant} is not formed ({why}): --ignore {key} reads \
+                             them as {base} on purpose"
+                        ),
+                    );
+                    if let Some(r) = self.refused.last_mut() {
+                        r.key = key;
+                    }
+                    return Ok(dropped);
+                }
+                *self.substituted.entry(key).or_default() += 1;
+                base.to_owned()
+            }
+            None => t,
+        };
         let Some((kind, card)) = element_kind(&t) else {
             self.refuse(
                 kw.loc,
@@ -242,12 +265,6 @@ impl Parser {
                 self.plain_linear_solid.get_or_insert((kw.loc, card));
             }
             _ => {}
-        }
-        if t != card {
-            *self
-                .substituted
-                .entry(format!("{t} read as {card}"))
-                .or_default() += 1;
         }
         Ok(Block::Element {
             kind,

@@ -13,8 +13,10 @@
 //! *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE), *COUPLING +
 //! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE; the steps' *CLOAD and *DLOAD
 //! (GRAV, P, Pn) as named scene loads (`loads`). C3D8I is the incompatible-mode hexahedron
-//! (`ModelParams::solid_bubbles`, model-wide: refused beside C3D8/C3D6); reduced variants
-//! (C3D8R, C3D10M, B31R, S4R, …) are read as the base type with a warning.
+//! (`ModelParams::solid_bubbles`, model-wide: refused beside C3D8/C3D6); C3D8R is CalculiX's
+//! one-point hexahedron with hourglass control (`fe::elements::hex8r`); the variants flexbody
+//! does not form (C3D10M, B31R, S3R, S4R: `defs::VARIANTS`, with ccx's measured difference) are
+//! refused, and read as their base type only on request (`--ignore S4R=S4`).
 //!
 //! Every other keyword is a note (it cannot change the body) or refused, by the keyword table
 //! (`rules`); unknown element types are refused; all refusals of a deck come in one error, and
@@ -169,7 +171,7 @@ struct Parser {
     equations: Vec<connectors::RawEquation>,
     /// Ids of elements of refused or dropped element blocks.
     dropped_elems: std::collections::HashSet<u64>,
-    /// C3D8I elements seen (first block), and the first C3D8/C3D8R/C3D6 block: the
+    /// C3D8I elements seen (first block), and the first C3D8/C3D6 block: the
     /// incompatible-mode formulation is model-wide (`ModelParams::solid_bubbles`).
     incompatible_hexa: Option<Loc>,
     plain_linear_solid: Option<(Loc, &'static str)>,
@@ -192,7 +194,7 @@ struct Parser {
     transforms: Vec<(String, CoordSystem, Loc)>,
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
     couplings: Vec<RawCoupling>,
-    /// Element types read as a close relative (C3D8I as C3D8, …): "X read as Y" → blocks.
+    /// Element variants read as their base type on request (`--ignore S4R=S4`): key → blocks.
     substituted: BTreeMap<String, usize>,
     /// Elements that listed more node ids than their type takes, by type.
     extra_nodes: BTreeMap<&'static str, usize>,

@@ -417,11 +417,13 @@ impl Parser {
     /// What the reader did not reproduce, as warnings: substituted element types, extra node
     /// ids, section points, ignored keywords.
     fn import_notes(&mut self) {
-        for (what, count) in &self.substituted {
+        for (key, count) in &self.substituted {
+            let (variant, base) = key.split_once('=').unwrap_or((key, key));
             self.b.model.warnings.push(ImportWarning {
                 file: self.b.files[0].clone(),
                 message: format!(
-                    "element type {what} ({count} *ELEMENT blocks): its special formulation is not reproduced"
+                    "element type {variant} read as {base} on request (--ignore {key}; {count} \
+                     *ELEMENT blocks): {variant}'s own formulation is not reproduced"
                 ),
             });
         }
@@ -457,7 +459,8 @@ impl Parser {
         }
         for name in &self.ignore {
             let used = (self.ignored.keys())
-                .any(|k| super::rules::blankless(k.trim_start_matches('*')) == *name);
+                .any(|k| super::rules::blankless(k.trim_start_matches('*')) == *name)
+                || self.substituted.contains_key(name);
             if !used {
                 self.b.model.warnings.push(ImportWarning {
                     file: self.b.files[0].clone(),
@@ -486,8 +489,8 @@ impl Parser {
     }
 
     /// C3D8I: the incompatible-mode hexahedron (`fe::elements::solid_incompatible`), which the
-    /// model selects for every linear hexahedron and wedge at once: refused beside C3D8,
-    /// C3D8R or C3D6 elements.
+    /// model selects for every linear hexahedron and wedge at once: refused beside C3D8
+    /// or C3D6 elements (C3D8R is an element of its own, `fe::elements::hex8r`).
     fn resolve_incompatible_modes(&mut self) -> Result<(), ImportError> {
         let Some(loc) = self.incompatible_hexa else {
             return Ok(());
