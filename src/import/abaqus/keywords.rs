@@ -18,19 +18,19 @@ use crate::model::{DofMask, Section, SectionShape};
 const OUTPUT_RESTART: &str = "writing restart data does not change the body";
 
 /// A keyword line: its name, its parameters and where it is.
-struct Keyword<'a> {
+pub(super) struct Keyword<'a> {
     name: &'a str,
     params: &'a [(String, String)],
-    loc: Loc,
+    pub(super) loc: Loc,
 }
 
 impl Keyword<'_> {
-    fn param(&self, key: &str) -> Option<&str> {
+    pub(super) fn param(&self, key: &str) -> Option<&str> {
         param(self.params, key)
     }
 
     /// The parameter `key`, upper-cased; an error naming the keyword when it is missing or empty.
-    fn need(&self, key: &str, p: &Parser) -> Result<String, ImportError> {
+    pub(super) fn need(&self, key: &str, p: &Parser) -> Result<String, ImportError> {
         self.param(key)
             .filter(|v| !v.is_empty())
             .map(|v| v.to_ascii_uppercase())
@@ -126,6 +126,7 @@ impl Parser {
             }
             "EQUATION" => Block::Equation,
             "SURFACE" => self.surface_keyword(&kw)?,
+            "TIE" => self.tie_keyword(&kw)?,
             "COUPLING" => {
                 let r = kw.need("REF NODE", self)?;
                 let s = kw.need("SURFACE", self)?;
@@ -419,7 +420,7 @@ impl Parser {
             _ => Err(self.err(
                 kw.loc,
                 "*DSLOAD",
-                "loads on element-based surfaces are not supported (element-based *SURFACE is not read): give the pressure with *DLOAD, Pn on the elements",
+                "loads on element-based surfaces are not supported (element-face *SURFACEs are read for *TIE only): give the pressure with *DLOAD, Pn on the elements",
             )),
         }
     }
@@ -449,15 +450,13 @@ impl Parser {
         Ok(Block::Transform(kw.need("NSET", self)?, cyl))
     }
 
-    /// `*SURFACE, TYPE=NODE` (element-based surfaces are a note).
+    /// `*SURFACE, TYPE=NODE`, or of element faces (read for `*TIE`, tie.rs).
     fn surface_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let t = kw.param("TYPE").unwrap_or("ELEMENT");
         if !t.eq_ignore_ascii_case("NODE") {
-            self.note(
-                kw,
-                "element-based surfaces: used only by contact, *TIE and *DSLOAD, which are refused",
-            );
-            return Ok(Block::Skip);
+            let n = kw.need("NAME", self)?.to_ascii_uppercase();
+            self.element_surfaces.entry(n.clone()).or_default();
+            return Ok(Block::ElementSurface(n));
         }
         let n = kw.need("NAME", self)?;
         self.surfaces.entry(n.clone()).or_default();

@@ -10,7 +10,8 @@
 //! S4, S6, S8, MASS, ROTARYI, SPRINGA, SPRING1, SPRING2; DASHPOTA take no part), *NSET/*ELSET
 //! (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION,
 //! *BOUNDARY (dof ranges, ENCASTRE, PINNED, X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *SPRING,
-//! *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE), *COUPLING +
+//! *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE; element faces
+//! for *TIE), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
 //! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE; the steps' *CLOAD and *DLOAD
 //! (GRAV, P, Pn) as named scene loads (`loads`). C3D8I is the incompatible-mode hexahedron
 //! (`ModelParams::solid_bubbles`, model-wide: refused beside C3D8/C3D6); C3D8R is CalculiX's
@@ -34,6 +35,7 @@ mod loads;
 mod resolve;
 mod rules;
 mod steps;
+mod tie;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -128,6 +130,10 @@ enum Block {
     Mass(String),
     RotaryInertia(String),
     Surface(String),
+    /// Data lines of an element-face `*SURFACE` (tie.rs).
+    ElementSurface(String),
+    /// The data line of `*TIE` k (tie.rs).
+    Tie(usize),
     Coupling(usize),
     Transform(String, bool),
     /// `*FREQUENCY` data: the number of eigenvalues.
@@ -193,6 +199,10 @@ struct Parser {
     /// *TRANSFORM: node set and its (resolved) nodal displacement frame.
     transforms: Vec<(String, CoordSystem, Loc)>,
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
+    /// Element-face surfaces: name → (element id or set, face number, line) (tie.rs).
+    element_surfaces: HashMap<String, Vec<(String, usize, Loc)>>,
+    /// `*TIE` definitions (tie.rs).
+    ties: Vec<tie::RawTie>,
     couplings: Vec<RawCoupling>,
     /// Element variants read as their base type on request (`--ignore S4R=S4`): key → blocks.
     substituted: BTreeMap<String, usize>,
@@ -269,6 +279,8 @@ impl Parser {
             nset_from_elset: Vec::new(),
             shell_point_notes: Vec::new(),
             surfaces: HashMap::new(),
+            element_surfaces: HashMap::new(),
+            ties: Vec::new(),
             couplings: Vec::new(),
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),

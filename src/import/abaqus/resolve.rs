@@ -12,18 +12,18 @@ use crate::model::{
 };
 
 /// The model's ids and sets, resolved: what every later step looks members up in.
-struct Sets {
+pub(super) struct Sets {
     /// Node id → index.
-    nodes: IdMap,
+    pub(super) nodes: IdMap,
     /// Element id → index.
-    elems: IdMap,
-    node_sets: BTreeMap<String, Vec<usize>>,
-    element_sets: BTreeMap<String, Vec<usize>>,
+    pub(super) elems: IdMap,
+    pub(super) node_sets: BTreeMap<String, Vec<usize>>,
+    pub(super) element_sets: BTreeMap<String, Vec<usize>>,
 }
 
 impl Sets {
     /// The nodes of a `*BOUNDARY`/`*RIGID BODY`/`*COUPLING` target: a node id or a node set.
-    fn target(
+    pub(super) fn target(
         &self,
         t: &Target,
         loc: Loc,
@@ -56,6 +56,7 @@ impl Parser {
         self.resolve_point_masses(&sets)?;
         self.resolve_transforms(&sets)?;
         self.resolve_connectors(&sets.nodes, &sets.node_sets, &sets.element_sets)?;
+        self.resolve_ties(&sets)?;
         self.resolve_rigid_elements(&sets)?;
         self.resolve_incompatible_modes()?;
         self.import_notes();
