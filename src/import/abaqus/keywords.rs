@@ -139,8 +139,66 @@ impl Parser {
                 Block::Skip
             }
             "KINEMATIC" | "DISTRIBUTING" => self.coupling_kind_keyword(&kw)?,
+            "INITIAL CONDITIONS" => self.initial_conditions_keyword(&kw),
             _ => self.table_keyword(&kw),
         })
+    }
+
+    /// `*INITIAL CONDITIONS, TYPE=…`: velocities and displacements start a dynamic or static
+    /// step and cannot change the modes of the linear frequency step (a note); temperatures
+    /// are a note unless the deck has `*EXPANSION` (then refused when the deck is read, since
+    /// the thermal strain they set is not modelled); stresses and every other type are refused.
+    fn initial_conditions_keyword(&mut self, kw: &Keyword) -> Block {
+        let t = kw.param("TYPE").map(rules::blankless).unwrap_or_default();
+        match t.as_str() {
+            "VELOCITY" | "DISPLACEMENT" => self.note(
+                kw,
+                "initial velocities and displacements start a dynamic or static step: they do \
+                 not change the modes of the linear frequency step",
+            ),
+            "TEMPERATURE" => {
+                self.initial_temperature.get_or_insert(kw.loc);
+                self.note(
+                    kw,
+                    "initial temperatures strain the part only through *EXPANSION (none in the \
+                     deck); temperature-dependent material data are refused where they are given",
+                );
+            }
+            "STRESS" => self.refuse(
+                kw.loc,
+                kw.name,
+                "TYPE=STRESS: an initial stress preloads the part (its stress stiffness changes \
+                 the modes) and is not read; give the preload as a *STATIC step before a \
+                 *FREQUENCY, PERTURBATION step",
+            ),
+            other => self.refuse(
+                kw.loc,
+                kw.name,
+                &format!(
+                    "TYPE={other} is not read and may change the body (VELOCITY, DISPLACEMENT \
+                     and TEMPERATURE without *EXPANSION are notes)"
+                ),
+            ),
+        }
+        Block::Skip
+    }
+
+    /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE` in a deck with `*EXPANSION`: refused (the
+    /// temperatures strain the part, and thermal strain is not modelled). Run after the deck is
+    /// read, since `*EXPANSION` may follow.
+    pub(super) fn refuse_initial_temperature_with_expansion(&mut self) {
+        if let (Some(loc), Some((_, at))) = (self.initial_temperature, self.notes.get("EXPANSION"))
+        {
+            let expansion = at.first().map_or(0, |l| l.line);
+            self.refuse(
+                loc,
+                "INITIAL CONDITIONS",
+                &format!(
+                    "TYPE=TEMPERATURE with *EXPANSION (line {expansion}): the temperatures strain \
+                     the part against its expansion reference, and thermal strain is not modelled"
+                ),
+            );
+        }
     }
 
     /// A keyword that is not honoured: a note, or refused (listed or not).

@@ -61,6 +61,7 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
         .map(|s| rules::ignore_key(s))
         .collect();
     p.read_file(path, 0, 0)?;
+    p.refuse_initial_temperature_with_expansion();
     if !p.refused.is_empty() {
         return Err(ImportError::Refused {
             file: p.b.files[0].clone(),
@@ -203,6 +204,8 @@ struct Parser {
     element_surfaces: HashMap<String, Vec<(String, usize, Loc)>>,
     /// `*TIE` definitions (tie.rs).
     ties: Vec<tie::RawTie>,
+    /// The first `*INITIAL CONDITIONS, TYPE=TEMPERATURE` (refused beside `*EXPANSION`).
+    initial_temperature: Option<Loc>,
     couplings: Vec<RawCoupling>,
     /// Element variants read as their base type on request (`--ignore S4R=S4`): key → blocks.
     substituted: BTreeMap<String, usize>,
@@ -281,6 +284,7 @@ impl Parser {
             surfaces: HashMap::new(),
             element_surfaces: HashMap::new(),
             ties: Vec::new(),
+            initial_temperature: None,
             couplings: Vec::new(),
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),

@@ -40,6 +40,7 @@ pub(super) const HONOURED: &[&str] = &[
     "END STEP",
     "EQUATION",
     "INCLUDE",
+    "INITIAL CONDITIONS",
     "KINEMATIC",
     "MASS",
     "MATERIAL",
