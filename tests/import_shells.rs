@@ -140,7 +140,7 @@ const INP: &str = "*NODE
 2, 1., 0., 0.
 3, 1., 1., 0.
 4, 0., 1., 0.
-*ELEMENT, TYPE=S4R, ELSET=P
+*ELEMENT, TYPE=S4, ELSET=P
 1, 1, 2, 3, 4
 *SHELL SECTION, ELSET=P, MATERIAL=AL
 0.003, 5
@@ -167,7 +167,7 @@ fn abaqus_shell_section_thickness_points_note_and_offset_error() {
     let e = read("off.inp", &off).unwrap_err();
     assert!(e.contains("OFFSET=SPOS"), "{e}");
     let s8 = INP
-        .replace("TYPE=S4R", "TYPE=S8R")
+        .replace("TYPE=S4,", "TYPE=S8R,")
         .replace("1, 1, 2, 3, 4\n", "1, 1, 2, 3, 4, 5, 6, 7, 8\n")
         .replace(
             "*ELEMENT",

@@ -65,7 +65,9 @@ fn solid_faces(kind: ElementKind) -> Option<&'static [&'static [usize]]> {
         ElementKind::Tet4 | ElementKind::Tet10 => Some(TET_FACES),
         ElementKind::Prism6 | ElementKind::Prism15 => Some(PRISM_FACES),
         ElementKind::Pyram5 | ElementKind::Pyram13 => Some(PYRAM_FACES),
-        ElementKind::Hex8 | ElementKind::Hex20 | ElementKind::Hex20R => Some(HEX_FACES),
+        ElementKind::Hex8 | ElementKind::Hex8R | ElementKind::Hex20 | ElementKind::Hex20R => {
+            Some(HEX_FACES)
+        }
         _ => None,
     }
 }

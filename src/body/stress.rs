@@ -123,6 +123,11 @@ fn element_gradients(
             &hex8::NODES,
             [0.0; 3],
         )?,
+        // one-point integration: the uniform strain at every node, as ccx's C3D8R stress
+        ElementKind::Hex8R => {
+            let (_, b) = elements::hex8r::uniform_gradients(&coords::<8>(model, nodes))?;
+            (vec![b.to_vec(); 8], 0)
+        }
         ElementKind::Hex20 | ElementKind::Hex20R => nodal_gradients(
             &coords::<20>(model, nodes),
             hex20::shape,

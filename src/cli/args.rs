@@ -98,8 +98,10 @@ pub(crate) struct ModelArgs {
     pub(crate) subcase: Option<u64>,
     /// Drop these cards or keywords on purpose although they could change stiffness, mass,
     /// constraints or a preload (a build refuses them otherwise), comma separated: Nastran card
-    /// names (CGAP, PARAM:SNORM), Abaqus keywords (*TIE or TIE) or element types. Each dropped
-    /// card is a warning; the recipe records the list. With `check --model` and `export --to
+    /// names (CGAP, PARAM:SNORM), Abaqus keywords (*TIE or TIE) or element types; an Abaqus
+    /// element variant flexbody does not form as VARIANT=BASE reads it as its base type
+    /// (S4R=S4, B31R=B31, S3R=S3, C3D10M=C3D10). Each dropped card is a warning; the recipe
+    /// records the list. With `check --model` and `export --to
     /// mtx`: default from the file's recipe.
     #[arg(long, value_delimiter = ',', value_name = "CARD")]
     pub(crate) ignore: Vec<String>,

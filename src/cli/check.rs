@@ -27,8 +27,10 @@ use flexbody_reader as file;
 use crate::fe::{self, assemble, AssemblySpec};
 use crate::import::{self, ImportOptions};
 use crate::model::Model;
-use crate::pipeline::file_checks::partial_nodes;
+use crate::model::{DofMask, NodeIndex};
+use crate::pipeline::file_checks::{partial_nodes, rigid_modes, RigidRule, RIGID_MODES};
 use crate::pipeline::interface::resolve_interfaces;
+use crate::pipeline::precheck::expected_rigid_motions;
 use crate::pipeline::stages::constraints::eliminate_constraints;
 use crate::pipeline::stages::interfaces::WithInterfaces;
 use crate::reduce::select::ModeCount;
@@ -76,10 +78,32 @@ fn model_checks(
         return Ok(());
     }
     let rebuilt = rebuild(body, input)?;
+    rigid_modes_of_the_model(body, &rebuilt, r);
     preload_as_built(body, &rebuilt, r);
     frequencies_against_full_solve(body, &rebuilt, r)?;
     identities_against_model(body, &rebuilt, r);
     Ok(())
+}
+
+/// A model of several connected parts: the rigid-body modes counted from its parts (as `build`
+/// verified them) replace the file-alone count.
+fn rigid_modes_of_the_model(body: &file::ReducedBody, rebuilt: &Rebuilt, r: &mut CheckReport) {
+    let by_id = rebuilt.model.node_index_by_id();
+    let reference: Vec<(NodeIndex, DofMask)> = (body.method.reference_conditions.iter())
+        .filter_map(|rc| {
+            let node = *by_id.get(&body.nodes.get(rc.node as usize)?.id)?;
+            let mask = (0..6).filter(|&c| rc.dofs[c]).fold(0u8, |m, c| m | 1 << c);
+            Some((node, DofMask(mask)))
+        })
+        .collect();
+    let expected = expected_rigid_motions(&rebuilt.model, &rebuilt.assembled.dofs, &reference);
+    if let Some(e) = &expected {
+        let item = rigid_modes(body, RigidRule::Model(e));
+        match r.items.iter_mut().find(|i| i.name == RIGID_MODES) {
+            Some(old) => *old = item,
+            None => r.items.push(item),
+        }
+    }
 }
 
 /// The preload rebuilt from the model and the recipe against the one the recipe records: the

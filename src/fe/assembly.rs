@@ -14,8 +14,8 @@ use super::dofs::DofMap;
 use super::elements::beam::{BeamLumping, BeamProps};
 use super::elements::tet10::Tet10MassRule;
 use super::elements::{
-    beam, hex20, hex8, prism6, pyram13, pyram5, quad4_shell, rod, solid_incompatible, tet10, tet4,
-    tri3_shell, ElementError, Isotropic, Xyz,
+    beam, hex20, hex8, hex8r, prism6, pyram13, pyram5, quad4_shell, rod, solid_incompatible, tet10,
+    tet4, tri3_shell, ElementError, Isotropic, Xyz,
 };
 use super::mass::{self, MassKind};
 use super::pattern::Pattern;
@@ -194,6 +194,15 @@ pub fn element_matrices(
             solid(
                 k.map_err(elem_err)?,
                 hex8::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                8,
+                false,
+            )
+        }
+        ElementKind::Hex8R => {
+            let x = coords::<8>(model, n);
+            solid(
+                hex8r::stiffness(&x, &iso).map_err(elem_err)?,
+                hex8r::scalar_mass(&x, iso.rho).map_err(elem_err)?,
                 8,
                 false,
             )

@@ -98,7 +98,8 @@ fn refusal_text(file: &str, cards: &[RefusedCard]) -> String {
     keys.dedup();
     if !keys.is_empty() {
         s.push_str(&format!(
-            "\nto drop them on purpose, ignore them by name: --ignore {} (recorded in the recipe)",
+            "\nto drop them on purpose (an element variant VARIANT=BASE: to read it as its base \
+             type), ignore them by name: --ignore {} (recorded in the recipe)",
             keys.join(",")
         ));
     }

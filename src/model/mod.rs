@@ -82,6 +82,9 @@ pub enum ElementKind {
     /// 8-node hexahedron, full 2×2×2 integration (C3D8, CHEXA 8); incompatible modes when
     /// `ModelParams::solid_bubbles` (Nastran CHEXA, PSOLID ISOP blank).
     Hex8,
+    /// 8-node hexahedron with one-point integration and hourglass control, as CalculiX forms
+    /// its C3D8R (`fe::elements::hex8r`).
+    Hex8R,
     /// 20-node hexahedron, full 3×3×3 integration (C3D20, CHEXA 20).
     Hex20,
     /// 20-node hexahedron, reduced 2×2×2 integration (C3D20R).
@@ -119,7 +122,7 @@ impl ElementKind {
         match self {
             ElementKind::Tet4 => 4,
             ElementKind::Tet10 => 10,
-            ElementKind::Hex8 => 8,
+            ElementKind::Hex8 | ElementKind::Hex8R => 8,
             ElementKind::Hex20 | ElementKind::Hex20R => 20,
             ElementKind::Prism6 => 6,
             ElementKind::Prism15 => 15,
@@ -140,6 +143,7 @@ impl ElementKind {
             ElementKind::Tet4
                 | ElementKind::Tet10
                 | ElementKind::Hex8
+                | ElementKind::Hex8R
                 | ElementKind::Hex20
                 | ElementKind::Hex20R
                 | ElementKind::Prism6

@@ -7,7 +7,8 @@
 //! * rigid-body properties from the invariants: I1 > 0, centre of mass I2/I1 inside the nodes'
 //!   bounding box, I7 symmetric positive definite;
 //! * the number of rigid-body modes against the expectation (6 for a free body, 0 with
-//!   reference conditions);
+//!   reference conditions; for a model of several connected parts the sum of their free
+//!   motions, which the build counts from the model and the file records, [`RigidRule`]);
 //! * lumped mass, every node stored: invariants I1, I2, I6, I7 recomputed from the stored nodal
 //!   masses and shapes equal the stored ones, and I6 equals the generalized mass — a corrupted
 //!   mode shape breaks these; consistent mass: I6 equals the generalized mass (the invariants
@@ -21,6 +22,7 @@ use faer::{Mat, Par};
 use flexbody_reader as file;
 
 use crate::body::invariants::{compute_invariants, InvariantSet, MassPoint};
+use crate::pipeline::precheck::RigidExpectation;
 
 /// One check: a measured figure against its limit.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -69,12 +71,39 @@ impl CheckReport {
 /// the one limit of SPEC §5 (`modes.bin`), which the orthonormalization enforces before writing.
 pub const ORTHO_LIMIT: f64 = crate::reduce::orthonormalize::CHECK_LIMIT;
 
-/// Every check the file's own data allows, in the order run.
+/// Where the expected number of rigid-body modes comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RigidRule<'a> {
+    /// The file's reference conditions (6 − their rank): the build of a one-part model.
+    File,
+    /// The file alone (`check` without `--model`): its reference conditions, or the count the
+    /// build recorded (`method.bin` counts) when that is higher — a model of several parts, whose
+    /// connectivity the file does not hold, has more (the sum over its parts is never below the
+    /// whole body's count); `check --model` recomputes it from the model's parts.
+    FileOrRecorded,
+    /// Counted from the model's connected parts ([`crate::pipeline::precheck::expected_rigid_motions`]).
+    Model(&'a RigidExpectation),
+}
+
+impl<'a> RigidRule<'a> {
+    /// The model's count when it has several parts, else the file's reference conditions.
+    pub fn from_model(expectation: Option<&'a RigidExpectation>) -> Self {
+        expectation.map_or(RigidRule::File, RigidRule::Model)
+    }
+}
+
+/// Every check the file's own data allows, in the order run (the rigid-body modes by
+/// [`RigidRule::FileOrRecorded`]).
 pub fn file_checks(body: &file::ReducedBody) -> CheckReport {
+    file_checks_with(body, RigidRule::FileOrRecorded)
+}
+
+/// [`file_checks`] with the rigid-body modes expected by `rigid`.
+pub fn file_checks_with(body: &file::ReducedBody, rigid: RigidRule<'_>) -> CheckReport {
     let mut r = CheckReport::default();
     generalized_matrices(body, &mut r);
     rigid_body_properties(body, &mut r);
-    rigid_modes(body, &mut r);
+    r.items.push(rigid_modes(body, rigid));
     stored_invariants(body, &mut r);
     r
 }
@@ -236,9 +265,13 @@ fn centre_of_mass_principal(i7: &Mat<f64>, inv: &file::Invariants) -> Vec<f64> {
         .unwrap_or_default()
 }
 
-/// The rigid-body modes against the expectation: 6 for a free body (less the rotations about a
-/// line of masses without inertia about it), the rigid motions reference conditions leave free.
-fn rigid_modes(body: &file::ReducedBody, r: &mut CheckReport) {
+/// The name of the rigid-body mode check (`check --model` replaces the item by name).
+pub const RIGID_MODES: &str = "rigid-body modes as expected";
+
+/// The rigid-body modes against the expectation of `rule`: 6 for a free body (less the rotations
+/// about a line of masses without inertia about it), the rigid motions reference conditions leave
+/// free, or the sum over the model's parts.
+pub fn rigid_modes(body: &file::ReducedBody, rule: RigidRule<'_>) -> CheckItem {
     let md = &body.modes;
     // rigid: below 1e-4 of the highest frequency, or labelled rigid and below 1e-2 of the first
     // flexible mode (on a slender model rounding leaves rigid modes at ~1e-3 Hz while the set
@@ -264,27 +297,42 @@ fn rigid_modes(body: &file::ReducedBody, r: &mut CheckReport) {
     } else {
         0
     };
-    let expected = free_rigid_motions(body) - massless_rotations.min(3);
+    let from_file = free_rigid_motions(body) - massless_rotations.min(3);
     let labelled = md
         .labels
         .iter()
         .filter(|l| **l == file::ModeLabel::Rigid)
         .count();
-    r.push(
-        "rigid-body modes as expected",
-        (rigid as f64 - expected as f64).abs() + (labelled as f64 - rigid as f64).abs(),
-        0.0,
-        format!(
-            "{rigid} modes below 1e-4·f_max (labelled rigid: {labelled}); expected {expected} ({})",
-            if body.method.reference_conditions.is_empty() && massless_rotations > 0 {
-                "free body; its rotation about the line of its masses has no inertia and is no mode"
-            } else if body.method.reference_conditions.is_empty() {
-                "free body"
-            } else {
-                "rigid motions the reference conditions leave free"
-            }
+    let file_why = if body.method.reference_conditions.is_empty() && massless_rotations > 0 {
+        "free body; its rotation about the line of its masses has no inertia and is no mode".into()
+    } else if body.method.reference_conditions.is_empty() {
+        "free body".to_string()
+    } else {
+        "rigid motions the reference conditions leave free".to_string()
+    };
+    let recorded = body.method.counts.rigid as usize;
+    let (expected, why) = match rule {
+        RigidRule::Model(e) => (e.count, e.detail.clone()),
+        RigidRule::FileOrRecorded if recorded > from_file && rigid == recorded => (
+            recorded,
+            format!(
+                "the build's count in method.bin: its model has several connected parts, whose \
+                 free motions add up, which the file cannot tell; from the file's reference \
+                 conditions alone at least {from_file}; `check --model` recounts them from the model"
+            ),
         ),
-    );
+        _ => (from_file, file_why),
+    };
+    let value = (rigid as f64 - expected as f64).abs() + (labelled as f64 - rigid as f64).abs();
+    CheckItem {
+        name: RIGID_MODES.into(),
+        value,
+        limit: 0.0,
+        pass: value == 0.0,
+        detail: format!(
+            "{rigid} modes below 1e-4·f_max (labelled rigid: {labelled}); expected {expected} ({why})"
+        ),
+    }
 }
 
 /// The stored invariants: I6 = the generalized mass for consistent mass; for lumped mass with

@@ -374,6 +374,26 @@ struct Restraint {
 /// Greedy row-by-row rank of the restraints of a part against the part's own rigid space.
 fn restrain(model: &Model, dofs: &DofMap, part: &Part, rows: &[(NodeIndex, usize)]) -> Restraint {
     let (x0, len) = frame_of(model, &part.nodes);
+    let rigid_rows: Vec<[f64; 6]> = rows
+        .iter()
+        .map(|&(n, c)| rigid_row(model, dofs, n, c, x0, len))
+        .collect();
+    let (redundant, free) = restrain_rows(model, dofs, part, &rigid_rows);
+    Restraint {
+        redundant: redundant.into_iter().map(|i| rows[i]).collect(),
+        free,
+    }
+}
+
+/// [`restrain`] on rigid-body rows about the part's [`frame_of`]: the indices of the redundant
+/// rows and the rigid motions left free, described.
+fn restrain_rows(
+    model: &Model,
+    dofs: &DofMap,
+    part: &Part,
+    rows: &[[f64; 6]],
+) -> (Vec<usize>, Vec<String>) {
+    let (x0, len) = frame_of(model, &part.nodes);
     // the part's rigid space: eigenvectors of RᵀR over all its dofs
     let mut g = Mat::<f64>::zeros(6, 6);
     for &n in &part.nodes {
@@ -388,8 +408,8 @@ fn restrain(model: &Model, dofs: &DofMap, part: &Part, rows: &[(NodeIndex, usize
     }
     let mut q: Vec<[f64; 6]> = Vec::new();
     let mut redundant = Vec::new();
-    for &(n, c) in rows {
-        let mut r = rigid_row(model, dofs, n, c, x0, len);
+    for (i, row) in rows.iter().enumerate() {
+        let mut r = *row;
         let norm0 = r.iter().map(|v| v * v).sum::<f64>().sqrt();
         for b in &q {
             let d: f64 = (0..6).map(|i| r[i] * b[i]).sum();
@@ -399,7 +419,7 @@ fn restrain(model: &Model, dofs: &DofMap, part: &Part, rows: &[(NodeIndex, usize
         if norm > RANK_TOL * norm0.max(RANK_TOL) && norm0 > 0.0 {
             q.push(std::array::from_fn(|i| r[i] / norm));
         } else {
-            redundant.push((n, c));
+            redundant.push(i);
         }
     }
     // free motions: the part's rigid space with the restrained directions projected out
@@ -454,7 +474,7 @@ fn restrain(model: &Model, dofs: &DofMap, part: &Part, rows: &[(NodeIndex, usize
             free.push(describe_motion(&best.0, x0, len));
         }
     }
-    Restraint { redundant, free }
+    (redundant, free)
 }
 
 /// "translation along (1, 0, 0)" or "rotation about (0, 0, 1) through (0.1, 0, 0)".
@@ -792,4 +812,98 @@ fn held_by_reference_conditions(
         }
     }
     Ok(())
+}
+
+/// The rigid-body motions a model with several connected parts leaves free: the sum over its
+/// parts of each part's free motions (6 − the rank of its restraint rows, [`restrain_rows`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidExpectation {
+    /// Free rigid motions summed over the parts.
+    pub count: usize,
+    /// The parts and their free motions in words, for the check's detail line.
+    pub detail: String,
+}
+
+/// The expected rigid-body modes of a model of several connected parts ([`parts`]): each part's
+/// rigid motions (u = t + θ × x over its dofs) less those held by the model's SPCs, the
+/// reference conditions `reference`, grounded springs and bushes and one-term MPCs (u = 0) on
+/// its nodes. `None` for a model of one part: the file's own rule (its reference conditions,
+/// [`crate::pipeline::file_checks`]) then says the same. An MPC or a spring between two dofs
+/// of one part is taken to follow rigid motion (a ROT NODE's equations, an SPRINGA); one that
+/// resists it leaves fewer zero modes than counted here, and the build's check says so.
+pub fn expected_rigid_motions(
+    model: &Model,
+    dofs: &DofMap,
+    reference: &[(NodeIndex, DofMask)],
+) -> Option<RigidExpectation> {
+    let parts = Parts::of(model, dofs);
+    if parts.parts.len() < 2 {
+        return None;
+    }
+    let mut count = 0;
+    let mut words = Vec::new();
+    for (k, part) in parts.parts.iter().enumerate() {
+        let (x0, len) = frame_of(model, &part.nodes);
+        let mine = |n: NodeIndex| parts.part_of.get(n) == Some(&k);
+        let node_dofs: Vec<(NodeIndex, usize)> = parts
+            .spc_rows(k)
+            .into_iter()
+            .chain(
+                reference
+                    .iter()
+                    .filter(|(n, _)| mine(*n))
+                    .flat_map(|&(n, mask)| node_rows(dofs, n, mask)),
+            )
+            .chain(
+                (model.springs.iter())
+                    .filter(|s| s.b.is_none() && s.k != 0.0 && mine(s.a.node))
+                    .map(|s| (s.a.node, usize::from(s.a.component))),
+            )
+            .chain(
+                (model.mpcs.iter())
+                    .filter(|m| m.terms.len() == 1 && mine(m.terms[0].0.node))
+                    .map(|m| (m.terms[0].0.node, usize::from(m.terms[0].0.component))),
+            )
+            .filter(|&(n, c)| c < usize::from(dofs.count[n]))
+            .collect();
+        let mut rows: Vec<[f64; 6]> = node_dofs
+            .iter()
+            .map(|&(n, c)| rigid_row(model, dofs, n, c, x0, len))
+            .collect();
+        for b in model.bushes.iter().filter(|b| b.b.is_none() && mine(b.a)) {
+            for c in (0..6).filter(|&c| b.k[c] != 0.0) {
+                rows.push(direction_row(b.location, b.axes[c % 3], c < 3, x0, len));
+            }
+        }
+        let free = restrain_rows(model, dofs, part, &rows).1.len();
+        count += free;
+        words.push(format!("{}: {free} free", parts.describe(k)));
+    }
+    Some(RigidExpectation {
+        count,
+        detail: format!(
+            "the model's {} connected parts, each less what its SPCs, reference conditions and \
+             grounded springs hold: {}",
+            parts.parts.len(),
+            words.join("; ")
+        ),
+    })
+}
+
+/// Rigid-body row of a translation along the unit vector `e` at the point `x` (or, with
+/// `translation` false, a rotation about `e`), as [`rigid_row`]: e·(t + θ × (x − x₀)) = e·t +
+/// θ·((x − x₀) × e).
+fn direction_row(x: [f64; 3], e: [f64; 3], translation: bool, x0: [f64; 3], len: f64) -> [f64; 6] {
+    if !translation {
+        return [0.0, 0.0, 0.0, e[0], e[1], e[2]];
+    }
+    let d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
+    [
+        e[0],
+        e[1],
+        e[2],
+        (d[1] * e[2] - d[2] * e[1]) / len,
+        (d[2] * e[0] - d[0] * e[2]) / len,
+        (d[0] * e[1] - d[1] * e[0]) / len,
+    ]
 }

@@ -16,7 +16,8 @@
 use faer::Mat;
 use flexbody_reader as file;
 
-use super::file_checks::{file_checks, CheckItem, CheckReport, ORTHO_LIMIT};
+use super::file_checks::{file_checks_with, CheckItem, CheckReport, RigidRule, ORTHO_LIMIT};
+use super::precheck::RigidExpectation;
 use crate::solve::{sparse_ops, SparseColMat};
 
 /// Limit on the eigen residual of a normal mode against the model (as `check`).
@@ -125,12 +126,15 @@ pub type ModelPhi<'a> = (
 );
 
 /// Verifies `body` (as it will be written) and Φ over the independent dofs of the model (K, M)
-/// it was reduced from; `None` for Φ skips the model identities. Returns the full report.
+/// it was reduced from; `None` for Φ skips the model identities. `rigid`: the rigid-body modes
+/// a model of several parts must have (`None`: the file's reference conditions say).
+/// Returns the full report.
 pub fn verify_body(
     body: &file::ReducedBody,
     model: Option<ModelPhi<'_>>,
+    rigid: Option<&RigidExpectation>,
 ) -> Result<CheckReport, VerifyError> {
-    let mut report = file_checks(body);
+    let mut report = file_checks_with(body, RigidRule::from_model(rigid));
     if let Some((k, m, phi, held)) = model {
         push_identities(
             &mut report,

@@ -13,6 +13,7 @@
 pub mod beam;
 pub mod hex20;
 pub mod hex8;
+pub mod hex8r;
 pub mod planar_frame;
 pub mod prism6;
 pub mod pyram13;
@@ -234,7 +235,7 @@ fn mirror_upper_blocks(k: &mut [f64], n: usize, d: usize) {
     }
 }
 
-fn check_solid_material(mat: &Isotropic) -> Result<(), ElementError> {
+pub(crate) fn check_solid_material(mat: &Isotropic) -> Result<(), ElementError> {
     let ok = mat.e > 0.0
         && mat.e.is_finite()
         && mat.nu > -1.0

@@ -1,4 +1,4 @@
-//! 4-node flat shell quadrilateral (CQUAD4, S4, S4R): MITC4 plate bending and transverse shear
+//! 4-node flat shell quadrilateral (CQUAD4, S4; S4R only read as S4 on request): MITC4 plate bending and transverse shear
 //! with an incompatible-mode membrane and a drilling penalty; 6 dofs per node.
 //!
 //! ```text

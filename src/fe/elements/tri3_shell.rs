@@ -1,4 +1,4 @@
-//! 3-node flat shell triangle (CTRIA3, S3, S3R): DKT/DKMT plate bending, constant-strain membrane
+//! 3-node flat shell triangle (CTRIA3, S3; S3R only read as S3 on request): DKT/DKMT plate bending, constant-strain membrane
 //! and a drilling penalty; 6 dofs per node.
 //!
 //! ```text

@@ -84,6 +84,14 @@ impl SolidElement {
             ElementKind::Hex20R => compatible(x, hex20::shape, &quadrature::cube(2))?,
             ElementKind::Prism6 if bubbles => prism6_points(&std::array::from_fn(|a| x[a]))?,
             ElementKind::Prism6 => compatible(x, prism6::shape, &quadrature::wedge(2))?,
+            ElementKind::Hex8R => {
+                return Err(ElementError::BadConstants(
+                    "C3D8R (one-point hexahedron with hourglass control) has no preload \
+                     (initial stress) formulation: mesh the preloaded part with C3D8, C3D8I or \
+                     C3D20R"
+                        .into(),
+                ))
+            }
             other => {
                 return Err(ElementError::BadConstants(format!(
                     "{other:?} has no solid formulation"

@@ -60,6 +60,14 @@ impl Parser {
                 let name = name.clone();
                 self.surface_line(name, line, loc)
             }
+            Block::ElementSurface(name) => {
+                let name = name.clone();
+                self.element_surface_line(name, line, loc)
+            }
+            Block::Tie(k) => {
+                let k = *k;
+                self.tie_line(k, line, loc)
+            }
             Block::Coupling(k) => {
                 let k = *k;
                 self.coupling_line(k, line, loc)

@@ -18,19 +18,19 @@ use crate::model::{DofMask, Section, SectionShape};
 const OUTPUT_RESTART: &str = "writing restart data does not change the body";
 
 /// A keyword line: its name, its parameters and where it is.
-struct Keyword<'a> {
+pub(super) struct Keyword<'a> {
     name: &'a str,
     params: &'a [(String, String)],
-    loc: Loc,
+    pub(super) loc: Loc,
 }
 
 impl Keyword<'_> {
-    fn param(&self, key: &str) -> Option<&str> {
+    pub(super) fn param(&self, key: &str) -> Option<&str> {
         param(self.params, key)
     }
 
     /// The parameter `key`, upper-cased; an error naming the keyword when it is missing or empty.
-    fn need(&self, key: &str, p: &Parser) -> Result<String, ImportError> {
+    pub(super) fn need(&self, key: &str, p: &Parser) -> Result<String, ImportError> {
         self.param(key)
             .filter(|v| !v.is_empty())
             .map(|v| v.to_ascii_uppercase())
@@ -126,6 +126,7 @@ impl Parser {
             }
             "EQUATION" => Block::Equation,
             "SURFACE" => self.surface_keyword(&kw)?,
+            "TIE" => self.tie_keyword(&kw)?,
             "COUPLING" => {
                 let r = kw.need("REF NODE", self)?;
                 let s = kw.need("SURFACE", self)?;
@@ -138,8 +139,66 @@ impl Parser {
                 Block::Skip
             }
             "KINEMATIC" | "DISTRIBUTING" => self.coupling_kind_keyword(&kw)?,
+            "INITIAL CONDITIONS" => self.initial_conditions_keyword(&kw),
             _ => self.table_keyword(&kw),
         })
+    }
+
+    /// `*INITIAL CONDITIONS, TYPE=…`: velocities and displacements start a dynamic or static
+    /// step and cannot change the modes of the linear frequency step (a note); temperatures
+    /// are a note unless the deck has `*EXPANSION` (then refused when the deck is read, since
+    /// the thermal strain they set is not modelled); stresses and every other type are refused.
+    fn initial_conditions_keyword(&mut self, kw: &Keyword) -> Block {
+        let t = kw.param("TYPE").map(rules::blankless).unwrap_or_default();
+        match t.as_str() {
+            "VELOCITY" | "DISPLACEMENT" => self.note(
+                kw,
+                "initial velocities and displacements start a dynamic or static step: they do \
+                 not change the modes of the linear frequency step",
+            ),
+            "TEMPERATURE" => {
+                self.initial_temperature.get_or_insert(kw.loc);
+                self.note(
+                    kw,
+                    "initial temperatures strain the part only through *EXPANSION (none in the \
+                     deck); temperature-dependent material data are refused where they are given",
+                );
+            }
+            "STRESS" => self.refuse(
+                kw.loc,
+                kw.name,
+                "TYPE=STRESS: an initial stress preloads the part (its stress stiffness changes \
+                 the modes) and is not read; give the preload as a *STATIC step before a \
+                 *FREQUENCY, PERTURBATION step",
+            ),
+            other => self.refuse(
+                kw.loc,
+                kw.name,
+                &format!(
+                    "TYPE={other} is not read and may change the body (VELOCITY, DISPLACEMENT \
+                     and TEMPERATURE without *EXPANSION are notes)"
+                ),
+            ),
+        }
+        Block::Skip
+    }
+
+    /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE` in a deck with `*EXPANSION`: refused (the
+    /// temperatures strain the part, and thermal strain is not modelled). Run after the deck is
+    /// read, since `*EXPANSION` may follow.
+    pub(super) fn refuse_initial_temperature_with_expansion(&mut self) {
+        if let (Some(loc), Some((_, at))) = (self.initial_temperature, self.notes.get("EXPANSION"))
+        {
+            let expansion = at.first().map_or(0, |l| l.line);
+            self.refuse(
+                loc,
+                "INITIAL CONDITIONS",
+                &format!(
+                    "TYPE=TEMPERATURE with *EXPANSION (line {expansion}): the temperatures strain \
+                     the part against its expansion reference, and thermal strain is not modelled"
+                ),
+            );
+        }
     }
 
     /// A keyword that is not honoured: a note, or refused (listed or not).
@@ -218,7 +277,8 @@ impl Parser {
         Ok(Block::Spring(self.springs.len() - 1))
     }
 
-    /// `*ELEMENT, TYPE=…`: the element kind (a close relative's, noted, for variants).
+    /// `*ELEMENT, TYPE=…`: the element kind; a variant flexbody does not form is refused, or read
+    /// as its base type when `--ignore VARIANT=BASE` asks for it (`defs::VARIANTS`).
     fn element_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let t = rules::blankless(&kw.need("TYPE", self)?);
         let dropped = Block::DroppedElements { continued: false };
@@ -226,6 +286,28 @@ impl Parser {
             (self.ignored.entry(t)).or_default().push(kw.loc);
             return Ok(dropped);
         }
+        let t = match super::defs::VARIANTS.iter().find(|v| v.0 == t) {
+            Some(&(variant, base, why)) => {
+                let key = format!("{variant}={base}");
+                if !self.ignore.contains(&key) {
+                    self.refuse(
+                        kw.loc,
+                        &format!("TYPE={t}"),
+                        &format!(
+                            "element type {variant} is not formed ({why}): --ignore {key} reads \
+                             them as {base} on purpose"
+                        ),
+                    );
+                    if let Some(r) = self.refused.last_mut() {
+                        r.key = key;
+                    }
+                    return Ok(dropped);
+                }
+                *self.substituted.entry(key).or_default() += 1;
+                base.to_owned()
+            }
+            None => t,
+        };
         let Some((kind, card)) = element_kind(&t) else {
             self.refuse(
                 kw.loc,
@@ -242,12 +324,6 @@ impl Parser {
                 self.plain_linear_solid.get_or_insert((kw.loc, card));
             }
             _ => {}
-        }
-        if t != card {
-            *self
-                .substituted
-                .entry(format!("{t} read as {card}"))
-                .or_default() += 1;
         }
         Ok(Block::Element {
             kind,
@@ -402,7 +478,7 @@ impl Parser {
             _ => Err(self.err(
                 kw.loc,
                 "*DSLOAD",
-                "loads on element-based surfaces are not supported (element-based *SURFACE is not read): give the pressure with *DLOAD, Pn on the elements",
+                "loads on element-based surfaces are not supported (element-face *SURFACEs are read for *TIE only): give the pressure with *DLOAD, Pn on the elements",
             )),
         }
     }
@@ -432,15 +508,13 @@ impl Parser {
         Ok(Block::Transform(kw.need("NSET", self)?, cyl))
     }
 
-    /// `*SURFACE, TYPE=NODE` (element-based surfaces are a note).
+    /// `*SURFACE, TYPE=NODE`, or of element faces (read for `*TIE`, tie.rs).
     fn surface_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let t = kw.param("TYPE").unwrap_or("ELEMENT");
         if !t.eq_ignore_ascii_case("NODE") {
-            self.note(
-                kw,
-                "element-based surfaces: used only by contact, *TIE and *DSLOAD, which are refused",
-            );
-            return Ok(Block::Skip);
+            let n = kw.need("NAME", self)?.to_ascii_uppercase();
+            self.element_surfaces.entry(n.clone()).or_default();
+            return Ok(Block::ElementSurface(n));
         }
         let n = kw.need("NAME", self)?;
         self.surfaces.entry(n.clone()).or_default();

@@ -10,11 +10,14 @@
 //! S4, S6, S8, MASS, ROTARYI, SPRINGA, SPRING1, SPRING2; DASHPOTA take no part), *NSET/*ELSET
 //! (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION,
 //! *BOUNDARY (dof ranges, ENCASTRE, PINNED, X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *SPRING,
-//! *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE), *COUPLING +
+//! *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE; element faces
+//! for *TIE), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
 //! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE; the steps' *CLOAD and *DLOAD
 //! (GRAV, P, Pn) as named scene loads (`loads`). C3D8I is the incompatible-mode hexahedron
-//! (`ModelParams::solid_bubbles`, model-wide: refused beside C3D8/C3D6); reduced variants
-//! (C3D8R, C3D10M, B31R, S4R, …) are read as the base type with a warning.
+//! (`ModelParams::solid_bubbles`, model-wide: refused beside C3D8/C3D6); C3D8R is CalculiX's
+//! one-point hexahedron with hourglass control (`fe::elements::hex8r`); the variants flexbody
+//! does not form (C3D10M, B31R, S3R, S4R: `defs::VARIANTS`, with ccx's measured difference) are
+//! refused, and read as their base type only on request (`--ignore S4R=S4`).
 //!
 //! Every other keyword is a note (it cannot change the body) or refused, by the keyword table
 //! (`rules`); unknown element types are refused; all refusals of a deck come in one error, and
@@ -32,6 +35,7 @@ mod loads;
 mod resolve;
 mod rules;
 mod steps;
+mod tie;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -57,6 +61,7 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
         .map(|s| rules::ignore_key(s))
         .collect();
     p.read_file(path, 0, 0)?;
+    p.refuse_initial_temperature_with_expansion();
     if !p.refused.is_empty() {
         return Err(ImportError::Refused {
             file: p.b.files[0].clone(),
@@ -126,6 +131,10 @@ enum Block {
     Mass(String),
     RotaryInertia(String),
     Surface(String),
+    /// Data lines of an element-face `*SURFACE` (tie.rs).
+    ElementSurface(String),
+    /// The data line of `*TIE` k (tie.rs).
+    Tie(usize),
     Coupling(usize),
     Transform(String, bool),
     /// `*FREQUENCY` data: the number of eigenvalues.
@@ -169,7 +178,7 @@ struct Parser {
     equations: Vec<connectors::RawEquation>,
     /// Ids of elements of refused or dropped element blocks.
     dropped_elems: std::collections::HashSet<u64>,
-    /// C3D8I elements seen (first block), and the first C3D8/C3D8R/C3D6 block: the
+    /// C3D8I elements seen (first block), and the first C3D8/C3D6 block: the
     /// incompatible-mode formulation is model-wide (`ModelParams::solid_bubbles`).
     incompatible_hexa: Option<Loc>,
     plain_linear_solid: Option<(Loc, &'static str)>,
@@ -191,8 +200,14 @@ struct Parser {
     /// *TRANSFORM: node set and its (resolved) nodal displacement frame.
     transforms: Vec<(String, CoordSystem, Loc)>,
     surfaces: HashMap<String, Vec<(Target, f64, Loc)>>,
+    /// Element-face surfaces: name → (element id or set, face number, line) (tie.rs).
+    element_surfaces: HashMap<String, Vec<(String, usize, Loc)>>,
+    /// `*TIE` definitions (tie.rs).
+    ties: Vec<tie::RawTie>,
+    /// The first `*INITIAL CONDITIONS, TYPE=TEMPERATURE` (refused beside `*EXPANSION`).
+    initial_temperature: Option<Loc>,
     couplings: Vec<RawCoupling>,
-    /// Element types read as a close relative (C3D8I as C3D8, …): "X read as Y" → blocks.
+    /// Element variants read as their base type on request (`--ignore S4R=S4`): key → blocks.
     substituted: BTreeMap<String, usize>,
     /// Elements that listed more node ids than their type takes, by type.
     extra_nodes: BTreeMap<&'static str, usize>,
@@ -267,6 +282,9 @@ impl Parser {
             nset_from_elset: Vec::new(),
             shell_point_notes: Vec::new(),
             surfaces: HashMap::new(),
+            element_surfaces: HashMap::new(),
+            ties: Vec::new(),
+            initial_temperature: None,
             couplings: Vec::new(),
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),

@@ -12,18 +12,18 @@ use crate::model::{
 };
 
 /// The model's ids and sets, resolved: what every later step looks members up in.
-struct Sets {
+pub(super) struct Sets {
     /// Node id → index.
-    nodes: IdMap,
+    pub(super) nodes: IdMap,
     /// Element id → index.
-    elems: IdMap,
-    node_sets: BTreeMap<String, Vec<usize>>,
-    element_sets: BTreeMap<String, Vec<usize>>,
+    pub(super) elems: IdMap,
+    pub(super) node_sets: BTreeMap<String, Vec<usize>>,
+    pub(super) element_sets: BTreeMap<String, Vec<usize>>,
 }
 
 impl Sets {
     /// The nodes of a `*BOUNDARY`/`*RIGID BODY`/`*COUPLING` target: a node id or a node set.
-    fn target(
+    pub(super) fn target(
         &self,
         t: &Target,
         loc: Loc,
@@ -56,6 +56,7 @@ impl Parser {
         self.resolve_point_masses(&sets)?;
         self.resolve_transforms(&sets)?;
         self.resolve_connectors(&sets.nodes, &sets.node_sets, &sets.element_sets)?;
+        self.resolve_ties(&sets)?;
         self.resolve_rigid_elements(&sets)?;
         self.resolve_incompatible_modes()?;
         self.import_notes();
@@ -417,11 +418,13 @@ impl Parser {
     /// What the reader did not reproduce, as warnings: substituted element types, extra node
     /// ids, section points, ignored keywords.
     fn import_notes(&mut self) {
-        for (what, count) in &self.substituted {
+        for (key, count) in &self.substituted {
+            let (variant, base) = key.split_once('=').unwrap_or((key, key));
             self.b.model.warnings.push(ImportWarning {
                 file: self.b.files[0].clone(),
                 message: format!(
-                    "element type {what} ({count} *ELEMENT blocks): its special formulation is not reproduced"
+                    "element type {variant} read as {base} on request (--ignore {key}; {count} \
+                     *ELEMENT blocks): {variant}'s own formulation is not reproduced"
                 ),
             });
         }
@@ -457,7 +460,8 @@ impl Parser {
         }
         for name in &self.ignore {
             let used = (self.ignored.keys())
-                .any(|k| super::rules::blankless(k.trim_start_matches('*')) == *name);
+                .any(|k| super::rules::blankless(k.trim_start_matches('*')) == *name)
+                || self.substituted.contains_key(name);
             if !used {
                 self.b.model.warnings.push(ImportWarning {
                     file: self.b.files[0].clone(),
@@ -486,8 +490,8 @@ impl Parser {
     }
 
     /// C3D8I: the incompatible-mode hexahedron (`fe::elements::solid_incompatible`), which the
-    /// model selects for every linear hexahedron and wedge at once: refused beside C3D8,
-    /// C3D8R or C3D6 elements.
+    /// model selects for every linear hexahedron and wedge at once: refused beside C3D8
+    /// or C3D6 elements (C3D8R is an element of its own, `fe::elements::hex8r`).
     fn resolve_incompatible_modes(&mut self) -> Result<(), ImportError> {
         let Some(loc) = self.incompatible_hexa else {
             return Ok(());

@@ -10,7 +10,7 @@ use crate::model::{DofMask, Model, NodeIndex};
 use crate::pipeline::deck::{node_mask, reference_entries};
 use crate::pipeline::interface::reference_names;
 use crate::pipeline::plan::Plan;
-use crate::pipeline::precheck::before_reduction;
+use crate::pipeline::precheck::{before_reduction, expected_rigid_motions, RigidExpectation};
 use crate::pipeline::stages::empty_matrix;
 use crate::pipeline::stages::interfaces::WithInterfaces;
 use crate::pipeline::{BuildError, BuildReport};
@@ -35,6 +35,9 @@ pub struct Constrained {
     pub reference_nodes: ReferenceNodes,
     /// The preload `reduced.k` carries (K_T,r; set by the preload stage).
     pub preload: Option<crate::pipeline::stages::preload::PreloadSummary>,
+    /// The rigid-body modes a model of several connected parts must have (`None`: one part,
+    /// the file's reference conditions tell), for the verify stage.
+    pub expected_rigid: Option<RigidExpectation>,
 }
 
 /// The constraints stage.
@@ -89,6 +92,8 @@ pub fn constraints(
         &mut reference_nodes,
         report,
     );
+    let expected_rigid =
+        expected_rigid_motions(&interfaced.model, &assembled.dofs, &reference_nodes);
     Ok(Constrained {
         assembled,
         reduced,
@@ -97,6 +102,7 @@ pub fn constraints(
         reference_dofs,
         reference_nodes,
         preload: None,
+        expected_rigid,
     })
 }
 

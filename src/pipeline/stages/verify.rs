@@ -23,9 +23,11 @@ pub fn verify(
         &basis.set.phi,
         &constrained.reference_dofs[..],
     );
-    verify_body(&body, Some(model)).map_err(|failures| BuildError::Verify {
-        file: plan.file_name.clone(),
-        failures,
+    verify_body(&body, Some(model), constrained.expected_rigid.as_ref()).map_err(|failures| {
+        BuildError::Verify {
+            file: plan.file_name.clone(),
+            failures,
+        }
     })?;
     Ok(body)
 }

@@ -1,0 +1,550 @@
+//! `*TIE` (tied contact) and the element-face `*SURFACE`s it names, as CalculiX reads them
+//! (ccx User's Manual, "*TIE"): every node of the slave surface (a node surface or element
+//! faces) within the position tolerance of a master face (element faces of solids) is held on
+//! that face by its shape functions, u_s = Σᵢ Nᵢ(ξ, η) u_i for the three translations — one
+//! MPC per component ([`crate::model::Mpc`], eliminated as `*EQUATION`).
+//!
+//! * the tolerance: POSITION TOLERANCE, or (absent or below 1e-10) 2.5 % of CalculiX's
+//!   "typical element size" (`gentiedmpc`: the mean distance from a master triangle's centroid
+//!   to its first edge; here the triangle of each master face's first three corners, which is
+//!   ccx's for linear triangles and rectangles — a gap of 0.0003 m between 0.05 m faces is
+//!   tied, 0.0005 m is not, as ccx 2.20 does); the distance is measured from the node to the
+//!   nearest point of the face (its projection clamped to the face), so that both ccx
+//!   conditions — the orthogonal distance and the overshoot parallel to the face — stay within
+//!   it;
+//! * ADJUST=YES (the default) moves each tied slave node onto the master face, ADJUST=NO keeps it;
+//! * slave nodes no master face reaches stay untied, and so do the components of a slave node
+//!   already held by a `*BOUNDARY` or dependent in an equation (as ccx: "DOF not active"): one
+//!   warning lists them (ccx writes them to `WarnNodeMissTiedContact.nam`); a slave node that
+//!   is also a node of the master surface is not tied to it;
+//! * CYCLIC SYMMETRY, MULTISTAGE and the fluid ties are refused; nodes in a `*TRANSFORM` frame
+//!   are refused (the equations are in global components).
+
+use std::collections::{BTreeMap, BTreeSet, HashSet};
+
+use super::keywords::Keyword;
+use super::resolve::Sets;
+use super::{fields, Block, Parser};
+use crate::import::error::ImportError;
+use crate::import::text::{parse_f64, parse_u64, Loc};
+use crate::model::load::{face_nodes, solid_faces};
+use crate::model::{Mpc, NodeDof, NodeIndex};
+
+/// One `*TIE`: its parameters and its data line.
+#[derive(Debug)]
+pub(super) struct RawTie {
+    pub name: String,
+    pub tolerance: Option<f64>,
+    pub adjust: bool,
+    /// (slave surface, master surface), from the data line.
+    pub surfaces: Option<(String, String)>,
+    pub loc: Loc,
+}
+
+/// One master face: its element id and nodes (corners, then mid-side nodes).
+struct Face {
+    element: u64,
+    nodes: Vec<NodeIndex>,
+}
+
+impl Parser {
+    /// `*TIE, NAME=…[, POSITION TOLERANCE=…][, ADJUST=YES|NO]`.
+    pub(super) fn tie_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
+        let name = kw.need("NAME", self)?;
+        let ent = format!("*TIE NAME={name}");
+        for p in [
+            "CYCLIC SYMMETRY",
+            "MULTISTAGE",
+            "FLUID PERIODIC",
+            "FLUID CYCLIC",
+        ] {
+            if kw.param(p).is_some() {
+                return Err(self.err(
+                    kw.loc,
+                    ent,
+                    format!("{p} ties are not supported (only the tied contact of two surfaces)"),
+                ));
+            }
+        }
+        let tolerance = match kw.param("POSITION TOLERANCE") {
+            Some(t) => Some(parse_f64(t).filter(|v| *v >= 0.0).ok_or_else(|| {
+                self.err(
+                    kw.loc,
+                    ent.clone(),
+                    format!("POSITION TOLERANCE={t} is not a length"),
+                )
+            })?),
+            None => None,
+        };
+        let adjust = match kw.param("ADJUST").map(str::to_ascii_uppercase).as_deref() {
+            None | Some("YES") => true,
+            Some("NO") => false,
+            Some(o) => return Err(self.err(kw.loc, ent, format!("ADJUST={o}: YES or NO"))),
+        };
+        self.ties.push(RawTie {
+            name,
+            tolerance,
+            adjust,
+            surfaces: None,
+            loc: kw.loc,
+        });
+        Ok(Block::Tie(self.ties.len() - 1))
+    }
+
+    /// The data line of `*TIE` k: slave surface, master surface.
+    pub(super) fn tie_line(&mut self, k: usize, line: &str, loc: Loc) -> Result<(), ImportError> {
+        let v: Vec<String> = fields(line)
+            .map(|s| s.trim().to_ascii_uppercase())
+            .collect();
+        let ent = format!("*TIE NAME={}", self.ties[k].name);
+        match (v.first(), v.get(1)) {
+            (Some(s), Some(m))
+                if !s.is_empty() && !m.is_empty() && self.ties[k].surfaces.is_none() =>
+            {
+                self.ties[k].surfaces = Some((s.clone(), m.clone()));
+                Ok(())
+            }
+            _ => Err(self.err(loc, ent, "one data line: slave surface, master surface")),
+        }
+    }
+
+    /// A data line of an element-face `*SURFACE`: element id or element set, face `Sn`.
+    pub(super) fn element_surface_line(
+        &mut self,
+        name: String,
+        line: &str,
+        loc: Loc,
+    ) -> Result<(), ImportError> {
+        let v: Vec<&str> = fields(line).collect();
+        let face = v
+            .get(1)
+            .map(|s| s.trim().to_ascii_uppercase())
+            .and_then(|s| s.strip_prefix('S').and_then(|n| n.parse::<usize>().ok()))
+            .filter(|n| (1..=6).contains(n));
+        let Some(face) = face else {
+            return Err(self.err(
+                loc,
+                format!("*SURFACE NAME={name}"),
+                "element faces are given as 'element or element set, Sn' (n = 1 … 6)",
+            ));
+        };
+        (self.element_surfaces.entry(name).or_default()).push((
+            v[0].trim().to_ascii_uppercase(),
+            face,
+            loc,
+        ));
+        Ok(())
+    }
+
+    /// Every `*TIE` → MPCs of its slave nodes on the master faces (module doc).
+    pub(super) fn resolve_ties(&mut self, sets: &Sets) -> Result<(), ImportError> {
+        let ties = std::mem::take(&mut self.ties);
+        let mut missed: BTreeMap<String, Vec<u64>> = BTreeMap::new();
+        // components already held by *BOUNDARY or dependent in an equation (ccx: not active)
+        let model = &self.b.model;
+        let mut inactive: HashSet<(NodeIndex, u8)> = (model.spcs.iter())
+            .flat_map(|s| {
+                (0..6u8)
+                    .filter(move |c| s.dofs.0 & (1 << c) != 0)
+                    .map(move |c| (s.node, c))
+            })
+            .chain(
+                model
+                    .mpcs
+                    .iter()
+                    .map(|m| (m.terms[0].0.node, m.terms[0].0.component)),
+            )
+            .collect();
+        for tie in &ties {
+            let ent = format!("*TIE NAME={}", tie.name);
+            let Some((slave, master)) = &tie.surfaces else {
+                return Err(self.err(tie.loc, ent, "no data line (slave surface, master surface)"));
+            };
+            let faces = self.surface_faces(master, sets, &ent)?.ok_or_else(|| {
+                self.err(
+                    tie.loc,
+                    ent.clone(),
+                    format!("the master surface {master} must be an element-face *SURFACE"),
+                )
+            })?;
+            let on_master: BTreeSet<NodeIndex> =
+                faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
+            let slaves: BTreeSet<NodeIndex> = match self.surface_faces(slave, sets, &ent)? {
+                Some(f) => f.iter().flat_map(|f| f.nodes.iter().copied()).collect(),
+                None => self.node_surface(slave, sets, &ent, tie.loc)?,
+            };
+            let tolerance = match tie.tolerance {
+                Some(t) if t >= 1e-10 => t,
+                _ => 0.025 * self.typical_size(&faces),
+            };
+            for &n in slaves.iter().filter(|n| !on_master.contains(n)) {
+                let p = self.b.model.nodes[n].x;
+                let best = faces
+                    .iter()
+                    .filter_map(|f| {
+                        let x: Vec<[f64; 3]> =
+                            f.nodes.iter().map(|&m| self.b.model.nodes[m].x).collect();
+                        let (xi, at) = project(&x, p)?;
+                        Some((dist(at, p), f, xi, at))
+                    })
+                    .min_by(|a, b| a.0.total_cmp(&b.0));
+                let Some((_, face, xi, at)) = best.filter(|b| b.0 <= tolerance) else {
+                    missed
+                        .entry(tie.name.clone())
+                        .or_default()
+                        .push(self.b.model.nodes[n].id);
+                    continue;
+                };
+                for &m in face.nodes.iter().chain(std::iter::once(&n)) {
+                    if self.b.model.nodes[m].displacement_frame.is_some() {
+                        return Err(self.err(
+                            tie.loc,
+                            ent,
+                            format!(
+                                "node {} (face of element {}) has a *TRANSFORM frame: tied nodes must be in the global frame",
+                                self.b.model.nodes[m].id, face.element
+                            ),
+                        ));
+                    }
+                }
+                let (shape, _) = face_shape(face.nodes.len(), xi);
+                for c in 0..3u8 {
+                    if !inactive.insert((n, c)) {
+                        missed
+                            .entry(tie.name.clone())
+                            .or_default()
+                            .push(self.b.model.nodes[n].id);
+                        continue;
+                    }
+                    let mut terms = vec![(
+                        NodeDof {
+                            node: n,
+                            component: c,
+                        },
+                        1.0,
+                    )];
+                    terms.extend(
+                        (face.nodes.iter().zip(&shape))
+                            .filter(|(_, w)| w.abs() > 1e-12)
+                            .map(|(&m, &w)| {
+                                (
+                                    NodeDof {
+                                        node: m,
+                                        component: c,
+                                    },
+                                    -w,
+                                )
+                            }),
+                    );
+                    let id = self.b.model.mpcs.len() as u64 + 1;
+                    self.b.model.mpcs.push(Mpc { id, terms });
+                }
+                if tie.adjust {
+                    self.b.model.nodes[n].x = at;
+                }
+            }
+        }
+        for (name, mut ids) in missed {
+            ids.sort_unstable();
+            ids.dedup();
+            let shown: Vec<String> = ids.iter().take(10).map(u64::to_string).collect();
+            self.b.model.warnings.push(crate::import::ImportWarning {
+                file: self.b.files[0].clone(),
+                message: format!(
+                    "*TIE {name}: {} slave node(s) lie farther than the position tolerance from every master face, or have components already held by *BOUNDARY or an equation, and are not tied there (as CalculiX): {}{}",
+                    ids.len(),
+                    shown.join(", "),
+                    if ids.len() > 10 { ", …" } else { "" }
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The faces of an element-face surface (`None`: no such surface).
+    fn surface_faces(
+        &self,
+        name: &str,
+        sets: &Sets,
+        ent: &str,
+    ) -> Result<Option<Vec<Face>>, ImportError> {
+        let Some(lines) = self.element_surfaces.get(name) else {
+            return Ok(None);
+        };
+        let mut out = Vec::new();
+        for (target, face, at) in lines {
+            let elements: Vec<usize> = match parse_u64(target) {
+                Some(id) => vec![sets.elems.get(id).ok_or_else(|| {
+                    self.err(
+                        *at,
+                        ent.to_owned(),
+                        format!("*SURFACE {name}: unknown element {id}"),
+                    )
+                })?],
+                None => sets.element_sets.get(target).cloned().ok_or_else(|| {
+                    self.err(
+                        *at,
+                        ent.to_owned(),
+                        format!("*SURFACE {name}: unknown element set {target}"),
+                    )
+                })?,
+            };
+            for e in elements {
+                let el = &self.b.model.elements[e];
+                let nodes = solid_faces(el.kind)
+                    .filter(|(faces, _)| *face <= faces.len())
+                    .and_then(|(faces, edges)| face_nodes(&el.nodes, faces[*face - 1], edges))
+                    .ok_or_else(|| {
+                        self.err(
+                            *at,
+                            ent.to_owned(),
+                            format!(
+                                "*SURFACE {name}: element {} ({:?}) has no solid face S{face}",
+                                el.id, el.kind
+                            ),
+                        )
+                    })?;
+                out.push(Face {
+                    element: el.id,
+                    nodes,
+                });
+            }
+        }
+        Ok(Some(out))
+    }
+
+    /// The nodes of a node surface (`*SURFACE, TYPE=NODE`).
+    fn node_surface(
+        &self,
+        name: &str,
+        sets: &Sets,
+        ent: &str,
+        loc: Loc,
+    ) -> Result<BTreeSet<NodeIndex>, ImportError> {
+        let lines = self
+            .surfaces
+            .get(name)
+            .ok_or_else(|| self.err(loc, ent.to_owned(), format!("unknown surface {name}")))?;
+        let mut out = BTreeSet::new();
+        for (t, _, at) in lines {
+            out.extend(sets.target(t, *at, ent, self)?);
+        }
+        Ok(out)
+    }
+
+    /// CalculiX's typical element size of the master faces (module doc): the mean distance
+    /// from the centroid of the triangle of each face's first three corners to its first edge,
+    /// 2·area / (3·|edge|).
+    fn typical_size(&self, faces: &[Face]) -> f64 {
+        let sizes: Vec<f64> = faces
+            .iter()
+            .map(|f| {
+                let [a, b, c] = [0, 1, 2].map(|k| self.b.model.nodes[f.nodes[k]].x);
+                let (u, v) = (
+                    [0, 1, 2].map(|k| b[k] - a[k]),
+                    [0, 1, 2].map(|k| c[k] - a[k]),
+                );
+                let cross = [
+                    u[1] * v[2] - u[2] * v[1],
+                    u[2] * v[0] - u[0] * v[2],
+                    u[0] * v[1] - u[1] * v[0],
+                ];
+                let area2 = dist(cross, [0.0; 3]);
+                area2 / (3.0 * dist(a, b)).max(f64::MIN_POSITIVE)
+            })
+            .collect();
+        sizes.iter().sum::<f64>() / sizes.len().max(1) as f64
+    }
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Shape functions of a face of `n` nodes (3: linear triangle, 6: quadratic, 4: bilinear
+/// quadrilateral, 8: serendipity; corners then mid-side nodes of edges 1-2, 2-3, …) at (ξ, η),
+/// and their derivatives (Zienkiewicz & Taylor, Vol. 1 §8.5, §8.8). Triangles use (ξ, η) with
+/// L = (1 − ξ − η, ξ, η); quadrilaterals (ξ, η) ∈ [−1, 1]².
+pub(super) fn face_shape(n: usize, p: [f64; 2]) -> (Vec<f64>, Vec<[f64; 2]>) {
+    let (s, t) = (p[0], p[1]);
+    match n {
+        3 => (
+            vec![1.0 - s - t, s, t],
+            vec![[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]],
+        ),
+        6 => {
+            let l = [1.0 - s - t, s, t];
+            let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+            let mut n = Vec::with_capacity(6);
+            let mut d = Vec::with_capacity(6);
+            for k in 0..3 {
+                n.push(l[k] * (2.0 * l[k] - 1.0));
+                d.push(dl[k].map(|v| (4.0 * l[k] - 1.0) * v));
+            }
+            for k in 0..3 {
+                let (a, b) = (k, (k + 1) % 3);
+                n.push(4.0 * l[a] * l[b]);
+                d.push([0, 1].map(|j| 4.0 * (dl[a][j] * l[b] + l[a] * dl[b][j])));
+            }
+            (n, d)
+        }
+        4 | 8 => {
+            const C: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+            let mut n = vec![0.0; n];
+            let mut d = vec![[0.0; 2]; n.len()];
+            let quadratic = n.len() == 8;
+            for (k, c) in C.iter().enumerate() {
+                let (a, b) = (1.0 + c[0] * s, 1.0 + c[1] * t);
+                if quadratic {
+                    let e = c[0] * s + c[1] * t - 1.0;
+                    n[k] = 0.25 * a * b * e;
+                    d[k] = [0.25 * c[0] * (b * e + a * b), 0.25 * c[1] * (a * e + a * b)];
+                } else {
+                    n[k] = 0.25 * a * b;
+                    d[k] = [0.25 * c[0] * b, 0.25 * c[1] * a];
+                }
+            }
+            if quadratic {
+                // mid-side nodes of edges 1-2 (η = −1), 2-3 (ξ = 1), 3-4 (η = 1), 4-1 (ξ = −1)
+                for (k, (axis, sign)) in [(1, -1.0), (0, 1.0), (1, 1.0), (0, -1.0)]
+                    .iter()
+                    .enumerate()
+                {
+                    let (u, v) = if *axis == 1 { (s, t) } else { (t, s) };
+                    // N = ½ (1 − u²)(1 + sign v); u runs along the edge
+                    n[4 + k] = 0.5 * (1.0 - u * u) * (1.0 + sign * v);
+                    let du = -u * (1.0 + sign * v);
+                    let dv = 0.5 * (1.0 - u * u) * sign;
+                    d[4 + k] = if *axis == 1 { [du, dv] } else { [dv, du] };
+                }
+            }
+            (n, d)
+        }
+        _ => (vec![], vec![]),
+    }
+}
+
+/// The point of a face (corner and mid-side coordinates `x`) nearest to `p`: Gauss–Newton on
+/// min |x(ξ, η) − p|², the parameters clamped to the face. `None` for a degenerate face.
+fn project(x: &[[f64; 3]], p: [f64; 3]) -> Option<([f64; 2], [f64; 3])> {
+    let tri = matches!(x.len(), 3 | 6);
+    let clamp = |q: [f64; 2]| -> [f64; 2] {
+        if tri {
+            let (mut s, mut t) = (q[0].max(0.0), q[1].max(0.0));
+            if s + t > 1.0 {
+                let e = 0.5 * (s + t - 1.0);
+                s = (s - e).clamp(0.0, 1.0);
+                t = (t - e).clamp(0.0, 1.0);
+            }
+            [s, t]
+        } else {
+            [q[0].clamp(-1.0, 1.0), q[1].clamp(-1.0, 1.0)]
+        }
+    };
+    let at = |q: [f64; 2]| -> ([f64; 3], [[f64; 3]; 2]) {
+        let (n, d) = face_shape(x.len(), q);
+        let mut r = [0.0; 3];
+        let mut g = [[0.0; 3]; 2];
+        for k in 0..x.len() {
+            for c in 0..3 {
+                r[c] += n[k] * x[k][c];
+                g[0][c] += d[k][0] * x[k][c];
+                g[1][c] += d[k][1] * x[k][c];
+            }
+        }
+        (r, g)
+    };
+    let mut q = if tri { [1.0 / 3.0; 2] } else { [0.0; 2] };
+    for _ in 0..30 {
+        let (r, g) = at(q);
+        let e = [p[0] - r[0], p[1] - r[1], p[2] - r[2]];
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let (a, b, c) = (dot(g[0], g[0]), dot(g[0], g[1]), dot(g[1], g[1]));
+        let det = a * c - b * b;
+        if det.is_nan() || det <= 1e-30 * (a + c) * (a + c) {
+            return None;
+        }
+        let (f0, f1) = (dot(g[0], e), dot(g[1], e));
+        let step = [(c * f0 - b * f1) / det, (a * f1 - b * f0) / det];
+        let next = clamp([q[0] + step[0], q[1] + step[1]]);
+        let moved = (next[0] - q[0]).abs() + (next[1] - q[1]).abs();
+        q = next;
+        if moved < 1e-14 {
+            break;
+        }
+    }
+    Some((q, at(q).0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn face_shape_functions_interpolate_their_nodes_and_sum_to_one() {
+        let tri6 = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [0.0, 1.0],
+            [0.5, 0.0],
+            [0.5, 0.5],
+            [0.0, 0.5],
+        ];
+        let quad8 = [
+            [-1.0, -1.0],
+            [1.0, -1.0],
+            [1.0, 1.0],
+            [-1.0, 1.0],
+            [0.0, -1.0],
+            [1.0, 0.0],
+            [0.0, 1.0],
+            [-1.0, 0.0],
+        ];
+        for nodes in [&tri6[..3], &tri6[..], &quad8[..4], &quad8[..]] {
+            for (k, q) in nodes.iter().enumerate() {
+                let (n, _) = face_shape(nodes.len(), *q);
+                for (j, v) in n.iter().enumerate() {
+                    assert!(
+                        (v - f64::from(u8::from(j == k))).abs() < 1e-14,
+                        "{} {k} {j}",
+                        nodes.len()
+                    );
+                }
+            }
+            // derivatives against central differences at an inner point
+            let p = [0.21, 0.17];
+            let (n0, d) = face_shape(nodes.len(), p);
+            assert!((n0.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+            for j in 0..2 {
+                let mut q = p;
+                q[j] += 1e-7;
+                let (n1, _) = face_shape(nodes.len(), q);
+                for k in 0..nodes.len() {
+                    assert!(
+                        ((n1[k] - n0[k]) / 1e-7 - d[k][j]).abs() < 1e-6,
+                        "{} {k} {j}",
+                        nodes.len()
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn projection_finds_the_foot_point_and_clamps_to_the_face() {
+        let quad = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let (q, at) = project(&quad, [0.5, 0.25, 0.3]).unwrap();
+        assert!(
+            (q[0] + 0.5).abs() < 1e-12 && (q[1] + 0.5).abs() < 1e-12,
+            "{q:?}"
+        );
+        assert!(dist(at, [0.5, 0.25, 0.0]) < 1e-12);
+        let (_, at) = project(&quad, [2.5, 0.5, 0.0]).unwrap();
+        assert!(dist(at, [2.0, 0.5, 0.0]) < 1e-12);
+    }
+}

@@ -1,0 +1,158 @@
+//! Abaqus/CalculiX element variants (issue 32): C3D8R is formed as CalculiX forms it (one-point
+//! integration with hourglass control) and matches ccx 2.20's frequencies; the variants flexbody
+//! does not form (B31R, S4R, C3D10M, S3R) are refused naming the type and line, and read as their
+//! base type only when `--ignore VARIANT=BASE` asks for it — recorded in the recipe, rebuilt by
+//! `check --model`. The ccx results are `fixtures/ccx_elements/results.json` (its
+//! `regenerate.py` runs ccx on the decks beside it).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{build_as_ccx, exe, scratch};
+use flexbody_reader as file;
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/ccx_elements")
+        .join(name)
+}
+
+/// ccx 2.20's frequencies of `key` (a deck stem, or `stem:BASE`).
+fn ccx(key: &str) -> Vec<f64> {
+    let text = std::fs::read_to_string(fixture("results.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    (v[key]
+        .as_array()
+        .unwrap_or_else(|| panic!("{key} in results.json")))
+    .iter()
+    .map(|f| f.as_f64().unwrap())
+    .collect()
+}
+
+/// Builds `deck` as ccx solves it (consistent mass, normal modes) with `extra`, reads the file.
+fn build(deck: &Path, extra: &[&str], out: &Path) -> (file::ReducedBody, String) {
+    let o = build_as_ccx(deck, extra, out);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{}: {err}", deck.display());
+    (file::read(out).unwrap(), err)
+}
+
+fn worst(ours: &[f64], theirs: &[f64]) -> f64 {
+    assert_eq!(ours.len(), theirs.len());
+    (ours.iter().zip(theirs))
+        .map(|(a, b)| (a - b).abs() / b)
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn c3d8r_matches_calculix_on_a_regular_and_a_distorted_bar() {
+    let dir = scratch("c3d8r");
+    for stem in ["c3d8r_bar", "c3d8r_distorted"] {
+        let (body, _) = build(
+            &fixture(&format!("{stem}.inp")),
+            &["-q"],
+            &dir.join(format!("{stem}.flexbody")),
+        );
+        let w = worst(&body.modes.frequency_hz, &ccx(stem));
+        // ccx prints 7 significant digits
+        assert!(w <= 1e-6, "{stem}: {w:e}: {:?}", body.modes.frequency_hz);
+    }
+    // the base type the reader used to substitute is another element: C3D8 matches ccx's C3D8,
+    // 36 % above ccx's C3D8R on the first bending pair
+    let c3d8 = dir.join("c3d8_bar.inp");
+    let text = std::fs::read_to_string(fixture("c3d8r_bar.inp")).unwrap();
+    std::fs::write(&c3d8, text.replace("TYPE=C3D8R", "TYPE=C3D8")).unwrap();
+    let (body, _) = build(&c3d8, &["-q"], &dir.join("c3d8.flexbody"));
+    assert!(worst(&body.modes.frequency_hz, &ccx("c3d8r_bar:C3D8")) <= 1e-6);
+    let ratio = ccx("c3d8r_bar:C3D8")[0] / ccx("c3d8r_bar")[0];
+    assert!((ratio - 1.3557).abs() < 1e-3, "{ratio}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn b31r_and_s4r_are_refused_and_read_as_b31_and_s4_only_on_request() {
+    let dir = scratch("variants");
+    for (stem, variant, base, line) in [
+        ("b31r_beam", "B31R", "B31", 24),
+        ("s4r_plate", "S4R", "S4", 124),
+    ] {
+        let deck = fixture(&format!("{stem}.inp"));
+        let out = dir.join(format!("{stem}.flexbody"));
+        let o = build_as_ccx(&deck, &["-q"], &out);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(&format!("{stem}.inp:{line}: *ELEMENT, TYPE={variant}"))
+                && err.contains(&format!("--ignore {variant}={base}"))
+                && err.contains("ccx 2.20"),
+            "{err}"
+        );
+        assert!(!out.exists());
+        // on request: the base element, said in a warning and recorded in the recipe
+        let key = format!("{variant}={base}");
+        let (body, warnings) = build(&deck, &["--ignore", &key.to_lowercase()], &out);
+        assert!(
+            warnings.contains(&format!("element type {variant} read as {base} on request")),
+            "{warnings}"
+        );
+        let recipe = body.recipe.as_ref().unwrap();
+        assert_eq!(recipe.options.ignore, vec![key.to_lowercase()]);
+        let check = exe()
+            .arg("check")
+            .arg(&out)
+            .arg("--model")
+            .arg(&deck)
+            .output()
+            .unwrap();
+        assert!(
+            check.status.success(),
+            "{}",
+            String::from_utf8_lossy(&check.stdout)
+        );
+        // the measured difference the refusal states: ccx's variant against its base type
+        let ours = body.modes.frequency_hz[0];
+        let (ccx_variant, ccx_base) = (ccx(stem)[0], ccx(&format!("{stem}:{base}"))[0]);
+        match variant {
+            // flexbody's B31 and ccx's B31 (C3D8I bricks) agree on the first mode; ccx's B31R is
+            // a sixth of it
+            "B31R" => {
+                assert!(
+                    (ours - ccx_base).abs() / ccx_base < 2e-3,
+                    "{ours} {ccx_base}"
+                );
+                assert!((ccx_variant - 6.891636).abs() < 1e-6 && ccx_base / ccx_variant > 6.0);
+            }
+            _ => {
+                assert!(
+                    (ours - ccx_base).abs() / ccx_base < 1e-2,
+                    "{ours} {ccx_base}"
+                );
+                assert!((ccx_variant - 9.26129).abs() < 1e-5);
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn c3d10m_and_s3r_which_calculix_refuses_are_refused() {
+    let dir = scratch("c3d10m");
+    let deck = dir.join("t.inp");
+    let tet = "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n5,.5,0,0\n6,.5,.5,0\n7,0,.5,0\n\
+               8,0,0,.5\n9,.5,0,.5\n10,0,.5,.5\n*ELEMENT, TYPE=C3D10M, ELSET=E\n\
+               1,1,2,3,4,5,6,7,8,9,10\n*ELEMENT, TYPE=S3R, ELSET=S\n2,1,2,3\n\
+               *MATERIAL, NAME=M\n*ELASTIC\n2.1e11,.3\n*DENSITY\n7800.\n\
+               *SOLID SECTION, ELSET=E, MATERIAL=M\n*SHELL SECTION, ELSET=S, MATERIAL=M\n.01\n";
+    std::fs::write(&deck, tet).unwrap();
+    let o = build_as_ccx(&deck, &["-q"], &dir.join("t.flexbody"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.code() == Some(2)
+            && err.contains("t.inp:12: *ELEMENT, TYPE=C3D10M")
+            && err.contains("t.inp:14: *ELEMENT, TYPE=S3R")
+            && err.contains("--ignore C3D10M=C3D10,S3R=S3"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

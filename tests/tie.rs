@@ -1,0 +1,146 @@
+//! `*TIE` (issue 32): slave nodes held on the master faces by the faces' shape functions, as
+//! CalculiX ties them. Our decks in `fixtures/ccx_tie/` (a cantilever cut in two meshes, linear
+//! and quadratic hexahedra, conforming and non-conforming faces, a gap inside and one outside
+//! ccx's default position tolerance) are built as ccx solves them and compared with ccx 2.20's
+//! frequencies (`fixtures/ccx_tie/results.json`, its `regenerate.py` runs ccx): ccx prints 7
+//! significant digits.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{build_as_ccx, scratch};
+use flexbody_reader as file;
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/ccx_tie")
+        .join(name)
+}
+
+fn ccx(key: &str) -> Vec<f64> {
+    let text = std::fs::read_to_string(fixture("results.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    (v[key]
+        .as_array()
+        .unwrap_or_else(|| panic!("{key} in results.json")))
+    .iter()
+    .map(|f| f.as_f64().unwrap())
+    .collect()
+}
+
+/// Builds `deck` as ccx solves it; the body and the build's stderr.
+fn build(deck: &Path, dir: &Path) -> (file::ReducedBody, String) {
+    let out = dir.join(deck.with_extension("flexbody").file_name().unwrap());
+    let o = build_as_ccx(deck, &[], &out);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{}: {err}", deck.display());
+    (file::read(&out).unwrap(), err)
+}
+
+/// Worst relative difference of the elastic modes (ccx's zero modes: rigid here too).
+fn worst(body: &file::ReducedBody, theirs: &[f64]) -> f64 {
+    let top = theirs.iter().cloned().fold(0.0, f64::max);
+    let rigid = theirs.iter().filter(|f| **f < 1e-4 * top).count();
+    let labelled = (body.modes.labels.iter())
+        .filter(|l| **l == file::ModeLabel::Rigid)
+        .count();
+    assert_eq!(
+        labelled, rigid,
+        "{:?} against {theirs:?}",
+        body.modes.frequency_hz
+    );
+    (body.modes.frequency_hz[rigid..]
+        .iter()
+        .zip(&theirs[rigid..]))
+    .map(|(a, b)| (a - b).abs() / b)
+    .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_conforming_tie_is_the_merged_mesh() {
+    let dir = scratch("tie-conforming");
+    let (merged, _) = build(&fixture("tie_merged.inp"), &dir);
+    let (tied, _) = build(&fixture("tie_conforming.inp"), &dir);
+    for (a, b) in tied
+        .modes
+        .frequency_hz
+        .iter()
+        .zip(&merged.modes.frequency_hz)
+    {
+        assert!((a - b).abs() <= 1e-9 * b, "{a} against {b}");
+    }
+    assert!(worst(&merged, &ccx("tie_merged")) <= 1e-6);
+    assert!(worst(&tied, &ccx("tie_conforming")) <= 1e-6);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn non_conforming_and_quadratic_ties_match_calculix() {
+    let dir = scratch("tie-ccx");
+    for stem in [
+        "tie_nonconforming",
+        "tie20_conforming",
+        "tie20_nonconforming",
+    ] {
+        let (body, _) = build(&fixture(&format!("{stem}.inp")), &dir);
+        let w = worst(&body, &ccx(stem));
+        assert!(w <= 1e-6, "{stem}: {w:e}: {:?}", body.modes.frequency_hz);
+    }
+    // the non-conforming tie is a little softer than the conforming one (the slave face's
+    // extra nodes follow the master face's bilinear field), within 3 % on ten modes (2.4 % on the ninth)
+    let (a, b) = (ccx("tie_nonconforming"), ccx("tie_conforming"));
+    assert!(a.iter().zip(&b).all(|(x, y)| x <= y && (y - x) / y < 3e-2));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_default_position_tolerance_ties_a_small_gap_and_not_a_larger_one() {
+    let dir = scratch("tie-gap");
+    // 0.3 mm: within ccx's 2.5 % of the typical element size (0.05 m / 3 → 0.42 mm); the
+    // slave nodes move onto the master faces (ADJUST=YES)
+    let (body, err) = build(&fixture("tie_gap0003.inp"), &dir);
+    assert!(!err.contains("not tied"), "{err}");
+    assert!(worst(&body, &ccx("tie_gap0003")) <= 1e-6);
+    // 0.5 mm: no slave node is tied, said in a warning; the right part is free (6 rigid modes)
+    let (body, err) = build(&fixture("tie_gap0005.inp"), &dir);
+    assert!(
+        err.contains("*TIE T1: 16 slave node(s) lie farther than the position tolerance"),
+        "{err}"
+    );
+    assert!(worst(&body, &ccx("tie_gap0005")) <= 1e-6);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_node_surface_slave_ties_as_the_element_faces_do() {
+    let dir = scratch("tie-nodes");
+    let text = std::fs::read_to_string(fixture("tie_nonconforming.inp")).unwrap();
+    // the right part's nodes at x = 0.5 as a node set, the slave surface of TYPE=NODE
+    let mut slaves = Vec::new();
+    let mut in_nodes = false;
+    for line in text.lines() {
+        if line.starts_with('*') {
+            in_nodes = line.starts_with("*NODE");
+            continue;
+        }
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        if in_nodes && f[0].parse::<u64>().unwrap() > 1000 && f[1].parse::<f64>().unwrap() == 0.5 {
+            slaves.push(f[0].to_owned());
+        }
+    }
+    assert_eq!(slaves.len(), 16);
+    let nodes: Vec<String> = slaves.chunks(8).map(|c| c.join(", ")).collect();
+    let deck = dir.join("tie_nodes.inp");
+    let text = text.replace(
+        "*SURFACE, NAME=SLAVE\nSFACE, S6\n",
+        &format!(
+            "*NSET, NSET=SNODES\n{}\n*SURFACE, NAME=SLAVE, TYPE=NODE\nSNODES\n",
+            nodes.join("\n")
+        ),
+    );
+    std::fs::write(&deck, text).unwrap();
+    let (body, _) = build(&deck, &dir);
+    assert!(worst(&body, &ccx("tie_nonconforming")) <= 1e-6);
+    let _ = std::fs::remove_dir_all(&dir);
+}
