@@ -247,15 +247,22 @@ pub fn element_matrices(
                     prop.id
                 )));
             };
-            if s.i12 != 0.0 {
-                return Err(fail(format!("property {}: product of inertia I12 = {} is not supported (principal axes only)", prop.id, s.i12)));
-            }
+            let x = coords::<2>(model, n);
+            let (v, iz, iy) = match el.orientation {
+                Some(v) => {
+                    let (v, iz, iy) =
+                        beam::principal_orientation(&x, v, s.i1, s.i2, s.i12).map_err(elem_err)?;
+                    (Some(v), iz, iy)
+                }
+                None => (None, s.i1, s.i2),
+            };
             let p = BeamProps {
                 area: s.area,
-                iz: s.i1,
-                iy: s.i2,
+                iz,
+                iy,
                 j: s.j,
-                shear: if spec.beam == BeamTheory::Timoshenko {
+                // Nastran ignores K1, K2 when I12 ≠ 0 (QRG PBAR Remark 4).
+                shear: if spec.beam == BeamTheory::Timoshenko && s.i12 == 0.0 {
                     s.shear_factors
                 } else {
                     None
@@ -263,8 +270,7 @@ pub fn element_matrices(
                 nsm: s.nsm,
             };
             let lumping = lumped.then_some(spec.beam_lumping.for_element(el.kind));
-            let (k, m) = beam::matrices(&coords::<2>(model, n), el.orientation, &iso, &p, lumping)
-                .map_err(elem_err)?;
+            let (k, m) = beam::matrices(&x, v, &iso, &p, lumping).map_err(elem_err)?;
             ElementMatrices { dpn: 6, k, m }
         }
         ElementKind::Rod2 => {

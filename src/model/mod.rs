@@ -13,6 +13,7 @@
 
 use std::collections::BTreeMap;
 
+pub mod beam_library;
 pub mod connector;
 pub mod deck;
 pub mod generate;
@@ -165,7 +166,8 @@ pub struct Element {
     pub orientation: Option<[f64; 3]>,
 }
 
-/// Standard beam cross-section shapes (PBARL/PBEAML TYPE, Abaqus *BEAM SECTION SECTION=).
+/// Standard beam cross-section shapes of Abaqus *BEAM SECTION SECTION= (Nastran PBARL/PBEAML:
+/// [`beam_library`]).
 #[derive(Debug, Clone, PartialEq)]
 pub enum SectionShape {
     /// Solid circle, radius r (Nastran ROD: DIM1 = r; Abaqus CIRC: r).
@@ -175,7 +177,7 @@ pub enum SectionShape {
         outer_radius: f64,
         inner_radius: f64,
     },
-    /// Solid rectangle, width (local y) × height (local z) (Nastran BAR, Abaqus RECT).
+    /// Solid rectangle, width (local y) × height (local z) (Abaqus RECT).
     Rectangle { width: f64, height: f64 },
     /// Hollow rectangle (Nastran BOX / Abaqus BOX): outer width, outer height, wall thicknesses.
     Box {

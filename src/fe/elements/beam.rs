@@ -64,6 +64,33 @@ pub fn local_frame(x: &[Xyz; 2], v: Option<Xyz>) -> Result<([Xyz; 3], f64), Elem
     Ok(([ex, ey, cross(ex, ey)], l))
 }
 
+/// A section with a product of inertia I12 = ∫yz dA ≠ 0 (Nastran PBAR/PBEAM I12, PBARL L or Z)
+/// bends about its principal axes: the orientation vector turned about the element axis to
+/// the principal y' = y cos θ + z sin θ, with (I1', I2', θ) from
+/// [`crate::model::beam_library::principal_axes`]. Returns (v', I1', I2'); I12 = 0 returns
+/// the inputs.
+pub fn principal_orientation(
+    x: &[Xyz; 2],
+    v: Xyz,
+    i1: f64,
+    i2: f64,
+    i12: f64,
+) -> Result<(Xyz, f64, f64), ElementError> {
+    if i12 == 0.0 {
+        return Ok((v, i1, i2));
+    }
+    if i1 * i2 <= i12 * i12 {
+        return Err(ElementError::BadConstants(format!(
+            "beam needs I1·I2 > I12² (I1 = {i1}, I2 = {i2}, I12 = {i12})"
+        )));
+    }
+    let ([_, ey, ez], _) = local_frame(x, Some(v))?;
+    let (i1p, i2p, theta) = crate::model::beam_library::principal_axes(i1, i2, i12);
+    let (s, c) = theta.sin_cos();
+    let yp = [0, 1, 2].map(|k| ey[k] * c + ez[k] * s);
+    Ok((yp, i1p, i2p))
+}
+
 /// The shear parameters (Φ_y, Φ_z) = (12EI_z/(G k_y A L²), 12EI_y/(G k_z A L²)) of the two
 /// bending planes (module doc); zero for Euler–Bernoulli.
 pub fn shear_parameters(l: f64, mat: &Isotropic, p: &BeamProps) -> (f64, f64) {

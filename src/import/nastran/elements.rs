@@ -158,6 +158,7 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
         ids = [&ids[..9], &ids[12..15], &ids[9..12]].concat();
     }
     let orientation = if kind == Beam2 || kind == Bar2 {
+        unsupported_bar_fields(g, name)?;
         let s = g.text(4);
         if s.is_empty() {
             return Err(g.err(
@@ -178,6 +179,39 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
         None
     };
     Ok((name, kind, ids, orientation))
+}
+
+/// CBAR/CBEAM fields after the orientation that change the element and are not implemented:
+/// pin flags PA/PB, offsets W1A…W3B, CBEAM's built-in twist BIT (the real in OFFT's place) and
+/// warping scalar points SA/SB: each nonzero one is an error naming it. OFFT (text) only says
+/// in which frame the offsets are; with zero offsets it changes nothing.
+fn unsupported_bar_fields(g: &C, name: &str) -> Result<(), ImportError> {
+    let f8 = g.text(7);
+    let bit = name == "CBEAM" && !f8.is_empty() && !f8.bytes().any(|b| b.is_ascii_alphabetic());
+    if bit && g.real(7)?.is_some_and(|v| v != 0.0) {
+        return Err(g.err(7, "built-in twist BIT is not implemented"));
+    }
+    for (k, what) in [(8, "pin flags PA"), (9, "pin flags PB")] {
+        if g.int(k)?.is_some_and(|v| v != 0) {
+            return Err(g.err(k, format!("{what} (released end dofs) are not implemented")));
+        }
+    }
+    for (k, what) in ["W1A", "W2A", "W3A", "W1B", "W2B", "W3B"]
+        .iter()
+        .enumerate()
+    {
+        if g.real(10 + k)?.is_some_and(|v| v != 0.0) {
+            return Err(g.err(10 + k, format!("offset {what} is not implemented")));
+        }
+    }
+    if name == "CBEAM" {
+        for (k, what) in [(16, "SA"), (17, "SB")] {
+            if g.int(k)?.is_some_and(|v| v != 0) {
+                return Err(g.err(k, format!("warping scalar point {what} is not implemented")));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A structural element on a scalar point is an error naming its card and the point.

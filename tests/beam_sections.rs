@@ -1,0 +1,524 @@
+//! Every PBARL/PBEAML shape of Nastran's beam library (MSC QRG "PBARL", Figure 1) as a clamped
+//! cantilever held to one bending plane, against the Euler–Bernoulli closed form
+//! f = (1.875104²/2π)·√(E I/(ρ A L⁴)) (Blevins, *Formulas for Natural Frequency and Mode Shape*,
+//! Table 8-1) with I1 in plane 1 (element x–y) and I2 in plane 2 (x–z). The test's I values come
+//! from its own cut of each drawn shape (other rectangles than the library's, with holes of
+//! negative area, summed by the parallel-axis theorem), so a shape whose I1 and I2 were swapped
+//! fails in both planes. Also: PBARL BAR equals the PBAR with its QRG constants, an L section
+//! free to bend in both planes gives the principal frequencies of I1, I2, I12, and the refused
+//! forms (tapered, offset neutral axis, offsets, pin flags) name their card and line.
+
+mod common;
+mod nastran_support;
+
+use std::f64::consts::PI;
+use std::path::Path;
+
+use common::{generalized_eigenvalues, hz};
+use flexbody::fe::{assemble, eliminate, AssemblySpec, BeamTheory, ConstraintSpec, MassKind};
+use flexbody::import::{read_model, ImportOptions};
+use flexbody::model::Section;
+use nastran_support::write;
+
+const E: f64 = 2.1e11;
+const RHO: f64 = 7850.0;
+const LENGTH: f64 = 2.0;
+const ELEMENTS: usize = 20;
+/// Cantilever first-mode eigenvalue β₁L (Blevins Table 8-1).
+const BETA_L: f64 = 1.875_104_068_711_961;
+
+/// (A, I1, I2, I12) of rectangles (width along z, height along y, centre z, centre y, sign):
+/// a hole has sign −1 (parallel-axis theorem).
+fn rectangles(parts: &[(f64, f64, f64, f64, f64)]) -> (f64, f64, f64, f64) {
+    let a: f64 = parts.iter().map(|p| p.4 * p.0 * p.1).sum();
+    let zc = parts.iter().map(|p| p.4 * p.0 * p.1 * p.2).sum::<f64>() / a;
+    let yc = parts.iter().map(|p| p.4 * p.0 * p.1 * p.3).sum::<f64>() / a;
+    let (mut i1, mut i2, mut i12) = (0.0, 0.0, 0.0);
+    for &(b, h, z, y, s) in parts {
+        let ai = s * b * h;
+        i1 += s * b * h.powi(3) / 12.0 + ai * (y - yc).powi(2);
+        i2 += s * h * b.powi(3) / 12.0 + ai * (z - zc).powi(2);
+        i12 += ai * (y - yc) * (z - zc);
+    }
+    (a, i1, i2, i12)
+}
+
+/// The test's (A, I1, I2, I12) of each shape, from the QRG's drawing (y up, z right).
+fn expected(ty: &str, d: &[f64]) -> (f64, f64, f64, f64) {
+    let x = |k: usize| d[k - 1];
+    let circle = |r: f64, ri: f64| {
+        let i = PI * (r.powi(4) - ri.powi(4)) / 4.0;
+        (PI * (r * r - ri * ri), i, i, 0.0)
+    };
+    match ty {
+        "ROD" => circle(x(1), 0.0),
+        "TUBE" => circle(x(1), x(2)),
+        "TUBE2" => circle(x(1), x(1) - x(2)),
+        // QRG: I1 = b h³/12, I2 = h b³/12 with b = DIM1, h = DIM2.
+        "BAR" => (
+            x(1) * x(2),
+            x(1) * x(2).powi(3) / 12.0,
+            x(2) * x(1).powi(3) / 12.0,
+            0.0,
+        ),
+        "BOX" => {
+            let (w, h, tf, ts) = (x(1), x(2), x(3), x(4));
+            let (wi, hi) = (w - 2.0 * ts, h - 2.0 * tf);
+            (
+                w * h - wi * hi,
+                (w * h.powi(3) - wi * hi.powi(3)) / 12.0,
+                (h * w.powi(3) - hi * wi.powi(3)) / 12.0,
+                0.0,
+            )
+        }
+        "BOX1" => {
+            let (w, h, tt, tb, tl, tr) = (x(1), x(2), x(3), x(4), x(5), x(6));
+            let (wi, hi) = (w - tl - tr, h - tt - tb);
+            rectangles(&[
+                (w, h, w / 2.0, h / 2.0, 1.0),
+                (wi, hi, tl + wi / 2.0, tb + hi / 2.0, -1.0),
+            ])
+        }
+        "I" => {
+            let (h, wb, wt, tw, tb, tt) = (x(1), x(2), x(3), x(4), x(5), x(6));
+            let hw = h - tb - tt;
+            rectangles(&[
+                (wb, tb, 0.0, tb / 2.0, 1.0),
+                (tw, hw, 0.0, tb + hw / 2.0, 1.0),
+                (wt, tt, 0.0, h - tt / 2.0, 1.0),
+            ])
+        }
+        "I1" => {
+            let (o, tw, hw, h) = (x(1), x(2), x(3), x(4));
+            let zv = tw / 2.0 + o / 4.0;
+            rectangles(&[
+                (o + tw, h, 0.0, 0.0, 1.0),
+                (o / 2.0, hw, zv, 0.0, -1.0),
+                (o / 2.0, hw, -zv, 0.0, -1.0),
+            ])
+        }
+        "CHAN" => {
+            let (w, h, tw, tf) = (x(1), x(2), x(3), x(4));
+            rectangles(&[
+                (w, h, w / 2.0, h / 2.0, 1.0),
+                (w - tw, h - 2.0 * tf, tw + (w - tw) / 2.0, h / 2.0, -1.0),
+            ])
+        }
+        "CHAN1" => {
+            let (o, tw, hw, h) = (x(1), x(2), x(3), x(4));
+            rectangles(&[
+                (o + tw, h, (o + tw) / 2.0, h / 2.0, 1.0),
+                (o, hw, tw + o / 2.0, h / 2.0, -1.0),
+            ])
+        }
+        "CHAN2" => {
+            let (tl, tb, h, w) = (x(1), x(2), x(3), x(4));
+            rectangles(&[
+                (w, h, w / 2.0, h / 2.0, 1.0),
+                (w - 2.0 * tl, h - tb, w / 2.0, tb + (h - tb) / 2.0, -1.0),
+            ])
+        }
+        "T" => {
+            let (w, h, tf, tw) = (x(1), x(2), x(3), x(4));
+            rectangles(&[
+                (w, tf, 0.0, h - tf / 2.0, 1.0),
+                (tw, h - tf, 0.0, (h - tf) / 2.0, 1.0),
+            ])
+        }
+        "T2" => {
+            let (w, h, tf, tw) = (x(1), x(2), x(3), x(4));
+            rectangles(&[
+                (w, tf, 0.0, tf / 2.0, 1.0),
+                (tw, h - tf, 0.0, tf + (h - tf) / 2.0, 1.0),
+            ])
+        }
+        "T1" => {
+            let (hf, lw, tf, tw) = (x(1), x(2), x(3), x(4));
+            rectangles(&[
+                (tf, hf, tf / 2.0, 0.0, 1.0),
+                (lw, tw, tf + lw / 2.0, 0.0, 1.0),
+            ])
+        }
+        "L" => {
+            let (w, h, t1, t2) = (x(1), x(2), x(3), x(4));
+            rectangles(&[
+                (w, h, w / 2.0, h / 2.0, 1.0),
+                (
+                    w - t2,
+                    h - t1,
+                    t2 + (w - t2) / 2.0,
+                    t1 + (h - t1) / 2.0,
+                    -1.0,
+                ),
+            ])
+        }
+        "Z" => {
+            let (o, tw, hw, h) = (x(1), x(2), x(3), x(4));
+            let tf = (h - hw) / 2.0;
+            rectangles(&[
+                (2.0 * o + tw, h, o + tw / 2.0, h / 2.0, 1.0),
+                (o, h - tf, o + tw + o / 2.0, tf + (h - tf) / 2.0, -1.0),
+                (o, h - tf, o / 2.0, (h - tf) / 2.0, -1.0),
+            ])
+        }
+        "CROSS" => {
+            let (la, tv, hv, ta) = (x(1), x(2), x(3), x(4));
+            rectangles(&[
+                (tv, hv, 0.0, 0.0, 1.0),
+                (la + tv, ta, 0.0, 0.0, 1.0),
+                (tv, ta, 0.0, 0.0, -1.0),
+            ])
+        }
+        "H" => {
+            let (lw, tf2, hf, tw) = (x(1), x(2), x(3), x(4));
+            let zf = lw / 2.0 + tf2 / 4.0;
+            rectangles(&[
+                (tf2 / 2.0, hf, -zf, 0.0, 1.0),
+                (lw, tw, 0.0, 0.0, 1.0),
+                (tf2 / 2.0, hf, zf, 0.0, 1.0),
+            ])
+        }
+        "HEXA" => {
+            // Central rectangle plus two isosceles triangles of base h (along y), height t
+            // (along z): ∫y² = t h³/48, ∫(z − z_c)² = h t³/36, centroid t/3 from the base.
+            let (t, w, h) = (x(1), x(2), x(3));
+            let wr = w - 2.0 * t;
+            let at = t * h / 2.0;
+            let zt = wr / 2.0 + t / 3.0;
+            let a = wr * h + 2.0 * at;
+            let i1 = wr * h.powi(3) / 12.0 + 2.0 * t * h.powi(3) / 48.0;
+            let i2 = h * wr.powi(3) / 12.0 + 2.0 * (h * t.powi(3) / 36.0 + at * zt * zt);
+            (a, i1, i2, 0.0)
+        }
+        "HAT" => {
+            let (h, t, w, b) = (x(1), x(2), x(3), x(4));
+            let zw = w / 2.0 - t / 2.0;
+            let zb = w / 2.0 + b / 2.0;
+            rectangles(&[
+                (w, t, 0.0, h - t / 2.0, 1.0),
+                (t, h - t, zw, (h - t) / 2.0, 1.0),
+                (t, h - t, -zw, (h - t) / 2.0, 1.0),
+                (b, t, zb, t / 2.0, 1.0),
+                (b, t, -zb, t / 2.0, 1.0),
+            ])
+        }
+        "HAT1" => {
+            let (w, h, wt, t, tb) = (x(1), x(2), x(3), x(4), x(5));
+            let b = (w - wt) / 2.0;
+            let zw = wt / 2.0 - t / 2.0;
+            let zb = wt / 2.0 + b / 2.0;
+            rectangles(&[
+                (w, tb, 0.0, tb / 2.0, 1.0),
+                (t, h - tb, zw, tb + (h - tb) / 2.0, 1.0),
+                (t, h - tb, -zw, tb + (h - tb) / 2.0, 1.0),
+                (wt - 2.0 * t, t, 0.0, h - t / 2.0, 1.0),
+                (b, t, zb, tb + t / 2.0, 1.0),
+                (b, t, -zb, tb + t / 2.0, 1.0),
+            ])
+        }
+        "DBOX" => {
+            let (w, h, c) = (x(1), x(2), x(3));
+            let (tl, tm, tr) = (x(4), x(5), x(6));
+            let (t1t, t1b, t2t, t2b) = (x(7), x(8), x(9), x(10));
+            let (wi1, hi1) = (c - tl - tm / 2.0, h - t1t - t1b);
+            let (wi2, hi2) = (w - c - tm / 2.0 - tr, h - t2t - t2b);
+            rectangles(&[
+                (c, h, c / 2.0, h / 2.0, 1.0),
+                (wi1, hi1, tl + wi1 / 2.0, t1b + hi1 / 2.0, -1.0),
+                (w - c, h, c + (w - c) / 2.0, h / 2.0, 1.0),
+                (wi2, hi2, c + tm / 2.0 + wi2 / 2.0, t2b + hi2 / 2.0, -1.0),
+            ])
+        }
+        _ => unreachable!("{ty}"),
+    }
+}
+
+/// The shapes with dimensions (m) that make I1 and I2 differ where the shape allows it.
+const SHAPES: &[(&str, &[f64])] = &[
+    ("ROD", &[0.02]),
+    ("TUBE", &[0.03, 0.025]),
+    ("TUBE2", &[0.03, 0.005]),
+    ("BAR", &[0.06, 0.02]),
+    ("BOX", &[0.08, 0.04, 0.004, 0.006]),
+    ("BOX1", &[0.08, 0.05, 0.006, 0.004, 0.003, 0.005]),
+    ("I", &[0.10, 0.06, 0.04, 0.005, 0.008, 0.006]),
+    ("I1", &[0.05, 0.006, 0.08, 0.10]),
+    ("CHAN", &[0.05, 0.10, 0.006, 0.008]),
+    ("CHAN1", &[0.04, 0.006, 0.08, 0.10]),
+    ("CHAN2", &[0.006, 0.008, 0.05, 0.10]),
+    ("T", &[0.08, 0.06, 0.008, 0.006]),
+    ("T1", &[0.10, 0.05, 0.008, 0.006]),
+    ("T2", &[0.08, 0.06, 0.008, 0.006]),
+    ("L", &[0.06, 0.09, 0.006, 0.008]),
+    ("Z", &[0.04, 0.006, 0.08, 0.10]),
+    ("CROSS", &[0.06, 0.01, 0.08, 0.008]),
+    ("H", &[0.06, 0.02, 0.08, 0.008]),
+    ("HEXA", &[0.01, 0.06, 0.04]),
+    ("HAT", &[0.06, 0.004, 0.05, 0.02]),
+    ("HAT1", &[0.12, 0.06, 0.05, 0.004, 0.005]),
+    (
+        "DBOX",
+        &[
+            0.12, 0.06, 0.05, 0.005, 0.006, 0.004, 0.005, 0.004, 0.006, 0.007,
+        ],
+    ),
+];
+
+/// A cantilever deck along x (v = y, so element y = basic y): GRID 1 clamped, the other grids
+/// held in `held` (permanent single-point constraints, GRID PS); `property` the property
+/// card(s) of PID 1; `element` CBAR or CBEAM.
+fn cantilever(element: &str, property: &str, held: &str) -> String {
+    let mut s = String::from("SOL 103\nCEND\nBEGIN BULK\nMAT1,1,2.1+11,,0.3,7850.\n");
+    s += property;
+    for i in 0..=ELEMENTS {
+        let x = LENGTH * i as f64 / ELEMENTS as f64;
+        let ps = if i == 0 { "123456" } else { held };
+        s += &format!("GRID,{},,{x},0.,0.,,{ps}\n", i + 1);
+    }
+    for e in 1..=ELEMENTS {
+        s += &format!("{element},{e},1,{e},{},0.,1.,0.\n", e + 1);
+    }
+    s + "ENDDATA\n"
+}
+
+/// The library card of a shape: `PBARL` or `PBEAML`, PID 1, MID 1.
+fn library_card(card: &str, ty: &str, dims: &[f64]) -> String {
+    let d: Vec<String> = dims.iter().map(|v| format!("{v:e}")).collect();
+    let mut s = format!("{card},1,1,MSCBML0,{ty}\n");
+    for chunk in d.chunks(8) {
+        s += &format!(",{}\n", chunk.join(","));
+    }
+    s
+}
+
+/// Euler–Bernoulli lowest frequencies (Hz) of a deck, consistent mass, dense solve.
+fn frequencies(deck: &Path) -> Vec<f64> {
+    let model = read_model(deck, &ImportOptions::default()).unwrap();
+    let spec = AssemblySpec {
+        mass: MassKind::Consistent,
+        beam: BeamTheory::EulerBernoulli,
+        ..Default::default()
+    };
+    let a = assemble(&model, &spec).unwrap();
+    let r = eliminate(&model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).unwrap();
+    let mut f: Vec<f64> = generalized_eigenvalues(&common::dense(&r.k), &common::dense(&r.m))
+        .into_iter()
+        .map(hz)
+        .collect();
+    f.sort_by(f64::total_cmp);
+    f
+}
+
+/// f = (β₁L)²/(2π L²)·√(E I/(ρ A)).
+fn cantilever_hz(i: f64, a: f64) -> f64 {
+    BETA_L * BETA_L / (2.0 * PI * LENGTH * LENGTH) * (E * i / (RHO * a)).sqrt()
+}
+
+/// Plane 1 (x–y: v and θz move) holds 1345; plane 2 (x–z: w and θy) holds 1246.
+const PLANE_1: &str = "1345";
+const PLANE_2: &str = "1246";
+
+#[test]
+fn every_library_shape_bends_with_i1_in_plane_1_and_i2_in_plane_2() {
+    let mut report = Vec::new();
+    for &(ty, dims) in SHAPES {
+        let (a, i1, i2, _) = expected(ty, dims);
+        // PBEAML only where Nastran's CBEAM would not offset the neutral axis.
+        let cards: &[&str] = match ty {
+            "ROD" | "TUBE" | "TUBE2" | "BAR" | "BOX" | "I1" | "H" | "CROSS" | "HEXA" | "Z" => {
+                &["PBARL", "PBEAML"]
+            }
+            _ => &["PBARL"],
+        };
+        for &card in cards {
+            let element = if card == "PBARL" { "CBAR" } else { "CBEAM" };
+            let prop = library_card(card, ty, dims);
+            let model = read_model(
+                &write(
+                    "sections",
+                    &format!("{ty}_{card}.bdf"),
+                    &cantilever(element, &prop, ""),
+                ),
+                &ImportOptions::default(),
+            )
+            .unwrap();
+            let Section::Beam(s) = &model.properties[0].section else {
+                panic!("{ty}: not a beam section");
+            };
+            assert!(
+                (s.area - a).abs() < 1e-12 * a,
+                "{ty}: A = {} want {a}",
+                s.area
+            );
+            for (plane, held, i) in [(1, PLANE_1, i1), (2, PLANE_2, i2)] {
+                let deck = cantilever(element, &prop, held);
+                let path = write("sections", &format!("{ty}_{card}_{plane}.bdf"), &deck);
+                let got = frequencies(&path)[0];
+                let want = cantilever_hz(i, a);
+                let err = (got - want) / want;
+                report.push(format!(
+                    "{card} {ty} plane {plane}: {got:.4} Hz vs {want:.4} Hz"
+                ));
+                assert!(
+                    err.abs() < 1e-4,
+                    "{card} {ty} plane {plane}: {got} Hz, closed form {want} Hz ({err:+.2e})"
+                );
+            }
+        }
+        // Where the two planes differ by > 5 %, a swap of I1 and I2 fails above.
+        if (i1 / i2 - 1.0).abs() > 0.1 {
+            report.push(format!("{ty}: I1/I2 = {:.3}", i1 / i2));
+        }
+    }
+    println!("{}", report.join("\n"));
+}
+
+/// The case: PBARL BAR DIM1 = 3·DIM2 gave the plane-2 frequency in plane 1 (×1/3).
+/// PBARL BAR equals the PBAR with the QRG's A = b h, I1 = b h³/12, I2 = h b³/12 (b = DIM1,
+/// h = DIM2) in both planes, and the planes are 3× apart.
+#[test]
+fn pbarl_bar_equals_the_pbar_of_its_qrg_constants_in_both_planes() {
+    let (b, h) = (0.06, 0.02);
+    let pbarl = library_card("PBARL", "BAR", &[b, h]);
+    let pbar = format!(
+        "PBAR,1,1,{:e},{:e},{:e},1.e-8\n",
+        b * h,
+        b * h.powi(3) / 12.0,
+        h * b.powi(3) / 12.0
+    );
+    let mut plane_hz = Vec::new();
+    for (plane, held) in [(1, PLANE_1), (2, PLANE_2)] {
+        let f_l = frequencies(&write(
+            "bar",
+            &format!("pbarl_{plane}.bdf"),
+            &cantilever("CBAR", &pbarl, held),
+        ))[0];
+        let f_p = frequencies(&write(
+            "bar",
+            &format!("pbar_{plane}.bdf"),
+            &cantilever("CBAR", &pbar, held),
+        ))[0];
+        assert!(
+            (f_l - f_p).abs() < 1e-9 * f_p,
+            "plane {plane}: {f_l} vs {f_p}"
+        );
+        plane_hz.push(f_l);
+    }
+    let ratio = plane_hz[1] / plane_hz[0];
+    assert!((ratio - 3.0).abs() < 1e-6, "plane 2 / plane 1 = {ratio}");
+}
+
+/// An L section (I12 ≠ 0) free to bend in both planes (only axial and torsion held) bends about
+/// its principal axes: the two lowest frequencies are those of I_min and I_max,
+/// I_max,min = (I1 + I2)/2 ± √(((I1 − I2)/2)² + I12²) (Mohr's circle).
+#[test]
+fn l_section_bends_about_its_principal_axes() {
+    let dims = [0.06, 0.09, 0.006, 0.008];
+    let (a, i1, i2, i12) = expected("L", &dims);
+    assert!(
+        i12.abs() > 0.3 * i1.min(i2),
+        "the test needs a large I12: {i12}"
+    );
+    let mid = (i1 + i2) / 2.0;
+    let r = (((i1 - i2) / 2.0).powi(2) + i12 * i12).sqrt();
+    let deck = cantilever("CBAR", &library_card("PBARL", "L", &dims), "14");
+    let f = frequencies(&write("l_free", "l.bdf", &deck));
+    for (got, i) in [(f[0], mid - r), (f[1], mid + r)] {
+        let want = cantilever_hz(i, a);
+        assert!(
+            (got - want).abs() < 1e-4 * want,
+            "{got} Hz vs principal {want} Hz"
+        );
+    }
+    // Held to plane 1 it bends with I1 (not a principal value): the held direction carries the
+    // coupling.
+    let deck = cantilever("CBAR", &library_card("PBARL", "L", &dims), PLANE_1);
+    let got = frequencies(&write("l_free", "l_plane1.bdf", &deck))[0];
+    let want = cantilever_hz(i1, a);
+    assert!((got - want).abs() < 1e-4 * want, "{got} vs {want}");
+}
+
+/// What is not implemented is an error naming the card, its line and the field.
+#[test]
+fn unsupported_beam_forms_are_errors_naming_card_and_line() {
+    let cases: [(&str, String, &str, &str); 6] = [
+        (
+            "tapered PBEAML",
+            "PBEAML,1,1,MSCBML0,BAR\n,0.06,0.02,0.,YES,1.,0.05,0.02\n".into(),
+            "CBEAM",
+            "tapered PBEAML",
+        ),
+        (
+            "PBEAML with its neutral axis off the shear centre",
+            library_card("PBEAML", "T", &[0.08, 0.06, 0.008, 0.006]),
+            "CBEAM",
+            "off the shear",
+        ),
+        (
+            "tapered PBEAM",
+            "PBEAM,1,1,1.e-3,1.e-7,2.e-7,,1.e-8\n,YES,1.,2.e-3,1.e-7,2.e-7,,1.e-8\n".into(),
+            "CBEAM",
+            "tapered PBEAM",
+        ),
+        (
+            "PBEAM neutral-axis offset",
+            "PBEAM,1,1,1.e-3,1.e-7,2.e-7,,1.e-8\n,,,,,,,,\n,,,,,,,,\n,,,,,0.01\n".into(),
+            "CBEAM",
+            "N1(A)",
+        ),
+        (
+            "unknown shape",
+            "PBARL,1,1,MSCBML0,FOO\n,0.06,0.02\n".into(),
+            "CBAR",
+            "FOO",
+        ),
+        (
+            "user library group",
+            "PBARL,1,1,MYLIB,BAR\n,0.06,0.02\n".into(),
+            "CBAR",
+            "MYLIB",
+        ),
+    ];
+    for (what, prop, element, needle) in cases {
+        let deck = cantilever(element, &prop, "");
+        let path = write("refused", &format!("{}.bdf", what.replace(' ', "_")), &deck);
+        let err = read_model(&path, &ImportOptions::default())
+            .map(|_| ())
+            .expect_err(what)
+            .to_string();
+        let line = nastran_support::line_of(&deck, prop.lines().next().unwrap());
+        assert!(err.contains(needle), "{what}: {err}");
+        assert!(
+            err.contains(&format!(":{line}"))
+                || err.contains(&format!(":{}", line + 1))
+                || err.contains(&format!(":{}", line + 3)),
+            "{what} (line {line}): {err}"
+        );
+    }
+    // CBAR pin flags and offsets, CBEAM warping points: the element card and its line.
+    let pbar = "PBAR,1,1,1.e-3,1.e-7,2.e-7,1.e-8\n";
+    for (what, cont, needle) in [
+        ("pin flag", ",56", "pin flags PA"),
+        ("offset", ",,,0.,0.01", "offset W2A"),
+    ] {
+        let mut deck = cantilever("CBAR", pbar, "");
+        deck = deck.replace(
+            "CBAR,3,1,3,4,0.,1.,0.\n",
+            &format!("CBAR,3,1,3,4,0.,1.,0.\n{cont}\n"),
+        );
+        let path = write("refused", &format!("{}.bdf", what.replace(' ', "_")), &deck);
+        let err = read_model(&path, &ImportOptions::default())
+            .map(|_| ())
+            .expect_err(what)
+            .to_string();
+        let line = nastran_support::line_of(&deck, "CBAR,3,");
+        assert!(
+            err.contains(needle) && err.contains("CBAR 3"),
+            "{what}: {err}"
+        );
+        assert!(
+            err.contains(&format!(":{line}")) || err.contains(&format!(":{}", line + 1)),
+            "{what}: {err}"
+        );
+    }
+}
