@@ -270,7 +270,27 @@ pub fn element_matrices(
                 nsm: s.nsm,
             };
             let lumping = lumped.then_some(spec.beam_lumping.for_element(el.kind));
-            let (k, m) = beam::matrices(&x, v, &iso, &p, lumping).map_err(elem_err)?;
+            let (k, m) = match &s.taper {
+                None => beam::matrices(&x, v, &iso, &p, lumping),
+                Some(_) => {
+                    let timoshenko = spec.beam == BeamTheory::Timoshenko;
+                    let at = |xi: f64| {
+                        let ([area, iz, iy, j, nsm], k) = s.at(xi);
+                        let shear = k.filter(|_| timoshenko);
+                        BeamProps {
+                            area,
+                            iz,
+                            iy,
+                            j,
+                            shear,
+                            nsm,
+                        }
+                    };
+                    let breaks = s.breakpoints();
+                    super::elements::tapered_beam::matrices(&x, v, &iso, &at, &breaks, lumping)
+                }
+            }
+            .map_err(elem_err)?;
             ElementMatrices { dpn: 6, k, m }
         }
         ElementKind::Rod2 => {

@@ -95,6 +95,7 @@ impl SectionShape {
             shear_factors: None,
             nsm: 0.0,
             shape: Some(self.clone()),
+            taper: None,
         })
     }
 }

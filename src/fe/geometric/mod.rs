@@ -194,6 +194,12 @@ fn formulation(
             Formulation::Shell(ShellElement::new(&x, &p).map_err(elem_err)?)
         }
         (Section::Beam(s), ElementKind::Beam2 | ElementKind::Bar2) => {
+            if s.taper.is_some() {
+                return Err(fail(format!(
+                    "tapered beam property {} has no geometric stiffness (not implemented)",
+                    prop.id
+                )));
+            }
             let x = two()?;
             // I12 ≠ 0: the principal frame, without shear factors (as the assembler).
             let (v, iz, iy) = match el.orientation {

@@ -336,6 +336,7 @@ impl Parser {
                         name: s,
                         dims: vec![],
                     }),
+                    taper: None,
                 })
             }
         };

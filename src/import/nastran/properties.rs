@@ -15,7 +15,7 @@ use super::lex::Card;
 use crate::import::error::ImportError;
 use crate::import::text::{IdMap, Loc};
 use crate::model::beam_library::{dimension_count, library_section};
-use crate::model::{BeamSection, ImportWarning, Material, Property, Section};
+use crate::model::{BeamSection, BeamTaper, ImportWarning, Material, Property, Section};
 
 /// The raw records of the property and material cards.
 #[derive(Default)]
@@ -192,6 +192,7 @@ fn beam(g: &C, at: [usize; 6], k: Option<[f64; 2]>) -> Result<Section, ImportErr
         shear_factors: k,
         nsm,
         shape: None,
+        taper: None,
     }))
 }
 
@@ -225,13 +226,14 @@ fn differs(v: Option<f64>, a: f64) -> bool {
     v.is_some_and(|v| (v - a).abs() > SAME_VALUE * a.abs().max(v.abs()))
 }
 
-/// PBEAM: end A's A, I1, I2, I12, J, NSM; every further station (intermediate, end B) must
-/// repeat them (a tapered beam is an error naming the station), K1, K2 (default 1.0, shear
-/// flexible; 0.0 shear-rigid). Shear relief S1/S2, non-structural mass inertia NSI and the
-/// centre-of-gravity/neutral-axis offsets M1…N2 are errors when nonzero. CW (warping) acts
-/// only on the warping scalar points CBEAM SA/SB, which are refused.
+/// PBEAM: end A's A, I1, I2, I12, J, NSM, then per station (intermediate, end B: SO, X/XB,
+/// the same six, blank = end A's; the stress-point line follows when SO = YES): a station
+/// differing from end A makes the beam tapered (`BeamTaper::Values`, each value linear between
+/// stations; I12 must stay 0); K1, K2 (default 1.0, shear flexible; 0.0 shear-rigid). Shear
+/// relief S1/S2, non-structural mass inertia NSI and the centre-of-gravity/neutral-axis
+/// offsets M1…N2 are errors when nonzero. CW (warping) acts only on the warping scalar points
+/// CBEAM SA/SB, which are refused.
 fn pbeam(g: &C) -> Result<Section, ImportError> {
-    const NAMES: [&str; 6] = ["A", "I1", "I2", "I12", "J", "NSM"];
     let end_a = [2, 3, 4, 5, 6, 7].map(|f| g.real_or(f, 0.0));
     let mut a = [0.0; 6];
     for (x, v) in a.iter_mut().zip(end_a) {
@@ -248,24 +250,36 @@ fn pbeam(g: &C) -> Result<Section, ImportError> {
     if !so(k) && g.card.fields.len() > k {
         k += 8;
     }
+    // Stations: SO X/XB A I1 I2 I12 J NSM, then the stress points when SO = YES.
+    let mut stations = vec![(0.0, [a[0], a[1], a[2], a[4], a[5]])];
+    let mut tapered = false;
     while so(k) {
-        for (i, name) in NAMES.iter().enumerate() {
-            let v = g.real(k + 2 + i)?;
-            if differs(v, a[i]) {
-                return Err(g.err(
-                    k + 2 + i,
-                    format!(
-                        "tapered PBEAM: {name} = {} at the station X/XB = {} differs from end A's {} \
-                         (tapered beams are not implemented; give a prismatic PBEAM per element)",
-                        v.unwrap_or(0.0),
-                        g.text(k + 1),
-                        a[i]
-                    ),
-                ));
+        let xi = station_position(g, k + 1, stations.last().map_or(0.0, |s| s.0))?;
+        let mut v = a;
+        for (i, x) in v.iter_mut().enumerate() {
+            let r = g.real(k + 2 + i)?;
+            if differs(r, a[i]) {
+                if i == 3 {
+                    return Err(g.err(
+                        k + 5,
+                        format!(
+                            "I12 varying along a tapered PBEAM is not implemented ({} at end A)",
+                            a[3]
+                        ),
+                    ));
+                }
+                tapered = true;
             }
+            *x = r.unwrap_or(a[i]);
         }
-        k += 16;
+        stations.push((xi, [v[0], v[1], v[2], v[4], v[5]]));
+        k += if g.text(k).eq_ignore_ascii_case("YES") {
+            16
+        } else {
+            8
+        };
     }
+    let taper = tapered_stations(g, tapered, a[3], stations)?.map(BeamTaper::Values);
     let kf = Some([g.real(k)?.unwrap_or(1.0), g.real(k + 1)?.unwrap_or(1.0)]);
     const REFUSED: [(usize, &str); 12] = [
         (2, "S1 (shear relief)"),
@@ -296,14 +310,51 @@ fn pbeam(g: &C) -> Result<Section, ImportError> {
         shear_factors: kf,
         nsm,
         shape: None,
+        taper,
     }))
+}
+
+/// X/XB of a station in field `k`: after the previous station's `last`, at most 1 (end B).
+fn station_position(g: &C, k: usize, last: f64) -> Result<f64, ImportError> {
+    let xi = g.real(k)?.unwrap_or(1.0);
+    if xi <= last || xi > 1.0 {
+        return Err(g.err(
+            k,
+            format!(
+                "X/XB = {xi} must lie after the previous station ({last}) and at most 1.0 (end B)"
+            ),
+        ));
+    }
+    Ok(xi)
+}
+
+/// The stations of a tapered beam (`tapered`: some station differs from end A): they must end
+/// at end B (X/XB = 1.0) and the section must have I12 = 0 (`i12`); `None` when prismatic.
+fn tapered_stations<T>(
+    g: &C,
+    tapered: bool,
+    i12: f64,
+    stations: Vec<(f64, T)>,
+) -> Result<Option<Vec<(f64, T)>>, ImportError> {
+    if !tapered {
+        return Ok(None);
+    }
+    if i12 != 0.0 {
+        return Err(g.err_card(format!(
+            "a tapered beam with I12 = {i12} ≠ 0 is not implemented (principal axes along the element)"
+        )));
+    }
+    match stations.last() {
+        Some((xi, _)) if *xi == 1.0 => Ok(Some(stations)),
+        _ => Err(g.err_card("a tapered beam's last station must be end B (X/XB = 1.0)")),
+    }
 }
 
 /// PBARL / PBEAML (MSC QRG): `PID MID GROUP TYPE / DIM1 … DIMn NSM`, PBEAML then
 /// `SO X/XB DIM1 … DIMn NSM` per further station. The shape's constants from
 /// [`library_section`]. Refused, each naming the field: a GROUP other than MSCBML0, a shape
-/// not in the library, blank or inconsistent dimensions, a tapered PBEAML (a station's
-/// dimensions differ from end A's), a PBEAML whose neutral axis is off the shear centre (the
+/// not in the library, blank or inconsistent dimensions (also at a station), a PBEAML whose
+/// neutral axis is off the shear centre (the
 /// offset CBEAM Nastran makes of it is not implemented), anything after a PBARL's NSM.
 fn library_card(g: &C) -> Result<Section, ImportError> {
     let pbeaml = g.card.name == "PBEAML";
@@ -331,29 +382,32 @@ fn library_card(g: &C) -> Result<Section, ImportError> {
     let nsm = g.real_or(8 + n, 0.0)?;
     let lib = library_section(&ty, &dims).map_err(|e| g.err(8, e))?;
     let rest = 9 + n..g.card.fields.len();
+    let mut taper = None;
     if pbeaml {
-        // Stations: SO, X/XB, DIM1…DIMn, NSM.
+        // Stations: SO, X/XB, DIM1…DIMn, NSM (blank: end A's).
+        let mut stations = vec![(0.0, (dims.clone(), nsm))];
+        let mut tapered = false;
         for k in rest.step_by(n + 3) {
-            for (i, &a) in dims.iter().chain([&nsm]).enumerate() {
-                let v = g.real(k + 2 + i)?;
-                if differs(v, a) {
-                    let what = if i < n {
-                        format!("DIM{}", i + 1)
-                    } else {
-                        "NSM".into()
-                    };
-                    return Err(g.err(
-                        k + 2 + i,
-                        format!(
-                            "tapered PBEAML: {what} = {} at the station X/XB = {} differs from \
-                             end A's {a} (tapered beams are not implemented)",
-                            v.unwrap_or(0.0),
-                            g.text(k + 1)
-                        ),
-                    ));
-                }
+            if (k..(k + n + 3).min(g.card.fields.len())).all(|f| g.text(f).is_empty()) {
+                continue;
             }
+            let xi = station_position(g, k + 1, stations.last().map_or(0.0, |s| s.0))?;
+            let mut d = dims.clone();
+            d.push(nsm);
+            for (i, x) in d.iter_mut().enumerate() {
+                let r = g.real(k + 2 + i)?;
+                tapered |= differs(r, *x);
+                *x = r.unwrap_or(*x);
+            }
+            let nsm_k = d.pop().unwrap_or(nsm);
+            library_section(&ty, &d)
+                .map_err(|e| g.err(k + 2, format!("station X/XB = {xi}: {e}")))?;
+            stations.push((xi, (d, nsm_k)));
         }
+        taper = tapered_stations(g, tapered, lib.i12, stations)?.map(|st| BeamTaper::Library {
+            shape: ty.clone(),
+            stations: st.into_iter().map(|(x, (d, m))| (x, d, m)).collect(),
+        });
         if !lib.centroid_on_shear_centre {
             return Err(g.err(
                 3,
@@ -381,5 +435,6 @@ fn library_card(g: &C) -> Result<Section, ImportError> {
         shear_factors: Some(lib.shear_factors),
         nsm,
         shape: None,
+        taper,
     }))
 }
