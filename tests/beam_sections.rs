@@ -7,7 +7,8 @@
 //! fails in both planes. Also: PBARL BAR equals the PBAR with its QRG constants, an L section
 //! free to bend in both planes gives the principal frequencies of I1, I2, I12, tapered
 //! PBEAML/PBEAM cantilevers equal the same beam cut into 256 prismatic elements, and the refused
-//! forms (offset neutral axis, offsets, pin flags) name their card and line.
+//! forms (offset neutral axis, offsets) name their card and line; pin flags PA/PB releasing
+//! the end rotations of a beam clamped at both grids make it simply supported.
 
 mod common;
 mod nastran_support;
@@ -496,10 +497,10 @@ fn unsupported_beam_forms_are_errors_naming_card_and_line() {
             "{what} (line {line}): {err}"
         );
     }
-    // CBAR pin flags and offsets, CBEAM warping points: the element card and its line.
+    // CBAR bad pin flags and offsets: the element card and its line.
     let pbar = "PBAR,1,1,1.e-3,1.e-7,2.e-7,1.e-8\n";
     for (what, cont, needle) in [
-        ("pin flag", ",56", "pin flags PA"),
+        ("bad pin flag", ",7", "pin flags 7"),
         ("offset", ",,,0.,0.01", "offset W2A"),
     ] {
         let mut deck = cantilever("CBAR", pbar, "");
@@ -635,6 +636,58 @@ fn tapered_pbeam_with_a_station_equals_the_finely_cut_prismatic_beam() {
                 f_t[k],
                 f_f[k]
             );
+        }
+    }
+}
+
+/// Pin flags: a beam whose end grids are clamped (123456) but whose first element releases the
+/// bending rotation at end A (PA) and last element at end B (PB) is simply supported in that
+/// plane: f₁ = (π/2L²)·√(E I/(ρ A)) (Blevins Table 8-1), with I1 when the rotation about
+/// element z (6) is released and the beam held to plane 1, I2 for 5 in plane 2; PA = PB = 56
+/// in both. Without the pins the clamped–clamped beam is 2.27× stiffer (4.730²/π²).
+#[test]
+fn pin_flags_make_a_clamped_beam_simply_supported() {
+    let (b, h): (f64, f64) = (0.06, 0.02);
+    let (a, i1, i2) = (b * h, b * h.powi(3) / 12.0, h * b.powi(3) / 12.0);
+    let ss = |i: f64| PI / (2.0 * LENGTH * LENGTH) * (E * i / (RHO * a)).sqrt();
+    for element in ["CBAR", "CBEAM"] {
+        for (plane, held, pin, i) in [
+            (1, PLANE_1, "6", i1),
+            (2, PLANE_2, "5", i2),
+            (1, PLANE_1, "56", i1),
+            (2, PLANE_2, "56", i2),
+        ] {
+            let prop = library_card("PBARL", "BAR", &[b, h])
+                .replace("PBARL", if element == "CBAR" { "PBARL" } else { "PBEAML" });
+            let mut deck = cantilever(element, &prop, held).replace(
+                &format!("GRID,{},,{LENGTH},0.,0.,,{held}\n", ELEMENTS + 1),
+                &format!("GRID,{},,{LENGTH},0.,0.,,123456\n", ELEMENTS + 1),
+            );
+            let first = format!("{element},1,1,1,2,0.,1.,0.\n");
+            let last = format!(
+                "{element},{ELEMENTS},1,{ELEMENTS},{},0.,1.,0.\n",
+                ELEMENTS + 1
+            );
+            assert!(deck.contains(&first) && deck.contains(&last));
+            deck = deck
+                .replace(&first, &format!("{first},{pin}\n"))
+                .replace(&last, &format!("{last},,{pin}\n"));
+            let path = write("pins", &format!("{element}_{plane}_{pin}.bdf"), &deck);
+            let got = frequencies(&path)[0];
+            let want = ss(i);
+            println!("{element} PA/PB = {pin}, plane {plane}: {got:.5} Hz vs {want:.5} Hz");
+            assert!(
+                (got - want).abs() < 1e-4 * want,
+                "{element} {pin} plane {plane}: {got} vs simply supported {want}"
+            );
+            let clamped = frequencies(&write(
+                "pins",
+                "clamped.bdf",
+                &deck
+                    .replace(&format!("\n,{pin}\n"), "\n")
+                    .replace(&format!("\n,,{pin}\n"), "\n"),
+            ))[0];
+            assert!(clamped > 2.0 * want, "{clamped} vs {want}");
         }
     }
 }

@@ -270,9 +270,16 @@ pub fn element_matrices(
                 nsm: s.nsm,
             };
             let lumping = lumped.then_some(spec.beam_lumping.for_element(el.kind));
-            let (k, m) = match &s.taper {
-                None => beam::matrices(&x, v, &iso, &p, lumping),
-                Some(_) => {
+            let pins = model.beam_pins.get(&e).copied();
+            let (k, m) = match (&s.taper, pins) {
+                (None, None) => beam::matrices(&x, v, &iso, &p, lumping),
+                (None, Some(pins)) => beam::matrices_pinned(&x, v, &iso, &p, lumping, pins),
+                (Some(_), Some(_)) => {
+                    return Err(fail(
+                        "pin flags on a tapered beam are not implemented".into(),
+                    ))
+                }
+                (Some(_), None) => {
                     let timoshenko = spec.beam == BeamTheory::Timoshenko;
                     let at = |xi: f64| {
                         let ([area, iz, iy, j, nsm], k) = s.at(xi);

@@ -514,6 +514,9 @@ pub struct Model {
     pub coord_systems: Vec<CoordSystem>,
     /// Elements, in input order.
     pub elements: Vec<Element>,
+    /// Released (pinned) dofs of bar/beam ends, Nastran CBAR/CBEAM PA, PB: element index →
+    /// the dofs of the element frame released at end A and at end B.
+    pub beam_pins: BTreeMap<usize, [DofMask; 2]>,
     /// Properties (sections).
     pub properties: Vec<Property>,
     /// Materials.

@@ -275,6 +275,69 @@ pub fn check(mat: &Isotropic, p: &BeamProps) -> Result<(), ElementError> {
     Ok(())
 }
 
+/// Releases element dofs (pin flags, Nastran CBAR/CBEAM PA/PB; `released` local indices 0–11)
+/// by static condensation: with T = [I; −K_rr⁻¹ K_re] mapping the kept dofs to all, K ← TᵀKT
+/// and M ← TᵀMT (Guyan on the released dofs), whose rows and columns become zero (Przemieniecki
+/// 1968, §10.6 "elements with released end connections"). One dof at a time; a release that
+/// leaves a dof without stiffness (a rigid motion of the element) is an error.
+pub fn release(
+    k: &mut [[f64; 12]; 12],
+    m: &mut [[f64; 12]; 12],
+    released: &[usize],
+) -> Result<(), ElementError> {
+    let scale = (0..12).map(|i| k[i][i].abs()).fold(0.0, f64::max);
+    for &r in released {
+        let krr = k[r][r];
+        if krr.is_nan() || krr <= 1e-12 * scale {
+            return Err(ElementError::BadConstants(format!(
+                "pin flags release dof {} of the element frame at end {} with nothing left to \
+                 hold it (the element would have a rigid motion)",
+                r % 6 + 1,
+                if r < 6 { 'A' } else { 'B' }
+            )));
+        }
+        // u_r = Σ t_j u_j with t_j = −k_rj / k_rr; A ← Tᵀ A T for A = K, M.
+        let t: [f64; 12] = std::array::from_fn(|j| if j == r { 0.0 } else { -k[r][j] / krr });
+        for a in [&mut *k, &mut *m] {
+            let old = *a;
+            for i in 0..12 {
+                for j in 0..12 {
+                    a[i][j] =
+                        old[i][j] + t[i] * old[r][j] + old[i][r] * t[j] + t[i] * old[r][r] * t[j];
+                }
+            }
+            for i in 0..12 {
+                a[r][i] = 0.0;
+                a[i][r] = 0.0;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Basic-frame stiffness and mass of a beam with released dofs (`pins`: end A, end B in the
+/// element frame; see [`release`]).
+pub fn matrices_pinned(
+    x: &[Xyz; 2],
+    v: Option<Xyz>,
+    mat: &Isotropic,
+    p: &BeamProps,
+    lumped: Option<BeamLumping>,
+    pins: [crate::model::DofMask; 2],
+) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
+    check(mat, p)?;
+    let v = v.ok_or(ElementError::BadOrientation { v: [0.0; 3] })?;
+    let (r, l) = local_frame(x, Some(v))?;
+    let mut k = stiffness_local(l, mat, p);
+    let mut m = match lumped {
+        Some(lumping) => lumped_mass_local(l, mat, p, lumping),
+        None => consistent_mass_local(l, mat, p),
+    };
+    let released: Vec<usize> = (0..12).filter(|&i| pins[i / 6].contains(i % 6)).collect();
+    release(&mut k, &mut m, &released)?;
+    Ok((to_basic(&k, &r), to_basic(&m, &r)))
+}
+
 /// Basic-frame stiffness and mass (12×12 each) of a beam.
 pub fn matrices(
     x: &[Xyz; 2],

@@ -194,9 +194,10 @@ fn formulation(
             Formulation::Shell(ShellElement::new(&x, &p).map_err(elem_err)?)
         }
         (Section::Beam(s), ElementKind::Beam2 | ElementKind::Bar2) => {
-            if s.taper.is_some() {
+            if s.taper.is_some() || model.beam_pins.contains_key(&e) {
                 return Err(fail(format!(
-                    "tapered beam property {} has no geometric stiffness (not implemented)",
+                    "a tapered (property {}) or pinned beam has no geometric stiffness (not \
+                     implemented)",
                     prop.id
                 )));
             }

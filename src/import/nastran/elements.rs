@@ -86,6 +86,12 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
             .shell_t
             .extend(super::shell::element_fields(g, k)?);
     }
+    if matches!(kind, Bar2 | Beam2) {
+        let pins = [pin_flags(g, 8)?, pin_flags(g, 9)?];
+        if pins.iter().any(|p| p.0 != 0) {
+            d.b.model.beam_pins.insert(k, pins);
+        }
+    }
     d.b.add_element(eid, kind, ids, None, name, g.card.loc);
     d.elements.pid.push((ElementProperty::Id(pid), g.card.loc));
     Ok(())
@@ -181,8 +187,19 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
     Ok((name, kind, ids, orientation))
 }
 
+/// Pin flags PA or PB in field `k`: the element-frame dofs released at that end (digits
+/// 1–6; blank or 0 none).
+fn pin_flags(g: &C, k: usize) -> Result<crate::model::DofMask, ImportError> {
+    let t = g.text(k);
+    if t.is_empty() || t == "0" {
+        return Ok(crate::model::DofMask(0));
+    }
+    crate::model::DofMask::from_digits(t)
+        .ok_or_else(|| g.err(k, format!("pin flags {t}: digits 1–6 expected")))
+}
+
 /// CBAR/CBEAM fields after the orientation that change the element and are not implemented:
-/// pin flags PA/PB, offsets W1A…W3B, CBEAM's built-in twist BIT (the real in OFFT's place) and
+/// offsets W1A…W3B, CBEAM's built-in twist BIT (the real in OFFT's place) and
 /// warping scalar points SA/SB: each nonzero one is an error naming it. OFFT (text) only says
 /// in which frame the offsets are; with zero offsets it changes nothing.
 fn unsupported_bar_fields(g: &C, name: &str) -> Result<(), ImportError> {
@@ -190,11 +207,6 @@ fn unsupported_bar_fields(g: &C, name: &str) -> Result<(), ImportError> {
     let bit = name == "CBEAM" && !f8.is_empty() && !f8.bytes().any(|b| b.is_ascii_alphabetic());
     if bit && g.real(7)?.is_some_and(|v| v != 0.0) {
         return Err(g.err(7, "built-in twist BIT is not implemented"));
-    }
-    for (k, what) in [(8, "pin flags PA"), (9, "pin flags PB")] {
-        if g.int(k)?.is_some_and(|v| v != 0) {
-            return Err(g.err(k, format!("{what} (released end dofs) are not implemented")));
-        }
     }
     for (k, what) in ["W1A", "W2A", "W3A", "W1B", "W2B", "W3B"]
         .iter()
