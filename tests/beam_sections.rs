@@ -691,3 +691,34 @@ fn pin_flags_make_a_clamped_beam_simply_supported() {
         }
     }
 }
+
+/// OFFT's first letter says in which frame X1–X3 are (MSC QRG CBAR): G (default) the
+/// displacement frame of GA, B basic. GA's displacement frame here is turned 90° about x
+/// (CORD2R 5: z' = basic y, x' = basic x, so y' = −basic z).
+#[test]
+fn offt_b_reads_the_orientation_vector_in_the_basic_frame() {
+    let deck = |offt: &str| {
+        format!(
+            "SOL 103\nCEND\nBEGIN BULK\nMAT1,1,2.1+11,,0.3,7850.\nPBAR,1,1,1.e-3,1.e-7,2.e-7,1.e-8\n\
+             CORD2R,5,,0.,0.,0.,0.,1.,0.\n,1.,0.,0.\nGRID,1,,0.,0.,0.,5\nGRID,2,,1.,0.,0.\n\
+             CBAR,1,1,1,2,0.,1.,0.,{offt}\nENDDATA\n"
+        )
+    };
+    for (offt, want) in [
+        ("", [0.0, 0.0, -1.0]),
+        ("GGG", [0.0, 0.0, -1.0]),
+        ("BGG", [0.0, 1.0, 0.0]),
+    ] {
+        let path = write("offt", &format!("offt_{offt}.bdf"), &deck(offt));
+        let model = read_model(&path, &ImportOptions::default()).unwrap();
+        let v = model.elements[0].orientation.unwrap();
+        let err: f64 = v.iter().zip(want).map(|(a, b)| (a - b).abs()).sum();
+        assert!(err < 1e-12, "OFFT {offt:?}: {v:?}, want {want:?}");
+    }
+    let path = write("offt", "offt_bad.bdf", &deck("XYZ"));
+    let err = read_model(&path, &ImportOptions::default())
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("OFFT XYZ") && err.contains("CBAR 1"), "{err}");
+}

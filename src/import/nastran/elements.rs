@@ -46,8 +46,10 @@ pub(super) enum ElementProperty {
 
 /// A bar/beam orientation as the card gives it.
 pub(super) enum Orientation {
-    /// X1–X3, in the displacement frame of GA.
+    /// X1–X3, in the displacement frame of GA (OFFT G…, the default).
     Vector([f64; 3]),
+    /// X1–X3 in the basic frame (OFFT B…).
+    Basic([f64; 3]),
     /// Towards grid G0.
     Node(u64),
 }
@@ -175,16 +177,31 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
         if !s.contains('.') && !s.contains(['e', 'E']) {
             Some(Orientation::Node(g.id(4, "G0")?))
         } else {
-            Some(Orientation::Vector([
-                g.real_or(4, 0.0)?,
-                g.real_or(5, 0.0)?,
-                g.real_or(6, 0.0)?,
-            ]))
+            let v = [g.real_or(4, 0.0)?, g.real_or(5, 0.0)?, g.real_or(6, 0.0)?];
+            Some(match offt_orientation(g, name)? {
+                'B' => Orientation::Basic(v),
+                _ => Orientation::Vector(v),
+            })
         }
     } else {
         None
     };
     Ok((name, kind, ids, orientation))
+}
+
+/// The frame letter of the orientation vector in OFFT (CBAR/CBEAM field 9: G global, the
+/// default, or B basic; MSC QRG CBAR Remark 8). The offset letters (G, O) matter only with
+/// offsets, which are refused; any other code is an error.
+fn offt_orientation(g: &C, name: &str) -> Result<char, ImportError> {
+    let t = g.text(7).to_ascii_uppercase();
+    if t.is_empty() || (name == "CBEAM" && !t.bytes().any(|b| b.is_ascii_alphabetic())) {
+        return Ok('G');
+    }
+    const CODES: [&str; 8] = ["GGG", "BGG", "GGO", "BGO", "GOG", "BOG", "GOO", "BOO"];
+    if !CODES.contains(&t.as_str()) {
+        return Err(g.err(7, format!("OFFT {t}: one of {} expected", CODES.join(", "))));
+    }
+    Ok(if t.starts_with('B') { 'B' } else { 'G' })
 }
 
 /// Pin flags PA or PB in field `k`: the element-frame dofs released at that end (digits
@@ -369,6 +386,7 @@ pub(super) fn orient(d: &mut Bulk) -> Result<(), ImportError> {
         let e = &b.model.elements[k];
         let ga = e.nodes[0];
         let v = match o {
+            Orientation::Basic(v) => v,
             Orientation::Vector(v) => match b.model.nodes[ga].displacement_frame {
                 Some(cs) if b.model.coord_systems[cs].kind == CoordKind::Rectangular => {
                     dir_to_basic(&b.model.coord_systems[cs], v)
