@@ -7,8 +7,9 @@
 //! fails in both planes. Also: PBARL BAR equals the PBAR with its QRG constants, an L section
 //! free to bend in both planes gives the principal frequencies of I1, I2, I12, tapered
 //! PBEAML/PBEAM cantilevers equal the same beam cut into 256 prismatic elements, and the refused
-//! forms (offset neutral axis, offsets) name their card and line; pin flags PA/PB releasing
-//! the end rotations of a beam clamped at both grids make it simply supported.
+//! forms (offset neutral axis, element-frame offsets) name their card and line; pin flags
+//! PA/PB releasing the end rotations of a beam clamped at both grids make it simply supported;
+//! offsets WA/WB equal rigid links (RBE2) to the offset ends.
 
 mod common;
 mod nastran_support;
@@ -497,16 +498,20 @@ fn unsupported_beam_forms_are_errors_naming_card_and_line() {
             "{what} (line {line}): {err}"
         );
     }
-    // CBAR bad pin flags and offsets: the element card and its line.
+    // CBAR bad pin flags and offsets in the element frame: the element card and its line.
     let pbar = "PBAR,1,1,1.e-3,1.e-7,2.e-7,1.e-8\n";
     for (what, cont, needle) in [
         ("bad pin flag", ",7", "pin flags 7"),
-        ("offset", ",,,0.,0.01", "offset W2A"),
+        (
+            "element-frame offset",
+            ",,,0.,0.01",
+            "element frame (OFFT GOO)",
+        ),
     ] {
         let mut deck = cantilever("CBAR", pbar, "");
         deck = deck.replace(
             "CBAR,3,1,3,4,0.,1.,0.\n",
-            &format!("CBAR,3,1,3,4,0.,1.,0.\n{cont}\n"),
+            &format!("CBAR,3,1,3,4,0.,1.,0.,GOO\n{cont}\n"),
         );
         let path = write("refused", &format!("{}.bdf", what.replace(' ', "_")), &deck);
         let err = read_model(&path, &ImportOptions::default())
@@ -721,4 +726,83 @@ fn offt_b_reads_the_orientation_vector_in_the_basic_frame() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("OFFT XYZ") && err.contains("CBAR 1"), "{err}");
+}
+
+/// Offsets WA/WB (OFFT GGG, in the grids' displacement frames, the tip in a turned CD frame)
+/// equal the same beam on its own grids at the offset points, each tied to its grid by an
+/// RBE2 (123456): the 8 lowest frequencies of the cantilever agree to 1e-9. With lumped mass
+/// an offset is an error naming the element.
+#[test]
+fn offsets_equal_rigid_links_to_the_offset_ends() {
+    let w = [0.03, -0.02, 0.1]; // basic
+    let n = 10;
+    let head = "SOL 103\nCEND\nBEGIN BULK\nMAT1,1,2.1+11,,0.3,7850.\n\
+                PBAR,1,1,1.2e-3,4.e-8,3.6e-7,1.e-7\nCORD2R,5,,0.,0.,0.,0.,1.,0.\n,1.,0.,0.\n";
+    let x = |i: usize| LENGTH * i as f64 / n as f64;
+    // The tip grid displaces in CORD2R 5 (x' = x, y' = −z, z' = y): its offset is (w1, −w3,
+    // w2) there. (It is only a GB: GA's frame would also turn the orientation vector.)
+    let local = |i: usize| if i == n + 1 { [w[0], -w[2], w[1]] } else { w };
+    let mut offset = String::from(head);
+    let mut linked = String::from(head);
+    for i in 1..=n + 1 {
+        let (ps, cd) = (
+            if i == 1 { "123456" } else { "" },
+            if i == n + 1 { "5" } else { "" },
+        );
+        offset += &format!("GRID,{i},,{},0.,0.,{cd},{ps}\n", x(i - 1));
+        linked += &format!("GRID,{i},,{},0.,0.,,{ps}\n", x(i - 1));
+        linked += &format!(
+            "GRID,{},,{},{},{}\nRBE2,{},{i},123456,{}\n",
+            100 + i,
+            x(i - 1) + w[0],
+            w[1],
+            w[2],
+            500 + i,
+            100 + i
+        );
+    }
+    for e in 1..=n {
+        let (wa, wb) = (local(e), local(e + 1));
+        offset += &format!(
+            "CBAR,{e},1,{e},{},0.,1.,0.,GGG\n,,,{},{},{},{},{},{}\n",
+            e + 1,
+            wa[0],
+            wa[1],
+            wa[2],
+            wb[0],
+            wb[1],
+            wb[2]
+        );
+        linked += &format!("CBAR,{e},1,{},{},0.,1.,0.\n", 100 + e, 101 + e);
+    }
+    let f_o = frequencies(&write(
+        "offsets",
+        "offset.bdf",
+        &(offset.clone() + "ENDDATA\n"),
+    ));
+    let f_l = frequencies(&write("offsets", "linked.bdf", &(linked + "ENDDATA\n")));
+    for k in 0..8 {
+        println!(
+            "mode {}: offset {:.6} Hz, RBE2 links {:.6} Hz",
+            k + 1,
+            f_o[k],
+            f_l[k]
+        );
+        assert!(
+            (f_o[k] - f_l[k]).abs() < 1e-9 * f_l[k],
+            "mode {}: {} vs {}",
+            k + 1,
+            f_o[k],
+            f_l[k]
+        );
+    }
+    // Lumped mass: an error naming the element.
+    let path = write("offsets", "offset_lumped.bdf", &(offset + "ENDDATA\n"));
+    let model = read_model(&path, &ImportOptions::default()).unwrap();
+    let spec = AssemblySpec {
+        mass: MassKind::Lumped,
+        ..Default::default()
+    };
+    let err = assemble(&model, &spec).map(|_| ()).unwrap_err().to_string();
+    assert!(err.contains("offsets WA/WB with lumped mass"), "{err}");
 }

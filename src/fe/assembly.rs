@@ -247,7 +247,21 @@ pub fn element_matrices(
                     prop.id
                 )));
             };
-            let x = coords::<2>(model, n);
+            let grid_x = coords::<2>(model, n);
+            let offsets = model.beam_offsets.get(&e).copied();
+            if offsets.is_some() && lumped {
+                return Err(fail(
+                    "offsets WA/WB with lumped mass are not implemented (the lumped masses at \
+                     the offset ends would couple the grids' translations and rotations); use \
+                     consistent mass (PARAM,COUPMASS,1 or --mass consistent)"
+                        .into(),
+                ));
+            }
+            // The element runs between its offset ends (grid + W); rigid links join them below.
+            let x = match offsets {
+                Some(w) => [0, 1].map(|i| [0, 1, 2].map(|c| grid_x[i][c] + w[i][c])),
+                None => grid_x,
+            };
             let (v, iz, iy) = match el.orientation {
                 Some(v) => {
                     let (v, iz, iy) =
@@ -298,6 +312,10 @@ pub fn element_matrices(
                 }
             }
             .map_err(elem_err)?;
+            let (k, m) = match offsets {
+                Some(w) => (beam::offset(&k, &w), beam::offset(&m, &w)),
+                None => (k, m),
+            };
             ElementMatrices { dpn: 6, k, m }
         }
         ElementKind::Rod2 => {

@@ -517,6 +517,9 @@ pub struct Model {
     /// Released (pinned) dofs of bar/beam ends, Nastran CBAR/CBEAM PA, PB: element index →
     /// the dofs of the element frame released at end A and at end B.
     pub beam_pins: BTreeMap<usize, [DofMask; 2]>,
+    /// Offsets of bar/beam ends, Nastran CBAR/CBEAM WA, WB (basic frame): element index → the
+    /// vectors from grid A and grid B to the element's ends, joined to the grids rigidly.
+    pub beam_offsets: BTreeMap<usize, [[f64; 3]; 2]>,
     /// Properties (sections).
     pub properties: Vec<Property>,
     /// Materials.

@@ -338,6 +338,45 @@ pub fn matrices_pinned(
     Ok((to_basic(&k, &r), to_basic(&m, &r)))
 }
 
+/// A basic-frame 12×12 element matrix (row-major) at offset ends moved to the grids: the end
+/// moves rigidly with its grid, u_end = u_grid + θ × w = u_grid − w̃ θ (Nastran CBAR WA/WB;
+/// Przemieniecki 1968 §6.9 "rigid links"), so A_grid = Tᵀ A T with T = diag(T_A, T_B),
+/// T_i = [[I, −w̃_i], [0, I]].
+pub fn offset(a: &[f64], w: &[Xyz; 2]) -> Vec<f64> {
+    // t[i][j]: end dof i from grid dof j.
+    let mut t = [[0.0; 12]; 12];
+    for (node, wi) in w.iter().enumerate() {
+        let o = 6 * node;
+        for i in 0..6 {
+            t[o + i][o + i] = 1.0;
+        }
+        // −w̃ = [[0, w3, −w2], [−w3, 0, w1], [w2, −w1, 0]].
+        let m = [
+            [0.0, wi[2], -wi[1]],
+            [-wi[2], 0.0, wi[0]],
+            [wi[1], -wi[0], 0.0],
+        ];
+        for r in 0..3 {
+            for c in 0..3 {
+                t[o + r][o + 3 + c] = m[r][c];
+            }
+        }
+    }
+    let mut at = [[0.0; 12]; 12]; // A T
+    for i in 0..12 {
+        for j in 0..12 {
+            at[i][j] = (0..12).map(|k| a[i * 12 + k] * t[k][j]).sum();
+        }
+    }
+    let mut out = vec![0.0; 144];
+    for i in 0..12 {
+        for j in 0..12 {
+            out[i * 12 + j] = (0..12).map(|k| t[k][i] * at[k][j]).sum();
+        }
+    }
+    out
+}
+
 /// Basic-frame stiffness and mass (12×12 each) of a beam.
 pub fn matrices(
     x: &[Xyz; 2],

@@ -194,10 +194,13 @@ fn formulation(
             Formulation::Shell(ShellElement::new(&x, &p).map_err(elem_err)?)
         }
         (Section::Beam(s), ElementKind::Beam2 | ElementKind::Bar2) => {
-            if s.taper.is_some() || model.beam_pins.contains_key(&e) {
+            if s.taper.is_some()
+                || model.beam_pins.contains_key(&e)
+                || model.beam_offsets.contains_key(&e)
+            {
                 return Err(fail(format!(
-                    "a tapered (property {}) or pinned beam has no geometric stiffness (not \
-                     implemented)",
+                    "a tapered (property {}), pinned or offset beam has no geometric stiffness \
+                     (not implemented)",
                     prop.id
                 )));
             }
