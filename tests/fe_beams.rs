@@ -24,6 +24,7 @@ fn section() -> BeamSection {
         shear_factors: Some([5.0 / 6.0, 5.0 / 6.0]),
         nsm: 0.0,
         shape: None,
+        taper: None,
     }
 }
 

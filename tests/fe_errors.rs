@@ -126,6 +126,7 @@ fn shells_beams_without_orientation_and_bad_materials_are_errors() {
         shear_factors: None,
         nsm: 0.0,
         shape: None,
+        taper: None,
     };
     m.properties.push(Property {
         id: 3,

@@ -249,8 +249,8 @@ fn case_control_preload_and_added_matrices_are_refused() {
 }
 
 /// Every warning of a deck names file and line: an implausible material, shells with uneven
-/// corner thicknesses, an RBE2 with a CBAR's id, cross-section shapes without Nastran's shear
-/// factors, mixed PSOLID formulations, an unusable load set.
+/// corner thicknesses, an RBE2 with a CBAR's id, mixed PSOLID formulations, an unusable load
+/// set. (A PBARL BAR is a note since its shear factors are derived: no warning.)
 #[test]
 fn every_warning_names_file_and_line() {
     let text = base().replace("MAT1,1,2.1e11,,.3,7850.", "MAT1,1,2.1e11,,.3,7.85e-9")
@@ -262,7 +262,7 @@ fn every_warning_names_file_and_line() {
         Ok(m) => m,
         Err(e) => panic!("{e}"),
     };
-    assert!(m.warnings.len() >= 6, "{:?}", m.warnings);
+    assert!(m.warnings.len() >= 5, "{:?}", m.warnings);
     let file = path.display().to_string();
     for w in &m.warnings {
         let at_line = w

@@ -31,6 +31,7 @@ fn section(shear: bool) -> BeamSection {
         shear_factors: shear.then_some([5.0 / 6.0, 5.0 / 6.0]),
         nsm: 0.0,
         shape: None,
+        taper: None,
     }
 }
 

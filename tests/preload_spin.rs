@@ -72,6 +72,7 @@ fn cantilever(plane: Plane) -> Built {
         shear_factors: None,
         nsm: 0.0,
         shape: None,
+        taper: None,
     });
     let mut model = straight_line(
         NE,

@@ -49,6 +49,7 @@ fn free_beam(rod: bool) -> Model {
                 shear_factors: None,
                 nsm: 0.0,
                 shape: None,
+                taper: None,
             }),
         )
     };

@@ -256,15 +256,36 @@ pub fn element_matrices(
                     prop.id
                 )));
             };
-            if s.i12 != 0.0 {
-                return Err(fail(format!("property {}: product of inertia I12 = {} is not supported (principal axes only)", prop.id, s.i12)));
+            let grid_x = coords::<2>(model, n);
+            let offsets = model.beam_offsets.get(&e).copied();
+            if offsets.is_some() && lumped {
+                return Err(fail(
+                    "offsets WA/WB with lumped mass are not implemented (the lumped masses at \
+                     the offset ends would couple the grids' translations and rotations); use \
+                     consistent mass (PARAM,COUPMASS,1 or --mass consistent)"
+                        .into(),
+                ));
             }
+            // The element runs between its offset ends (grid + W); rigid links join them below.
+            let x = match offsets {
+                Some(w) => [0, 1].map(|i| [0, 1, 2].map(|c| grid_x[i][c] + w[i][c])),
+                None => grid_x,
+            };
+            let (v, iz, iy) = match el.orientation {
+                Some(v) => {
+                    let (v, iz, iy) =
+                        beam::principal_orientation(&x, v, s.i1, s.i2, s.i12).map_err(elem_err)?;
+                    (Some(v), iz, iy)
+                }
+                None => (None, s.i1, s.i2),
+            };
             let p = BeamProps {
                 area: s.area,
-                iz: s.i1,
-                iy: s.i2,
+                iz,
+                iy,
                 j: s.j,
-                shear: if spec.beam == BeamTheory::Timoshenko {
+                // Nastran ignores K1, K2 when I12 ≠ 0 (QRG PBAR Remark 4).
+                shear: if spec.beam == BeamTheory::Timoshenko && s.i12 == 0.0 {
                     s.shear_factors
                 } else {
                     None
@@ -272,8 +293,38 @@ pub fn element_matrices(
                 nsm: s.nsm,
             };
             let lumping = lumped.then_some(spec.beam_lumping.for_element(el.kind));
-            let (k, m) = beam::matrices(&coords::<2>(model, n), el.orientation, &iso, &p, lumping)
-                .map_err(elem_err)?;
+            let pins = model.beam_pins.get(&e).copied();
+            let (k, m) = match (&s.taper, pins) {
+                (None, None) => beam::matrices(&x, v, &iso, &p, lumping),
+                (None, Some(pins)) => beam::matrices_pinned(&x, v, &iso, &p, lumping, pins),
+                (Some(_), Some(_)) => {
+                    return Err(fail(
+                        "pin flags on a tapered beam are not implemented".into(),
+                    ))
+                }
+                (Some(_), None) => {
+                    let timoshenko = spec.beam == BeamTheory::Timoshenko;
+                    let at = |xi: f64| {
+                        let ([area, iz, iy, j, nsm], k) = s.at(xi);
+                        let shear = k.filter(|_| timoshenko);
+                        BeamProps {
+                            area,
+                            iz,
+                            iy,
+                            j,
+                            shear,
+                            nsm,
+                        }
+                    };
+                    let breaks = s.breakpoints();
+                    super::elements::tapered_beam::matrices(&x, v, &iso, &at, &breaks, lumping)
+                }
+            }
+            .map_err(elem_err)?;
+            let (k, m) = match offsets {
+                Some(w) => (beam::offset(&k, &w), beam::offset(&m, &w)),
+                None => (k, m),
+            };
             ElementMatrices { dpn: 6, k, m }
         }
         ElementKind::Rod2 => {

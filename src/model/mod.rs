@@ -13,6 +13,7 @@
 
 use std::collections::BTreeMap;
 
+pub mod beam_library;
 pub mod connector;
 pub mod deck;
 pub mod generate;
@@ -170,7 +171,8 @@ pub struct Element {
     pub orientation: Option<[f64; 3]>,
 }
 
-/// Standard beam cross-section shapes (PBARL/PBEAML TYPE, Abaqus *BEAM SECTION SECTION=).
+/// Standard beam cross-section shapes of Abaqus *BEAM SECTION SECTION= (Nastran PBARL/PBEAML:
+/// [`beam_library`]).
 #[derive(Debug, Clone, PartialEq)]
 pub enum SectionShape {
     /// Solid circle, radius r (Nastran ROD: DIM1 = r; Abaqus CIRC: r).
@@ -180,7 +182,7 @@ pub enum SectionShape {
         outer_radius: f64,
         inner_radius: f64,
     },
-    /// Solid rectangle, width (local y) × height (local z) (Nastran BAR, Abaqus RECT).
+    /// Solid rectangle, width (local y) × height (local z) (Abaqus RECT).
     Rectangle { width: f64, height: f64 },
     /// Hollow rectangle (Nastran BOX / Abaqus BOX): outer width, outer height, wall thicknesses.
     Box {
@@ -221,6 +223,84 @@ pub struct BeamSection {
     pub nsm: f64,
     /// The standard shape the values were computed from, if any.
     pub shape: Option<SectionShape>,
+    /// Sections varying along the element (tapered PBEAM/PBEAML); `None`: prismatic, the
+    /// values above everywhere.
+    pub taper: Option<BeamTaper>,
+}
+
+/// A tapered beam's sections along the element, at ξ = x/L from end A (ξ = 0) to end B (1).
+#[derive(Debug, Clone, PartialEq)]
+pub enum BeamTaper {
+    /// PBEAM stations (ξ, [A, I1, I2, J, NSM]) from end A to end B; each value linear between
+    /// stations.
+    Values(Vec<(f64, [f64; 5])>),
+    /// PBEAML stations of library shape `shape`: (ξ, DIM1…DIMn, NSM); the dimensions and NSM
+    /// linear between stations, the constants of the shape at the interpolated dimensions.
+    Library {
+        shape: String,
+        stations: Vec<(f64, Vec<f64>, f64)>,
+    },
+}
+
+/// A beam's section at one point: [A, I1, I2, J, NSM] and the shear factors.
+pub type SectionAt = ([f64; 5], Option<[f64; 2]>);
+
+impl BeamSection {
+    /// The section at ξ = x/L (the tapered values interpolated, else the prismatic ones).
+    pub fn at(&self, xi: f64) -> SectionAt {
+        let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
+        // The interval [ξ_k, ξ_k+1] holding ξ and the fraction t in it.
+        fn interval<T>(st: &[(f64, T)], xi: f64) -> (usize, f64) {
+            let k = (0..st.len().saturating_sub(1))
+                .find(|&k| xi <= st[k + 1].0)
+                .unwrap_or(st.len().saturating_sub(2));
+            let (a, b) = (st[k].0, st[k + 1].0);
+            (
+                k,
+                if b > a {
+                    ((xi - a) / (b - a)).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                },
+            )
+        }
+        match &self.taper {
+            None => (
+                [self.area, self.i1, self.i2, self.j, self.nsm],
+                self.shear_factors,
+            ),
+            Some(BeamTaper::Values(st)) if st.len() >= 2 => {
+                let (k, t) = interval(st, xi);
+                let v = std::array::from_fn(|i| lerp(st[k].1[i], st[k + 1].1[i], t));
+                (v, self.shear_factors)
+            }
+            Some(BeamTaper::Library { shape, stations }) if stations.len() >= 2 => {
+                let st: Vec<(f64, ())> = stations.iter().map(|s| (s.0, ())).collect();
+                let (k, t) = interval(&st, xi);
+                let (a, b) = (&stations[k], &stations[k + 1]);
+                let dims: Vec<f64> = a.1.iter().zip(&b.1).map(|(p, q)| lerp(*p, *q, t)).collect();
+                let nsm = lerp(a.2, b.2, t);
+                match beam_library::library_section(shape, &dims) {
+                    Ok(l) => ([l.area, l.i1, l.i2, l.j, nsm], Some(l.shear_factors)),
+                    // The importer checked every station; a convex mix of valid walls is valid.
+                    Err(_) => ([0.0; 5], None),
+                }
+            }
+            Some(_) => (
+                [self.area, self.i1, self.i2, self.j, self.nsm],
+                self.shear_factors,
+            ),
+        }
+    }
+
+    /// The stations' ξ (0 and 1 for a prismatic beam): where the interpolation has kinks.
+    pub fn breakpoints(&self) -> Vec<f64> {
+        match &self.taper {
+            Some(BeamTaper::Values(st)) => st.iter().map(|s| s.0).collect(),
+            Some(BeamTaper::Library { stations, .. }) => stations.iter().map(|s| s.0).collect(),
+            None => vec![0.0, 1.0],
+        }
+    }
 }
 
 /// Section kinds.
@@ -439,6 +519,12 @@ pub struct Model {
     pub coord_systems: Vec<CoordSystem>,
     /// Elements, in input order.
     pub elements: Vec<Element>,
+    /// Released (pinned) dofs of bar/beam ends, Nastran CBAR/CBEAM PA, PB: element index →
+    /// the dofs of the element frame released at end A and at end B.
+    pub beam_pins: BTreeMap<usize, [DofMask; 2]>,
+    /// Offsets of bar/beam ends, Nastran CBAR/CBEAM WA, WB (basic frame): element index → the
+    /// vectors from grid A and grid B to the element's ends, joined to the grids rigidly.
+    pub beam_offsets: BTreeMap<usize, [[f64; 3]; 2]>,
     /// Properties (sections).
     pub properties: Vec<Property>,
     /// Materials.

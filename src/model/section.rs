@@ -1,5 +1,5 @@
-//! Section constants (A, I1, I2, J) of the standard beam cross-section shapes shared by the
-//! Nastran PBARL/PBEAML and Abaqus *BEAM SECTION importers, and the shell section type.
+//! Section constants (A, I1, I2, J) of the standard beam cross-section shapes of the Abaqus
+//! *BEAM SECTION importer, and the shell section type (Nastran PBARL/PBEAML: `beam_library`).
 //!
 //! Convention (Nastran): local y is the first section axis, z the second; I1 = ∫y² dA (bending
 //! in the x–y plane), I2 = ∫z² dA.
@@ -83,19 +83,6 @@ impl SectionShape {
         }
     }
 
-    /// The transverse shear factors (K1, K2) Nastran's beam library gives this shape in the
-    /// equivalent PBAR/PBEAM it derives from a PBARL/PBEAML. ROD: K1 = K2 = 0.9, as Simcenter
-    /// Nastran 2019.2 prints it (User Information Message 4379 of
-    /// `nastran/beam_modes/beam_modes.f06` of the external reference data). `None` for the shapes whose
-    /// library values are not established here (TUBE, BAR, BOX, I): those stay shear-rigid and
-    /// the importer says so.
-    pub fn nastran_shear_factors(&self) -> Option<[f64; 2]> {
-        match self {
-            SectionShape::Circle { .. } => Some([0.9, 0.9]),
-            _ => None,
-        }
-    }
-
     /// A [`BeamSection`] from this shape (no shear factors, no NSM); `None` for `Other`.
     pub fn to_section(&self) -> Option<BeamSection> {
         let (area, i1, i2, j) = self.constants()?;
@@ -108,6 +95,7 @@ impl SectionShape {
             shear_factors: None,
             nsm: 0.0,
             shape: Some(self.clone()),
+            taper: None,
         })
     }
 }

@@ -190,6 +190,7 @@ pub fn beam_model(ne: usize) -> Model {
             shear_factors: None,
             nsm: 0.0,
             shape: None,
+            taper: None,
         }),
     });
     for i in 0..=ne {

@@ -64,6 +64,33 @@ pub fn local_frame(x: &[Xyz; 2], v: Option<Xyz>) -> Result<([Xyz; 3], f64), Elem
     Ok(([ex, ey, cross(ex, ey)], l))
 }
 
+/// A section with a product of inertia I12 = ∫yz dA ≠ 0 (Nastran PBAR/PBEAM I12, PBARL L or Z)
+/// bends about its principal axes: the orientation vector turned about the element axis to
+/// the principal y' = y cos θ + z sin θ, with (I1', I2', θ) from
+/// [`crate::model::beam_library::principal_axes`]. Returns (v', I1', I2'); I12 = 0 returns
+/// the inputs.
+pub fn principal_orientation(
+    x: &[Xyz; 2],
+    v: Xyz,
+    i1: f64,
+    i2: f64,
+    i12: f64,
+) -> Result<(Xyz, f64, f64), ElementError> {
+    if i12 == 0.0 {
+        return Ok((v, i1, i2));
+    }
+    if i1 * i2 <= i12 * i12 {
+        return Err(ElementError::BadConstants(format!(
+            "beam needs I1·I2 > I12² (I1 = {i1}, I2 = {i2}, I12 = {i12})"
+        )));
+    }
+    let ([_, ey, ez], _) = local_frame(x, Some(v))?;
+    let (i1p, i2p, theta) = crate::model::beam_library::principal_axes(i1, i2, i12);
+    let (s, c) = theta.sin_cos();
+    let yp = [0, 1, 2].map(|k| ey[k] * c + ez[k] * s);
+    Ok((yp, i1p, i2p))
+}
+
 /// The shear parameters (Φ_y, Φ_z) = (12EI_z/(G k_y A L²), 12EI_y/(G k_z A L²)) of the two
 /// bending planes (module doc); zero for Euler–Bernoulli.
 pub fn shear_parameters(l: f64, mat: &Isotropic, p: &BeamProps) -> (f64, f64) {
@@ -246,6 +273,108 @@ pub fn check(mat: &Isotropic, p: &BeamProps) -> Result<(), ElementError> {
         )));
     }
     Ok(())
+}
+
+/// Releases element dofs (pin flags, Nastran CBAR/CBEAM PA/PB; `released` local indices 0–11)
+/// by static condensation: with T = [I; −K_rr⁻¹ K_re] mapping the kept dofs to all, K ← TᵀKT
+/// and M ← TᵀMT (Guyan on the released dofs), whose rows and columns become zero (Przemieniecki
+/// 1968, §10.6 "elements with released end connections"). One dof at a time; a release that
+/// leaves a dof without stiffness (a rigid motion of the element) is an error.
+pub fn release(
+    k: &mut [[f64; 12]; 12],
+    m: &mut [[f64; 12]; 12],
+    released: &[usize],
+) -> Result<(), ElementError> {
+    let scale = (0..12).map(|i| k[i][i].abs()).fold(0.0, f64::max);
+    for &r in released {
+        let krr = k[r][r];
+        if krr.is_nan() || krr <= 1e-12 * scale {
+            return Err(ElementError::BadConstants(format!(
+                "pin flags release dof {} of the element frame at end {} with nothing left to \
+                 hold it (the element would have a rigid motion)",
+                r % 6 + 1,
+                if r < 6 { 'A' } else { 'B' }
+            )));
+        }
+        // u_r = Σ t_j u_j with t_j = −k_rj / k_rr; A ← Tᵀ A T for A = K, M.
+        let t: [f64; 12] = std::array::from_fn(|j| if j == r { 0.0 } else { -k[r][j] / krr });
+        for a in [&mut *k, &mut *m] {
+            let old = *a;
+            for i in 0..12 {
+                for j in 0..12 {
+                    a[i][j] =
+                        old[i][j] + t[i] * old[r][j] + old[i][r] * t[j] + t[i] * old[r][r] * t[j];
+                }
+            }
+            for i in 0..12 {
+                a[r][i] = 0.0;
+                a[i][r] = 0.0;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Basic-frame stiffness and mass of a beam with released dofs (`pins`: end A, end B in the
+/// element frame; see [`release`]).
+pub fn matrices_pinned(
+    x: &[Xyz; 2],
+    v: Option<Xyz>,
+    mat: &Isotropic,
+    p: &BeamProps,
+    lumped: Option<BeamLumping>,
+    pins: [crate::model::DofMask; 2],
+) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
+    check(mat, p)?;
+    let v = v.ok_or(ElementError::BadOrientation { v: [0.0; 3] })?;
+    let (r, l) = local_frame(x, Some(v))?;
+    let mut k = stiffness_local(l, mat, p);
+    let mut m = match lumped {
+        Some(lumping) => lumped_mass_local(l, mat, p, lumping),
+        None => consistent_mass_local(l, mat, p),
+    };
+    let released: Vec<usize> = (0..12).filter(|&i| pins[i / 6].contains(i % 6)).collect();
+    release(&mut k, &mut m, &released)?;
+    Ok((to_basic(&k, &r), to_basic(&m, &r)))
+}
+
+/// A basic-frame 12×12 element matrix (row-major) at offset ends moved to the grids: the end
+/// moves rigidly with its grid, u_end = u_grid + θ × w = u_grid − w̃ θ (Nastran CBAR WA/WB;
+/// Przemieniecki 1968 §6.9 "rigid links"), so A_grid = Tᵀ A T with T = diag(T_A, T_B),
+/// T_i = [[I, −w̃_i], [0, I]].
+pub fn offset(a: &[f64], w: &[Xyz; 2]) -> Vec<f64> {
+    // t[i][j]: end dof i from grid dof j.
+    let mut t = [[0.0; 12]; 12];
+    for (node, wi) in w.iter().enumerate() {
+        let o = 6 * node;
+        for i in 0..6 {
+            t[o + i][o + i] = 1.0;
+        }
+        // −w̃ = [[0, w3, −w2], [−w3, 0, w1], [w2, −w1, 0]].
+        let m = [
+            [0.0, wi[2], -wi[1]],
+            [-wi[2], 0.0, wi[0]],
+            [wi[1], -wi[0], 0.0],
+        ];
+        for r in 0..3 {
+            for c in 0..3 {
+                t[o + r][o + 3 + c] = m[r][c];
+            }
+        }
+    }
+    let mut at = [[0.0; 12]; 12]; // A T
+    for i in 0..12 {
+        for j in 0..12 {
+            at[i][j] = (0..12).map(|k| a[i * 12 + k] * t[k][j]).sum();
+        }
+    }
+    let mut out = vec![0.0; 144];
+    for i in 0..12 {
+        for j in 0..12 {
+            out[i * 12 + j] = (0..12).map(|k| t[k][i] * at[k][j]).sum();
+        }
+    }
+    out
 }
 
 /// Basic-frame stiffness and mass (12×12 each) of a beam.

@@ -22,6 +22,7 @@ pub mod quad4_shell;
 pub mod rod;
 pub mod shell;
 pub mod solid_incompatible;
+pub mod tapered_beam;
 pub mod tet10;
 pub mod tet4;
 pub mod tri3_shell;

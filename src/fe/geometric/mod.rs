@@ -193,21 +193,43 @@ fn formulation(
             let p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;
             Formulation::Shell(ShellElement::new(&x, &p).map_err(elem_err)?)
         }
-        (Section::Beam(s), ElementKind::Beam2 | ElementKind::Bar2) => Formulation::Beam {
-            x: two()?,
-            v: el.orientation,
-            mat,
-            props: BeamProps {
-                area: s.area,
-                iz: s.i1,
-                iy: s.i2,
-                j: s.j,
-                shear: s
-                    .shear_factors
-                    .filter(|_| spec.beam == BeamTheory::Timoshenko),
-                nsm: s.nsm,
-            },
-        },
+        (Section::Beam(s), ElementKind::Beam2 | ElementKind::Bar2) => {
+            if s.taper.is_some()
+                || model.beam_pins.contains_key(&e)
+                || model.beam_offsets.contains_key(&e)
+            {
+                return Err(fail(format!(
+                    "a tapered (property {}), pinned or offset beam has no geometric stiffness \
+                     (not implemented)",
+                    prop.id
+                )));
+            }
+            let x = two()?;
+            // I12 ≠ 0: the principal frame, without shear factors (as the assembler).
+            let (v, iz, iy) = match el.orientation {
+                Some(v) => {
+                    let p =
+                        crate::fe::elements::beam::principal_orientation(&x, v, s.i1, s.i2, s.i12)
+                            .map_err(elem_err)?;
+                    (Some(p.0), p.1, p.2)
+                }
+                None => (None, s.i1, s.i2),
+            };
+            Formulation::Beam {
+                x,
+                v,
+                mat,
+                props: BeamProps {
+                    area: s.area,
+                    iz,
+                    iy,
+                    j: s.j,
+                    shear: (s.shear_factors)
+                        .filter(|_| spec.beam == BeamTheory::Timoshenko && s.i12 == 0.0),
+                    nsm: s.nsm,
+                },
+            }
+        }
         (Section::Rod { area, .. }, ElementKind::Rod2) => Formulation::Rod {
             x: two()?,
             ea: mat.e * area,

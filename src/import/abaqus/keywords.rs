@@ -412,6 +412,7 @@ impl Parser {
                         name: s,
                         dims: vec![],
                     }),
+                    taper: None,
                 })
             }
         };

@@ -30,6 +30,8 @@ pub(super) struct ElementCards<'a> {
     pub shell_t: Vec<ElementThickness>,
     /// Orientation of bars and beams: (element index, as given, card location).
     pub orient: Vec<(usize, Orientation, Loc)>,
+    /// Offsets WA, WB of bars and beams in the displacement frames of GA, GB (OFFT …GG).
+    pub offsets: Vec<(usize, [[f64; 3]; 2], Loc)>,
     /// Ids of the other cards in the element id space (concentrated masses, springs).
     pub other_ids: Vec<(u64, &'a Card)>,
     /// Ids of the rigid elements: unique among themselves.
@@ -46,8 +48,10 @@ pub(super) enum ElementProperty {
 
 /// A bar/beam orientation as the card gives it.
 pub(super) enum Orientation {
-    /// X1–X3, in the displacement frame of GA.
+    /// X1–X3, in the displacement frame of GA (OFFT G…, the default).
     Vector([f64; 3]),
+    /// X1–X3 in the basic frame (OFFT B…).
+    Basic([f64; 3]),
     /// Towards grid G0.
     Node(u64),
 }
@@ -85,6 +89,15 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
         d.elements
             .shell_t
             .extend(super::shell::element_fields(g, k)?);
+    }
+    if matches!(kind, Bar2 | Beam2) {
+        if let Some(w) = offsets(g, name)? {
+            d.elements.offsets.push((k, w, g.card.loc));
+        }
+        let pins = [pin_flags(g, 8)?, pin_flags(g, 9)?];
+        if pins.iter().any(|p| p.0 != 0) {
+            d.b.model.beam_pins.insert(k, pins);
+        }
     }
     d.b.add_element(eid, kind, ids, None, name, g.card.loc);
     d.elements.pid.push((ElementProperty::Id(pid), g.card.loc));
@@ -158,6 +171,7 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
         ids = [&ids[..9], &ids[12..15], &ids[9..12]].concat();
     }
     let orientation = if kind == Beam2 || kind == Bar2 {
+        unsupported_bar_fields(g, name)?;
         let s = g.text(4);
         if s.is_empty() {
             return Err(g.err(
@@ -168,16 +182,90 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
         if !s.contains('.') && !s.contains(['e', 'E']) {
             Some(Orientation::Node(g.id(4, "G0")?))
         } else {
-            Some(Orientation::Vector([
-                g.real_or(4, 0.0)?,
-                g.real_or(5, 0.0)?,
-                g.real_or(6, 0.0)?,
-            ]))
+            let v = [g.real_or(4, 0.0)?, g.real_or(5, 0.0)?, g.real_or(6, 0.0)?];
+            Some(match offt(g, name)?[0] {
+                b'B' => Orientation::Basic(v),
+                _ => Orientation::Vector(v),
+            })
         }
     } else {
         None
     };
     Ok((name, kind, ids, orientation))
+}
+
+/// OFFT (CBAR/CBEAM field 9; MSC QRG CBAR Remark 8): the frames of the orientation vector (G
+/// the displacement frame of GA, the default, or B basic) and of the offsets at end A and end
+/// B (G the displacement frame of GA resp. GB, or O the element frame); default GGG. A code
+/// not in the QRG's list is an error.
+fn offt(g: &C, name: &str) -> Result<[u8; 3], ImportError> {
+    let t = g.text(7).to_ascii_uppercase();
+    if t.is_empty() || (name == "CBEAM" && !t.bytes().any(|b| b.is_ascii_alphabetic())) {
+        return Ok(*b"GGG");
+    }
+    const CODES: [&str; 8] = ["GGG", "BGG", "GGO", "BGO", "GOG", "BOG", "GOO", "BOO"];
+    if !CODES.contains(&t.as_str()) {
+        return Err(g.err(7, format!("OFFT {t}: one of {} expected", CODES.join(", "))));
+    }
+    let b = t.as_bytes();
+    Ok([b[0], b[1], b[2]])
+}
+
+/// Offsets WA, WB (fields W1A…W3B) when nonzero, with their OFFT frames checked: G (the
+/// grids' displacement frames, resolved in `orient`) is honoured, O (element frame) is an
+/// error naming the field.
+fn offsets(g: &C, name: &str) -> Result<Option<[[f64; 3]; 2]>, ImportError> {
+    let mut w = [[0.0; 3]; 2];
+    for (i, x) in w.iter_mut().flatten().enumerate() {
+        *x = g.real_or(10 + i, 0.0)?;
+    }
+    if w.iter().flatten().all(|&x| x == 0.0) {
+        return Ok(None);
+    }
+    let letters = offt(g, name)?;
+    for (end, wk) in w.iter().enumerate() {
+        if letters[1 + end] == b'O' && wk.iter().any(|&x| x != 0.0) {
+            return Err(g.err(
+                7,
+                format!(
+                    "offset of end {} in the element frame (OFFT {}) is not implemented (G: the grid's frame)",
+                    if end == 0 { 'A' } else { 'B' },
+                    g.text(7)
+                ),
+            ));
+        }
+    }
+    Ok(Some(w))
+}
+
+/// Pin flags PA or PB in field `k`: the element-frame dofs released at that end (digits
+/// 1–6; blank or 0 none).
+fn pin_flags(g: &C, k: usize) -> Result<crate::model::DofMask, ImportError> {
+    let t = g.text(k);
+    if t.is_empty() || t == "0" {
+        return Ok(crate::model::DofMask(0));
+    }
+    crate::model::DofMask::from_digits(t)
+        .ok_or_else(|| g.err(k, format!("pin flags {t}: digits 1–6 expected")))
+}
+
+/// CBAR/CBEAM fields after the orientation that change the element and are not implemented:
+/// CBEAM's built-in twist BIT (the real in OFFT's place) and warping scalar points SA/SB: each
+/// nonzero one is an error naming it.
+fn unsupported_bar_fields(g: &C, name: &str) -> Result<(), ImportError> {
+    let f8 = g.text(7);
+    let bit = name == "CBEAM" && !f8.is_empty() && !f8.bytes().any(|b| b.is_ascii_alphabetic());
+    if bit && g.real(7)?.is_some_and(|v| v != 0.0) {
+        return Err(g.err(7, "built-in twist BIT is not implemented"));
+    }
+    if name == "CBEAM" {
+        for (k, what) in [(16, "SA"), (17, "SB")] {
+            if g.int(k)?.is_some_and(|v| v != 0) {
+                return Err(g.err(k, format!("warping scalar point {what} is not implemented")));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A structural element on a scalar point is an error naming its card and the point.
@@ -323,6 +411,7 @@ pub(super) fn orient(d: &mut Bulk) -> Result<(), ImportError> {
         let e = &b.model.elements[k];
         let ga = e.nodes[0];
         let v = match o {
+            Orientation::Basic(v) => v,
             Orientation::Vector(v) => match b.model.nodes[ga].displacement_frame {
                 Some(cs) if b.model.coord_systems[cs].kind == CoordKind::Rectangular => {
                     dir_to_basic(&b.model.coord_systems[cs], v)
@@ -343,6 +432,28 @@ pub(super) fn orient(d: &mut Bulk) -> Result<(), ImportError> {
             }
         };
         b.model.elements[k].orientation = Some(v);
+    }
+    for (k, w, loc) in std::mem::take(&mut d.elements.offsets) {
+        let e = &b.model.elements[k];
+        let mut basic = w;
+        for (end, wb) in basic.iter_mut().enumerate() {
+            match b.model.nodes[e.nodes[end]].displacement_frame {
+                Some(cs) if b.model.coord_systems[cs].kind == CoordKind::Rectangular => {
+                    *wb = dir_to_basic(&b.model.coord_systems[cs], *wb)
+                }
+                Some(_) => {
+                    return Err(parse_err(
+                        b.file_name(loc),
+                        loc.line as usize,
+                        format!("{} {}", b.elem_card[k], e.id),
+                        "offset at a grid whose displacement frame is cylindrical or spherical \
+                         is not implemented",
+                    ))
+                }
+                None => {}
+            }
+        }
+        b.model.beam_offsets.insert(k, basic);
     }
     Ok(())
 }

@@ -14,7 +14,8 @@ use super::fields::C;
 use super::lex::Card;
 use crate::import::error::ImportError;
 use crate::import::text::{IdMap, Loc};
-use crate::model::{BeamSection, ImportWarning, Material, Property, Section, SectionShape};
+use crate::model::beam_library::{dimension_count, library_section};
+use crate::model::{BeamSection, BeamTaper, ImportWarning, Material, Property, Section};
 
 /// The raw records of the property and material cards.
 #[derive(Default)]
@@ -26,12 +27,13 @@ pub(super) struct PropertyCards<'a> {
     pub others: Vec<(u64, &'a Card)>,
     /// (MID, material, card).
     pub mats: Vec<(u64, Material, &'a Card)>,
-    /// PBARL/PBEAML whose shape has no Nastran shear factors here, for one warning.
-    pub shear_rigid: Vec<String>,
     /// PSOLID ISOP: (FULL, other) property ids with their `file:line` — MSC's CHEXA/CPENTA
     /// default has bubble modes.
     pub isop: (Vec<String>, Vec<String>),
 }
+
+/// Note on the library shapes other than ROD: their J and shear factors are textbook values.
+const LIBRARY_CONSTANTS: &str = "A, I1, I2, I12 of the shape exactly; J and the shear factors K1, K2 (Nastran does not publish its own for this shape) by the rules of src/model/beam_library.rs: thin-walled J (Bredt for closed walls), K = web area / A";
 
 /// Reader of PSOLID, PSHELL, PROD, PBAR, PBARL, PBEAM, PBEAML.
 pub(super) fn property<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
@@ -49,16 +51,10 @@ pub(super) fn property<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportErro
         "PSHELL" => super::shell::pshell(g)?,
         _ => (g.id(1, "MID")?, section(g)?),
     };
-    if let (true, Section::Beam(bs)) = (matches!(name, "PBARL" | "PBEAML"), &section) {
-        if bs.shear_factors.is_none() {
-            p.shear_rigid.push(format!(
-                "{name} {pid} TYPE {} ({}:{})",
-                g.text(3),
-                g.file,
-                g.card.loc.line
-            ));
-        }
+    if matches!(name, "PBARL" | "PBEAML") && !g.text(3).eq_ignore_ascii_case("ROD") {
+        d.note(g, LIBRARY_CONSTANTS);
     }
+    let p = &mut d.properties;
     p.props.push((pid, mid, section, g.card));
     Ok(())
 }
@@ -161,19 +157,10 @@ pub(super) fn resolve(d: &mut Bulk) -> Result<(IdMap, IdMap), ImportError> {
     Ok((pids, mids))
 }
 
-/// The findings about properties: shapes without Nastran's shear factors, mixed PSOLID ISOP.
+/// The findings about properties: mixed PSOLID ISOP.
 pub(super) fn warnings(d: &mut Bulk) {
     let p = &d.properties;
     let model = &mut d.b.model;
-    if !p.shear_rigid.is_empty() {
-        model.warnings.push(ImportWarning {
-            file: d.files[0].clone(),
-            message: format!(
-                "{}: the shear factors Nastran derives for these cross-section shapes are not implemented here (only ROD's 0.9): shear-rigid bending, stiffer than Nastran's shear-flexible element",
-                p.shear_rigid.join(", ")
-            ),
-        });
-    }
     model.params.solid_bubbles = p.isop.0.is_empty();
     if !p.isop.0.is_empty() && !p.isop.1.is_empty() {
         model.warnings.push(ImportWarning {
@@ -205,50 +192,8 @@ fn beam(g: &C, at: [usize; 6], k: Option<[f64; 2]>) -> Result<Section, ImportErr
         shear_factors: k,
         nsm,
         shape: None,
+        taper: None,
     }))
-}
-
-/// Standard shape from PBARL/PBEAML TYPE and dimensions (MSC QRG "PBARL"), with dimension count.
-fn nastran_shape(ty: &str, d: &[f64]) -> Option<(SectionShape, usize)> {
-    Some(match (ty, d) {
-        ("ROD", [r, ..]) => (SectionShape::Circle { radius: *r }, 1),
-        ("TUBE", [ro, ri, ..]) => (
-            SectionShape::Tube {
-                outer_radius: *ro,
-                inner_radius: *ri,
-            },
-            2,
-        ),
-        ("BAR", [w, h, ..]) => (
-            SectionShape::Rectangle {
-                width: *w,
-                height: *h,
-            },
-            2,
-        ),
-        // BOX: DIM1 width, DIM2 height, DIM3 top/bottom wall, DIM4 side walls.
-        ("BOX", [w, h, t1, t2, ..]) => (
-            SectionShape::Box {
-                width: *w,
-                height: *h,
-                t_web: *t2,
-                t_flange: *t1,
-            },
-            4,
-        ),
-        ("I", [h, wb, wt, tw, tb, tt, ..]) => (
-            SectionShape::I {
-                height: *h,
-                width_bottom: *wb,
-                width_top: *wt,
-                t_web: *tw,
-                t_bottom: *tb,
-                t_top: *tt,
-            },
-            6,
-        ),
-        _ => return None,
-    })
 }
 
 /// The section of a PSOLID, PROD, PBAR, PBEAM, PBARL or PBEAML card.
@@ -267,46 +212,229 @@ fn section(g: &C) -> Result<Section, ImportError> {
             };
             beam(g, [2, 3, 4, 18, 5, 6], k)?
         }
-        "PBEAM" => {
-            // End A values; skip the stress-point line and any intermediate/end-B stations.
-            let mut k = 8;
-            let so = |k: usize| {
-                matches!(
-                    g.text(k).to_ascii_uppercase().as_str(),
-                    "YES" | "YESA" | "NO"
-                )
-            };
-            if !so(k) && g.card.fields.len() > k {
-                k += 8;
-            }
-            while so(k) {
-                k += 16;
-            }
-            // Nastran PBEAM: K1, K2 default 1.0 (shear flexible); 0.0 means shear-rigid.
-            let kf = Some([g.real(k)?.unwrap_or(1.0), g.real(k + 1)?.unwrap_or(1.0)]);
-            beam(g, [2, 3, 4, 5, 6, 7], kf)?
-        }
-        _ => {
-            // PBARL / PBEAML: TYPE in field 5, dimensions from the first continuation.
-            let ty = g.text(3).to_ascii_uppercase();
-            let mut d = Vec::new();
-            for k in 8..g.card.fields.len().min(8 + 7) {
-                match g.real(k)? {
-                    Some(v) => d.push(v),
-                    None => break,
-                }
-            }
-            let (shape, n) = nastran_shape(&ty, &d).ok_or_else(|| {
-                g.err(3, format!("cross-section TYPE {ty} with {} dimensions not supported (ROD, TUBE, BAR, BOX, I)", d.len()))
-            })?;
-            let nsm = d.get(n).copied().unwrap_or(0.0);
-            let mut s = shape
-                .to_section()
-                .ok_or_else(|| g.err(3, "unsupported shape"))?;
-            s.nsm = nsm;
-            // The shear factors Nastran derives for the shape (its equivalent PBAR/PBEAM).
-            s.shear_factors = shape.nastran_shear_factors();
-            Section::Beam(s)
-        }
+        "PBEAM" => pbeam(g)?,
+        _ => library_card(g)?,
     })
+}
+
+/// Relative difference under which a station's value is end A's (the same number written to
+/// fewer digits, e.g. `.0052083` and `.005208`).
+const SAME_VALUE: f64 = 1e-4;
+
+/// Whether station value `v` (blank: end A's) differs from end A's `a`.
+fn differs(v: Option<f64>, a: f64) -> bool {
+    v.is_some_and(|v| (v - a).abs() > SAME_VALUE * a.abs().max(v.abs()))
+}
+
+/// PBEAM: end A's A, I1, I2, I12, J, NSM, then per station (intermediate, end B: SO, X/XB,
+/// the same six, blank = end A's; the stress-point line follows when SO = YES): a station
+/// differing from end A makes the beam tapered (`BeamTaper::Values`, each value linear between
+/// stations; I12 must stay 0); K1, K2 (default 1.0, shear flexible; 0.0 shear-rigid). Shear
+/// relief S1/S2, non-structural mass inertia NSI and the centre-of-gravity/neutral-axis
+/// offsets M1…N2 are errors when nonzero. CW (warping) acts only on the warping scalar points
+/// CBEAM SA/SB, which are refused.
+fn pbeam(g: &C) -> Result<Section, ImportError> {
+    let end_a = [2, 3, 4, 5, 6, 7].map(|f| g.real_or(f, 0.0));
+    let mut a = [0.0; 6];
+    for (x, v) in a.iter_mut().zip(end_a) {
+        *x = v?;
+    }
+    let so = |k: usize| {
+        matches!(
+            g.text(k).to_ascii_uppercase().as_str(),
+            "YES" | "YESA" | "NO"
+        )
+    };
+    // End A's stress-point line (fields 8–15) unless field 8 already starts a station.
+    let mut k = 8;
+    if !so(k) && g.card.fields.len() > k {
+        k += 8;
+    }
+    // Stations: SO X/XB A I1 I2 I12 J NSM, then the stress points when SO = YES.
+    let mut stations = vec![(0.0, [a[0], a[1], a[2], a[4], a[5]])];
+    let mut tapered = false;
+    while so(k) {
+        let xi = station_position(g, k + 1, stations.last().map_or(0.0, |s| s.0))?;
+        let mut v = a;
+        for (i, x) in v.iter_mut().enumerate() {
+            let r = g.real(k + 2 + i)?;
+            if differs(r, a[i]) {
+                if i == 3 {
+                    return Err(g.err(
+                        k + 5,
+                        format!(
+                            "I12 varying along a tapered PBEAM is not implemented ({} at end A)",
+                            a[3]
+                        ),
+                    ));
+                }
+                tapered = true;
+            }
+            *x = r.unwrap_or(a[i]);
+        }
+        stations.push((xi, [v[0], v[1], v[2], v[4], v[5]]));
+        k += if g.text(k).eq_ignore_ascii_case("YES") {
+            16
+        } else {
+            8
+        };
+    }
+    let taper = tapered_stations(g, tapered, a[3], stations)?.map(BeamTaper::Values);
+    let kf = Some([g.real(k)?.unwrap_or(1.0), g.real(k + 1)?.unwrap_or(1.0)]);
+    const REFUSED: [(usize, &str); 12] = [
+        (2, "S1 (shear relief)"),
+        (3, "S2 (shear relief)"),
+        (4, "NSI(A) (non-structural mass inertia)"),
+        (5, "NSI(B) (non-structural mass inertia)"),
+        (8, "M1(A) (centre of gravity offset)"),
+        (9, "M2(A) (centre of gravity offset)"),
+        (10, "M1(B) (centre of gravity offset)"),
+        (11, "M2(B) (centre of gravity offset)"),
+        (12, "N1(A) (neutral axis offset)"),
+        (13, "N2(A) (neutral axis offset)"),
+        (14, "N1(B) (neutral axis offset)"),
+        (15, "N2(B) (neutral axis offset)"),
+    ];
+    for (off, name) in REFUSED {
+        if let Some(v) = g.real(k + off)?.filter(|v| *v != 0.0) {
+            return Err(g.err(k + off, format!("{name} = {v} is not implemented")));
+        }
+    }
+    let [area, i1, i2, i12, j, nsm] = a;
+    Ok(Section::Beam(BeamSection {
+        area,
+        i1,
+        i2,
+        i12,
+        j,
+        shear_factors: kf,
+        nsm,
+        shape: None,
+        taper,
+    }))
+}
+
+/// X/XB of a station in field `k`: after the previous station's `last`, at most 1 (end B).
+fn station_position(g: &C, k: usize, last: f64) -> Result<f64, ImportError> {
+    let xi = g.real(k)?.unwrap_or(1.0);
+    if xi <= last || xi > 1.0 {
+        return Err(g.err(
+            k,
+            format!(
+                "X/XB = {xi} must lie after the previous station ({last}) and at most 1.0 (end B)"
+            ),
+        ));
+    }
+    Ok(xi)
+}
+
+/// The stations of a tapered beam (`tapered`: some station differs from end A): they must end
+/// at end B (X/XB = 1.0) and the section must have I12 = 0 (`i12`); `None` when prismatic.
+fn tapered_stations<T>(
+    g: &C,
+    tapered: bool,
+    i12: f64,
+    stations: Vec<(f64, T)>,
+) -> Result<Option<Vec<(f64, T)>>, ImportError> {
+    if !tapered {
+        return Ok(None);
+    }
+    if i12 != 0.0 {
+        return Err(g.err_card(format!(
+            "a tapered beam with I12 = {i12} ≠ 0 is not implemented (principal axes along the element)"
+        )));
+    }
+    match stations.last() {
+        Some((xi, _)) if *xi == 1.0 => Ok(Some(stations)),
+        _ => Err(g.err_card("a tapered beam's last station must be end B (X/XB = 1.0)")),
+    }
+}
+
+/// PBARL / PBEAML (MSC QRG): `PID MID GROUP TYPE / DIM1 … DIMn NSM`, PBEAML then
+/// `SO X/XB DIM1 … DIMn NSM` per further station. The shape's constants from
+/// [`library_section`]. Refused, each naming the field: a GROUP other than MSCBML0, a shape
+/// not in the library, blank or inconsistent dimensions (also at a station), a PBEAML whose
+/// neutral axis is off the shear centre (the
+/// offset CBEAM Nastran makes of it is not implemented), anything after a PBARL's NSM.
+fn library_card(g: &C) -> Result<Section, ImportError> {
+    let pbeaml = g.card.name == "PBEAML";
+    let group = g.text(2).to_ascii_uppercase();
+    if !(group.is_empty() || group == "MSCBML0") {
+        return Err(g.err(
+            2,
+            format!(
+                "GROUP {group}: only Nastran's beam library MSCBML0 is known, not a user library"
+            ),
+        ));
+    }
+    let ty = g.text(3).to_ascii_uppercase();
+    let n = dimension_count(&ty)
+        .ok_or_else(|| g.err(3, library_section(&ty, &[]).err().unwrap_or_default()))?;
+    let mut dims = Vec::with_capacity(n);
+    for k in 8..8 + n {
+        dims.push(g.real(k)?.ok_or_else(|| {
+            g.err(
+                k,
+                format!("TYPE {ty} needs {n} dimensions: DIM{} is blank", k - 7),
+            )
+        })?);
+    }
+    let nsm = g.real_or(8 + n, 0.0)?;
+    let lib = library_section(&ty, &dims).map_err(|e| g.err(8, e))?;
+    let rest = 9 + n..g.card.fields.len();
+    let mut taper = None;
+    if pbeaml {
+        // Stations: SO, X/XB, DIM1…DIMn, NSM (blank: end A's).
+        let mut stations = vec![(0.0, (dims.clone(), nsm))];
+        let mut tapered = false;
+        for k in rest.step_by(n + 3) {
+            if (k..(k + n + 3).min(g.card.fields.len())).all(|f| g.text(f).is_empty()) {
+                continue;
+            }
+            let xi = station_position(g, k + 1, stations.last().map_or(0.0, |s| s.0))?;
+            let mut d = dims.clone();
+            d.push(nsm);
+            for (i, x) in d.iter_mut().enumerate() {
+                let r = g.real(k + 2 + i)?;
+                tapered |= differs(r, *x);
+                *x = r.unwrap_or(*x);
+            }
+            let nsm_k = d.pop().unwrap_or(nsm);
+            library_section(&ty, &d)
+                .map_err(|e| g.err(k + 2, format!("station X/XB = {xi}: {e}")))?;
+            stations.push((xi, (d, nsm_k)));
+        }
+        taper = tapered_stations(g, tapered, lib.i12, stations)?.map(|st| BeamTaper::Library {
+            shape: ty.clone(),
+            stations: st.into_iter().map(|(x, (d, m))| (x, d, m)).collect(),
+        });
+        if !lib.centroid_on_shear_centre {
+            return Err(g.err(
+                3,
+                format!(
+                    "PBEAML TYPE {ty} with these dimensions has its neutral axis off the shear \
+                     centre; Nastran's CBEAM offsets it there, which is not implemented (PBARL \
+                     takes the same shape without the offset, as Nastran's CBAR does)"
+                ),
+            ));
+        }
+    } else if let Some(k) = rest.clone().find(|&k| !g.text(k).is_empty()) {
+        return Err(g.err(
+            k,
+            format!(
+                "PBARL TYPE {ty} has {n} dimensions and NSM; this field after them is not read"
+            ),
+        ));
+    }
+    Ok(Section::Beam(BeamSection {
+        area: lib.area,
+        i1: lib.i1,
+        i2: lib.i2,
+        i12: lib.i12,
+        j: lib.j,
+        shear_factors: Some(lib.shear_factors),
+        nsm,
+        shape: None,
+        taper,
+    }))
 }
