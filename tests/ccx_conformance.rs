@@ -428,8 +428,9 @@ fn table(results: &BTreeMap<String, Outcome>) -> String {
          modes; a deck listed with a reason is compared with the suite's own reference output \
          (ccx 2.11) instead. A MISMATCH (exit 0, other frequencies) fails the test, and so does \
          a failure that names no keyword, but for the known gaps listed with their reason. \
-         Decks whose *FREQUENCY step is a perturbation of a *STATIC step are refused until \
-         the preload is read (issue 35).\n\n\
+         Decks whose *FREQUENCY step is a perturbation of a *STATIC step are built with the \
+         linear preload K + K_G (issue 35) and listed with its difference from ccx's \
+         perturbation, or refused naming why (buckled, NLGEOM).\n\n\
          No deck here builds its *FREQUENCY step on an element variant; our own decks in \
          `fixtures/ccx_elements/` (`tests/abaqus_element_variants.rs`) do: C3D8R, formed as \
          ccx forms it (one-point integration, hourglass control), matches ccx on a regular and \
