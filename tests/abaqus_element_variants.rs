@@ -18,16 +18,9 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// ccx 2.20's frequencies of `key` (a deck stem, or `stem:BASE`).
+/// ccx 2.20's frequencies of `key` (`common::ccx_frequencies`).
 fn ccx(key: &str) -> Vec<f64> {
-    let text = std::fs::read_to_string(fixture("results.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    (v[key]
-        .as_array()
-        .unwrap_or_else(|| panic!("{key} in results.json")))
-    .iter()
-    .map(|f| f.as_f64().unwrap())
-    .collect()
+    common::ccx_frequencies("ccx_elements", key)
 }
 
 /// Builds `deck` as ccx solves it (consistent mass, normal modes) with `extra`, reads the file.

@@ -2,7 +2,7 @@
 //! CalculiX ties them. Our decks in `fixtures/ccx_tie/` (a cantilever cut in two meshes, linear
 //! and quadratic hexahedra, conforming and non-conforming faces, a gap inside and one outside
 //! ccx's default position tolerance) are built as ccx solves them and compared with ccx 2.20's
-//! frequencies (`fixtures/ccx_tie/results.json`, its `regenerate.py` runs ccx): ccx prints 7
+//! frequencies (`fixtures/ccx_tie/results.json`, `fixtures/ccx_frequencies.py` runs ccx): ccx prints 7
 //! significant digits.
 
 mod common;
@@ -18,15 +18,9 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// ccx 2.20's frequencies of `key` (`common::ccx_frequencies`).
 fn ccx(key: &str) -> Vec<f64> {
-    let text = std::fs::read_to_string(fixture("results.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    (v[key]
-        .as_array()
-        .unwrap_or_else(|| panic!("{key} in results.json")))
-    .iter()
-    .map(|f| f.as_f64().unwrap())
-    .collect()
+    common::ccx_frequencies("ccx_tie", key)
 }
 
 /// Builds `deck` as ccx solves it; the body and the build's stderr.

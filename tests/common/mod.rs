@@ -111,6 +111,22 @@ pub fn hz(lambda: f64) -> f64 {
     lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
 }
 
+/// ccx 2.20's frequencies of `key` (a deck stem, or `stem:BASE`) in `fixtures/FOLDER/results.json`
+/// (our own small decks, written by `fixtures/ccx_frequencies.py`).
+pub fn ccx_frequencies(folder: &str, key: &str) -> Vec<f64> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures")
+        .join(folder)
+        .join("results.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    (v[key].as_array())
+        .unwrap_or_else(|| panic!("{key} in {}", path.display()))
+        .iter()
+        .map(|f| f.as_f64().unwrap())
+        .collect()
+}
+
 /// The `flexbody` binary under test.
 pub fn exe() -> Command {
     Command::new(env!("CARGO_BIN_EXE_flexbody"))
