@@ -37,8 +37,13 @@ impl Parser {
                 let (node, name, generate) = (*node, name.clone(), *generate);
                 self.set_line(node, name, generate, line, loc)
             }
-            Block::Elastic => self.material_line(true, line, loc),
-            Block::Density => self.material_line(false, line, loc),
+            Block::Elastic => self.material_line(0, line, loc),
+            Block::Density => self.material_line(1, line, loc),
+            Block::Expansion => self.material_line(2, line, loc),
+            Block::Temperatures(step) => {
+                let step = *step;
+                self.temperature_line(step, line, loc)
+            }
             Block::SectionLine(k, n) => {
                 let (k, n) = (*k, *n);
                 self.section_line(k, n, line, loc)
@@ -78,18 +83,6 @@ impl Parser {
                 Ok(())
             }
             Block::Equation => self.equation_line(line, loc),
-            Block::MaterialTable(what) => {
-                let what = *what;
-                let ent = format!(
-                    "*MATERIAL {}",
-                    self.materials.last().map_or("", |m| &m.name)
-                );
-                Err(self.err(
-                    loc,
-                    ent,
-                    format!("a second *{what} data line (a temperature table) is not supported"),
-                ))
-            }
             Block::DroppedElements { continued } => {
                 if !*continued {
                     if let Some(id) = fields(line).next().and_then(parse_u64) {
@@ -309,23 +302,60 @@ impl Parser {
         Ok(())
     }
 
-    /// `*ELASTIC` (E, ν) or `*DENSITY` (ρ) of the current material.
-    fn material_line(&mut self, elastic: bool, line: &str, loc: Loc) -> Result<(), ImportError> {
+    /// A row of `*ELASTIC` (`what` 0: E, ν[, T]), `*DENSITY` (1: ρ[, T]) or `*EXPANSION`
+    /// (2: α[, T]) of the current material; several rows are a temperature table
+    /// (temperature.rs).
+    fn material_line(&mut self, what: usize, line: &str, loc: Loc) -> Result<(), ImportError> {
         let k = self.materials.len() - 1;
         let ent = format!("*MATERIAL {}", self.materials[k].name);
-        let v: Vec<&str> = fields(line).collect();
-        if elastic {
-            if v.len() < 2 {
-                return Err(self.err(loc, ent, "*ELASTIC needs E, nu"));
-            }
-            let e = self.real(v[0], &ent, loc)?;
-            let nu = self.real(v[1], &ent, loc)?;
-            self.materials[k].e = Some((e, nu));
-        } else {
-            let rho = self.real(v[0], &ent, loc)?;
-            self.materials[k].rho = Some(rho);
+        let v: Vec<&str> = fields(line).filter(|s| !s.is_empty()).collect();
+        let need = if what == 0 { 2 } else { 1 };
+        if v.len() < need {
+            let keyword = [
+                "*ELASTIC needs E, nu",
+                "*DENSITY needs rho",
+                "*EXPANSION needs alpha",
+            ];
+            return Err(self.err(loc, ent, keyword[what]));
         }
-        self.block = Block::MaterialTable(if elastic { "ELASTIC" } else { "DENSITY" });
+        let t = match v.get(need) {
+            Some(s) => Some(self.real(s, &ent, loc)?),
+            None => None,
+        };
+        let a = self.real(v[0], &ent, loc)?;
+        let nu = match what {
+            0 => self.real(v[1], &ent, loc)?,
+            _ => 0.0,
+        };
+        let m = &mut self.materials[k];
+        match what {
+            0 => m.elastic.push(([a, nu], t, loc)),
+            1 => m.density.push(([a], t, loc)),
+            _ => m.expansion.push(([a], t, loc)),
+        }
+        Ok(())
+    }
+
+    /// A temperature data line (node or node set, T) of `*INITIAL CONDITIONS` (`step` None) or
+    /// of step `step`'s `*TEMPERATURE` (temperature.rs).
+    fn temperature_line(
+        &mut self,
+        step: Option<usize>,
+        line: &str,
+        loc: Loc,
+    ) -> Result<(), ImportError> {
+        let v: Vec<&str> = fields(line).collect();
+        let ent = format!("*TEMPERATURE {}", v[0]);
+        let t = match v.get(1) {
+            Some(s) if !s.is_empty() => self.real(s, &ent, loc)?,
+            _ => return Err(self.err(loc, ent, "needs a node or node set and a temperature")),
+        };
+        self.temperatures.push(super::temperature::RawTemperature {
+            step,
+            target: target(v[0]),
+            t,
+            loc,
+        });
         Ok(())
     }
 

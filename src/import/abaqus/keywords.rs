@@ -76,13 +76,14 @@ impl Parser {
             "MATERIAL" => {
                 self.materials.push(RawMaterial {
                     name: kw.need("NAME", self)?,
-                    e: None,
-                    rho: None,
+                    elastic: Vec::new(),
+                    density: Vec::new(),
+                    expansion: Vec::new(),
                     loc,
                 });
                 Block::Skip
             }
-            "ELASTIC" | "DENSITY" => self.material_data_keyword(&kw)?,
+            "ELASTIC" | "DENSITY" | "EXPANSION" => self.material_data_keyword(&kw)?,
             "SOLID SECTION" | "BEAM SECTION" | "SHELL SECTION" => self.section_keyword(&kw)?,
             "BOUNDARY" => self.boundary_keyword(&kw),
             "STEP" => {
@@ -146,8 +147,8 @@ impl Parser {
 
     /// `*INITIAL CONDITIONS, TYPE=…`: velocities and displacements start a dynamic or static
     /// step and cannot change the modes of the linear frequency step (a note); temperatures
-    /// are a note unless the deck has `*EXPANSION` (then refused when the deck is read, since
-    /// the thermal strain they set is not modelled); stresses and every other type are refused.
+    /// are read (temperature.rs: the rows of temperature tables, the reference of a thermal
+    /// strain); stresses and every other type are refused.
     fn initial_conditions_keyword(&mut self, kw: &Keyword) -> Block {
         let t = kw.param("TYPE").map(rules::blankless).unwrap_or_default();
         match t.as_str() {
@@ -156,14 +157,9 @@ impl Parser {
                 "initial velocities and displacements start a dynamic or static step: they do \
                  not change the modes of the linear frequency step",
             ),
-            "TEMPERATURE" => {
-                self.initial_temperature.get_or_insert(kw.loc);
-                self.note(
-                    kw,
-                    "initial temperatures strain the part only through *EXPANSION (none in the \
-                     deck); temperature-dependent material data are refused where they are given",
-                );
-            }
+            // temperature.rs: they pick the rows of temperature tables and are the reference
+            // of a thermal strain
+            "TEMPERATURE" => return Block::Temperatures(None),
             "STRESS" => self.refuse(
                 kw.loc,
                 kw.name,
@@ -175,30 +171,12 @@ impl Parser {
                 kw.loc,
                 kw.name,
                 &format!(
-                    "TYPE={other} is not read and may change the body (VELOCITY, DISPLACEMENT \
-                     and TEMPERATURE without *EXPANSION are notes)"
+                    "TYPE={other} is not read and may change the body (VELOCITY and \
+                     DISPLACEMENT are notes, TEMPERATURE is read)"
                 ),
             ),
         }
         Block::Skip
-    }
-
-    /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE` in a deck with `*EXPANSION`: refused (the
-    /// temperatures strain the part, and thermal strain is not modelled). Run after the deck is
-    /// read, since `*EXPANSION` may follow.
-    pub(super) fn refuse_initial_temperature_with_expansion(&mut self) {
-        if let (Some(loc), Some((_, at))) = (self.initial_temperature, self.notes.get("EXPANSION"))
-        {
-            let expansion = at.first().map_or(0, |l| l.line);
-            self.refuse(
-                loc,
-                "INITIAL CONDITIONS",
-                &format!(
-                    "TYPE=TEMPERATURE with *EXPANSION (line {expansion}): the temperatures strain \
-                     the part against its expansion reference, and thermal strain is not modelled"
-                ),
-            );
-        }
     }
 
     /// A keyword that is not honoured: a note, or refused (listed or not).
@@ -369,10 +347,10 @@ impl Parser {
                 ));
             }
         }
-        Ok(if kw.name == "ELASTIC" {
-            Block::Elastic
-        } else {
-            Block::Density
+        Ok(match kw.name {
+            "ELASTIC" => Block::Elastic,
+            "DENSITY" => Block::Density,
+            _ => Block::Expansion,
         })
     }
 
@@ -490,7 +468,7 @@ impl Parser {
         if let Some(step) = &mut self.steps.current {
             step.loads.push(("*TEMPERATURE".to_owned(), kw.loc));
         }
-        Block::Skip
+        Block::Temperatures(Some(self.steps.done.len()))
     }
 
     /// `*TRANSFORM, NSET=…, TYPE=R|C`.

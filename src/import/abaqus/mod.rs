@@ -35,6 +35,7 @@ mod loads;
 mod resolve;
 mod rules;
 mod steps;
+mod temperature;
 mod tie;
 
 use std::collections::{BTreeMap, HashMap};
@@ -61,7 +62,6 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
         .map(|s| rules::ignore_key(s))
         .collect();
     p.read_file(path, 0, 0)?;
-    p.refuse_initial_temperature_with_expansion();
     if !p.refused.is_empty() {
         return Err(ImportError::Refused {
             file: p.b.files[0].clone(),
@@ -81,8 +81,12 @@ enum Target {
 #[derive(Debug)]
 struct RawMaterial {
     name: String,
-    e: Option<(f64, f64)>,
-    rho: Option<f64>,
+    /// `*ELASTIC` rows (E, ν; temperature) — a table when more than one (temperature.rs).
+    elastic: Vec<temperature::Row<2>>,
+    /// `*DENSITY` rows (ρ; temperature).
+    density: Vec<temperature::Row<1>>,
+    /// `*EXPANSION` rows (α; temperature).
+    expansion: Vec<temperature::Row<1>>,
     loc: Loc,
 }
 
@@ -126,6 +130,10 @@ enum Block {
     },
     Elastic,
     Density,
+    /// `*EXPANSION` data lines of the current material.
+    Expansion,
+    /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE` (None) or `*TEMPERATURE` of step k data lines.
+    Temperatures(Option<usize>),
     SectionLine(usize, usize),
     Boundary,
     Mass(String),
@@ -145,8 +153,6 @@ enum Block {
     Spring(usize),
     /// `*EQUATION` data lines (connectors.rs).
     Equation,
-    /// A second data line of `*ELASTIC` / `*DENSITY` (a temperature table): refused.
-    MaterialTable(&'static str),
     /// The data lines of an element block that is refused or dropped: the ids are kept so
     /// that sets naming them still resolve (a line ending in a comma continues).
     DroppedElements {
@@ -204,8 +210,8 @@ struct Parser {
     element_surfaces: HashMap<String, Vec<(String, usize, Loc)>>,
     /// `*TIE` definitions (tie.rs).
     ties: Vec<tie::RawTie>,
-    /// The first `*INITIAL CONDITIONS, TYPE=TEMPERATURE` (refused beside `*EXPANSION`).
-    initial_temperature: Option<Loc>,
+    /// Initial and step temperatures (temperature.rs).
+    temperatures: Vec<temperature::RawTemperature>,
     couplings: Vec<RawCoupling>,
     /// Element variants read as their base type on request (`--ignore S4R=S4`): key → blocks.
     substituted: BTreeMap<String, usize>,
@@ -284,7 +290,7 @@ impl Parser {
             surfaces: HashMap::new(),
             element_surfaces: HashMap::new(),
             ties: Vec::new(),
-            initial_temperature: None,
+            temperatures: Vec::new(),
             couplings: Vec::new(),
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),

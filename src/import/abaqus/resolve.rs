@@ -3,9 +3,11 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::temperature::{at_temperature, depends_on_temperature, Row, TemperatureState};
 use super::{CouplingKind, Parser, Target};
 use crate::import::error::ImportError;
 use crate::import::text::{IdMap, Loc};
+use crate::model::deck::PreloadRequest;
 use crate::model::{
     ConstraintSource, DofMask, EigenRequest, ImportWarning, Material, Model, PointMass, Property,
     RigidElement, Section, SectionShape, Spc,
@@ -50,9 +52,15 @@ impl Parser {
     /// conditions, point masses, frames, rigid elements, notes and loads, in that order.
     pub(super) fn finish(mut self) -> Result<Model, ImportError> {
         let sets = self.resolve_sets()?;
-        let mat_index = self.resolve_materials()?;
+        self.steps.finish_current();
+        let base = {
+            let at = |loc: Loc| format!("{}:{}", self.b.file_name(loc), loc.line);
+            self.steps.preload(&at).ok().flatten()
+        };
+        let temps = self.temperature_state(&sets, self.b.model.nodes.len(), base)?;
+        let mat_index = self.resolve_materials(&temps)?;
         self.resolve_sections(&mat_index, &sets)?;
-        self.resolve_boundaries(&sets)?;
+        self.resolve_boundaries(&sets, &temps)?;
         self.resolve_point_masses(&sets)?;
         self.resolve_transforms(&sets)?;
         self.resolve_connectors(&sets.nodes, &sets.node_sets, &sets.element_sets)?;
@@ -162,9 +170,14 @@ impl Parser {
         })
     }
 
-    /// `*MATERIAL`s → the model's materials; returns name → index.
-    fn resolve_materials(&mut self) -> Result<HashMap<String, usize>, ImportError> {
+    /// `*MATERIAL`s → the model's materials, temperature tables evaluated at the state's
+    /// temperature (temperature.rs); returns name → index.
+    fn resolve_materials(
+        &mut self,
+        temps: &TemperatureState,
+    ) -> Result<HashMap<String, usize>, ImportError> {
         let mut mat_index = HashMap::new();
+        let mut notes = Vec::new();
         for (k, m) in self.materials.iter().enumerate() {
             let ent = format!("*MATERIAL {}", m.name);
             // Names are case-insensitive (upper-cased on reading): STEEL and Steel are one.
@@ -180,9 +193,11 @@ impl Parser {
                     ),
                 ));
             }
-            let (e, nu) =
-                m.e.ok_or_else(|| self.err(m.loc, ent.clone(), "no *ELASTIC given"))?;
-            if m.rho.is_none() {
+            let [e, nu] = (self.at_state(&m.elastic, temps, (&ent, "*ELASTIC"), &mut notes)?)
+                .ok_or_else(|| self.err(m.loc, ent.clone(), "no *ELASTIC given"))?;
+            let rho =
+                (self.at_state(&m.density, temps, (&ent, "*DENSITY"), &mut notes)?).map(|[r]| r);
+            if rho.is_none() {
                 self.b.model.warnings.push(ImportWarning {
                     file: self.b.file_name(m.loc).to_owned(),
                     message: format!("material {} has no *DENSITY: density 0", m.name),
@@ -194,10 +209,94 @@ impl Parser {
                 e,
                 nu,
                 g: e / (2.0 * (1.0 + nu)),
-                rho: m.rho.unwrap_or(0.0),
+                rho: rho.unwrap_or(0.0),
             });
         }
+        self.b.model.deck.notes.extend(notes);
         Ok(mat_index)
+    }
+
+    /// A material table's values in the state the modes are taken in (temperature.rs): a
+    /// table is read at the part's one temperature (a note), and refused without one.
+    fn at_state<const N: usize>(
+        &self,
+        rows: &[Row<N>],
+        temps: &TemperatureState,
+        (ent, keyword): (&str, &str),
+        notes: &mut Vec<String>,
+    ) -> Result<Option<[f64; N]>, ImportError> {
+        if !depends_on_temperature(rows) {
+            return Ok(rows.first().map(|r| r.0));
+        }
+        let loc = rows[0].2;
+        if let Some(other) = temps.other_step {
+            return Err(self.err(loc, ent.to_owned(), format!("{keyword} is a temperature table and a *TEMPERATURE at {}:{} changes the temperature in a step the modes do not perturb: which temperature the table is read at is not modelled", self.b.file_name(other), other.line)));
+        }
+        let t = match temps.uniform() {
+            Ok(Some(t)) => t,
+            Ok(None) => return Err(self.err(loc, ent.to_owned(), format!("{keyword} is a temperature table, and the deck gives the part no temperature (*INITIAL CONDITIONS, TYPE=TEMPERATURE, or a *TEMPERATURE in the static step a *FREQUENCY, PERTURBATION step perturbs)"))),
+            Err((lo, hi)) => return Err(self.err(loc, ent.to_owned(), format!("{keyword} is a temperature table over a temperature field that is not uniform ({lo} to {hi}, or nodes without a temperature): reading it per element is not supported"))),
+        };
+        let v = at_temperature(rows, Some(t));
+        if let Some(v) = v {
+            let at = temps.first.map_or(String::new(), |l| {
+                format!(" ({}:{})", self.b.file_name(l), l.line)
+            });
+            let file = self.b.file_name(loc).to_owned();
+            notes.push(format!(
+                "{file}:{}: {ent}: {keyword} table read at the part's temperature {t}{at}: {}",
+                loc.line,
+                v.iter()
+                    .map(|x| format!("{x:.7e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        Ok(v)
+    }
+
+    /// The thermal strain of a preload whose step changes the temperatures (temperature.rs):
+    /// α (T − T₀) with each material's constant `*EXPANSION`; none with zero expansion or
+    /// unchanged temperatures — then a preload of temperatures alone is no preload (a note).
+    fn thermal_strain(
+        &mut self,
+        mut request: PreloadRequest,
+        temps: &TemperatureState,
+    ) -> Result<Option<PreloadRequest>, ImportError> {
+        let changed = (temps.state.iter().zip(&temps.initial)).any(|(s, i)| s.is_some() && s != i);
+        let mut alpha = Vec::with_capacity(self.materials.len());
+        for m in &self.materials {
+            let a = m.expansion.first().map_or(0.0, |r| r.0[0]);
+            if m.expansion.iter().any(|r| r.0[0] != a) {
+                let loc = m.expansion[0].2;
+                return Err(self.err(loc, format!("*MATERIAL {}", m.name), "*EXPANSION is a temperature table and the modes' step changes the temperature: a temperature-dependent expansion coefficient is not supported (give one α)"));
+            }
+            alpha.push(a);
+        }
+        if changed && alpha.iter().any(|&a| a != 0.0) {
+            let mut dt = Vec::with_capacity(temps.state.len());
+            for (n, (s, i)) in temps.state.iter().zip(&temps.initial).enumerate() {
+                dt.push(match (s, i) {
+                    (Some(s), Some(i)) => s - i,
+                    (None, _) => 0.0,
+                    (Some(_), None) => {
+                        let loc = temps.first.unwrap_or(self.materials[0].loc);
+                        let id = self.b.model.nodes[n].id;
+                        return Err(self.err(loc, "*TEMPERATURE".to_owned(), format!("node {id} has a temperature in the preload step but no initial temperature (*INITIAL CONDITIONS, TYPE=TEMPERATURE): the thermal strain has no reference")));
+                    }
+                });
+            }
+            request.thermal = Some((dt, alpha));
+            return Ok(Some(request));
+        }
+        if request.loads.is_empty() && request.spins.is_empty() {
+            self.b.model.deck.notes.push(format!(
+                "{}: its *TEMPERATURE strains nothing (zero *EXPANSION or unchanged temperatures): no preload; the temperatures set the material tables only",
+                request.source
+            ));
+            return Ok(None);
+        }
+        Ok(Some(request))
     }
 
     /// Sections → properties, assigned to the elements of their set.
@@ -259,7 +358,11 @@ impl Parser {
 
     /// `*BOUNDARY`: the model data's, and those of the `*FREQUENCY` step (steps.rs), as SPCs
     /// with their source; the step's ignored keywords as warnings, its mode count.
-    fn resolve_boundaries(&mut self, sets: &Sets) -> Result<(), ImportError> {
+    fn resolve_boundaries(
+        &mut self,
+        sets: &Sets,
+        temps: &TemperatureState,
+    ) -> Result<(), ImportError> {
         self.steps.finish_current();
         let at = |loc: Loc| format!("{}:{}", self.b.file_name(loc), loc.line);
         let preload = (self.steps.preload(&at))
@@ -308,7 +411,10 @@ impl Parser {
                 message,
             });
         }
-        self.b.model.deck.preload = preload;
+        self.b.model.deck.preload = match preload {
+            Some(request) => self.thermal_strain(request, temps)?,
+            None => None,
+        };
         if let Some((what, count)) = frequency {
             self.b.model.deck.eigen = count.map(|n| EigenRequest {
                 source: format!("*FREQUENCY of {what}"),

@@ -107,7 +107,7 @@ impl Steps {
     }
 
     /// The index of the first `*FREQUENCY` step (the one whose modes the body uses).
-    fn frequency_step(&self) -> Option<usize> {
+    pub(super) fn frequency_step(&self) -> Option<usize> {
         self.done
             .iter()
             .position(|s| s.procedure.as_ref().is_some_and(|p| p.0 == "FREQUENCY"))
@@ -187,8 +187,8 @@ impl Steps {
     }
 
     /// The deck's preload request of step `k` (the one [`Steps::preload`] found): its
-    /// `*CLOAD` / `*DLOAD` lines are the scene load named after the step (loads.rs);
-    /// `*TEMPERATURE` is not honoured (the request's problem).
+    /// `*CLOAD` / `*DLOAD` lines are the scene load named after the step (loads.rs); its
+    /// `*TEMPERATURE`'s thermal strain is added when the deck is resolved (temperature.rs).
     pub(super) fn preload_request(&self, k: usize, at: &dyn Fn(Loc) -> String) -> PreloadRequest {
         let step = &self.done[k];
         let (kw, loc) = &step.loads[0];
@@ -202,12 +202,7 @@ impl Steps {
                 .loads
                 .push(super::loads::step_load_name(k, &step.name));
         }
-        if let Some((kw, loc)) = step.loads.iter().find(|(kw, _)| kw == "*TEMPERATURE") {
-            request.problem = Some(format!(
-                "{}: {kw}: a thermal preload from *TEMPERATURE is not supported",
-                at(*loc)
-            ));
-        }
+        // a *TEMPERATURE's thermal strain: resolve.rs (thermal_strain, temperature.rs)
         request
     }
 
