@@ -113,6 +113,19 @@ fn initial_temperatures_are_the_reference_of_a_thermal_strain() {
         "{:?}",
         m.deck.notes
     );
+    // a mechanical preload beside a temperature-dependent *EXPANSION: nothing heats, no strain
+    let loaded = format!(
+        "{CUBE}*MATERIAL, NAME=N\n*ELASTIC\n1e6, 0.3\n*EXPANSION\n1e-5, 0.\n2e-5, 100.\n\
+         *BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n\
+         *STEP\n*STATIC\n*CLOAD\n7, 3, -10.\n*END STEP\n\
+         *STEP, PERTURBATION\n*FREQUENCY\n4\n*END STEP\n"
+    );
+    let m = read("loaded", &loaded).unwrap();
+    let request = m.deck.preload.expect("the *CLOAD preload");
+    assert!(
+        request.thermal.is_none() && request.loads.len() == 1,
+        "{request:?}"
+    );
     // a temperature table read at a non-uniform field, and without any temperature
     let table = |ic: &str| {
         format!("{CUBE}{ic}*MATERIAL, NAME=N\n*ELASTIC\n1e6, 0.3, 0.\n2e6, 0.3, 100.\n{STEP}")

@@ -264,14 +264,17 @@ impl Parser {
         temps: &TemperatureState,
     ) -> Result<Option<PreloadRequest>, ImportError> {
         let changed = (temps.state.iter().zip(&temps.initial)).any(|(s, i)| s.is_some() && s != i);
+        // a mechanical preload, or temperatures that do not change: no thermal strain
         let mut alpha = Vec::with_capacity(self.materials.len());
-        for m in &self.materials {
-            let a = m.expansion.first().map_or(0.0, |r| r.0[0]);
-            if m.expansion.iter().any(|r| r.0[0] != a) {
-                let loc = m.expansion[0].2;
-                return Err(self.err(loc, format!("*MATERIAL {}", m.name), "*EXPANSION is a temperature table and the modes' step changes the temperature: a temperature-dependent expansion coefficient is not supported (give one α)"));
+        if changed {
+            for m in &self.materials {
+                let a = m.expansion.first().map_or(0.0, |r| r.0[0]);
+                if m.expansion.iter().any(|r| r.0[0] != a) {
+                    let loc = m.expansion[0].2;
+                    return Err(self.err(loc, format!("*MATERIAL {}", m.name), "*EXPANSION is a temperature table and the modes' step changes the temperature: a temperature-dependent expansion coefficient is not supported (give one α)"));
+                }
+                alpha.push(a);
             }
-            alpha.push(a);
         }
         if changed && alpha.iter().any(|&a| a != 0.0) {
             let mut dt = Vec::with_capacity(temps.state.len());
