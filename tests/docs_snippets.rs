@@ -16,7 +16,7 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use common::{exe, python_has, scratch, skipped};
+use common::{exe, python_has, run_python, scratch, skipped};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -108,20 +108,8 @@ fn the_docs_exudyn_snippets_run_with_and_without_damping() {
             .output()
             .unwrap();
         assert!(export.status.success());
-        let o = Command::new("python3")
-            .arg(root().join("examples/using_in_exudyn.py"))
-            .arg(&npz)
-            .arg(&body)
-            .env("PYTHONPATH", root().join("python"))
-            .output()
-            .unwrap();
-        let out = String::from_utf8_lossy(&o.stdout);
-        println!("damping {damping}:\n{out}");
-        assert!(
-            o.status.success(),
-            "{out}\n{}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        println!("damping {damping}:");
+        let out = run_python("examples/using_in_exudyn.py", &[&npz, &body], None);
         assert!(out.contains("all snippets ran"));
         let file = flexbody_reader::read(&body).unwrap();
         if damping {
@@ -196,21 +184,15 @@ fn the_revolute_recipe_pendulum_equals_exudyns_own_hcb_pendulum() {
         "{}",
         String::from_utf8_lossy(&export.stderr)
     );
-    let o = Command::new("python3")
-        .arg(root().join("tests/python/revolute_hcb_check.py"))
-        .arg(&body)
-        .arg(&mesh)
-        .arg("0.05")
-        .arg(&attached)
-        .env("PYTHONPATH", root().join("python"))
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    println!("{out}");
-    assert!(
-        o.status.success(),
-        "{out}\n{}",
-        String::from_utf8_lossy(&o.stderr)
+    let out = run_python(
+        "tests/python/revolute_hcb_check.py",
+        &[
+            body.as_os_str(),
+            mesh.as_os_str(),
+            "0.05".as_ref(),
+            attached.as_os_str(),
+        ],
+        None,
     );
     assert!(out.contains("revolute acceptance passed"), "{out}");
     // revolute (2), frame-node revolute of the attached build, gravity, rigid, prismatic (2)
@@ -239,19 +221,7 @@ fn exudyns_stress_sensor_gives_the_files_stress_shapes_times_the_modal_coordinat
         );
         return;
     }
-    let o = Command::new("python3")
-        .arg(root().join("examples/stress_exudyn.py"))
-        .env("FLEXBODY", env!("CARGO_BIN_EXE_flexbody"))
-        .env("PYTHONPATH", root().join("python"))
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    println!("{out}");
-    assert!(
-        o.status.success(),
-        "{out}\n{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let out = run_python::<&str>("examples/stress_exudyn.py", &[], None);
     let after = |label: &str| -> Vec<f64> {
         let rest = out
             .split(label)
@@ -342,19 +312,12 @@ fn the_docs_shell_blocks_run_as_they_stand_in_order() {
         assert!(len > 0, "{made} not made by the docs' shell blocks");
     }
     if python_has("exudyn") && python_has("numpy") {
-        let o = Command::new("python3")
-            .arg(root().join("examples/using_in_exudyn.py"))
-            .arg(dir.join("conrod.npz"))
-            .arg(dir.join("conrod.flexbody"))
-            .env("PYTHONPATH", root().join("python"))
-            .output()
-            .unwrap();
-        let out = String::from_utf8_lossy(&o.stdout);
-        assert!(
-            o.status.success() && out.contains("all snippets ran"),
-            "{out}\n{}",
-            String::from_utf8_lossy(&o.stderr)
+        let out = run_python(
+            "examples/using_in_exudyn.py",
+            &[dir.join("conrod.npz"), dir.join("conrod.flexbody")],
+            None,
         );
+        assert!(out.contains("all snippets ran"), "{out}");
         // the first block builds with --damping 2%: the damping block sets the matrix
         assert!(out.contains("dampingMatrixReduced set (8 modes"), "{out}");
     } else {

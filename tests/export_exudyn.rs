@@ -7,9 +7,8 @@
 //! Without an importable exudyn the Python part is skipped with a visible message (CI installs
 //! exudyn, see `.ci/run`).
 
-use common::{exe, python_has, scratch};
+use common::{exe, python_has, run_python, scratch};
 use std::path::Path;
-use std::process::Command;
 
 mod common;
 
@@ -78,20 +77,7 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
         );
         return;
     }
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/exudyn_export_check.py");
-    let o = Command::new("python3")
-        .arg(&script)
-        .arg(&npz)
-        .arg(&body)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    println!("{stdout}");
-    assert!(
-        o.status.success(),
-        "exudyn checks failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let stdout = run_python("tests/python/exudyn_export_check.py", &[&npz, &body], None);
     assert!(stdout.contains("all exudyn checks passed"), "{stdout}");
     assert_eq!(stdout.matches("ok   free vibration mode").count(), 3);
     // The bore nodes a rigid marker needs, equal to the file's interfaces.bin (checked there
@@ -125,20 +111,7 @@ fn the_pendulum_example_runs_and_swings_like_the_rigid_pendulum_of_the_files_mas
     let png = dir.join("pendulum_exudyn.png");
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let docs_png = std::fs::read(root.join("docs/pendulum_exudyn.png")).unwrap();
-    let script = root.join("examples/pendulum_exudyn.py");
-    let o = Command::new("python3")
-        .arg(&script)
-        .current_dir(&dir)
-        .env("FLEXBODY", env!("CARGO_BIN_EXE_flexbody"))
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    println!("{stdout}");
-    assert!(
-        o.status.success(),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let stdout = run_python::<&str>("examples/pendulum_exudyn.py", &[], Some(&dir));
     assert!(png.exists(), "no {} from the example", png.display());
     assert!(
         std::fs::read(root.join("docs/pendulum_exudyn.png")).unwrap() == docs_png,
@@ -192,21 +165,7 @@ fn the_slider_crank_example_follows_the_rigid_closed_form_within_the_rods_stretc
         eprintln!("SKIPPED the slider-crank example: python3 cannot import exudyn and numpy");
         return;
     }
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let o = Command::new("python3")
-        .arg(root.join("examples/slider_crank_exudyn.py"))
-        .arg("0.01")
-        .env("FLEXBODY", env!("CARGO_BIN_EXE_flexbody"))
-        .env("PYTHONPATH", root.join("python"))
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    println!("{out}");
-    assert!(
-        o.status.success(),
-        "{out}\n{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let out = run_python("examples/slider_crank_exudyn.py", &["0.01"], None);
     let difference = figure(&out, "max |x - x_rigid(theta)| = ");
     let stretch = figure(&out, "max |dL| = ");
     let residual = figure(&out, "first-order stretch correction: ");
@@ -299,7 +258,6 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     for (body, what) in [(&rod, "6 nodes"), (&block, "3 nodes")] {
         let npz = body.with_extension("npz");
         let o = exe()
@@ -310,19 +268,10 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
             .output()
             .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let o = Command::new("python3")
-            .arg(root.join("tests/python/exudyn_helper_check.py"))
-            .arg(&npz)
-            .arg(body)
-            .env("PYTHONPATH", root.join("python"))
-            .output()
-            .unwrap();
-        let stdout = String::from_utf8_lossy(&o.stdout);
-        println!("{stdout}");
-        assert!(
-            o.status.success(),
-            "helper checks failed:\n{stdout}\n{}",
-            String::from_utf8_lossy(&o.stderr)
+        let stdout = run_python(
+            "tests/python/exudyn_helper_check.py",
+            &[npz.as_os_str(), body.as_os_str()],
+            None,
         );
         assert!(stdout.contains("all helper checks passed"), "{stdout}");
         assert!(stdout.contains(&format!("triangles of {what}")), "{stdout}");

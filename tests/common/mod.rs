@@ -181,6 +181,34 @@ pub fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// `python3 SCRIPT ARGS…` (SCRIPT relative to the repository) in `dir` (None: here), with the
+/// package `python/` on PYTHONPATH and FLEXBODY naming the binary under test: its stdout,
+/// printed; panics with stdout and stderr when it fails.
+pub fn run_python<S: AsRef<std::ffi::OsStr>>(
+    script: &str,
+    args: &[S],
+    dir: Option<&Path>,
+) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut cmd = Command::new("python3");
+    cmd.arg(root.join(script))
+        .args(args)
+        .env("PYTHONPATH", root.join("python"))
+        .env("FLEXBODY", env!("CARGO_BIN_EXE_flexbody"));
+    if let Some(dir) = dir {
+        cmd.current_dir(dir);
+    }
+    let o = cmd.output().unwrap();
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    println!("{out}");
+    assert!(
+        o.status.success(),
+        "{script} failed:\n{out}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    out
+}
+
 /// Whether `python3` imports `module` (the Python checks skip visibly without it).
 pub fn python_has(module: &str) -> bool {
     Command::new("python3")
