@@ -100,13 +100,7 @@ fn the_docs_exudyn_snippets_run_with_and_without_damping() {
         let body = dir.join("conrod.flexbody");
         let npz = dir.join("conrod.npz");
         common::build_conrod(&body, if damping { &["--damping", "2%"] } else { &[] });
-        let export = exe()
-            .arg("export")
-            .arg(&body)
-            .args(["--to", "exudyn", "-o"])
-            .arg(&npz)
-            .output()
-            .unwrap();
+        let export = common::export(&body, "exudyn", &npz);
         assert!(export.status.success());
         println!("damping {damping}:");
         let out = run_python("examples/using_in_exudyn.py", &[&npz, &body], None);

@@ -18,13 +18,7 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
     let body = dir.join("rod.flexbody");
     let npz = dir.join("rod.npz");
     common::build_conrod(&body, &["--stress-modes", "--damping", "2%"]);
-    let o = exe()
-        .arg("export")
-        .arg(&body)
-        .args(["--to", "exudyn", "-o"])
-        .arg(&npz)
-        .output()
-        .unwrap();
+    let o = common::export(&body, "exudyn", &npz);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "export failed: {stderr}");
     assert!(stderr.contains("8 flexible modes, 6963 nodes"), "{stderr}");
@@ -189,13 +183,7 @@ fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
     let body = dir.join("rod.flexbody");
     let npz = dir.join("rod.npz");
     common::build_conrod(&body, &["--invariants", "partial"]);
-    let o = exe()
-        .arg("export")
-        .arg(&body)
-        .args(["--to", "exudyn", "-o"])
-        .arg(&npz)
-        .output()
-        .unwrap();
+    let o = common::export(&body, "exudyn", &npz);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     assert!(
@@ -208,13 +196,7 @@ fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
         1,
         "a temp file was left"
     );
-    let o = exe()
-        .arg("export")
-        .arg(&body)
-        .args(["--to", "adams", "-o"])
-        .arg(&npz)
-        .output()
-        .unwrap();
+    let o = common::export(&body, "adams", &npz);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--to adams: expected"));
     let _ = std::fs::remove_dir_all(&dir);
@@ -260,13 +242,7 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for (body, what) in [(&rod, "6 nodes"), (&block, "3 nodes")] {
         let npz = body.with_extension("npz");
-        let o = exe()
-            .arg("export")
-            .arg(body)
-            .args(["--to", "exudyn", "-o"])
-            .arg(&npz)
-            .output()
-            .unwrap();
+        let o = common::export(body, "exudyn", &npz);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let stdout = run_python(
             "tests/python/exudyn_helper_check.py",

@@ -18,7 +18,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::{exe, python_has, scratch, skipped};
+use common::{base64_block, exe, python_has, scratch, skipped};
 use flexbody_reader as file;
 
 fn run(args: &[&str]) {
@@ -28,36 +28,6 @@ fn run(args: &[&str]) {
         "flexbody {args:?}: {}",
         String::from_utf8_lossy(&o.stderr)
     );
-}
-
-/// RFC 4648 base64 → bytes; stops at the first `=` (the end of one padded block).
-fn base64_block(text: &str) -> (Vec<u8>, usize) {
-    let value = |c: u8| -> u32 {
-        match c {
-            b'A'..=b'Z' => u32::from(c - b'A'),
-            b'a'..=b'z' => u32::from(c - b'a') + 26,
-            b'0'..=b'9' => u32::from(c - b'0') + 52,
-            b'+' => 62,
-            b'/' => 63,
-            _ => panic!("not base64: {c}"),
-        }
-    };
-    let bytes = text.as_bytes();
-    let mut out = Vec::new();
-    let mut used = 0;
-    for quad in bytes.chunks(4) {
-        used += 4;
-        let pad = quad.iter().filter(|&&c| c == b'=').count();
-        let mut triple = 0u32;
-        for &c in quad {
-            triple = (triple << 6) | if c == b'=' { 0 } else { value(c) };
-        }
-        out.extend_from_slice(&triple.to_be_bytes()[1..4 - pad]);
-        if pad > 0 {
-            break;
-        }
-    }
-    (out, used)
 }
 
 /// The f64 values of the `<DataArray>` named `name`: the byte count block, then the data.

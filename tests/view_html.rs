@@ -58,31 +58,9 @@ fn conrod_page(name: &str) -> (file::ReducedBody, PathBuf, PathBuf) {
     (file::read(&body_path).unwrap(), html, dir)
 }
 
-fn base64_decode(text: &str) -> Vec<u8> {
-    let value = |c: u8| -> u32 {
-        match c {
-            b'A'..=b'Z' => u32::from(c - b'A'),
-            b'a'..=b'z' => u32::from(c - b'a') + 26,
-            b'0'..=b'9' => u32::from(c - b'0') + 52,
-            b'+' => 62,
-            b'/' => 63,
-            _ => panic!("not base64: {c}"),
-        }
-    };
-    let mut out = Vec::new();
-    for quad in text.as_bytes().chunks(4) {
-        let pad = quad.iter().filter(|&&c| c == b'=').count();
-        let mut triple = 0u32;
-        for &c in quad {
-            triple = (triple << 6) | if c == b'=' { 0 } else { value(c) };
-        }
-        out.extend_from_slice(&triple.to_be_bytes()[1..4 - pad]);
-    }
-    out
-}
-
 fn f32s(text: &str) -> Vec<f32> {
-    base64_decode(text)
+    common::base64_block(text)
+        .0
         .chunks_exact(4)
         .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
         .collect()
@@ -165,7 +143,10 @@ fn the_page_is_self_contained_and_holds_the_files_figures_and_shapes() {
     println!(
         "conrod page: {} of {n} nodes, {} triangles, {} modes equal to the file (float32)",
         stored.len(),
-        base64_decode(data["triangles"].as_str().unwrap()).len() / 12,
+        common::base64_block(data["triangles"].as_str().unwrap())
+            .0
+            .len()
+            / 12,
         modes.len()
     );
     let _ = std::fs::remove_dir_all(&dir);

@@ -209,6 +209,47 @@ pub fn run_python<S: AsRef<std::ffi::OsStr>>(
     out
 }
 
+/// `flexbody export BODY --to TO -o OUT`.
+pub fn export(body: &Path, to: &str, out: &Path) -> std::process::Output {
+    exe()
+        .arg("export")
+        .arg(body)
+        .args(["--to", to, "-o"])
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+/// RFC 4648 base64 → bytes, up to and including the first padded block; also how many
+/// characters that used (a VTK binary array is two such blocks: byte count, then data).
+pub fn base64_block(text: &str) -> (Vec<u8>, usize) {
+    let value = |c: u8| -> u32 {
+        match c {
+            b'A'..=b'Z' => u32::from(c - b'A'),
+            b'a'..=b'z' => u32::from(c - b'a') + 26,
+            b'0'..=b'9' => u32::from(c - b'0') + 52,
+            b'+' => 62,
+            b'/' => 63,
+            _ => panic!("not base64: {c}"),
+        }
+    };
+    let mut out = Vec::new();
+    let mut used = 0;
+    for quad in text.as_bytes().chunks(4) {
+        used += 4;
+        let pad = quad.iter().filter(|&&c| c == b'=').count();
+        let mut triple = 0u32;
+        for &c in quad {
+            triple = (triple << 6) | if c == b'=' { 0 } else { value(c) };
+        }
+        out.extend_from_slice(&triple.to_be_bytes()[1..4 - pad]);
+        if pad > 0 {
+            break;
+        }
+    }
+    (out, used)
+}
+
 /// Whether `python3` imports `module` (the Python checks skip visibly without it).
 pub fn python_has(module: &str) -> bool {
     Command::new("python3")
