@@ -173,22 +173,7 @@ fn beam_sid_carries_rotations_and_rotary_inertia() {
 fn sid_export_refuses_a_file_without_the_second_order_invariants() {
     let dir = scratch("sid-partial");
     let body = dir.join("rod.flexbody");
-    let model = root().join("fixtures/models/conrod/conrod.inp");
-    run(&[
-        "build",
-        model.to_str().unwrap(),
-        "--interface",
-        "BIG_END,SMALL_END",
-        "--fmax",
-        "3000",
-        "--invariants",
-        "partial",
-        "--units",
-        "si",
-        "-q",
-        "-o",
-        body.to_str().unwrap(),
-    ]);
+    common::build_conrod(&body, &["--invariants", "partial"]);
     let out = dir.join("rod.SID_FEM");
     let o = exe()
         .args(["export", body.to_str().unwrap(), "--to", "sid", "-o"])

@@ -12,7 +12,7 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 use common::{exe, scratch, skipped};
@@ -33,22 +33,7 @@ fn conrod_page(name: &str) -> (file::ReducedBody, PathBuf, PathBuf) {
     let dir = scratch(&format!("view-{name}"));
     let body_path = dir.join("conrod.flexbody");
     let html = dir.join("conrod.html");
-    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp");
-    run(&[
-        "build",
-        model.to_str().unwrap(),
-        "--interface",
-        "BIG_END,SMALL_END",
-        "--fmax",
-        "3000",
-        "--damping",
-        "2%",
-        "--units",
-        "si",
-        "-q",
-        "-o",
-        body_path.to_str().unwrap(),
-    ]);
+    common::build_conrod(&body_path, &["--damping", "2%"]);
     run(&[
         "view",
         body_path.to_str().unwrap(),
