@@ -45,21 +45,8 @@ const SUITE_REFERENCE: &[(&str, &str)] = &[(
 )];
 
 /// Decks with a *FREQUENCY step that is a perturbation of a preceding *STATIC step whose
-/// preload flexbody cannot apply, refused by name: beamf2 buckles under the linear preload
-/// (λ₁ = 0.99999, as ccx *BUCKLE), rotor's static step is NLGEOM (issue 35).
-const PRELOADED: &[&str] = &["beamf2", "rotor"];
-
-/// Decks built with the linear preload (K + K_G) where ccx's perturbation also holds the
-/// large-displacement stiffness of its static state: the build must say so in a warning.
-const LINEAR_PRELOAD: &[(&str, &str)] = &[(
-    "beampsensfreq",
-    "linear preload (K + K_G) of a 4.5 mm stretch (strain ≈ 0.48), which the build warns \
-     about; ccx's PERTURBATION adds the large-displacement stiffness. The stress-stiffened \
-     bending pair is within 2.3e-3 of ccx and the buckling factor within 3.3e-5 of ccx \
-     *BUCKLE (tests/preload_ccx_suite.rs)",
-)];
-/// The build's warning for a preload beyond small displacements.
-const LINEAR_PRELOAD_WARNING: &str = "of the part's size: the linear preload";
+/// preload flexbody cannot apply, refused by name: rotor's static step is NLGEOM (issue 35).
+const PRELOADED: &[&str] = &["rotor"];
 
 /// Decks the issue requires to build and match that do not yet, and why (the test fails when
 /// one of them starts matching, so that it moves to `MUST_MATCH`).
@@ -67,8 +54,20 @@ const KNOWN_GAPS: &[(&str, &str)] = &[];
 
 /// Decks the issue requires to build and match.
 const MUST_MATCH: &[&str] = &[
-    "beamdy7", "beamdy10", "beamdy11", "beamdy12", "beamdy13", "damper1", "dashpot1", "dashpot2",
-    "dashpot3", "spring3", "spring5",
+    "beamdy7",
+    "beamdy10",
+    "beamdy11",
+    "beamdy12",
+    "beamdy13",
+    "damper1",
+    "dashpot1",
+    "dashpot2",
+    "dashpot3",
+    "spring3",
+    "spring5",
+    "beamf2",
+    "beampsensfreq",
+    "beamft",
 ];
 
 #[derive(Debug, Clone, PartialEq)]
@@ -90,11 +89,6 @@ enum Outcome {
         worst: f64,
         why: String,
     },
-    /// Built with the linear preload and the build's warning that it differs (`LINEAR_PRELOAD`).
-    LinearPreloadWarned {
-        worst: String,
-        why: String,
-    },
     Refused(String),
     /// Exit 2 without naming a keyword or element: loud, but not yet a useful refusal.
     FailsUnnamed(String),
@@ -110,7 +104,6 @@ impl Outcome {
             Outcome::Matches { .. } => "matches",
             Outcome::MatchesSuiteReference { .. } => "matches the suite's reference",
             Outcome::ByDesign { .. } => "within 1 % (by design)",
-            Outcome::LinearPreloadWarned { .. } => "linear preload, warned",
             Outcome::Refused(_) => "refused",
             Outcome::FailsUnnamed(_) => "fails (no keyword named)",
             Outcome::Mismatch(_) => "MISMATCH",
@@ -126,7 +119,6 @@ impl Outcome {
             Outcome::ByDesign { modes, worst, why } => {
                 format!("{modes} modes, worst {worst:.1e}: {why}")
             }
-            Outcome::LinearPreloadWarned { worst, why } => format!("{worst}: {why}"),
             Outcome::OutOfScope(s)
             | Outcome::CcxFails(s)
             | Outcome::Refused(s)
@@ -259,7 +251,7 @@ fn names_a_keyword(message: &str) -> bool {
         || message.contains("element type")
         || message.contains("unsupported")
         || message.contains("not supported")
-        // a preload beyond the first buckling load, with its buckling factor (beamf2)
+        // a preload beyond the first buckling load, with its buckling factor
         || message.contains("the part buckles under it (lowest buckling factor")
 }
 
@@ -337,15 +329,6 @@ fn classify(suite: &Path, deck: &Path) -> (String, Outcome) {
                     why: format!("against the suite's .dat.ref: {why}"),
                 },
                 None => Outcome::Matches { modes, worst },
-            },
-            Outcome::Mismatch(m) => match LINEAR_PRELOAD.iter().find(|(n, _)| *n == name) {
-                Some((_, why)) if stderr.contains(LINEAR_PRELOAD_WARNING) => {
-                    Outcome::LinearPreloadWarned {
-                        worst: m.trim_end_matches("; exit 0").to_owned(),
-                        why: (*why).to_owned(),
-                    }
-                }
-                _ => Outcome::Mismatch(m),
             },
             o => o,
         }
@@ -428,9 +411,9 @@ fn table(results: &BTreeMap<String, Outcome>) -> String {
          modes; a deck listed with a reason is compared with the suite's own reference output \
          (ccx 2.11) instead. A MISMATCH (exit 0, other frequencies) fails the test, and so does \
          a failure that names no keyword, but for the known gaps listed with their reason. \
-         Decks whose *FREQUENCY step is a perturbation of a *STATIC step are built with the \
-         linear preload K + K_G (issue 35) and listed with its difference from ccx's \
-         perturbation, or refused naming why (buckled, NLGEOM).\n\n\
+         Decks whose *FREQUENCY step is a perturbation of a *STATIC step are built as ccx \
+         perturbs the linear static state, K + K_G(σ₀) + K_L(u₀) (issue 35), or refused naming \
+         why (NLGEOM).\n\n\
          No deck here builds its *FREQUENCY step on an element variant; our own decks in \
          `fixtures/ccx_elements/` (`tests/abaqus_element_variants.rs`) do: C3D8R, formed as \
          ccx forms it (one-point integration, hourglass control), matches ccx on a regular and \
@@ -502,10 +485,6 @@ fn calculix_frequency_tests_build_and_match_or_are_refused_by_name() {
     let not_refused: Vec<&str> = PRELOADED
         .iter()
         .filter(|n| !matches!(results.get(**n), Some(Outcome::Refused(_))))
-        .chain(
-            (LINEAR_PRELOAD.iter().map(|(n, _)| n))
-                .filter(|n| !matches!(results.get(**n), Some(Outcome::LinearPreloadWarned { .. }))),
-        )
         .copied()
         .collect();
     let gaps_closed: Vec<&str> = KNOWN_GAPS

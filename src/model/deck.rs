@@ -60,6 +60,10 @@ pub struct PreloadRequest {
     /// What of it the tool cannot honour (`file:line: *KEYWORD: why`): the build refuses the
     /// deck with it.
     pub problem: Option<String>,
+    /// The deck's solver perturbs the deformed static state: the modes' tangent adds the
+    /// initial-displacement stiffness K_L(u₀) (CalculiX `*STEP, PERTURBATION`); `false`: the
+    /// linear preload K + K_G(σ₀) (Nastran STATSUB's differential stiffness, `--preload`).
+    pub initial_displacement: bool,
 }
 
 /// Where a group of [`crate::model::Spc`] records came from.

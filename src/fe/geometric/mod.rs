@@ -11,6 +11,10 @@
 //! * [`line`](mod@line) — beams (consistent beam-column K_G, Euler–Bernoulli or Timoshenko)
 //!   and rods (N/L (I − e eᵀ)).
 //!
+//! * [`initial_displacement_stiffness`] — solids only: K_L(u₀), the initial-displacement
+//!   (large-deformation) part of the tangent at u₀, for a solver's perturbation of a static
+//!   state (CalculiX `*STEP, PERTURBATION`); quadratic in u₀.
+//!
 //! The stress is linear in (u₀, ΔT), so K_G is too: K_G(s·u₀) = s K_G(u₀). Elements without a
 //! formulation here (quadratic shells, prism15 — which the assembler refuses too) are an error,
 //! never left out. Thermal strain: [`Thermal`] gives ΔT (uniform or per node) and the expansion
@@ -377,6 +381,42 @@ pub fn geometric_stiffness(
     u: &[f64],
     thermal: Option<&Thermal>,
 ) -> Result<SparseColMat<usize, f64>, FeError> {
+    assemble_elementwise(model, dofs, spec, u, thermal, |f, ue, theta| {
+        f.stress(ue, theta).and_then(|s| f.geometric_stiffness(&s))
+    })
+}
+
+/// The initial-displacement stiffness K_L(u₀) over the physical dofs (solids:
+/// [`SolidElement::initial_displacement_stiffness`]; other element families are an error), in
+/// the pattern of [`geometric_stiffness`]. With K + K_G it is the total-Lagrangian tangent at
+/// the static state u₀, as CalculiX's `*STEP, PERTURBATION` forms it.
+pub fn initial_displacement_stiffness(
+    model: &Model,
+    dofs: &DofMap,
+    spec: &AssemblySpec,
+    u: &[f64],
+) -> Result<SparseColMat<usize, f64>, FeError> {
+    assemble_elementwise(model, dofs, spec, u, None, |f, ue, _| match f {
+        Formulation::Solid(s) => s.initial_displacement_stiffness(ue),
+        _ => Err(ElementError::BadConstants(
+            "the initial-displacement stiffness of a perturbed static state (CalculiX \
+             *STEP, PERTURBATION) is formed for solid elements only; beams, rods and shells \
+             have none here"
+                .into(),
+        )),
+    })
+}
+
+/// Σ_e of the element matrices `element(formulation, u_e, αΔT_e)` (`dpn` dofs per node, basic
+/// frame) over the physical dofs, in the pattern of the assembled K.
+fn assemble_elementwise(
+    model: &Model,
+    dofs: &DofMap,
+    spec: &AssemblySpec,
+    u: &[f64],
+    thermal: Option<&Thermal>,
+    element: impl Fn(&Formulation, &[f64], &[f64]) -> Result<Vec<f64>, ElementError> + Sync,
+) -> Result<SparseColMat<usize, f64>, FeError> {
     check_len(model, dofs, u)?;
     let elems = structural_elements(model);
     let conn: Vec<&[usize]> = (elems.iter())
@@ -391,9 +431,7 @@ pub fn geometric_stiffness(
             let (f, mat) = formulation(model, e, spec)?;
             let theta = element_theta(model, e, mat, thermal)?;
             let ue = gather(dofs, nodes, f.dpn(), u);
-            let stress = f.stress(&ue, &theta);
-            let mut k = (stress.and_then(|s| f.geometric_stiffness(&s)))
-                .map_err(|err| element_error(model, e, err))?;
+            let mut k = element(&f, &ue, &theta).map_err(|err| element_error(model, e, err))?;
             if nodes.iter().any(|&n| dofs.frames[n].is_some()) {
                 to_frames(&mut k, nodes, f.dpn(), &dofs.frames);
             }

@@ -233,6 +233,51 @@ impl SolidElement {
             .collect())
     }
 
+    /// The initial-displacement (large-deformation) stiffness of the static state u₀ (3N × 3N,
+    /// row-major): K_L = ∫ B(F)ᵀ D B(F) − B₀ᵀ D B₀ dV₀ with F = I + ∇u₀, the material part of the
+    /// total-Lagrangian tangent at u₀ less the linear K (Bathe, *Finite Element Procedures*
+    /// (1996) eq. 6.56, B_L = B_L0 + B_L1(u₀)); what CalculiX's perturbation step adds to
+    /// K + K_G (ccx e_c3d, "large displacement stiffness"). Not formed for incompatible modes.
+    pub fn initial_displacement_stiffness(&self, u: &[f64]) -> Result<Vec<f64>, ElementError> {
+        if self.modes.is_some() {
+            return Err(ElementError::BadConstants(
+                "an element with incompatible modes (C3D8I, CHEXA/CPENTA bubbles) has no \
+                 initial-displacement stiffness here: mesh the preloaded part with C3D8, C3D20 \
+                 or C3D20R"
+                    .into(),
+            ));
+        }
+        let d = isotropic_voigt(&self.mat);
+        let h = self.displacement_gradients(u, &vec![0.0; self.nodes])?;
+        let n = self.nodes;
+        let nc = 3 * n;
+        let mut k = vec![0.0; nc * nc];
+        let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+        for (pt, h) in self.points.iter().zip(h) {
+            let f: [f64; 9] = std::array::from_fn(|r| identity[r] + h[r]);
+            let b: Vec<[[f64; 3]; 6]> = pt.grads[..n].iter().map(|g| strain_rows(&f, g)).collect();
+            let b0: Vec<[[f64; 3]; 6]> = pt.grads[..n]
+                .iter()
+                .map(|g| strain_rows(&identity, g))
+                .collect();
+            for a in 0..n {
+                let (db, db0) = (mul_voigt(&d, &b[a]), mul_voigt(&d, &b0[a]));
+                for c in 0..n {
+                    for i in 0..3 {
+                        for j in 0..3 {
+                            let mut v = 0.0;
+                            for r in 0..6 {
+                                v += db[r][i] * b[c][r][j] - db0[r][i] * b0[c][r][j];
+                            }
+                            k[(3 * a + i) * nc + 3 * c + j] += pt.w * v;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(k)
+    }
+
     /// K_G (3N × 3N, row-major, node-major dofs) of the stresses `sigma` at the integration
     /// points (module formula; the incompatible modes condensed as Lᵀ K_G,full L).
     pub fn geometric_stiffness(&self, sigma: &[Stress]) -> Vec<f64> {
@@ -303,6 +348,44 @@ impl SolidElement {
         }
         k
     }
+}
+
+/// Isotropic D (6×6, Voigt `[xx yy zz xy yz zx]`, engineering shear strains).
+fn isotropic_voigt(mat: &Isotropic) -> [[f64; 6]; 6] {
+    let (lam, mu) = mat.lame();
+    let mut d = [[0.0; 6]; 6];
+    for i in 0..3 {
+        for j in 0..3 {
+            d[i][j] = lam;
+        }
+        d[i][i] = lam + 2.0 * mu;
+        d[i + 3][i + 3] = mu;
+    }
+    d
+}
+
+/// The Green–Lagrange strain variation δE (Voigt, engineering shear) of a unit displacement of
+/// one node in each direction i: δE_kl = ½(F_ik ∂_l N + F_il ∂_k N) (rows xx yy zz xy yz zx,
+/// columns i; `f` row-major F_ik, `g` = ∇N in the reference frame).
+fn strain_rows(f: &[f64; 9], g: &Xyz) -> [[f64; 3]; 6] {
+    std::array::from_fn(|r| {
+        std::array::from_fn(|i| {
+            let fi = |k: usize| f[3 * i + k];
+            match r {
+                0 => fi(0) * g[0],
+                1 => fi(1) * g[1],
+                2 => fi(2) * g[2],
+                3 => fi(0) * g[1] + fi(1) * g[0],
+                4 => fi(1) * g[2] + fi(2) * g[1],
+                _ => fi(2) * g[0] + fi(0) * g[2],
+            }
+        })
+    })
+}
+
+/// D·B for a 6×3 B.
+fn mul_voigt(d: &[[f64; 6]; 6], b: &[[f64; 3]; 6]) -> [[f64; 3]; 6] {
+    std::array::from_fn(|r| std::array::from_fn(|i| (0..6).map(|s| d[r][s] * b[s][i]).sum()))
 }
 
 #[cfg(test)]

@@ -172,6 +172,10 @@ pub struct PreloadCase {
     pub inertia: Vec<InertiaField>,
     /// Thermal strain.
     pub thermal: Option<Thermal>,
+    /// The tangent also carries the initial-displacement stiffness K_L(u₀) of the static state
+    /// (solids; `geometric::initial_displacement_stiffness`): K_T = K + K_G + K_L, what
+    /// CalculiX's `*STEP, PERTURBATION` perturbs. Off: the linear preload K + K_G.
+    pub initial_displacement: bool,
 }
 
 impl PreloadCase {
@@ -204,7 +208,8 @@ pub struct Preload {
     pub u: Vec<f64>,
     /// K_G,r = Tᵀ K_G(σ₀) T on the independent dofs.
     pub kg: SparseColMat<usize, f64>,
-    /// K_T,r = K_r + K_G,r, positive definite (on the free dofs for a free body).
+    /// K_T,r = K_r + K_G,r (+ K_L,r with [`PreloadCase::initial_displacement`]), positive
+    /// definite (on the free dofs for a free body).
     pub k_t: SparseColMat<usize, f64>,
     /// Rigid-body motions balanced by inertia relief (0: held).
     pub rigid_modes: usize,
@@ -304,7 +309,17 @@ pub fn preload(
     let (u, kg_phys) = case_geometric_stiffness(sys, &u, 0, case)?;
     let red = sys.reduced;
     let kg = sparse_ops::congruence(red.t.as_ref(), kg_phys.as_ref(), spec.par)?;
-    let k_t = sparse_ops::add_scaled(red.k.as_ref(), kg.as_ref(), 1.0)?;
+    let mut k_t = sparse_ops::add_scaled(red.k.as_ref(), kg.as_ref(), 1.0)?;
+    if case.initial_displacement {
+        let kl_phys = geometric::initial_displacement_stiffness(
+            sys.model,
+            &sys.assembled.dofs,
+            sys.assembly,
+            &u,
+        )?;
+        let kl = sparse_ops::congruence(red.t.as_ref(), kl_phys.as_ref(), spec.par)?;
+        k_t = sparse_ops::add_scaled(k_t.as_ref(), kl.as_ref(), 1.0)?;
+    }
     check_stability(sys, &kg, &k_t, &support, spec.par)?;
     Ok(Preload {
         u,

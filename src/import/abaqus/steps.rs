@@ -195,6 +195,8 @@ impl Steps {
         let mut request = PreloadRequest {
             source: format!("{} at {}", step.describe(k + 1), at(step.loc)),
             first_load: format!("{}: {kw}", at(*loc)),
+            // ccx's perturbation step: K + K_G + the large-displacement stiffness (e_c3d)
+            initial_displacement: true,
             ..Default::default()
         };
         if step.loads.iter().any(|(kw, _)| kw != "*TEMPERATURE") {

@@ -1,7 +1,8 @@
 //! Preload (issue 35): when the deck asks its modes on a loaded state (CalculiX `*STATIC` with
 //! loads before a `*STEP, PERTURBATION` / `*FREQUENCY`) or the user names scene loads with
 //! `--preload LOAD[,LOAD…]`, the linear static solve of that case on the constrained system,
-//! the geometric stiffness of its stress and K_T,r = K_r + Tᵀ K_G T, which replaces K_r for the
+//! the geometric stiffness of its stress and K_T,r = K_r + Tᵀ K_G T (+ Tᵀ K_L(u₀) T, the
+//! initial-displacement stiffness, for a CalculiX perturbation step), which replaces K_r for the
 //! reduction (every method unchanged; `fe::preload`, whose module doc is the design note).
 //! Takes the constrained system, returns it with K_T,r and a [`PreloadSummary`] for the report
 //! and the recipe. `flexbody check --model` rebuilds the same K_T with [`apply`].
@@ -36,6 +37,8 @@ pub struct PreloadSummary {
     pub max_displacement_node: u64,
     /// The lowest buckling factor λ₁ (`None`: nothing in compression).
     pub buckling_factor: Option<f64>,
+    /// The tangent carries K_L(u₀) too (CalculiX's perturbation of the static state).
+    pub initial_displacement: bool,
 }
 
 impl PreloadSummary {
@@ -45,8 +48,13 @@ impl PreloadSummary {
             Some(l) => format!("lowest buckling factor λ₁ = {l:.6}"),
             None => "no buckling factor (nothing in compression)".into(),
         };
+        let tangent = if self.initial_displacement {
+            "K + K_G + K_L(u0) (the perturbed static state, as CalculiX's *STEP, PERTURBATION)"
+        } else {
+            "K + K_G"
+        };
         format!(
-            "preloaded: {} ({}): linear static preload, max |u0| {:.6e} at node {}, {factor}; the modes are those of K + K_G",
+            "preloaded: {} ({}): linear static preload, max |u0| {:.6e} at node {}, {factor}; the modes are those of {tangent}",
             self.source,
             self.loads.join(", "),
             self.max_displacement,
@@ -62,8 +70,9 @@ const LARGE_PRELOAD_DISPLACEMENT: f64 = 0.01;
 /// A warning when the preload moves the part by more than [`LARGE_PRELOAD_DISPLACEMENT`] of its
 /// size: K + K_G(σ₀) is the linear-preload tangent; a solver that perturbs the static state
 /// (ccx `*STEP, PERTURBATION`, Nastran SOL 106) also includes the stiffness of the displaced
-/// geometry. (CalculiX beampsensfreq, strain ≈ 0.48: its bending pair within 2.3e-3 of ccx's,
-/// other modes up to 25 % off.)
+/// geometry. (CalculiX beampsensfreq, strain ≈ 0.48, as a linear preload: its bending pair
+/// within 2.3e-3 of ccx's, other modes up to 25 % off; a CalculiX deck's own perturbation
+/// step is built with K_L(u₀) and has no such warning.)
 fn large_displacement_warning(model: &Model, s: &PreloadSummary) -> Option<String> {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for n in &model.nodes {
@@ -110,7 +119,10 @@ pub fn preload(
     )?;
     if let Some(s) = &summary {
         report.notes.push(s.note());
-        if let Some(w) = large_displacement_warning(&interfaced.model, s) {
+        if let Some(w) = (!s.initial_displacement)
+            .then(|| large_displacement_warning(&interfaced.model, s))
+            .flatten()
+        {
             report.warnings.push(w);
         }
     }
@@ -160,6 +172,7 @@ pub fn apply(
         max_displacement,
         max_displacement_node: model.nodes[node].id,
         buckling_factor,
+        initial_displacement: case.initial_displacement,
     }))
 }
 
@@ -220,7 +233,10 @@ fn preload_case(
             request.source
         )));
     }
-    let mut case = PreloadCase::default();
+    let mut case = PreloadCase {
+        initial_displacement: request.initial_displacement,
+        ..Default::default()
+    };
     let mut names = Vec::new();
     for name in &request.loads {
         let l = (model.loads.iter())
