@@ -165,9 +165,10 @@ fn beamf2_perturbed_state_equals_ccx() {
 }
 
 /// Our own decks (fixtures/ccx_preload, README there): a bar pulled and bent at its tip as
-/// C3D8, C3D20, C3D20R and C3D10 (tip deflection 1.2 % of the length), and a C3D8 bar clamped
-/// at both ends heated by 100° (thermal preload): every one of the first 10 perturbation modes
-/// equals ccx 2.20's to 1e-6 (ccx prints 7 digits).
+/// C3D8, C3D20, C3D20R and C3D10 (tip deflection 1.2 % of the length), a C3D8 bar clamped
+/// at both ends heated by 100° (thermal preload), and a C3D20R bar spun at 200 rad/s about an
+/// axis through its root (`*DLOAD CENTRIF`; ccx's perturbation adds the spin softening): every
+/// one of the first 10 perturbation modes equals ccx 2.20's to 1e-6 (ccx prints 7 digits).
 #[test]
 fn own_preloaded_decks_equal_ccx() {
     for case in [
@@ -176,6 +177,7 @@ fn own_preloaded_decks_equal_ccx() {
         "loaded_c3d20r",
         "loaded_c3d10",
         "heated_c3d8",
+        "spinning_c3d20r",
     ] {
         let deck = reference(&format!("../ccx_preload/{case}.inp"));
         let dir = std::env::temp_dir().join(format!("flexbody-ccx-preload-{}", std::process::id()));
@@ -219,4 +221,59 @@ fn beamft_modes_at_the_heated_state_equal_ccx() {
     let want = ccx("beamft", "perturbation_freq_hz");
     assert_modes_equal_ccx(&body.modes.frequency_hz, &want, "beamft", 1e-6);
     assert!(body.recipe.as_ref().unwrap().preload.is_none());
+}
+
+/// The spinning bar built with `--preload STEP_1` instead of the deck's perturbation step:
+/// K + K_G without K_L and without the spin softening, as a multibody solver that spins the
+/// body itself needs it (the build warns about the softening otherwise). The in-plane (lead-lag)
+/// mode then loses exactly the softening: f²(K + K_G) − f²(ccx) = (Ω/2π)² within 1 % (the
+/// rotating-frame identity ω²_lag = ω²_flap − Ω² of a beam; the solid bar's modes differ
+/// slightly), and the flap mode is stiffened by the Southwell coefficient of a uniform
+/// cantilever, 1.1933 (Wright et al. 1982), within 1 % of the bar at rest (`still_c3d20r`, whose
+/// modes equal ccx's).
+#[test]
+fn spinning_bar_without_the_perturbation_step_has_no_spin_softening() {
+    let deck = reference("../ccx_preload/spinning_c3d20r.inp");
+    let dir = std::env::temp_dir().join(format!("flexbody-ccx-spin-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (soft, plain) = (dir.join("soft.flexbody"), dir.join("plain.flexbody"));
+    let o = common::build_as_ccx(&deck, &["--modes", "10"], &soft);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.success() && err.contains("spin softening −Ω²M⊥"),
+        "{err}"
+    );
+    let o = common::build_as_ccx(&deck, &["--modes", "10", "--preload", "STEP_1"], &plain);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.success() && !err.contains("spin softening"),
+        "{err}"
+    );
+    let f_soft = flexbody_reader::read(&soft).unwrap().modes.frequency_hz;
+    let f_plain = flexbody_reader::read(&plain).unwrap().modes.frequency_hz;
+    let spin_hz2 = (200.0 / (2.0 * std::f64::consts::PI)).powi(2);
+    // ccx: lead-lag 84.96 Hz, flap 90.68 Hz; the plain build: both ≈ 90.7 Hz
+    let lag = f_plain[0].powi(2) - f_soft[0].powi(2);
+    println!(
+        "lead-lag {} → {} Hz: Δf² {lag} vs (Ω/2π)² {spin_hz2}",
+        f_soft[0], f_plain[0]
+    );
+    assert!(
+        (lag - spin_hz2).abs() < 1e-2 * spin_hz2,
+        "{lag} vs {spin_hz2}"
+    );
+    let still = dir.join("still.flexbody");
+    let o = common::build_as_ccx(
+        &reference("../ccx_preload/still_c3d20r.inp"),
+        &["--modes", "2"],
+        &still,
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let f_still = flexbody_reader::read(&still).unwrap().modes.frequency_hz;
+    let want = common::ccx_frequencies("ccx_preload", "still_c3d20r");
+    assert_modes_equal_ccx(&f_still, &want[..2], "still_c3d20r", 1e-6);
+    let unloaded2 = f_still[1].powi(2);
+    let southwell = (f_plain[1].powi(2) - unloaded2) / spin_hz2;
+    println!("flap {} Hz: Southwell coefficient {southwell}", f_plain[1]);
+    assert!((southwell - 1.1933).abs() < 1e-2 * 1.1933, "{southwell}");
 }

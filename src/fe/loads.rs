@@ -4,6 +4,7 @@
 //! * Nodal force/moment: the basic-frame components rotated into the node's displacement frame.
 //! * Gravity: f = M·g with g the rigid translation field of the acceleration (the build's own
 //!   mass matrix, lumped or consistent, point masses included).
+//! * Centrifugal (CalculiX CENTRIF): f = M·b with b = Ω² (I − n nᵀ)(x − p) (`preload::inertia`).
 //! * Face traction (pressure): consistent nodal forces f_a = t ∫ N_a (x_ξ × x_η) dξ dη over the
 //!   isoparametric face (Zienkiewicz & Taylor, *The FEM*, vol. 1, §6.4 surface loads), Gauss
 //!   4×4 on quadrilaterals and a collapsed 4×4 rule on triangles (exact for these integrands up
@@ -13,6 +14,7 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 
 use super::dofs::DofMap;
+use super::preload::inertia::{inertia_load, Spin};
 use super::quadrature::gauss_legendre;
 use super::FeError;
 use crate::model::{Load, LoadPart, Model, NodeIndex};
@@ -190,6 +192,26 @@ pub fn load_vectors(
                 LoadPart::Gravity { accel: a } => {
                     for k in 0..3 {
                         accel[k] += a[k];
+                    }
+                }
+                LoadPart::Centrifugal {
+                    omega2,
+                    point,
+                    axis,
+                } => {
+                    let spin = Spin {
+                        point: *point,
+                        axis: *axis,
+                        omega: omega2.sqrt(),
+                    };
+                    let field = (spin.field())
+                        .filter(|_| omega2.is_finite() && *omega2 >= 0.0)
+                        .ok_or_else(|| {
+                            err(load, format!("a centrifugal load with Ω² = {omega2} about the axis {axis:?} (Ω² ≥ 0 and a nonzero axis needed)"))
+                        })?;
+                    let fi = inertia_load(model, dofs, m, &field);
+                    for (i, v) in fi.into_iter().enumerate() {
+                        f[(i, j)] += v;
                     }
                 }
                 LoadPart::Surface {

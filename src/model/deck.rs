@@ -64,6 +64,9 @@ pub struct PreloadRequest {
     /// initial-displacement stiffness K_L(u₀) (CalculiX `*STEP, PERTURBATION`); `false`: the
     /// linear preload K + K_G(σ₀) (Nastran STATSUB's differential stiffness, `--preload`).
     pub initial_displacement: bool,
+    /// The modes' tangent adds the spin softening of the preload's centrifugal loads (the
+    /// rotating frame's modes, as CalculiX's perturbation step forms them).
+    pub spin_softening: bool,
 }
 
 /// Where a group of [`crate::model::Spc`] records came from.

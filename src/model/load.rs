@@ -50,6 +50,16 @@ pub enum LoadPart {
         /// The element the face belongs to (external id, for messages).
         element: u64,
     },
+    /// The centrifugal field of a rotation about an axis, b = Ω² (I − n nᵀ)(x − p) per unit
+    /// mass (CalculiX `*DLOAD … CENTRIF`): the load is M·b with the build's mass matrix.
+    Centrifugal {
+        /// Ω² (rad² per unit time², as CENTRIF gives it).
+        omega2: f64,
+        /// A point p of the axis, basic frame.
+        point: [f64; 3],
+        /// The axis direction n (any length), basic frame.
+        axis: [f64; 3],
+    },
 }
 
 impl Load {
@@ -73,6 +83,15 @@ impl Load {
                     nodes: nodes.clone(),
                     traction: traction * s,
                     element: *element,
+                },
+                LoadPart::Centrifugal {
+                    omega2,
+                    point,
+                    axis,
+                } => LoadPart::Centrifugal {
+                    omega2: omega2 * s,
+                    point: *point,
+                    axis: *axis,
                 },
             })
             .collect()

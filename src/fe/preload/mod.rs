@@ -52,7 +52,7 @@ use super::assembly::{Assembled, AssemblySpec};
 use super::constraints::Reduced;
 use super::geometric::{self, Thermal};
 use super::FeError;
-use crate::model::{Load, Model};
+use crate::model::{Load, LoadPart, Model};
 use crate::reduce::ReduceError;
 use crate::solve::{buckling, sparse_ops, EigenSpec, SolveError, SparseLlt};
 
@@ -176,6 +176,11 @@ pub struct PreloadCase {
     /// (solids; `geometric::initial_displacement_stiffness`): K_T = K + K_G + K_L, what
     /// CalculiX's `*STEP, PERTURBATION` perturbs. Off: the linear preload K + K_G.
     pub initial_displacement: bool,
+    /// The tangent also carries the spin softening −Ω² Pᵀ M P of every centrifugal load part
+    /// ([`spin_softening`]): the modes in the rotating frame, as CalculiX's perturbation step
+    /// forms them (ccx e_c3d, "stiffness contribution of centrifugal forces"). Off: a solver
+    /// that spins the body adds it itself.
+    pub spin_softening: bool,
 }
 
 impl PreloadCase {
@@ -320,6 +325,13 @@ pub fn preload(
         let kl = sparse_ops::congruence(red.t.as_ref(), kl_phys.as_ref(), spec.par)?;
         k_t = sparse_ops::add_scaled(k_t.as_ref(), kl.as_ref(), 1.0)?;
     }
+    if case.spin_softening {
+        for spin in centrifugal_spins(case) {
+            let soft = spin_softening(sys.model, &sys.assembled.dofs, &sys.assembled.m, &spin)?;
+            let soft = sparse_ops::congruence(red.t.as_ref(), soft.as_ref(), spec.par)?;
+            k_t = sparse_ops::add_scaled(k_t.as_ref(), soft.as_ref(), 1.0)?;
+        }
+    }
     check_stability(sys, &kg, &k_t, &support, spec.par)?;
     Ok(Preload {
         u,
@@ -328,6 +340,24 @@ pub fn preload(
         rigid_modes,
         support,
     })
+}
+
+/// The spins of the case's centrifugal load parts (Ω = √Ω²).
+fn centrifugal_spins(case: &PreloadCase) -> Vec<Spin> {
+    (case.loads.iter().flat_map(|l| &l.parts))
+        .filter_map(|p| match p {
+            LoadPart::Centrifugal {
+                omega2,
+                point,
+                axis,
+            } => Some(Spin {
+                point: *point,
+                axis: *axis,
+                omega: omega2.sqrt(),
+            }),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The free part A[free, free] (A itself without a support).

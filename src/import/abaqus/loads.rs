@@ -1,5 +1,6 @@
 //! Abaqus/CalculiX loads of the steps → named scene loads ([`Load`]): `*CLOAD` (node or node
-//! set, dof 1–6, magnitude), `*DLOAD` `GRAV` (magnitude and direction; on the whole model) and
+//! set, dof 1–6, magnitude), `*DLOAD` `GRAV` (magnitude and direction) and `CENTRIF` (Ω², a
+//! point of the axis, its direction) on the whole model, and
 //! `Pn` / `P` (uniform pressure on face n of a solid, on a shell element), grouped per `*STEP`:
 //! one load named after the step (`NAME=`, else `STEP_<k>`), every step with loads selected
 //! (each is a load case of the scene). Signs (Abaqus Analysis User's Guide, "Distributed
@@ -133,13 +134,7 @@ pub(super) fn resolve(raws: &[RawLoad], r: &Resolve) -> Result<Vec<Load>, Import
                                 })?,
                         }
                     };
-                    if ty == "GRAV" {
-                        let g = num(r, raw, 2, &ent, "magnitude")?;
-                        let d = [
-                            num(r, raw, 3, &ent, "direction x")?,
-                            num(r, raw, 4, &ent, "direction y")?,
-                            num(r, raw, 5, &ent, "direction z")?,
-                        ];
+                    if ty == "GRAV" || ty == "CENTRIF" {
                         let structural = r
                             .model
                             .elements
@@ -151,11 +146,41 @@ pub(super) fn resolve(raws: &[RawLoad], r: &Resolve) -> Result<Vec<Load>, Import
                             .filter(|&&e| r.model.elements[e].property.is_some())
                             .count();
                         if covered < structural {
-                            return Err((r.err)(raw.loc, ent, format!("GRAV on {covered} of the {structural} elements: gravity on part of the model is not supported (give the whole model's element set)")));
+                            return Err((r.err)(raw.loc, ent, format!("{ty} on {covered} of the {structural} elements: a body force on part of the model is not supported (give the whole model's element set)")));
                         }
-                        parts.push(LoadPart::Gravity {
-                            accel: d.map(|x| x * g),
-                        });
+                        let v = |k: usize, what: &str| num(r, raw, k, &ent, what);
+                        if ty == "GRAV" {
+                            let g = v(2, "magnitude")?;
+                            let d = [
+                                v(3, "direction x")?,
+                                v(4, "direction y")?,
+                                v(5, "direction z")?,
+                            ];
+                            parts.push(LoadPart::Gravity {
+                                accel: d.map(|x| x * g),
+                            });
+                        } else {
+                            // ELSET, CENTRIF, Ω², a point of the axis, the axis direction
+                            let omega2 = v(2, "Ω²")?;
+                            let point = [
+                                v(3, "axis point x")?,
+                                v(4, "axis point y")?,
+                                v(5, "axis point z")?,
+                            ];
+                            let axis = [
+                                v(6, "axis direction x")?,
+                                v(7, "axis direction y")?,
+                                v(8, "axis direction z")?,
+                            ];
+                            if omega2.is_nan() || omega2 < 0.0 || axis == [0.0; 3] {
+                                return Err((r.err)(raw.loc, ent, format!("CENTRIF needs Ω² ≥ 0 and a nonzero axis direction (got Ω² = {omega2}, axis {axis:?})")));
+                            }
+                            parts.push(LoadPart::Centrifugal {
+                                omega2,
+                                point,
+                                axis,
+                            });
+                        }
                     } else if let Some(face) = ty.strip_prefix('P') {
                         let p = num(r, raw, 2, &ent, "pressure")?;
                         for e in elements {
@@ -189,7 +214,7 @@ pub(super) fn resolve(raws: &[RawLoad], r: &Resolve) -> Result<Vec<Load>, Import
                             });
                         }
                     } else {
-                        return Err((r.err)(raw.loc, ent, format!("load type '{ty}' is not supported (GRAV, P on shells, P1 … P6 on solids)")));
+                        return Err((r.err)(raw.loc, ent, format!("load type '{ty}' is not supported (GRAV, CENTRIF, P on shells, P1 … P6 on solids)")));
                     }
                 }
             }

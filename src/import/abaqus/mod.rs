@@ -24,8 +24,10 @@
 //! `ImportOptions::ignore_cards` drops keywords or element types on purpose. Blanks in keyword
 //! and parameter names do not matter (as in CalculiX). Only the first `*FREQUENCY` step and what
 //! precedes it define the body: every keyword after it is ignored with one warning; a
-//! `*FREQUENCY` step that is a PERTURBATION of an earlier `*STATIC` step is refused (its preload
-//! is not read).
+//! `*FREQUENCY` step that is a PERTURBATION of an earlier `*STATIC` step is built on that step's
+//! preload (`steps::Steps::preload`: loads, CENTRIF, temperatures) as ccx perturbs it — the
+//! request asks for K + K_G + K_L(u₀) and the spin softening; NLGEOM and other base steps
+//! are refused.
 
 mod connectors;
 mod data;

@@ -197,6 +197,8 @@ impl Steps {
             first_load: format!("{}: {kw}", at(*loc)),
             // ccx's perturbation step: K + K_G + the large-displacement stiffness (e_c3d)
             initial_displacement: true,
+            // … and the stiffness of its centrifugal forces (CENTRIF)
+            spin_softening: true,
             ..Default::default()
         };
         if step.loads.iter().any(|(kw, _)| kw != "*TEMPERATURE") {

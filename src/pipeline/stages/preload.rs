@@ -39,6 +39,8 @@ pub struct PreloadSummary {
     pub buckling_factor: Option<f64>,
     /// The tangent carries K_L(u₀) too (CalculiX's perturbation of the static state).
     pub initial_displacement: bool,
+    /// The tangent carries the spin softening of the preload's centrifugal loads.
+    pub spin_softening: bool,
 }
 
 impl PreloadSummary {
@@ -48,10 +50,11 @@ impl PreloadSummary {
             Some(l) => format!("lowest buckling factor λ₁ = {l:.6}"),
             None => "no buckling factor (nothing in compression)".into(),
         };
-        let tangent = if self.initial_displacement {
-            "K + K_G + K_L(u0) (the perturbed static state, as CalculiX's *STEP, PERTURBATION)"
-        } else {
-            "K + K_G"
+        let tangent = match (self.initial_displacement, self.spin_softening) {
+            (true, true) => "K + K_G + K_L(u0) − Ω²M⊥ (the perturbed static state with the spin softening of its centrifugal loads, as CalculiX's *STEP, PERTURBATION)",
+            (true, false) => "K + K_G + K_L(u0) (the perturbed static state, as CalculiX's *STEP, PERTURBATION)",
+            (false, true) => "K + K_G − Ω²M⊥ (with the spin softening of its centrifugal loads)",
+            (false, false) => "K + K_G",
         };
         format!(
             "preloaded: {} ({}): linear static preload, max |u0| {:.6e} at node {}, {factor}; the modes are those of {tangent}",
@@ -119,6 +122,15 @@ pub fn preload(
     )?;
     if let Some(s) = &summary {
         report.notes.push(s.note());
+        if s.spin_softening {
+            report.warnings.push(format!(
+                "{}: the modes include the spin softening −Ω²M⊥ of the preload's centrifugal \
+                 loads (the modes in the rotating frame, as the deck's solver forms them); a \
+                 multibody solver that spins the body adds that softening itself: for such a \
+                 body build with --preload naming the step's load (K + K_G, no softening)",
+                s.source
+            ));
+        }
         if let Some(w) = (!s.initial_displacement)
             .then(|| large_displacement_warning(&interfaced.model, s))
             .flatten()
@@ -173,6 +185,9 @@ pub fn apply(
         max_displacement_node: model.nodes[node].id,
         buckling_factor,
         initial_displacement: case.initial_displacement,
+        spin_softening: case.spin_softening
+            && (case.loads.iter().flat_map(|l| &l.parts))
+                .any(|p| matches!(p, crate::model::LoadPart::Centrifugal { .. })),
     }))
 }
 
@@ -235,6 +250,7 @@ fn preload_case(
     }
     let mut case = PreloadCase {
         initial_displacement: request.initial_displacement,
+        spin_softening: request.spin_softening,
         ..Default::default()
     };
     let mut names = Vec::new();
