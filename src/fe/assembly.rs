@@ -164,7 +164,12 @@ pub fn element_matrices(
             let x = coords::<4>(model, n);
             solid(
                 tet4::stiffness(&x, &iso).map_err(elem_err)?,
-                tet4::scalar_mass(&x, iso.rho).map_err(elem_err)?,
+                if model.params.ccx_solid_rules {
+                    tet4::scalar_mass_one_point(&x, iso.rho)
+                } else {
+                    tet4::scalar_mass(&x, iso.rho)
+                }
+                .map_err(elem_err)?,
                 4,
                 false,
             )
@@ -219,17 +224,23 @@ pub fn element_matrices(
         }
         ElementKind::Prism6 => {
             let x = coords::<6>(model, n);
-            let k = if model.params.solid_bubbles {
-                solid_incompatible::prism6_stiffness(&x, &iso)
+            let (k, ms) = if model.params.solid_bubbles {
+                (
+                    solid_incompatible::prism6_stiffness(&x, &iso),
+                    prism6::scalar_mass(&x, iso.rho),
+                )
+            } else if model.params.ccx_solid_rules {
+                (
+                    prism6::stiffness_ccx(&x, &iso),
+                    prism6::scalar_mass_ccx(&x, iso.rho),
+                )
             } else {
-                prism6::stiffness(&x, &iso)
+                (
+                    prism6::stiffness(&x, &iso),
+                    prism6::scalar_mass(&x, iso.rho),
+                )
             };
-            solid(
-                k.map_err(elem_err)?,
-                prism6::scalar_mass(&x, iso.rho).map_err(elem_err)?,
-                6,
-                false,
-            )
+            solid(k.map_err(elem_err)?, ms.map_err(elem_err)?, 6, false)
         }
         ElementKind::Pyram5 => {
             let x = coords::<5>(model, n);

@@ -115,6 +115,19 @@ pub fn wedge(n: usize) -> Vec<QuadPoint> {
     out
 }
 
+/// CalculiX's wedge rule (C3D6, ccx `gauss3d7`): the triangle's centroid × 2 Gauss–Legendre
+/// points through the thickness — exact for constants in the triangle only (an under-integrated
+/// C3D6, softer than [`wedge`]`(2)`).
+pub fn wedge_centroid() -> Vec<QuadPoint> {
+    gauss_legendre(2)
+        .iter()
+        .map(|&(z, wz)| QuadPoint {
+            xi: [1.0 / 3.0, 1.0 / 3.0, z],
+            w: wz / 2.0,
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -77,6 +77,7 @@ pub fn block(spec: &BlockSpec) -> Model {
             wtmass: 1.0,
             coupled_mass: None,
             solid_bubbles: false,
+            ccx_solid_rules: false,
             k6rot: None,
         },
         ..Default::default()

@@ -503,6 +503,10 @@ pub struct ModelParams {
     /// Nastran forms them for PSOLID ISOP blank (`fe::elements::solid_incompatible`); `false`:
     /// fully integrated (CalculiX/Abaqus C3D8, C3D6).
     pub solid_bubbles: bool,
+    /// CalculiX's integration rules where they differ from the standard ones (ccx e_c3d, stiffness
+    /// and mass in one loop): C3D4 mass with one point (every entry ρV/16), C3D6 stiffness and
+    /// mass with two points (`quadrature::wedge_centroid`). Set by the Abaqus/CalculiX importer.
+    pub ccx_solid_rules: bool,
     /// Nastran `PARAM,K6ROT`: the drilling stiffness of CQUAD4/CTRIA3 shells is the penalty
     /// γ_d = K6ROT·10⁻⁶·G t (`fe::elements::shell`); `None` = MSC's default 100.
     pub k6rot: Option<f64>,

@@ -51,6 +51,18 @@ pub fn scalar_mass(x: &[Xyz; 6], rho: f64) -> Result<Vec<f64>, ElementError> {
     solid_scalar_mass(x, shape, &quadrature::wedge(2), rho)
 }
 
+/// Stiffness 18×18 as CalculiX forms C3D6: two points (`quadrature::wedge_centroid`, ccx
+/// e_c3d `gauss3d7`).
+pub fn stiffness_ccx(x: &[Xyz; 6], mat: &Isotropic) -> Result<Vec<f64>, ElementError> {
+    solid_stiffness(x, shape, &quadrature::wedge_centroid(), mat)
+}
+
+/// Scalar mass 6×6 as CalculiX forms C3D6: the same two points as its stiffness (ccx integrates
+/// mass and stiffness in one loop).
+pub fn scalar_mass_ccx(x: &[Xyz; 6], rho: f64) -> Result<Vec<f64>, ElementError> {
+    solid_scalar_mass(x, shape, &quadrature::wedge_centroid(), rho)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -45,6 +45,13 @@ pub fn scalar_mass(x: &[Xyz; 4], rho: f64) -> Result<Vec<f64>, ElementError> {
     solid_scalar_mass(x, shape, &quadrature::tet4(), rho)
 }
 
+/// Scalar mass 4×4 as CalculiX forms C3D4: one point, as its stiffness (ccx integrates mass and
+/// stiffness in one loop, e_c3d `gauss3d4`): every entry ρV/16 — the right mass and row sums,
+/// but not the consistent matrix.
+pub fn scalar_mass_one_point(x: &[Xyz; 4], rho: f64) -> Result<Vec<f64>, ElementError> {
+    solid_scalar_mass(x, shape, &quadrature::tet1(), rho)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

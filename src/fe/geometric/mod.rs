@@ -191,7 +191,14 @@ fn formulation(
     };
     let f = match (&prop.section, el.kind) {
         (Section::Solid, k) if k.is_solid() => Formulation::Solid(
-            SolidElement::new(k, &x, mat, model.params.solid_bubbles).map_err(elem_err)?,
+            SolidElement::with_rules(
+                k,
+                &x,
+                mat,
+                model.params.solid_bubbles,
+                model.params.ccx_solid_rules,
+            )
+            .map_err(elem_err)?,
         ),
         (Section::Shell(s), ElementKind::Quad4 | ElementKind::Tri3) => {
             let p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;

@@ -67,6 +67,18 @@ impl SolidElement {
         mat: Isotropic,
         incompatible: bool,
     ) -> Result<SolidElement, ElementError> {
+        SolidElement::with_rules(kind, x, mat, incompatible, false)
+    }
+
+    /// [`SolidElement::new`] with CalculiX's integration rules when `ccx_rules`
+    /// (`ModelParams::ccx_solid_rules`: C3D6 on two points, as its stiffness).
+    pub fn with_rules(
+        kind: ElementKind,
+        x: &[Xyz],
+        mat: Isotropic,
+        incompatible: bool,
+        ccx_rules: bool,
+    ) -> Result<SolidElement, ElementError> {
         if x.len() != kind.node_count() {
             return Err(ElementError::BadConstants(format!(
                 "{kind:?} needs {} nodes, got {}",
@@ -83,6 +95,9 @@ impl SolidElement {
             ElementKind::Hex20 => compatible(x, hex20::shape, &quadrature::cube(3))?,
             ElementKind::Hex20R => compatible(x, hex20::shape, &quadrature::cube(2))?,
             ElementKind::Prism6 if bubbles => prism6_points(&std::array::from_fn(|a| x[a]))?,
+            ElementKind::Prism6 if ccx_rules => {
+                compatible(x, prism6::shape, &quadrature::wedge_centroid())?
+            }
             ElementKind::Prism6 => compatible(x, prism6::shape, &quadrature::wedge(2))?,
             ElementKind::Hex8R => {
                 return Err(ElementError::BadConstants(

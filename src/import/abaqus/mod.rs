@@ -70,7 +70,10 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
             cards: std::mem::take(&mut p.refused),
         });
     }
-    p.finish()
+    let mut model = p.finish()?;
+    // a CalculiX deck means what ccx makes of it: its C3D4/C3D6 integration (ModelParams)
+    model.params.ccx_solid_rules = true;
+    Ok(model)
 }
 
 /// Node reference: a node id or a node-set name.
