@@ -177,5 +177,86 @@ fn spinning_cantilever_from_the_files_terms_equals_the_preloaded_build_and_wrigh
         assert!(rel.abs() < 1e-6, "Ω̄ = {om}: {file} vs {build}");
         assert!(err.abs() < 5e-3, "Ω̄ = {om}: {} vs {want}", file / u);
     }
+    // `check --model` recomputes the entry from the deck (the recipe's options)
+    let o = common::exe()
+        .arg("check")
+        .arg(&out)
+        .arg("--model")
+        .arg(&deck)
+        .arg("--json")
+        .output()
+        .unwrap();
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout)
+        .unwrap_or_else(|e| panic!("check --json: {e}: {}", String::from_utf8_lossy(&o.stderr)));
+    let item = (report["items"].as_array().unwrap().iter())
+        .find(|i| i["name"] == "geometric stiffness against the model")
+        .unwrap_or_else(|| panic!("no geometric-stiffness check in {report}"));
+    eprintln!("check --model: {item}");
+    assert_eq!(item["pass"], true, "{item}");
+    assert!(item["value"].as_f64().unwrap() < 1e-9, "{item}");
+    // … and fails a file whose ω_z² term is 1e-6 off (the same file otherwise)
+    let mut tampered = body.clone();
+    if let Some(g) = tampered.geometric_stiffness.as_mut() {
+        let f = (g.fields.iter_mut())
+            .find(|f| f.load == UnitLoad::AngularVelocity([2, 2]))
+            .unwrap();
+        f.matrix.iter_mut().for_each(|v| *v *= 1.0 + 1e-6);
+    }
+    let bad = dir.join("tampered.flexbody");
+    let bytes = flexbody::write::to_bytes(&tampered, &Default::default()).unwrap();
+    std::fs::write(&bad, bytes).unwrap();
+    let o = common::exe()
+        .arg("check")
+        .arg(&bad)
+        .arg("--model")
+        .arg(&deck)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(!o.status.success(), "a tampered entry passed check --model");
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let item = (report["items"].as_array().unwrap().iter())
+        .find(|i| i["name"] == "geometric stiffness against the model")
+        .unwrap();
+    eprintln!("check --model, tampered: {item}");
+    assert_eq!(item["pass"], false, "{item}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Refused, never approximated: a build with a preload (its modes are those of K + K_G(σ₀)),
+/// and an unknown `--geometric-stiffness` value; no file is written.
+#[test]
+fn geometric_stiffness_with_a_preload_or_an_unknown_value_is_refused() {
+    let dir = common::scratch("geometric_stiffness_refused");
+    let deck = deck(&dir);
+    let out = dir.join("refused.flexbody");
+    for (extra, want) in [
+        (
+            &[
+                "--geometric-stiffness",
+                "inertia",
+                "--load",
+                "TIP:41:1000,0,0",
+                "--preload",
+                "TIP",
+            ][..],
+            "--geometric-stiffness with a preload",
+        ),
+        (&["--geometric-stiffness", "loads"][..], "inertia"),
+    ] {
+        let o = common::exe()
+            .arg("build")
+            .arg(&deck)
+            .args(["--units", "si", "--method", "normal", "--modes", "4", "-q"])
+            .args(extra)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{extra:?} was built");
+        assert!(stderr.contains(want), "{extra:?}: {stderr}");
+        assert!(!out.exists(), "{extra:?}: a refused build wrote a file");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

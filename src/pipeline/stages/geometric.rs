@@ -24,7 +24,7 @@ use crate::pipeline::stages::reduction::ReducedBasis;
 use crate::pipeline::{BuildError, GeometricLoads};
 
 /// The unit load of the file for a unit inertia field of `fe::preload`.
-fn unit_load(load: InertiaLoad) -> file::UnitLoad {
+pub(crate) fn unit_load(load: InertiaLoad) -> file::UnitLoad {
     // axes are 0, 1, 2 (unit_inertia_fields): the casts cannot truncate
     let axis = |a: usize| a as u8;
     match load {
