@@ -169,6 +169,31 @@ fn beam_sid_carries_rotations_and_rotary_inertia() {
     );
 }
 
+/// Format 1.7: a file with the modal geometric stiffness (`--geometric-stiffness inertia`, the
+/// free beam: inertia relief) exports it as the first-order terms of `Ct`, `Cr` and `Oe`; the
+/// Python check takes the node sums off and finds the file's K̂_G (read by the reference
+/// reader), not zero for the ω products.
+#[test]
+fn beam_sid_carries_the_files_geometric_stiffness() {
+    let out = check_sid(
+        "beam-kg",
+        "fixtures/models/planar_beam/planar_beam.bdf",
+        &[
+            "--method",
+            "normal",
+            "--modes",
+            "6",
+            "--mass",
+            "lumped",
+            "--beam-mass",
+            "section",
+            "--geometric-stiffness",
+            "inertia",
+        ],
+    );
+    assert!(out.contains("flexible modes"), "summary: {out}");
+}
+
 #[test]
 fn sid_export_refuses_a_file_without_the_second_order_invariants() {
     let dir = scratch("sid-partial");

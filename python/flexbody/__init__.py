@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import _spec
 from ._reader import read_bytes
 from ._spec import ReadError, SET_MEMBERS, UNIT_KEYS
 
@@ -38,7 +39,9 @@ class Body:
     ``recipe`` (dict) or None, ``interfaces`` (list of dicts: ``node`` the interface node's index
     into the stored nodes, ``node_id`` its id, ``name``, ``kind``, ``dependent`` the ids of the
     mesh nodes it depends on, ``fit``) or None, ``modal_loads`` (dict with
-    ``loads`` [{name, source, values}] and ``residual``) or None, ``entries`` (manifest).
+    ``loads`` [{name, source, values}] and ``residual``) or None, ``geometric_stiffness``
+    (dict: ``support`` and ``fields`` {load name: (M, M) K̂_G per unit load, SPEC §5.16}) or
+    None, ``entries`` (manifest).
     """
 
     def __init__(self, b, m):
@@ -88,6 +91,11 @@ class Body:
         self.interfaces = None if itf is None else [
             dict(i, node_id=int(self.node_ids[i["node"]])) for i in itf]
         self.modal_loads = b.get("modal_loads.bin")
+        gs = b.get("geometric_stiffness.bin")
+        self.geometric_stiffness = None if gs is None else dict(
+            support=gs["support"],
+            fields={_spec.unit_load_name(f["load"]): np.asarray(f["matrix"], dtype=float).reshape(nm, nm)
+                    for f in gs["fields"]})
 
     @property
     def node_count(self):
@@ -147,6 +155,8 @@ class Body:
             "interfaces": None if self.interfaces is None else [
                 {k: v for k, v in i.items() if k != "node_id"} for i in self.interfaces],
             **({"modal_loads": self.modal_loads} if self.modal_loads is not None else {}),
+            **({"geometric_stiffness": _spec.geometric_summary(self._b["geometric_stiffness.bin"])}
+               if self.geometric_stiffness is not None else {}),
         }
 
 

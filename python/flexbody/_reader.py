@@ -442,6 +442,9 @@ def validate(b, m):
     itf = b.get("interfaces.bin")
     if itf is not None:
         _spec.validate_interfaces(itf, {"method.bin": me, "nodes.bin": _NodeAt(nodes)}, _err, _finite_list)
+    gs = b.get("geometric_stiffness.bin")
+    if gs is not None:
+        _spec.validate_geometric_stiffness(gs, nm, _err, _count, _finite, _symmetric)
 
 
 def _finite_list(entry, field, values):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.6), written from SPEC.md alone.
+"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.7), written from SPEC.md alone.
 
 Standard library only (zlib, json, hashlib, struct; the zip container is read by SPEC §7.1's
 procedure here, not by zipfile). Usage:
@@ -28,6 +28,7 @@ ENTRIES = [  # SPEC §2: name, required, the minor version that introduced it
     ("lines.bin", False, 1), ("recipe.json", False, 2), ("label_shares.bin", False, 2),
     ("interfaces.bin", False, 3), ("modal_loads.bin", False, 4),
     ("stress_shapes_bottom.bin", False, 5), ("strain_shapes_bottom.bin", False, 5),
+    ("geometric_stiffness.bin", False, 7),
 ]
 KNOWN = {name: (req, minor) for name, req, minor in ENTRIES}
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
@@ -47,6 +48,8 @@ INTERFACE_KIND = ["Node", "Rbe2", "Rbe3"]
 FIT_METHOD = ["CylinderFit", "FaceAreaCentroid", "NodeAverage"]
 FIT_TOL = 1e-9
 LABELS = ["Rigid", "Normal", "Constraint", "FixedInterface", "Attachment", "FrequencyResponse"]
+STATIC_SUPPORT = ["Held", "InertiaRelief"]
+UNIT_LOAD = ["Acceleration", "AngularVelocity", "AngularAcceleration"]
 
 
 class ReadError(Exception):
@@ -215,6 +218,29 @@ def decode_modal_loads(d):
     return dict(loads=loads, residual=d.vec(d.u8, 1))
 
 
+def decode_geometric_stiffness(d):
+    """SPEC §5.16: GeometricStiffness { support, fields: Vec<GeometricField { load, matrix }> };
+    a load is [kind, axes] with one axis, or two for AngularVelocity."""
+    support = STATIC_SUPPORT[d.tag(STATIC_SUPPORT)]
+
+    def field():
+        kind = UNIT_LOAD[d.tag(UNIT_LOAD)]
+        axes = d.arr(d.u8, 2 if kind == "AngularVelocity" else 1)
+        return dict(load=[kind, axes], matrix=d.f64s())
+    return dict(support=support, fields=d.vec(field, 13))
+
+
+def unit_load_name(load):
+    """SPEC §5.16's name of a load: a_x, omega_x*omega_y, alpha_z."""
+    kind, axes = load
+    ax = ["x", "y", "z"]
+    if kind == "Acceleration":
+        return f"a_{ax[axes[0]]}"
+    if kind == "AngularVelocity":
+        return f"omega_{ax[axes[0]]}*omega_{ax[axes[1]]}"
+    return f"alpha_{ax[axes[0]]}"
+
+
 DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin": decode_faces,
             "nodal_mass.bin": decode_nodal_mass, "modes.bin": decode_modes,
             "invariants.bin": decode_invariants, "method.bin": decode_method,
@@ -222,7 +248,8 @@ DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin":
             "damping.bin": decode_damping, "lines.bin": decode_lines,
             "label_shares.bin": lambda d: d.f64s(), "interfaces.bin": decode_interfaces,
             "modal_loads.bin": decode_modal_loads,
-            "stress_shapes_bottom.bin": decode_field, "strain_shapes_bottom.bin": decode_field}
+            "stress_shapes_bottom.bin": decode_field, "strain_shapes_bottom.bin": decode_field,
+            "geometric_stiffness.bin": decode_geometric_stiffness}
 
 
 # SPEC §5.11: recipe.json member types. ("opt", T) may be null or absent; ("omit", T) may be
@@ -240,7 +267,7 @@ RECIPE_T = {
                 "damping": ("opt", STR), "thickness": ("omit", F64), "subcase": ("omit", U64),
                 "gravity": ("omit", STR), "loads": ("omit", ("list", STR)), "residual_vectors": ("omit", STR),
                 "select": ("omit", STR), "preload": ("omit", ("list", STR)),
-                "ignore": ("omit", ("list", STR))},
+                "ignore": ("omit", ("list", STR)), "geometric_stiffness": ("omit", STR)},
     "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
         "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
         "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),
@@ -770,6 +797,25 @@ def validate(b, m):
     itf = b.get("interfaces.bin")
     if itf is not None:
         validate_interfaces(itf, b, err, finite)
+    gs = b.get("geometric_stiffness.bin")
+    if gs is not None:
+        validate_geometric_stiffness(gs, nm, err, count, finite, symmetric)
+
+
+def validate_geometric_stiffness(gs, nm, err, count, finite, symmetric):
+    """SPEC §6 rule 15: loads valid and not repeated, each matrix M·M, finite, symmetric."""
+    E = "geometric_stiffness.bin"
+    seen = []
+    for q, f in enumerate(gs["fields"]):
+        kind, axes = f["load"]
+        if any(a > 2 for a in axes) or (kind == "AngularVelocity" and axes[0] > axes[1]):
+            err("Inconsistent", E, f"fields[{q}]: load {kind}{axes} has an axis out of range")
+        if f["load"] in seen:
+            err("Inconsistent", E, f"fields[{q}]: load {kind}{axes} appears twice")
+        seen.append(f["load"])
+        count(E, f"fields[{q}].matrix", len(f["matrix"]), nm * nm)
+        finite(E, f"fields[{q}].matrix", f["matrix"])
+        symmetric(E, f"fields[{q}].matrix", f["matrix"], nm)
 
 
 def bottom_fibre_nodes(entry, nodes, b, err):
@@ -978,7 +1024,15 @@ def summarize(b, m):
         "recipe": b.get("recipe.json"),
         "interfaces": b.get("interfaces.bin"),
         **({"modal_loads": b["modal_loads.bin"]} if "modal_loads.bin" in b else {}),
+        **({"geometric_stiffness": geometric_summary(b["geometric_stiffness.bin"])}
+           if "geometric_stiffness.bin" in b else {}),
     }
+
+
+def geometric_summary(gs):
+    """SPEC §9: the support and each field's load name and matrix."""
+    return {"support": gs["support"],
+            "fields": [{"load": unit_load_name(f["load"]), "matrix": list(f["matrix"])} for f in gs["fields"]]}
 
 
 def close(a, b, at="$"):

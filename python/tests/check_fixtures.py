@@ -120,10 +120,32 @@ def interface_ids(root):
     return 1 if bad or n == 0 else 0
 
 
+def geometric_arrays(root):
+    """`geometric_stiffness["fields"][name]` (format 1.7) is the (M, M) array of the summary's
+    row-major matrix of that load, for every golden file that has the entry."""
+    import numpy as np
+    bad = n = 0
+    for f in sorted(Path(root).glob("golden/*/*.flexbody")):
+        body = flexbody.read(f)
+        if body.geometric_stiffness is None:
+            continue
+        nm = body.mode_count
+        for field in body.summary()["geometric_stiffness"]["fields"]:
+            n += 1
+            a = body.geometric_stiffness["fields"][field["load"]]
+            ok = a.shape == (nm, nm) and np.array_equal(a.ravel(), np.asarray(field["matrix"]))
+            if not ok:
+                print(f"FAIL {f}: geometric stiffness {field['load']}")
+            bad += not ok
+    print(f"{n - bad}/{n} geometric-stiffness fields: (M, M) arrays of the summary's matrices")
+    return 1 if bad or n == 0 else 0
+
+
 if __name__ == "__main__":
     root = sys.argv[1] if len(sys.argv) > 1 else "fixtures"
     status = main(root)
     status = interface_ids(root) or status
+    status = geometric_arrays(root) or status
     _reader._CHUNK = 7  # every deflated entry through the chunked inflate, 7-byte input pieces
     print("again, with the chunked inflate on every entry:")
     status = main(root) or status

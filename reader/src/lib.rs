@@ -44,12 +44,13 @@ pub use validate::{validate, FRAME_TOL, REL_TOL};
 
 /// The newest format version this crate writes and fully understands. A writer stamps the
 /// oldest version that has everything the file holds ([`version_for`]).
-pub const FORMAT_VERSION: Version = Version { major: 1, minor: 6 };
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 7 };
 
 /// The oldest format version that has everything `body` holds (SPEC §7.3): 1.1 added
 /// `lines.bin`, 1.2 `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`, 1.4
 /// `modal_loads.bin`, 1.5 the shells' bottom-fibre field shapes, 1.6 normal modes that count
-/// residual vectors removed as dependent (`method.counts.removed_dependent` > 0).
+/// residual vectors removed as dependent (`method.counts.removed_dependent` > 0), 1.7
+/// `geometric_stiffness.bin`.
 pub fn version_for(body: &ReducedBody) -> Version {
     let normal_removed =
         body.method.method == Method::NormalModes && body.method.counts.removed_dependent > 0;
@@ -91,6 +92,7 @@ fn encoded_names(body: &ReducedBody) -> impl Iterator<Item = &'static str> {
         (MODAL_LOADS, body.modal_loads.is_some()),
         (STRESS_SHAPES_BOTTOM, body.stress_shapes_bottom.is_some()),
         (STRAIN_SHAPES_BOTTOM, body.strain_shapes_bottom.is_some()),
+        (GEOMETRIC_STIFFNESS, body.geometric_stiffness.is_some()),
     ];
     ENTRIES[..7]
         .iter()
@@ -169,6 +171,7 @@ pub fn from_bytes_with_manifest(
     let modal_loads = optional(&c, MODAL_LOADS)?;
     let stress_shapes_bottom = optional(&c, STRESS_SHAPES_BOTTOM)?;
     let strain_shapes_bottom = optional(&c, STRAIN_SHAPES_BOTTOM)?;
+    let geometric_stiffness = optional(&c, GEOMETRIC_STIFFNESS)?;
     let body = ReducedBody {
         version: c.manifest.version,
         generator: c.manifest.generator.clone(),
@@ -190,6 +193,7 @@ pub fn from_bytes_with_manifest(
         stress_shapes_bottom,
         strain_shapes_bottom,
         modal_loads,
+        geometric_stiffness,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))
@@ -237,6 +241,9 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     }
     if let Some(s) = &body.strain_shapes_bottom {
         out.push((STRAIN_SHAPES_BOTTOM, false, encode(s)));
+    }
+    if let Some(g) = &body.geometric_stiffness {
+        out.push((GEOMETRIC_STIFFNESS, false, encode(g)));
     }
     out
 }

@@ -353,6 +353,80 @@ pub struct ModalLoad {
     pub values: Vec<f64>,
 }
 
+/// Entry `geometric_stiffness.bin` (format 1.7, SPEC §5.16): the modal geometric stiffness
+/// K̂_G = Φᵀ K_G(σ(unit load)) Φ of each unit inertia load, so a solver stiffens the body by
+/// K̂ + Σ_j s_j K̂_G,j with s_j the current accelerations and angular-velocity products.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GeometricStiffness {
+    /// How the unit loads' static displacement was solved.
+    pub support: StaticSupport,
+    /// One per unit load, each load at most once.
+    pub fields: Vec<GeometricField>,
+}
+
+/// What held the body in the static solve of [`GeometricStiffness`] (SPEC §5.16).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum StaticSupport {
+    /// The model's constraints hold the body: the direct solution.
+    Held,
+    /// Free rigid-body motions balanced by the inertia of the rigid acceleration.
+    InertiaRelief,
+}
+
+/// One unit load and its modal geometric stiffness.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GeometricField {
+    /// The unit load.
+    pub load: UnitLoad,
+    /// K̂_G, row-major [M][M], symmetric.
+    pub matrix: Vec<f64>,
+}
+
+/// A unit inertia load of the body frame (axes 0, 1, 2 = x, y, z; SPEC §5.16).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum UnitLoad {
+    /// Unit acceleration of the frame along the axis (body force −e_a per unit mass).
+    Acceleration(u8),
+    /// Unit product ω_iω_j (i ≤ j) of the angular velocity.
+    AngularVelocity([u8; 2]),
+    /// Unit angular acceleration about the axis (body force −e_a × r).
+    AngularAcceleration(u8),
+}
+
+impl UnitLoad {
+    /// The twelve loads flexbody writes, in its order: accelerations, the six products
+    /// ω_iω_j (i ≤ j, row by row), angular accelerations.
+    pub fn inertia() -> Vec<UnitLoad> {
+        let mut out: Vec<UnitLoad> = (0..3).map(UnitLoad::Acceleration).collect();
+        for i in 0..3u8 {
+            for j in i..3 {
+                out.push(UnitLoad::AngularVelocity([i, j]));
+            }
+        }
+        out.extend((0..3).map(UnitLoad::AngularAcceleration));
+        out
+    }
+
+    /// The load's name in summaries (`a_x`, `omega_x*omega_y`, `alpha_z`); `None` when an
+    /// axis is out of range.
+    pub fn name(&self) -> Option<String> {
+        let axis = |a: u8| ["x", "y", "z"].get(usize::from(a)).copied();
+        Some(match *self {
+            UnitLoad::Acceleration(a) => format!("a_{}", axis(a)?),
+            UnitLoad::AngularVelocity([i, j]) => format!("omega_{}*omega_{}", axis(i)?, axis(j)?),
+            UnitLoad::AngularAcceleration(a) => format!("alpha_{}", axis(a)?),
+        })
+    }
+
+    /// Whether the axes are valid (≤ 2; i ≤ j for an angular-velocity product).
+    pub fn is_valid(&self) -> bool {
+        match *self {
+            UnitLoad::Acceleration(a) | UnitLoad::AngularAcceleration(a) => a <= 2,
+            UnitLoad::AngularVelocity([i, j]) => i <= j && j <= 2,
+        }
+    }
+}
+
 /// A whole reduced body: everything a file holds, validated when read. (Serde derives are
 /// for tools, e.g. a JSON dump; the file itself stores the parts as separate entries.)
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -402,6 +476,10 @@ pub struct ReducedBody {
     /// Optional `modal_loads.bin` (format 1.4): modal loads and residual-vector origins.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub modal_loads: Option<ModalLoads>,
+    /// Optional `geometric_stiffness.bin` (format 1.7): the modal geometric stiffness per
+    /// unit inertia load.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub geometric_stiffness: Option<GeometricStiffness>,
 }
 
 impl ReducedBody {

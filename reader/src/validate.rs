@@ -1,9 +1,9 @@
 //! Consistency rules of a decoded body (SPEC.md §6): counts, finiteness, index ranges,
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
-    DAMPING, FACES, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD, MODAL_LOADS, MODES,
-    NODAL_MASS, NODES, RECIPE, STRAIN_SHAPES, STRAIN_SHAPES_BOTTOM, STRESS_SHAPES,
-    STRESS_SHAPES_BOTTOM,
+    DAMPING, FACES, GEOMETRIC_STIFFNESS, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD,
+    MODAL_LOADS, MODES, NODAL_MASS, NODES, RECIPE, STRAIN_SHAPES, STRAIN_SHAPES_BOTTOM,
+    STRESS_SHAPES, STRESS_SHAPES_BOTTOM,
 };
 use crate::error::ReadError;
 use crate::limits::ReadLimits;
@@ -450,6 +450,39 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
     }
     if let Some(i) = &body.interfaces {
         crate::interfaces::validate_interfaces(i, body)?;
+    }
+    if let Some(g) = &body.geometric_stiffness {
+        geometric_stiffness(g, m)?;
+    }
+    Ok(())
+}
+
+/// Rule 15 (SPEC §5.16): each field's load valid and not repeated, its matrix M×M, finite and
+/// symmetric.
+fn geometric_stiffness(g: &crate::types::GeometricStiffness, m: usize) -> Result<(), ReadError> {
+    for (q, f) in g.fields.iter().enumerate() {
+        if !f.load.is_valid() {
+            return Err(inconsistent(
+                GEOMETRIC_STIFFNESS,
+                format!("fields[{q}]: load {:?} has an axis out of range", f.load),
+            ));
+        }
+        if g.fields[..q].iter().any(|o| o.load == f.load) {
+            return Err(inconsistent(
+                GEOMETRIC_STIFFNESS,
+                format!("fields[{q}]: load {:?} appears twice", f.load),
+            ));
+        }
+        let field = format!("fields[{q}].matrix");
+        count(
+            GEOMETRIC_STIFFNESS,
+            &field,
+            f.matrix.len(),
+            dims(&[m, m]),
+            "modes × modes",
+        )?;
+        finite(GEOMETRIC_STIFFNESS, &field, &f.matrix)?;
+        symmetric(GEOMETRIC_STIFFNESS, &field, &f.matrix, m)?;
     }
     Ok(())
 }

@@ -71,13 +71,37 @@ fn v1_6_golden_counts_the_removed_residual_vector() {
         "three_node_chain_residual_vectors.flexbody",
     ))
     .expect("golden file reads");
-    assert_eq!(b.version, flexbody_reader::FORMAT_VERSION);
+    assert_eq!(b.version, flexbody_reader::Version { major: 1, minor: 6 });
     assert_eq!(flexbody_reader::version_for(&b), b.version);
     let c = b.method.counts;
     assert_eq!((c.rigid, c.normal, c.removed_dependent), (1, 3, 1));
     assert_eq!(b.modal_loads.map(|m| m.residual), Some(vec![0, 0, 1]));
     let share = b.label_shares.expect("shares")[2];
     assert!((share - 28.0 / 55.0).abs() < 1e-15, "{share}");
+}
+
+/// Format 1.7: the modal geometric stiffness of the twelve unit inertia loads reads back, in
+/// flexbody's order, with the golden body's synthetic terms ((k + 1)/8 + (r + c)/4, diagonal
+/// + 1), and the file says 1.7.
+#[test]
+fn v1_7_golden_holds_the_geometric_stiffness_of_twelve_unit_loads() {
+    use flexbody_reader::{StaticSupport, UnitLoad};
+    let b = flexbody_reader::read(golden_in(
+        "v1.7",
+        "three_node_chain_geometric_stiffness.flexbody",
+    ))
+    .expect("golden file reads");
+    assert_eq!(b.version, flexbody_reader::FORMAT_VERSION);
+    assert_eq!(flexbody_reader::version_for(&b), b.version);
+    let g = b.geometric_stiffness.expect("geometric_stiffness.bin");
+    assert_eq!(g.support, StaticSupport::InertiaRelief);
+    let loads: Vec<UnitLoad> = g.fields.iter().map(|f| f.load).collect();
+    assert_eq!(loads, UnitLoad::inertia());
+    assert_eq!(g.fields[6].load.name().as_deref(), Some("omega_y*omega_y"));
+    let f = &g.fields[8];
+    assert_eq!(f.load, UnitLoad::AngularVelocity([2, 2]));
+    assert_eq!(f.matrix[2 * 3 + 1], 9.0 / 8.0 + 3.0 / 4.0);
+    assert_eq!(f.matrix[4], 9.0 / 8.0 + 2.0 / 4.0 + 1.0);
 }
 
 /// A refusal printed for people carries its SPEC §8 name (issue 37): `ReadError::named`.

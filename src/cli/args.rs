@@ -220,6 +220,13 @@ pub(crate) struct BuildArgs {
     /// computes; what was dropped and the estimate are in the build report.
     #[arg(long, value_name = "participation:EPS")]
     pub(crate) select: Option<String>,
+    /// Store the modal geometric stiffness of the body's stress under unit loads, so a
+    /// multibody solver can stiffen a spinning or accelerated body (format 1.7
+    /// geometric_stiffness.bin): inertia = the twelve unit inertia loads (translational
+    /// accelerations, angular-velocity products ω_iω_j, angular accelerations). Not with a
+    /// preload.
+    #[arg(long, value_name = "inertia")]
+    pub(crate) geometric_stiffness: Option<String>,
     /// No stress or strain shapes (the default; for scripts that want to say so).
     #[arg(long, conflicts_with = "stress_modes")]
     pub(crate) no_stress: bool,
@@ -340,6 +347,11 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
                 .transpose()?,
             preload: a.preload.clone(),
         },
+        geometric_stiffness: a
+            .geometric_stiffness
+            .as_deref()
+            .map(crate::pipeline::options::parse_geometric_stiffness)
+            .transpose()?,
     })
 }
 

@@ -82,6 +82,7 @@ fn model_checks(
     preload_as_built(body, &rebuilt, r);
     frequencies_against_full_solve(body, &rebuilt, r)?;
     identities_against_model(body, &rebuilt, r);
+    geometric_stiffness_against_model(body, &rebuilt, r)?;
     Ok(())
 }
 
@@ -178,6 +179,8 @@ struct Rebuilt {
     fixed: Vec<usize>,
     /// The preload applied to K_r as `build` did (stages::preload).
     preload: Option<crate::pipeline::stages::preload::PreloadSummary>,
+    /// The assembly options `build` used (mass, beam lumping).
+    assembly: AssemblySpec,
 }
 
 /// Import, interfaces, assembly and elimination as `build` did them (mass as the file says).
@@ -266,6 +269,7 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
         reduced: red,
         fixed,
         preload,
+        assembly,
     })
 }
 
@@ -377,13 +381,7 @@ fn frequencies_against_full_solve(
 
 /// ΦᵀMΦ, ΦᵀKΦ and residuals against the model's matrices (needs every node's shape).
 fn identities_against_model(body: &file::ReducedBody, rebuilt: &Rebuilt, r: &mut CheckReport) {
-    let (model, a, red, fixed) = (
-        &rebuilt.model,
-        &rebuilt.assembled,
-        &rebuilt.reduced,
-        &rebuilt.fixed,
-    );
-    let m = body.mode_count();
+    let (red, fixed) = (&rebuilt.reduced, &rebuilt.fixed);
     let n_r = red.retained.len();
     if let Some(stored) = partial_nodes(body) {
         r.skipped.push(format!(
@@ -391,56 +389,133 @@ fn identities_against_model(body: &file::ReducedBody, rebuilt: &Rebuilt, r: &mut
              not every node's shape"
         ));
     }
-    if body.header.request.keep_nodes == file::KeepNodes::All {
-        let pos: std::collections::HashMap<u64, usize> = body
-            .nodes
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (p.id, i))
-            .collect();
-        let ns = body.node_count();
-        let mut phi = Mat::<f64>::zeros(n_r, m);
-        let mut missing = 0usize;
-        for (i, &p) in red.retained.iter().enumerate() {
-            let Some((node, c)) = a.dofs.node_of(p) else {
-                continue;
+    if let Some(phi) = file_modes_on_model(body, rebuilt) {
+        let f =
+            crate::pipeline::verify::identities(&red.k, &red.m, &phi, &body.modes.omega2, fixed);
+        crate::pipeline::verify::push_identities(
+            r,
+            &f,
+            &body.modes.labels,
+            body.method.method == file::Method::NormalModes
+                && !crate::pipeline::scene::has_residual_vectors(body),
+            n_r,
+        );
+    }
+}
+
+/// The file's modes on the rebuilt model's independent dofs (local frames), or `None` when the
+/// file does not store every node's shape.
+fn file_modes_on_model(body: &file::ReducedBody, rebuilt: &Rebuilt) -> Option<Mat<f64>> {
+    let (model, a, red) = (&rebuilt.model, &rebuilt.assembled, &rebuilt.reduced);
+    let (m, n_r) = (body.mode_count(), red.retained.len());
+    if body.header.request.keep_nodes != file::KeepNodes::All {
+        return None;
+    }
+    let pos: std::collections::HashMap<u64, usize> = body
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.id, i))
+        .collect();
+    let ns = body.node_count();
+    let mut phi = Mat::<f64>::zeros(n_r, m);
+    let mut missing = 0usize;
+    for (i, &p) in red.retained.iter().enumerate() {
+        let Some((node, c)) = a.dofs.node_of(p) else {
+            continue;
+        };
+        let Some(&q) = pos.get(&model.nodes[node].id) else {
+            missing += 1;
+            continue;
+        };
+        for j in 0..m {
+            let s = &body.modes.shapes[(j * ns + q) * 6..(j * ns + q) * 6 + 6];
+            let (base, v) = if c < 3 {
+                (0, [s[0], s[1], s[2]])
+            } else {
+                (3, [s[3], s[4], s[5]])
             };
-            let Some(&q) = pos.get(&model.nodes[node].id) else {
-                missing += 1;
-                continue;
+            // local = A · basic
+            phi[(i, j)] = match a.dofs.frames[node] {
+                None => v[c - base],
+                Some(ax) => (0..3).map(|k| ax[c - base][k] * v[k]).sum(),
             };
-            for j in 0..m {
-                let s = &body.modes.shapes[(j * ns + q) * 6..(j * ns + q) * 6 + 6];
-                let (base, v) = if c < 3 {
-                    (0, [s[0], s[1], s[2]])
-                } else {
-                    (3, [s[3], s[4], s[5]])
-                };
-                // local = A · basic
-                phi[(i, j)] = match a.dofs.frames[node] {
-                    None => v[c - base],
-                    Some(ax) => (0..3).map(|k| ax[c - base][k] * v[k]).sum(),
-                };
-            }
-        }
-        if missing == 0 {
-            let f = crate::pipeline::verify::identities(
-                &red.k,
-                &red.m,
-                &phi,
-                &body.modes.omega2,
-                fixed,
-            );
-            crate::pipeline::verify::push_identities(
-                r,
-                &f,
-                &body.modes.labels,
-                body.method.method == file::Method::NormalModes
-                    && !crate::pipeline::scene::has_residual_vectors(body),
-                n_r,
-            );
         }
     }
+    (missing == 0).then_some(phi)
+}
+
+/// The file's geometric-stiffness terms (`geometric_stiffness.bin`, SPEC §5.16) recomputed on
+/// the rebuilt model: the twelve unit inertia loads' static stress, K_G and Φᵀ K_G Φ with the
+/// file's modes, as `build` made them; the largest difference over the largest term ≤ 1e-9.
+fn geometric_stiffness_against_model(
+    body: &file::ReducedBody,
+    rebuilt: &Rebuilt,
+    r: &mut CheckReport,
+) -> Result<(), CheckError> {
+    const NAME: &str = "geometric stiffness against the model";
+    let Some(g) = &body.geometric_stiffness else {
+        return Ok(());
+    };
+    let Some(phi) = file_modes_on_model(body, rebuilt) else {
+        r.skipped.push(format!(
+            "{NAME}: the file stores {}, not every node's shape",
+            partial_nodes(body).unwrap_or_else(|| "some nodes".into())
+        ));
+        return Ok(());
+    };
+    let constrained_like = crate::fe::preload::System {
+        model: &rebuilt.model,
+        assembled: &rebuilt.assembled,
+        reduced: &rebuilt.reduced,
+        assembly: &rebuilt.assembly,
+    };
+    let fields = crate::fe::preload::unit_inertia_fields([0.0; 3]);
+    let cases: Vec<crate::fe::preload::PreloadCase> = (fields.iter())
+        .map(|(_, f)| crate::fe::preload::PreloadCase {
+            inertia: vec![f.clone()],
+            ..Default::default()
+        })
+        .collect();
+    let kg = crate::fe::preload::modal_geometric_stiffness(
+        &constrained_like,
+        phi.as_ref(),
+        &cases,
+        &Default::default(),
+    )
+    .map_err(crate::pipeline::BuildError::from)?;
+    let m = body.mode_count();
+    let (mut diff, mut scale, mut unknown) = (0.0f64, 0.0f64, 0usize);
+    for f in &g.fields {
+        let Some(q) = (fields.iter())
+            .position(|(l, _)| crate::pipeline::stages::geometric::unit_load(*l) == f.load)
+        else {
+            unknown += 1;
+            continue;
+        };
+        for (i, v) in f.matrix.iter().enumerate() {
+            let want = kg[q][(i / m, i % m)];
+            diff = diff.max((v - want).abs());
+            scale = scale.max(want.abs());
+        }
+    }
+    let rel = if unknown > 0 {
+        f64::INFINITY
+    } else {
+        diff / scale.max(f64::MIN_POSITIVE)
+    };
+    r.push(
+        NAME,
+        rel,
+        1e-9,
+        format!(
+            "{} unit loads recomputed ({:?}): largest difference {diff:.3e}, largest term \
+             {scale:.6e}",
+            g.fields.len(),
+            g.support
+        ),
+    );
+    Ok(())
 }
 
 /// Runs `flexbody check`: prints the report (text, or `--json`); `Ok(false)` when a check

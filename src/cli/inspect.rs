@@ -105,6 +105,41 @@ pub struct Summary {
     /// when the file has none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub modal_loads: Option<flexbody_reader::ModalLoads>,
+    /// The modal geometric stiffness per unit inertia load (`geometric_stiffness.bin`, format
+    /// 1.7); absent when the file has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub geometric_stiffness: Option<GeometricSummary>,
+}
+
+/// `geometric_stiffness.bin` in the summary (SPEC §9): the support and each load by name.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GeometricSummary {
+    /// `Held` or `InertiaRelief`.
+    pub support: flexbody_reader::StaticSupport,
+    /// One per field, in the file's order.
+    pub fields: Vec<GeometricFieldSummary>,
+}
+
+/// One field of [`GeometricSummary`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GeometricFieldSummary {
+    /// The load's name (SPEC §5.16: `a_x`, `omega_x*omega_y`, `alpha_z`).
+    pub load: String,
+    /// K̂_G, row-major M·M.
+    pub matrix: Vec<f64>,
+}
+
+fn geometric_summary(g: &flexbody_reader::GeometricStiffness) -> GeometricSummary {
+    GeometricSummary {
+        support: g.support,
+        fields: (g.fields.iter())
+            .map(|f| GeometricFieldSummary {
+                // a validated file's loads have valid axes (rule 15)
+                load: f.load.name().unwrap_or_else(|| format!("{:?}", f.load)),
+                matrix: f.matrix.clone(),
+            })
+            .collect(),
+    }
 }
 
 /// Mass properties from I1, I2, I7 when present, else from the stored nodal masses.
@@ -211,6 +246,7 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
         recipe: body.recipe.clone(),
         interfaces: body.interfaces.clone(),
         modal_loads: body.modal_loads.clone(),
+        geometric_stiffness: body.geometric_stiffness.as_ref().map(geometric_summary),
     }
 }
 
@@ -313,7 +349,37 @@ pub fn render_text(s: &Summary) -> String {
     if let Some(list) = &s.interfaces {
         render_interfaces(&mut o, list);
     }
+    if let Some(g) = &s.geometric_stiffness {
+        render_geometric(&mut o, g, s.counts.modes);
+    }
     o
+}
+
+/// The geometric-stiffness block of the text summary: per load its largest diagonal term
+/// (mode and value: for a spin product, the largest Southwell coefficient).
+fn render_geometric(o: &mut String, g: &GeometricSummary, m: usize) {
+    use std::fmt::Write;
+    let _ = writeln!(
+        o,
+        "geometric stiffness  {} unit loads ({:?} static support): K = K̂ + Σ s_j K̂_G,j",
+        g.fields.len(),
+        g.support
+    );
+    for f in &g.fields {
+        let (j, v) = (0..m)
+            .map(|j| (j, f.matrix[j * m + j]))
+            .fold(
+                (0, 0.0f64),
+                |a, b| if b.1.abs() > a.1.abs() { b } else { a },
+            );
+        let _ = writeln!(
+            o,
+            "             {:<18} largest diagonal term {:>14.6e} (mode {})",
+            f.load,
+            v,
+            j + 1
+        );
+    }
 }
 
 /// The interface block of the text summary (`interfaces.bin`).

@@ -9,14 +9,24 @@
 //! |---|---|---|---|
 //! | `mdCM` | 3×1, 1 | I2 | I3 column k |
 //! | `J` | 6×1, 1 | I7 (xx yy zz xy xz yz) | −(I8_k + I8_kᵀ) |
-//! | `Ct` | q×3, 0 | I3ᵀ | — |
-//! | `Cr` | q×3, 1 | I4ᵀ | row r: I5_k column j (Σ m φ̃_k φ_j) |
+//! | `Ct` | q×3, 0 (1 with K̂_G) | I3ᵀ | (r, k, a): K̂_G of `Acceleration(a)` (r, k) |
+//! | `Cr` | q×3, 1 | I4ᵀ | row r: I5_k column j (Σ m φ̃_k φ_j), + K̂_G of `AngularAcceleration(a)` |
 //! | `Me`, `Ke` | q×q, 0 | I6, Φᵀ K Φ | — |
 //! | `Gr` | 3×3q, 0 | block s: −2 I8_s | — |
 //! | `Ge` | q×3q, 0 | (r, 3s+a): 2 Cr¹(r, s, a) | — |
-//! | `Oe` | q×6, 1 | row r: sym(I8_j) as xx yy zz 2xy 2yz 2xz | sym(I9_kj), same order |
+//! | `Oe` | q×6, 1 | row r: sym(I8_j) as xx yy zz 2xy 2yz 2xz | sym(I9_kj), same order, + K̂_G of `AngularVelocity` |
 //! | `De` | q×q, 0 | diag 2 ζ ω m | — |
 //! | `ksigma` | q×1, 0 | 0 (no preload) | — |
+//!
+//! Geometric stiffening (format 1.7 `geometric_stiffness.bin`, SPEC §5.16; when the file has
+//! it): SID carries the stiffness of the stress of the body's inertia loads as the first-order
+//! terms of the inertia coefficients that multiply those loads (Schwertassek & Wallrapp §6.6;
+//! welib's FEM-to-SID writer puts the stiffening of the ω products into `Oe`¹ and of the
+//! frame's acceleration into `Ct`¹ the same way): the equations hold `Ct a + Cr α + Oe ω̄` on
+//! the side of `Ke q`, so the part of `Ct`¹, `Cr`¹, `Oe`¹ linear in q adds Σ_j s_j K̂_G,j q to
+//! `Ke q` — with s_j the frame's acceleration a_a, angular acceleration α_a and the product
+//! ω_iω_j of the column. `ksigma` stays 0: the preload of a preloaded build is already in `Ke`
+//! (its modes are those of K + K_G(σ₀)).
 //!
 //! Conventions (those of EMBSlib's reader and flexible body, `EMBSlib/Components.mo`): first-order
 //! entries are written `m1(row, mode, column)`; `J` is the 6-vector xx yy zz xy xz yz of the
@@ -29,7 +39,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use flexbody_reader::ReducedBody;
+use flexbody_reader::{ReducedBody, UnitLoad};
 
 use super::{flexible_modes, write_atomic, ExportError, ExportSummary};
 
@@ -143,6 +153,7 @@ pub fn sid_fem(body: &ReducedBody) -> Result<(String, ExportSummary), ExportErro
     let terms = Terms {
         inv,
         m: body.mode_count(),
+        geometric: body.geometric_stiffness.as_ref(),
     };
     write_inertia_terms(&mut s, &terms, &flex);
     write_stiffness_and_damping(&mut s, body, &flex);
@@ -269,11 +280,17 @@ fn write_frames(s: &mut String, body: &ReducedBody, flex: &[usize], frames: &[us
     let _ = writeln!(s, "           end frame");
 }
 
-/// The invariants of the file by index (m modes), as the SID terms read them.
+/// The invariants of the file by index (m modes), as the SID terms read them, and its modal
+/// geometric stiffness when it has one.
 struct Terms<'a> {
     inv: &'a flexbody_reader::Invariants,
     m: usize,
+    geometric: Option<&'a flexbody_reader::GeometricStiffness>,
 }
+
+/// The angular-velocity products of `Oe`'s columns (ωx², ωy², ωz², ωxωy, ωyωz, ωxωz) as the
+/// file's unit loads.
+const OE_PRODUCTS: [[u8; 2]; 6] = [[0, 0], [1, 1], [2, 2], [0, 1], [1, 2], [0, 2]];
 
 impl Terms<'_> {
     fn i3(&self, a: usize, j: usize) -> f64 {
@@ -291,6 +308,13 @@ impl Terms<'_> {
     fn i9(&self, j: usize, k: usize) -> &[f64] {
         let at = (j * self.m + k) * 9;
         &self.inv.i9[at..at + 9]
+    }
+    /// K̂_G(j, k) of `load` (file modes j, k); 0 when the file has no such field.
+    fn kg(&self, load: UnitLoad, j: usize, k: usize) -> f64 {
+        self.field(load).map_or(0.0, |f| f.matrix[j * self.m + k])
+    }
+    fn field(&self, load: UnitLoad) -> Option<&flexbody_reader::GeometricField> {
+        self.geometric?.fields.iter().find(|f| f.load == load)
     }
 }
 
@@ -333,10 +357,19 @@ fn write_inertia_terms(s: &mut String, terms: &Terms, flex: &[usize]) {
     }
     t.close("J");
 
-    let mut t = Taylor::open(s, BODY, "Ct", 0, nq, 3, nq, 3);
+    let acceleration = (0..3).any(|a| terms.field(UnitLoad::Acceleration(a)).is_some());
+    let mut t = Taylor::open(s, BODY, "Ct", usize::from(acceleration), nq, 3, nq, 3);
     for (r, &j) in flex.iter().enumerate() {
         for a in 0..3 {
             t.m0(r, a, terms.i3(a, j));
+        }
+    }
+    // geometric stiffening of the frame's acceleration (module doc)
+    for (r, &j) in flex.iter().enumerate() {
+        for (s_, &k) in flex.iter().enumerate() {
+            for a in 0..3u8 {
+                t.m1(r, s_, a.into(), terms.kg(UnitLoad::Acceleration(a), j, k));
+            }
         }
     }
     t.close("Ct");
@@ -351,8 +384,10 @@ fn write_inertia_terms(s: &mut String, terms: &Terms, flex: &[usize]) {
     }
     for r in 0..nq {
         for s_ in 0..nq {
-            for a in 0..3 {
-                t.m1(r, s_, a, cr1(r, s_, a));
+            for a in 0..3u8 {
+                let stiffening = terms.kg(UnitLoad::AngularAcceleration(a), flex[r], flex[s_]);
+                let a = usize::from(a);
+                t.m1(r, s_, a, cr1(r, s_, a) + stiffening);
             }
         }
     }
@@ -396,7 +431,8 @@ fn write_inertia_terms(s: &mut String, terms: &Terms, flex: &[usize]) {
     for (r, &j) in flex.iter().enumerate() {
         for (s_, &k) in flex.iter().enumerate() {
             for (c, v) in oe_order(terms.i9(k, j)).into_iter().enumerate() {
-                t.m1(r, s_, c, v);
+                let stiffening = terms.kg(UnitLoad::AngularVelocity(OE_PRODUCTS[c]), j, k);
+                t.m1(r, s_, c, v + stiffening);
             }
         }
     }

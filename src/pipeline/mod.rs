@@ -2,9 +2,9 @@
 //! ([`ReducedBody`](flexbody_reader::ReducedBody)), as a list of named stages.
 //!
 //! ```text
-//! import ─► interfaces ─► assembly ─► constraints ─► preload ─► reduction ─► invariants ─► stress shapes
-//! Model     spiders       K, M        K_r, M_r, T    K_T,r       ModeSet, Φ   masses, I1…I9  (when asked)
-//!                                                    (when asked)
+//! import ─► interfaces ─► assembly ─► constraints ─► preload ─► reduction ─► invariants ─► geometric stiffness ─► stress shapes
+//! Model     spiders       K, M        K_r, M_r, T    K_T,r       ModeSet, Φ   masses, I1…I9  Φᵀ K_G Φ per unit load  (when asked)
+//!                                                    (when asked)                            (when asked)
 //!        ─► assemble file ─► verify
 //!           ReducedBody      checked against the file rules and K_r, M_r
 //! ```
@@ -42,7 +42,7 @@ pub mod stages;
 pub mod verify;
 
 pub use report::{BuildError, BuildOutput, BuildReport, Stage, STAGES};
-pub use spec::{BuildMethod, BuildSpec, KeepNodes, DEFAULT_MODES};
+pub use spec::{BuildMethod, BuildSpec, GeometricLoads, KeepNodes, DEFAULT_MODES};
 
 use plan::Plan;
 use stages::{assembly, constraints, fields, file, import, interfaces, invariants, reduction};
@@ -164,12 +164,22 @@ fn run_stages(
             stages::preload::preload(&plan, &interfaced, &mut constrained, report)
         })?;
     }
-    let basis = clock.run(Stage::Reduction, || {
+    let mut basis = clock.run(Stage::Reduction, || {
         reduction::reduction(&plan, &interfaced.model, &mut constrained, hook, report)
     })?;
     let mass = clock.run(Stage::Invariants, || {
         invariants::invariants(&plan, &interfaced.model, &mut constrained, &basis)
     })?;
+    if plan.spec.geometric_stiffness.is_some() {
+        clock.run(Stage::GeometricStiffness, || {
+            stages::geometric::geometric_stiffness(
+                &plan,
+                &interfaced.model,
+                &constrained,
+                &mut basis,
+            )
+        })?;
+    }
     let stored = file::stored_nodes(&plan, &interfaced, &constrained)?;
     let fields = if plan.spec.fields.is_empty() {
         fields::FieldShapes::default()

@@ -179,6 +179,25 @@ pub fn parse_method(s: &str) -> Result<BuildMethod, OptionError> {
     }
 }
 
+/// `--geometric-stiffness` (SPEC §5.16): `inertia`, the twelve unit inertia loads.
+pub fn parse_geometric_stiffness(s: &str) -> Result<crate::pipeline::GeometricLoads, OptionError> {
+    match s.to_ascii_lowercase().as_str() {
+        "inertia" => Ok(crate::pipeline::GeometricLoads::Inertia),
+        _ => Err(bad(
+            "geometric-stiffness",
+            s,
+            "inertia (the twelve unit inertia loads: accelerations, angular-velocity products, angular accelerations)",
+        )),
+    }
+}
+
+/// The recipe's text of `--geometric-stiffness`.
+pub fn geometric_stiffness_name(g: crate::pipeline::GeometricLoads) -> &'static str {
+    match g {
+        crate::pipeline::GeometricLoads::Inertia => "inertia",
+    }
+}
+
 /// `--mass`.
 pub fn parse_mass(s: &str) -> Result<MassKind, OptionError> {
     match s.to_ascii_lowercase().as_str() {

@@ -221,6 +221,8 @@ pub fn recipe(
         }),
         select: spec.scene.select.map(crate::pipeline::scene::select_text),
         preload: spec.scene.preload.clone(),
+        geometric_stiffness: (spec.geometric_stiffness)
+            .map(|g| crate::pipeline::options::geometric_stiffness_name(g).into()),
     };
     let interfaces = interfaces
         .iter()

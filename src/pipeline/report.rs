@@ -80,7 +80,7 @@ pub enum BuildError {
 }
 
 /// Stages reported to the progress callback, in order.
-pub const STAGES: [&str; 10] = [
+pub const STAGES: [&str; 11] = [
     "import",
     "interfaces",
     "assembly",
@@ -88,6 +88,7 @@ pub const STAGES: [&str; 10] = [
     "preload",
     "reduction",
     "invariants",
+    "geometric stiffness",
     "stress shapes",
     "assemble file",
     "verify",
@@ -110,6 +111,8 @@ pub enum Stage {
     Reduction,
     /// Mass points and the inertia invariants.
     Invariants,
+    /// The modal geometric stiffness per unit inertia load (only when asked).
+    GeometricStiffness,
     /// Modal stress/strain shapes (only when asked).
     StressShapes,
     /// The file's records.

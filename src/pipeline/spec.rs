@@ -105,6 +105,17 @@ pub struct BuildSpec {
     pub engine: Option<crate::solve::slepc::SlepcEngine>,
     /// `--precision`: arithmetic of the Craig–Bampton interior's factorization.
     pub precision: crate::solve::Precision,
+    /// `--geometric-stiffness`: which unit loads' modal geometric stiffness the file holds
+    /// (`geometric_stiffness.bin`, format 1.7; `None`: no entry).
+    pub geometric_stiffness: Option<GeometricLoads>,
+}
+
+/// The unit loads of `--geometric-stiffness` (SPEC §5.16).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GeometricLoads {
+    /// The twelve unit inertia loads: translational accelerations, angular-velocity products,
+    /// angular accelerations.
+    Inertia,
 }
 
 impl BuildSpec {
@@ -140,6 +151,7 @@ impl BuildSpec {
             verify_band: false,
             engine: None,
             precision: Default::default(),
+            geometric_stiffness: None,
         }
     }
 

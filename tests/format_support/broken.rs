@@ -2,6 +2,7 @@
 //! error a reader must give. Entries are re-encoded after the mutation, and the manifest is
 //! rebuilt from the mutated bytes unless the point is a stale manifest.
 mod container;
+mod geometric;
 mod json;
 mod rules;
 
@@ -590,6 +591,7 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
     container::cases(base, &mut add);
     json::cases(base, &mut add);
     rules::cases(base, &mut add);
+    geometric::cases(&mut add);
     out
 }
 

@@ -5,8 +5,10 @@
 #![allow(dead_code)]
 
 pub mod broken;
+mod geometric;
 mod residual;
 
+pub use geometric::body_3node_geometric_stiffness;
 pub use residual::body_3node_residual_vectors;
 
 use std::path::{Path, PathBuf};
@@ -345,6 +347,7 @@ pub fn body_3node() -> ReducedBody {
         strain_shapes_bottom: None,
         interfaces: None,
         modal_loads: None,
+        geometric_stiffness: None,
     }
 }
 
@@ -538,6 +541,7 @@ pub fn body_20node() -> ReducedBody {
         strain_shapes_bottom: None,
         interfaces: None,
         modal_loads: None,
+        geometric_stiffness: None,
     }
 }
 
@@ -601,6 +605,7 @@ pub fn recipe_3node() -> Recipe {
             select: None,
             preload: Vec::new(),
             ignore: Vec::new(),
+            geometric_stiffness: None,
         },
         interfaces: vec![
             RecipeInterface {
@@ -748,6 +753,10 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         (
             "three_node_chain_residual_vectors",
             body_3node_residual_vectors(),
+        ),
+        (
+            "three_node_chain_geometric_stiffness",
+            body_3node_geometric_stiffness(),
         ),
     ]
 }

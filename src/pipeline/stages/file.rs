@@ -113,8 +113,10 @@ pub fn assemble_file(
             vec![1.0; set.len()]
         }),
         modal_loads: None,
+        geometric_stiffness: None,
     };
     body.modal_loads = modal_loads(&basis.scene, set);
+    body.geometric_stiffness = basis.geometric_stiffness.clone();
     let band = accuracy_band(spec, set);
     let recipe = recipe(
         spec,

@@ -10,6 +10,7 @@
 //! | preload | [`preload`](mod@preload) | → the same, K_T,r = K_r + Tᵀ K_G T in place of K_r (only with a preload) |
 //! | reduction | [`reduction`](mod@reduction) | → [`ReducedBasis`](reduction::ReducedBasis) (mode set, Φ = T Φ_r) |
 //! | invariants | [`invariants`](mod@invariants) | → [`MassProperties`](invariants::MassProperties) (nodal masses, invariants) |
+//! | geometric stiffness | [`geometric`](mod@geometric) | → `ReducedBasis::geometric_stiffness`: Φᵀ K_G Φ per unit inertia load (only when asked) |
 //! | stress shapes | [`fields`](mod@fields) | → [`FieldShapes`](fields::FieldShapes) (only when asked) |
 //! | assemble file | [`file`](mod@file) | → the file's [`ReducedBody`](flexbody_reader::ReducedBody) |
 //! | verify | [`verify`](mod@verify) | → the same body, verified, or an error |
@@ -24,6 +25,7 @@ pub mod assembly;
 pub mod constraints;
 pub mod fields;
 pub mod file;
+pub mod geometric;
 pub mod import;
 pub mod interfaces;
 pub mod invariants;

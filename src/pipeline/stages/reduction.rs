@@ -31,6 +31,9 @@ pub struct ReducedBasis {
     /// The physical consistent M was released for the native Craig–Bampton reduction (issue 22:
     /// as large as K); the invariants stage assembles it again.
     pub mass_released: bool,
+    /// The modal geometric stiffness per unit load (`--geometric-stiffness`; set by the
+    /// geometric-stiffness stage).
+    pub geometric_stiffness: Option<flexbody_reader::GeometricStiffness>,
 }
 
 /// The reduction stage; `hook` sees the mode set last, before it is expanded.
@@ -105,6 +108,7 @@ pub fn reduction(
         phi,
         scene,
         mass_released,
+        geometric_stiffness: None,
     })
 }
 
