@@ -51,8 +51,6 @@ pub struct PreloadRequest {
     pub first_load: String,
     /// The names of the scene loads (`Model::loads`) the preload is made of.
     pub loads: Vec<String>,
-    /// Spins (CalculiX CENTRIF): a point of the axis, the axis, Ω in rad per unit time.
-    pub spins: Vec<([f64; 3], [f64; 3], f64)>,
     /// Temperature change ΔT from the stress-free state per node (indexed like
     /// `Model::nodes`), with the expansion coefficient α per material (like
     /// `Model::materials`).

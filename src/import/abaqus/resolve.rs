@@ -292,7 +292,7 @@ impl Parser {
             request.thermal = Some((dt, alpha));
             return Ok(Some(request));
         }
-        if request.loads.is_empty() && request.spins.is_empty() {
+        if request.loads.is_empty() {
             self.b.model.deck.notes.push(format!(
                 "{}: its *TEMPERATURE strains nothing (zero *EXPANSION or unchanged temperatures): no preload; the temperatures set the material tables only",
                 request.source

@@ -15,7 +15,7 @@
 use faer::Par;
 
 use crate::fe::geometric::{Temperature, Thermal};
-use crate::fe::preload::{self, PreloadCase, PreloadError, PreloadSpec, Spin, System};
+use crate::fe::preload::{self, PreloadCase, PreloadError, PreloadSpec, System};
 use crate::fe::{Assembled, AssemblySpec, Reduced};
 use crate::model::{Load, Model};
 use crate::pipeline::plan::Plan;
@@ -29,7 +29,7 @@ use crate::pipeline::{BuildError, BuildReport};
 pub struct PreloadSummary {
     /// Where it came from: `--preload NAMES` or the deck's step.
     pub source: String,
-    /// The scene loads it is made of (and `CENTRIF` spins).
+    /// The scene loads it is made of (a CENTRIF is a part of its step's load).
     pub loads: Vec<String>,
     /// The largest translation |u₀| of the static solution.
     pub max_displacement: f64,
@@ -272,11 +272,6 @@ fn preload_case(
             alpha: alpha.clone(),
         });
         names.push(format!("thermal strain of {}", request.source));
-    }
-    for &(point, axis, omega) in &request.spins {
-        let spin = Spin { point, axis, omega };
-        case.inertia.extend(spin.field());
-        names.push(format!("CENTRIF Ω = {omega} about {axis:?}"));
     }
     Ok(Some((request.source.clone(), names, case)))
 }
