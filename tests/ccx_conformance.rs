@@ -67,8 +67,8 @@ const KNOWN_GAPS: &[(&str, &str)] = &[];
 
 /// Decks the issue requires to build and match.
 const MUST_MATCH: &[&str] = &[
-    "beamdy7", "beamdy10", "beamdy11", "beamdy12", "beamdy13", "damper1", "dashpot1", "dashpot2",
-    "dashpot3", "spring3", "spring5",
+    "acou3", "beamdy7", "beamdy10", "beamdy11", "beamdy12", "beamdy13", "damper1", "dashpot1",
+    "dashpot2", "dashpot3", "spring3", "spring5",
 ];
 
 #[derive(Debug, Clone, PartialEq)]
