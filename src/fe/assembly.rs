@@ -178,7 +178,8 @@ pub fn element_matrices(
         Some(_) => {
             return Err(fail(format!(
                 "material {} '{}' is anisotropic (*ELASTIC, TYPE=ORTHO/ENGINEERING \
-                 CONSTANTS/ANISO, MAT9): only solid elements take it here",
+                 CONSTANTS/ANISO, MAT9): only solid elements take it (beams, rods and shells \
+                 take isotropic materials only; laminated shells are not supported)",
                 mat.id, mat.name
             )))
         }

@@ -363,6 +363,14 @@ impl Parser {
     /// `*SOLID SECTION` / `*SHELL SECTION` (mid-surface only) / `*BEAM SECTION`.
     fn section_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let elset = kw.need("ELSET", self)?;
+        if kw.name == "SHELL SECTION" && kw.param("COMPOSITE").is_some() {
+            return Err(self.err(
+                kw.loc,
+                format!("*SHELL SECTION ELSET={elset}"),
+                "COMPOSITE (a laminate of several layers) is not supported: one isotropic \
+                 material per shell section",
+            ));
+        }
         let material = kw.need("MATERIAL", self)?;
         let section = match kw.name {
             "SOLID SECTION" => Section::Solid,
