@@ -89,9 +89,7 @@ fn laminates_are_refused_by_card_and_line() {
     let nastran = [
         (
             "two-materials",
-            format!(
-                "{MAT1}MAT1,8,2.e11,,0.3,7800.\nPCOMP,1\n,7,0.002,0.,YES,8,0.002,90.,YES\n"
-            ),
+            format!("{MAT1}MAT1,8,2.e11,,0.3,7800.\nPCOMP,1\n,7,0.002,0.,YES,8,0.002,90.,YES\n"),
             vec!["bdf:8: PCOMP 1", "plies of different materials"],
         ),
         (
