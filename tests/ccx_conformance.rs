@@ -54,6 +54,7 @@ const KNOWN_GAPS: &[(&str, &str)] = &[];
 
 /// Decks the issue requires to build and match.
 const MUST_MATCH: &[&str] = &[
+    "acou3",
     "beamdy7",
     "beamdy10",
     "beamdy11",

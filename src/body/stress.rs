@@ -10,7 +10,8 @@
 //! corner-averaging post-processor does; the jump is not resolved.
 
 use crate::fe::elements::{self, hex20, hex8, map_point, prism6, tet10, tet4, ElementError, Xyz};
-use crate::model::{ElementKind, Model, NodeIndex};
+use crate::model::elasticity::rotate;
+use crate::model::{ElementKind, Model, NodeIndex, Stiffness6};
 
 /// Which field shapes to recover.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -165,17 +166,10 @@ fn strain(gradients: &[Xyz], u: &[[f64; 3]]) -> [f64; 6] {
     ]
 }
 
-/// Isotropic Hooke's law in Voigt form: σ = λ tr(ε) I + 2μ ε, i.e. σ_ij = μ γ_ij for shears.
-fn hooke(lambda: f64, mu: f64, e: &[f64; 6]) -> [f64; 6] {
-    let tr = lambda * (e[0] + e[1] + e[2]);
-    [
-        tr + 2.0 * mu * e[0],
-        tr + 2.0 * mu * e[1],
-        tr + 2.0 * mu * e[2],
-        mu * e[3],
-        mu * e[4],
-        mu * e[5],
-    ]
+/// Hooke's law σ = D ε in Voigt form (`[xx yy zz xy yz zx]`, engineering shears;
+/// [`crate::model::elasticity`]).
+fn hooke(d: &Stiffness6, e: &[f64; 6]) -> [f64; 6] {
+    std::array::from_fn(|i| (0..6).map(|j| d[i][j] * e[j]).sum())
 }
 
 /// The wanted nodes that elements of one family touch, numbered for per-node accumulators.
@@ -263,7 +257,25 @@ pub fn modal_fields(
             .and_then(|p| model.properties.get(p))
             .and_then(|p| model.materials.get(p.material))
             .ok_or_else(|| fail("has no property with a valid material".into()))?;
-        let (lambda, mu) = elements::Isotropic::new(material.e, material.nu, material.rho).lame();
+        // σ = D ε: the material's D in the basic axes at each node (cylindrical axes follow
+        // the node), or the isotropic one.
+        let axes = el.property.and_then(|p| model.property_axes.get(&p));
+        let hooke_at = |node: NodeIndex| -> Stiffness6 {
+            match (material.stiffness(), axes) {
+                (Some(d), Some(axes)) => rotate(d, &axes.at(&model.nodes[node].x)),
+                (Some(d), None) => *d,
+                (None, _) => {
+                    let (lambda, mu) =
+                        elements::Isotropic::new(material.e, material.nu, material.rho).lame();
+                    crate::model::elasticity::isotropic(lambda, mu)
+                }
+            }
+        };
+        let d_nodes: Vec<Stiffness6> = if request.stress {
+            el.nodes.iter().map(|&n| hooke_at(n)).collect()
+        } else {
+            Vec::new()
+        };
         let Some((grads, fb)) = element_gradients(model, &el.nodes, el.kind)
             .map_err(|e| fail(format!("cannot evaluate strains: {e}")))?
         else {
@@ -284,7 +296,7 @@ pub fn modal_fields(
                     sum_strain[base + c] += e[c];
                 }
                 if request.stress {
-                    let s = hooke(lambda, mu, &e);
+                    let s = hooke(&d_nodes[a], &e);
                     for c in 0..6 {
                         sum_stress[base + c] += s[c];
                     }

@@ -151,6 +151,44 @@ pub fn element_matrices(
         )));
     }
     let n = &el.nodes;
+    // A general D (orthotropic/anisotropic material): its solid kernel; the isotropic kernels
+    // below only when there is none.
+    let mut general = match mat.stiffness() {
+        None => None,
+        Some(d) if el.kind.is_solid() => {
+            let x: Vec<Xyz> = n.iter().map(|&i| model.nodes[i].x).collect();
+            let axes = el.property.and_then(|p| model.property_axes.get(&p));
+            let k = super::elements::anisotropic::stiffness(
+                el.kind,
+                &x,
+                model.params.solid_bubbles,
+                model.params.ccx_solid_rules,
+                d,
+                axes,
+            )
+            .map_err(elem_err)?;
+            Some(k.ok_or_else(|| {
+                fail(format!(
+                    "material {} '{}' is anisotropic and this element has no anisotropic \
+                     formulation (C3D8R's hourglass control is isotropic): mesh with C3D8, \
+                     C3D8I or C3D20R",
+                    mat.id, mat.name
+                ))
+            })?)
+        }
+        Some(_) => {
+            return Err(fail(format!(
+                "material {} '{}' is anisotropic (*ELASTIC, TYPE=ORTHO/ENGINEERING \
+                 CONSTANTS/ANISO, MAT9): only solid elements take it (beams, rods and shells \
+                 take isotropic materials only; laminated shells are not supported)",
+                mat.id, mat.name
+            )))
+        }
+    };
+    let mut k_or = |iso_k: &dyn Fn() -> Result<Vec<f64>, ElementError>| match general.take() {
+        Some(k) => Ok(k),
+        None => iso_k(),
+    };
     let solid = |k: Vec<f64>, ms: Vec<f64>, nn: usize, quadratic: bool| -> ElementMatrices {
         let m = match (lumped, quadratic) {
             (false, _) => super::elements::expand_scalar_mass(&ms, nn),
@@ -163,7 +201,7 @@ pub fn element_matrices(
         ElementKind::Tet4 => {
             let x = coords::<4>(model, n);
             solid(
-                tet4::stiffness(&x, &iso).map_err(elem_err)?,
+                k_or(&|| tet4::stiffness(&x, &iso)).map_err(elem_err)?,
                 if model.params.ccx_solid_rules {
                     tet4::scalar_mass_one_point(&x, iso.rho)
                 } else {
@@ -183,7 +221,7 @@ pub fn element_matrices(
                 spec.tet10_mass
             };
             solid(
-                tet10::stiffness(&x, &iso).map_err(elem_err)?,
+                k_or(&|| tet10::stiffness(&x, &iso)).map_err(elem_err)?,
                 tet10::scalar_mass(&x, iso.rho, rule).map_err(elem_err)?,
                 10,
                 true,
@@ -191,11 +229,13 @@ pub fn element_matrices(
         }
         ElementKind::Hex8 => {
             let x = coords::<8>(model, n);
-            let k = if model.params.solid_bubbles {
-                solid_incompatible::hex8_stiffness(&x, &iso)
-            } else {
-                hex8::stiffness(&x, &iso)
-            };
+            let k = k_or(&|| {
+                if model.params.solid_bubbles {
+                    solid_incompatible::hex8_stiffness(&x, &iso)
+                } else {
+                    hex8::stiffness(&x, &iso)
+                }
+            });
             solid(
                 k.map_err(elem_err)?,
                 hex8::scalar_mass(&x, iso.rho).map_err(elem_err)?,
@@ -206,7 +246,7 @@ pub fn element_matrices(
         ElementKind::Hex8R => {
             let x = coords::<8>(model, n);
             solid(
-                hex8r::stiffness(&x, &iso).map_err(elem_err)?,
+                k_or(&|| hex8r::stiffness(&x, &iso)).map_err(elem_err)?,
                 hex8r::scalar_mass(&x, iso.rho).map_err(elem_err)?,
                 8,
                 false,
@@ -216,7 +256,7 @@ pub fn element_matrices(
             let x = coords::<20>(model, n);
             let reduced = el.kind == ElementKind::Hex20R;
             solid(
-                hex20::stiffness(&x, &iso, reduced).map_err(elem_err)?,
+                k_or(&|| hex20::stiffness(&x, &iso, reduced)).map_err(elem_err)?,
                 hex20::scalar_mass(&x, iso.rho, reduced && !lumped).map_err(elem_err)?,
                 20,
                 true,
@@ -226,17 +266,17 @@ pub fn element_matrices(
             let x = coords::<6>(model, n);
             let (k, ms) = if model.params.solid_bubbles {
                 (
-                    solid_incompatible::prism6_stiffness(&x, &iso),
+                    k_or(&|| solid_incompatible::prism6_stiffness(&x, &iso)),
                     prism6::scalar_mass(&x, iso.rho),
                 )
             } else if model.params.ccx_solid_rules {
                 (
-                    prism6::stiffness_ccx(&x, &iso),
+                    k_or(&|| prism6::stiffness_ccx(&x, &iso)),
                     prism6::scalar_mass_ccx(&x, iso.rho),
                 )
             } else {
                 (
-                    prism6::stiffness(&x, &iso),
+                    k_or(&|| prism6::stiffness(&x, &iso)),
                     prism6::scalar_mass(&x, iso.rho),
                 )
             };
@@ -245,7 +285,7 @@ pub fn element_matrices(
         ElementKind::Pyram5 => {
             let x = coords::<5>(model, n);
             solid(
-                pyram5::stiffness(&x, &iso).map_err(elem_err)?,
+                k_or(&|| pyram5::stiffness(&x, &iso)).map_err(elem_err)?,
                 pyram5::scalar_mass(&x, iso.rho).map_err(elem_err)?,
                 5,
                 false,
@@ -254,7 +294,7 @@ pub fn element_matrices(
         ElementKind::Pyram13 => {
             let x = coords::<13>(model, n);
             solid(
-                pyram13::stiffness(&x, &iso).map_err(elem_err)?,
+                k_or(&|| pyram13::stiffness(&x, &iso)).map_err(elem_err)?,
                 pyram13::scalar_mass(&x, iso.rho).map_err(elem_err)?,
                 13,
                 true,

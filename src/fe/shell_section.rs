@@ -9,6 +9,13 @@ fn iso(model: &Model, m: usize) -> Result<Isotropic, String> {
         .materials
         .get(m)
         .ok_or_else(|| format!("shell section names material index {m}, which does not exist"))?;
+    if mat.stiffness().is_some() {
+        return Err(format!(
+            "material {} '{}' is anisotropic: shells take isotropic materials only (laminates, \
+             MAT8/MAT2 and *ELASTIC, TYPE=LAMINA are not supported)",
+            mat.id, mat.name
+        ));
+    }
     Ok(Isotropic {
         e: mat.e,
         nu: mat.nu,

@@ -16,6 +16,7 @@ use std::collections::BTreeMap;
 pub mod beam_library;
 pub mod connector;
 pub mod deck;
+pub mod elasticity;
 pub mod generate;
 pub mod load;
 pub mod offset_mass;
@@ -23,6 +24,7 @@ pub mod section;
 
 pub use connector::{Bush, Mpc, NodeDof, RigidBody, ScalarMass, ScalarSpring};
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
+pub use elasticity::{Elasticity, MaterialAxes, Stiffness6};
 pub use load::{Load, LoadPart};
 pub use section::ShellSection;
 
@@ -329,7 +331,7 @@ pub struct Property {
     pub section: Section,
 }
 
-/// Isotropic linear-elastic material.
+/// Linear-elastic material: isotropic (E, ν, G), or a general D ([`Elasticity`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
     /// External id (Nastran MID); for Abaqus a running number.
@@ -344,6 +346,9 @@ pub struct Material {
     pub g: f64,
     /// Mass density ρ (already multiplied by any mass-unit factor such as Nastran WTMASS).
     pub rho: f64,
+    /// Isotropic (E, ν, G above), or a general D in the material axes; then E above is the
+    /// largest of D11, D22, D33 and ν = 0 (a stiffness scale for the model checks only).
+    pub elasticity: Elasticity,
 }
 
 impl Material {
@@ -356,6 +361,30 @@ impl Material {
             nu,
             g: e / (2.0 * (1.0 + nu)),
             rho,
+            elasticity: Elasticity::Isotropic,
+        }
+    }
+
+    /// A material with the general stiffness `d` (material axes; [`elasticity`] convention):
+    /// E is the largest of D11, D22, D33, ν = 0 and G the largest shear term (stiffness scales
+    /// for the model checks).
+    pub fn anisotropic(id: u64, name: &str, d: Stiffness6, rho: f64) -> Material {
+        Material {
+            id,
+            name: name.to_owned(),
+            e: d[0][0].max(d[1][1]).max(d[2][2]),
+            nu: 0.0,
+            g: d[3][3].max(d[4][4]).max(d[5][5]),
+            rho,
+            elasticity: Elasticity::Anisotropic(Box::new(d)),
+        }
+    }
+
+    /// The general stiffness of an anisotropic material (material axes), `None` if isotropic.
+    pub fn stiffness(&self) -> Option<&Stiffness6> {
+        match &self.elasticity {
+            Elasticity::Anisotropic(d) => Some(d),
+            Elasticity::Isotropic => None,
         }
     }
 
@@ -533,6 +562,9 @@ pub struct Model {
     pub properties: Vec<Property>,
     /// Materials.
     pub materials: Vec<Material>,
+    /// Material axes of properties (index into `properties` → axes; Abaqus `*ORIENTATION`,
+    /// Nastran PSOLID CORDM); a property without an entry has the basic axes.
+    pub property_axes: BTreeMap<usize, MaterialAxes>,
     /// Named node sets (names upper-cased as the format allows), sorted unique node indices.
     pub node_sets: BTreeMap<String, Vec<NodeIndex>>,
     /// Named element sets, sorted unique element indices.

@@ -124,6 +124,7 @@ pub fn parse_material(s: &str) -> Result<Material, OptionError> {
         nu,
         g: e / (2.0 * (1.0 + nu)),
         rho,
+        elasticity: crate::model::Elasticity::Isotropic,
     })
 }
 

@@ -64,6 +64,7 @@ pub fn steel() -> Material {
         nu: 0.3,
         g: 210e9 / 2.6,
         rho: 7850.0,
+        elasticity: flexbody::model::Elasticity::Isotropic,
     }
 }
 

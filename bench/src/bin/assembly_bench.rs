@@ -53,6 +53,7 @@ fn main() {
         nu: 0.3,
         g: 210e9 / 2.6,
         rho: 7850.0,
+        elasticity: flexbody::model::Elasticity::Isotropic,
     };
     let t0 = Instant::now();
     let model = block(&BlockSpec {

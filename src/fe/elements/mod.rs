@@ -10,6 +10,7 @@
 //! K_{ai,bj} = ∫ λ ∂_i N_a ∂_j N_b + μ ∂_j N_a ∂_i N_b + μ δ_ij ∇N_a·∇N_b dV, λ = Eν/((1+ν)(1−2ν)),
 //! μ = E/(2(1+ν)); consistent mass M_{ai,bj} = δ_ij ∫ ρ N_a N_b dV.
 
+pub mod anisotropic;
 pub mod beam;
 pub mod hex20;
 pub mod hex8;

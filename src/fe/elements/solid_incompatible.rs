@@ -101,6 +101,25 @@ pub(crate) fn mode_points<const N: usize>(
     Ok(out)
 }
 
+/// The integration points of an N-node element without incompatible modes.
+pub(crate) fn mode_points_compatible<const N: usize>(
+    x: &[Xyz; N],
+    shape: ShapeFn<N>,
+    rule: &[QuadPoint],
+) -> Result<Vec<ModePoint>, ElementError> {
+    rule.iter()
+        .enumerate()
+        .map(|(p, q)| {
+            let (n, g, det) = map_point(x, shape, &q.xi, p)?;
+            Ok(ModePoint {
+                w: q.w * det,
+                n: n.to_vec(),
+                grads: g.to_vec(),
+            })
+        })
+        .collect()
+}
+
 /// Integration points of the 8-node hexahedron with Wilson's three modes (2×2×2 Gauss).
 pub(crate) fn hex8_points(x: &[Xyz; 8]) -> Result<Vec<ModePoint>, ElementError> {
     mode_points(
@@ -127,16 +146,20 @@ pub(crate) fn prism6_points(x: &[Xyz; 6]) -> Result<Vec<ModePoint>, ElementError
 /// nodal dofs first), module formula.
 pub(crate) fn full_stiffness(points: &[ModePoint], mat: &Isotropic) -> Vec<f64> {
     let (lam, mu) = mat.lame();
-    let d: [[f64; 6]; 6] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| match (i < 3, j < 3) {
-            (true, true) => lam + if i == j { 2.0 * mu } else { 0.0 },
-            _ if i == j => mu,
-            _ => 0.0,
-        })
-    });
+    let d = crate::model::elasticity::isotropic(lam, mu);
+    full_stiffness_d(points, &|_| d)
+}
+
+/// ∫ Bᵀ D B dV with D given per integration point (`d(p)`; [`crate::model::elasticity`]
+/// convention), over all the gradients of the points (Zienkiewicz & Taylor Vol. 1 §6.2).
+pub(crate) fn full_stiffness_d(
+    points: &[ModePoint],
+    d: &dyn Fn(usize) -> crate::model::Stiffness6,
+) -> Vec<f64> {
     let nt = 3 * points.first().map_or(0, |p| p.grads.len());
     let mut k = vec![0.0; nt * nt];
-    for pt in points {
+    for (p, pt) in points.iter().enumerate() {
+        let d = d(p);
         let b = strain_rows(&pt.grads);
         let db: Vec<[f64; 6]> = b
             .iter()
@@ -241,7 +264,7 @@ pub(crate) fn solve_modes(
 }
 
 /// K_cc − K_ci K_ii⁻¹ K_ic of a (nc + ni)² matrix.
-fn condense(k: &[f64], nc: usize, ni: usize) -> Result<Vec<f64>, ElementError> {
+pub(crate) fn condense(k: &[f64], nc: usize, ni: usize) -> Result<Vec<f64>, ElementError> {
     let nt = nc + ni;
     // right-hand sides K_ic (ni × nc)
     let kic: Vec<f64> = (0..ni)

@@ -174,6 +174,13 @@ fn formulation(
         .ok_or_else(|| fail("has no (valid) property".into()))?;
     let m = (model.materials.get(prop.material))
         .ok_or_else(|| fail(format!("property {} names a missing material", prop.id)))?;
+    if m.stiffness().is_some() {
+        return Err(fail(format!(
+            "material {} '{}' is anisotropic: the preload's initial stress is formed with \
+             isotropic materials only",
+            m.id, m.name
+        )));
+    }
     let mat = Isotropic {
         e: m.e,
         nu: m.nu,

@@ -38,6 +38,11 @@ impl Parser {
                 self.set_line(node, name, generate, line, loc)
             }
             Block::Elastic => self.material_line(0, line, loc),
+            Block::ElasticGeneral => self.general_elastic_line(line, loc),
+            Block::Orientation(k, n) => {
+                let (k, n) = (*k, *n);
+                self.orientation_line(k, n, line, loc)
+            }
             Block::Density => self.material_line(1, line, loc),
             Block::Expansion => self.material_line(2, line, loc),
             Block::Temperatures(step) => {
@@ -103,7 +108,7 @@ impl Parser {
     }
 
     /// The non-empty fields of `line` as real numbers of entity `ent`.
-    fn reals(&self, line: &str, ent: &str, loc: Loc) -> Result<Vec<f64>, ImportError> {
+    pub(super) fn reals(&self, line: &str, ent: &str, loc: Loc) -> Result<Vec<f64>, ImportError> {
         fields(line)
             .filter(|s| !s.is_empty())
             .map(|s| self.real(s, ent, loc))

@@ -79,11 +79,13 @@ impl Parser {
                     elastic: Vec::new(),
                     density: Vec::new(),
                     expansion: Vec::new(),
+                    general: None,
                     loc,
                 });
                 Block::Skip
             }
             "ELASTIC" | "DENSITY" | "EXPANSION" => self.material_data_keyword(&kw)?,
+            "ORIENTATION" => self.orientation_keyword(&kw)?,
             "SOLID SECTION" | "BEAM SECTION" | "SHELL SECTION" => self.section_keyword(&kw)?,
             "BOUNDARY" => self.boundary_keyword(&kw),
             "STEP" => {
@@ -333,13 +335,17 @@ impl Parser {
         })
     }
 
-    /// `*ELASTIC` (isotropic) / `*DENSITY` inside a `*MATERIAL`.
+    /// `*ELASTIC` (isotropic; other types: materials.rs) / `*DENSITY` inside a `*MATERIAL`.
     fn material_data_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         if self.materials.is_empty() {
             return Err(self.err(kw.loc, format!("*{}", kw.name), "outside a *MATERIAL"));
         }
         if let Some(t) = kw.param("TYPE") {
-            if !t.eq_ignore_ascii_case("ISO") {
+            let iso = ["ISO", "ISOTROPIC"].contains(&t.trim().to_ascii_uppercase().as_str());
+            if kw.name == "ELASTIC" && !iso {
+                return self.general_elastic_keyword(kw, t);
+            }
+            if !iso {
                 return Err(self.err(
                     kw.loc,
                     "*ELASTIC",
@@ -357,6 +363,14 @@ impl Parser {
     /// `*SOLID SECTION` / `*SHELL SECTION` (mid-surface only) / `*BEAM SECTION`.
     fn section_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let elset = kw.need("ELSET", self)?;
+        if kw.name == "SHELL SECTION" && kw.param("COMPOSITE").is_some() {
+            return Err(self.err(
+                kw.loc,
+                format!("*SHELL SECTION ELSET={elset}"),
+                "COMPOSITE (a laminate of several layers) is not supported: one isotropic \
+                 material per shell section",
+            ));
+        }
         let material = kw.need("MATERIAL", self)?;
         let section = match kw.name {
             "SOLID SECTION" => Section::Solid,
@@ -399,6 +413,7 @@ impl Parser {
             material,
             section,
             orientation: None,
+            material_orientation: kw.param("ORIENTATION").map(str::to_owned),
             loc: kw.loc,
         });
         Ok(Block::SectionLine(self.sections.len() - 1, 0))

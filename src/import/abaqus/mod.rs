@@ -34,6 +34,7 @@ mod data;
 mod defs;
 mod keywords;
 mod loads;
+mod materials;
 mod resolve;
 mod rules;
 mod steps;
@@ -92,6 +93,8 @@ struct RawMaterial {
     density: Vec<temperature::Row<1>>,
     /// `*EXPANSION` rows (α; temperature).
     expansion: Vec<temperature::Row<1>>,
+    /// A general (orthotropic, anisotropic) `*ELASTIC` instead of `elastic` (materials.rs).
+    general: Option<materials::GeneralElastic>,
     loc: Loc,
 }
 
@@ -101,6 +104,8 @@ struct RawSection {
     material: String,
     section: Section,
     orientation: Option<[f64; 3]>,
+    /// `ORIENTATION=`: the `*ORIENTATION` giving the material axes (materials.rs).
+    material_orientation: Option<String>,
     loc: Loc,
 }
 
@@ -134,6 +139,10 @@ enum Block {
         generate: bool,
     },
     Elastic,
+    /// Data lines of a general `*ELASTIC` (materials.rs).
+    ElasticGeneral,
+    /// Data line n of `*ORIENTATION` k (materials.rs).
+    Orientation(usize, usize),
     Density,
     /// `*EXPANSION` data lines of the current material.
     Expansion,
@@ -174,6 +183,8 @@ struct Parser {
     elsets: HashMap<String, Vec<(u64, Loc)>>,
     materials: Vec<RawMaterial>,
     sections: Vec<RawSection>,
+    /// `*ORIENTATION`s (materials.rs).
+    orientations: Vec<materials::RawOrientation>,
     boundaries: Vec<(Target, DofMask, Loc)>,
     /// `*STEP` blocks and their boundary conditions (steps.rs).
     steps: steps::Steps,
@@ -271,6 +282,7 @@ impl Parser {
             elsets: HashMap::new(),
             materials: Vec::new(),
             sections: Vec::new(),
+            orientations: Vec::new(),
             boundaries: Vec::new(),
             steps: steps::Steps::default(),
             loads: Vec::new(),

@@ -193,15 +193,28 @@ impl Parser {
                     ),
                 ));
             }
-            let [e, nu] = (self.at_state(&m.elastic, temps, (&ent, "*ELASTIC"), &mut notes)?)
-                .ok_or_else(|| self.err(m.loc, ent.clone(), "no *ELASTIC given"))?;
+            let general = match &m.general {
+                None => None,
+                Some(g) => Some(self.general_material(g, &m.elastic, temps, &ent, &mut notes)?),
+            };
+            let [e, nu] = match general {
+                Some(_) => [0.0; 2],
+                None => (self.at_state(&m.elastic, temps, (&ent, "*ELASTIC", 2), &mut notes)?)
+                    .ok_or_else(|| self.err(m.loc, ent.clone(), "no *ELASTIC given"))?,
+            };
             let rho =
-                (self.at_state(&m.density, temps, (&ent, "*DENSITY"), &mut notes)?).map(|[r]| r);
+                (self.at_state(&m.density, temps, (&ent, "*DENSITY", 1), &mut notes)?).map(|[r]| r);
             if rho.is_none() {
                 self.b.model.warnings.push(ImportWarning {
                     file: self.b.file_name(m.loc).to_owned(),
                     message: format!("material {} has no *DENSITY: density 0", m.name),
                 });
+            }
+            if let Some(d) = general {
+                let rho = rho.unwrap_or(0.0);
+                let mat = Material::anisotropic(k as u64 + 1, &m.name, d, rho);
+                self.b.model.materials.push(mat);
+                continue;
             }
             self.b.model.materials.push(Material {
                 id: k as u64 + 1,
@@ -210,19 +223,51 @@ impl Parser {
                 nu,
                 g: e / (2.0 * (1.0 + nu)),
                 rho: rho.unwrap_or(0.0),
+                elasticity: crate::model::Elasticity::Isotropic,
             });
         }
         self.b.model.deck.notes.extend(notes);
         Ok(mat_index)
     }
 
+    /// The D of a general `*ELASTIC` (materials.rs) at the state's temperature.
+    fn general_material(
+        &self,
+        g: &super::materials::GeneralElastic,
+        iso_rows: &[Row<2>],
+        temps: &TemperatureState,
+        ent: &str,
+        notes: &mut Vec<String>,
+    ) -> Result<crate::model::Stiffness6, ImportError> {
+        if let Some(r) = iso_rows.first() {
+            return Err(self.err(r.2, ent.to_owned(), "a second *ELASTIC in one material"));
+        }
+        if !g.pending.is_empty() {
+            return Err(self.err(
+                g.loc,
+                ent.to_owned(),
+                format!("*ELASTIC: a row ends after {} constants", g.pending.len()),
+            ));
+        }
+        let v = (self.at_state(&g.rows, temps, (ent, "*ELASTIC", g.kind.count()), notes)?)
+            .ok_or_else(|| {
+                self.err(
+                    g.loc,
+                    ent.to_owned(),
+                    "*ELASTIC has no complete row of constants",
+                )
+            })?;
+        self.general_stiffness(g.kind, &v, (ent, g.loc), notes)
+    }
+
     /// A material table's values in the state the modes are taken in (temperature.rs): a
-    /// table is read at the part's one temperature (a note), and refused without one.
+    /// table is read at the part's one temperature (a note naming the first `shown` values), and
+    /// refused without one.
     fn at_state<const N: usize>(
         &self,
         rows: &[Row<N>],
         temps: &TemperatureState,
-        (ent, keyword): (&str, &str),
+        (ent, keyword, shown): (&str, &str, usize),
         notes: &mut Vec<String>,
     ) -> Result<Option<[f64; N]>, ImportError> {
         if !depends_on_temperature(rows) {
@@ -247,6 +292,7 @@ impl Parser {
                 "{file}:{}: {ent}: {keyword} table read at the part's temperature {t}{at}: {}",
                 loc.line,
                 v.iter()
+                    .take(shown)
                     .map(|x| format!("{x:.7e}"))
                     .collect::<Vec<_>>()
                     .join(", ")
@@ -335,6 +381,11 @@ impl Parser {
                     return Err(self.err(s.loc, ent, "missing thickness line"));
                 }
                 *sh = crate::model::ShellSection::homogeneous(sh.thickness, material);
+            }
+            if let Some(name) = &s.material_orientation {
+                let axes = self.material_axes(name, s.loc)?;
+                let prop = self.b.model.properties.len();
+                self.b.model.property_axes.insert(prop, axes);
             }
             self.b.model.properties.push(Property {
                 id: k as u64 + 1,

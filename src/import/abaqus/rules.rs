@@ -47,6 +47,7 @@ pub(super) const HONOURED: &[&str] = &[
     "MATERIAL",
     "NODE",
     "NSET",
+    "ORIENTATION",
     "RESTART",
     "RIGID BODY",
     "ROTARY INERTIA",
@@ -66,7 +67,7 @@ const DYNAMIC: &str = "excitation or settings of a response analysis: not part o
 const THERMAL: &str =
     "thermal data: neither thermal strain nor temperature-dependent properties are modelled, and a normal-modes analysis has no thermal load";
 const CONTACT: &str = "contact is not supported";
-const MATERIAL: &str = "only linear isotropic elastic materials are supported";
+const MATERIAL: &str = "only linear elastic materials are supported";
 const CHANGE: &str = "a change of the model inside a step is not supported";
 
 /// Every keyword with a rule, sorted by name (checked by a test). Unlisted (and not
@@ -139,10 +140,6 @@ const KEYWORDS: &[(&str, Rule)] = &[
         Refuse("given shell normals are not supported (normals come from the node order)"),
     ),
     ("OBJECTIVE", Note("design optimization: does not change the body")),
-    (
-        "ORIENTATION",
-        Note("a material frame: the isotropic materials read do not depend on it"),
-    ),
     ("OUTPUT", Note(OUTPUT)),
     ("PHYSICAL CONSTANTS", Note(THERMAL)),
     ("PLASTIC", Refuse(MATERIAL)),

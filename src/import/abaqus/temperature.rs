@@ -73,20 +73,29 @@ pub(super) struct TemperatureState {
     pub other_step: Option<Loc>,
     /// The first temperature line of the state.
     pub first: Option<Loc>,
+    /// Per node: used by an element (a node of no element, acou3's node 262, needs no
+    /// temperature); empty = all.
+    pub used: Vec<bool>,
 }
 
 impl TemperatureState {
-    /// The one temperature of the state: `Ok(None)` without temperatures, `Err((lo, hi))` for
-    /// a field that is not uniform (a node without a temperature counts as different).
+    /// The one temperature of the state over the nodes of elements: `Ok(None)` without
+    /// temperatures, `Err((lo, hi))` for a field that is not uniform (a node without a
+    /// temperature counts as different).
     pub(super) fn uniform(&self) -> Result<Option<f64>, (f64, f64)> {
-        let given: Vec<f64> = self.state.iter().flatten().copied().collect();
+        let used = |n: usize| self.used.get(n).copied().unwrap_or(true);
+        let state: Vec<Option<f64>> = (self.state.iter().enumerate())
+            .filter(|(n, _)| used(*n))
+            .map(|(_, t)| *t)
+            .collect();
+        let given: Vec<f64> = state.iter().flatten().copied().collect();
         let Some(&t0) = given.first() else {
             return Ok(None);
         };
         let (lo, hi) = given
             .iter()
             .fold((t0, t0), |(a, b), &t| (a.min(t), b.max(t)));
-        if lo != hi || given.len() != self.state.len() {
+        if lo != hi || given.len() != state.len() {
             return Err((lo, hi));
         }
         Ok(Some(t0))
@@ -130,6 +139,14 @@ impl Parser {
             }
         }
         st.first = step_first.or(st.first);
+        st.used = vec![false; n_nodes];
+        for el in &self.b.model.elements {
+            for &n in &el.nodes {
+                if let Some(u) = st.used.get_mut(n) {
+                    *u = true;
+                }
+            }
+        }
         Ok(st)
     }
 }

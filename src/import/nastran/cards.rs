@@ -123,6 +123,7 @@ const CARDS: &[(&str, Rule)] = &[
     ("MAT1", Read(properties::mat1)),
     ("MAT4", Note(THERMAL)),
     ("MAT5", Note(THERMAL)),
+    ("MAT9", Read(properties::mat9)),
     ("MOMENT", Read(super::loads::card)),
     ("MOMENT1", Read(super::loads::card)),
     ("MOMENT2", Read(super::loads::card)),

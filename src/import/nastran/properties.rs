@@ -95,9 +95,75 @@ pub(super) fn mat1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
         nu,
         g: gg,
         rho: g.real_or(4, 0.0)?,
+        elasticity: crate::model::Elasticity::Isotropic,
     };
     d.properties.mats.push((mid, m, g.card));
     Ok(())
+}
+
+/// Reader of MAT9 (MSC QRG): MID, the 21 Gij of the upper triangle row by row in the order
+/// xx yy zz xy yz zx (the model's, [`crate::model::elasticity`]; engineering shear strains),
+/// RHO (field 22); A1–A6, TREF act only in a thermal preload (`temperature`), GE is damping.
+/// An indefinite or singular D is an error naming the card.
+#[allow(clippy::needless_range_loop)] // the upper triangle (i, j) in the card's order
+pub(super) fn mat9<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let mid = g.id(0, "MID")?;
+    let mut dm = [[0.0; 6]; 6];
+    let mut k = 1;
+    for i in 0..6 {
+        for j in i..6 {
+            let v = g.real_or(k, 0.0)?;
+            dm[i][j] = v;
+            dm[j][i] = v;
+            k += 1;
+        }
+    }
+    match crate::model::elasticity::check(&dm) {
+        Ok(crate::model::elasticity::Definiteness::Positive) => {}
+        Ok(crate::model::elasticity::Definiteness::Singular { rank }) => {
+            return Err(g.err_card(format!(
+                "the material matrix G is singular (rank {rank} of 6): strain states without stress"
+            )))
+        }
+        Err(m) => return Err(g.err_card(m)),
+    }
+    let rho = g.real_or(22, 0.0)?;
+    let m = Material::anisotropic(mid, &format!("MAT9 {mid}"), dm, rho);
+    d.properties.mats.push((mid, m, g.card));
+    Ok(())
+}
+
+/// Material axes of a PSOLID (CORDM, field 3) whose material is anisotropic: blank or 0 the
+/// basic axes, a rectangular system its axes; −1 (the element coordinate system) and
+/// cylindrical or spherical systems are errors naming the card.
+fn psolid_axes(
+    g: &C,
+    model: &crate::model::Model,
+) -> Result<Option<crate::model::MaterialAxes>, ImportError> {
+    let cid = g.int(2)?.unwrap_or(0);
+    match cid {
+        0 => Ok(None),
+        c if c < 0 => Err(g.err(
+            2,
+            "CORDM = -1 (the element coordinate system) with an anisotropic material is not \
+             supported: give a rectangular CORDM",
+        )),
+        c => {
+            let cs = (model.coord_systems.iter())
+                .find(|cs| cs.id == c as u64)
+                .ok_or_else(|| g.err(2, format!("CORDM {c}: no such coordinate system")))?;
+            if cs.kind != crate::model::CoordKind::Rectangular {
+                return Err(g.err(
+                    2,
+                    format!(
+                        "CORDM {c} is not rectangular: curvilinear material axes of an \
+                         anisotropic material are not supported"
+                    ),
+                ));
+            }
+            Ok(Some(crate::model::MaterialAxes::Rectangular(cs.axes)))
+        }
+    }
 }
 
 /// Materials and properties into the model (WTMASS on densities and non-structural masses);
@@ -105,10 +171,17 @@ pub(super) fn mat1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
 pub(super) fn resolve(d: &mut Bulk) -> Result<(IdMap, IdMap), ImportError> {
     let (files, wtmass) = (d.files, d.solution.wtmass);
     let p = &d.properties;
-    // Only MAT1 is read; other MATi cards may legally share a MAT1 id (e.g. MAT4 holds the
-    // thermal data of the same material), so only MAT1 ids must be unique.
-    let mat_ids: Vec<(u64, &str, Loc)> = p.mats.iter().map(|m| (m.0, "MAT1", m.2.loc)).collect();
-    unique_ids(&mat_ids, files, "material id", "MAT1 ids must be unique")?;
+    // Only MAT1 and MAT9 are read; other MATi cards may legally share their id (e.g. MAT4 holds
+    // the thermal data of the same material), so only MAT1/MAT9 ids must be unique.
+    let mat_ids: Vec<(u64, &str, Loc)> = (p.mats.iter())
+        .map(|m| (m.0, m.2.name.as_str(), m.2.loc))
+        .collect();
+    unique_ids(
+        &mat_ids,
+        files,
+        "material id",
+        "MAT1 and MAT9 ids must be unique",
+    )?;
     let mids = IdMap::build(p.mats.iter().map(|m| m.0))
         .map_err(|(_, k)| C::new(p.mats[k].2, files).err_card("duplicate material id"))?;
     let model = &mut d.b.model;
@@ -146,6 +219,11 @@ pub(super) fn resolve(d: &mut Bulk) -> Result<(IdMap, IdMap), ImportError> {
                 super::shell::resolve_mids(s, &mids, &g)?;
             }
             _ => {}
+        }
+        if card.name == "PSOLID" && model.materials[material].stiffness().is_some() {
+            if let Some(axes) = psolid_axes(&g, model)? {
+                model.property_axes.insert(model.properties.len(), axes);
+            }
         }
         model.properties.push(Property {
             id: *pid,

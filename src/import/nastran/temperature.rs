@@ -85,6 +85,16 @@ pub(super) fn thermal_preload(
     let mut tref: Option<(f64, u64)> = None;
     for (mid, _, card) in mats {
         let g = C::new(card, files);
+        if card.name == "MAT9" {
+            if (23..=28).any(|k| g.real_or(k, 0.0).is_ok_and(|a| a != 0.0)) {
+                return Err(g.err(
+                    23,
+                    "MAT9 thermal expansion A1–A6 in a thermal preload is not supported",
+                ));
+            }
+            alpha.push(0.0);
+            continue;
+        }
         let a = g.real_or(5, 0.0)?;
         let t0 = g.real_or(6, 0.0)?;
         if a != 0.0 {
