@@ -11,6 +11,7 @@
 //! μ = E/(2(1+ν)); consistent mass M_{ai,bj} = δ_ij ∫ ρ N_a N_b dV.
 
 pub mod beam;
+pub mod curved_shell;
 pub mod hex20;
 pub mod hex8;
 pub mod hex8r;
@@ -18,6 +19,7 @@ pub mod planar_frame;
 pub mod prism6;
 pub mod pyram13;
 pub mod pyram5;
+pub mod quad8_shell;
 pub mod quad4_shell;
 pub mod rod;
 pub mod shell;
@@ -26,6 +28,7 @@ pub mod tapered_beam;
 pub mod tet10;
 pub mod tet4;
 pub mod tri3_shell;
+pub mod tri6_shell;
 
 use super::quadrature::QuadPoint;
 
