@@ -133,7 +133,9 @@ impl Lamina<'_> {
         let g = self.bases(&n, &dn, zeta);
         let mut e: [Vec<f64>; 5] = std::array::from_fn(|_| vec![0.0; nd]);
         // (component, [(i, j) pairs of g_i · U,j with their factor])
-        let terms: [(usize, &[(usize, usize, f64)]); 5] = [
+        // (component, the (i, j, factor) terms g_i · U,j)
+        type Terms<'t> = [(usize, &'t [(usize, usize, f64)]); 5];
+        let terms: Terms = [
             (0, &[(0, 0, 1.0)]),
             (1, &[(1, 1, 1.0)]),
             (2, &[(0, 1, 0.5), (1, 0, 0.5)]),
@@ -282,7 +284,8 @@ pub(crate) fn stiffness(
             }
             let gz = l.bases(&n, &dn, z);
             let gc = contravariant(&gz, ip)?;
-            let c: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|q| dot(e[i], gc[q])));
+            let c: [[f64; 3]; 3] =
+                std::array::from_fn(|i| std::array::from_fn(|q| dot(e[i], gc[q])));
             local.push(cartesian(&cov, &c));
         }
         let zp = t * ZETA / 2.0;
@@ -376,7 +379,10 @@ pub(crate) fn mass(
         }
     }
     if lumped {
-        let (mt, mr) = (super::super::mass::hrz(&st, nn), super::super::mass::hrz(&sr, nn));
+        let (mt, mr) = (
+            super::super::mass::hrz(&st, nn),
+            super::super::mass::hrz(&sr, nn),
+        );
         for a in 0..nn {
             let va = l.v[a];
             for i in 0..3 {
@@ -408,7 +414,8 @@ pub(crate) fn solve_dense(a: &mut [f64], n: usize, b: &mut [f64], m: usize) -> O
     let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
     for c in 0..n {
         let piv = (c..n).max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))?;
-        if !(a[piv * n + c].abs() > 1e-13 * scale) {
+        let p = a[piv * n + c].abs();
+        if p.is_nan() || p <= 1e-13 * scale {
             return None;
         }
         for j in 0..n {
@@ -500,14 +507,23 @@ pub(crate) mod test_util {
             let (sp, _) = shape(p[0], p[1] + h);
             let (sm, _) = shape(p[0], p[1] - h);
             for a in 0..n.len() {
-                assert!((dn[a][0] - (np[a] - nm[a]) / (2.0 * h)).abs() < 1e-8, "{a} r");
-                assert!((dn[a][1] - (sp[a] - sm[a]) / (2.0 * h)).abs() < 1e-8, "{a} s");
+                assert!(
+                    (dn[a][0] - (np[a] - nm[a]) / (2.0 * h)).abs() < 1e-8,
+                    "{a} r"
+                );
+                assert!(
+                    (dn[a][1] - (sp[a] - sm[a]) / (2.0 * h)).abs() < 1e-8,
+                    "{a} s"
+                );
             }
         }
         for (b, p) in nodes.iter().enumerate() {
             let (n, _) = shape(p[0], p[1]);
             for (a, v) in n.iter().enumerate() {
-                assert!((v - f64::from(u8::from(a == b))).abs() < 1e-14, "N{a} at {b}");
+                assert!(
+                    (v - f64::from(u8::from(a == b))).abs() < 1e-14,
+                    "N{a} at {b}"
+                );
             }
         }
     }

@@ -78,10 +78,7 @@ pub(crate) fn shape8(r: f64, s: f64) -> (Vec<f64>, Vec<[f64; 2]>) {
             let (fr, fs) = (1.0 + ra * r, 1.0 + sa * s);
             let q = ra * r + sa * s - 1.0;
             n.push(0.25 * fr * fs * q);
-            d.push([
-                0.25 * ra * fs * (q + fr),
-                0.25 * sa * fr * (q + fs),
-            ]);
+            d.push([0.25 * ra * fs * (q + fr), 0.25 * sa * fr * (q + fs)]);
         } else if ra == 0.0 {
             n.push(0.5 * (1.0 - r * r) * (1.0 + sa * s));
             d.push([-r * (1.0 + sa * s), 0.5 * sa * (1.0 - r * r)]);
@@ -236,7 +233,11 @@ mod tests {
         std::array::from_fn(|a| {
             let p = REF[a];
             let (u, v) = (0.4 * p[0] + 0.05 * p[1] * p[1], 0.3 * p[1]);
-            [2.0 * u.sin() * v.cos(), 2.0 * v.sin(), 2.0 * u.cos() * v.cos()]
+            [
+                2.0 * u.sin() * v.cos(),
+                2.0 * v.sin(),
+                2.0 * u.cos() * v.cos(),
+            ]
         })
     }
 
@@ -283,7 +284,11 @@ mod tests {
             ..steel(0.01)
         };
         let a = area(&x).unwrap();
-        mass_totals(&matrices(&x, &[0.01; 8], &props, false).unwrap().1, a, &props);
+        mass_totals(
+            &matrices(&x, &[0.01; 8], &props, false).unwrap().1,
+            a,
+            &props,
+        );
         let m = matrices(&x, &[0.01; 8], &props, true).unwrap().1;
         mass_totals(&m, a, &props);
         // rectangle: corners 3/76, mid-sides 4/19 of the mass (HRZ of the serendipity element)
@@ -291,8 +296,16 @@ mod tests {
         let m = matrices(&rect, &[0.01; 8], &steel(0.01), true).unwrap().1;
         let total = 2.0 * 7850.0 * 0.01;
         for a in 0..8 {
-            let want = if a < 4 { total * 3.0 / 76.0 } else { total * 4.0 / 19.0 };
-            assert!((m[6 * a * 48 + 6 * a] - want).abs() < 1e-12 * total, "{a}: {} vs {want}", m[6 * a * 48 + 6 * a]);
+            let want = if a < 4 {
+                total * 3.0 / 76.0
+            } else {
+                total * 4.0 / 19.0
+            };
+            assert!(
+                (m[6 * a * 48 + 6 * a] - want).abs() < 1e-12 * total,
+                "{a}: {} vs {want}",
+                m[6 * a * 48 + 6 * a]
+            );
         }
     }
 }

@@ -15,9 +15,11 @@
 //!     Gauss points of each edge (e_rζ on s = 0, e_sζ on r = 0, e_sζ − e_rζ on r + s = 1) and to
 //!     e_rζ, e_sζ at the centroid — the MITC6 construction of Lee & Bathe; the tangential
 //!     edge strains are shared by neighbours, which is what frees the element of shear locking;
-//!   - in-plane strains (e_rr, e_ss, e_rs): linear fields through their values at the three
-//!     points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3): exact for a flat straight-sided element (whose
-//!     strains are linear), and on curved ones the relief of membrane locking;
+//!   - in-plane strains, the same way along the edges (MITC6a): the normal strains along the
+//!     three edge tangents, e_rr, e_ss and e_qq = e_rr − 2e_rs + e_ss, each linear through its
+//!     values at the edge's two Gauss points and the centroid, e_rs = ½(e_rr + e_ss − e_qq):
+//!     exact for a flat straight-sided element (whose strains are linear), and on curved ones
+//!     the relief of membrane locking;
 //! * 6-point (degree 4) rule for stiffness and mass; drilling as the quadrilateral.
 //! * Mass: HRZ lumping (curved_shell.rs): a flat straight-sided triangle of constant thickness
 //!   with centred mid-side nodes puts 3/57 of its mass on each corner and 16/57 on each mid-side
@@ -79,23 +81,27 @@ fn rule6() -> Vec<([f64; 2], f64)> {
 /// Edge Gauss points on [0, 1].
 const G1: f64 = 0.5 - 0.288_675_134_594_812_9;
 const G2: f64 = 0.5 + 0.288_675_134_594_812_9;
-/// In-plane tying points.
-const INPLANE: [[f64; 2]; 3] = [[1.0 / 6.0, 1.0 / 6.0], [2.0 / 3.0, 1.0 / 6.0], [1.0 / 6.0, 2.0 / 3.0]];
+/// Tying points: s = 0 edge ×2, hypotenuse ×2, r = 0 edge ×2, centroid.
+const POINTS: [[f64; 2]; 7] = [
+    [G1, 0.0],
+    [G2, 0.0],
+    [G2, G1],
+    [G1, G2],
+    [0.0, G1],
+    [0.0, G2],
+    [1.0 / 3.0, 1.0 / 3.0],
+];
 
-/// Tying points: 3 in-plane, then the shear points (s = 0 edge ×2, hypotenuse ×2, r = 0 edge ×2,
-/// centroid).
-fn tying_points() -> Vec<[f64; 2]> {
-    let mut p = INPLANE.to_vec();
-    p.extend([
-        [G1, 0.0],
-        [G2, 0.0],
-        [G2, G1],
-        [G1, G2],
-        [0.0, G1],
-        [0.0, G2],
-        [1.0 / 3.0, 1.0 / 3.0],
-    ]);
-    p
+/// The tying points of the in-plane strains along each edge's tangent: e_rr on s = 0, e_ss on
+/// r = 0, e_qq = e_rr − 2e_rs + e_ss on r + s = 1, each with the centroid.
+const EDGE_POINTS: [[usize; 3]; 3] = [[0, 1, 6], [4, 5, 6], [2, 3, 6]];
+
+/// Weights of the linear function through the values at points p₀, p₁, p₂, at (r, s).
+fn linear3(p: [[f64; 2]; 3], r: f64, s: f64) -> [f64; 3] {
+    let det = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+    let l1 = ((r - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (s - p[0][1])) / det;
+    let l2 = ((p[1][0] - p[0][0]) * (s - p[0][1]) - (r - p[0][0]) * (p[1][1] - p[0][1])) / det;
+    [1.0 - l1 - l2, l1, l2]
 }
 
 /// The 8 basis fields (ẽ_rζ, ẽ_sζ) of the assumed shear space at (r, s).
@@ -127,7 +133,7 @@ const FUNCTIONALS: [(usize, [f64; 2]); 8] = [
 
 /// A⁻¹ of the shear interpolation: A[q][m] = functional q of basis field m (8×8).
 fn shear_inverse() -> Result<Vec<f64>, ElementError> {
-    let pts = &tying_points()[3..];
+    let pts = &POINTS;
     let mut a = vec![0.0; 64];
     for (q, &(p, c)) in FUNCTIONALS.iter().enumerate() {
         let b = shear_basis(pts[p][0], pts[p][1]);
@@ -135,7 +141,9 @@ fn shear_inverse() -> Result<Vec<f64>, ElementError> {
             a[q * 8 + m] = c[0] * b[m][0] + c[1] * b[m][1];
         }
     }
-    let mut inv: Vec<f64> = (0..64).map(|q| f64::from(u8::from(q / 8 == q % 8))).collect();
+    let mut inv: Vec<f64> = (0..64)
+        .map(|q| f64::from(u8::from(q / 8 == q % 8)))
+        .collect();
     solve_dense(&mut a, 8, &mut inv, 8).ok_or_else(|| {
         ElementError::BadConstants("MITC6 shear interpolation is singular".into())
     })?;
@@ -144,11 +152,27 @@ fn shear_inverse() -> Result<Vec<f64>, ElementError> {
 
 /// MITC6 weights at (r, s) (curved_shell::Weights) from the shear inverse `inv`.
 fn weights(inv: &[f64], r: f64, s: f64) -> Vec<[[f64; 5]; 5]> {
-    let mut w = vec![[[0.0; 5]; 5]; 10];
-    let lin = [1.0 - (2.0 * r - 1.0 / 3.0) - (2.0 * s - 1.0 / 3.0), 2.0 * r - 1.0 / 3.0, 2.0 * s - 1.0 / 3.0];
-    for (p, &v) in lin.iter().enumerate() {
-        for k in 0..3 {
-            w[p][k][k] = v;
+    let mut w = vec![[[0.0; 5]; 5]; 7];
+    // in-plane: ẽ_rr, ẽ_ss, ẽ_qq linear; ẽ_rs = ½(ẽ_rr + ẽ_ss − ẽ_qq)
+    for (edge, idx) in EDGE_POINTS.iter().enumerate() {
+        let l = linear3(idx.map(|p| POINTS[p]), r, s);
+        for (c, &p) in idx.iter().enumerate() {
+            let v = l[c];
+            match edge {
+                0 => {
+                    w[p][0][0] += v;
+                    w[p][2][0] += 0.5 * v;
+                }
+                1 => {
+                    w[p][1][1] += v;
+                    w[p][2][1] += 0.5 * v;
+                }
+                _ => {
+                    w[p][2][0] -= 0.5 * v;
+                    w[p][2][1] -= 0.5 * v;
+                    w[p][2][2] += v;
+                }
+            }
         }
     }
     let b = shear_basis(r, s);
@@ -156,8 +180,8 @@ fn weights(inv: &[f64], r: f64, s: f64) -> Vec<[[f64; 5]; 5]> {
         for comp in 0..2 {
             // ẽ_comp = Σ_m b_m,comp Σ_q A⁻¹[m][q] ℓ_q
             let f: f64 = (0..8).map(|m| b[m][comp] * inv[m * 8 + q]).sum();
-            w[3 + p][3 + comp][3] += f * c[0];
-            w[3 + p][3 + comp][4] += f * c[1];
+            w[p][3 + comp][3] += f * c[0];
+            w[p][3 + comp][4] += f * c[1];
         }
     }
     w
@@ -176,7 +200,7 @@ pub fn matrices(
     let rule = rule6();
     let inv = shear_inverse()?;
     let w = |r: f64, s: f64| weights(&inv, r, s);
-    let k = curved_shell::stiffness(&lam, &tying_points(), &w, &rule, props)?;
+    let k = curved_shell::stiffness(&lam, &POINTS, &w, &rule, props)?;
     let m = curved_shell::mass(&lam, &rule, props, lumped)?;
     Ok((k, m))
 }
@@ -222,7 +246,11 @@ mod tests {
         std::array::from_fn(|a| {
             let p = REF[a];
             let (u, v) = (0.5 * p[0] + 0.05 * p[1] * p[1], 0.4 * p[1]);
-            [2.0 * u.sin() * v.cos(), 2.0 * v.sin(), 2.0 * u.cos() * v.cos()]
+            [
+                2.0 * u.sin() * v.cos(),
+                2.0 * v.sin(),
+                2.0 * u.cos() * v.cos(),
+            ]
         })
     }
 
@@ -268,10 +296,15 @@ mod tests {
             ..steel(0.01)
         };
         let a = area(&x).unwrap();
-        mass_totals(&matrices(&x, &[0.01; 6], &props, false).unwrap().1, a, &props);
+        mass_totals(
+            &matrices(&x, &[0.01; 6], &props, false).unwrap().1,
+            a,
+            &props,
+        );
         let m = matrices(&x, &[0.01; 6], &props, true).unwrap().1;
         mass_totals(&m, a, &props);
-        let x: [Xyz; 6] = std::array::from_fn(|i| [2.0 * REF[i][0] + 0.3 * REF[i][1], REF[i][1], 0.0]);
+        let x: [Xyz; 6] =
+            std::array::from_fn(|i| [2.0 * REF[i][0] + 0.3 * REF[i][1], REF[i][1], 0.0]);
         let m = matrices(&x, &[0.01; 6], &props, true).unwrap().1;
         let total = area(&x).unwrap() * props.mass_per_area();
         for n in 0..6 {

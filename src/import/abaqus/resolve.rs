@@ -60,6 +60,7 @@ impl Parser {
         let temps = self.temperature_state(&sets, self.b.model.nodes.len(), base)?;
         let mat_index = self.resolve_materials(&temps)?;
         self.resolve_sections(&mat_index, &sets)?;
+        self.resolve_nodal_thickness(&sets)?;
         self.resolve_boundaries(&sets, &temps)?;
         self.resolve_point_masses(&sets)?;
         self.resolve_transforms(&sets)?;
