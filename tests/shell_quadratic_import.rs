@@ -137,19 +137,18 @@ fn write(name: &str, text: &str) -> std::path::PathBuf {
 /// The first three frequencies [rad/s] of a deck, consistent mass, and its warnings.
 fn frequencies(path: &Path) -> (Vec<f64>, Vec<String>) {
     let model = read_model(path, &ImportOptions::default()).unwrap();
+    let warnings = model.warnings.iter().map(|w| w.message.clone()).collect();
+    (modes(&model), warnings)
+}
+
+/// The first three frequencies [rad/s] of a model, consistent mass.
+fn modes(model: &flexbody::model::Model) -> Vec<f64> {
     let spec = AssemblySpec {
         mass: MassKind::Consistent,
         ..Default::default()
     };
-    let asm = assemble(&model, &spec).unwrap();
-    let red = eliminate(
-        &model,
-        &asm.dofs,
-        &asm.k,
-        &asm.m,
-        &ConstraintSpec::default(),
-    )
-    .unwrap();
+    let asm = assemble(model, &spec).unwrap();
+    let red = eliminate(model, &asm.dofs, &asm.k, &asm.m, &ConstraintSpec::default()).unwrap();
     let sol = lowest_modes(
         &red.k,
         &red.m,
@@ -159,8 +158,7 @@ fn frequencies(path: &Path) -> (Vec<f64>, Vec<String>) {
         },
     )
     .unwrap();
-    let warnings = model.warnings.iter().map(|w| w.message.clone()).collect();
-    (sol.eigenvalues.iter().map(|l| l.sqrt()).collect(), warnings)
+    sol.eigenvalues.iter().map(|l| l.sqrt()).collect()
 }
 
 fn leissa(got: &[f64], t: f64, tol: f64, what: &str) {
@@ -341,5 +339,90 @@ fn calculix_shellf_s8_plate_is_leissas_plate() {
             "mode {}: {err}",
             k + 1
         );
+    }
+}
+
+/// Stress/strain shapes of quadratic shells are not recovered: asking for them is an error
+/// naming the element (never shapes left out); without them the S8 plate builds.
+#[test]
+fn stress_shapes_of_quadratic_shells_are_refused_by_element() {
+    let deck = write("stress.inp", &abaqus("S8", 0.01, "", ""));
+    let out = deck.with_extension("flexbody");
+    let run = |extra: &[&str]| {
+        common::exe()
+            .arg("build")
+            .arg(&deck)
+            .args([
+                "--units", "si", "--method", "normal", "--modes", "3", "-q", "-o",
+            ])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let o = run(&["--stress-modes"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("element 1 (Quad8)") && err.contains("quadratic shells"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    let o = run(&[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// A Gmsh 4.1 mesh of second-order quadrangles (type 16) and of second-order triangles (type 9)
+/// becomes quadratic shells with `--material` and `--thickness`: the same cantilever plate as
+/// the Abaqus decks, the same frequencies.
+#[test]
+fn gmsh_second_order_surfaces_with_thickness_are_quadratic_shells() {
+    use flexbody::model::{DofMask, Material, Spc};
+    for quad8 in [true, false] {
+        let nodes = grid(quad8);
+        let elems = elements(quad8);
+        let (ty, ty_name) = if quad8 { (16, "S8") } else { (9, "S6") };
+        let mut s = String::from("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+        let nn = nodes.len();
+        let max = nodes.iter().map(|p| p.0).max().unwrap();
+        s += &format!("$Nodes\n1 {nn} 1 {max}\n2 1 0 {nn}\n");
+        for p in &nodes {
+            s += &format!("{}\n", p.0);
+        }
+        for p in &nodes {
+            s += &format!("{} {} 0\n", p.1, p.2);
+        }
+        s += "$EndNodes\n";
+        let ne = elems.len();
+        s += &format!("$Elements\n1 {ne} 1 {ne}\n2 1 {ty} {ne}\n");
+        for (k, e) in elems.iter().enumerate() {
+            let ids: Vec<String> = e.iter().map(|v| v.to_string()).collect();
+            s += &format!("{} {}\n", k + 1, ids.join(" "));
+        }
+        s += "$EndElements\n";
+        let path = write(if quad8 { "q8.msh" } else { "t6.msh" }, &s);
+        let mut model = read_model(
+            &path,
+            &ImportOptions {
+                material: Some(Material::isotropic(1, "STEEL", E, NU, RHO)),
+                shell_thickness: Some(0.01),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        for k in 0..model.nodes.len() {
+            if model.nodes[k].x[0] == 0.0 {
+                model.spcs.push(Spc {
+                    node: k,
+                    dofs: DofMask::from_digits("123456").unwrap(),
+                    set_id: 0,
+                });
+            }
+        }
+        let want = frequencies(&write("g.inp", &abaqus(ty_name, 0.01, "", ""))).0;
+        let got = modes(&model);
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() < 1e-9 * w, "{ty_name}: {g} vs {w}");
+        }
     }
 }
