@@ -343,9 +343,10 @@ fn calculix_shellf_s8_plate_is_leissas_plate() {
 }
 
 /// Stress/strain shapes of quadratic shells are not recovered: asking for them is an error
-/// naming the element (never shapes left out); without them the S8 plate builds.
+/// naming the element (never shapes left out); without them the S8 plate builds; a preload
+/// (geometric stiffness) on them is an error naming the element too.
 #[test]
-fn stress_shapes_of_quadratic_shells_are_refused_by_element() {
+fn stress_shapes_and_preload_of_quadratic_shells_are_refused_by_element() {
     let deck = write("stress.inp", &abaqus("S8", 0.01, "", ""));
     let out = deck.with_extension("flexbody");
     let run = |extra: &[&str]| {
@@ -370,6 +371,16 @@ fn stress_shapes_of_quadratic_shells_are_refused_by_element() {
     assert!(!out.exists());
     let o = run(&[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // a preload needs the geometric stiffness, which quadratic shells do not have
+    std::fs::remove_file(&out).ok();
+    let o = run(&["--gravity", "0,0,-9.81", "--preload", "GRAVITY"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("Quad8") && err.contains("no geometric stiffness"),
+        "{err}"
+    );
+    assert!(!out.exists());
 }
 
 /// A Gmsh 4.1 mesh of second-order quadrangles (type 16) and of second-order triangles (type 9)
