@@ -13,8 +13,10 @@
 //!     Raviart–Thomas (Nédélec) space, ẽ_rζ = a₁ + b₁r + c₁s − s(dr + es),
 //!     ẽ_sζ = a₂ + b₂r + c₂s + r(dr + es), tied to the tangential covariant shear at the two
 //!     Gauss points of each edge (e_rζ on s = 0, e_sζ on r = 0, e_sζ − e_rζ on r + s = 1) and to
-//!     e_rζ, e_sζ at the centroid — the MITC6 construction of Lee & Bathe; the tangential
-//!     edge strains are shared by neighbours, which is what frees the element of shear locking;
+//!     e_rζ, e_sζ at the centroid — in the manner of Lee & Bathe's MITC6a (these tying points
+//!     are ours: the edges' Gauss points and the centroid, not checked against the paper's
+//!     table); the tangential edge strains are shared by neighbours, which is what frees the
+//!     element of shear locking;
 //!   - in-plane strains, the same way along the edges (MITC6a): the normal strains along the
 //!     three edge tangents, e_rr, e_ss and e_qq = e_rr − 2e_rs + e_ss, each linear through its
 //!     values at the edge's two Gauss points and the centroid, e_rs = ½(e_rr + e_ss − e_qq):
