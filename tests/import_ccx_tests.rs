@@ -27,15 +27,13 @@ fn ccx_test_decks_node_and_element_counts() {
         ("shellf.inp", 21, 4),
     ] {
         // refused, dropped here to count the mesh: beampsensfreq's frequency step is a
-        // perturbation of a *STATIC step; segmenttet is tied and cyclic; shellf has
-        // nodal thicknesses
+        // perturbation of a *STATIC step; segmenttet is tied and cyclic
         let opts = ImportOptions {
             ignore_cards: [
                 "PERTURBATION",
                 "*TIE",
                 "cyclic symmetry model",
                 "SELECTCYCLICSYMMETRYMODES",
-                "*NODAL THICKNESS",
             ]
             .map(String::from)
             .to_vec(),

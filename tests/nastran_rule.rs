@@ -24,11 +24,11 @@ fn base() -> String {
     s
 }
 
-/// Cards this importer does not model: a gap, a shear panel property, a quadratic shell, a
+/// Cards this importer does not model: a gap, a shear panel property, a CQUADR shell, a
 /// shell-normal PARAM and a line without a card name.
 fn refused_deck() -> String {
     base()
-        + "CGAP,50,60,3,4\nPARAM,SNORM,20.\nCQUAD8,70,2,1,2,3,4,5,6\nCGAP,51,60,5,6\n"
+        + "CGAP,50,60,3,4\nPARAM,SNORM,20.\nCQUADR,70,2,1,2,3,4\nCGAP,51,60,5,6\n"
         + "  ,1,2\nENDDATA\n"
 }
 
@@ -49,7 +49,7 @@ fn unknown_stiffness_cards_are_refused_together_with_file_line_and_id() {
         vec![
             (line_of(&text, "CGAP,50"), "CGAP 50", "CGAP"),
             (line_of(&text, "PARAM,SNORM"), "PARAM SNORM", "PARAM:SNORM"),
-            (line_of(&text, "CQUAD8"), "CQUAD8 70", "CQUAD8"),
+            (line_of(&text, "CQUADR"), "CQUADR 70", "CQUADR"),
             (line_of(&text, "CGAP,51"), "CGAP 51", "CGAP"),
             (line_of(&text, "  ,1,2"), "(a line without a card name)", ""),
         ]
@@ -59,8 +59,8 @@ fn unknown_stiffness_cards_are_refused_together_with_file_line_and_id() {
     for (line, entity, _) in &got {
         assert!(msg.contains(&format!("{file}:{line}: {entity}: ")), "{msg}");
     }
-    assert!(msg.contains("CQUAD8 70: quadratic and CQUADR/CTRIAR shells are not supported"));
-    assert!(msg.contains("--ignore CGAP,CQUAD8,PARAM:SNORM "), "{msg}");
+    assert!(msg.contains("CQUADR 70: CQUADR/CTRIAR shells are not supported"));
+    assert!(msg.contains("--ignore CGAP,CQUADR,PARAM:SNORM "), "{msg}");
     assert_eq!(
         (e.file(), e.line()),
         (Some(file.as_str()), Some(line_of(&text, "CGAP,50")))
@@ -75,7 +75,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
         ignore_cards: vec![
             "cgap".into(),
             "param snorm".into(),
-            "CQUAD8".into(),
+            "CQUADR".into(),
             "CWELD".into(),
         ],
         ..Default::default()
@@ -84,7 +84,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
     assert_eq!(
         m.elements.len(),
         12,
-        "the CBARs are kept, the CQUAD8 dropped"
+        "the CBARs are kept, the CQUADR dropped"
     );
     let w: Vec<&str> = m.warnings.iter().map(|w| w.message.as_str()).collect();
     let file = path.display().to_string();
@@ -100,7 +100,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
                 "1 PARAM:SNORM ({file}:{})",
                 line_of(&text, "PARAM")
             ))
-            && m.contains("1 CQUAD8 (")),
+            && m.contains("1 CQUADR (")),
         "{w:?}"
     );
     assert!(

@@ -104,6 +104,23 @@ pub fn shell_fields(
         slot,
         nodes,
     } = super::stress::wanted_slots(model, wanted, is_shell);
+    // quadratic shells have no fibre recovery yet: an error, never shapes left out
+    let quadratic = model.elements.iter().find(|el| {
+        matches!(el.kind, ElementKind::Quad8 | ElementKind::Tri6)
+            && shell_section(el).is_some()
+            && el.nodes.iter().any(|&n| n < nn && is_wanted[n])
+    });
+    if let (Some(el), false) = (quadratic, request.is_empty()) {
+        return Err(StressError::Element {
+            file: model.element_origin(el.id),
+            id: el.id,
+            kind: el.kind,
+            message: "stress/strain shapes of quadratic shells (S8/S8R/S6, CQUAD8/CTRIA6) are \
+                      not implemented: build without stress/strain shapes, or mesh the part \
+                      with S4/S3 (CQUAD4/CTRIA3)"
+                .into(),
+        });
+    }
     let k = nodes.len();
     let size = n_modes * k * 6;
     let mut sums = [(); 4].map(|_| vec![0.0; size]); // top σ, bottom σ, top ε, bottom ε

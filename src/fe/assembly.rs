@@ -14,8 +14,8 @@ use super::dofs::DofMap;
 use super::elements::beam::{BeamLumping, BeamProps};
 use super::elements::tet10::Tet10MassRule;
 use super::elements::{
-    beam, hex20, hex8, hex8r, prism6, pyram13, pyram5, quad4_shell, rod, solid_incompatible, tet10,
-    tet4, tri3_shell, ElementError, Isotropic, Xyz,
+    beam, hex20, hex8, hex8r, prism6, pyram13, pyram5, quad4_shell, quad8_shell, rod,
+    solid_incompatible, tet10, tet4, tri3_shell, tri6_shell, ElementError, Isotropic, Xyz,
 };
 use super::mass::{self, MassKind};
 use super::pattern::Pattern;
@@ -412,11 +412,27 @@ pub fn element_matrices(
             ElementMatrices { dpn: 6, k, m }
         }
         ElementKind::Quad8 | ElementKind::Tri6 => {
-            return Err(fail(
-                "quadratic shells (S8R/S6/CQUAD8/CTRIA6) are not supported: mesh with linear \
-                 shells (S4/S3, CQUAD4/CTRIA3)"
-                    .into(),
-            ))
+            let Section::Shell(s) = &prop.section else {
+                return Err(fail(format!(
+                    "shell element with non-shell property {} (plane-stress/strain CPS/CPE \
+                     elements are not supported)",
+                    prop.id
+                )));
+            };
+            let mut p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;
+            p.lumped_rotary = spec.beam_lumping != BeamLumping::Nastran;
+            let nodal = model.shell_thickness.get(&e);
+            let t = |a: usize| nodal.map_or(p.t, |t| t[a]);
+            if nodal.is_some_and(|t| t.len() != n.len()) {
+                return Err(fail("nodal thicknesses do not match the node count".into()));
+            }
+            let (k, m) = if el.kind == ElementKind::Quad8 {
+                quad8_shell::matrices(&coords::<8>(model, n), &std::array::from_fn(t), &p, lumped)
+            } else {
+                tri6_shell::matrices(&coords::<6>(model, n), &std::array::from_fn(t), &p, lumped)
+            }
+            .map_err(elem_err)?;
+            ElementMatrices { dpn: 6, k, m }
         }
         other => {
             return Err(fail(format!(

@@ -67,7 +67,9 @@ impl DofMap {
                 | ElementKind::Bar2
                 | ElementKind::Rod2
                 | ElementKind::Quad4
-                | ElementKind::Tri3 => 6,
+                | ElementKind::Tri3
+                | ElementKind::Quad8
+                | ElementKind::Tri6 => 6,
                 _ => continue,
             };
             if e.property.is_none() {

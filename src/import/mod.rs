@@ -111,7 +111,7 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
     Ok(model)
 }
 
-/// Give every 3- and 4-node surface element without a property a homogeneous shell section of
+/// Give every 3-, 4-, 6- and 8-node surface element without a property a homogeneous shell section of
 /// material `m` and thickness `t` (a new material and property named `DEFAULT_SHELL`).
 pub fn apply_default_shell(model: &mut Model, m: &Material, t: f64) {
     add_default_property(
@@ -119,7 +119,12 @@ pub fn apply_default_shell(model: &mut Model, m: &Material, t: f64) {
         m,
         "DEFAULT_SHELL",
         |mat| Section::Shell(crate::model::ShellSection::homogeneous(t, mat)),
-        |e| matches!(e.kind, ElementKind::Tri3 | ElementKind::Quad4),
+        |e| {
+            matches!(
+                e.kind,
+                ElementKind::Tri3 | ElementKind::Quad4 | ElementKind::Tri6 | ElementKind::Quad8
+            )
+        },
     );
 }
 

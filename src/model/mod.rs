@@ -558,6 +558,10 @@ pub struct Model {
     /// Offsets of bar/beam ends, Nastran CBAR/CBEAM WA, WB (basic frame): element index → the
     /// vectors from grid A and grid B to the element's ends, joined to the grids rigidly.
     pub beam_offsets: BTreeMap<usize, [[f64; 3]; 2]>,
+    /// Nodal thicknesses of shell elements (Abaqus *NODAL THICKNESS, Nastran CQUAD8/CTRIA6
+    /// T1..T4): element index → one thickness per node in the element's node order, replacing
+    /// the section's thickness (formed by the quadratic shells, which interpolate it).
+    pub shell_thickness: BTreeMap<usize, Vec<f64>>,
     /// Properties (sections).
     pub properties: Vec<Property>,
     /// Materials.

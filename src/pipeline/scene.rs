@@ -149,8 +149,10 @@ fn pressure_faces(model: &Model, set: &[NodeIndex], p: f64) -> Vec<LoadPart> {
                     }
                 }
             }
-        } else if matches!(e.kind, ElementKind::Quad4 | ElementKind::Tri3)
-            && e.property.is_some()
+        } else if matches!(
+            e.kind,
+            ElementKind::Quad4 | ElementKind::Tri3 | ElementKind::Quad8 | ElementKind::Tri6
+        ) && e.property.is_some()
             && e.nodes.iter().all(|&n| inset[n])
         {
             parts.push(LoadPart::Surface {

@@ -269,15 +269,74 @@ pub fn shell_grid(
     mat: Material,
     at: impl Fn(f64, f64) -> [f64; 3],
 ) -> Model {
+    let mesh = if tris {
+        ShellMesh::Tri3
+    } else {
+        ShellMesh::Quad4
+    };
+    shell_mesh(mesh, n, m, t, mat, at)
+}
+
+/// The element kind of a [`shell_mesh`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShellMesh {
+    /// 4-node quadrilaterals.
+    Quad4,
+    /// 3-node triangles, two per cell along alternating diagonals.
+    Tri3,
+    /// 8-node quadrilaterals (mid-side nodes on the map).
+    Quad8,
+    /// 6-node triangles, two per cell along alternating diagonals.
+    Tri6,
+}
+
+impl ShellMesh {
+    /// The four kinds.
+    pub const ALL: [ShellMesh; 4] = [
+        ShellMesh::Quad4,
+        ShellMesh::Tri3,
+        ShellMesh::Quad8,
+        ShellMesh::Tri6,
+    ];
+
+    /// Quadratic elements (mid-side nodes).
+    pub fn quadratic(self) -> bool {
+        matches!(self, ShellMesh::Quad8 | ShellMesh::Tri6)
+    }
+
+    /// Triangles.
+    pub fn tris(self) -> bool {
+        matches!(self, ShellMesh::Tri3 | ShellMesh::Tri6)
+    }
+}
+
+/// Structured n×m mesh of `mesh` elements on the map (s, r) ∈ [0,1]² → `at(s, r)`
+/// (quadratic elements: mid-side nodes on the map; no unused node).
+pub fn shell_mesh(
+    mesh: ShellMesh,
+    n: usize,
+    m: usize,
+    t: f64,
+    mat: Material,
+    at: impl Fn(f64, f64) -> [f64; 3],
+) -> Model {
     let mut model = Model {
         source: "generated".into(),
         ..Model::default()
     };
-    for j in 0..=m {
-        for i in 0..=n {
+    let q = if mesh.quadratic() { 2 } else { 1 };
+    let (gn, gm) = (q * n, q * m);
+    // grid point (i, j) → node index; quad8 cells leave their centres out
+    let mut index = vec![usize::MAX; (gn + 1) * (gm + 1)];
+    for j in 0..=gm {
+        for i in 0..=gn {
+            if mesh == ShellMesh::Quad8 && i % 2 == 1 && j % 2 == 1 {
+                continue;
+            }
+            index[j * (gn + 1) + i] = model.nodes.len();
             model.nodes.push(Node {
-                id: (j * (n + 1) + i + 1) as u64,
-                x: at(i as f64 / n as f64, j as f64 / m as f64),
+                id: (j * (gn + 1) + i + 1) as u64,
+                x: at(i as f64 / gn as f64, j as f64 / gm as f64),
                 displacement_frame: None,
             });
         }
@@ -289,7 +348,7 @@ pub fn shell_grid(
         material: 0,
         section: Section::Shell(ShellSection::homogeneous(t, 0)),
     });
-    let idx = |i: usize, j: usize| j * (n + 1) + i;
+    let idx = |i: usize, j: usize| index[j * (gn + 1) + i];
     let mut push = |kind, nodes: Vec<usize>| {
         let id = model.elements.len() as u64 + 1;
         model.elements.push(Element {
@@ -302,15 +361,53 @@ pub fn shell_grid(
     };
     for j in 0..m {
         for i in 0..n {
-            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
-            if !tris {
-                push(ElementKind::Quad4, vec![a, b, c, d]);
-            } else if (i + j) % 2 == 0 {
-                push(ElementKind::Tri3, vec![a, b, c]);
-                push(ElementKind::Tri3, vec![a, c, d]);
-            } else {
-                push(ElementKind::Tri3, vec![a, b, d]);
-                push(ElementKind::Tri3, vec![b, c, d]);
+            let (i0, j0) = (q * i, q * j);
+            let (a, b, c, d) = (
+                idx(i0, j0),
+                idx(i0 + q, j0),
+                idx(i0 + q, j0 + q),
+                idx(i0, j0 + q),
+            );
+            let alt = (i + j) % 2 == 0;
+            match mesh {
+                ShellMesh::Quad4 => push(ElementKind::Quad4, vec![a, b, c, d]),
+                ShellMesh::Tri3 if alt => {
+                    push(ElementKind::Tri3, vec![a, b, c]);
+                    push(ElementKind::Tri3, vec![a, c, d]);
+                }
+                ShellMesh::Tri3 => {
+                    push(ElementKind::Tri3, vec![a, b, d]);
+                    push(ElementKind::Tri3, vec![b, c, d]);
+                }
+                ShellMesh::Quad8 => push(
+                    ElementKind::Quad8,
+                    vec![
+                        a,
+                        b,
+                        c,
+                        d,
+                        idx(i0 + 1, j0),
+                        idx(i0 + 2, j0 + 1),
+                        idx(i0 + 1, j0 + 2),
+                        idx(i0, j0 + 1),
+                    ],
+                ),
+                ShellMesh::Tri6 => {
+                    let (ab, bc, cd, da, mid) = (
+                        idx(i0 + 1, j0),
+                        idx(i0 + 2, j0 + 1),
+                        idx(i0 + 1, j0 + 2),
+                        idx(i0, j0 + 1),
+                        idx(i0 + 1, j0 + 1),
+                    );
+                    if alt {
+                        push(ElementKind::Tri6, vec![a, b, c, ab, bc, mid]);
+                        push(ElementKind::Tri6, vec![a, c, d, mid, cd, da]);
+                    } else {
+                        push(ElementKind::Tri6, vec![a, b, d, ab, mid, da]);
+                        push(ElementKind::Tri6, vec![b, c, d, bc, cd, mid]);
+                    }
+                }
             }
         }
     }

@@ -12,6 +12,7 @@
 
 pub mod anisotropic;
 pub mod beam;
+pub mod curved_shell;
 pub mod hex20;
 pub mod hex8;
 pub mod hex8r;
@@ -20,6 +21,7 @@ pub mod prism6;
 pub mod pyram13;
 pub mod pyram5;
 pub mod quad4_shell;
+pub mod quad8_shell;
 pub mod rod;
 pub mod shell;
 pub mod solid_incompatible;
@@ -27,6 +29,7 @@ pub mod tapered_beam;
 pub mod tet10;
 pub mod tet4;
 pub mod tri3_shell;
+pub mod tri6_shell;
 
 use super::quadrature::QuadPoint;
 

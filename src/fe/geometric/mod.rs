@@ -16,7 +16,7 @@
 //!   state (CalculiX `*STEP, PERTURBATION`); quadratic in u₀.
 //!
 //! The stress is linear in (u₀, ΔT), so K_G is too: K_G(s·u₀) = s K_G(u₀). Elements without a
-//! formulation here (quadratic shells, prism15 — which the assembler refuses too) are an error,
+//! formulation here (quadratic shells; prism15, which the assembler refuses too) are an error,
 //! never left out. Thermal strain: [`Thermal`] gives ΔT (uniform or per node) and the expansion
 //! coefficient α of each material; [`thermal_loads`] are the consistent forces ∫ Bᵀ D ε_th dV
 //! that the stresses of [`element_stresses`] subtract again (a free expansion is stress free).
@@ -252,6 +252,14 @@ fn formulation(
             x: two()?,
             ea: mat.e * area,
         },
+        (Section::Shell(_), ElementKind::Quad8 | ElementKind::Tri6) => {
+            return Err(fail(
+                "a quadratic shell (S8/S8R/S6, CQUAD8/CTRIA6) has no geometric stiffness: a \
+                 preload on it is not implemented (mesh the preloaded part with S4/S3, \
+                 CQUAD4/CTRIA3)"
+                    .into(),
+            ))
+        }
         (_, kind) => {
             return Err(fail(format!(
                 "{kind:?} with property {} has no geometric stiffness (no element formulation)",

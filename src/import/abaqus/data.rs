@@ -54,6 +54,7 @@ impl Parser {
                 self.section_line(k, n, line, loc)
             }
             Block::Boundary => self.boundary_line(line, loc),
+            Block::NodalThickness => self.nodal_thickness_line(line, loc),
             Block::Mass(set) => {
                 let set = set.clone();
                 self.mass_line(set, true, line, loc)

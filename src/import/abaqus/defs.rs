@@ -24,6 +24,8 @@ pub(super) fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str
         "S3" => (Some(Tri3), "S3"),
         "S4" => (Some(Quad4), "S4"),
         "S6" => (Some(Tri6), "S6"),
+        // S8R: the same 8-node shell (ccx expands S8 into C3D20 and S8R into C3D20R bricks;
+        // docs/conformance.md: beamfsh1, shellf)
         "S8" | "S8R" => (Some(Quad8), "S8"),
         // 2D continuum faces, as gmsh writes the faces of physical surfaces: kept as surface
         // elements (sets, graphics); a section on them is not assembled.

@@ -88,6 +88,7 @@ impl Parser {
             "ORIENTATION" => self.orientation_keyword(&kw)?,
             "SOLID SECTION" | "BEAM SECTION" | "SHELL SECTION" => self.section_keyword(&kw)?,
             "BOUNDARY" => self.boundary_keyword(&kw),
+            "NODAL THICKNESS" => Block::NodalThickness,
             "STEP" => {
                 let nlgeom = kw
                     .param("NLGEOM")
@@ -386,6 +387,9 @@ impl Parser {
                             format!("OFFSET={o} not supported (mid-surface shells only)"),
                         ));
                     }
+                }
+                if kw.param("NODALTHICKNESS").is_some() {
+                    self.nodal_thickness_sections.push(self.sections.len());
                 }
                 // Material indices are set when the material names are resolved.
                 Section::Shell(crate::model::ShellSection::homogeneous(f64::NAN, 0))

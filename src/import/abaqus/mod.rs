@@ -7,10 +7,10 @@
 //! element's node count is reached.
 //!
 //! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8, C3D8I, C3D20(R), C3D6, C3D15, B31, T3D2, S3,
-//! S4, S6, S8, MASS, ROTARYI, SPRINGA, SPRING1, SPRING2; DASHPOTA take no part), *NSET/*ELSET
+//! S4, S6, S8, S8R, MASS, ROTARYI, SPRINGA, SPRING1, SPRING2; DASHPOTA take no part), *NSET/*ELSET
 //! (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION,
 //! *BOUNDARY (dof ranges, ENCASTRE, PINNED, X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *SPRING,
-//! *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE; element faces
+//! *NODAL THICKNESS (`thickness`), *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE; element faces
 //! for *TIE), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
 //! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE; the steps' *CLOAD and *DLOAD
 //! (GRAV, P, Pn) as named scene loads (`loads`). C3D8I is the incompatible-mode hexahedron
@@ -39,6 +39,7 @@ mod resolve;
 mod rules;
 mod steps;
 mod temperature;
+mod thickness;
 mod tie;
 
 use std::collections::{BTreeMap, HashMap};
@@ -149,6 +150,8 @@ enum Block {
     /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE` (None) or `*TEMPERATURE` of step k data lines.
     Temperatures(Option<usize>),
     SectionLine(usize, usize),
+    /// `*NODAL THICKNESS` data lines (thickness.rs).
+    NodalThickness,
     Boundary,
     Mass(String),
     RotaryInertia(String),
@@ -235,6 +238,10 @@ struct Parser {
     extra_nodes: BTreeMap<&'static str, usize>,
     /// *SHELL SECTION lines that gave a number of section points (ignored, noted).
     shell_point_notes: Vec<String>,
+    /// `*NODAL THICKNESS` data lines (thickness.rs).
+    nodal_thickness: Vec<thickness::RawNodalThickness>,
+    /// Sections with the NODAL THICKNESS parameter (indices into `sections`).
+    nodal_thickness_sections: Vec<usize>,
     /// Bytes of all files read so far (the input budget's base, see `import::budget`).
     input_bytes: u64,
     /// Set members added so far over all sets (bounded by the budget's total).
@@ -304,6 +311,8 @@ impl Parser {
             transforms: Vec::new(),
             nset_from_elset: Vec::new(),
             shell_point_notes: Vec::new(),
+            nodal_thickness: Vec::new(),
+            nodal_thickness_sections: Vec::new(),
             surfaces: HashMap::new(),
             element_surfaces: HashMap::new(),
             ties: Vec::new(),

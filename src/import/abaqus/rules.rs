@@ -45,6 +45,7 @@ pub(super) const HONOURED: &[&str] = &[
     "KINEMATIC",
     "MASS",
     "MATERIAL",
+    "NODAL THICKNESS",
     "NODE",
     "NSET",
     "ORIENTATION",
@@ -127,10 +128,6 @@ const KEYWORDS: &[(&str, Rule)] = &[
     (
         "MPC",
         Refuse("CalculiX's nonlinear MPCs (PLANE, STRAIGHT, BEAM, …) are not supported"),
-    ),
-    (
-        "NODAL THICKNESS",
-        Refuse("nodal shell thicknesses are not supported (give the thickness on *SHELL SECTION)"),
     ),
     ("NODE FILE", Note(OUTPUT)),
     ("NODE OUTPUT", Note(OUTPUT)),

@@ -51,7 +51,7 @@ const THERMAL: &str =
 /// Reason of the notes on other analyses' eigenvalue methods.
 const OTHER_METHOD: &str = "the eigenvalue method of another analysis (buckling, complex modes)";
 /// Reason of the refusal of quadratic and CQUADR/CTRIAR shells.
-const SHELLS: &str = "quadratic and CQUADR/CTRIAR shells are not supported (use CQUAD4/CTRIA3)";
+const SHELLS: &str = "CQUADR/CTRIAR shells are not supported (use CQUAD4/CTRIA3, CQUAD8/CTRIA6)";
 
 /// Every card with a rule, sorted by name (checked by a test). Unlisted cards are refused.
 const CARDS: &[(&str, Rule)] = &[
@@ -88,12 +88,12 @@ const CARDS: &[(&str, Rule)] = &[
     ("CPENTA", Read(elements::element)),
     ("CPYRAM", Read(elements::element)),
     ("CQUAD4", Read(elements::element)),
-    ("CQUAD8", Refuse(SHELLS)),
+    ("CQUAD8", Read(elements::element)),
     ("CQUADR", Refuse(SHELLS)),
     ("CROD", Read(elements::element)),
     ("CTETRA", Read(elements::element)),
     ("CTRIA3", Read(elements::element)),
-    ("CTRIA6", Refuse(SHELLS)),
+    ("CTRIA6", Read(elements::element)),
     ("CTRIAR", Refuse(SHELLS)),
     ("CVISC", Note(DAMPING)),
     ("DAREA", Note(DYNAMIC)),

@@ -1,4 +1,5 @@
-//! Structural element cards — CTETRA, CHEXA, CPENTA, CBAR, CBEAM, CROD, CQUAD4, CTRIA3 — and
+//! Structural element cards — CTETRA, CHEXA, CPENTA, CBAR, CBEAM, CROD, CQUAD4, CTRIA3, CQUAD8,
+//! CTRIA6 — and
 //! their resolution: one element id space, the property of every element, bar/beam orientation.
 //!
 //! * `CTETRA/CHEXA/CPENTA EID PID G1 …`: 4/10, 8/20, 6/15 nodes. CHEXA20/CPENTA15 mid-side
@@ -7,7 +8,8 @@
 //!   G0; X1–X3 are in the displacement frame of GA (MSC QRG "CBAR").
 //! * `CPYRAM EID PID G1 … G5 G6 … G13`: 5 or 13 nodes (base, apex, mid-sides 1-2 2-3 3-4 4-1
 //!   1-5 2-5 3-5 4-5), with a PSOLID.
-//! * `CROD EID PID G1 G2`; `CQUAD4/CTRIA3 EID PID G1 …` (thickness fields: `shell`).
+//! * `CROD EID PID G1 G2`; `CQUAD4/CTRIA3 EID PID G1 …`, `CQUAD8/CTRIA6 EID PID G1 … G8/G6`
+//!   (all mid-side grids needed; thickness fields: `shell`).
 //! * `CONROD EID G1 G2 MID A J C NSM`: a rod with its property on the card (as CROD + PROD).
 
 use std::collections::BTreeMap;
@@ -70,6 +72,8 @@ const ELEMENTS: &[ElementCard] = &[
     ("CROD", 2, &[(2, Rod2)]),
     ("CQUAD4", 4, &[(4, Quad4)]),
     ("CTRIA3", 3, &[(3, Tri3)]),
+    ("CQUAD8", 8, &[(8, Quad8)]),
+    ("CTRIA6", 6, &[(6, Tri6)]),
 ];
 
 /// Reader of the structural element cards (module doc).
@@ -85,7 +89,7 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
     if let Some(o) = o {
         d.elements.orient.push((k, o, g.card.loc));
     }
-    if matches!(name, "CQUAD4" | "CTRIA3") {
+    if matches!(name, "CQUAD4" | "CTRIA3" | "CQUAD8" | "CTRIA6") {
         d.elements
             .shell_t
             .extend(super::shell::element_fields(g, k)?);

@@ -13,11 +13,16 @@
 //!   – – TFLAG T1-T3`: corner thicknesses override the property's T (TFLAG = 1: relative to
 //!   it). The element gets its own copy of the property with the mean corner thickness (a
 //!   warning when the corners differ). A non-zero ZOFFS is an error (offsets not modelled).
+//! * CQUAD8 `EID PID G1-G8 / T1-T4 THETA ZOFFS / TFLAG`, CTRIA6 `EID PID G1-G6 / THETA ZOFFS
+//!   T1-T3 TFLAG` (MSC QRG): the quadratic shells interpolate the corner thicknesses over the
+//!   element (`Model::shell_thickness`; a mid-side grid has the mean of its edge's corners,
+//!   the linear variation along the edge). THETA/MCID orients the material only: the
+//!   isotropic MAT1 of a PSHELL does not depend on it.
 
 use super::fields::C;
 use crate::import::error::ImportError;
 use crate::import::text::IdMap;
-use crate::model::{ImportWarning, Model, Property, Section, ShellSection};
+use crate::model::{ElementKind, ImportWarning, Model, Property, Section, ShellSection};
 
 /// PSHELL → (primary material id: MID1, else MID2; section with *external* material ids in
 /// `bending`/`shear`, replaced by indices in [`resolve_mids`]).
@@ -147,10 +152,16 @@ pub(super) struct ElementThickness {
     pub line: usize,
 }
 
-/// ZOFFS check and corner thicknesses of a CQUAD4/CTRIA3 card (`elem` = its model index).
+/// ZOFFS check and corner thicknesses of a CQUAD4/CTRIA3/CQUAD8/CTRIA6 card (`elem` = its
+/// model index).
 pub(super) fn element_fields(g: &C, elem: usize) -> Result<Option<ElementThickness>, ImportError> {
-    let quad = g.card.name == "CQUAD4";
-    let (nn, zoffs) = if quad { (4, 7) } else { (3, 6) };
+    // (corners, ZOFFS field, TFLAG field, T1 field)
+    let (nn, zoffs, tflag, t1) = match g.card.name.as_str() {
+        "CQUAD4" => (4, 7, 9, 10),
+        "CQUAD8" => (4, 15, 16, 10),
+        "CTRIA6" => (3, 9, 13, 10),
+        _ => (3, 6, 9, 10),
+    };
     if let Some(z) = g.real(zoffs)? {
         if z != 0.0 {
             return Err(g.err(
@@ -159,12 +170,12 @@ pub(super) fn element_fields(g: &C, elem: usize) -> Result<Option<ElementThickne
             ));
         }
     }
-    let relative = match g.int(9)? {
+    let relative = match g.int(tflag)? {
         None | Some(0) => false,
         Some(1) => true,
-        Some(v) => return Err(g.err(9, format!("TFLAG = {v} (0 or 1)"))),
+        Some(v) => return Err(g.err(tflag, format!("TFLAG = {v} (0 or 1)"))),
     };
-    let corners: Vec<Option<f64>> = (0..nn).map(|i| g.real(10 + i)).collect::<Result<_, _>>()?;
+    let corners: Vec<Option<f64>> = (0..nn).map(|i| g.real(t1 + i)).collect::<Result<_, _>>()?;
     if corners.iter().all(Option::is_none) {
         return Ok(None);
     }
@@ -173,7 +184,7 @@ pub(super) fn element_fields(g: &C, elem: usize) -> Result<Option<ElementThickne
         corners,
         relative,
         file: g.file.to_owned(),
-        line: g.line(10),
+        line: g.line(t1),
     }))
 }
 
@@ -212,6 +223,14 @@ pub(super) fn apply_thickness(
                 format!("element {eid}"),
                 format!("corner thicknesses {ts:?}: each must be > 0 (PSHELL T blank?)"),
             ));
+        }
+        let kind = model.elements[et.elem].kind;
+        if matches!(kind, ElementKind::Quad8 | ElementKind::Tri6) {
+            // mid-side grids: the mean of their edge's corners (module doc)
+            let n = ts.len();
+            let mids: Vec<f64> = (0..n).map(|i| 0.5 * (ts[i] + ts[(i + 1) % n])).collect();
+            model.shell_thickness.insert(et.elem, [ts, mids].concat());
+            continue;
         }
         let mean = ts.iter().sum::<f64>() / ts.len() as f64;
         if ts.iter().any(|t| (t - mean).abs() > 1e-9 * mean) {
