@@ -493,7 +493,6 @@ pub(crate) fn area(l: &Lamina, rule: &[([f64; 2], f64)]) -> Result<f64, ElementE
 
 #[cfg(test)]
 pub(crate) mod test_util {
-    use super::super::shell::test_util::{constant_field, form};
     use super::*;
 
     /// Partition of unity, derivatives against central differences, Kronecker property.
@@ -525,34 +524,6 @@ pub(crate) mod test_util {
                     "N{a} at {b}"
                 );
             }
-        }
-    }
-
-    /// Patch test of a flat element in the z = 0 plane: constant membrane strain and curvature
-    /// fields have energy A(εᵀD_mε + κᵀD_bκ) exactly.
-    pub fn patch_energy(k: &[f64], x: &[Xyz], a: f64, props: &ShellProps) {
-        let (dm, db) = (props.d_membrane(), props.d_bending());
-        let q = |d: &[[f64; 3]; 3], e: [f64; 3]| -> f64 {
-            (0..3)
-                .map(|i| (0..3).map(|j| e[i] * d[i][j] * e[j]).sum::<f64>())
-                .sum()
-        };
-        for (eps, kap) in [
-            ([1e-3, 0.0, 0.0], [0.0; 3]),
-            ([0.0, -2e-3, 0.0], [0.0; 3]),
-            ([0.0, 0.0, 3e-3], [0.0; 3]),
-            ([0.0; 3], [0.5, 0.0, 0.0]),
-            ([0.0; 3], [0.0, 0.3, 0.0]),
-            ([0.0; 3], [0.0, 0.0, 0.7]),
-            ([1e-3, 2e-3, -1e-3], [0.2, -0.4, 0.1]),
-        ] {
-            let u = constant_field(x, eps, kap);
-            let want = a * (q(&dm, eps) + q(&db, kap));
-            let got = form(k, &u, &u);
-            assert!(
-                (got - want).abs() < 1e-8 * want,
-                "{eps:?} {kap:?}: {got} vs {want}"
-            );
         }
     }
 

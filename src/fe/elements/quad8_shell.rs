@@ -265,7 +265,7 @@ mod tests {
         let x = distorted();
         let props = steel(0.02);
         let (k, _) = matrices(&x, &[0.02; 8], &props, false).unwrap();
-        patch_energy(&k, &x, area(&x).unwrap(), &props);
+        patch_energy(&k, &x, area(&x).unwrap(), &props, 1e-8);
     }
 
     #[test]
