@@ -580,3 +580,35 @@ fn case_control_include_is_followed() {
         "include",
     );
 }
+
+/// A Nastran deck's quadratic solids lumped (`--mass lumped` over the deck's COUPMASS 1): the
+/// report says they are lumped by HRZ and that MSC's rule differs, with the element count; the
+/// deck's own consistent mass and linear solids get no such note.
+#[test]
+fn lumped_quadratic_nastran_solids_are_noted_as_hrz() {
+    let note = |case: &str, args: &[&str]| -> Option<String> {
+        let deck = reference(&format!("{case}/sol103_fixed.bdf"));
+        let (o, body) = build(&deck, args, &format!("{case}-lumping.flexbody"));
+        assert!(body.is_some(), "{}", String::from_utf8_lossy(&o.stderr));
+        let r = report(&o);
+        let notes = r["deck"].as_array().expect("deck notes").clone();
+        notes
+            .iter()
+            .filter_map(|n| n.as_str())
+            .find(|n| n.contains("HRZ"))
+            .map(str::to_owned)
+    };
+    let lumped = ["--method", "normal", "--modes", "4", "--mass", "lumped"];
+    let tet10 = note("b_block_tet10", &lumped).expect("a note for lumped CTETRA(10)");
+    let model = flexbody::import::nastran::read(&reference("b_block_tet10/mesh.bdf")).unwrap();
+    assert!(
+        tet10.contains(&format!("the {} CTETRA", model.elements.len())),
+        "{tet10}"
+    );
+    assert!(tet10.contains("MSC Nastran"), "{tet10}");
+    assert_eq!(
+        note("b_block_tet10", &["--method", "normal", "--modes", "4"]),
+        None
+    );
+    assert_eq!(note("a_block_hex8", &lumped), None);
+}

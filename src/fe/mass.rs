@@ -5,7 +5,9 @@
 //! * HRZ lumping for quadratic solids (Hinton, Rock & Zienkiewicz, *Earthquake Eng. Struct.
 //!   Dyn.* 4 (1976) 245): m_a = m_aa · (Σ_bc m_bc) / (Σ_b m_bb) — proportional to the consistent
 //!   diagonal, scaled to the element mass; always positive (row sums of tet10 are negative at
-//!   corners).
+//!   corners). Nastran decks: MSC Nastran does not publish how it lumps solids with midside
+//!   grids (on a two-element CTETRA(10) deck HRZ is 7 … 23 % below MSC 2005's f06), so the
+//!   build notes it (`pipeline::deck`); Autodesk Nastran documents HRZ for PARAM,COUPMASS < 0.
 //! * Point mass (CONM2) with centre-of-gravity offset e and inertia I_cg about the centre of
 //!   gravity, acting on the node's [u θ]: kinetic energy ½ m |u + θ × e|² + ½ θᵀ I_cg θ gives
 //!   M = [m I, −m ẽ; m ẽ, I_cg − m ẽ ẽ] (ẽ the cross-product matrix of e).

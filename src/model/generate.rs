@@ -79,6 +79,7 @@ pub fn block(spec: &BlockSpec) -> Model {
             solid_bubbles: false,
             ccx_solid_rules: false,
             k6rot: None,
+            nastran_deck: false,
         },
         ..Default::default()
     }

@@ -539,6 +539,9 @@ pub struct ModelParams {
     /// Nastran `PARAM,K6ROT`: the drilling stiffness of CQUAD4/CTRIA3 shells is the penalty
     /// γ_d = K6ROT·10⁻⁶·G t (`fe::elements::shell`); `None` = MSC's default 100.
     pub k6rot: Option<f64>,
+    /// The model is a Nastran deck (its lumped mass is compared with MSC Nastran's: the build
+    /// notes where our lumping rule differs from one MSC does not publish).
+    pub nastran_deck: bool,
 }
 
 /// A whole FE model, resolved to dense indices.

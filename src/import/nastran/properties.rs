@@ -240,6 +240,7 @@ pub(super) fn warnings(d: &mut Bulk) {
     let p = &d.properties;
     let model = &mut d.b.model;
     model.params.solid_bubbles = p.isop.0.is_empty();
+    model.params.nastran_deck = true;
     if !p.isop.0.is_empty() && !p.isop.1.is_empty() {
         model.warnings.push(ImportWarning {
             file: d.files[0].clone(),
