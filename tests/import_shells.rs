@@ -94,7 +94,7 @@ ENDDATA
 }
 
 #[test]
-fn shell_offsets_mid4_and_quadratic_shells_are_errors() {
+fn shell_offsets_are_read_mid4_and_quadratic_shells_are_errors() {
     let base = format!(
         "BEGIN BULK
 {GRIDS}PSHELL  7       1       .002    1
@@ -107,8 +107,19 @@ ENDDATA
         "CQUAD4  10      7       1       2       3       4",
         "CQUAD4  10      7       1       2       3       4       0.      .001",
     );
-    let e = read("zoffs.bdf", &z).unwrap_err();
-    assert!(e.contains("CQUAD4 10") && e.contains("ZOFFS"), "{e}");
+    // ZOFFS = 1 mm: the element moves onto four new nodes 1 mm above its grids (normal +z from
+    // the diagonals G1→G3 × G2→G4), tied to them by an RBE2 per grid
+    let m = read("zoffs.bdf", &z).unwrap();
+    assert_eq!(m.nodes.len(), 8);
+    let quad = &m.elements[0];
+    for (k, &n) in quad.nodes.iter().enumerate() {
+        assert_eq!(m.nodes[n].x[2], 0.001);
+        assert_eq!(m.nodes[n].x[..2], m.nodes[k].x[..2]);
+    }
+    assert_eq!(m.rigid_elements.len(), 4);
+    let flipped = z.replace("1       2       3       4  ", "4       3       2       1  ");
+    let m = read("zoffs-flipped.bdf", &flipped).unwrap();
+    assert_eq!(m.nodes[m.elements[0].nodes[0]].x[2], -0.001);
     let mid4 = base.replace(
         "PSHELL  7       1       .002    1",
         "PSHELL  7       1       .002    1\n                        2",

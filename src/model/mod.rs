@@ -21,6 +21,7 @@ pub mod generate;
 pub mod load;
 pub mod offset_mass;
 pub mod section;
+pub mod shell_offset;
 
 pub use connector::{Bush, Mpc, NodeDof, RigidBody, ScalarMass, ScalarSpring};
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};

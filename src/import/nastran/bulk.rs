@@ -20,7 +20,7 @@ use super::solution::SolutionCards;
 use super::{cards, CardCounts};
 use crate::import::error::{ImportError, RefusedCard};
 use crate::import::text::{Builder, IdMap, Loc};
-use crate::model::{DofMask, ImportWarning, Model, NodeDof};
+use crate::model::{DofMask, ImportWarning, Model, NodeDof, NodeIndex};
 
 /// What the card readers fill: the model under construction, the node map, and the raw records
 /// of each card family that the resolve pass turns into the model.
@@ -309,11 +309,48 @@ pub(crate) fn build(
     b.model.warnings.extend(load_warnings);
     b.model.files = b.files.clone();
     b.record_element_sources();
+    shell_offsets(&mut b.model, &d.elements.shell_offsets, &files)?;
     b.model.element_sources.extend(others);
     b.model
         .element_sources
         .sort_unstable_by_key(|&(id, _, _)| id);
     Ok((b.model, counts))
+}
+
+/// CQUAD4/CTRIA3 with ZOFFS moved to their reference planes (`model::shell_offset`), with a
+/// note saying what was made.
+fn shell_offsets(
+    model: &mut Model,
+    offsets: &[(crate::model::shell_offset::ShellOffset, Loc)],
+    files: &[String],
+) -> Result<(), ImportError> {
+    if offsets.is_empty() {
+        return Ok(());
+    }
+    let list: Vec<_> = offsets.iter().map(|(o, _)| *o).collect();
+    let made = crate::model::shell_offset::offset_shells(model, &list).map_err(|(at, why)| {
+        let loc = offsets[at].1;
+        crate::import::error::parse_err(
+            &files[loc.file as usize],
+            loc.line as usize,
+            format!("element {}", model.elements[offsets[at].0.elem].id),
+            why,
+        )
+    })?;
+    let ids = |v: &[NodeIndex]| match (v.first(), v.last()) {
+        (Some(&a), Some(&b)) => format!("{} … {}", model.nodes[a].id, model.nodes[b].id),
+        _ => String::new(),
+    };
+    model.deck.notes.push(format!(
+        "ZOFFS: {} CQUAD4/CTRIA3 formed at their offset reference planes, on {} nodes (ids {}) \
+         each tied to its grid point by an RBE2 on all six dofs (ids {} …), as MSC Nastran's \
+         rigid offset",
+        made.elements,
+        made.nodes.len(),
+        ids(&made.nodes),
+        made.links.first().copied().unwrap_or_default()
+    ));
+    Ok(())
 }
 
 /// The deck's preload (module `case_control`): the LOAD set of the static subcase that

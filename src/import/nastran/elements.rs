@@ -30,6 +30,8 @@ pub(super) struct ElementCards<'a> {
     pub pid: Vec<(ElementProperty, Loc)>,
     /// Corner thicknesses of shell elements.
     pub shell_t: Vec<ElementThickness>,
+    /// CQUAD4/CTRIA3 ZOFFS (non-zero) with the card's place.
+    pub shell_offsets: Vec<(crate::model::shell_offset::ShellOffset, Loc)>,
     /// Orientation of bars and beams: (element index, as given, card location).
     pub orient: Vec<(usize, Orientation, Loc)>,
     /// Offsets WA, WB of bars and beams in the displacement frames of GA, GB (OFFT …GG).
@@ -93,6 +95,10 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
         d.elements
             .shell_t
             .extend(super::shell::element_fields(g, k)?);
+        let offset = super::shell::element_offset(g, k)?;
+        d.elements
+            .shell_offsets
+            .extend(offset.map(|o| (o, g.card.loc)));
     }
     if matches!(kind, Bar2 | Beam2) {
         if let Some(w) = offsets(g, name)? {

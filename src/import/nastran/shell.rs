@@ -12,9 +12,10 @@
 //! * CQUAD4 `EID PID G1-G4 THETA ZOFFS / – TFLAG T1-T4`, CTRIA3 `EID PID G1-G3 THETA ZOFFS /
 //!   – – TFLAG T1-T3`: corner thicknesses override the property's T (TFLAG = 1: relative to
 //!   it). The element gets its own copy of the property with the mean corner thickness (a
-//!   warning when the corners differ). A non-zero ZOFFS is an error (offsets not modelled).
+//!   warning when the corners differ). A non-zero ZOFFS puts the element on nodes at its
+//!   reference plane, rigidly linked to the grids (`model::shell_offset`).
 //! * CQUAD8 `EID PID G1-G8 / T1-T4 THETA ZOFFS / TFLAG`, CTRIA6 `EID PID G1-G6 / THETA ZOFFS
-//!   T1-T3 TFLAG` (MSC QRG): the quadratic shells interpolate the corner thicknesses over the
+//!   T1-T3 TFLAG` (MSC QRG; a non-zero ZOFFS is an error): the quadratic shells interpolate the corner thicknesses over the
 //!   element (`Model::shell_thickness`; a mid-side grid has the mean of its edge's corners,
 //!   the linear variation along the edge). THETA/MCID orients the material only: the
 //!   isotropic MAT1 of a PSHELL does not depend on it.
@@ -22,6 +23,7 @@
 use super::fields::C;
 use crate::import::error::ImportError;
 use crate::import::text::IdMap;
+use crate::model::shell_offset::ShellOffset;
 use crate::model::{ElementKind, ImportWarning, Model, Property, Section, ShellSection};
 
 /// PSHELL → (primary material id: MID1, else MID2; section with *external* material ids in
@@ -162,13 +164,16 @@ pub(super) fn element_fields(g: &C, elem: usize) -> Result<Option<ElementThickne
         "CTRIA6" => (3, 9, 13, 10),
         _ => (3, 6, 9, 10),
     };
-    if let Some(z) = g.real(zoffs)? {
-        if z != 0.0 {
-            return Err(g.err(
-                zoffs,
-                format!("ZOFFS = {z}: shell offsets are not supported (mid-surface shells only)"),
-            ));
-        }
+    // CQUAD4/CTRIA3 offsets are read by `element_offset`
+    let quadratic = matches!(g.card.name.as_str(), "CQUAD8" | "CTRIA6");
+    if let Some(z) = g.real(zoffs)?.filter(|z| *z != 0.0 && quadratic) {
+        return Err(g.err(
+            zoffs,
+            format!(
+                "ZOFFS = {z}: offsets of curved shells (CQUAD8/CTRIA6) are not supported \
+                 (CQUAD4/CTRIA3 offsets are)"
+            ),
+        ));
     }
     let relative = match g.int(tflag)? {
         None | Some(0) => false,
@@ -186,6 +191,21 @@ pub(super) fn element_fields(g: &C, elem: usize) -> Result<Option<ElementThickne
         file: g.file.to_owned(),
         line: g.line(t1),
     }))
+}
+
+/// The ZOFFS of a CQUAD4/CTRIA3 card (`elem` = its model index), when given and non-zero:
+/// applied by `model::shell_offset` once the grids are placed.
+pub(super) fn element_offset(g: &C, elem: usize) -> Result<Option<ShellOffset>, ImportError> {
+    let field = match g.card.name.as_str() {
+        "CQUAD4" => 7,
+        "CTRIA3" => 6,
+        _ => return Ok(None),
+    };
+    match g.real(field)? {
+        Some(z) if !z.is_finite() => Err(g.err(field, format!("ZOFFS = {z}"))),
+        Some(z) if z != 0.0 => Ok(Some(ShellOffset { elem, zoffs: z })),
+        _ => Ok(None),
+    }
 }
 
 /// Give each element with corner thicknesses its own copy of its shell property with the mean
