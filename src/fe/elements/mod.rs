@@ -13,6 +13,7 @@
 pub mod anisotropic;
 pub mod beam;
 pub mod curved_shell;
+pub mod drill_membrane;
 pub mod hex20;
 pub mod hex8;
 pub mod hex8r;
