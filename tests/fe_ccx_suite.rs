@@ -5,10 +5,10 @@
 
 mod common;
 
-use common::{external_reference, hz};
-use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
+use common::{external_reference, hz, lowest_eigenvalues};
+use flexbody::fe::{AssemblySpec, ConstraintSpec, MassKind};
 use flexbody::import::{read_model, ImportOptions};
-use flexbody::solve::{lowest_modes, EigenSpec};
+use flexbody::solve::EigenSpec;
 
 /// The (cycles/time) column of the EIGENVALUE OUTPUT table of a ccx .dat file.
 fn dat_freqs(text: &str) -> Vec<f64> {
@@ -52,34 +52,18 @@ fn check(test: &str, case: &str) {
     };
     let dat = dir.join(format!("{case}.dat.ref"));
     let model = read_model(&dir.join(format!("{case}.inp")), &ImportOptions::default()).unwrap();
-    let asm = assemble(
-        &model,
-        &AssemblySpec {
-            mass: MassKind::Consistent,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let red = eliminate(
-        &model,
-        &asm.dofs,
-        &asm.k,
-        &asm.m,
-        &ConstraintSpec::default(),
-    )
-    .unwrap();
+    let spec = AssemblySpec {
+        mass: MassKind::Consistent,
+        ..Default::default()
+    };
     let want = dat_freqs(&std::fs::read_to_string(dat).unwrap());
     assert!(want.len() >= 4, "{case}: {want:?}");
-    let sol = lowest_modes(
-        &red.k,
-        &red.m,
-        &EigenSpec {
-            count: want.len(),
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    for (i, (l, w)) in sol.eigenvalues.iter().zip(&want).enumerate() {
+    let eigen = EigenSpec {
+        count: want.len(),
+        ..Default::default()
+    };
+    let lambda = lowest_eigenvalues(&model, &spec, &ConstraintSpec::default(), &eigen);
+    for (i, (l, w)) in lambda.iter().zip(&want).enumerate() {
         let f = hz(*l);
         let err = (f - w) / w;
         eprintln!("{case} mode {}: ours {f:.2} ccx {w} rel {err:+.2e}", i + 1);

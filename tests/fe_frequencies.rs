@@ -5,10 +5,10 @@
 
 mod common;
 
-use common::{hz, reference};
-use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind, Tet10MassRule};
+use common::{hz, lowest_eigenvalues, reference};
+use flexbody::fe::{AssemblySpec, ConstraintSpec, MassKind, Tet10MassRule};
 use flexbody::import::{read_model, ImportOptions};
-use flexbody::solve::{lowest_modes, EigenSpec};
+use flexbody::solve::EigenSpec;
 
 fn case_freqs(case: &str, key: &str, field: &str) -> Vec<f64> {
     let text = std::fs::read_to_string(reference(&format!("{case}/case.json"))).unwrap();
@@ -33,26 +33,13 @@ fn our_freqs(case: &str, deck: &str, count: usize) -> Vec<f64> {
         tet10_mass: Tet10MassRule::CalculixFourPoint,
         ..Default::default()
     };
-    let asm = assemble(&model, &spec).unwrap();
-    let red = eliminate(
-        &model,
-        &asm.dofs,
-        &asm.k,
-        &asm.m,
-        &ConstraintSpec::default(),
-    )
-    .unwrap();
-    let sol = lowest_modes(
-        &red.k,
-        &red.m,
-        &EigenSpec {
-            count,
-            dofs_per_node: Some(3),
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    sol.eigenvalues.iter().map(|&l| hz(l)).collect()
+    let eigen = EigenSpec {
+        count,
+        dofs_per_node: Some(3),
+        ..Default::default()
+    };
+    let lambda = lowest_eigenvalues(&model, &spec, &ConstraintSpec::default(), &eigen);
+    lambda.iter().map(|&l| hz(l)).collect()
 }
 
 fn check(case: &str) {

@@ -4,12 +4,10 @@
 
 mod common;
 
-use common::{external_reference, hz};
-use flexbody::fe::{
-    assemble, eliminate, AssemblySpec, BeamLumping, BeamTheory, ConstraintSpec, MassKind,
-};
+use common::{external_reference, hz, lowest_eigenvalues};
+use flexbody::fe::{AssemblySpec, BeamLumping, BeamTheory, ConstraintSpec, MassKind};
 use flexbody::import::{read_model, Format, ImportOptions};
-use flexbody::solve::{lowest_modes, EigenSpec};
+use flexbody::solve::EigenSpec;
 use std::path::Path;
 
 fn f06_freqs(dir: &Path) -> Vec<f64> {
@@ -42,28 +40,16 @@ fn freqs(dir: &Path, beam: BeamTheory) -> Vec<f64> {
         beam_lumping: BeamLumping::Nastran,
         ..Default::default()
     };
-    let asm = assemble(&model, &spec).unwrap();
-    let red = eliminate(
-        &model,
-        &asm.dofs,
-        &asm.k,
-        &asm.m,
-        &ConstraintSpec {
-            auto_spc: true,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let sol = lowest_modes(
-        &red.k,
-        &red.m,
-        &EigenSpec {
-            count: 3,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    sol.eigenvalues.iter().map(|&l| hz(l)).collect()
+    let constraints = ConstraintSpec {
+        auto_spc: true,
+        ..Default::default()
+    };
+    let eigen = EigenSpec {
+        count: 3,
+        ..Default::default()
+    };
+    let lambda = lowest_eigenvalues(&model, &spec, &constraints, &eigen);
+    lambda.iter().map(|&l| hz(l)).collect()
 }
 
 /// Timoshenko beams (the PBEAM gives K1 = K2 = 0.85; the PBAR none, so Euler–Bernoulli as in

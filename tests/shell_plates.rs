@@ -11,15 +11,15 @@
 
 mod common;
 
-use common::dense;
 use common::shell_grid as grid;
+use common::{dense, lowest_eigenvalues};
 use common::{shell_mesh, ShellMesh};
 use faer::Mat;
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
 use flexbody::model::{
     DofMask, Element, ElementKind, Material, Model, Node, Property, Section, ShellSection, Spc,
 };
-use flexbody::solve::{lowest_modes, EigenSpec};
+use flexbody::solve::EigenSpec;
 use std::f64::consts::PI;
 
 const E: f64 = 210e9;
@@ -39,25 +39,16 @@ fn fix(model: &mut Model, node: usize, digits: &str) {
 }
 
 fn frequencies(model: &Model, count: usize, mass: MassKind) -> Vec<f64> {
-    let asm = assemble(
-        model,
-        &AssemblySpec {
-            mass,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let red = eliminate(model, &asm.dofs, &asm.k, &asm.m, &ConstraintSpec::default()).unwrap();
-    let sol = lowest_modes(
-        &red.k,
-        &red.m,
-        &EigenSpec {
-            count,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    sol.eigenvalues.iter().map(|&l| l.max(0.0).sqrt()).collect()
+    let spec = AssemblySpec {
+        mass,
+        ..Default::default()
+    };
+    let eigen = EigenSpec {
+        count,
+        ..Default::default()
+    };
+    let lambda = lowest_eigenvalues(model, &spec, &ConstraintSpec::default(), &eigen);
+    lambda.iter().map(|&l| l.max(0.0).sqrt()).collect()
 }
 
 /// Simply supported 1 m square plate, h = 10 mm, 20×20: modes (1,1), (1,2)=(2,1), (2,2)

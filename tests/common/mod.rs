@@ -1,6 +1,6 @@
 //! Test support: the reference-data paths, reading the reference meshes through the `.inp`
 //! importer, dense copies of sparse matrices, a dense generalized symmetric eigen-solve for small
-//! systems, and for the CLI tests the binary, a scratch folder and a Python module probe.
+//! systems, the engine's assemble → eliminate → lowest modes in one call, and for the CLI tests the binary, a scratch folder and a Python module probe.
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
@@ -105,6 +105,23 @@ pub fn generalized_eigenvalues(k: &Mat<f64>, m: &Mat<f64>) -> Vec<f64> {
         .expect("eigenvalues converge");
     ev.sort_by(f64::total_cmp);
     ev
+}
+
+/// The lowest eigenvalues λ = ω² of `model` as the pipeline's engine forms them: assembled by
+/// `spec`, the constraints eliminated as `constraints` says, solved by `solve::lowest_modes`
+/// with `eigen` (its count, shift, dofs per node).
+pub fn lowest_eigenvalues(
+    model: &Model,
+    spec: &flexbody::fe::AssemblySpec,
+    constraints: &flexbody::fe::ConstraintSpec,
+    eigen: &flexbody::solve::EigenSpec,
+) -> Vec<f64> {
+    let asm = flexbody::fe::assemble(model, spec).expect("assembly");
+    let red = flexbody::fe::eliminate(model, &asm.dofs, &asm.k, &asm.m, constraints)
+        .expect("constraints");
+    flexbody::solve::lowest_modes(&red.k, &red.m, eigen)
+        .expect("eigen-solve")
+        .eigenvalues
 }
 
 /// Hz from ω².
