@@ -17,8 +17,11 @@
 //!   tolerance; 20 × 20 CQUAD4.
 //! * A one-ply PCOMP of MAT1 and a one-ply MAT8 of isotropic constants equal the PSHELL to
 //!   1e-10; an orthotropic ply turned 90° by THETA or MCID equals the ply with E1/E2 swapped.
-//! * What is not formed is an error naming card/keyword and line: MAT9 on a shell,
-//!   `*SHELL SECTION, COMPOSITE`, `*ELASTIC, TYPE=LAMINA`, PCOMP LAM = SMEAR, Z0 offsets.
+//! * Abaqus: `*SHELL SECTION, COMPOSITE` of `*ELASTIC, TYPE=LAMINA` plies is the PCOMP of
+//!   MAT8 plies (to 1e-10, default local axes = global x projected), and `*ORIENTATION` on the
+//!   section turns the material like THETA.
+//! * What is not formed is an error naming card/keyword and line: MAT9 on a shell, PCOMP LAM =
+//!   SMEAR, Z0 offsets, an `*ORIENTATION` per ply, a cylindrical orientation on a shell.
 
 mod common;
 
@@ -561,22 +564,29 @@ fn unsupported_laminates_are_refused_by_card_and_line() {
     }
     let mesh = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n\
                 *ELEMENT, TYPE=S4, ELSET=P\n1, 1, 2, 3, 4\n";
+    let lamina = "*MATERIAL, NAME=PLY\n*ELASTIC, TYPE=LAMINA\n1.4e11, 1e10, 0.3, 5e9, 5e9, 3e9\n\
+                  *DENSITY\n1600\n";
     let abaqus = [
         (
-            "composite",
+            "ply-orientation-name",
             format!(
-                "{mesh}*MATERIAL, NAME=AL\n*ELASTIC\n7e10, 0.33\n*DENSITY\n2700\n\
-                 *SHELL SECTION, ELSET=P, COMPOSITE\n0.002, 3, AL, 0\n0.002, 3, AL, 90\n"
+                "{mesh}{lamina}*ORIENTATION, NAME=O\n1, 0, 0, 0, 1, 0\n\
+                 *SHELL SECTION, ELSET=P, COMPOSITE\n0.002, 3, PLY, O\n"
             ),
-            vec!["inp:13", "COMPOSITE", "*SHELL SECTION ELSET=P"],
+            vec!["inp:16", "ply orientation O", "*SHELL SECTION ELSET=P"],
         ),
         (
-            "lamina",
+            "unknown-ply-material",
+            format!("{mesh}{lamina}*SHELL SECTION, ELSET=P, COMPOSITE\n0.002, 3, PLY, 0\n0.002, 3, AL, 90\n"),
+            vec!["inp:15", "unknown material AL"],
+        ),
+        (
+            "cylindrical",
             format!(
-                "{mesh}*MATERIAL, NAME=PLY\n*ELASTIC, TYPE=LAMINA\n1.4e11, 1e10, 0.3, 5e9, 5e9, 3e9\n\
-                 *DENSITY\n1600\n*SHELL SECTION, ELSET=P, MATERIAL=PLY\n0.002\n"
+                "{mesh}{lamina}*ORIENTATION, NAME=C, SYSTEM=CYLINDRICAL\n0, 0, 0, 0, 0, 1\n\
+                 *SHELL SECTION, ELSET=P, MATERIAL=PLY, ORIENTATION=C\n0.002\n"
             ),
-            vec!["inp:9", "TYPE=LAMINA"],
+            vec!["inp:15", "ORIENTATION=C is cylindrical"],
         ),
     ];
     for (name, deck, want) in abaqus {
@@ -584,5 +594,73 @@ fn unsupported_laminates_are_refused_by_card_and_line() {
         for w in want {
             assert!(err.contains(w), "{name}: no '{w}' in {err}");
         }
+    }
+}
+
+/// The plate of `supported_plate` as an Abaqus deck of S4 with the section and material lines
+/// `section` (`*BOUNDARY` for the SPC1 lines, a `*FREQUENCY` step of `modes`).
+fn abaqus_plate(nastran: &str, section: &str, modes: usize) -> String {
+    let mut s = String::from("*NODE, NSET=ALL\n");
+    let mut elements = String::from("*ELEMENT, TYPE=S4, ELSET=P\n");
+    let mut boundary = String::from("*BOUNDARY\n");
+    for l in nastran.lines() {
+        let f: Vec<&str> = l.split(',').collect();
+        match f[0] {
+            "GRID" => writeln!(s, "{}, {}, {}, {}", f[1], f[3], f[4], f[5]).unwrap(),
+            "CQUAD4" => writeln!(elements, "{}, {}", f[1], f[3..7].join(", ")).unwrap(),
+            "SPC1" => {
+                for d in f[2].chars() {
+                    writeln!(boundary, "{}, {d}, {d}", f[3]).unwrap();
+                }
+            }
+            _ => {}
+        }
+    }
+    format!("{s}{elements}{section}{boundary}*STEP\n*FREQUENCY\n{modes}\n*END STEP\n")
+}
+
+/// Abaqus `*SHELL SECTION, COMPOSITE` of `*ELASTIC, TYPE=LAMINA` plies equals the Nastran PCOMP
+/// of MAT8 plies (the same constants) on the antisymmetric cross-ply and angle-ply plates, to
+/// 1e-10; `*ORIENTATION` on the section (axis 1 along y) equals the plies turned by 90°.
+#[test]
+fn abaqus_composite_lamina_equals_nastran_pcomp() {
+    let lamina = "*MATERIAL, NAME=PLY\n*ELASTIC, TYPE=LAMINA\n1e11, 1e10, 0.25, 6e9, 6e9, 5e9\n\
+                  *DENSITY\n1600\n";
+    let composite = |angles: &[f64], orientation: &str| {
+        let mut s = format!("{lamina}*SHELL SECTION, ELSET=P, COMPOSITE{orientation}\n");
+        for a in angles {
+            writeln!(s, "{PLY_T}, 3, PLY, {a}").unwrap();
+        }
+        s
+    };
+    for (name, angles, support) in [
+        ("abq-cross", [0.0, 0.0, 90.0, 90.0], Support::Tangential),
+        ("abq-angle", [45.0, -45.0, 45.0, -45.0], Support::Normal),
+    ] {
+        let bdf = supported_plate(&pcomp(&angles), SIDE, 20, support, 6);
+        let want = frequencies(name, &bdf);
+        let inp = abaqus_plate(&bdf, &composite(&angles, ""), 6);
+        let got = build(&format!("{name}-inp"), &inp, "inp")
+            .unwrap()
+            .modes
+            .frequency_hz;
+        assert_same(&want, &got, 0, 1e-10, name);
+        // turned 90° by the section's orientation = the plies at θ + 90°
+        let turned: Vec<f64> = angles.iter().map(|a| a + 90.0).collect();
+        let want = frequencies(
+            &format!("{name}-turned"),
+            &supported_plate(&pcomp(&turned), SIDE, 20, support, 6),
+        );
+        let orientation = "*ORIENTATION, NAME=TURN\n0, 1, 0, -1, 0, 0\n";
+        let inp = abaqus_plate(
+            &bdf,
+            &format!("{orientation}{}", composite(&angles, ", ORIENTATION=TURN")),
+            6,
+        );
+        let got = build(&format!("{name}-inp-turned"), &inp, "inp")
+            .unwrap()
+            .modes
+            .frequency_hz;
+        assert_same(&want, &got, 0, 1e-10, &format!("{name} turned"));
     }
 }

@@ -146,8 +146,8 @@ pub fn element_matrices(
     let lumped = spec.mass == MassKind::Lumped;
     if mat.plane_stress().is_some() && !matches!(prop.section, Section::Shell(_)) {
         return Err(fail(format!(
-            "material {} '{}' is a plane-stress (shell) material (MAT8, MAT2): only shell \
-             elements take it",
+            "material {} '{}' is a plane-stress (shell) material (MAT8, MAT2, *ELASTIC, \
+             TYPE=LAMINA): only shell elements take it",
             mat.id, mat.name
         )));
     }

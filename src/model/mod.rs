@@ -380,6 +380,20 @@ impl Material {
         }
     }
 
+    /// A plane-stress (shell-only) material `p`: E = max(Q11, Q22), ν = 0, G = Q66 (stiffness
+    /// scales for the model checks only).
+    pub fn plane_stress_material(id: u64, name: &str, p: PlaneStress, rho: f64) -> Material {
+        Material {
+            id,
+            name: name.to_owned(),
+            e: p.q[0][0].max(p.q[1][1]),
+            nu: 0.0,
+            g: p.q[2][2],
+            rho,
+            elasticity: Elasticity::PlaneStress(Box::new(p)),
+        }
+    }
+
     /// The plane-stress stiffness of a shell-only material (MAT8, MAT2), `None` otherwise.
     pub fn plane_stress(&self) -> Option<&PlaneStress> {
         match &self.elasticity {

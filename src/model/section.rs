@@ -147,8 +147,13 @@ pub enum ShellMaterialAxis {
     /// THETA: "material property orientation angle … measured from the line G1–G2").
     FromSide12 { theta_deg: f64 },
     /// The projection of a basic-frame vector onto the element plane (Nastran MCID: the x-axis
-    /// of the coordinate system MCID projected onto the element, MSC QRG CQUAD4).
+    /// of the coordinate system MCID projected onto the element, MSC QRG CQUAD4; Abaqus
+    /// `*SHELL SECTION, ORIENTATION=`: axis 1 projected).
     Projected([f64; 3]),
+    /// Abaqus's default local shell directions: global x projected onto the element, or global
+    /// z when x is within 0.1° of the normal (Abaqus Analysis User's Guide §1.2.2
+    /// "Conventions").
+    AbaqusDefault,
 }
 
 impl Default for ShellMaterialAxis {

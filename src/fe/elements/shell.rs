@@ -292,6 +292,15 @@ pub fn material_angle(
         ShellMaterialAxis::FromSide12 { theta_deg } => {
             Ok(side12[1].atan2(side12[0]) + theta_deg.to_radians())
         }
+        ShellMaterialAxis::AbaqusDefault => {
+            let near_normal = axes[2][0].abs() > 0.1f64.to_radians().cos();
+            let v = if near_normal {
+                [0.0, 0.0, 1.0]
+            } else {
+                [1.0, 0.0, 0.0]
+            };
+            material_angle(&ShellMaterialAxis::Projected(v), axes, side12)
+        }
         ShellMaterialAxis::Projected(v) => {
             let (x, y) = (dot(*v, axes[0]), dot(*v, axes[1]));
             if x.hypot(y) <= 1e-6 * norm(*v) {

@@ -107,6 +107,8 @@ struct RawSection {
     orientation: Option<[f64; 3]>,
     /// `ORIENTATION=`: the `*ORIENTATION` giving the material axes (materials.rs).
     material_orientation: Option<String>,
+    /// `*SHELL SECTION, COMPOSITE`: its plies as read (materials.rs).
+    plies: Option<Vec<materials::RawPly>>,
     loc: Loc,
 }
 

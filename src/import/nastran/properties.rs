@@ -169,18 +169,8 @@ pub(super) fn mat2<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     Ok(())
 }
 
-/// A model material of a plane-stress card: E = max(Q11, Q22), ν = 0, G = Q66 (stiffness
-/// scales for the model checks only).
 fn plane_material(mid: u64, card: &str, p: crate::model::PlaneStress, rho: f64) -> Material {
-    Material {
-        id: mid,
-        name: format!("{card} {mid}"),
-        e: p.q[0][0].max(p.q[1][1]),
-        nu: 0.0,
-        g: p.q[2][2],
-        rho,
-        elasticity: crate::model::Elasticity::PlaneStress(Box::new(p)),
-    }
+    Material::plane_stress_material(mid, &format!("{card} {mid}"), p, rho)
 }
 
 /// Reader of MAT9 (MSC QRG): MID, the 21 Gij of the upper triangle row by row in the order
