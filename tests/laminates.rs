@@ -664,3 +664,56 @@ fn abaqus_composite_lamina_equals_nastran_pcomp() {
         assert_same(&want, &got, 0, 1e-10, &format!("{name} turned"));
     }
 }
+
+/// What laminates do not have yet is an error naming element or property, and no file is
+/// written: stress/strain shapes, a preload (its initial stress) and a laminate on the
+/// quadratic shells (CQUAD8).
+#[test]
+fn laminate_stress_shapes_preload_and_quadratic_shells_are_refused() {
+    let deck = plate(&pcomp(&[0.0, 90.0]));
+    let dir = scratch("laminates-refused");
+    let path = dir.join("plate.bdf");
+    std::fs::write(&path, &deck).unwrap();
+    let out = dir.join("plate.flexbody");
+    let run = |path: &std::path::Path, extra: &[&str]| {
+        let o = exe()
+            .arg("build")
+            .arg(path)
+            .args([
+                "--units", "si", "--method", "normal", "--modes", "3", "-q", "-o",
+            ])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        assert!(!out.exists());
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let err = run(&path, &["--stress-modes"]);
+    assert!(
+        err.contains("element 1 (Quad4)") && err.contains("stress/strain shapes of laminate"),
+        "{err}"
+    );
+    let err = run(&path, &["--gravity", "0,0,-9.81", "--preload", "GRAVITY"]);
+    assert!(
+        err.contains("property 1 is a laminate") && err.contains("preload"),
+        "{err}"
+    );
+    // one CQUAD8 (mid-side grids added) on the laminate
+    let quad8 = "GRID,901,,0.025,0.,0.\nGRID,902,,0.05,0.025,0.\nGRID,903,,0.025,0.05,0.\n\
+                 GRID,904,,0.,0.025,0.\nGRID,905,,0.05,0.,0.\nGRID,906,,0.05,0.05,0.\n\
+                 GRID,907,,0.,0.05,0.\nGRID,908,,0.,0.,0.\n\
+                 CQUAD8,999,1,908,905,906,907,901,902\n,903,904\nENDDATA\n";
+    let path8 = dir.join("quad8.bdf");
+    std::fs::write(
+        &path8,
+        plate(&pcomp(&[0.0, 90.0])).replace("ENDDATA\n", quad8),
+    )
+    .unwrap();
+    let err = run(&path8, &[]);
+    assert!(
+        err.contains("999") && err.contains("quadratic shells"),
+        "{err}"
+    );
+}

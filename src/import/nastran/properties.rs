@@ -1,5 +1,5 @@
 //! Property and material cards — PSOLID, PSHELL, PCOMP, PROD, PBAR, PBARL, PBEAM, PBEAML,
-//! MAT1 — and their resolution (one property id space, WTMASS on non-structural mass).
+//! MAT1, MAT2, MAT8, MAT9 — and their resolution (one property id space, WTMASS on non-structural mass).
 //!
 //! * `MAT1 MID E G NU RHO`: two of E, G, ν give the third, G = E / (2(1+ν)).
 //! * `PROD PID MID A J C NSM`; `PBAR PID MID A I1 I2 J NSM … K1 K2 I12`;
