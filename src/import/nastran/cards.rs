@@ -139,6 +139,7 @@ const CARDS: &[(&str, Rule)] = &[
     ("PBEAML", Read(properties::property)),
     ("PBUSH", Read(bush::pbush)),
     ("PCOMP", Read(properties::pcomp)),
+    ("PCOMPG", Read(properties::pcomp)),
     // damper properties keep their id (one property id space) and are a note
     ("PDAMP", Read(properties::damper)),
     ("PDAMP5", Read(properties::damper)),

@@ -9,7 +9,9 @@
 //!   area; classical lamination in src/fe/shell_section.rs (plies of one isotropic MAT1 are
 //!   exactly that PSHELL). Z0 other than −T/2 (an offset laminate) and LAM = MEM, BEND, SMEAR,
 //!   SMCORE are errors naming the field; SB, FT (failure), TREF (thermal), GE (damping) and
-//!   SOUTi (output) cannot change stiffness or mass and are read past.
+//!   SOUTi (output) cannot change stiffness or mass and are read past. PCOMPG: the same with
+//!   one ply a continuation line `GPLYIDi MIDi Ti THETAi SOUTi` (the global ply id only names
+//!   it). Corner thicknesses T1.. on a laminate's element are an error (the plies give it).
 //! * CQUAD4 `EID PID G1-G4 THETA ZOFFS / – TFLAG T1-T4`, CTRIA3 `EID PID G1-G3 THETA ZOFFS /
 //!   – – TFLAG T1-T3`: corner thicknesses override the property's T (TFLAG = 1: relative to
 //!   it). The element gets its own copy of the property with the mean corner thickness (a
@@ -74,13 +76,18 @@ pub(super) fn pshell(g: &C) -> Result<(u64, Section), ImportError> {
 /// [`resolve_mids`]) (module doc).
 pub(super) fn pcomp(g: &C) -> Result<(u64, Section), ImportError> {
     let n = g.card.fields.len();
+    // PCOMPG: one ply a continuation line, GPLYID MID T THETA SOUT (the ply id only names it)
+    let (first, stride) = match g.card.name.as_str() {
+        "PCOMPG" => (9, 8),
+        _ => (8, 4),
+    };
     let mut plies: Vec<Ply> = Vec::new();
-    let mut k = 8;
+    let mut k = first;
     while k < n {
         let m = g.int(k)?;
         let t = g.real(k + 1)?;
         if m.is_none() && t.is_none() && g.text(k + 2).is_empty() {
-            k += 4;
+            k += stride;
             continue;
         }
         let prev = plies.last().copied();
@@ -106,7 +113,7 @@ pub(super) fn pcomp(g: &C) -> Result<(u64, Section), ImportError> {
             thickness: t,
             angle_deg: g.real_or(k + 2, 0.0)?,
         });
-        k += 4;
+        k += stride;
     }
     let mid = plies
         .first()
@@ -159,8 +166,17 @@ pub(super) fn resolve_mids(s: &mut ShellSection, mids: &IdMap, g: &C) -> Result<
     if let Some((m, r)) = s.shear {
         s.shear = Some((get(m, 5)?, r));
     }
+    let (first, stride) = if g.card.name == "PCOMPG" {
+        (9, 8)
+    } else {
+        (8, 4)
+    };
     for (i, p) in s.plies.iter_mut().enumerate() {
-        p.material = get(p.material, 8 + 4 * i)?;
+        // SYM's mirrored plies point at their originals' fields
+        let n = (g.card.fields.len().saturating_sub(first))
+            .div_ceil(stride)
+            .max(1);
+        p.material = get(p.material, first + stride * (i % n))?;
     }
     Ok(())
 }
@@ -323,6 +339,18 @@ pub(super) fn apply_thickness(
             })
             .collect();
         let eid = model.elements[et.elem].id;
+        if !sh.plies.is_empty() {
+            return Err(crate::import::error::parse_err(
+                &et.file,
+                et.line,
+                format!("element {eid}"),
+                format!(
+                    "corner thicknesses T1.. on a laminate (property {}): its plies give the \
+                     thickness",
+                    prop.id
+                ),
+            ));
+        }
         if ts.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
             return Err(crate::import::error::parse_err(
                 &et.file,
