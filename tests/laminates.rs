@@ -524,6 +524,19 @@ fn antisymmetric_cross_ply_matches_navier_and_its_coupling() {
         "cross-anti-b0",
         &supported_plate(&cards, SIDE, 20, Support::Tangential, 1),
     );
+    // the same with a MID3 MAT2 of G11 = G22 = 5.5e9, G13, G23, G33 blank (MSC QRG MAT2)
+    let mat2_mid3 = cards.replace(
+        "MAT8,13,1.e10,1.e10,0.,5.5e9,5.5e9,5.5e9\n",
+        "MAT2,13,5.5e9,0.,,5.5e9\n",
+    );
+    let by_mat2 = frequencies(
+        "cross-anti-b0-mat2",
+        &supported_plate(&mat2_mid3, SIDE, 20, Support::Tangential, 1),
+    );
+    assert!(
+        (by_mat2[0] / uncoupled[0] - 1.0).abs() < 1e-12,
+        "{by_mat2:?} {uncoupled:?}"
+    );
     let (fe, clt) = (coupled[0] / uncoupled[0], with_b / without_b);
     eprintln!("[0/90] with B / without B: FE {fe:.5}, CLT {clt:.5}");
     assert!(clt < 0.95, "{clt}");

@@ -137,19 +137,23 @@ pub(super) fn mat8<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
 
 /// Reader of MAT2 (MSC QRG): `MID G11 G12 G13 G22 G23 G33 RHO / A1 A2 A3 TREF GE ST SC SS /
 /// MCSID`, an anisotropic plane-stress material of shells (σ = G ε, engineering shear; as a
-/// PSHELL MID3 its G11, G12, G22 are the transverse shear stiffness). G must be positive
-/// definite; MCSID (its own material axes) is an error.
+/// PSHELL MID3 its G11, G12, G22 are the transverse shear stiffness, G13, G23, G33 blank). G
+/// must be positive definite (its 2×2 when G13, G23, G33 are blank); MCSID (its own material
+/// axes) is an error.
 pub(super) fn mat2<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let mid = g.id(0, "MID")?;
     let v: Vec<f64> = (1..=6)
         .map(|k| g.real_or(k, 0.0))
         .collect::<Result<_, _>>()?;
     let q = [[v[0], v[1], v[2]], [v[1], v[3], v[4]], [v[2], v[4], v[5]]];
+    // A MID3-only MAT2 leaves G13, G23, G33 blank (MSC QRG MAT2): then its 2×2 must be
+    // positive definite, else the 3×3.
+    let shear_only = [3, 5, 6].iter().all(|&k| g.text(k).is_empty());
     let d2 = q[0][0] * q[1][1] - q[0][1] * q[0][1];
     let d3 = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[1][2])
         - q[0][1] * (q[0][1] * q[2][2] - q[1][2] * q[0][2])
         + q[0][2] * (q[0][1] * q[1][2] - q[1][1] * q[0][2]);
-    if !(q[0][0] > 0.0 && d2 > 0.0 && d3 > 0.0) {
+    if !(q[0][0] > 0.0 && d2 > 0.0 && (shear_only || d3 > 0.0)) {
         return Err(g.err_card(format!(
             "the material matrix G = {q:?} is not positive definite"
         )));
