@@ -811,3 +811,19 @@ fn laminated_triangles_match_navier() {
         }
     }
 }
+
+/// A symmetric laminate of two materials with NSM weighs area × (Σ ρ_k t_k + NSM) (I1 of the
+/// file, lumped and consistent mass).
+#[test]
+fn laminate_mass_is_the_sum_of_its_plies() {
+    let cards = format!(
+        "{MAT8}{}PCOMP,1,,0.5\n,7,0.001,0.,,1,0.002,45.\n,7,0.001,90.\n",
+        MAT1.replace("MAT1,7,", "MAT1,1,")
+    );
+    let want = 0.4 * 0.3 * (1600.0 * 0.002 + 2700.0 * 0.002 + 0.5);
+    for mass in ["lumped", "consistent"] {
+        let body = build_with(&format!("mass-{mass}"), &plate(&cards), "bdf", mass).unwrap();
+        let m = body.invariants.i1[0];
+        assert!((m / want - 1.0).abs() < 1e-12, "{mass}: {m} against {want}");
+    }
+}

@@ -121,32 +121,25 @@ pub fn shell_props(
     } else {
         None
     };
-    let primary = match general {
-        Some(_) => Isotropic {
-            e: 1.0,
-            nu: 0.0,
-            g: 0.5,
-            rho: material(model, prop.material)?.rho,
-        },
-        None => iso(model, prop.material)?,
-    };
-    let (bending, shear) = match general {
-        Some(_) => (None, None),
-        None => (
-            s.bending
-                .map(|(m, r)| iso(model, m).map(|i| (i, r)))
-                .transpose()?,
-            s.shear
-                .map(|(m, r)| iso(model, m).map(|i| (i, r)))
-                .transpose()?,
-        ),
+    let (membrane, bending, shear, rho) = match general {
+        // the general section's own rigidities and mass replace the isotropic fields
+        Some(g) => (None, None, None, g.mass / s.thickness),
+        None => {
+            let primary = iso(model, prop.material)?;
+            (
+                s.membrane.then_some(primary),
+                (s.bending.map(|(m, r)| iso(model, m).map(|i| (i, r)))).transpose()?,
+                (s.shear.map(|(m, r)| iso(model, m).map(|i| (i, r)))).transpose()?,
+                primary.rho,
+            )
+        }
     };
     Ok(ShellProps {
         t: s.thickness,
-        membrane: (s.membrane && general.is_none()).then_some(primary),
+        membrane,
         bending,
         shear,
-        rho: primary.rho,
+        rho,
         nsm: s.nsm,
         drill_factor,
         lumped_rotary: true,
