@@ -1,9 +1,8 @@
-//! Shell sections through the importers: PSHELL fields, element thickness overrides, PCOMP of
-//! one material, and the inputs that are errors (offsets, a CQUAD8 without mid-side grids, mixed
-//! laminates).
+//! Shell sections through the importers: PSHELL fields, element thickness overrides, PCOMP
+//! plies, THETA/MCID, and the inputs that are errors (offsets, a CQUAD8 without mid-side grids).
 
 use flexbody::import::{read_model, ImportOptions};
-use flexbody::model::{Model, Section, ShellSection};
+use flexbody::model::{Model, Ply, Section, ShellMaterialAxis, ShellSection};
 
 fn read(name: &str, text: &str) -> Result<Model, String> {
     let dir = std::env::temp_dir().join(format!("flexbody-import-shells-{}", std::process::id()));
@@ -66,7 +65,7 @@ ENDDATA
 }
 
 #[test]
-fn pcomp_of_one_material_is_a_homogeneous_shell_and_mixed_plies_are_an_error() {
+fn pcomp_plies_are_read_bottom_to_top_with_sym_and_theta() {
     let deck = format!(
         "BEGIN BULK
 {GRIDS}PCOMP,6,,0.25,,,,,
@@ -80,14 +79,35 @@ ENDDATA
     let s = shell(&m, 0);
     assert!((s.thickness - 0.3).abs() < 1e-15);
     assert_eq!((s.bending, s.nsm), (Some((0, 1.0)), 0.25));
+    let ply = |material, thickness, angle_deg| Ply {
+        material,
+        thickness,
+        angle_deg,
+    };
+    assert_eq!(s.plies, [ply(0, 0.1, 45.0), ply(0, 0.2, -45.0)]);
     let sym = deck.replace("PCOMP,6,,0.25,,,,,", "PCOMP,6,,0.25,,,,,SYM");
-    assert!((shell(&read("sym.bdf", &sym).unwrap(), 0).thickness - 0.6).abs() < 1e-15);
-    let mixed = deck.replace(",1,0.2,-45.", ",2,0.2,-45.");
-    let e = read("mixed.bdf", &mixed).unwrap_err();
-    assert!(
-        e.contains("PCOMP 6") && e.contains("different materials"),
-        "{e}"
+    let s = shell(&read("sym.bdf", &sym).unwrap(), 0).clone();
+    assert!((s.thickness - 0.6).abs() < 1e-15);
+    assert_eq!(s.plies[2..], [ply(0, 0.2, -45.0), ply(0, 0.1, 45.0)]);
+    // plies of two materials (model indices 0, 1), THETA on the element
+    let mixed = deck.replace(",1,0.2,-45.", ",2,0.2,-45.").replace(
+        "CQUAD4  10      6       1       2       3       4",
+        "CQUAD4  10      6       1       2       3       4       30.",
     );
+    let m = read("mixed.bdf", &mixed).unwrap();
+    assert_eq!(shell(&m, 0).plies[1], ply(1, 0.2, -45.0));
+    assert_eq!(
+        m.shell_axes.get(&0),
+        Some(&ShellMaterialAxis::FromSide12 { theta_deg: 30.0 })
+    );
+    let mcid = mixed.replace("       30.", "       0");
+    let m = read("mcid.bdf", &mcid).unwrap();
+    assert_eq!(
+        m.shell_axes.get(&0),
+        Some(&ShellMaterialAxis::Projected([1.0, 0.0, 0.0]))
+    );
+    let e = read("mcid9.bdf", &mixed.replace("       30.", "       9")).unwrap_err();
+    assert!(e.contains("element 10") && e.contains("MCID 9"), "{e}");
     let offset = deck.replace("PCOMP,6,,0.25", "PCOMP,6,0.,0.25");
     let e = read("z0.bdf", &offset).unwrap_err();
     assert!(e.contains("Z0") && e.contains("offset"), "{e}");

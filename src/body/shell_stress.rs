@@ -125,7 +125,12 @@ pub fn shell_fields(
     let size = n_modes * k * 6;
     let mut sums = [(); 4].map(|_| vec![0.0; size]); // top σ, bottom σ, top ε, bottom ε
     let mut count = vec![0u32; k];
-    for el in model.elements.iter().filter(|e| is_shell(e)) {
+    for (e, el) in model
+        .elements
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| is_shell(e))
+    {
         if !el.nodes.iter().any(|&n| n < nn && is_wanted[n]) {
             continue;
         }
@@ -139,7 +144,14 @@ pub fn shell_fields(
             return Err(fail("node list does not match the element kind".into()));
         }
         let (prop, section) = shell_section(el).ok_or_else(|| fail("no shell section".into()))?;
-        let props = crate::fe::shell_section::shell_props(model, prop, section).map_err(fail)?;
+        let props = crate::fe::shell_section::shell_props(model, e, prop, section).map_err(fail)?;
+        if props.general.is_some() {
+            return Err(fail(
+                "stress/strain shapes of laminate and plane-stress (PCOMP of several materials, \
+                 MAT8, MAT2) shells are not implemented: build without stress/strain shapes"
+                    .into(),
+            ));
+        }
         let x: Vec<Xyz> = el.nodes.iter().map(|&n| model.nodes[n].x).collect();
         let half = 0.5 * props.t;
         for j in 0..n_modes {

@@ -144,6 +144,13 @@ pub fn element_matrices(
         rho: mat.rho,
     };
     let lumped = spec.mass == MassKind::Lumped;
+    if mat.plane_stress().is_some() && !matches!(prop.section, Section::Shell(_)) {
+        return Err(fail(format!(
+            "material {} '{}' is a plane-stress (shell) material (MAT8, MAT2, *ELASTIC, \
+             TYPE=LAMINA): only shell elements take it",
+            mat.id, mat.name
+        )));
+    }
     if el.kind.is_solid() && prop.section != Section::Solid {
         return Err(fail(format!(
             "solid element with non-solid property {}",
@@ -400,7 +407,7 @@ pub fn element_matrices(
                     prop.id
                 )));
             };
-            let mut p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;
+            let mut p = super::shell_section::shell_props(model, e, prop, s).map_err(fail)?;
             // Nastran lumps CQUAD4/CTRIA3 without rotary inertia (BeamLumping::Nastran doc).
             p.lumped_rotary = spec.beam_lumping != BeamLumping::Nastran;
             let (k, m) = if el.kind == ElementKind::Quad4 {
@@ -419,7 +426,15 @@ pub fn element_matrices(
                     prop.id
                 )));
             };
-            let mut p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;
+            let mut p = super::shell_section::shell_props(model, e, prop, s).map_err(fail)?;
+            if p.general.is_some() {
+                return Err(fail(format!(
+                    "property {} is a laminate or plane-stress (PCOMP of several materials, \
+                     MAT8, MAT2) section: the quadratic shells (CQUAD8/CTRIA6, S8/S8R/S6) take \
+                     isotropic sections only; mesh the part with CQUAD4/CTRIA3 (S4/S3)",
+                    prop.id
+                )));
+            }
             p.lumped_rotary = spec.beam_lumping != BeamLumping::Nastran;
             let nodal = model.shell_thickness.get(&e);
             let t = |a: usize| nodal.map_or(p.t, |t| t[a]);

@@ -32,6 +32,61 @@ pub enum Elasticity {
     Isotropic,
     /// General (orthotropic or anisotropic) 3-D stiffness in the material axes.
     Anisotropic(Box<Stiffness6>),
+    /// A plane-stress material of shells only (Nastran MAT8, MAT2).
+    PlaneStress(Box<PlaneStress>),
+}
+
+/// A plane-stress shell material in its material axes (1 = the element's material x-axis
+/// turned by the ply angle): σ = Q ε in the order `[11 22 12]` with engineering shear γ12, and
+/// the transverse shear stiffness on (γ13, γ23).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlaneStress {
+    /// In-plane Q (3×3).
+    pub q: [[f64; 3]; 3],
+    /// Transverse shear stiffness (2×2) on (γ13, γ23): MAT8 diag(G1Z, G2Z); `None`: MAT8
+    /// G1Z/G2Z blank (shear-rigid) and MAT2.
+    pub transverse: Option<[[f64; 2]; 2]>,
+    /// The transverse shear stiffness when a PSHELL names the material as MID3 (MAT2: its
+    /// [G11 G12; G12 G22], MSC QRG MAT2), if it differs from `transverse`.
+    pub as_mid3: Option<[[f64; 2]; 2]>,
+}
+
+impl PlaneStress {
+    /// An orthotropic lamina (Nastran MAT8): Q11 = E1/(1−ν12ν21), Q22 = E2/(1−ν12ν21),
+    /// Q12 = ν12E2/(1−ν12ν21), Q66 = G12, ν21 = ν12E2/E1 (Reddy, *Mechanics of Laminated
+    /// Composite Plates and Shells* (2004) eq. 3.3.2).
+    pub fn lamina(
+        e1: f64,
+        e2: f64,
+        nu12: f64,
+        g12: f64,
+        gz: Option<[f64; 2]>,
+    ) -> Result<Self, String> {
+        let nu21 = nu12 * e2 / e1;
+        let den = 1.0 - nu12 * nu21;
+        if [e1, e2, g12].iter().any(|v| !(v.is_finite() && *v > 0.0)) || den.is_nan() || den <= 0.0
+        {
+            return Err(format!(
+                "a lamina needs E1, E2, G12 > 0 and ν12²E2/E1 < 1 (E1 = {e1}, E2 = {e2}, ν12 = {nu12}, G12 = {g12})"
+            ));
+        }
+        if let Some([a, b]) = gz {
+            if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
+                return Err(format!(
+                    "transverse shear moduli G1Z = {a}, G2Z = {b} must be > 0"
+                ));
+            }
+        }
+        Ok(PlaneStress {
+            q: [
+                [e1 / den, nu12 * e2 / den, 0.0],
+                [nu12 * e2 / den, e2 / den, 0.0],
+                [0.0, 0.0, g12],
+            ],
+            transverse: gz.map(|[a, b]| [[a, 0.0], [0.0, b]]),
+            as_mid3: None,
+        })
+    }
 }
 
 /// The material axes of a property (Abaqus `*ORIENTATION`, Nastran PSOLID CORDM).

@@ -25,9 +25,9 @@ pub mod shell_offset;
 
 pub use connector::{Bush, Mpc, NodeDof, RigidBody, ScalarMass, ScalarSpring};
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
-pub use elasticity::{Elasticity, MaterialAxes, Stiffness6};
+pub use elasticity::{Elasticity, MaterialAxes, PlaneStress, Stiffness6};
 pub use load::{Load, LoadPart};
-pub use section::ShellSection;
+pub use section::{Ply, ShellMaterialAxis, ShellSection};
 
 /// Dense 0-based index of a node in [`Model::nodes`].
 pub type NodeIndex = usize;
@@ -381,11 +381,33 @@ impl Material {
         }
     }
 
+    /// A plane-stress (shell-only) material `p`: E = max(Q11, Q22), ν = 0, G = Q66 (stiffness
+    /// scales for the model checks only).
+    pub fn plane_stress_material(id: u64, name: &str, p: PlaneStress, rho: f64) -> Material {
+        Material {
+            id,
+            name: name.to_owned(),
+            e: p.q[0][0].max(p.q[1][1]),
+            nu: 0.0,
+            g: p.q[2][2],
+            rho,
+            elasticity: Elasticity::PlaneStress(Box::new(p)),
+        }
+    }
+
+    /// The plane-stress stiffness of a shell-only material (MAT8, MAT2), `None` otherwise.
+    pub fn plane_stress(&self) -> Option<&PlaneStress> {
+        match &self.elasticity {
+            Elasticity::PlaneStress(p) => Some(p),
+            _ => None,
+        }
+    }
+
     /// The general stiffness of an anisotropic material (material axes), `None` if isotropic.
     pub fn stiffness(&self) -> Option<&Stiffness6> {
         match &self.elasticity {
             Elasticity::Anisotropic(d) => Some(d),
-            Elasticity::Isotropic => None,
+            Elasticity::Isotropic | Elasticity::PlaneStress(_) => None,
         }
     }
 
@@ -566,6 +588,9 @@ pub struct Model {
     /// T1..T4): element index → one thickness per node in the element's node order, replacing
     /// the section's thickness (formed by the quadratic shells, which interpolate it).
     pub shell_thickness: BTreeMap<usize, Vec<f64>>,
+    /// Material x-axes of shell elements given on the element (Nastran CQUAD4/CTRIA3 THETA or
+    /// MCID): element index → axis; others use their section's `material_axis`.
+    pub shell_axes: BTreeMap<usize, ShellMaterialAxis>,
     /// Properties (sections).
     pub properties: Vec<Property>,
     /// Materials.

@@ -119,6 +119,47 @@ pub struct ShellSection {
     pub shear: Option<(usize, f64)>,
     /// Non-structural mass per unit area.
     pub nsm: f64,
+    /// Plies of a laminate (Nastran PCOMP, bottom to top, SYM already mirrored); empty for a
+    /// PSHELL-like section. With plies, `thickness` is their sum and membrane, bending and shear
+    /// come from classical lamination (src/fe/shell_section.rs), not from the fields above.
+    pub plies: Vec<Ply>,
+    /// The default material x-axis of the section's elements (Nastran: the G1→G2 side, THETA =
+    /// 0; an element's own THETA/MCID is in `Model::shell_axes`).
+    pub material_axis: ShellMaterialAxis,
+}
+
+/// One ply of a laminate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ply {
+    /// Material index (into `Model::materials`; external id until the importer resolves it).
+    pub material: usize,
+    /// Thickness.
+    pub thickness: f64,
+    /// Fibre angle in degrees from the element's material x-axis, about the normal.
+    pub angle_deg: f64,
+}
+
+/// How a shell element's material x-axis is found (the ply angles and an orthotropic material
+/// are measured from it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ShellMaterialAxis {
+    /// THETA degrees about the normal from the G1→G2 side (MSC Nastran QRG, CQUAD4/CTRIA3
+    /// THETA: "material property orientation angle … measured from the line G1–G2").
+    FromSide12 { theta_deg: f64 },
+    /// The projection of a basic-frame vector onto the element plane (Nastran MCID: the x-axis
+    /// of the coordinate system MCID projected onto the element, MSC QRG CQUAD4; Abaqus
+    /// `*SHELL SECTION, ORIENTATION=`: axis 1 projected).
+    Projected([f64; 3]),
+    /// Abaqus's default local shell directions: global x projected onto the element, or global
+    /// z when x is within 0.1° of the normal (Abaqus Analysis User's Guide §1.2.2
+    /// "Conventions").
+    AbaqusDefault,
+}
+
+impl Default for ShellMaterialAxis {
+    fn default() -> Self {
+        ShellMaterialAxis::FromSide12 { theta_deg: 0.0 }
+    }
 }
 
 impl ShellSection {
@@ -131,6 +172,8 @@ impl ShellSection {
             bending: Some((material, 1.0)),
             shear: Some((material, 5.0 / 6.0)),
             nsm: 0.0,
+            plies: Vec::new(),
+            material_axis: ShellMaterialAxis::default(),
         }
     }
 }

@@ -183,27 +183,30 @@ pub(crate) fn membrane_blocks(
     (kcc, kci, kii)
 }
 
-/// Local 24×24 stiffness of the flat element (before warping links and rotation).
+/// Local 24×24 stiffness of the flat element (before warping links and rotation). A coupled
+/// section (B ≠ 0, module doc of shell.rs) couples membrane strains, the incompatible modes
+/// included, with the curvatures through B before the modes are condensed.
 fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, ElementError> {
     const ND: usize = 24;
     let mut k = vec![0.0; ND * ND];
     let p = &f.p;
-    let dm = props.d_membrane();
-    let db = props.d_bending();
-    let ds = props.shear_modulus();
+    let sec = props.resultants(&f.axes, [p[1][0] - p[0][0], p[1][1] - p[0][1]])?;
     let gd = props.drill();
     // Membrane: compatible (8) + incompatible (4) modes, then condensation.
     let mem_dofs: Vec<usize> = (0..4).flat_map(|a| [6 * a, 6 * a + 1]).collect();
     let points = membrane_points(p)?;
-    let (kcc, kci, kii) = membrane_blocks(&points, &dm);
+    let (kcc, kci, kii) = membrane_blocks(&points, &sec.a);
     let plate_dofs: Vec<usize> = (0..4)
         .flat_map(|a| [6 * a + 2, 6 * a + 3, 6 * a + 4])
         .collect();
+    // Incompatible modes × plate dofs through B (coupled sections only), 4×12.
+    let mut kip = [[0.0; 12]; 4];
     // Shear tying rows.
     let eb = covariant_shear(p, 0.0, -1.0, 0);
     let ed = covariant_shear(p, 0.0, 1.0, 0);
     let ec = covariant_shear(p, -1.0, 0.0, 1);
     let ea = covariant_shear(p, 1.0, 0.0, 1);
+    let has_shear = sec.shear[0][0] > 0.0 || sec.shear[1][1] > 0.0;
     for (pt, &[xi, eta]) in points.iter().zip(&GAUSS) {
         let MembranePoint { n, g, inv, .. } = pt;
         let w = pt.w;
@@ -215,21 +218,48 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
             bb[2][3 * a + 1] = -g[a][0];
             bb[2][3 * a + 2] = g[a][1];
         }
-        add_btdb(&mut k, ND, &bb, &plate_dofs, &db, w);
+        add_btdb(&mut k, ND, &bb, &plate_dofs, &sec.d, w);
+        if sec.coupled {
+            shell::add_coupling(
+                &mut k,
+                ND,
+                (&pt.bc, &mem_dofs),
+                (&bb, &plate_dofs),
+                &sec.b,
+                w,
+            );
+            for (m, row) in kip.iter_mut().enumerate() {
+                for (j, v) in row.iter_mut().enumerate() {
+                    *v += w
+                        * (0..3)
+                            .map(|r| {
+                                pt.bi[r][m] * (0..3).map(|c| sec.b[r][c] * bb[c][j]).sum::<f64>()
+                            })
+                            .sum::<f64>();
+                }
+            }
+        }
         // MITC4 shear: e_ξ, e_η interpolated from the tying points, γ = J⁻¹ e.
-        if ds > 0.0 {
+        if has_shear {
             let exi: Vec<f64> = (0..12)
                 .map(|j| 0.5 * (1.0 - eta) * eb[j] + 0.5 * (1.0 + eta) * ed[j])
                 .collect();
             let eeta: Vec<f64> = (0..12)
                 .map(|j| 0.5 * (1.0 - xi) * ec[j] + 0.5 * (1.0 + xi) * ea[j])
                 .collect();
-            for r in 0..2 {
-                let gam: Vec<f64> = (0..12)
+            let gam: [Vec<f64>; 2] = std::array::from_fn(|r| {
+                (0..12)
                     .map(|j| inv[r][0] * exi[j] + inv[r][1] * eeta[j])
-                    .collect();
-                add_outer(&mut k, ND, &gam, &plate_dofs, ds * w);
-            }
+                    .collect()
+            });
+            shell::add_shear(
+                &mut k,
+                ND,
+                [&gam[0], &gam[1]],
+                &plate_dofs,
+                &sec.shear,
+                (w, 1.0),
+            );
         }
         // Drilling: (θz − ω), ω = ½(v,x − u,y), on [u v θz] per node.
         if gd > 0.0 {
@@ -241,8 +271,11 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
             add_outer(&mut k, ND, &row, &drill_dofs, gd * w);
         }
     }
-    // Condense the incompatible modes: K_m = Kcc − Kci Kii⁻¹ Kic.
-    if props.membrane.is_some() {
+    if props.membrane.is_none() && props.general.is_none() {
+        return Ok(k);
+    }
+    if !sec.coupled {
+        // Condense the incompatible modes: K_m = Kcc − Kci Kii⁻¹ Kic.
         let x = solve4(&kii, &kci)?; // Kii⁻¹ Kic (4×8), from rows of Kci
         for i in 0..8 {
             for j in 0..8 {
@@ -250,8 +283,54 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
                 k[mem_dofs[i] * ND + mem_dofs[j]] += kcc[i * 8 + j] - corr;
             }
         }
+        return Ok(k);
     }
+    condense_coupled(&mut k, (&mem_dofs, &plate_dofs), &kcc, &kci, &kii, &kip)?;
     Ok(k)
+}
+
+/// Adds K_cc and condenses the incompatible modes coupled to the membrane (K_ci) and plate
+/// (K_ip) dofs: K ← K − K_xi K_ii⁻¹ K_ix over the 20 membrane and plate dofs.
+fn condense_coupled(
+    k: &mut [f64],
+    (mem_dofs, plate_dofs): (&[usize], &[usize]),
+    kcc: &[f64],
+    kci: &[f64],
+    kii: &[f64],
+    kip: &[[f64; 12]; 4],
+) -> Result<(), ElementError> {
+    const ND: usize = 24;
+    for i in 0..8 {
+        for j in 0..8 {
+            k[mem_dofs[i] * ND + mem_dofs[j]] += kcc[i * 8 + j];
+        }
+    }
+    // K_xi (20×4): membrane rows from K_ci, plate rows from K_ipᵀ; dofs in that order.
+    let dofs: Vec<usize> = mem_dofs.iter().chain(plate_dofs).copied().collect();
+    let mut kxi = vec![0.0; 24 * 4];
+    kxi[..32].copy_from_slice(kci);
+    for j in 0..12 {
+        for m in 0..4 {
+            kxi[(8 + j) * 4 + m] = kip[m][j];
+        }
+    }
+    // X = K_ii⁻¹ K_ix (4×20) in chunks of 8 rows of K_xi (the 24th row pads the last chunk).
+    let mut x = vec![[0.0; 4]; 24];
+    for chunk in 0..3 {
+        let part = solve4(kii, &kxi[chunk * 32..(chunk + 1) * 32])?;
+        for j in 0..8 {
+            for m in 0..4 {
+                x[chunk * 8 + j][m] = part[m * 8 + j];
+            }
+        }
+    }
+    for (p, &dp) in dofs.iter().enumerate() {
+        for (q, &dq) in dofs.iter().enumerate() {
+            let corr: f64 = (0..4).map(|m| kxi[p * 4 + m] * x[q][m]).sum();
+            k[dp * ND + dq] -= corr;
+        }
+    }
+    Ok(())
 }
 
 /// Kii⁻¹ Kciᵀ (4×8) by Gaussian elimination with partial pivoting.
@@ -418,6 +497,39 @@ mod tests {
         let top = ev.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let zeros = ev.iter().filter(|v| v.abs() < 1e-10 * top).count();
         assert_eq!(zeros, 6, "{ev:?}");
+    }
+
+    /// A coupled anisotropic section (B ≠ 0, material axis 25° from the G1→G2 side, or basic
+    /// x by projection) passes the patch test with the coupling energy, and its element still
+    /// has exactly 6 zero modes.
+    #[test]
+    fn quad4_shell_laminate_patch_test_with_coupling_and_material_axis() {
+        use crate::model::ShellMaterialAxis;
+        let side = [
+            DISTORTED[1][0] - DISTORTED[0][0],
+            DISTORTED[1][1] - DISTORTED[0][1],
+        ];
+        let a = area(&DISTORTED).unwrap();
+        for (axis, psi) in [
+            (
+                ShellMaterialAxis::FromSide12 { theta_deg: 25.0 },
+                side[1].atan2(side[0]) + 25f64.to_radians(),
+            ),
+            (ShellMaterialAxis::Projected([1.0, 0.0, 0.3]), 0.0),
+        ] {
+            let props = coupled_section(0.02, axis);
+            let (k, _) = matrices(&DISTORTED, &props, false).unwrap();
+            patch_energy_general(&k, &DISTORTED, a, &props, psi, 1e-10);
+            let mat = faer::Mat::<f64>::from_fn(24, 24, |i, j| k[i * 24 + j]);
+            let ev = mat.self_adjoint_eigenvalues(faer::Side::Lower).unwrap();
+            let top = ev.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            assert_eq!(
+                ev.iter().filter(|v| v.abs() < 1e-10 * top).count(),
+                6,
+                "{ev:?}"
+            );
+            assert!(ev.iter().all(|v| *v > -1e-10 * top), "{ev:?}");
+        }
     }
 
     #[test]

@@ -13,6 +13,14 @@
 //! M = D_b κ, D_b = E₂ (12I/t³) t³/12/(1−ν₂²)·[…] (bending, MID2, Nastran PSHELL 12I/T³);
 //! Q = D_s γ, D_s = (t_s/t)·G₃ t·I₂ (transverse shear, MID3, Nastran TS/T, default 5/6).
 //!
+//! Laminates and plane-stress materials (Nastran PCOMP, MAT8, MAT2; [`GeneralSection`]): the
+//! classical-lamination resultants N = A ε + B κ, M = B ε + D κ, Q = A_s γ (Reddy, *Mechanics
+//! of Laminated Composite Plates and Shells* (2004) eq. 3.3.17), A, B, D, A_s given in the
+//! section's material axes and turned into the element's by the angle ψ of the material x-axis
+//! ([`ShellProps::resultants`]): Q̄ = T_εᵀ Q T_ε, A̅_s = Rᵀ A_s R (Reddy eq. 2.3.17/2.3.18 in
+//! strain form). The drilling penalty then uses the rotation-invariant in-plane shear rigidity
+//! (A11 + A22 − 2A12 + 4A66)/8 (= G t isotropic).
+//!
 //! Drilling rotation: a penalty (Hughes & Brezzi, *CMAME* 72 (1989) 105) on the difference
 //! between θz and the membrane's in-plane rotation ω = ½(∂v/∂x − ∂u/∂y),
 //! Π_d = ½ ∫ γ_d (θz − ω)² dA with γ_d = [`DRILL_FACTOR`]·G₁t, integrated at as many points as
@@ -38,6 +46,49 @@
 
 use super::beam::{cross, dot, norm, scale, sub};
 use super::{ElementError, Isotropic, Xyz};
+use crate::model::ShellMaterialAxis;
+
+/// A 3×3 matrix.
+pub type M3 = [[f64; 3]; 3];
+/// A 2×2 matrix.
+pub type M2 = [[f64; 2]; 2];
+
+/// A shell section given by its rigidities (laminate or plane-stress material; module doc),
+/// in the section's material axes (x = the element's material x-axis).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GeneralSection {
+    /// Membrane A (N = A ε + B κ).
+    pub a: M3,
+    /// Membrane–bending coupling B (zero for a symmetric laminate).
+    pub b: M3,
+    /// Bending D (M = B ε + D κ).
+    pub d: M3,
+    /// Transverse shear A_s on (γxz, γyz).
+    pub shear: M2,
+    /// Mass per unit area Σ ρ_k t_k (without the non-structural mass).
+    pub mass: f64,
+    /// Rotary inertia per unit area Σ ρ_k ∫ z² dz about the reference surface.
+    pub rotary: f64,
+    /// Where the element's material x-axis lies.
+    pub axis: ShellMaterialAxis,
+}
+
+/// The section rigidities of one element in its own local axes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Resultants {
+    /// Membrane.
+    pub a: M3,
+    /// Coupling (zero for isotropic sections).
+    pub b: M3,
+    /// Bending.
+    pub d: M3,
+    /// Transverse shear.
+    pub shear: M2,
+    /// B ≠ 0.
+    pub coupled: bool,
+    /// The section has transverse shear of its own (the DKMT's switch, tri3_shell.rs).
+    pub has_shear: bool,
+}
 
 /// Drilling penalty factor: γ_d = DRILL_FACTOR · G t (module doc; Nastran K6ROT = 100 × 10⁻⁶).
 pub const DRILL_FACTOR: f64 = 1e-4;
@@ -64,6 +115,9 @@ pub struct ShellProps {
     /// only, as MSC Nastran lumps CQUAD4/CTRIA3 (its grid-point kinetic energies of shell grids
     /// have no rotational part). The consistent mass always has it.
     pub lumped_rotary: bool,
+    /// A laminate or plane-stress section: its rigidities replace those of the isotropic
+    /// materials above (which then only name the section's primary material).
+    pub general: Option<GeneralSection>,
 }
 
 impl ShellProps {
@@ -78,11 +132,62 @@ impl ShellProps {
             nsm: 0.0,
             drill_factor: DRILL_FACTOR,
             lumped_rotary: true,
+            general: None,
         }
+    }
+
+    /// The element's section rigidities in its local axes (`axes` rows e₁, e₂, e₃; `side12` the
+    /// G1→G2 side in local in-plane coordinates): the isotropic ones as they are, a
+    /// [`GeneralSection`] turned by the angle ψ of its material x-axis (module doc).
+    pub fn resultants(
+        &self,
+        axes: &[Xyz; 3],
+        side12: [f64; 2],
+    ) -> Result<Resultants, ElementError> {
+        let Some(g) = &self.general else {
+            let ds = self.shear_modulus();
+            return Ok(Resultants {
+                a: self.d_membrane(),
+                b: [[0.0; 3]; 3],
+                d: self.d_bending(),
+                shear: [[ds, 0.0], [0.0, ds]],
+                coupled: false,
+                has_shear: self.shear.is_some(),
+            });
+        };
+        let psi = material_angle(&g.axis, axes, side12)?;
+        let b = rotate_plane(&g.b, psi);
+        Ok(Resultants {
+            a: rotate_plane(&g.a, psi),
+            coupled: b.iter().flatten().any(|v| *v != 0.0),
+            b,
+            d: rotate_plane(&g.d, psi),
+            shear: rotate_shear(&g.shear, psi),
+            has_shear: true,
+        })
     }
 
     /// Checks the constants.
     pub fn check(&self) -> Result<(), ElementError> {
+        if let Some(g) = &self.general {
+            let ok = self.t > 0.0
+                && self.t.is_finite()
+                && g.mass >= 0.0
+                && g.rotary >= 0.0
+                && self.nsm >= 0.0
+                && positive_definite3(&g.a)
+                && positive_definite3(&g.d)
+                && g.shear[0][0] > 0.0
+                && g.shear[0][0] * g.shear[1][1] > g.shear[0][1] * g.shear[1][0];
+            if !ok {
+                return Err(ElementError::BadConstants(format!(
+                    "laminate/plane-stress section needs t > 0, positive definite A, D and \
+                     transverse shear, mass ≥ 0 (t = {}, A = {:?}, D = {:?}, A_s = {:?})",
+                    self.t, g.a, g.d, g.shear
+                )));
+            }
+            return Ok(());
+        }
         let mat_ok =
             |m: &Isotropic| m.e > 0.0 && m.e.is_finite() && m.nu > -1.0 && m.nu < 0.5 && m.g > 0.0;
         let ok = self.t > 0.0
@@ -136,8 +241,13 @@ impl ShellProps {
         }
     }
 
-    /// Drilling penalty γ_d = drill_factor·G t (membrane G, else bending G).
+    /// Drilling penalty γ_d = drill_factor·G t (membrane G, else bending G; a general section:
+    /// its invariant in-plane shear rigidity, module doc).
     pub fn drill(&self) -> f64 {
+        if let Some(s) = &self.general {
+            let a = &s.a;
+            return self.drill_factor * (a[0][0] + a[1][1] - 2.0 * a[0][1] + 4.0 * a[2][2]) / 8.0;
+        }
         let g = self
             .membrane
             .map(|m| m.g)
@@ -146,15 +256,95 @@ impl ShellProps {
         self.drill_factor * g * self.t
     }
 
-    /// Translational mass per unit area ρt + nsm.
+    /// Translational mass per unit area ρt + nsm (a general section: Σ ρ_k t_k + nsm).
     pub fn mass_per_area(&self) -> f64 {
-        self.rho * self.t + self.nsm
+        match &self.general {
+            Some(g) => g.mass + self.nsm,
+            None => self.rho * self.t + self.nsm,
+        }
     }
 
-    /// Rotary inertia per unit area ρt³/12.
+    /// Rotary inertia per unit area ρt³/12 (a general section: Σ ρ_k ∫ z² dz).
     pub fn rotary_per_area(&self) -> f64 {
-        self.rho * self.t.powi(3) / 12.0
+        match &self.general {
+            Some(g) => g.rotary,
+            None => self.rho * self.t.powi(3) / 12.0,
+        }
     }
+}
+
+fn positive_definite3(m: &M3) -> bool {
+    let d2 = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    let d3 = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    m[0][0] > 0.0 && d2 > 0.0 && d3 > 0.0 && d3.is_finite()
+}
+
+/// Angle ψ of the element's material x-axis from its local e₁ (module doc): THETA from the
+/// G1→G2 side, or the projection of a vector onto the element plane (MCID).
+pub fn material_angle(
+    axis: &ShellMaterialAxis,
+    axes: &[Xyz; 3],
+    side12: [f64; 2],
+) -> Result<f64, ElementError> {
+    match axis {
+        ShellMaterialAxis::FromSide12 { theta_deg } => {
+            Ok(side12[1].atan2(side12[0]) + theta_deg.to_radians())
+        }
+        ShellMaterialAxis::AbaqusDefault => {
+            let near_normal = axes[2][0].abs() > 0.1f64.to_radians().cos();
+            let v = if near_normal {
+                [0.0, 0.0, 1.0]
+            } else {
+                [1.0, 0.0, 0.0]
+            };
+            material_angle(&ShellMaterialAxis::Projected(v), axes, side12)
+        }
+        ShellMaterialAxis::Projected(v) => {
+            let (x, y) = (dot(*v, axes[0]), dot(*v, axes[1]));
+            if x.hypot(y) <= 1e-6 * norm(*v) {
+                return Err(ElementError::BadConstants(format!(
+                    "the material axis {v:?} (MCID x-axis) is normal to the element: its \
+                     projection defines no direction"
+                )));
+            }
+            Ok(y.atan2(x))
+        }
+    }
+}
+
+/// A plane stiffness (order xx, yy, xy; engineering shear) given in axes turned by ψ from the
+/// element's, in the element's: Q̄ = T_εᵀ Q T_ε, T_ε the strain transformation with m = cos ψ,
+/// n = sin ψ (Reddy (2004) eq. 2.3.17).
+pub fn rotate_plane(q: &M3, psi: f64) -> M3 {
+    let (n, m) = psi.sin_cos();
+    let t = [
+        [m * m, n * n, m * n],
+        [n * n, m * m, -m * n],
+        [-2.0 * m * n, 2.0 * m * n, m * m - n * n],
+    ];
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            (0..3)
+                .map(|k| t[k][i] * (0..3).map(|l| q[k][l] * t[l][j]).sum::<f64>())
+                .sum()
+        })
+    })
+}
+
+/// Transverse shear stiffness on (γ13, γ23) in axes turned by ψ, in the element's (γxz, γyz):
+/// Rᵀ A_s R, R = [m n; −n m].
+pub fn rotate_shear(s: &M2, psi: f64) -> M2 {
+    let (n, m) = psi.sin_cos();
+    let r = [[m, n], [-n, m]];
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            (0..2)
+                .map(|k| r[k][i] * (0..2).map(|l| s[k][l] * r[l][j]).sum::<f64>())
+                .sum()
+        })
+    })
 }
 
 /// Isotropic plane-stress matrix c/(1−ν²)·[1 ν 0; ν 1 0; 0 0 (1−ν)/2].
@@ -363,6 +553,50 @@ pub fn add_btdb(
     }
 }
 
+/// Add `c · (b₁ᵀ C b₂ + b₂ᵀ Cᵀ b₁)`: the symmetric coupling of strain rows b₁ on `dofs1` and b₂
+/// on `dofs2` through C (3×3), e.g. membrane strains and curvatures through B.
+pub fn add_coupling(
+    k: &mut [f64],
+    nd: usize,
+    (b1, dofs1): (&[Vec<f64>; 3], &[usize]),
+    (b2, dofs2): (&[Vec<f64>; 3], &[usize]),
+    c3: &M3,
+    c: f64,
+) {
+    for (p, &dp) in dofs1.iter().enumerate() {
+        for (q, &dq) in dofs2.iter().enumerate() {
+            let v: f64 = (0..3)
+                .map(|i| b1[i][p] * (0..3).map(|j| c3[i][j] * b2[j][q]).sum::<f64>())
+                .sum();
+            k[dp * nd + dq] += c * v;
+            k[dq * nd + dp] += c * v;
+        }
+    }
+}
+
+/// Add `c/div · Σ_rs S_rs g_r g_sᵀ` for the two transverse shear rows (γxz, γyz) on `dofs`
+/// (the diagonal terms as S_rr·c/div, the rounding of the isotropic elements' D_s·c/div).
+pub fn add_shear(
+    k: &mut [f64],
+    nd: usize,
+    g: [&[f64]; 2],
+    dofs: &[usize],
+    s: &M2,
+    (c, div): (f64, f64),
+) {
+    for r in 0..2 {
+        add_outer(k, nd, g[r], dofs, s[r][r] * c / div);
+    }
+    let off = 0.5 * (s[0][1] + s[1][0]) * c / div;
+    if off != 0.0 {
+        for (p, &dp) in dofs.iter().enumerate() {
+            for (q, &dq) in dofs.iter().enumerate() {
+                k[dp * nd + dq] += off * (g[0][p] * g[1][q] + g[1][p] * g[0][q]);
+            }
+        }
+    }
+}
+
 /// Add `c · g gᵀ` for a row vector g on `dofs`.
 pub fn add_outer(k: &mut [f64], nd: usize, g: &[f64], dofs: &[usize], c: f64) {
     for (p, &dp) in dofs.iter().enumerate() {
@@ -455,6 +689,72 @@ pub(crate) mod test_util {
             let got = form(k, &u, &u);
             assert!(
                 (got - want).abs() < tol * want,
+                "{eps:?} {kap:?}: {got} vs {want}"
+            );
+        }
+    }
+
+    /// A laminate-like section with full A, B, D (the 6×6 [A B; B D] positive definite) and
+    /// anisotropic transverse shear, its material x-axis `axis`.
+    pub fn coupled_section(t: f64, axis: ShellMaterialAxis) -> ShellProps {
+        let e = 1e11 * t;
+        let a = [
+            [e, 0.3 * e, 0.1 * e],
+            [0.3 * e, 0.5 * e, -0.05 * e],
+            [0.1 * e, -0.05 * e, 0.25 * e],
+        ];
+        let b = a.map(|r| r.map(|v| 0.05 * t * v));
+        let d = [[0.9, 0.2, 0.05], [0.2, 0.6, 0.03], [0.05, 0.03, 0.3]]
+            .map(|r| r.map(|v| v * e * t * t / 12.0));
+        ShellProps {
+            general: Some(GeneralSection {
+                a,
+                b,
+                d,
+                shear: [[0.4 * e, 0.05 * e], [0.05 * e, 0.3 * e]],
+                mass: 1600.0 * t,
+                rotary: 1600.0 * t.powi(3) / 12.0,
+                axis,
+            }),
+            ..ShellProps::isotropic(t, Isotropic::new(1e11, 0.3, 1600.0))
+        }
+    }
+
+    /// Patch test of a general section on a flat element in the z = 0 plane (normal +z): constant
+    /// membrane strain and curvature (basic axes) have energy A(εᵀĀε + 2εᵀB̄κ + κᵀD̄κ), Ā, B̄, D̄
+    /// the section turned by its material angle `psi` from basic x.
+    pub fn patch_energy_general(
+        k: &[f64],
+        x: &[Xyz],
+        a: f64,
+        props: &ShellProps,
+        psi: f64,
+        tol: f64,
+    ) {
+        let g = props.general.expect("a general section");
+        let (am, bm, dm) = (
+            rotate_plane(&g.a, psi),
+            rotate_plane(&g.b, psi),
+            rotate_plane(&g.d, psi),
+        );
+        let q = |d: &M3, e: [f64; 3], f: [f64; 3]| -> f64 {
+            (0..3)
+                .map(|i| (0..3).map(|j| e[i] * d[i][j] * f[j]).sum::<f64>())
+                .sum()
+        };
+        for (eps, kap) in [
+            ([1e-3, 0.0, 0.0], [0.0; 3]),
+            ([0.0, 0.0, 3e-3], [0.0; 3]),
+            ([0.0; 3], [0.5, 0.0, 0.0]),
+            ([0.0; 3], [0.0, 0.0, 0.7]),
+            ([1e-3, 2e-3, -1e-3], [0.2, -0.4, 0.1]),
+            ([-2e-3, 1e-3, 1e-3], [-0.3, 0.1, 0.6]),
+        ] {
+            let u = constant_field(x, eps, kap);
+            let want = a * (q(&am, eps, eps) + 2.0 * q(&bm, eps, kap) + q(&dm, kap, kap));
+            let got = form(k, &u, &u);
+            assert!(
+                (got - want).abs() < tol * want.abs(),
                 "{eps:?} {kap:?}: {got} vs {want}"
             );
         }

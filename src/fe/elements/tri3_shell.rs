@@ -57,13 +57,13 @@ pub(crate) fn linear(p: &[[f64; 2]; 3]) -> (f64, [[f64; 2]; 3]) {
 
 /// Shear factors c_k = 1/(1 + φ_k) of the three edges, φ_k = 12 D/(D_s l_k²) (Katili 1993, eq.
 /// for φ_k = 2/(κ(1−ν)) (t/l_k)² of an isotropic plate); all 1 (DKT) for a shear-rigid section.
-fn edge_factors(p: &[[f64; 2]; 3], props: &ShellProps) -> [f64; 3] {
-    let ds = props.shear_modulus();
-    let d = props.d_bending()[0][0];
+/// An anisotropic section takes D = D11 and D_s = A_s,11 of its local axes (for an isotropic
+/// one these are the D and D_s above; φ_k → 0 on thin plates either way).
+fn edge_factors(p: &[[f64; 2]; 3], (d, ds, has_shear): (f64, f64, bool)) -> [f64; 3] {
     std::array::from_fn(|k| {
         let (i, j) = EDGES[k];
         let l2 = (p[j][0] - p[i][0]).powi(2) + (p[j][1] - p[i][1]).powi(2);
-        if props.shear.is_some() && ds > 0.0 {
+        if has_shear && ds > 0.0 {
             1.0 / (1.0 + 12.0 * d / (ds * l2))
         } else {
             1.0
@@ -184,6 +184,7 @@ fn local_stiffness(f: &ShellFrame<3>, props: &ShellProps) -> Result<Vec<f64>, El
             point: 0,
         });
     }
+    let sec = props.resultants(&f.axes, [f.p[1][0] - f.p[0][0], f.p[1][1] - f.p[0][1]])?;
     // Membrane (CST).
     let mem_dofs: Vec<usize> = (0..3).flat_map(|a| [6 * a, 6 * a + 1]).collect();
     let mut bm = [vec![0.0; 6], vec![0.0; 6], vec![0.0; 6]];
@@ -193,12 +194,14 @@ fn local_stiffness(f: &ShellFrame<3>, props: &ShellProps) -> Result<Vec<f64>, El
         bm[2][2 * a] = gl[a][1];
         bm[2][2 * a + 1] = gl[a][0];
     }
-    add_btdb(&mut k, ND, &bm, &mem_dofs, &props.d_membrane(), area);
+    add_btdb(&mut k, ND, &bm, &mem_dofs, &sec.a, area);
     // Bending (DKT).
-    let db = props.d_bending();
-    let (t, gam) = dkt_nodal_rotations(&f.p, &edge_factors(&f.p, props));
-    let shear = props.shear.is_some().then(|| shear_field(&f.p, &gam));
-    let ds = props.shear_modulus();
+    let db = sec.d;
+    let (t, gam) = dkt_nodal_rotations(
+        &f.p,
+        &edge_factors(&f.p, (sec.d[0][0], sec.shear[0][0], sec.has_shear)),
+    );
+    let shear = sec.has_shear.then(|| shear_field(&f.p, &gam));
     let plate_dofs: Vec<usize> = (0..3)
         .flat_map(|a| [6 * a + 2, 6 * a + 3, 6 * a + 4])
         .collect();
@@ -216,6 +219,16 @@ fn local_stiffness(f: &ShellFrame<3>, props: &ShellProps) -> Result<Vec<f64>, El
             }
         }
         add_btdb(&mut k, ND, &bb, &plate_dofs, &db, area / 3.0);
+        if sec.coupled {
+            shell::add_coupling(
+                &mut k,
+                ND,
+                (&bm, &mem_dofs),
+                (&bb, &plate_dofs),
+                &sec.b,
+                area / 3.0,
+            );
+        }
         if let Some(sf) = &shear {
             // γ at the point: (a₁ − c y, a₂ + c x), x = Σ L_a x_a
             let (x, y) = (
@@ -224,8 +237,7 @@ fn local_stiffness(f: &ShellFrame<3>, props: &ShellProps) -> Result<Vec<f64>, El
             );
             let gx: Vec<f64> = (0..9).map(|m| sf[0][m] - y * sf[2][m]).collect();
             let gy: Vec<f64> = (0..9).map(|m| sf[1][m] + x * sf[2][m]).collect();
-            add_outer(&mut k, ND, &gx, &plate_dofs, ds * area / 3.0);
-            add_outer(&mut k, ND, &gy, &plate_dofs, ds * area / 3.0);
+            shell::add_shear(&mut k, ND, [&gx, &gy], &plate_dofs, &sec.shear, (area, 3.0));
         }
         if gd > 0.0 {
             let row: Vec<f64> = (0..3)
@@ -416,7 +428,12 @@ pub fn corner_strains(
         em[1] += gl[a][1] * u[a][1];
         em[2] += gl[a][1] * u[a][0] + gl[a][0] * u[a][1];
     }
-    let (t, _) = dkt_nodal_rotations(&f.p, &edge_factors(&f.p, props));
+    let shear = (
+        props.d_bending()[0][0],
+        props.shear_modulus(),
+        props.shear.is_some(),
+    );
+    let (t, _) = dkt_nodal_rotations(&f.p, &edge_factors(&f.p, shear));
     let plate: Vec<f64> = (0..3).flat_map(|a| [u[a][2], u[a][3], u[a][4]]).collect();
     // β at the 6 DKT nodes
     let beta: Vec<f64> = (0..12)
@@ -448,6 +465,24 @@ mod tests {
     }
 
     const TRI: [Xyz; 3] = [[0.1, -0.2, 0.0], [2.0, 0.3, 0.0], [0.7, 1.6, 0.0]];
+
+    /// A coupled anisotropic section (B ≠ 0, material axis 25° from G1→G2) passes the patch test
+    /// with the coupling energy on the triangle.
+    #[test]
+    fn tri3_shell_laminate_patch_test_with_coupling_and_material_axis() {
+        use crate::model::ShellMaterialAxis;
+        let side = [TRI[1][0] - TRI[0][0], TRI[1][1] - TRI[0][1]];
+        let props = coupled_section(0.02, ShellMaterialAxis::FromSide12 { theta_deg: 25.0 });
+        let (k, _) = matrices(&TRI, &props, false).unwrap();
+        let a = linear(&[
+            [TRI[0][0], TRI[0][1]],
+            [TRI[1][0], TRI[1][1]],
+            [TRI[2][0], TRI[2][1]],
+        ])
+        .0;
+        let psi = side[1].atan2(side[0]) + 25f64.to_radians();
+        patch_energy_general(&k, &TRI, a, &props, psi, 1e-10);
+    }
 
     #[test]
     fn tri3_shell_rigid_motions_cost_no_energy_in_any_orientation() {

@@ -73,7 +73,7 @@ pub enum ElementStress {
 /// One element prepared for initial-stress work.
 enum Formulation {
     Solid(SolidElement),
-    Shell(ShellElement),
+    Shell(Box<ShellElement>),
     Beam {
         x: [Xyz; 2],
         v: Option<Xyz>,
@@ -208,8 +208,15 @@ fn formulation(
             .map_err(elem_err)?,
         ),
         (Section::Shell(s), ElementKind::Quad4 | ElementKind::Tri3) => {
-            let p = super::shell_section::shell_props(model, prop, s).map_err(fail)?;
-            Formulation::Shell(ShellElement::new(&x, &p).map_err(elem_err)?)
+            let p = super::shell_section::shell_props(model, e, prop, s).map_err(fail)?;
+            if p.general.is_some() {
+                return Err(fail(format!(
+                    "property {} is a laminate or plane-stress (PCOMP of several materials, \
+                     MAT8, MAT2) shell: its preload's initial stress is not implemented",
+                    prop.id
+                )));
+            }
+            Formulation::Shell(Box::new(ShellElement::new(&x, &p).map_err(elem_err)?))
         }
         (Section::Beam(s), ElementKind::Beam2 | ElementKind::Bar2) => {
             if s.taper.is_some()

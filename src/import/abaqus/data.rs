@@ -373,6 +373,9 @@ impl Parser {
         line: &str,
         loc: Loc,
     ) -> Result<(), ImportError> {
+        if self.sections[k].plies.is_some() {
+            return self.composite_line(k, line, loc);
+        }
         let ent = format!("*SECTION ELSET={}", self.sections[k].elset);
         let v = self.reals(line, &ent, loc)?;
         self.block = Block::SectionLine(k, n + 1);

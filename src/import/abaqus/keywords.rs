@@ -364,15 +364,12 @@ impl Parser {
     /// `*SOLID SECTION` / `*SHELL SECTION` (mid-surface only) / `*BEAM SECTION`.
     fn section_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let elset = kw.need("ELSET", self)?;
-        if kw.name == "SHELL SECTION" && kw.param("COMPOSITE").is_some() {
-            return Err(self.err(
-                kw.loc,
-                format!("*SHELL SECTION ELSET={elset}"),
-                "COMPOSITE (a laminate of several layers) is not supported: one isotropic \
-                 material per shell section",
-            ));
-        }
-        let material = kw.need("MATERIAL", self)?;
+        // COMPOSITE: the plies name their materials (materials.rs).
+        let composite = kw.name == "SHELL SECTION" && kw.param("COMPOSITE").is_some();
+        let material = match composite {
+            true => String::new(),
+            false => kw.need("MATERIAL", self)?,
+        };
         let section = match kw.name {
             "SOLID SECTION" => Section::Solid,
             "SHELL SECTION" => {
@@ -418,6 +415,7 @@ impl Parser {
             section,
             orientation: None,
             material_orientation: kw.param("ORIENTATION").map(str::to_owned),
+            plies: composite.then(Vec::new),
             loc: kw.loc,
         });
         Ok(Block::SectionLine(self.sections.len() - 1, 0))

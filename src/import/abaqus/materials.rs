@@ -8,13 +8,18 @@
 //!   D1113 … D1313; D1123 … D2323)[, T] over three lines. D1212 multiplies the engineering
 //!   shear γ12 (σ12 = D1212 γ12 for an orthotropic material). A row is 8 values a line; a table
 //!   of rows is read at the part's temperature like the isotropic one (temperature.rs).
-//!   `TYPE=LAMINA` (plane stress, shells) is refused.
+//!   `TYPE=LAMINA`: E1, E2, ν12, G12, G13, G23[, T], a plane-stress lamina of shells
+//!   ([`PlaneStress::lamina`]; G13 = G23 = 0: shear-rigid, src/fe/shell_section.rs).
 //! * `*ORIENTATION, NAME=…, SYSTEM=RECTANGULAR | CYLINDRICAL`: line 1 the points a, b
 //!   (rectangular: a on axis 1, b in the 1–2 plane; cylindrical: a and b on the axis, as
 //!   CalculiX's `transformatrix`); an optional line 2 "axis, angle" adds a rotation in degrees
 //!   about that local axis (rectangular only, as CalculiX). `DEFINITION=` other than
 //!   COORDINATES and a third point c away from the origin are refused. `*SOLID SECTION,
-//!   ORIENTATION=name` gives its elements those material axes.
+//!   ORIENTATION=name` gives its elements those material axes; on `*SHELL SECTION` the
+//!   material x-axis is axis 1 of a rectangular orientation projected onto each element
+//!   (Abaqus Analysis User's Guide §2.2.5 "Orientations": shells project the local 1-direction
+//!   onto the surface); without one, Abaqus's default local directions: global x projected, or
+//!   global z when x is within 0.1° of the normal (ibid. "Conventions", §1.2.2).
 
 use super::keywords::Keyword;
 use super::temperature::Row;
@@ -22,7 +27,7 @@ use super::{Block, Parser};
 use crate::import::error::ImportError;
 use crate::import::text::Loc;
 use crate::model::elasticity::{self, Definiteness, Stiffness6};
-use crate::model::MaterialAxes;
+use crate::model::{MaterialAxes, PlaneStress};
 
 /// The kinds of a general `*ELASTIC`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -30,6 +35,7 @@ pub(super) enum ElasticKind {
     Ortho,
     EngineeringConstants,
     Aniso,
+    Lamina,
 }
 
 impl ElasticKind {
@@ -38,6 +44,7 @@ impl ElasticKind {
         match self {
             ElasticKind::Ortho | ElasticKind::EngineeringConstants => 9,
             ElasticKind::Aniso => 21,
+            ElasticKind::Lamina => 6,
         }
     }
 }
@@ -63,6 +70,15 @@ pub(super) struct RawOrientation {
     loc: Loc,
 }
 
+/// A ply of `*SHELL SECTION, COMPOSITE` as read: thickness, material name, angle (degrees).
+#[derive(Debug, Clone)]
+pub(super) struct RawPly {
+    pub thickness: f64,
+    pub material: String,
+    pub angle_deg: f64,
+    pub loc: Loc,
+}
+
 /// Abaqus's Voigt position (11 22 33 12 13 23) → the model's (xx yy zz xy yz zx).
 const FROM_ABAQUS: [usize; 6] = [0, 1, 2, 3, 5, 4];
 
@@ -78,13 +94,14 @@ impl Parser {
             "ORTHO" | "ORTHOTROPIC" => ElasticKind::Ortho,
             "ENGINEERING CONSTANTS" | "ENGINEERINGCONSTANTS" => ElasticKind::EngineeringConstants,
             "ANISO" | "ANISOTROPIC" => ElasticKind::Aniso,
+            "LAMINA" => ElasticKind::Lamina,
             _ => {
                 return Err(self.err(
                     kw.loc,
                     "*ELASTIC",
                     format!(
-                        "TYPE={t} not supported (ISO, ORTHO, ENGINEERING CONSTANTS and ANISO are; \
-                         LAMINA plane-stress shells are not)"
+                        "TYPE={t} not supported (ISO, ORTHO, ENGINEERING CONSTANTS, ANISO and \
+                         LAMINA are)"
                     ),
                 ))
             }
@@ -177,6 +194,9 @@ impl Parser {
                 )
                 .map_err(|m| self.err(loc, ent.to_owned(), format!("*ELASTIC: {m}")))?;
             }
+            ElasticKind::Lamina => {
+                return Err(self.err(loc, ent.to_owned(), "*ELASTIC, TYPE=LAMINA has no 3-D D"))
+            }
             ElasticKind::Aniso => {
                 let mut it = v.iter();
                 for i in 0..6 {
@@ -200,6 +220,90 @@ impl Parser {
             Err(m) => return Err(self.err(loc, ent.to_owned(), format!("*ELASTIC: {m}"))),
         }
         Ok(d)
+    }
+
+    /// The plane-stress lamina of `*ELASTIC, TYPE=LAMINA` constants E1, E2, ν12, G12, G13, G23
+    /// (G13 = G23 = 0: shear-rigid).
+    pub(super) fn lamina(
+        &self,
+        v: &[f64; 21],
+        (ent, loc): (&str, Loc),
+    ) -> Result<PlaneStress, ImportError> {
+        let gz = (v[4] != 0.0 || v[5] != 0.0).then_some([v[4], v[5]]);
+        PlaneStress::lamina(v[0], v[1], v[2], v[3], gz)
+            .map_err(|m| self.err(loc, ent.to_owned(), format!("*ELASTIC, TYPE=LAMINA: {m}")))
+    }
+
+    /// A data line of `*SHELL SECTION, COMPOSITE` k: thickness, section points (not used),
+    /// material, orientation — an angle in degrees about the normal from the section's
+    /// material x-axis (blank: 0); an `*ORIENTATION` name per ply is an error — ply name.
+    pub(super) fn composite_line(
+        &mut self,
+        k: usize,
+        line: &str,
+        loc: Loc,
+    ) -> Result<(), ImportError> {
+        let ent = format!("*SHELL SECTION ELSET={}", self.sections[k].elset);
+        let f: Vec<&str> = super::fields(line).collect();
+        let thickness = self.real(f[0], &ent, loc)?;
+        if !(thickness > 0.0 && thickness.is_finite()) {
+            return Err(self.err(loc, ent, format!("ply thickness {thickness} must be > 0")));
+        }
+        let material = f.get(2).copied().unwrap_or("").to_ascii_uppercase();
+        if material.is_empty() {
+            return Err(self.err(loc, ent, "a ply needs its material (third field)"));
+        }
+        let orientation = f.get(3).copied().unwrap_or("");
+        let angle_deg = match orientation {
+            "" => 0.0,
+            o => crate::import::text::parse_f64(o).ok_or_else(|| {
+                self.err(
+                    loc,
+                    ent.clone(),
+                    format!(
+                        "ply orientation {o}: an *ORIENTATION per ply is not supported; give \
+                         the ply angle in degrees (about the normal, from the section's axes)"
+                    ),
+                )
+            })?,
+        };
+        let sec = &mut self.sections[k];
+        if sec.material.is_empty() {
+            sec.material.clone_from(&material);
+        }
+        if let Some(p) = sec.plies.as_mut() {
+            p.push(RawPly {
+                thickness,
+                material,
+                angle_deg,
+                loc,
+            });
+        }
+        Ok(())
+    }
+
+    /// The shell material axis of a `*SHELL SECTION` (module doc): axis 1 of a rectangular
+    /// `*ORIENTATION` projected, else Abaqus's default.
+    pub(super) fn shell_axis(
+        &self,
+        orientation: Option<&str>,
+        loc: Loc,
+    ) -> Result<crate::model::ShellMaterialAxis, ImportError> {
+        use crate::model::ShellMaterialAxis;
+        let Some(name) = orientation else {
+            return Ok(ShellMaterialAxis::AbaqusDefault);
+        };
+        match self.material_axes(name, loc)? {
+            MaterialAxes::Rectangular(r) => Ok(ShellMaterialAxis::Projected(r[0])),
+            MaterialAxes::Cylindrical { .. } => Err(self.err(
+                loc,
+                "*SHELL SECTION",
+                format!(
+                    "ORIENTATION={name} is cylindrical: curvilinear material axes of a shell are \
+                     not supported"
+                ),
+            )),
+        }
     }
 
     /// `*ORIENTATION`: the block of its data lines.

@@ -8,7 +8,8 @@
 //!
 //! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8, C3D8I, C3D20(R), C3D6, C3D15, B31, T3D2, S3,
 //! S4, S6, S8, S8R, MASS, ROTARYI, SPRINGA, SPRING1, SPRING2; DASHPOTA take no part), *NSET/*ELSET
-//! (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC, *DENSITY, *SOLID/*BEAM/*SHELL SECTION,
+//! (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC (also TYPE=LAMINA), *DENSITY,
+//! *SOLID/*BEAM/*SHELL SECTION (also COMPOSITE: materials.rs),
 //! *BOUNDARY (dof ranges, ENCASTRE, PINNED, X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *SPRING,
 //! *NODAL THICKNESS (`thickness`), *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE; element faces
 //! for *TIE), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
@@ -107,6 +108,8 @@ struct RawSection {
     orientation: Option<[f64; 3]>,
     /// `ORIENTATION=`: the `*ORIENTATION` giving the material axes (materials.rs).
     material_orientation: Option<String>,
+    /// `*SHELL SECTION, COMPOSITE`: its plies as read (materials.rs).
+    plies: Option<Vec<materials::RawPly>>,
     loc: Loc,
 }
 

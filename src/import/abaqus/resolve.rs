@@ -211,9 +211,12 @@ impl Parser {
                     message: format!("material {} has no *DENSITY: density 0", m.name),
                 });
             }
-            if let Some(d) = general {
+            if let Some(g) = general {
                 let rho = rho.unwrap_or(0.0);
-                let mat = Material::anisotropic(k as u64 + 1, &m.name, d, rho);
+                let mat = match g {
+                    Ok(d) => Material::anisotropic(k as u64 + 1, &m.name, d, rho),
+                    Err(p) => Material::plane_stress_material(k as u64 + 1, &m.name, p, rho),
+                };
                 self.b.model.materials.push(mat);
                 continue;
             }
@@ -231,7 +234,8 @@ impl Parser {
         Ok(mat_index)
     }
 
-    /// The D of a general `*ELASTIC` (materials.rs) at the state's temperature.
+    /// The D of a general `*ELASTIC` (materials.rs) at the state's temperature, or (`Err`) the
+    /// plane-stress lamina of `TYPE=LAMINA`.
     fn general_material(
         &self,
         g: &super::materials::GeneralElastic,
@@ -239,7 +243,7 @@ impl Parser {
         temps: &TemperatureState,
         ent: &str,
         notes: &mut Vec<String>,
-    ) -> Result<crate::model::Stiffness6, ImportError> {
+    ) -> Result<Result<crate::model::Stiffness6, crate::model::PlaneStress>, ImportError> {
         if let Some(r) = iso_rows.first() {
             return Err(self.err(r.2, ent.to_owned(), "a second *ELASTIC in one material"));
         }
@@ -258,7 +262,15 @@ impl Parser {
                     "*ELASTIC has no complete row of constants",
                 )
             })?;
-        self.general_stiffness(g.kind, &v, (ent, g.loc), notes)
+        if g.kind == super::materials::ElasticKind::Lamina {
+            return Ok(Err(self.lamina(&v, (ent, g.loc))?));
+        }
+        Ok(Ok(self.general_stiffness(
+            g.kind,
+            &v,
+            (ent, g.loc),
+            notes,
+        )?))
     }
 
     /// A material table's values in the state the modes are taken in (temperature.rs): a
@@ -349,6 +361,44 @@ impl Parser {
         Ok(Some(request))
     }
 
+    /// A shell section's material axis and, for `COMPOSITE`, its plies (material names to
+    /// indices, thickness their sum).
+    fn shell_plies(
+        &self,
+        s: &super::RawSection,
+        sh: &mut crate::model::ShellSection,
+        mat_index: &HashMap<String, usize>,
+    ) -> Result<(), ImportError> {
+        let plane = |m: usize| self.b.model.materials[m].plane_stress().is_some();
+        let needs_axis = s.plies.is_some() || plane(sh.bending.map_or(0, |b| b.0));
+        if needs_axis {
+            sh.material_axis = self.shell_axis(s.material_orientation.as_deref(), s.loc)?;
+        }
+        let Some(raw) = &s.plies else {
+            return Ok(());
+        };
+        let ent = format!("*SHELL SECTION ELSET={}", s.elset);
+        if raw.is_empty() {
+            return Err(self.err(s.loc, ent, "COMPOSITE without ply lines"));
+        }
+        for p in raw {
+            let material = *mat_index.get(&p.material).ok_or_else(|| {
+                self.err(
+                    p.loc,
+                    ent.clone(),
+                    format!("unknown material {}", p.material),
+                )
+            })?;
+            sh.plies.push(crate::model::Ply {
+                material,
+                thickness: p.thickness,
+                angle_deg: p.angle_deg,
+            });
+        }
+        sh.thickness = sh.plies.iter().map(|p| p.thickness).sum();
+        Ok(())
+    }
+
     /// Sections → properties, assigned to the elements of their set.
     fn resolve_sections(
         &mut self,
@@ -378,10 +428,26 @@ impl Parser {
             }
             let mut section = s.section.clone();
             if let Section::Shell(sh) = &mut section {
+                if s.plies.as_ref().is_some_and(|p| !p.is_empty()) {
+                    sh.thickness = 0.0;
+                }
                 if sh.thickness.is_nan() {
                     return Err(self.err(s.loc, ent, "missing thickness line"));
                 }
                 *sh = crate::model::ShellSection::homogeneous(sh.thickness, material);
+                self.shell_plies(s, sh, mat_index)?;
+            }
+            let plane = self.b.model.materials[material].plane_stress().is_some();
+            if plane && !matches!(section, Section::Shell(_)) {
+                return Err(self.err(
+                    s.loc,
+                    ent,
+                    format!(
+                        "material {} is *ELASTIC, TYPE=LAMINA (plane stress): only *SHELL \
+                         SECTION takes it",
+                        s.material
+                    ),
+                ));
             }
             if let Some(name) = &s.material_orientation {
                 let axes = self.material_axes(name, s.loc)?;

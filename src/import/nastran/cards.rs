@@ -121,8 +121,10 @@ const CARDS: &[(&str, Rule)] = &[
     ("LOAD", Read(super::loads::card)),
     ("LSEQ", Note(DYNAMIC)),
     ("MAT1", Read(properties::mat1)),
+    ("MAT2", Read(properties::mat2)),
     ("MAT4", Note(THERMAL)),
     ("MAT5", Note(THERMAL)),
+    ("MAT8", Read(properties::mat8)),
     ("MAT9", Read(properties::mat9)),
     ("MOMENT", Read(super::loads::card)),
     ("MOMENT1", Read(super::loads::card)),
@@ -137,6 +139,7 @@ const CARDS: &[(&str, Rule)] = &[
     ("PBEAML", Read(properties::property)),
     ("PBUSH", Read(bush::pbush)),
     ("PCOMP", Read(properties::pcomp)),
+    ("PCOMPG", Read(properties::pcomp)),
     // damper properties keep their id (one property id space) and are a note
     ("PDAMP", Read(properties::damper)),
     ("PDAMP5", Read(properties::damper)),

@@ -32,6 +32,8 @@ pub(super) struct ElementCards<'a> {
     pub shell_t: Vec<ElementThickness>,
     /// CQUAD4/CTRIA3 ZOFFS (non-zero) with the card's place.
     pub shell_offsets: Vec<(crate::model::shell_offset::ShellOffset, Loc)>,
+    /// THETA/MCID of shell elements.
+    pub shell_axes: Vec<super::shell::ElementAxis>,
     /// Orientation of bars and beams: (element index, as given, card location).
     pub orient: Vec<(usize, Orientation, Loc)>,
     /// Offsets WA, WB of bars and beams in the displacement frames of GA, GB (OFFT …GG).
@@ -99,6 +101,9 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
         d.elements
             .shell_offsets
             .extend(offset.map(|o| (o, g.card.loc)));
+        d.elements
+            .shell_axes
+            .extend(super::shell::element_axis(g, k)?);
     }
     if matches!(kind, Bar2 | Beam2) {
         if let Some(w) = offsets(g, name)? {
@@ -411,6 +416,7 @@ pub(super) fn assign_properties(
         b.model.elements[k].property = Some(p);
     }
     super::shell::apply_thickness(&mut b.model, &d.elements.shell_t)?;
+    super::shell::apply_axes(&mut b.model, &d.elements.shell_axes)?;
     Ok(element_sets)
 }
 

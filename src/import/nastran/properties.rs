@@ -1,5 +1,5 @@
 //! Property and material cards — PSOLID, PSHELL, PCOMP, PROD, PBAR, PBARL, PBEAM, PBEAML,
-//! MAT1 — and their resolution (one property id space, WTMASS on non-structural mass).
+//! MAT1, MAT2, MAT8, MAT9 — and their resolution (one property id space, WTMASS on non-structural mass).
 //!
 //! * `MAT1 MID E G NU RHO`: two of E, G, ν give the third, G = E / (2(1+ν)).
 //! * `PROD PID MID A J C NSM`; `PBAR PID MID A I1 I2 J NSM … K1 K2 I12`;
@@ -59,7 +59,7 @@ pub(super) fn property<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportErro
     Ok(())
 }
 
-/// Reader of PCOMP (one isotropic material, see `shell`).
+/// Reader of PCOMP (plies, see `shell`).
 pub(super) fn pcomp<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let pid = g.id(0, "PID")?;
     let (mid, section) = super::shell::pcomp(g)?;
@@ -99,6 +99,82 @@ pub(super) fn mat1<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     };
     d.properties.mats.push((mid, m, g.card));
     Ok(())
+}
+
+/// Reader of MAT8 (MSC QRG): `MID E1 E2 NU12 G12 G1Z G2Z RHO / A1 A2 TREF Xt Xc Yt Yc S / GE
+/// F12 STRN`, an orthotropic lamina of shells (Q of
+/// [`PlaneStress::lamina`](crate::model::PlaneStress::lamina)); G1Z, G2Z blank: shear-rigid
+/// (both or neither). A1, A2, TREF are thermal, Xt…S, F12, STRN failure data, GE damping.
+pub(super) fn mat8<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let mid = g.id(0, "MID")?;
+    let need = |k: usize, what: &str| {
+        g.real(k)?
+            .ok_or_else(|| g.err(k, format!("{what} is required")))
+    };
+    let (e1, e2, nu12, g12) = (
+        need(1, "E1")?,
+        need(2, "E2")?,
+        need(3, "NU12")?,
+        need(4, "G12")?,
+    );
+    let gz = match (g.real(5)?, g.real(6)?) {
+        (None, None) => None,
+        (Some(a), Some(b)) => Some([a, b]),
+        _ => {
+            return Err(g.err(
+                5,
+                "give both G1Z and G2Z (transverse shear) or neither (shear-rigid)",
+            ))
+        }
+    };
+    let p = crate::model::PlaneStress::lamina(e1, e2, nu12, g12, gz).map_err(|m| g.err_card(m))?;
+    let rho = g.real_or(7, 0.0)?;
+    d.properties
+        .mats
+        .push((mid, plane_material(mid, "MAT8", p, rho), g.card));
+    Ok(())
+}
+
+/// Reader of MAT2 (MSC QRG): `MID G11 G12 G13 G22 G23 G33 RHO / A1 A2 A3 TREF GE ST SC SS /
+/// MCSID`, an anisotropic plane-stress material of shells (σ = G ε, engineering shear; as a
+/// PSHELL MID3 its G11, G12, G22 are the transverse shear stiffness, G13, G23, G33 blank). G
+/// must be positive definite (its 2×2 when G13, G23, G33 are blank); MCSID (its own material
+/// axes) is an error.
+pub(super) fn mat2<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let mid = g.id(0, "MID")?;
+    let v: Vec<f64> = (1..=6)
+        .map(|k| g.real_or(k, 0.0))
+        .collect::<Result<_, _>>()?;
+    let q = [[v[0], v[1], v[2]], [v[1], v[3], v[4]], [v[2], v[4], v[5]]];
+    // A MID3-only MAT2 leaves G13, G23, G33 blank (MSC QRG MAT2): then its 2×2 must be
+    // positive definite, else the 3×3.
+    let shear_only = [3, 5, 6].iter().all(|&k| g.text(k).is_empty());
+    let d2 = q[0][0] * q[1][1] - q[0][1] * q[0][1];
+    let d3 = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[1][2])
+        - q[0][1] * (q[0][1] * q[2][2] - q[1][2] * q[0][2])
+        + q[0][2] * (q[0][1] * q[1][2] - q[1][1] * q[0][2]);
+    if !(q[0][0] > 0.0 && d2 > 0.0 && (shear_only || d3 > 0.0)) {
+        return Err(g.err_card(format!(
+            "the material matrix G = {q:?} is not positive definite"
+        )));
+    }
+    if g.int(16)?.is_some_and(|c| c != 0) {
+        return Err(g.err(16, "MCSID (MAT2's own material axes) is not supported"));
+    }
+    let p = crate::model::PlaneStress {
+        q,
+        transverse: None,
+        as_mid3: Some([[v[0], v[1]], [v[1], v[3]]]),
+    };
+    let rho = g.real_or(7, 0.0)?;
+    d.properties
+        .mats
+        .push((mid, plane_material(mid, "MAT2", p, rho), g.card));
+    Ok(())
+}
+
+fn plane_material(mid: u64, card: &str, p: crate::model::PlaneStress, rho: f64) -> Material {
+    Material::plane_stress_material(mid, &format!("{card} {mid}"), p, rho)
 }
 
 /// Reader of MAT9 (MSC QRG): MID, the 21 Gij of the upper triangle row by row in the order
@@ -171,8 +247,8 @@ fn psolid_axes(
 pub(super) fn resolve(d: &mut Bulk) -> Result<(IdMap, IdMap), ImportError> {
     let (files, wtmass) = (d.files, d.solution.wtmass);
     let p = &d.properties;
-    // Only MAT1 and MAT9 are read; other MATi cards may legally share their id (e.g. MAT4 holds
-    // the thermal data of the same material), so only MAT1/MAT9 ids must be unique.
+    // Only MAT1, MAT2, MAT8 and MAT9 are read; other MATi cards may legally share their id
+    // (e.g. MAT4 holds the thermal data of the same material), so only theirs must be unique.
     let mat_ids: Vec<(u64, &str, Loc)> = (p.mats.iter())
         .map(|m| (m.0, m.2.name.as_str(), m.2.loc))
         .collect();
@@ -180,7 +256,7 @@ pub(super) fn resolve(d: &mut Bulk) -> Result<(IdMap, IdMap), ImportError> {
         &mat_ids,
         files,
         "material id",
-        "MAT1 and MAT9 ids must be unique",
+        "MAT1, MAT2, MAT8 and MAT9 ids must be unique",
     )?;
     let mids = IdMap::build(p.mats.iter().map(|m| m.0))
         .map_err(|(_, k)| C::new(p.mats[k].2, files).err_card("duplicate material id"))?;

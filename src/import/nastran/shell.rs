@@ -4,11 +4,14 @@
 //! * PSHELL `PID MID1 T MID2 12I/T³ MID3 TS/T NSM / Z1 Z2 MID4`: MID1 membrane, MID2 bending
 //!   with 12I/T³ (default 1), MID3 transverse shear with TS/T (default 5/6), NSM per area.
 //!   Z1/Z2 are stress-recovery fibres only. MID4 (membrane–bending coupling) is an error.
-//! * PCOMP `PID Z0 NSM SB FT TREF GE LAM / MIDi Ti THETAi SOUTi …`: a laminate whose plies
-//!   all use the same isotropic MAT1, with the default Z0 = −T/2 (no offset), is exactly a
-//!   homogeneous shell of the total thickness (A, D and B = 0 of one isotropic material; the
-//!   ply angles do not matter): it is read as that PSHELL. Plies of different materials or an
-//!   offset laminate are an error (a classical-lamination section is not implemented).
+//! * PCOMP `PID Z0 NSM SB FT TREF GE LAM / MIDi Ti THETAi SOUTi …` (MSC QRG): plies bottom to
+//!   top (blank MIDi/Ti: the previous ply's), LAM blank or SYM (the plies mirrored), NSM per
+//!   area; classical lamination in src/fe/shell_section.rs (plies of one isotropic MAT1 are
+//!   exactly that PSHELL). Z0 other than −T/2 (an offset laminate) and LAM = MEM, BEND, SMEAR,
+//!   SMCORE are errors naming the field; SB, FT (failure), TREF (thermal), GE (damping) and
+//!   SOUTi (output) cannot change stiffness or mass and are read past. PCOMPG: the same with
+//!   one ply a continuation line `GPLYIDi MIDi Ti THETAi SOUTi` (the global ply id only names
+//!   it). Corner thicknesses T1.. on a laminate's element are an error (the plies give it).
 //! * CQUAD4 `EID PID G1-G4 THETA ZOFFS / – TFLAG T1-T4`, CTRIA3 `EID PID G1-G3 THETA ZOFFS /
 //!   – – TFLAG T1-T3`: corner thicknesses override the property's T (TFLAG = 1: relative to
 //!   it). The element gets its own copy of the property with the mean corner thickness (a
@@ -17,14 +20,21 @@
 //! * CQUAD8 `EID PID G1-G8 / T1-T4 THETA ZOFFS / TFLAG`, CTRIA6 `EID PID G1-G6 / THETA ZOFFS
 //!   T1-T3 TFLAG` (MSC QRG; a non-zero ZOFFS is an error): the quadratic shells interpolate the corner thicknesses over the
 //!   element (`Model::shell_thickness`; a mid-side grid has the mean of its edge's corners,
-//!   the linear variation along the edge). THETA/MCID orients the material only: the
-//!   isotropic MAT1 of a PSHELL does not depend on it.
+//!   the linear variation along the edge).
+//! * THETA/MCID of CQUAD4/CTRIA3 (field 7; CTRIA3 field 6, CQUAD8 field 15, CTRIA6 field 9): a
+//!   real THETA turns the material x-axis from the G1→G2 side, an integer MCID is the x-axis of
+//!   that (rectangular) system projected onto the element (`Model::shell_axes`,
+//!   [`ShellMaterialAxis`]). It orients the material only: an isotropic MAT1 does not depend
+//!   on it.
 
 use super::fields::C;
 use crate::import::error::ImportError;
 use crate::import::text::IdMap;
 use crate::model::shell_offset::ShellOffset;
-use crate::model::{ElementKind, ImportWarning, Model, Property, Section, ShellSection};
+use crate::model::{
+    CoordKind, ElementKind, ImportWarning, Model, Ply, Property, Section, ShellMaterialAxis,
+    ShellSection,
+};
 
 /// PSHELL → (primary material id: MID1, else MID2; section with *external* material ids in
 /// `bending`/`shear`, replaced by indices in [`resolve_mids`]).
@@ -58,57 +68,76 @@ pub(super) fn pshell(g: &C) -> Result<(u64, Section), ImportError> {
             bending: mid2.map(|m| (m as usize, ratio)),
             shear: mid3.filter(|_| mid2.is_some()).map(|m| (m as usize, ts)),
             nsm: g.real_or(7, 0.0)?,
+            plies: Vec::new(),
+            material_axis: Default::default(),
         }),
     ))
 }
 
-/// PCOMP of plies of one isotropic material without offset → (material id, homogeneous
-/// shell section of the total thickness) (module doc).
+/// PCOMP → (first ply's material id, section with the plies, external material ids until
+/// [`resolve_mids`]) (module doc).
 pub(super) fn pcomp(g: &C) -> Result<(u64, Section), ImportError> {
     let n = g.card.fields.len();
-    let mut plies: Vec<(u64, f64)> = Vec::new();
-    let mut k = 8;
+    // PCOMPG: one ply a continuation line, GPLYID MID T THETA SOUT (the ply id only names it)
+    let (first, stride) = match g.card.name.as_str() {
+        "PCOMPG" => (9, 8),
+        _ => (8, 4),
+    };
+    let mut plies: Vec<Ply> = Vec::new();
+    let mut k = first;
     while k < n {
         let m = g.int(k)?;
         let t = g.real(k + 1)?;
-        if m.is_none() && t.is_none() {
-            k += 4;
+        if m.is_none() && t.is_none() && g.text(k + 2).is_empty() {
+            k += stride;
             continue;
         }
         let prev = plies.last().copied();
         let m = match m {
-            Some(v) if v > 0 => v as u64,
+            Some(v) if v > 0 => v as usize,
             Some(v) => return Err(g.err(k, format!("bad ply material id {v}"))),
-            None => prev.ok_or_else(|| g.err(k, "first ply has no MID"))?.0,
+            None => {
+                prev.ok_or_else(|| g.err(k, "first ply has no MID"))?
+                    .material
+            }
         };
         let t = match t {
             Some(v) if v > 0.0 => v,
             Some(v) => return Err(g.err(k + 1, format!("ply thickness {v} ≤ 0"))),
             None => {
                 prev.ok_or_else(|| g.err(k + 1, "first ply has no thickness"))?
-                    .1
+                    .thickness
             }
         };
-        plies.push((m, t));
-        k += 4;
+        // SOUT (k + 3) asks for ply stress output only.
+        plies.push(Ply {
+            material: m,
+            thickness: t,
+            angle_deg: g.real_or(k + 2, 0.0)?,
+        });
+        k += stride;
     }
-    let &(mid, _) = plies
+    let mid = plies
         .first()
-        .ok_or_else(|| g.err_card("PCOMP without plies"))?;
-    if let Some(&(other, _)) = plies.iter().find(|p| p.0 != mid) {
-        return Err(g.err_card(format!(
-            "plies of different materials ({mid}, {other}): laminated sections are not supported \
-             (only a PCOMP of one isotropic material, read as a PSHELL)"
-        )));
-    }
-    let mut total: f64 = plies.iter().map(|p| p.1).sum();
+        .ok_or_else(|| g.err_card("PCOMP without plies"))?
+        .material as u64;
     match g.text(7).to_ascii_uppercase().as_str() {
         "" => {}
-        "SYM" => total *= 2.0,
+        "SYM" => {
+            let mirror: Vec<Ply> = plies.iter().rev().copied().collect();
+            plies.extend(mirror);
+        }
         lam => {
-            return Err(g.err(7, format!("LAM = {lam} not supported (blank or SYM)")));
+            return Err(g.err(
+                7,
+                format!(
+                    "LAM = {lam} is not supported (blank or SYM): MEM, BEND, SMEAR and SMCORE \
+                     change which plies carry membrane and bending stiffness"
+                ),
+            ));
         }
     }
+    let total: f64 = plies.iter().map(|p| p.thickness).sum();
     if let Some(z0) = g.real(1)? {
         if (z0 + total / 2.0).abs() > 1e-9 * total {
             return Err(g.err(
@@ -120,8 +149,10 @@ pub(super) fn pcomp(g: &C) -> Result<(u64, Section), ImportError> {
             ));
         }
     }
+    // SB, FT (failure), TREF (thermal), GE (damping): no stiffness or mass.
     let mut s = ShellSection::homogeneous(total, mid as usize);
     s.nsm = g.real_or(2, 0.0)?;
+    s.plies = plies;
     Ok((mid, Section::Shell(s)))
 }
 
@@ -136,6 +167,18 @@ pub(super) fn resolve_mids(s: &mut ShellSection, mids: &IdMap, g: &C) -> Result<
     }
     if let Some((m, r)) = s.shear {
         s.shear = Some((get(m, 5)?, r));
+    }
+    let (first, stride) = if g.card.name == "PCOMPG" {
+        (9, 8)
+    } else {
+        (8, 4)
+    };
+    for (i, p) in s.plies.iter_mut().enumerate() {
+        // SYM's mirrored plies point at their originals' fields
+        let n = (g.card.fields.len().saturating_sub(first))
+            .div_ceil(stride)
+            .max(1);
+        p.material = get(p.material, first + stride * (i % n))?;
     }
     Ok(())
 }
@@ -152,6 +195,86 @@ pub(super) struct ElementThickness {
     /// File and line, for messages.
     pub file: String,
     pub line: usize,
+}
+
+/// THETA or MCID of a shell element card as given.
+#[derive(Debug, Clone)]
+pub(super) struct ElementAxis {
+    /// Index of the element in the model.
+    pub elem: usize,
+    /// THETA (real, degrees) or MCID (integer).
+    pub value: ThetaOrMcid,
+    /// File and line, for messages.
+    pub file: String,
+    pub line: usize,
+}
+
+/// The THETA/MCID field.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum ThetaOrMcid {
+    Theta(f64),
+    Mcid(u64),
+}
+
+/// THETA (a real: it has a decimal point) or MCID (an integer) of a CQUAD4/CTRIA3/CQUAD8/CTRIA6
+/// card; `None` when blank or THETA = 0 (the default axis).
+pub(super) fn element_axis(g: &C, elem: usize) -> Result<Option<ElementAxis>, ImportError> {
+    let k = match g.card.name.as_str() {
+        "CQUAD4" => 6,
+        "CQUAD8" => 14,
+        "CTRIA6" => 8,
+        _ => 5,
+    };
+    let text = g.text(k);
+    let value = if text.is_empty() {
+        return Ok(None);
+    } else if text.contains('.') {
+        match g.real(k)? {
+            Some(t) if t != 0.0 => ThetaOrMcid::Theta(t),
+            _ => return Ok(None),
+        }
+    } else {
+        match g.int(k)? {
+            Some(c) if c >= 0 => ThetaOrMcid::Mcid(c as u64),
+            Some(c) => return Err(g.err(k, format!("MCID {c} < 0"))),
+            None => return Ok(None),
+        }
+    };
+    Ok(Some(ElementAxis {
+        elem,
+        value,
+        file: g.file.to_owned(),
+        line: g.line(k),
+    }))
+}
+
+/// The elements' THETA/MCID into `Model::shell_axes` (MCID: the x-axis of a rectangular
+/// system, 0 the basic one; a curvilinear MCID is an error naming the card).
+pub(super) fn apply_axes(model: &mut Model, list: &[ElementAxis]) -> Result<(), ImportError> {
+    for a in list {
+        let axis = match a.value {
+            ThetaOrMcid::Theta(t) => ShellMaterialAxis::FromSide12 { theta_deg: t },
+            ThetaOrMcid::Mcid(0) => ShellMaterialAxis::Projected([1.0, 0.0, 0.0]),
+            ThetaOrMcid::Mcid(c) => {
+                let err = |m: String| {
+                    let eid = model.elements[a.elem].id;
+                    crate::import::error::parse_err(&a.file, a.line, format!("element {eid}"), m)
+                };
+                let cs = (model.coord_systems.iter())
+                    .find(|cs| cs.id == c)
+                    .ok_or_else(|| err(format!("MCID {c}: no such coordinate system")))?;
+                if cs.kind != CoordKind::Rectangular {
+                    return Err(err(format!(
+                        "MCID {c} is not rectangular: a curvilinear material system of a shell \
+                         is not supported"
+                    )));
+                }
+                ShellMaterialAxis::Projected(cs.axes[0])
+            }
+        };
+        model.shell_axes.insert(a.elem, axis);
+    }
+    Ok(())
 }
 
 /// ZOFFS check and corner thicknesses of a CQUAD4/CTRIA3/CQUAD8/CTRIA6 card (`elem` = its
@@ -236,6 +359,18 @@ pub(super) fn apply_thickness(
             })
             .collect();
         let eid = model.elements[et.elem].id;
+        if !sh.plies.is_empty() {
+            return Err(crate::import::error::parse_err(
+                &et.file,
+                et.line,
+                format!("element {eid}"),
+                format!(
+                    "corner thicknesses T1.. on a laminate (property {}): its plies give the \
+                     thickness",
+                    prop.id
+                ),
+            ));
+        }
         if ts.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
             return Err(crate::import::error::parse_err(
                 &et.file,
