@@ -1,0 +1,130 @@
+//! An Abaqus/CalculiX deck's shells expanded into one layer of bricks as ccx 2.20 does (issue
+//! 34, `src/import/abaqus/shell_expansion.rs`): the bricks, nodes and equations the expansion
+//! makes, and what it refuses by name. The frequencies against ccx: tests/ccx_conformance.rs
+//! (shellf, shellf2, beamfsh1), tests/abaqus_element_variants.rs (an S4R plate) and the decks of
+//! `fixtures/ccx_shells/` below.
+
+mod common;
+
+use std::path::PathBuf;
+
+use common::scratch;
+use flexbody::import::{read_model, ImportOptions, InpShells};
+use flexbody::model::ElementKind;
+
+fn write(name: &str, text: &str) -> PathBuf {
+    let path = scratch("ccx-shell-expansion").join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// One S8 (or `ty`) element on the unit square, clamped (dofs 1–6) on its edge x = 0.
+fn square(ty: &str, z_of_node_3: f64) -> String {
+    format!(
+        "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, {z_of_node_3}\n4, 0, 1, 0\n5, .5, 0, 0\n\
+         6, 1, .5, 0\n7, .5, 1, 0\n8, 0, .5, 0\n\
+         *ELEMENT, TYPE={ty}, ELSET=P\n1, 1, 2, 3, 4, 5, 6, 7, 8\n\
+         *NSET, NSET=ROOT\n1, 4, 8\n*BOUNDARY\nROOT, 1, 6\n\
+         *MATERIAL, NAME=STEEL\n*ELASTIC\n210e9, 0.3\n*DENSITY\n7850.\n\
+         *SHELL SECTION, ELSET=P, MATERIAL=STEEL\n0.01\n*STEP\n*FREQUENCY\n4\n*END STEP\n"
+    )
+}
+
+/// S8 → one C3D20 of the shell's material: bottom and top corners at ∓t/2 along the normal,
+/// middle nodes at the corners only; the shell nodes stay, joined by equations: per direction
+/// one making the bottom node dependent, a middle-node one for a held direction, and one mean
+/// rotation per held tangent axis.
+#[test]
+fn an_s8_becomes_a_c3d20_with_ccx_nodes_and_equations() {
+    let m = read_model(&write("s8.inp", &square("S8", 0.0)), &Default::default()).unwrap();
+    assert_eq!(m.elements.len(), 1);
+    let e = &m.elements[0];
+    assert_eq!((e.id, e.kind), (1, ElementKind::Hex20));
+    // 8 shell nodes + 8 bottom + 8 top + 4 middle
+    assert_eq!(m.nodes.len(), 28);
+    let x = |k: usize| m.nodes[e.nodes[k]].x;
+    assert_eq!(x(0), [0.0, 0.0, -0.005]);
+    assert_eq!(x(4), [0.0, 0.0, 0.005]);
+    assert_eq!(x(9), [1.0, 0.5, -0.005]);
+    assert_eq!(x(18), [1.0, 1.0, 0.0]);
+    assert!(
+        e.nodes.iter().all(|&n| n >= 8),
+        "only new nodes in the brick"
+    );
+    // every shell node: 3 bottom equations (u_b + u_t − 2u_n); at the clamped corners (nodes 1,
+    // 4) a middle equation per direction (u_m − u_n); at the clamped nodes 2 mean rotations
+    // ((e × n)·2u_t − (e × n)·2u_n − h θ_n)
+    let per_node = |id: u64| {
+        m.mpcs
+            .iter()
+            .filter(|q| q.id == id)
+            .map(|q| q.terms.len())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(per_node(1), vec![3, 2, 3, 2, 3, 2, 3, 3]);
+    assert_eq!(per_node(8), vec![3, 3, 3, 3, 3]);
+    // a free corner: the quadratic interpolation through the thickness
+    assert_eq!(per_node(3), vec![4, 4, 4]);
+    assert_eq!(per_node(6), vec![3, 3, 3]);
+    // the shell nodes keep their *BOUNDARY (the held rotations stand for ccx's angle nodes)
+    assert!(m.spcs.iter().all(|s| s.dofs.0 == 0b11_1111));
+}
+
+/// S4 (ccx 2.20's own C3D8I) is refused naming the element and line, and read as flexbody's
+/// MITC4 shell with `--inp-shells native`.
+#[test]
+fn s4_is_refused_expanded_and_read_native() {
+    let deck = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n\
+        *ELEMENT, TYPE=S4, ELSET=P\n7, 1, 2, 3, 4\n\
+        *MATERIAL, NAME=STEEL\n*ELASTIC\n210e9, 0.3\n*DENSITY\n7850.\n\
+        *SHELL SECTION, ELSET=P, MATERIAL=STEEL\n0.01\n";
+    let path = write("s4.inp", deck);
+    let err = read_model(&path, &Default::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("s4.inp:7: *ELEMENT 7 (TYPE=S4)")
+            && err.contains("C3D8I")
+            && err.contains("--inp-shells native"),
+        "{err}"
+    );
+    let native = ImportOptions {
+        inp_shells: InpShells::Native,
+        ..Default::default()
+    };
+    let m = read_model(&path, &native).unwrap();
+    assert_eq!(m.elements[0].kind, ElementKind::Quad4);
+}
+
+/// Two S8 meeting at more than 20° (a fold) or with another thickness at a node: ccx joins them
+/// with a rigid knot; refused naming the node and both elements.
+#[test]
+fn folds_and_thickness_jumps_are_refused_naming_the_node() {
+    let two = |z: f64, t2: f64| {
+        format!(
+            "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, .5, 0, 0\n6, 1, .5, 0\n\
+             7, .5, 1, 0\n8, 0, .5, 0\n9, 2, 0, {z}\n10, 2, 1, {z}\n11, 1.5, 0, {h}\n\
+             12, 2, .5, {z}\n13, 1.5, 1, {h}\n\
+             *ELEMENT, TYPE=S8, ELSET=A\n1, 1, 2, 3, 4, 5, 6, 7, 8\n\
+             *ELEMENT, TYPE=S8, ELSET=B\n2, 2, 9, 10, 3, 11, 12, 13, 6\n\
+             *MATERIAL, NAME=STEEL\n*ELASTIC\n210e9, 0.3\n*DENSITY\n7850.\n\
+             *SHELL SECTION, ELSET=A, MATERIAL=STEEL\n0.01\n\
+             *SHELL SECTION, ELSET=B, MATERIAL=STEEL\n{t2}\n",
+            h = z / 2.0
+        )
+    };
+    // 10° between the two: one mean normal, read
+    let tan10 = 10f64.to_radians().tan();
+    assert!(read_model(&write("ok.inp", &two(tan10, 0.01)), &Default::default()).is_ok());
+    for (name, z, t2) in [("fold.inp", 1.0, 0.01), ("jump.inp", 0.0, 0.02)] {
+        let err = read_model(&write(name, &two(z, t2)), &Default::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(&format!("{name}:16: node 2"))
+                && err.contains("elements 1 and 2")
+                && err.contains("rigid knot"),
+            "{err}"
+        );
+    }
+}
