@@ -138,7 +138,13 @@ fn folds_and_thickness_jumps_are_refused_naming_the_node() {
 fn curved_panels_match_calculix() {
     let dir = scratch("ccx-shell-panels");
     let fixtures = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/ccx_shells");
-    for stem in ["panel_s8r", "panel_s6", "panel_s4r", "panel_s3", "hinged_s8"] {
+    for stem in [
+        "panel_s8r",
+        "panel_s6",
+        "panel_s4r",
+        "panel_s3",
+        "hinged_s8",
+    ] {
         let deck = fixtures.join(format!("{stem}.inp"));
         let out = dir.join(format!("{stem}.flexbody"));
         let o = build_as_ccx(&deck, &["-q"], &out);
@@ -167,5 +173,42 @@ fn curved_panels_match_calculix() {
             assert!(check.status.success(), "{text}");
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A preload on expanded shells is a preload on bricks (issue 35 on issue 34's expansion):
+/// `loaded_s8r` pulls and pushes the free edge of the clamped S8R panel by `*CLOAD`s on its shell
+/// nodes in a `*STATIC` step, then asks for the modes of that state (`*STEP, PERTURBATION`):
+/// ccx's K + K_G(σ₀) + K_L(u₀) of the brick layer, the loads reaching the bricks through the
+/// shell nodes' equations. Ten modes equal ccx 2.20's printed digits; without the static step
+/// the first mode is 38.90 Hz against 51.85 Hz (the pull stiffens the panel).
+#[test]
+fn a_preloaded_shell_panel_matches_calculix() {
+    let dir = scratch("ccx-shell-preload");
+    let deck =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/ccx_shells/loaded_s8r.inp");
+    let out = dir.join("loaded_s8r.flexbody");
+    let o = build_as_ccx(&deck, &["--modes", "10", "--json"], &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report = String::from_utf8_lossy(&o.stdout);
+    assert!(report.contains("K + K_G + K_L(u0)"), "{report}");
+    let ours = flexbody_reader::read(&out).unwrap().modes.frequency_hz;
+    let ccx = common::ccx_frequencies("ccx_shells", "loaded_s8r");
+    let worst = (ours.iter().zip(&ccx))
+        .map(|(a, b)| (a - b).abs() / b)
+        .fold(0.0, f64::max);
+    assert!(worst <= 1e-6, "{worst:e}: {ours:?} against {ccx:?}");
+    // the same panel without its *STATIC step
+    let text = std::fs::read_to_string(&deck).unwrap();
+    let (head, tail) = text.split_once("*STEP\n*STATIC").unwrap();
+    let plain_deck = dir.join("plain.inp");
+    let rest = tail.split_once("*STEP, PERTURBATION").unwrap().1;
+    std::fs::write(&plain_deck, format!("{head}*STEP{rest}")).unwrap();
+    let plain = dir.join("plain.flexbody");
+    let o = build_as_ccx(&plain_deck, &["--modes", "10"], &plain);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let unloaded = flexbody_reader::read(&plain).unwrap().modes.frequency_hz;
+    let drop = 1.0 - unloaded[0] / ours[0];
+    assert!((0.05..0.3).contains(&drop), "{drop}: {unloaded:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
