@@ -131,9 +131,10 @@ fn folds_and_thickness_jumps_are_refused_naming_the_node() {
 
 /// Our cylindrical panels (`fixtures/ccx_shells/`, written by its make_decks.py; ccx 2.20's
 /// frequencies in its results.json): S8R with a point mass at a free corner, S6 (C3D15), S4R,
-/// S3 (C3D6) and S8 held in its translations and the rotation about y only (an axis off the tangent
-/// plane, projected on it as ccx does): ten modes each equal to ccx's printed digits; `check
-/// --model` rebuilds one from its recipe.
+/// S3 (C3D6), S8 held in its translations and the rotation about y only (an axis off the tangent
+/// plane, projected on it as ccx does), and S8 with `*NODAL THICKNESS` from 14 to 6 mm (the
+/// bricks as thick as ccx makes them at each node): ten modes each equal to ccx's printed
+/// digits; `check --model` rebuilds one from its recipe.
 #[test]
 fn curved_panels_match_calculix() {
     let dir = scratch("ccx-shell-panels");
@@ -144,6 +145,7 @@ fn curved_panels_match_calculix() {
         "panel_s4r",
         "panel_s3",
         "hinged_s8",
+        "tapered_s8",
     ] {
         let deck = fixtures.join(format!("{stem}.inp"));
         let out = dir.join(format!("{stem}.flexbody"));
