@@ -214,3 +214,43 @@ fn a_preloaded_shell_panel_matches_calculix() {
     assert!((0.05..0.3).contains(&drop), "{drop}: {unloaded:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A `*DLOAD P` on an expanded S3/S4R acts, as ccx applies it (its `P1`), on the bricks' bottom
+/// faces, along the shell's normal for p > 0 (ccx 2.20 moves a cantilever plate of S3 under
+/// P = 1000 along +z: 4.0748e-4 m at its tip, flexbody's static preload 4.0755e-4 m at the
+/// tip's bottom node); flexbody's own shells take it against the normal, on the shell's nodes.
+#[test]
+fn a_shell_pressure_acts_on_the_bottom_faces_along_the_normal() {
+    let deck = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n\
+        *ELEMENT, TYPE=S3, ELSET=P\n1, 1, 2, 3\n2, 1, 3, 4\n\
+        *MATERIAL, NAME=STEEL\n*ELASTIC\n210e9, 0.3\n*DENSITY\n7850.\n\
+        *SHELL SECTION, ELSET=P, MATERIAL=STEEL\n0.05\n\
+        *STEP\n*STATIC\n*DLOAD\nP, P, 1000.\n*END STEP\n";
+    let path = write("pressure.inp", deck);
+    let surfaces = |opts: &ImportOptions| {
+        let m = read_model(&path, opts).unwrap();
+        let parts: Vec<(Vec<[f64; 3]>, f64)> = (m.loads.iter().flat_map(|l| &l.parts))
+            .filter_map(|p| match p {
+                flexbody::model::LoadPart::Surface {
+                    nodes, traction, ..
+                } => Some((nodes.iter().map(|&n| m.nodes[n].x).collect(), *traction)),
+                _ => None,
+            })
+            .collect();
+        parts
+    };
+    let expanded = surfaces(&Default::default());
+    assert_eq!(expanded.len(), 2);
+    for (x, traction) in &expanded {
+        assert_eq!(*traction, 1000.0);
+        assert!(x.iter().all(|p| p[2] == -0.025), "{x:?}");
+    }
+    assert_eq!(expanded[0].0[1], [1.0, 0.0, -0.025]);
+    let native = surfaces(&ImportOptions {
+        inp_shells: InpShells::Native,
+        ..Default::default()
+    });
+    assert!(native
+        .iter()
+        .all(|(x, t)| *t == -1000.0 && x.iter().all(|p| p[2] == 0.0)));
+}

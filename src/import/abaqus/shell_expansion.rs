@@ -40,6 +40,8 @@
 //!   the linearized mean rotation of the bottom and top nodes (h apart) about e equal to the
 //!   held rotation k of n that made the axis: n's held rotation stands for ccx's "angle node"
 //!   (its SPC holds the angle), so n keeps its `*BOUNDARY` as the deck gives it.
+//! * **Pressures** `P` on a shell (gen3delem's loads: ccx's `P1`) act on the bricks' bottom faces,
+//!   along +n for p > 0.
 //!
 //! What ccx would do with a rigid knot (folds, beams meeting shells, rotations of nodes in
 //! equations or rigid elements, moments and rotary inertia on shell nodes, rotations held in a
@@ -228,6 +230,7 @@ pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportErr
     let rules = Joining::of(model, &expanded, &first_place)?;
     rules.write(model, &expanded);
     refuse_moments(model, &expanded);
+    move_pressures(model, &expanded, shells);
     if let Some(preload) = model.deck.preload.as_mut() {
         if let Some((dt, _)) = preload.thermal.as_mut() {
             // ccx gives the expanded nodes the shell node's temperature (gen3dtemp)
@@ -712,6 +715,36 @@ fn eliminate_top(
         out.push(terms);
     }
     out
+}
+
+/// A pressure `P` on a shell acts, as ccx applies it, on the brick's bottom face (ccx's `P1`),
+/// pushing into the brick: along +n. The reader made it a traction −p on the shell's face (against
+/// the normal, flexbody's shells); here it becomes +p on the bottom nodes, in the shell's order
+/// (whose right-hand normal is n). Measured: a positive `P` on an S4R plate moves it along +n in
+/// ccx 2.20.
+fn move_pressures(
+    model: &mut Model,
+    expanded: &BTreeMap<NodeIndex, Expanded>,
+    shells: &ShellElements,
+) {
+    for load in &mut model.loads {
+        for part in &mut load.parts {
+            if let crate::model::LoadPart::Surface {
+                nodes,
+                traction,
+                element,
+            } = part
+            {
+                let all = nodes.iter().all(|n| expanded.contains_key(n));
+                if shells.contains_key(element) && all {
+                    for n in nodes.iter_mut() {
+                        *n = expanded[n].bottom;
+                    }
+                    *traction = -*traction;
+                }
+            }
+        }
+    }
 }
 
 /// A moment on a shell node cannot be applied (the node has translations only): its load is
