@@ -1,8 +1,9 @@
 //! Abaqus/CalculiX element variants (issue 32): C3D8R is formed as CalculiX forms it (one-point
 //! integration with hourglass control) and matches ccx 2.20's frequencies; the variants flexbody
-//! does not form (B31R, S4R, C3D10M, S3R) are refused naming the type and line, and read as their
-//! base type only when `--ignore VARIANT=BASE` asks for it — recorded in the recipe, rebuilt by
-//! `check --model`. The ccx results are `fixtures/ccx_elements/results.json` (its
+//! does not form (B31R, C3D10M, S3R; S4R as flexbody's shells, `--inp-shells native`) are
+//! refused naming the type and line, and read as their base type only when `--ignore
+//! VARIANT=BASE` asks for it — recorded in the recipe, rebuilt by `check --model`; by default
+//! S4R is expanded into C3D8R bricks as ccx does and matches ccx. The ccx results are `fixtures/ccx_elements/results.json` (its
 //! `regenerate.py` runs ccx on the decks beside it).
 
 mod common;
@@ -66,13 +67,15 @@ fn c3d8r_matches_calculix_on_a_regular_and_a_distorted_bar() {
 #[test]
 fn b31r_and_s4r_are_refused_and_read_as_b31_and_s4_only_on_request() {
     let dir = scratch("variants");
-    for (stem, variant, base, line) in [
-        ("b31r_beam", "B31R", "B31", 24),
-        ("s4r_plate", "S4R", "S4", 124),
+    // S4R is refused as flexbody's shells (`--inp-shells native`); by default it is expanded
+    // into C3D8R bricks as ccx does (s4r_is_ccxs_layer_of_c3d8r_bricks)
+    for (stem, variant, base, line, shells) in [
+        ("b31r_beam", "B31R", "B31", 24, "expanded"),
+        ("s4r_plate", "S4R", "S4", 124, "native"),
     ] {
         let deck = fixture(&format!("{stem}.inp"));
         let out = dir.join(format!("{stem}.flexbody"));
-        let o = build_as_ccx(&deck, &["-q"], &out);
+        let o = build_as_ccx(&deck, &["-q", "--inp-shells", shells], &out);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(
@@ -84,13 +87,15 @@ fn b31r_and_s4r_are_refused_and_read_as_b31_and_s4_only_on_request() {
         assert!(!out.exists());
         // on request: the base element, said in a warning and recorded in the recipe
         let key = format!("{variant}={base}");
-        let (body, warnings) = build(&deck, &["--ignore", &key.to_lowercase()], &out);
+        let args = ["--ignore", &key.to_lowercase(), "--inp-shells", shells];
+        let (body, warnings) = build(&deck, &args, &out);
         assert!(
             warnings.contains(&format!("element type {variant} read as {base} on request")),
             "{warnings}"
         );
         let recipe = body.recipe.as_ref().unwrap();
         assert_eq!(recipe.options.ignore, vec![key.to_lowercase()]);
+        assert_eq!(recipe.options.inp_shells.as_deref(), Some(shells));
         let check = exe()
             .arg("check")
             .arg(&out)
@@ -125,6 +130,31 @@ fn b31r_and_s4r_are_refused_and_read_as_b31_and_s4_only_on_request() {
             }
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The S4R plate read as the deck means it (the default `--inp-shells expanded`): one layer of
+/// C3D8R bricks joined to the shell nodes as ccx 2.20 does, its ten frequencies equal to ccx's
+/// printed digits; `check --model` rebuilds it from the recipe.
+#[test]
+fn s4r_is_ccxs_layer_of_c3d8r_bricks() {
+    let dir = scratch("s4r-expanded");
+    let deck = fixture("s4r_plate.inp");
+    let out = dir.join("s4r_plate.flexbody");
+    let (body, _) = build(&deck, &["-q"], &out);
+    let w = worst(&body.modes.frequency_hz, &ccx("s4r_plate"));
+    assert!(w <= 1e-6, "{w:e}: {:?}", body.modes.frequency_hz);
+    let recipe = body.recipe.as_ref().unwrap();
+    assert_eq!(recipe.options.inp_shells.as_deref(), Some("expanded"));
+    let check = exe()
+        .arg("check")
+        .arg(&out)
+        .arg("--model")
+        .arg(&deck)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&check.stdout);
+    assert!(check.status.success(), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -207,6 +207,7 @@ fn a_block_cb_on_end_faces_is_rayleigh_ritz_and_within_1pc_below_fmax() {
         beam_mass: None,
         subcase: None,
         ignore: Vec::new(),
+        inp_shells: Default::default(),
         scene: Default::default(),
     };
     let report = check(body, Some(&input)).unwrap();
@@ -412,6 +413,7 @@ fn a_block_cb_on_rbe3_spiders_keeps_centres_independent_and_matches_calculix() {
             beam_mass: None,
             subcase: None,
             ignore: Vec::new(),
+            inp_shells: Default::default(),
             scene: Default::default(),
         }),
     );

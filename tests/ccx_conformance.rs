@@ -6,9 +6,10 @@
 //! does not honour. A build with exit 0 whose frequencies differ from ccx's — a silently wrong
 //! body — fails the test.
 //!
-//! Where an element is formulated differently from ccx's by design (ccx expands shells and
-//! beams into 20-node bricks; flexbody's are real shell and beam elements), the deck is listed
-//! in `BY_DESIGN` with the reason and must stay within 1 % on its first ten modes.
+//! Shells are expanded into one layer of bricks as ccx does (`--inp-shells expanded`, the
+//! default). Where an element is formulated differently from ccx's by design (ccx expands beams
+//! into 20-node bricks; flexbody's are beam elements), the deck is listed in `BY_DESIGN` with
+//! the reason and must stay within 1 % on its first ten modes.
 //!
 //! The suite is read from `FLEXBODY_CCX_TESTS` (default: the Debian package's folder
 //! `/usr/share/doc/calculix-ccx-test/examples/test`) and needs `ccx` on the PATH; without them
@@ -34,19 +35,6 @@ const BY_DESIGN_LIMIT: f64 = 1e-2;
 
 /// Decks whose elements flexbody formulates differently from ccx on purpose, and why.
 const BY_DESIGN: &[(&str, &str)] = &[];
-
-/// Decks of 8-node shells that ccx expands into one layer of 20-node bricks and flexbody
-/// forms as shells (`fe::elements::quad8_shell`), where the two differ by more than
-/// `BY_DESIGN_LIMIT`, and why; listed with the difference (not a pass/fail criterion: the
-/// shells are checked against the plate's closed-form reference in
-/// tests/shell_quadratic_import.rs).
-const SHELL_LAYER: &[(&str, &str)] = &[("shellf", SHELLF), ("shellf2", SHELLF)];
-const SHELLF: &str = "a 2×2 S8 cantilever plate, t = 0.01 (ccx 2.20 and Abaqus use the section \
-     thickness: the deck's *NODAL THICKNESS applies only with *SHELL SECTION, NODAL THICKNESS); \
-     Leissa's plate (λ = 3.492, 8.525, 21.43, 27.33, 31.11) is 8727, 21305, 53555, 68299, \
-     77746 Hz: flexbody's shells −0.4, −0.7, +4.8, +4.6, +3.9 %, ccx's one layer of C3D20 \
-     bricks +11, +11, +77, +84, +80 % (the thin brick layer is stiff on this coarse mesh; on \
-     8×8 cells ccx is +1.2 % on the first mode)";
 
 /// Decks compared with the suite's own reference output (`<deck>.dat.ref`, written by the ccx
 /// version of the suite, 2.11) instead of the installed ccx, and why.
@@ -74,6 +62,8 @@ const MUST_MATCH: &[&str] = &[
     "beamdy12",
     "beamdy13",
     "beamfsh1",
+    "shellf",
+    "shellf2",
     "damper1",
     "dashpot1",
     "dashpot2",
@@ -104,11 +94,6 @@ enum Outcome {
         worst: f64,
         why: String,
     },
-    /// Shells against ccx's brick layer, beyond 1 % (`SHELL_LAYER`).
-    ShellLayer {
-        worst: String,
-        why: String,
-    },
     Refused(String),
     /// Exit 2 without naming a keyword or element: loud, but not yet a useful refusal.
     FailsUnnamed(String),
@@ -124,7 +109,6 @@ impl Outcome {
             Outcome::Matches { .. } => "matches",
             Outcome::MatchesSuiteReference { .. } => "matches the suite's reference",
             Outcome::ByDesign { .. } => "within 1 % (by design)",
-            Outcome::ShellLayer { .. } => "shells, not ccx's brick layer",
             Outcome::Refused(_) => "refused",
             Outcome::FailsUnnamed(_) => "fails (no keyword named)",
             Outcome::Mismatch(_) => "MISMATCH",
@@ -140,7 +124,6 @@ impl Outcome {
             Outcome::ByDesign { modes, worst, why } => {
                 format!("{modes} modes, worst {worst:.1e}: {why}")
             }
-            Outcome::ShellLayer { worst, why } => format!("{worst}: {why}"),
             Outcome::OutOfScope(s)
             | Outcome::CcxFails(s)
             | Outcome::Refused(s)
@@ -352,13 +335,6 @@ fn classify(suite: &Path, deck: &Path) -> (String, Outcome) {
                 },
                 None => Outcome::Matches { modes, worst },
             },
-            Outcome::Mismatch(m) => match SHELL_LAYER.iter().find(|(n, _)| *n == name) {
-                Some((_, why)) => Outcome::ShellLayer {
-                    worst: m.trim_end_matches("; exit 0").to_owned(),
-                    why: (*why).to_owned(),
-                },
-                None => Outcome::Mismatch(m),
-            },
             o => o,
         }
     };
@@ -437,9 +413,9 @@ fn table(results: &BTreeMap<String, Outcome>) -> String {
          contact, heat transfer, 2-D elements or plasticity. A deck in scope either matches \
          ccx (same rigid-body modes, elastic frequencies within 1e-5) or is refused naming the \
          keyword; a deck whose elements differ from ccx's by design stays within 1 % on ten \
-         modes; 8-node shells, which ccx expands into one layer of 20-node bricks, are shells \
-         in flexbody: where the two differ by more than 1 % the deck is listed with the \
-         difference and the plate's reference figures; a deck listed with a reason is compared with the suite's own reference output \
+         modes; shells (S3, S4R, S6, S8, S8R) are expanded into one layer of bricks joined to \
+         the shell nodes as ccx does (`--inp-shells expanded`, the default; \
+         `src/import/abaqus/shell_expansion.rs`); a deck listed with a reason is compared with the suite's own reference output \
          (ccx 2.11) instead. A MISMATCH (exit 0, other frequencies) fails the test, and so does \
          a failure that names no keyword, but for the known gaps listed with their reason. \
          Decks whose *FREQUENCY step is a perturbation of a *STATIC step are built as ccx \
@@ -448,11 +424,13 @@ fn table(results: &BTreeMap<String, Outcome>) -> String {
          No deck here builds its *FREQUENCY step on an element variant; our own decks in \
          `fixtures/ccx_elements/` (`tests/abaqus_element_variants.rs`) do: C3D8R, formed as \
          ccx forms it (one-point integration, hourglass control), matches ccx on a regular and \
-         a distorted cantilever to its printed digits; B31R and S4R, which ccx expands into \
-         one layer of C3D8R bricks (a B31R cantilever's first mode 6.89 Hz against 41.86 Hz as \
-         B31; an S4R plate 9.26, 60.1, 143.7 Hz against 8.54, 36.9, 53.7 Hz as S4), are \
-         refused with those figures, as are C3D10M and S3R, which ccx 2.20 refuses itself; \
-         `--ignore S4R=S4` (B31R=B31, …) reads them as the base type on purpose.\n\n",
+         a distorted cantilever to its printed digits; S4R, expanded into one layer of C3D8R \
+         bricks as ccx does, matches ccx's plate (9.26, 60.1, 143.7 Hz; 8.54, 36.9, 53.7 Hz \
+         as flexbody's S4, `--inp-shells native`, which refuses S4R); B31R, which ccx expands \
+         into one layer of C3D8R bricks (a B31R cantilever's first mode 6.89 Hz against \
+         41.86 Hz as B31), is refused with those figures, as are C3D10M and S3R, which ccx \
+         2.20 refuses itself; `--ignore B31R=B31` (C3D10M=C3D10, …) reads them as the base \
+         type on purpose.\n\n",
     );
     s += "| outcome | decks |\n|---|---|\n";
     for (k, v) in &counts {

@@ -36,6 +36,7 @@ fn check_on_a_partial_node_file_skips_what_the_nodes_cannot_support() {
         beam_mass: None,
         subcase: None,
         ignore: Vec::new(),
+        inp_shells: Default::default(),
         scene: Default::default(),
     };
     for model in [None, Some(&input)] {

@@ -19,8 +19,10 @@ fn read(name: &str, text: &[u8]) -> Result<flexbody::model::Model, ImportError> 
     let p = dir().join(name);
     std::fs::write(&p, text).unwrap();
     // Gmsh meshes carry no material: give one, as the CLI's --material does.
+    // the Abaqus decks' shells as flexbody's shells: the decks are about ids and numbers
     let opts = ImportOptions {
         material: Some(Material::steel()),
+        inp_shells: flexbody::import::InpShells::Native,
         ..ImportOptions::default()
     };
     read_model(&p, &opts)

@@ -37,6 +37,8 @@ fn ccx_test_decks_node_and_element_counts() {
             ]
             .map(String::from)
             .to_vec(),
+            // the deck's own elements (expanded, shells become bricks with new nodes)
+            inp_shells: flexbody::import::InpShells::Native,
             ..Default::default()
         };
         let m =
@@ -47,20 +49,29 @@ fn ccx_test_decks_node_and_element_counts() {
             "{name}"
         );
     }
+    // by default the deck's two S8R shells are expanded into C3D20R bricks as ccx does: 32 + 2
     let m = abaqus::read(&deck("beamfsh1.inp")).unwrap();
+    let count = |m: &flexbody::model::Model, k: ElementKind| {
+        m.elements.iter().filter(|e| e.kind == k).count()
+    };
     assert_eq!(
-        m.elements
-            .iter()
-            .filter(|e| e.kind == ElementKind::Hex20R)
-            .count(),
-        32
+        (
+            count(&m, ElementKind::Hex20R),
+            count(&m, ElementKind::Quad8)
+        ),
+        (34, 0)
     );
+    let native = ImportOptions {
+        inp_shells: flexbody::import::InpShells::Native,
+        ..Default::default()
+    };
+    let m = abaqus::read_with_options(&deck("beamfsh1.inp"), &native).unwrap();
     assert_eq!(
-        m.elements
-            .iter()
-            .filter(|e| e.kind == ElementKind::Quad8)
-            .count(),
-        2
+        (
+            count(&m, ElementKind::Hex20R),
+            count(&m, ElementKind::Quad8)
+        ),
+        (32, 2)
     );
     // C3D8 lines carrying 10 node ids: ccx uses the first 8; so do we, with a warning.
     let opts = ImportOptions {

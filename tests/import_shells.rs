@@ -1,7 +1,9 @@
 //! Shell sections through the importers: PSHELL fields, element thickness overrides, PCOMP
-//! plies, THETA/MCID, and the inputs that are errors (offsets, a CQUAD8 without mid-side grids).
+//! plies, THETA/MCID, offsets, and the inputs that are errors (a CQUAD8 without mid-side grids).
+//! The Abaqus decks are read as flexbody's shells (`--inp-shells native`; expanded into bricks
+//! as ccx does: tests/ccx_shell_expansion.rs).
 
-use flexbody::import::{read_model, ImportOptions};
+use flexbody::import::{read_model, ImportOptions, InpShells};
 use flexbody::model::{Model, Ply, Section, ShellMaterialAxis, ShellSection};
 
 fn read(name: &str, text: &str) -> Result<Model, String> {
@@ -9,7 +11,11 @@ fn read(name: &str, text: &str) -> Result<Model, String> {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
-    read_model(&path, &ImportOptions::default()).map_err(|e| e.to_string())
+    let opts = ImportOptions {
+        inp_shells: InpShells::Native,
+        ..Default::default()
+    };
+    read_model(&path, &opts).map_err(|e| e.to_string())
 }
 
 const GRIDS: &str = "GRID    1               0.      0.      0.

@@ -73,6 +73,7 @@ fn assert_check_passes(body: &file::ReducedBody, model: &Path, method: BuildMeth
         beam_mass: None,
         subcase: None,
         ignore: Vec::new(),
+        inp_shells: Default::default(),
         scene: Default::default(),
     };
     let report = check(body, Some(&input)).unwrap();

@@ -90,6 +90,10 @@ fn shell_plate_with_two_holes_cb_on_hole_spiders_passes_check() {
             "30",
             "--units",
             "si",
+            // flexbody's MITC4 shells (ccx expands S4 into its own C3D8I, which is refused);
+            // the recipe records it and `check --model` rebuilds the same
+            "--inp-shells",
+            "native",
         ])
         .args(["-q", "--json", "-o"])
         .arg(&out)
@@ -136,6 +140,8 @@ fn shell_plate_with_two_holes_cb_on_hole_spiders_passes_check() {
             "rbe3",
             "--modes",
             "30",
+            "--inp-shells",
+            "native",
         ])
         .args(["--units", "si", "-q", "-o"])
         .arg(&rbe3)
@@ -166,6 +172,8 @@ fn shell_plate_with_two_holes_cb_on_hole_spiders_passes_check() {
             "4",
             "--units",
             "si",
+            "--inp-shells",
+            "native",
         ])
         .args(["--stress-modes", "-q", "--json", "-o"])
         .arg(dir.join("stress.flexbody"))

@@ -3,7 +3,8 @@
 //! elimination and the eigensolver, against Leissa's cantilever plate (λ = ωa²√(ρh/D) = 3.492,
 //! 8.525, 21.43; *Vibration of Plates*, NASA SP-160 (1969) Table 4.53) and against each other:
 //! a thickness given at the nodes (or corners) equal everywhere to t must give the section-t
-//! plate exactly.
+//! plate exactly. The Abaqus decks are read with `--inp-shells native` (flexbody's shells; by
+//! default a deck's shells are expanded into bricks as ccx does: tests/ccx_shell_expansion.rs).
 
 mod common;
 
@@ -11,7 +12,7 @@ use std::path::Path;
 
 use common::scratch;
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
-use flexbody::import::{read_model, ImportOptions};
+use flexbody::import::{read_model, ImportOptions, InpShells};
 use flexbody::solve::{lowest_modes, EigenSpec};
 
 const E: f64 = 210e9;
@@ -134,9 +135,17 @@ fn write(name: &str, text: &str) -> std::path::PathBuf {
     path
 }
 
+/// flexbody's own shells for the Abaqus decks.
+fn native() -> ImportOptions {
+    ImportOptions {
+        inp_shells: InpShells::Native,
+        ..Default::default()
+    }
+}
+
 /// The first three frequencies [rad/s] of a deck, consistent mass, and its warnings.
 fn frequencies(path: &Path) -> (Vec<f64>, Vec<String>) {
-    let model = read_model(path, &ImportOptions::default()).unwrap();
+    let model = read_model(path, &native()).unwrap();
     let warnings = model.warnings.iter().map(|w| w.message.clone()).collect();
     (modes(&model), warnings)
 }
@@ -236,7 +245,7 @@ fn abaqus_nodal_thickness_replaces_the_section_thickness_with_the_parameter_only
             "partial.inp",
             &abaqus("S8", 0.01, ", NODAL THICKNESS", partial),
         ),
-        &ImportOptions::default(),
+        &native(),
     )
     .unwrap_err()
     .to_string();
@@ -284,8 +293,8 @@ fn nastran_cquad8_ctria6_with_corner_thicknesses() {
 /// *NODAL THICKNESS is not used: its *SHELL SECTION has no NODAL THICKNESS parameter, as ccx
 /// 2.20 reads it), E = 210000, ν = 0.3, ρ = 7.8e-9. Its first five modes are Leissa's within
 /// 1 % (two) and 6 % (three, on the coarse mesh; measured −0.42, −0.67, +4.82, +4.62,
-/// +3.88 %); ccx 2.20's one layer of C3D20 bricks is +11, +11, +77, +84, +80 %
-/// (docs/conformance.md).
+/// +3.88 %); ccx 2.20's one layer of C3D20 bricks is +11, +11, +77, +84, +80 % (the deck read
+/// by default, expanded as ccx does, matches ccx: docs/conformance.md).
 #[test]
 fn calculix_shellf_s8_plate_is_leissas_plate() {
     let deck = Path::new("/usr/share/doc/calculix-ccx-test/examples/test/shellf.inp");
@@ -297,7 +306,7 @@ fn calculix_shellf_s8_plate_is_leissas_plate() {
         ));
         return;
     }
-    let model = read_model(deck, &ImportOptions::default()).unwrap();
+    let model = read_model(deck, &native()).unwrap();
     assert!(model
         .warnings
         .iter()
@@ -354,7 +363,16 @@ fn stress_shapes_and_preload_of_quadratic_shells_are_refused_by_element() {
             .arg("build")
             .arg(&deck)
             .args([
-                "--units", "si", "--method", "normal", "--modes", "3", "-q", "-o",
+                "--units",
+                "si",
+                "--method",
+                "normal",
+                "--modes",
+                "3",
+                "--inp-shells",
+                "native",
+                "-q",
+                "-o",
             ])
             .arg(&out)
             .args(extra)

@@ -267,7 +267,8 @@ RECIPE_T = {
                 "damping": ("opt", STR), "thickness": ("omit", F64), "subcase": ("omit", U64),
                 "gravity": ("omit", STR), "loads": ("omit", ("list", STR)), "residual_vectors": ("omit", STR),
                 "select": ("omit", STR), "preload": ("omit", ("list", STR)),
-                "ignore": ("omit", ("list", STR)), "geometric_stiffness": ("omit", STR)},
+                "ignore": ("omit", ("list", STR)), "geometric_stiffness": ("omit", STR),
+                "inp_shells": ("omit", STR)},
     "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
         "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
         "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),

@@ -105,6 +105,14 @@ pub(crate) struct ModelArgs {
     /// mtx`: default from the file's recipe.
     #[arg(long, value_delimiter = ',', value_name = "CARD")]
     pub(crate) ignore: Vec<String>,
+    /// How an Abaqus/CalculiX deck's shells (S3, S4R, S6, S8, S8R; S4) are formed: `expanded`
+    /// (default) into one layer of C3D6/C3D8R/C3D15/C3D20/C3D20R bricks joined to the shell
+    /// nodes as ccx 2.20 does, so the deck means what CalculiX makes of it (S4, which ccx
+    /// expands into its own C3D8I, is refused); `native`: flexbody's shell elements (MITC4,
+    /// DKT, curved MITC9/MITC6; S4R refused as a variant). Recorded in the recipe; with `check
+    /// --model` and `export --to mtx`: default from the file's recipe.
+    #[arg(long, value_name = "expanded|native")]
+    pub(crate) inp_shells: Option<String>,
 }
 
 #[derive(clap::Args)]
@@ -308,6 +316,10 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
         mass_explicit: a.mass.is_some(),
         subcase: a.model_args.subcase,
         ignore: a.model_args.ignore.clone(),
+        inp_shells: (a.model_args.inp_shells.as_deref())
+            .map(crate::pipeline::options::parse_inp_shells)
+            .transpose()?
+            .unwrap_or_default(),
         units: parse_units(&a.units)?,
         keep_nodes: parse_keep_nodes(&a.keep_nodes),
         invariants: parse_invariants(&a.invariants)?,
@@ -422,5 +434,8 @@ pub(crate) fn model_overrides(a: &ModelArgs) -> anyhow::Result<ModelOverrides> {
         thickness: a.thickness,
         subcase: a.subcase,
         ignore: a.ignore.clone(),
+        inp_shells: (a.inp_shells.as_deref())
+            .map(crate::pipeline::options::parse_inp_shells)
+            .transpose()?,
     })
 }

@@ -194,6 +194,7 @@ fn rebuild(body: &file::ReducedBody, input: &ModelInput) -> Result<Rebuilt, Chec
             shell_thickness: input.thickness,
             subcase: input.subcase,
             ignore_cards: input.ignore.clone(),
+            inp_shells: input.inp_shells,
         },
     )
     .map_err(BuildError::from)?;

@@ -14,7 +14,7 @@ use super::dofs::DofMap;
 use super::elements::beam::{BeamLumping, BeamProps};
 use super::elements::tet10::Tet10MassRule;
 use super::elements::{
-    beam, hex20, hex8, hex8r, prism6, pyram13, pyram5, quad4_shell, quad8_shell, rod,
+    beam, hex20, hex8, hex8r, prism15, prism6, pyram13, pyram5, quad4_shell, quad8_shell, rod,
     solid_incompatible, tet10, tet4, tri3_shell, tri6_shell, ElementError, Isotropic, Xyz,
 };
 use super::mass::{self, MassKind};
@@ -288,6 +288,16 @@ pub fn element_matrices(
                 )
             };
             solid(k.map_err(elem_err)?, ms.map_err(elem_err)?, 6, false)
+        }
+        // C3D15 as CalculiX integrates it; no other format's 15-node wedge is formed yet
+        ElementKind::Prism15 if model.params.ccx_solid_rules => {
+            let x = coords::<15>(model, n);
+            solid(
+                k_or(&|| prism15::stiffness_ccx(&x, &iso)).map_err(elem_err)?,
+                prism15::scalar_mass_ccx(&x, iso.rho).map_err(elem_err)?,
+                15,
+                true,
+            )
         }
         ElementKind::Pyram5 => {
             let x = coords::<5>(model, n);

@@ -128,6 +128,26 @@ pub fn wedge_centroid() -> Vec<QuadPoint> {
         .collect()
 }
 
+/// CalculiX's 9-point wedge rule (C3D15, ccx `gauss3d8`): the interior 3-point degree-2
+/// triangle rule ((1/6, 1/6), (2/3, 1/6), (1/6, 2/3), w = 1/6) × 3 Gauss–Legendre points.
+pub fn wedge_ccx() -> Vec<QuadPoint> {
+    let tri = [
+        [1.0 / 6.0, 1.0 / 6.0],
+        [2.0 / 3.0, 1.0 / 6.0],
+        [1.0 / 6.0, 2.0 / 3.0],
+    ];
+    let mut out = Vec::with_capacity(9);
+    for &(z, wz) in gauss_legendre(3) {
+        for t in tri {
+            out.push(QuadPoint {
+                xi: [t[0], t[1], z],
+                w: wz / 6.0,
+            });
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -77,6 +77,41 @@ pub struct ImportOptions {
     /// names (`*TIE` or `TIE`, blanks ignored), element types (`B32R`) and `PERTURBATION` (a
     /// *FREQUENCY step's preload).
     pub ignore_cards: Vec<String>,
+    /// How the shells of an Abaqus/CalculiX deck are formed (`--inp-shells`, recorded in the
+    /// recipe): expanded into one layer of bricks as ccx 2.20 does (the default), or as
+    /// flexbody's own shell elements.
+    pub inp_shells: InpShells,
+}
+
+/// The shells (S3, S4, S4R, S6, S8, S8R) of an Abaqus/CalculiX deck (`--inp-shells`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum InpShells {
+    /// As ccx 2.20 computes them: one layer of C3D6/C3D8R/C3D15/C3D20/C3D20R bricks along the
+    /// nodal normals, the shell nodes joined to them by ccx's equations
+    /// (`import::abaqus::shell_expansion`).
+    #[default]
+    Expanded,
+    /// flexbody's shell elements (MITC4, DKT, MITC9/MITC6 curved shells).
+    Native,
+}
+
+impl InpShells {
+    /// The option's value as text (`expanded`, `native`).
+    pub fn name(self) -> &'static str {
+        match self {
+            InpShells::Expanded => "expanded",
+            InpShells::Native => "native",
+        }
+    }
+
+    /// From the option's text.
+    pub fn from_name(s: &str) -> Option<InpShells> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "expanded" => Some(InpShells::Expanded),
+            "native" => Some(InpShells::Native),
+            _ => None,
+        }
+    }
 }
 
 /// Read a model file in any supported format.

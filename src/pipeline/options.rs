@@ -21,6 +21,11 @@ pub struct OptionError {
     pub expected: String,
 }
 
+/// `--inp-shells`: `expanded` or `native`.
+pub fn parse_inp_shells(s: &str) -> Result<crate::import::InpShells, OptionError> {
+    crate::import::InpShells::from_name(s).ok_or_else(|| bad("inp-shells", s, "expanded or native"))
+}
+
 fn bad(option: &'static str, value: &str, expected: &str) -> OptionError {
     OptionError {
         option,

@@ -71,6 +71,11 @@ pub fn accuracy_band(spec: &BuildSpec, set: &ModeSet) -> file::AccuracyBand {
     }
 }
 
+/// Whether the build reads an Abaqus/CalculiX deck (its shells follow `--inp-shells`).
+fn is_abaqus(spec: &BuildSpec) -> bool {
+    spec.format.or_else(|| Format::from_extension(&spec.model)) == Some(Format::Abaqus)
+}
+
 /// Name of a format as `--format` takes it.
 fn format_name(f: Format) -> &'static str {
     match f {
@@ -209,6 +214,7 @@ pub fn recipe(
         thickness: spec.thickness,
         subcase: spec.subcase,
         ignore: spec.ignore.clone(),
+        inp_shells: is_abaqus(spec).then(|| spec.inp_shells.name().to_owned()),
         gravity: spec.scene.gravity.clone(),
         loads: spec.scene.loads.clone(),
         residual_vectors: spec.scene.residual_vectors.map(|k| {
@@ -337,6 +343,8 @@ pub struct ModelInput {
     pub subcase: Option<u64>,
     /// Cards or keywords the build dropped on purpose (`--ignore`).
     pub ignore: Vec<String>,
+    /// How an Abaqus/CalculiX deck's shells were formed (`--inp-shells`).
+    pub inp_shells: crate::import::InpShells,
     /// The interface entries given to `build`.
     pub interface: Vec<String>,
     /// The spider kind given to `build`.
@@ -364,6 +372,8 @@ pub struct ModelOverrides {
     pub subcase: Option<u64>,
     /// `--ignore` (empty: not given).
     pub ignore: Vec<String>,
+    /// `--inp-shells`.
+    pub inp_shells: Option<crate::import::InpShells>,
 }
 
 /// The model `check` rebuilds: the recipe's options where the file has one, explicit overrides
@@ -417,6 +427,17 @@ pub fn model_input(
             opts.map(|r| r.ignore.clone()).unwrap_or_default()
         } else {
             o.ignore
+        },
+        // a recipe without the member is from a build that formed flexbody's shells
+        inp_shells: match o.inp_shells {
+            Some(s) => s,
+            None => match opts {
+                Some(r) => match r.inp_shells.as_deref() {
+                    Some(s) => crate::pipeline::options::parse_inp_shells(s)?,
+                    None => crate::import::InpShells::Native,
+                },
+                None => crate::import::InpShells::default(),
+            },
         },
         scene: SceneSpec {
             gravity: opts.and_then(|r| r.gravity.clone()),

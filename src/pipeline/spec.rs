@@ -92,6 +92,10 @@ pub struct BuildSpec {
     /// `--ignore`: cards or keywords dropped on purpose although they could change the body
     /// ([`crate::import::ImportOptions::ignore_cards`]; recorded in the recipe).
     pub ignore: Vec<String>,
+    /// `--inp-shells`: an Abaqus/CalculiX deck's shells expanded into bricks as ccx does (the
+    /// default) or flexbody's shells ([`crate::import::ImportOptions::inp_shells`]; recorded
+    /// in the recipe).
+    pub inp_shells: crate::import::InpShells,
     /// `mass` was chosen by the user (`--mass`); when false a deck's PARAM,COUPMASS > 0 selects
     /// consistent mass (see [`crate::pipeline::deck`]).
     pub mass_explicit: bool,
@@ -146,6 +150,7 @@ impl BuildSpec {
             beam_mass: None,
             subcase: None,
             ignore: Vec::new(),
+            inp_shells: Default::default(),
             mass_explicit: false,
             scene: Default::default(),
             verify_band: false,

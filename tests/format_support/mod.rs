@@ -605,6 +605,7 @@ pub fn recipe_3node() -> Recipe {
             select: None,
             preload: Vec::new(),
             ignore: Vec::new(),
+            inp_shells: None,
             geometric_stiffness: None,
         },
         interfaces: vec![

@@ -18,6 +18,7 @@ pub mod hex20;
 pub mod hex8;
 pub mod hex8r;
 pub mod planar_frame;
+pub mod prism15;
 pub mod prism6;
 pub mod pyram13;
 pub mod pyram5;

@@ -23,10 +23,14 @@ pub(super) fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str
         "T3D2" => (Some(Rod2), "T3D2"),
         "S3" => (Some(Tri3), "S3"),
         "S4" => (Some(Quad4), "S4"),
+        // read only when the shells are expanded as ccx does (`shell_expansion`: C3D8R);
+        // flexbody's own shells refuse it (`VARIANTS`)
+        "S4R" => (Some(Quad4), "S4R"),
         "S6" => (Some(Tri6), "S6"),
-        // S8R: the same 8-node shell (ccx expands S8 into C3D20 and S8R into C3D20R bricks;
-        // docs/conformance.md: beamfsh1, shellf)
-        "S8" | "S8R" => (Some(Quad8), "S8"),
+        // as flexbody's shells S8R is the same 8-node shell; expanded as ccx does, S8 becomes
+        // C3D20 and S8R C3D20R (`shell_expansion`)
+        "S8" => (Some(Quad8), "S8"),
+        "S8R" => (Some(Quad8), "S8R"),
         // 2D continuum faces, as gmsh writes the faces of physical surfaces: kept as surface
         // elements (sets, graphics); a section on them is not assembled.
         "CPS3" | "CPE3" => (Some(Tri3), "CPS3"),

@@ -267,7 +267,10 @@ impl Parser {
             (self.ignored.entry(t)).or_default().push(kw.loc);
             return Ok(dropped);
         }
-        let t = match super::defs::VARIANTS.iter().find(|v| v.0 == t) {
+        // expanded as ccx does, S4R is a C3D8R layer (`shell_expansion`), not a variant
+        let expanded_s4r = t == "S4R" && self.inp_shells == crate::import::InpShells::Expanded;
+        let variant = (super::defs::VARIANTS.iter()).find(|v| v.0 == t && !expanded_s4r);
+        let t = match variant {
             Some(&(variant, base, why)) => {
                 let key = format!("{variant}={base}");
                 if !self.ignore.contains(&key) {

@@ -38,6 +38,7 @@ mod loads;
 mod materials;
 mod resolve;
 mod rules;
+pub mod shell_expansion;
 mod steps;
 mod temperature;
 mod thickness;
@@ -66,6 +67,7 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
         .iter()
         .map(|s| rules::ignore_key(s))
         .collect();
+    p.inp_shells = opts.inp_shells;
     p.read_file(path, 0, 0)?;
     if !p.refused.is_empty() {
         return Err(ImportError::Refused {
@@ -73,9 +75,13 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
             cards: std::mem::take(&mut p.refused),
         });
     }
+    let shells = p.shell_elements();
     let mut model = p.finish()?;
     // a CalculiX deck means what ccx makes of it: its C3D4/C3D6 integration (ModelParams)
     model.params.ccx_solid_rules = true;
+    if opts.inp_shells == crate::import::InpShells::Expanded {
+        shell_expansion::expand(&mut model, &shells)?;
+    }
     Ok(model)
 }
 
@@ -245,6 +251,8 @@ struct Parser {
     nodal_thickness: Vec<thickness::RawNodalThickness>,
     /// Sections with the NODAL THICKNESS parameter (indices into `sections`).
     nodal_thickness_sections: Vec<usize>,
+    /// How the shells are formed (`ImportOptions::inp_shells`).
+    inp_shells: crate::import::InpShells,
     /// Bytes of all files read so far (the input budget's base, see `import::budget`).
     input_bytes: u64,
     /// Set members added so far over all sets (bounded by the budget's total).
@@ -323,9 +331,27 @@ impl Parser {
             couplings: Vec::new(),
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),
+            inp_shells: crate::import::InpShells::Expanded,
             input_bytes: 0,
             set_members: 0,
         }
+    }
+
+    /// The shell elements read (S3, S4, S4R, S6, S8, S8R) with their type and place, for
+    /// `shell_expansion`.
+    fn shell_elements(&self) -> shell_expansion::ShellElements {
+        let b = &self.b;
+        (b.model.elements.iter().zip(&b.elem_card).zip(&b.elem_loc))
+            .filter(|((_, card), _)| shell_expansion::SHELL_TYPES.contains(card))
+            .map(|((e, card), loc)| {
+                let place = shell_expansion::Place {
+                    card,
+                    file: b.file_name(*loc).to_owned(),
+                    line: loc.line as usize,
+                };
+                (e.id, place)
+            })
+            .collect()
     }
 
     fn err(&self, loc: Loc, entity: impl Into<String>, msg: impl Into<String>) -> ImportError {

@@ -671,15 +671,16 @@ impl Parser {
                 )
             })
             .count();
-        if quadratic_shells > 0 {
+        if quadratic_shells > 0 && self.inp_shells == crate::import::InpShells::Native {
             self.b.model.warnings.push(ImportWarning {
                 file: self.b.files[0].clone(),
                 message: format!(
                     "{quadratic_shells} S8/S8R/S6 shells are formed as curved shells (MITC9/MITC6, \
-                     as Abaqus forms shells); CalculiX expands them into one layer of \
-                     C3D20/C3D20R/C3D15 bricks, which is stiffer on coarse meshes (its test \
-                     shellf, 2×2 S8: ccx +11 … +84 % against Leissa's plate, flexbody −0.4 … \
-                     +4.8 %), so ccx's frequencies of this deck may be higher"
+                     as Abaqus forms shells; --inp-shells native); CalculiX expands them into \
+                     one layer of C3D20/C3D20R/C3D15 bricks (the default, --inp-shells \
+                     expanded), which is stiffer on coarse meshes (its test shellf, 2×2 S8: \
+                     ccx +11 … +84 % against Leissa's plate, flexbody's shells −0.4 … +4.8 %), \
+                     so ccx's frequencies of this deck may be higher"
                 ),
             });
         }

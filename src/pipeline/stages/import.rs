@@ -14,6 +14,7 @@ pub fn import(spec: &BuildSpec) -> Result<Model, BuildError> {
             subcase: spec.subcase,
             shell_thickness: spec.thickness,
             ignore_cards: spec.ignore.clone(),
+            inp_shells: spec.inp_shells,
         },
     )?)
 }

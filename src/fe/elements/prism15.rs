@@ -1,0 +1,106 @@
+//! 15-node quadratic wedge (C3D15), as CalculiX integrates it.
+//!
+//! ```text
+//!        6                reference: 1 (0,0,−1), 2 (1,0,−1), 3 (0,1,−1); 4–6 the same at ζ = +1;
+//!       /|\               7 (1–2), 8 (2–3), 9 (3–1) bottom, 10–12 top, 13–15 verticals (1–4 …)
+//!     12 | 11             L1 = 1 − ξ − η, L2 = ξ, L3 = η:
+//!     /  15 \             corner a: N = L_a (2L_a − 1)(1 ± ζ)/2 − L_a (1 − ζ²)/2
+//!    4---10--5            mid-edge (a, b): N = 2 L_a L_b (1 ± ζ); vertical a: L_a (1 − ζ²)
+//!    |   3   |            (Zienkiewicz & Taylor, The Finite Element Method Vol. 1 §8.9)
+//!   13  / \  14
+//!    | 9   8 |
+//!    |/     \|
+//!    1---7---2
+//! ```
+//! K and M with CalculiX's 9-point rule (`quadrature::wedge_ccx`, ccx e_c3d `gauss3d8`: the
+//! interior 3-point triangle rule × 3 Gauss points), stiffness and mass in one loop as ccx. Only
+//! CalculiX decks form it (`ModelParams::ccx_solid_rules`): ccx's shells S6 become C3D15
+//! (`import::abaqus::shell_expansion`).
+
+use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
+use crate::fe::quadrature;
+
+/// Reference coordinates of the 15 nodes.
+pub const NODES: [Xyz; 15] = [
+    [0.0, 0.0, -1.0],
+    [1.0, 0.0, -1.0],
+    [0.0, 1.0, -1.0],
+    [0.0, 0.0, 1.0],
+    [1.0, 0.0, 1.0],
+    [0.0, 1.0, 1.0],
+    [0.5, 0.0, -1.0],
+    [0.5, 0.5, -1.0],
+    [0.0, 0.5, -1.0],
+    [0.5, 0.0, 1.0],
+    [0.5, 0.5, 1.0],
+    [0.0, 0.5, 1.0],
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+];
+
+/// Wedge shape functions and reference gradients (module doc).
+pub fn shape(p: &Xyz) -> ([f64; 15], [Xyz; 15]) {
+    let [x, y, z] = *p;
+    let l = [1.0 - x - y, x, y];
+    // dL_a/dξ, dL_a/dη
+    let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+    let mut n = [0.0; 15];
+    let mut dn = [[0.0; 3]; 15];
+    let b = 1.0 - z * z;
+    for a in 0..3 {
+        for (s, off) in [(-1.0, 0), (1.0, 3)] {
+            let h = 1.0 + s * z;
+            let q = l[a] * (2.0 * l[a] - 1.0);
+            let dq = 4.0 * l[a] - 1.0;
+            n[a + off] = 0.5 * q * h - 0.5 * l[a] * b;
+            for k in 0..2 {
+                dn[a + off][k] = dl[a][k] * (0.5 * dq * h - 0.5 * b);
+            }
+            dn[a + off][2] = 0.5 * q * s + l[a] * z;
+        }
+        // the edge a–(a+1): nodes 7–9 bottom, 10–12 top
+        let c = (a + 1) % 3;
+        for (s, off) in [(-1.0, 6), (1.0, 9)] {
+            let h = 1.0 + s * z;
+            n[a + off] = 2.0 * l[a] * l[c] * h;
+            for k in 0..2 {
+                dn[a + off][k] = 2.0 * (dl[a][k] * l[c] + l[a] * dl[c][k]) * h;
+            }
+            dn[a + off][2] = 2.0 * l[a] * l[c] * s;
+        }
+        n[a + 12] = l[a] * b;
+        dn[a + 12] = [dl[a][0] * b, dl[a][1] * b, -2.0 * z * l[a]];
+    }
+    (n, dn)
+}
+
+/// Stiffness 45×45 as CalculiX forms C3D15 (9 points).
+pub fn stiffness_ccx(x: &[Xyz; 15], mat: &Isotropic) -> Result<Vec<f64>, ElementError> {
+    solid_stiffness(x, shape, &quadrature::wedge_ccx(), mat)
+}
+
+/// Scalar mass 15×15 as CalculiX forms C3D15: the same 9 points as its stiffness.
+pub fn scalar_mass_ccx(x: &[Xyz; 15], rho: f64) -> Result<Vec<f64>, ElementError> {
+    solid_scalar_mass(x, shape, &quadrature::wedge_ccx(), rho)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn prism15_shape_functions_partition_unity_and_derivatives() {
+        super::super::test_util::check_shape(shape, &NODES, &[[0.1, 0.2, 0.3], [0.3, 0.3, -0.5]]);
+    }
+
+    /// The 9-point rule integrates the volume of a wedge exactly and the consistent mass sums
+    /// to ρV: a right wedge of unit legs and height 2 has V = 1.
+    #[test]
+    fn prism15_mass_sums_to_rho_v() {
+        let x: [Xyz; 15] = NODES;
+        let m = scalar_mass_ccx(&x, 3.0).unwrap();
+        let total: f64 = m.iter().sum();
+        assert!((total - 3.0).abs() < 1e-12, "{total}");
+    }
+}

@@ -1,0 +1,770 @@
+//! CalculiX's shells as ccx 2.20 computes them (issue 34): ccx has no shell element; it
+//! expands every S3, S4R, S6, S8, S8R into one layer of C3D6, C3D8R, C3D15, C3D20, C3D20R
+//! bricks and joins the shell's nodes to the bricks by linear equations (CalculiX 2.20 manual
+//! §6.2.x "Shell elements"; the source's gen3delem, gen3dnor, gen3dfrom2d, gen3dconnect,
+//! gen3dboun, gen3dforc). This module does the same to the model the reader made:
+//!
+//! * **Normals** (gen3dnor): at every shell node, the normal of each of its shell elements is
+//!   ∂x/∂ξ × ∂x/∂η of the element's own interpolation at the node; the normals of the elements
+//!   within 20° (cos > 0.939693) of the one of the element with the smallest id, of the same
+//!   thickness there, are averaged (sum of unit normals, normalized). A node where some
+//!   element falls outside that group (a fold, or a jump of thickness) is where ccx forms a
+//!   rigid "knot": refused, naming the node.
+//! * **Nodes** (gen3dfrom2d): each shell node x gets a bottom node x − t/2·n and a top node
+//!   x + t/2·n; a node that is a corner of a quadratic element also a middle node x (ccx's
+//!   C3D20 nodes 17–20, C3D15 nodes 13–15). ccx's thickness: the section's, or `*NODAL
+//!   THICKNESS` where the section asks for it (`thickness.rs`). `OFFSET=` other than 0 is
+//!   refused by the section reader.
+//! * **Elements**: S8 → C3D20, S8R → C3D20R, S6 → C3D15, S4R → C3D8R, S3 → C3D6, with the
+//!   shell's material (ccx's integration: `ModelParams::ccx_solid_rules`, `fe::elements`);
+//!   bottom face first, in the shell's node order. S4, which ccx 2.20 expands into its own
+//!   C3D8I, is refused (flexbody's incompatible-mode hexahedron is not ccx 2.20's; the
+//!   conformance table, dloadlinIf).
+//! * **Equations** joining a shell node n (which stays in the model: sets, loads and interfaces
+//!   name it) to its bottom b, middle m and top t nodes, per direction d, the first rule that
+//!   applies making u_b,d the dependent dof:
+//!   1. n belongs to a solid element, a spring or a mass (gen3dconnect), or to an equation or
+//!      rigid element (gen3dmpc): u_b + u_t − 2 u_n = 0;
+//!   2. a `*BOUNDARY` holds direction d of n (gen3dboun): u_b + u_t − 2 u_n = 0, and for a
+//!      middle node u_m − u_n = 0 (n keeps its constraint);
+//!   3. otherwise as a force on n would join it (gen3dforc): u_b + u_t − 2 u_n = 0, or at a
+//!      corner of a quadratic element −u_b + 4 u_m − u_t − 2 u_n = 0 (the quadratic
+//!      interpolation through the thickness). ccx writes these only for loaded directions; for
+//!      a free node they change no frequency (u_n, without stiffness or mass of its own, only
+//!      replaces u_b as the unknown), and they give every shell node the meaning of ccx's
+//!      loaded node.
+//! * **Rotations held** by a `*BOUNDARY` (dofs 4–6 of n, gen3dboun's mean-rotation equations,
+//!   linearized as in a linear step): a rotation about the normal (|a·n| > 0.999) is dropped;
+//!   the first other axis a₁, projected on the tangent plane, gives e₁; any further axis not
+//!   along e₁ adds e₂ = n × e₁. Each held tangent axis e gives (e × n)·(u_t − u_b) = h θ_k,
+//!   the linearized mean rotation of the bottom and top nodes (h apart) about e equal to the
+//!   held rotation k of n that made the axis: n's held rotation stands for ccx's "angle node"
+//!   (its SPC holds the angle), so n keeps its `*BOUNDARY` as the deck gives it.
+//! * **Pressures** `P` on a shell (gen3delem's loads: ccx's `P1`) act on the bricks' bottom faces,
+//!   along +n for p > 0.
+//!
+//! What ccx would do with a rigid knot (folds, beams meeting shells, rotations of nodes in
+//! equations or rigid elements, moments and rotary inertia on shell nodes, rotations held in a
+//! rotated frame), and composite or non-isotropic shell sections, are refused naming the node
+//! or element and its line.
+
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+
+use crate::import::ImportError;
+use crate::model::{
+    DofMask, Elasticity, Element, ElementKind, Model, Mpc, Node, NodeDof, NodeIndex, Property,
+    RigidElement, Section,
+};
+
+/// The element types this module expands (S4 only to refuse it by name).
+pub const SHELL_TYPES: &[&str] = &["S3", "S4", "S4R", "S6", "S8", "S8R"];
+
+/// Where a shell element was read and as what.
+#[derive(Debug, Clone)]
+pub struct Place {
+    /// The element type (one of [`SHELL_TYPES`]).
+    pub card: &'static str,
+    /// File it is in.
+    pub file: String,
+    /// 1-based line.
+    pub line: usize,
+}
+
+/// The deck's shell elements: external element id → where and what.
+pub type ShellElements = HashMap<u64, Place>;
+
+/// cos 20°: ccx's limit for one mean normal (gen3dnor).
+const SAME_NORMAL: f64 = 0.939693;
+/// ccx's limit for a rotation axis along the normal (gen3dboun: a drilling rotation).
+const DRILLING: f64 = 0.999;
+/// ccx's limit for a second held rotation along the first (gen3dboun).
+const SAME_AXIS: f64 = 0.9999;
+
+type Xyz = [f64; 3];
+
+fn sub(a: Xyz, b: Xyz) -> Xyz {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: Xyz, b: Xyz) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: Xyz, b: Xyz) -> Xyz {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn unit(a: Xyz) -> Option<Xyz> {
+    let n = dot(a, a).sqrt();
+    (n > 1e-10 && n.is_finite()).then(|| a.map(|c| c / n))
+}
+
+fn parse_err(place: &Place, entity: String, message: String) -> ImportError {
+    ImportError::Parse {
+        file: place.file.clone(),
+        line: place.line,
+        entity,
+        message,
+    }
+}
+
+/// The shell's brick and whether a corner node of it has a middle node.
+fn brick_of(card: &str) -> Option<(ElementKind, bool)> {
+    Some(match card {
+        "S8" => (ElementKind::Hex20, true),
+        "S8R" => (ElementKind::Hex20R, true),
+        "S6" => (ElementKind::Prism15, true),
+        "S4R" => (ElementKind::Hex8R, false),
+        "S3" => (ElementKind::Prism6, false),
+        _ => return None,
+    })
+}
+
+/// The number of corner nodes of the shell a brick is made of.
+fn corners(brick: ElementKind) -> usize {
+    match brick {
+        ElementKind::Prism6 | ElementKind::Prism15 => 3,
+        _ => 4,
+    }
+}
+
+/// ∂x/∂ξ × ∂x/∂η of a shell element at its local node `j` (ccx's norshell3/4/6/8: the
+/// element's own isoparametric interpolation, Zienkiewicz & Taylor, *The Finite Element
+/// Method* vol. 1, §8.5 serendipity and triangle shape functions).
+fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
+    // (dN/dξ, dN/dη) of every node at node j's local coordinates
+    let d: Vec<(f64, f64)> = match kind {
+        ElementKind::Tri3 => vec![(-1.0, -1.0), (1.0, 0.0), (0.0, 1.0)],
+        ElementKind::Quad4 | ElementKind::Quad8 => {
+            const AT: [(f64, f64); 8] = [
+                (-1.0, -1.0),
+                (1.0, -1.0),
+                (1.0, 1.0),
+                (-1.0, 1.0),
+                (0.0, -1.0),
+                (1.0, 0.0),
+                (0.0, 1.0),
+                (-1.0, 0.0),
+            ];
+            let (s, t) = AT[j];
+            if kind == ElementKind::Quad4 {
+                (AT[..4].iter())
+                    .map(|&(si, ti)| (0.25 * si * (1.0 + t * ti), 0.25 * ti * (1.0 + s * si)))
+                    .collect()
+            } else {
+                (AT.iter().enumerate())
+                    .map(|(i, &(si, ti))| match i {
+                        0..=3 => (
+                            0.25 * si * (1.0 + t * ti) * (2.0 * s * si + t * ti),
+                            0.25 * ti * (1.0 + s * si) * (s * si + 2.0 * t * ti),
+                        ),
+                        4 | 6 => (-s * (1.0 + t * ti), 0.5 * ti * (1.0 - s * s)),
+                        _ => (0.5 * si * (1.0 - t * t), -t * (1.0 + s * si)),
+                    })
+                    .collect()
+            }
+        }
+        _ => {
+            const AT: [(f64, f64); 6] = [
+                (0.0, 0.0),
+                (1.0, 0.0),
+                (0.0, 1.0),
+                (0.5, 0.0),
+                (0.5, 0.5),
+                (0.0, 0.5),
+            ];
+            let (s, t) = AT[j];
+            let l = 1.0 - s - t;
+            vec![
+                (1.0 - 4.0 * l, 1.0 - 4.0 * l),
+                (4.0 * s - 1.0, 0.0),
+                (0.0, 4.0 * t - 1.0),
+                (4.0 * (l - s), -4.0 * s),
+                (4.0 * t, 4.0 * s),
+                (-4.0 * t, 4.0 * (l - t)),
+            ]
+        }
+    };
+    let mut gs = [0.0; 3];
+    let mut gt = [0.0; 3];
+    for (xi, (ds, dt)) in x.iter().zip(d) {
+        for k in 0..3 {
+            gs[k] += ds * xi[k];
+            gt[k] += dt * xi[k];
+        }
+    }
+    cross(gs, gt)
+}
+
+/// The expanded nodes of one shell node.
+#[derive(Debug, Clone, Copy)]
+struct Expanded {
+    bottom: NodeIndex,
+    middle: Option<NodeIndex>,
+    top: NodeIndex,
+    normal: Xyz,
+}
+
+/// One shell element to expand: its index, place, brick and thickness at each node.
+struct ShellElement<'a> {
+    index: usize,
+    place: &'a Place,
+    brick: ElementKind,
+    quadratic: bool,
+    thickness: Vec<f64>,
+}
+
+/// Expand the deck's shells into bricks as ccx 2.20 does (module doc).
+pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportError> {
+    let elements = shell_elements(model, shells)?;
+    if elements.is_empty() {
+        return Ok(());
+    }
+    // the first shell element of each shell node: where its errors point
+    let first_place: BTreeMap<NodeIndex, &Place> = (elements.iter().rev())
+        .flat_map(|e| (model.elements[e.index].nodes.iter()).map(move |&n| (n, e.place)))
+        .collect();
+    let expanded = expand_nodes(model, &elements)?;
+    replace_elements(model, &elements, &expanded);
+    let rules = Joining::of(model, &expanded, &first_place)?;
+    rules.write(model, &expanded);
+    refuse_moments(model, &expanded);
+    move_pressures(model, &expanded, shells);
+    if let Some(preload) = model.deck.preload.as_mut() {
+        if let Some((dt, _)) = preload.thermal.as_mut() {
+            // ccx gives the expanded nodes the shell node's temperature (gen3dtemp)
+            let mut parent = vec![None; model.nodes.len()];
+            for (&n, e) in &expanded {
+                for k in [Some(e.bottom), e.middle, Some(e.top)]
+                    .into_iter()
+                    .flatten()
+                {
+                    parent[k] = Some(n);
+                }
+            }
+            let old = dt.len();
+            let added: Vec<f64> = (parent[old..].iter())
+                .map(|p| p.and_then(|n| dt.get(n).copied()).unwrap_or(0.0))
+                .collect();
+            dt.extend(added);
+        }
+    }
+    Ok(())
+}
+
+/// The shell elements with a section, checked: homogeneous isotropic sections, types ccx
+/// expands into bricks flexbody forms as ccx does.
+fn shell_elements<'a>(
+    model: &Model,
+    shells: &'a ShellElements,
+) -> Result<Vec<ShellElement<'a>>, ImportError> {
+    let mut out = Vec::new();
+    for (index, e) in model.elements.iter().enumerate() {
+        let (Some(place), Some(p)) = (shells.get(&e.id), e.property) else {
+            continue;
+        };
+        let entity = format!("*ELEMENT {} (TYPE={})", e.id, place.card);
+        let prop = &model.properties[p];
+        let Section::Shell(sh) = &prop.section else {
+            continue;
+        };
+        let Some((brick, quadratic)) = brick_of(place.card) else {
+            return Err(parse_err(
+                place,
+                entity,
+                "ccx 2.20 expands S4 into one layer of its C3D8I bricks, which flexbody does \
+                 not form (its incompatible-mode hexahedron is not ccx 2.20's); \
+                 --inp-shells native forms S4 as flexbody's MITC4 shell"
+                    .into(),
+            ));
+        };
+        if brick == ElementKind::Prism6 && model.params.solid_bubbles {
+            return Err(parse_err(
+                place,
+                entity,
+                "S3 expanded into C3D6 beside C3D8I elements is not supported (the \
+                 incompatible modes apply to every linear wedge of a model)"
+                    .into(),
+            ));
+        }
+        let m = prop.material;
+        let homogeneous = sh.membrane
+            && sh.bending == Some((m, 1.0))
+            && sh.shear == Some((m, 5.0 / 6.0))
+            && sh.nsm == 0.0;
+        let isotropic = matches!(model.materials[m].elasticity, Elasticity::Isotropic)
+            && !model.property_axes.contains_key(&p);
+        if !homogeneous || !isotropic {
+            return Err(parse_err(
+                place,
+                entity,
+                format!(
+                    "the shell section of ELSET={} is not one isotropic material without \
+                     orientation, which is all ccx's expansion into bricks is done for here \
+                     (ccx expands composite and oriented shells layer by layer)",
+                    prop.name
+                ),
+            ));
+        }
+        let thickness = match model.shell_thickness.get(&index) {
+            Some(t) => t.clone(),
+            None => vec![sh.thickness; e.nodes.len()],
+        };
+        out.push(ShellElement {
+            index,
+            place,
+            brick,
+            quadratic,
+            thickness,
+        });
+    }
+    Ok(out)
+}
+
+/// The mean normal at every shell node and its new bottom, middle and top nodes (gen3dnor,
+/// gen3dfrom2d).
+fn expand_nodes(
+    model: &mut Model,
+    elements: &[ShellElement],
+) -> Result<BTreeMap<NodeIndex, Expanded>, ImportError> {
+    // node → (element, local node)
+    let mut at: BTreeMap<NodeIndex, Vec<(usize, usize)>> = BTreeMap::new();
+    for (k, e) in elements.iter().enumerate() {
+        for (j, &n) in model.elements[e.index].nodes.iter().enumerate() {
+            at.entry(n).or_default().push((k, j));
+        }
+    }
+    let mut next_id = model.max_node_id() + 1;
+    let mut out = BTreeMap::new();
+    for (&n, list) in &at {
+        let normals: Vec<(u64, Xyz, f64, &Place)> = (list.iter())
+            .map(|&(k, j)| {
+                let e = &model.elements[elements[k].index];
+                let x: Vec<Xyz> = e.nodes.iter().map(|&i| model.nodes[i].x).collect();
+                let v = node_normal(e.kind, &x, j);
+                (unit(v), e.id, elements[k].thickness[j], elements[k].place)
+            })
+            .map(|(v, id, t, place)| {
+                v.map(|v| (id, v, t, place)).ok_or_else(|| {
+                    let entity = format!("*ELEMENT {id} (TYPE={})", place.card);
+                    parse_err(
+                        place,
+                        entity,
+                        format!(
+                            "the element's normal at node {} is zero (a degenerate element)",
+                            model.nodes[n].id
+                        ),
+                    )
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        // ccx's reference: the element with the smallest number
+        let &(rid, rn, rt, rplace) = (normals.iter())
+            .min_by_key(|x| x.0)
+            .expect("a shell node belongs to at least one element (it was listed by one)");
+        let mut sum = [0.0; 3];
+        for &(id, v, t, _) in &normals {
+            if dot(v, rn) <= SAME_NORMAL || (t - rt).abs() >= 1e-10 {
+                return Err(parse_err(
+                    rplace,
+                    format!("node {}", model.nodes[n].id),
+                    format!(
+                        "shell elements {rid} and {id} meet there at more than 20° or with \
+                         another thickness ({rt} and {t}): ccx joins them with a rigid knot, \
+                         which flexbody does not form"
+                    ),
+                ));
+            }
+            sum = [sum[0] + v[0], sum[1] + v[1], sum[2] + v[2]];
+        }
+        let normal = unit(sum).expect("a sum of unit vectors within 20° of one is not zero");
+        let corner_of_quadratic =
+            (list.iter()).any(|&(k, j)| elements[k].quadratic && j < corners(elements[k].brick));
+        let x = model.nodes[n].x;
+        let frame = model.nodes[n].displacement_frame;
+        let mut add = |s: f64| {
+            model.nodes.push(Node {
+                id: next_id,
+                x: [
+                    x[0] + s * rt * normal[0],
+                    x[1] + s * rt * normal[1],
+                    x[2] + s * rt * normal[2],
+                ],
+                displacement_frame: frame,
+            });
+            next_id += 1;
+            model.nodes.len() - 1
+        };
+        let bottom = add(-0.5);
+        let middle = corner_of_quadratic.then(|| add(0.0));
+        let top = add(0.5);
+        out.insert(
+            n,
+            Expanded {
+                bottom,
+                middle,
+                top,
+                normal,
+            },
+        );
+    }
+    Ok(out)
+}
+
+/// Each shell element becomes its brick with a solid section of the shell's material.
+fn replace_elements(
+    model: &mut Model,
+    elements: &[ShellElement],
+    expanded: &BTreeMap<NodeIndex, Expanded>,
+) {
+    let mut solid_of: HashMap<usize, usize> = HashMap::new();
+    let mut next_property = model.properties.iter().map(|p| p.id).max().unwrap_or(0) + 1;
+    for e in elements {
+        let old = &model.elements[e.index];
+        let p = old
+            .property
+            .expect("shell_elements keeps elements with a property only");
+        let solid = *solid_of.entry(p).or_insert_with(|| {
+            let shell = &model.properties[p];
+            model.properties.push(Property {
+                id: next_property,
+                name: shell.name.clone(),
+                material: shell.material,
+                section: Section::Solid,
+            });
+            next_property += 1;
+            model.properties.len() - 1
+        });
+        let corners = corners(e.brick);
+        let nodes = &model.elements[e.index].nodes;
+        let x = |n: &NodeIndex| expanded[n];
+        let mut brick: Vec<NodeIndex> = Vec::with_capacity(e.brick.node_count());
+        brick.extend(nodes[..corners].iter().map(|n| x(n).bottom));
+        brick.extend(nodes[..corners].iter().map(|n| x(n).top));
+        if e.quadratic {
+            brick.extend(nodes[corners..].iter().map(|n| x(n).bottom));
+            brick.extend(nodes[corners..].iter().map(|n| x(n).top));
+            brick.extend((nodes[..corners].iter()).map(|n| {
+                x(n).middle
+                    .expect("a corner of a quadratic shell has a middle node (expand_nodes)")
+            }));
+        }
+        let id = old.id;
+        model.elements[e.index] = Element {
+            id,
+            kind: e.brick,
+            nodes: brick,
+            property: Some(solid),
+            orientation: None,
+        };
+        model.shell_thickness.remove(&e.index);
+    }
+}
+
+/// How u_b,d of a shell node is joined (module doc, rules 1–3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Rule {
+    /// u_b + u_t − 2 u_n = 0.
+    Mean,
+    /// −u_b + 4 u_m − u_t − 2 u_n = 0.
+    Quadratic,
+}
+
+/// How one shell node is joined: its rule per direction, the dofs its `*BOUNDARY` holds, the
+/// tangent axes it holds with the held rotation each came from.
+type NodeJoining = ([Rule; 3], DofMask, Vec<(Xyz, usize)>);
+
+/// The joining of every shell node.
+struct Joining {
+    nodes: BTreeMap<NodeIndex, NodeJoining>,
+}
+
+impl Joining {
+    fn of(
+        model: &Model,
+        expanded: &BTreeMap<NodeIndex, Expanded>,
+        place: &BTreeMap<NodeIndex, &Place>,
+    ) -> Result<Joining, ImportError> {
+        let err = |n: NodeIndex, msg: String| {
+            parse_err(place[&n], format!("node {}", model.nodes[n].id), msg)
+        };
+        // rule 1: solids, springs, masses, equations, rigid elements
+        let mut joined: BTreeSet<NodeIndex> = BTreeSet::new();
+        for e in &model.elements {
+            if e.property.is_none() {
+                continue;
+            }
+            for n in e.nodes.iter().filter(|n| expanded.contains_key(n)) {
+                if !e.kind.is_solid() {
+                    return Err(err(
+                        *n,
+                        format!(
+                            "a shell node of element {} (not a solid): ccx joins expanded \
+                             beams and shells with a rigid knot, which flexbody does not form",
+                            e.id
+                        ),
+                    ));
+                }
+                // a brick of an expanded shell has only new nodes: this is a solid of the deck
+                joined.insert(*n);
+            }
+        }
+        let mut touch = |n: NodeIndex, component: Option<u8>, what: &str| {
+            if !expanded.contains_key(&n) {
+                return Ok(());
+            }
+            if component.is_some_and(|c| c >= 3) {
+                return Err(err(
+                    n,
+                    format!(
+                        "{what} names a rotation of this shell node; expanded as ccx does, \
+                         a shell node has translations only (ccx would form a rigid knot)"
+                    ),
+                ));
+            }
+            joined.insert(n);
+            Ok(())
+        };
+        for m in &model.point_masses {
+            let rotary = m.inertia.iter().flatten().any(|v| *v != 0.0);
+            touch(m.node, rotary.then_some(3), "a *ROTARY INERTIA")?;
+        }
+        for s in &model.springs {
+            for d in std::iter::once(s.a).chain(s.b) {
+                touch(d.node, Some(d.component), "a spring")?;
+            }
+        }
+        for s in &model.scalar_masses {
+            for d in std::iter::once(s.a).chain(s.b) {
+                touch(d.node, Some(d.component), "a mass")?;
+            }
+        }
+        for b in &model.bushes {
+            for n in std::iter::once(b.a).chain(b.b) {
+                touch(n, Some(3), "a bush")?;
+            }
+        }
+        for m in &model.mpcs {
+            for (d, _) in &m.terms {
+                touch(d.node, Some(d.component), "an *EQUATION")?;
+            }
+        }
+        for r in &model.rigid_bodies {
+            for (n, mask) in r.independent.iter().chain(&r.dependent) {
+                touch(*n, mask.dofs().max().map(|k| k as u8), "a rigid body")?;
+            }
+        }
+        for r in &model.rigid_elements {
+            match r {
+                RigidElement::Rbe2 {
+                    independent,
+                    dependent,
+                    ..
+                } => {
+                    touch(*independent, Some(3), "the reference node of a rigid body")?;
+                    for n in dependent {
+                        touch(*n, None, "a rigid body")?;
+                    }
+                }
+                RigidElement::Rbe3 {
+                    reference,
+                    independent,
+                    ..
+                } => {
+                    touch(*reference, Some(3), "the reference node of a coupling")?;
+                    for (n, _, mask) in independent {
+                        touch(*n, mask.dofs().max().map(|k| k as u8), "a coupling")?;
+                    }
+                }
+            }
+        }
+        let mut held: BTreeMap<NodeIndex, DofMask> = BTreeMap::new();
+        for s in model.spcs.iter().filter(|s| expanded.contains_key(&s.node)) {
+            let h = held.entry(s.node).or_insert(DofMask(0));
+            *h = h.union(s.dofs);
+        }
+        let mut nodes = BTreeMap::new();
+        for (&n, e) in expanded {
+            let held = held.get(&n).copied().unwrap_or(DofMask(0));
+            let rule = |d: usize| {
+                if joined.contains(&n) || held.contains(d) || e.middle.is_none() {
+                    Rule::Mean
+                } else {
+                    Rule::Quadratic
+                }
+            };
+            let axes = held_axes(held, e.normal);
+            if !axes.is_empty() && model.nodes[n].displacement_frame.is_some() {
+                return Err(err(
+                    n,
+                    "a rotation held in a *TRANSFORM frame of a shell node is not supported".into(),
+                ));
+            }
+            nodes.insert(n, ([rule(0), rule(1), rule(2)], held, axes));
+        }
+        Ok(Joining { nodes })
+    }
+
+    /// The equations.
+    fn write(&self, model: &mut Model, expanded: &BTreeMap<NodeIndex, Expanded>) {
+        let dof = |node: NodeIndex, d: usize| NodeDof {
+            node,
+            component: d as u8,
+        };
+        for (&n, (rules, held, axes)) in &self.nodes {
+            let e = expanded[&n];
+            // the equations of a shell node are known by its id in messages
+            let id = model.nodes[n].id;
+            // u_b,d = Σ terms (the rule solved for the bottom node)
+            let bottom = |d: usize| -> Vec<(NodeDof, f64)> {
+                match rules[d] {
+                    Rule::Mean => vec![(dof(n, d), 2.0), (dof(e.top, d), -1.0)],
+                    Rule::Quadratic => {
+                        let m = e.middle.expect("the quadratic rule is for middle nodes");
+                        vec![(dof(m, d), 4.0), (dof(e.top, d), -1.0), (dof(n, d), -2.0)]
+                    }
+                }
+            };
+            for d in 0..3 {
+                let mut terms = vec![(dof(e.bottom, d), 1.0)];
+                terms.extend(bottom(d).into_iter().map(|(k, c)| (k, -c)));
+                model.mpcs.push(Mpc { id, terms });
+                if let (true, Some(m)) = (held.contains(d), e.middle) {
+                    let terms = vec![(dof(m, d), 1.0), (dof(n, d), -1.0)];
+                    model.mpcs.push(Mpc { id, terms });
+                }
+            }
+            // the held rotations: (e × n)·(u_t − u_b) − h θ_n,k = 0 with u_b substituted; the
+            // held rotation k of n stands for ccx's angle node (held at 0 as n's rotation is)
+            let x = |k: NodeIndex| model.nodes[k].x;
+            let h = dot(sub(x(e.top), x(e.bottom)), e.normal);
+            let mut rows: Vec<BTreeMap<NodeDof, f64>> = Vec::new();
+            for &(a, k) in axes {
+                let c = cross(a, e.normal);
+                let mut row: BTreeMap<NodeDof, f64> = BTreeMap::new();
+                row.insert(dof(n, k), -h);
+                for (d, cd) in c.into_iter().enumerate() {
+                    *row.entry(dof(e.top, d)).or_default() += cd;
+                    for (k, v) in bottom(d) {
+                        *row.entry(k).or_default() -= cd * v;
+                    }
+                }
+                rows.push(row);
+            }
+            for row in eliminate_top(rows, e.top) {
+                model.mpcs.push(Mpc { id, terms: row });
+            }
+        }
+    }
+}
+
+/// The tangent axes ccx holds for a node whose `*BOUNDARY` holds rotations `held` (gen3dboun,
+/// module doc), in the order ccx reads the dofs.
+fn held_axes(held: DofMask, normal: Xyz) -> Vec<(Xyz, usize)> {
+    let mut axes: Vec<(Xyz, usize)> = Vec::new();
+    for k in (3..6).filter(|&k| held.contains(k)) {
+        let mut a = [0.0; 3];
+        a[k - 3] = 1.0;
+        let along = dot(a, normal);
+        if along.abs() > DRILLING {
+            continue;
+        }
+        match axes.first() {
+            None => {
+                let p = sub(a, normal.map(|c| c * along));
+                let e1 = unit(p).expect("an axis off the normal has a tangent part");
+                axes.push((e1, k));
+            }
+            Some(&(e1, _)) if axes.len() == 1 && dot(a, e1) <= SAME_AXIS => {
+                axes.push((unit(cross(normal, e1)).expect("n ⟂ e1, both unit"), k));
+            }
+            Some(_) => {}
+        }
+    }
+    axes
+}
+
+/// Rows Σ c u = 0, each made an equation whose dependent dof is a top-node dof: the largest
+/// coefficient on the top node, eliminated from the rows after it (no chain between them).
+fn eliminate_top(
+    mut rows: Vec<BTreeMap<NodeDof, f64>>,
+    top: NodeIndex,
+) -> Vec<Vec<(NodeDof, f64)>> {
+    let mut out = Vec::new();
+    for i in 0..rows.len() {
+        let pivot = (rows[i].iter())
+            .filter(|(k, v)| k.node == top && v.abs() > 1e-12)
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+            .map(|(k, v)| (*k, *v));
+        let Some((pk, pv)) = pivot else {
+            continue;
+        };
+        let this = rows[i].clone();
+        for row in rows.iter_mut().skip(i + 1) {
+            let f = row.get(&pk).copied().unwrap_or(0.0) / pv;
+            if f != 0.0 {
+                for (k, v) in &this {
+                    *row.entry(*k).or_default() -= f * v;
+                }
+                row.remove(&pk);
+            }
+        }
+        let mut terms = vec![(pk, pv)];
+        terms.extend((this.into_iter()).filter(|(k, v)| *k != pk && v.abs() > 1e-14 * pv.abs()));
+        out.push(terms);
+    }
+    out
+}
+
+/// A pressure `P` on a shell acts, as ccx applies it, on the brick's bottom face (ccx's `P1`),
+/// pushing into the brick: along +n. The reader made it a traction −p on the shell's face (against
+/// the normal, flexbody's shells); here it becomes +p on the bottom nodes, in the shell's order
+/// (whose right-hand normal is n). Measured: a positive `P` on an S4R plate moves it along +n in
+/// ccx 2.20.
+fn move_pressures(
+    model: &mut Model,
+    expanded: &BTreeMap<NodeIndex, Expanded>,
+    shells: &ShellElements,
+) {
+    for load in &mut model.loads {
+        for part in &mut load.parts {
+            if let crate::model::LoadPart::Surface {
+                nodes,
+                traction,
+                element,
+            } = part
+            {
+                let all = nodes.iter().all(|n| expanded.contains_key(n));
+                if shells.contains_key(element) && all {
+                    for n in nodes.iter_mut() {
+                        *n = expanded[n].bottom;
+                    }
+                    *traction = -*traction;
+                }
+            }
+        }
+    }
+}
+
+/// A moment on a shell node cannot be applied (the node has translations only): its load is
+/// kept by name with the reason.
+fn refuse_moments(model: &mut Model, expanded: &BTreeMap<NodeIndex, Expanded>) {
+    for load in &mut model.loads {
+        let moment = load.parts.iter().find_map(|p| match p {
+            crate::model::LoadPart::Nodal { node, values }
+                if expanded.contains_key(node) && values[3..].iter().any(|v| *v != 0.0) =>
+            {
+                Some(*node)
+            }
+            _ => None,
+        });
+        if let (Some(n), None) = (moment, &load.problem) {
+            load.problem = Some(format!(
+                "a moment on shell node {}: expanded into bricks as ccx does, a shell node has \
+                 translations only (ccx's mean-rotation equations for moments are not formed)",
+                model.nodes[n].id
+            ));
+        }
+    }
+}
