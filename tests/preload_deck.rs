@@ -144,3 +144,28 @@ fn unknown_preload_name_is_refused() {
     );
     assert_refused(&deck, &["--preload", "NOPE"], &["--preload NOPE", "STEP_1"]);
 }
+
+/// A pressure in the static step (`*DLOAD … P2` on a tip face): CalculiX's perturbation step
+/// adds the pressure's follower (load) stiffness, which is not formed here — refused naming the
+/// keyword, the reason and the way to build it as a dead load (`--preload STEP_1`, which then
+/// builds).
+#[test]
+fn pressure_preload_of_a_perturbation_step_is_refused() {
+    // element 112's face S2 lies on the tip set TIP of the a_block mesh
+    let deck = block_deck(
+        "pressure.inp",
+        "*STEP\n*STATIC\n*DLOAD\n112, P2, 1.e6\n*END STEP\n*STEP, PERTURBATION\n*FREQUENCY\n4\n*END STEP\n",
+    );
+    assert_refused(
+        &deck,
+        &[],
+        &[
+            "pressure.inp:12: *DLOAD",
+            "pressure",
+            "follower",
+            "--preload STEP_1",
+        ],
+    );
+    let o = build(&deck, &["--modes", "4", "--preload", "STEP_1"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

@@ -231,3 +231,60 @@ fn statsub_thermal_preload_compresses_a_held_column_as_euler_says() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A pressure (PLOAD4 on CQUAD4s) in the static subcase that STATSUB names: MSC adds the
+/// pressure's follower stiffness (PARAM,FOLLOWK), not formed here — refused naming the load,
+/// with the dead-load alternative `--preload LOAD_10`, which builds.
+#[test]
+fn statsub_pressure_preload_is_refused_as_a_follower_load() {
+    let mut s = format!(
+        "SOL 103\nCEND\n{STATSUB}BEGIN BULK\nEIGRL,20,,,4\nMAT1,1,{E:?},,0.3,7850.\nPSHELL,1,1,0.01,1,,1\n"
+    );
+    let id = |i: usize, j: usize| 1 + i + 5 * j;
+    for j in 0..5 {
+        for i in 0..5 {
+            s += &format!(
+                "GRID,{},,{:?},{:?},0.\n",
+                id(i, j),
+                0.25 * i as f64,
+                0.25 * j as f64
+            );
+            if i == 0 {
+                s += &format!("SPC1,1,123456,{}\n", id(i, j));
+            }
+        }
+    }
+    for j in 0..4 {
+        for i in 0..4 {
+            let e = 1 + i + 4 * j;
+            s += &format!(
+                "CQUAD4,{e},1,{},{},{},{}\nPLOAD4,10,{e},1000.\n",
+                id(i, j),
+                id(i + 1, j),
+                id(i + 1, j + 1),
+                id(i, j + 1)
+            );
+        }
+    }
+    s += "ENDDATA\n";
+    let dir = scratch("statsub-pressure");
+    let path = dir.join("plate.bdf");
+    std::fs::write(&path, s).unwrap();
+    let (ok, err) = build(&path, &dir.join("plate.flexbody"), &[]);
+    assert!(!ok);
+    for w in ["LOAD_10", "pressure", "FOLLOWK", "--preload LOAD_10"] {
+        assert!(err.contains(w), "missing '{w}' in {err}");
+    }
+    assert!(!dir.join("plate.flexbody").exists());
+    let plain = dir.join("plain.bdf");
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace(STATSUB, PLAIN);
+    std::fs::write(&plain, text).unwrap();
+    let (ok, err) = build(
+        &plain,
+        &dir.join("plain.flexbody"),
+        &["--preload", "LOAD_10"],
+    );
+    assert!(ok, "{err}");
+}
