@@ -24,11 +24,11 @@ fn base() -> String {
     s
 }
 
-/// Cards this importer does not model: a gap, a shear panel property, a CQUADR shell, a
+/// Cards this importer does not model: a gap (refused with its own reason), a shear panel, a
 /// shell-normal PARAM and a line without a card name.
 fn refused_deck() -> String {
     base()
-        + "CGAP,50,60,3,4\nPARAM,SNORM,20.\nCQUADR,70,2,1,2,3,4\nCGAP,51,60,5,6\n"
+        + "CGAP,50,60,3,4\nPARAM,SNORM,20.\nCSHEAR,70,2,1,2,3,4\nCGAP,51,60,5,6\n"
         + "  ,1,2\nENDDATA\n"
 }
 
@@ -49,7 +49,7 @@ fn unknown_stiffness_cards_are_refused_together_with_file_line_and_id() {
         vec![
             (line_of(&text, "CGAP,50"), "CGAP 50", "CGAP"),
             (line_of(&text, "PARAM,SNORM"), "PARAM SNORM", "PARAM:SNORM"),
-            (line_of(&text, "CQUADR"), "CQUADR 70", "CQUADR"),
+            (line_of(&text, "CSHEAR"), "CSHEAR 70", "CSHEAR"),
             (line_of(&text, "CGAP,51"), "CGAP 51", "CGAP"),
             (line_of(&text, "  ,1,2"), "(a line without a card name)", ""),
         ]
@@ -59,8 +59,12 @@ fn unknown_stiffness_cards_are_refused_together_with_file_line_and_id() {
     for (line, entity, _) in &got {
         assert!(msg.contains(&format!("{file}:{line}: {entity}: ")), "{msg}");
     }
-    assert!(msg.contains("CQUADR 70: CQUADR/CTRIAR shells are not supported"));
-    assert!(msg.contains("--ignore CGAP,CQUADR,PARAM:SNORM "), "{msg}");
+    assert!(msg.contains("CGAP 50: a gap is a contact element"), "{msg}");
+    assert!(
+        msg.contains("CSHEAR 70: not read by this importer"),
+        "{msg}"
+    );
+    assert!(msg.contains("--ignore CGAP,CSHEAR,PARAM:SNORM "), "{msg}");
     assert_eq!(
         (e.file(), e.line()),
         (Some(file.as_str()), Some(line_of(&text, "CGAP,50")))
@@ -75,7 +79,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
         ignore_cards: vec![
             "cgap".into(),
             "param snorm".into(),
-            "CQUADR".into(),
+            "CSHEAR".into(),
             "CWELD".into(),
         ],
         ..Default::default()
@@ -84,7 +88,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
     assert_eq!(
         m.elements.len(),
         12,
-        "the CBARs are kept, the CQUADR dropped"
+        "the CBARs are kept, the CSHEAR dropped"
     );
     let w: Vec<&str> = m.warnings.iter().map(|w| w.message.as_str()).collect();
     let file = path.display().to_string();
@@ -100,7 +104,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
                 "1 PARAM:SNORM ({file}:{})",
                 line_of(&text, "PARAM")
             ))
-            && m.contains("1 CQUADR (")),
+            && m.contains("1 CSHEAR (")),
         "{w:?}"
     );
     assert!(

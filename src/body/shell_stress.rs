@@ -145,6 +145,13 @@ pub fn shell_fields(
         }
         let (prop, section) = shell_section(el).ok_or_else(|| fail("no shell section".into()))?;
         let props = crate::fe::shell_section::shell_props(model, e, prop, section).map_err(fail)?;
+        if model.drilling_membranes.contains(&e) {
+            return Err(fail(
+                "stress/strain shapes of CQUADR/CTRIAR (drilling membrane) are not implemented: \
+                 build without stress/strain shapes"
+                    .into(),
+            ));
+        }
         if props.general.is_some() {
             return Err(fail(
                 "stress/strain shapes of laminate and plane-stress (PCOMP of several materials, \

@@ -420,10 +420,20 @@ pub fn element_matrices(
             let mut p = super::shell_section::shell_props(model, e, prop, s).map_err(fail)?;
             // Nastran lumps CQUAD4/CTRIA3 without rotary inertia (BeamLumping::Nastran doc).
             p.lumped_rotary = spec.beam_lumping != BeamLumping::Nastran;
-            let (k, m) = if el.kind == ElementKind::Quad4 {
-                quad4_shell::matrices(&coords::<4>(model, n), &p, lumped)
-            } else {
-                tri3_shell::matrices(&coords::<3>(model, n), &p, lumped)
+            let drilling = model.drilling_membranes.contains(&e);
+            if drilling && (p.general.is_some() || p.membrane.is_none()) {
+                return Err(fail(format!(
+                    "a CQUADR/CTRIAR needs a homogeneous section with a membrane (PSHELL MID1 of \
+                     a MAT1); property {} is a laminate, plane-stress or has no membrane \
+                     (not implemented for the drilling membrane)",
+                    prop.id
+                )));
+            }
+            let (k, m) = match (el.kind == ElementKind::Quad4, drilling) {
+                (true, false) => quad4_shell::matrices(&coords::<4>(model, n), &p, lumped),
+                (true, true) => quad4_shell::matrices_drilling(&coords::<4>(model, n), &p, lumped),
+                (false, false) => tri3_shell::matrices(&coords::<3>(model, n), &p, lumped),
+                (false, true) => tri3_shell::matrices_drilling(&coords::<3>(model, n), &p, lumped),
             }
             .map_err(elem_err)?;
             ElementMatrices { dpn: 6, k, m }

@@ -588,6 +588,10 @@ pub struct Model {
     /// T1..T4): element index → one thickness per node in the element's node order, replacing
     /// the section's thickness (formed by the quadratic shells, which interpolate it).
     pub shell_thickness: BTreeMap<usize, Vec<f64>>,
+    /// Shell elements whose membrane carries drilling rotations (Nastran CQUADR/CTRIAR,
+    /// `fe::elements::drill_membrane`) instead of the CQUAD4/CTRIA3 membrane with its drilling
+    /// penalty: element indices.
+    pub drilling_membranes: std::collections::BTreeSet<usize>,
     /// Material x-axes of shell elements given on the element (Nastran CQUAD4/CTRIA3 THETA or
     /// MCID): element index → axis; others use their section's `material_axis`.
     pub shell_axes: BTreeMap<usize, ShellMaterialAxis>,

@@ -407,6 +407,30 @@ pub fn matrices(
     Ok((k, m))
 }
 
+/// [`matrices`] of the CQUADR: the same plate (MITC4 bending and shear) and mass, with the
+/// membrane of `drill_membrane` (Allman-type, Ibrahimbegovic–Taylor–Wilson) carrying θz in place
+/// of the QM6 membrane and its drilling penalty. Homogeneous sections with a membrane only.
+pub fn matrices_drilling(
+    x: &[Xyz; 4],
+    props: &ShellProps,
+    lumped: bool,
+) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
+    props.check()?;
+    let f = ShellFrame::new(x)?;
+    let plate = ShellProps {
+        membrane: None,
+        drill_factor: 0.0,
+        ..*props
+    };
+    let mut k = local_stiffness(&f, &plate)?;
+    let membrane = super::drill_membrane::quad_stiffness(&f.p, &props.d_membrane(), 1.0)?;
+    shell::add_drilling_membrane(&mut k, &membrane, 4);
+    shell::apply_warping(&mut k, &f.h);
+    let k = shell::to_basic(&k, 4, &f.axes);
+    let m = shell::mass_matrix(&area_products(&f), 4, props, lumped, &f.axes[2]);
+    Ok((k, m))
+}
+
 /// Area of the projected element.
 pub fn area(x: &[Xyz; 4]) -> Result<f64, ElementError> {
     let f = ShellFrame::new(x)?;

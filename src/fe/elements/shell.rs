@@ -423,6 +423,18 @@ impl<const N: usize> ShellFrame<N> {
     }
 }
 
+/// Adds a membrane with drilling rotations (3n×3n on [u v θz] per node, `drill_membrane`) into
+/// the 6n×6n local stiffness `k` of an n-node flat shell.
+pub fn add_drilling_membrane(k: &mut [f64], membrane: &[f64], n: usize) {
+    let dofs: Vec<usize> = (0..n).flat_map(|a| [6 * a, 6 * a + 1, 6 * a + 5]).collect();
+    let (nd, nm) = (6 * n, 3 * n);
+    for (i, &di) in dofs.iter().enumerate() {
+        for (j, &dj) in dofs.iter().enumerate() {
+            k[di * nd + dj] += membrane[i * nm + j];
+        }
+    }
+}
+
 /// Rigid links from the real (warped) nodes to the flat element's projected nodes (Taylor's
 /// warping correction, MacNeal, *Finite Elements: Their Design and Performance* (1994) §8.4):
 /// u_flat = u + θ × (−h e₃), i.e. u_f = u − hθy, v_f = v + hθx. K ← Wᵀ K W, in place.

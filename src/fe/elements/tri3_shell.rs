@@ -380,6 +380,34 @@ pub fn matrices(
     let f = ShellFrame::new(x)?;
     let k = local_stiffness(&f, props)?;
     let k = shell::to_basic(&k, 3, &f.axes);
+    Ok((k, mass(&f, props, lumped)?))
+}
+
+/// [`matrices`] of the CTRIAR: the same plate (DKT/DKMT) and mass, with the Allman membrane of
+/// `drill_membrane` carrying θz in place of the CST membrane and its drilling penalty.
+/// Homogeneous sections with a membrane only.
+pub fn matrices_drilling(
+    x: &[Xyz; 3],
+    props: &ShellProps,
+    lumped: bool,
+) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
+    props.check()?;
+    let f = ShellFrame::new(x)?;
+    let plate = ShellProps {
+        membrane: None,
+        drill_factor: 0.0,
+        ..*props
+    };
+    let mut k = local_stiffness(&f, &plate)?;
+    let membrane = super::drill_membrane::tri_stiffness(&f.p, &props.d_membrane(), 1.0)?;
+    shell::add_drilling_membrane(&mut k, &membrane, 3);
+    let k = shell::to_basic(&k, 3, &f.axes);
+    Ok((k, mass(&f, props, lumped)?))
+}
+
+/// Basic-frame mass (18×18): the linear translations and rotary inertia, with the BCIZ cubic
+/// deflection's consistent mass when not lumped (module doc).
+fn mass(f: &ShellFrame<3>, props: &ShellProps, lumped: bool) -> Result<Vec<f64>, ElementError> {
     let a = linear(&f.p).0;
     let s: Vec<f64> = (0..9)
         .map(|i| a / 12.0 * if i % 4 == 0 { 2.0 } else { 1.0 })
@@ -410,7 +438,7 @@ pub fn matrices(
         }
         m = shell::to_basic(&ml, 3, &f.axes);
     }
-    Ok((k, m))
+    Ok(m)
 }
 
 /// Membrane strain (ε_x, ε_y, γ_xy) and curvature (κ_x, κ_y, κ_xy) at each corner, in the

@@ -216,6 +216,13 @@ fn formulation(
                     prop.id
                 )));
             }
+            if model.drilling_membranes.contains(&e) {
+                return Err(fail(
+                    "a CQUADR/CTRIAR (drilling membrane) has no geometric stiffness: a preload on \
+                     it is not implemented (CQUAD4/CTRIA3 have one)"
+                        .into(),
+                ));
+            }
             Formulation::Shell(Box::new(ShellElement::new(&x, &p).map_err(elem_err)?))
         }
         (Section::Beam(s), ElementKind::Beam2 | ElementKind::Bar2) => {

@@ -50,8 +50,6 @@ const THERMAL: &str =
     "thermal data: neither thermal strain nor temperature-dependent properties are modelled, and a normal-modes analysis has no thermal load";
 /// Reason of the notes on other analyses' eigenvalue methods.
 const OTHER_METHOD: &str = "the eigenvalue method of another analysis (buckling, complex modes)";
-/// Reason of the refusal of quadratic and CQUADR/CTRIAR shells.
-const SHELLS: &str = "CQUADR/CTRIAR shells are not supported (use CQUAD4/CTRIA3, CQUAD8/CTRIA6)";
 
 /// Every card with a rule, sorted by name (checked by a test). Unlisted cards are refused.
 const CARDS: &[(&str, Rule)] = &[
@@ -74,6 +72,7 @@ const CARDS: &[(&str, Rule)] = &[
     ("CELAS2", Read(scalar::element)),
     ("CELAS3", Read(scalar::element)),
     ("CELAS4", Read(scalar::element)),
+    ("CGAP", Refuse(GAP)),
     ("CHEXA", Read(elements::element)),
     ("CMASS1", Read(scalar::element)),
     ("CMASS2", Read(scalar::element)),
@@ -89,12 +88,12 @@ const CARDS: &[(&str, Rule)] = &[
     ("CPYRAM", Read(elements::element)),
     ("CQUAD4", Read(elements::element)),
     ("CQUAD8", Read(elements::element)),
-    ("CQUADR", Refuse(SHELLS)),
+    ("CQUADR", Read(elements::element)),
     ("CROD", Read(elements::element)),
     ("CTETRA", Read(elements::element)),
     ("CTRIA3", Read(elements::element)),
     ("CTRIA6", Read(elements::element)),
-    ("CTRIAR", Refuse(SHELLS)),
+    ("CTRIAR", Read(elements::element)),
     ("CVISC", Note(DAMPING)),
     ("DAREA", Note(DYNAMIC)),
     ("DEFORM", Read(super::loads::card)),
@@ -226,6 +225,11 @@ pub(super) const PARAMS: &[(&str, Rule)] = &[
     ("WH", Note(DAMPING)),
     ("WTMASS", Read(solution::wtmass)),
 ];
+
+/// Reason of the refusal of gap elements.
+const GAP: &str = "a gap is a contact element: its stiffness depends on whether it is open or \
+                   closed, which a linear flexible body cannot carry (model the closed gap as a \
+                   spring, CELAS/CBUSH, or drop it with --ignore CGAP)";
 
 /// The reason of the refusal of a card or PARAM no list names.
 pub(super) const NOT_READ: &str =

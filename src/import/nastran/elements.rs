@@ -75,6 +75,8 @@ const ELEMENTS: &[ElementCard] = &[
     ("CBEAM", 2, &[(2, Beam2)]),
     ("CROD", 2, &[(2, Rod2)]),
     ("CQUAD4", 4, &[(4, Quad4)]),
+    ("CQUADR", 4, &[(4, Quad4)]),
+    ("CTRIAR", 3, &[(3, Tri3)]),
     ("CTRIA3", 3, &[(3, Tri3)]),
     ("CQUAD8", 8, &[(8, Quad8)]),
     ("CTRIA6", 6, &[(6, Tri6)]),
@@ -93,7 +95,14 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
     if let Some(o) = o {
         d.elements.orient.push((k, o, g.card.loc));
     }
-    if matches!(name, "CQUAD4" | "CTRIA3" | "CQUAD8" | "CTRIA6") {
+    if matches!(name, "CQUADR" | "CTRIAR") {
+        // the CQUAD4/CTRIA3 plate with a drilling membrane (`fe::elements::drill_membrane`)
+        d.b.model.drilling_membranes.insert(k);
+    }
+    if matches!(
+        name,
+        "CQUAD4" | "CTRIA3" | "CQUAD8" | "CTRIA6" | "CQUADR" | "CTRIAR"
+    ) {
         d.elements
             .shell_t
             .extend(super::shell::element_fields(g, k)?);

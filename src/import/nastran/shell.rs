@@ -21,6 +21,8 @@
 //!   T1-T3 TFLAG` (MSC QRG; a non-zero ZOFFS is an error): the quadratic shells interpolate the corner thicknesses over the
 //!   element (`Model::shell_thickness`; a mid-side grid has the mean of its edge's corners,
 //!   the linear variation along the edge).
+//! * CQUADR/CTRIAR: the CQUAD4/CTRIA3 fields, formed with the drilling membrane
+//!   (`Model::drilling_membranes`, `fe::elements::drill_membrane`).
 //! * THETA/MCID of CQUAD4/CTRIA3 (field 7; CTRIA3 field 6, CQUAD8 field 15, CTRIA6 field 9): a
 //!   real THETA turns the material x-axis from the G1→G2 side, an integer MCID is the x-axis of
 //!   that (rectangular) system projected onto the element (`Model::shell_axes`,
@@ -220,7 +222,7 @@ pub(super) enum ThetaOrMcid {
 /// card; `None` when blank or THETA = 0 (the default axis).
 pub(super) fn element_axis(g: &C, elem: usize) -> Result<Option<ElementAxis>, ImportError> {
     let k = match g.card.name.as_str() {
-        "CQUAD4" => 6,
+        "CQUAD4" | "CQUADR" => 6,
         "CQUAD8" => 14,
         "CTRIA6" => 8,
         _ => 5,
@@ -282,7 +284,7 @@ pub(super) fn apply_axes(model: &mut Model, list: &[ElementAxis]) -> Result<(), 
 pub(super) fn element_fields(g: &C, elem: usize) -> Result<Option<ElementThickness>, ImportError> {
     // (corners, ZOFFS field, TFLAG field, T1 field)
     let (nn, zoffs, tflag, t1) = match g.card.name.as_str() {
-        "CQUAD4" => (4, 7, 9, 10),
+        "CQUAD4" | "CQUADR" => (4, 7, 9, 10),
         "CQUAD8" => (4, 15, 16, 10),
         "CTRIA6" => (3, 9, 13, 10),
         _ => (3, 6, 9, 10),
@@ -320,8 +322,8 @@ pub(super) fn element_fields(g: &C, elem: usize) -> Result<Option<ElementThickne
 /// applied by `model::shell_offset` once the grids are placed.
 pub(super) fn element_offset(g: &C, elem: usize) -> Result<Option<ShellOffset>, ImportError> {
     let field = match g.card.name.as_str() {
-        "CQUAD4" => 7,
-        "CTRIA3" => 6,
+        "CQUAD4" | "CQUADR" => 7,
+        "CTRIA3" | "CTRIAR" => 6,
         _ => return Ok(None),
     };
     match g.real(field)? {
