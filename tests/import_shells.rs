@@ -115,8 +115,13 @@ ENDDATA
     let e = read("mcid9.bdf", &mixed.replace("       30.", "       9")).unwrap_err();
     assert!(e.contains("element 10") && e.contains("MCID 9"), "{e}");
     let offset = deck.replace("PCOMP,6,,0.25", "PCOMP,6,0.,0.25");
-    let e = read("z0.bdf", &offset).unwrap_err();
-    assert!(e.contains("Z0") && e.contains("offset"), "{e}");
+    // Z0 = 0: the bottom on the grids, the mid-plane T/2 = 0.15 above them (shell_offset)
+    let m = read("z0.bdf", &offset).unwrap();
+    let quad = &m.elements[0];
+    assert!(quad
+        .nodes
+        .iter()
+        .all(|&n| (m.nodes[n].x[2] - 0.15).abs() < 1e-12));
 }
 
 #[test]

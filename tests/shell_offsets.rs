@@ -199,3 +199,41 @@ fn a_single_offset_layer_changes_the_plate_and_cquad8_offsets_are_refused() {
         "{stderr}"
     );
 }
+
+/// PCOMP Z0 (the bottom surface from the reference plane; the mid-plane at Z0 + T/2): a
+/// one-ply PCOMP with Z0 = 0 is the PSHELL at ZOFFS = T/2 (to 1e-10), and two PCOMP layers with
+/// Z0 = 0 and Z0 = −T on the same grids are the plate of 2T, as the ZOFFS layers are.
+#[test]
+fn pcomp_z0_offsets_the_mid_plane() {
+    let n = 8;
+    let pcomp = |deck: String, z0: [f64; 2]| {
+        deck.replace(
+            &format!("PSHELL,1,1,{T},1,,1\n"),
+            &format!("PCOMP,1,{:?}\n,1,{T},0.\n", z0[0]),
+        )
+        .replace(
+            &format!("PSHELL,2,1,{T},1,,1\n"),
+            &format!("PCOMP,2,{:?}\n,1,{T},0.\n", z0[1]),
+        )
+    };
+    let (zoffs, _) = build("z-zoffs", &plate_deck(n, &[(1, T, 0.5 * T)], false));
+    let (z0, stderr) = build(
+        "z-pcomp",
+        &pcomp(plate_deck(n, &[(1, T, 0.0)], false), [0.0, 0.0]),
+    );
+    assert!(stderr.contains("ZOFFS: 64 CQUAD4/CTRIA3"), "{stderr}");
+    for (a, b) in zoffs.iter().zip(&z0) {
+        assert!((a - b).abs() <= 1e-10 * b, "{a} vs {b}");
+    }
+    let (layers, _) = build(
+        "z-pcomp-layers",
+        &pcomp(plate_deck(n, &[(1, T, 0.0), (2, T, 0.0)], false), [0.0, -T]),
+    );
+    let (zoffs_layers, _) = build(
+        "z-zoffs-layers",
+        &plate_deck(n, &[(1, T, 0.5 * T), (2, T, -0.5 * T)], false),
+    );
+    for (a, b) in layers.iter().zip(&zoffs_layers) {
+        assert!((a - b).abs() <= 1e-10 * b, "{a} vs {b}");
+    }
+}

@@ -309,12 +309,50 @@ pub(crate) fn build(
     b.model.warnings.extend(load_warnings);
     b.model.files = b.files.clone();
     b.record_element_sources();
-    shell_offsets(&mut b.model, &d.elements.shell_offsets, &files)?;
+    let offsets = with_mid_plane_offsets(&b.model, &d.elements.shell_offsets, &d.properties);
+    shell_offsets(&mut b.model, &offsets, &files)?;
     b.model.element_sources.extend(others);
     b.model
         .element_sources
         .sort_unstable_by_key(|&(id, _, _)| id);
     Ok((b.model, counts))
+}
+
+/// The elements' ZOFFS plus their PCOMP's mid-plane offset Z0 + T/2 (MSC QRG: Z0 is measured
+/// from the reference plane, which ZOFFS moves off the grids): one offset per element, at the
+/// element card's place, else the PCOMP's.
+fn with_mid_plane_offsets(
+    model: &Model,
+    zoffs: &[(crate::model::shell_offset::ShellOffset, Loc)],
+    props: &PropertyCards,
+) -> Vec<(crate::model::shell_offset::ShellOffset, Loc)> {
+    let mut out = zoffs.to_vec();
+    if props.mid_plane_offsets.is_empty() {
+        return out;
+    }
+    let mut at: BTreeMap<usize, usize> = BTreeMap::new();
+    for (k, (o, _)) in out.iter().enumerate() {
+        at.insert(o.elem, k);
+    }
+    for (e, el) in model.elements.iter().enumerate() {
+        let Some(p) = el.property.and_then(|p| model.properties.get(p)) else {
+            continue;
+        };
+        let Some(&(offset, loc)) = props.mid_plane_offsets.get(&p.id) else {
+            continue;
+        };
+        match at.get(&e) {
+            Some(&k) => out[k].0.zoffs += offset,
+            None => out.push((
+                crate::model::shell_offset::ShellOffset {
+                    elem: e,
+                    zoffs: offset,
+                },
+                loc,
+            )),
+        }
+    }
+    out
 }
 
 /// CQUAD4/CTRIA3 with ZOFFS moved to their reference planes (`model::shell_offset`), with a

@@ -13,6 +13,8 @@ use super::elements::unique_ids;
 use super::fields::C;
 use super::lex::Card;
 use crate::import::error::ImportError;
+use std::collections::BTreeMap;
+
 use crate::import::text::{IdMap, Loc};
 use crate::model::beam_library::{dimension_count, library_section};
 use crate::model::{BeamSection, BeamTaper, ImportWarning, Material, Property, Section};
@@ -30,6 +32,9 @@ pub(super) struct PropertyCards<'a> {
     /// PSOLID ISOP: (FULL, other) property ids with their `file:line` — MSC's CHEXA/CPENTA
     /// default has bubble modes.
     pub isop: (Vec<String>, Vec<String>),
+    /// PCOMP Z0 other than −T/2: PID → (mid-plane offset Z0 + T/2 from the reference plane,
+    /// card place), applied with the elements' ZOFFS (`model::shell_offset`).
+    pub mid_plane_offsets: BTreeMap<u64, (f64, Loc)>,
 }
 
 /// Note on the library shapes other than ROD: their J and shear factors are textbook values.
@@ -62,7 +67,12 @@ pub(super) fn property<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportErro
 /// Reader of PCOMP (plies, see `shell`).
 pub(super) fn pcomp<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let pid = g.id(0, "PID")?;
-    let (mid, section) = super::shell::pcomp(g)?;
+    let (mid, section, offset) = super::shell::pcomp(g)?;
+    if offset != 0.0 {
+        d.properties
+            .mid_plane_offsets
+            .insert(pid, (offset, g.card.loc));
+    }
     d.properties.props.push((pid, mid, section, g.card));
     Ok(())
 }

@@ -7,7 +7,8 @@
 //! * PCOMP `PID Z0 NSM SB FT TREF GE LAM / MIDi Ti THETAi SOUTi …` (MSC QRG): plies bottom to
 //!   top (blank MIDi/Ti: the previous ply's), LAM blank or SYM (the plies mirrored), NSM per
 //!   area; classical lamination in src/fe/shell_section.rs (plies of one isotropic MAT1 are
-//!   exactly that PSHELL). Z0 other than −T/2 (an offset laminate) and LAM = MEM, BEND, SMEAR,
+//!   exactly that PSHELL). Z0 other than −T/2 offsets the mid-plane by Z0 + T/2 (with the element's ZOFFS,
+//!   `model::shell_offset`); LAM = MEM, BEND, SMEAR,
 //!   SMCORE are errors naming the field; SB, FT (failure), TREF (thermal), GE (damping) and
 //!   SOUTi (output) cannot change stiffness or mass and are read past. PCOMPG: the same with
 //!   one ply a continuation line `GPLYIDi MIDi Ti THETAi SOUTi` (the global ply id only names
@@ -78,7 +79,7 @@ pub(super) fn pshell(g: &C) -> Result<(u64, Section), ImportError> {
 
 /// PCOMP → (first ply's material id, section with the plies, external material ids until
 /// [`resolve_mids`]) (module doc).
-pub(super) fn pcomp(g: &C) -> Result<(u64, Section), ImportError> {
+pub(super) fn pcomp(g: &C) -> Result<(u64, Section, f64), ImportError> {
     let n = g.card.fields.len();
     // PCOMPG: one ply a continuation line, GPLYID MID T THETA SOUT (the ply id only names it)
     let (first, stride) = match g.card.name.as_str() {
@@ -140,22 +141,17 @@ pub(super) fn pcomp(g: &C) -> Result<(u64, Section), ImportError> {
         }
     }
     let total: f64 = plies.iter().map(|p| p.thickness).sum();
-    if let Some(z0) = g.real(1)? {
-        if (z0 + total / 2.0).abs() > 1e-9 * total {
-            return Err(g.err(
-                1,
-                format!(
-                    "Z0 = {z0} offsets the laminate (mid-plane at Z0 = −T/2 = {}); offsets are not supported",
-                    -total / 2.0
-                ),
-            ));
-        }
-    }
+    // Z0: the bottom surface from the reference plane; the mid-plane lies Z0 + T/2 above it
+    let offset = match g.real(1)? {
+        Some(z0) if !z0.is_finite() => return Err(g.err(1, format!("Z0 = {z0}"))),
+        Some(z0) if (z0 + total / 2.0).abs() > 1e-9 * total => z0 + total / 2.0,
+        _ => 0.0,
+    };
     // SB, FT (failure), TREF (thermal), GE (damping): no stiffness or mass.
     let mut s = ShellSection::homogeneous(total, mid as usize);
     s.nsm = g.real_or(2, 0.0)?;
     s.plies = plies;
-    Ok((mid, Section::Shell(s)))
+    Ok((mid, Section::Shell(s), offset))
 }
 
 /// Replace the external MID2/MID3 of a parsed PSHELL by material indices.
