@@ -14,6 +14,7 @@ pub mod anisotropic;
 pub mod beam;
 pub mod curved_shell;
 pub mod hex20;
+pub mod hex20_beam;
 pub mod hex8;
 pub mod hex8r;
 pub mod planar_frame;

@@ -172,6 +172,13 @@ fn formulation(
     };
     let prop = (el.property.and_then(|p| model.properties.get(p)))
         .ok_or_else(|| fail("has no (valid) property".into()))?;
+    if model.beam_bricks.contains_key(&e) {
+        return Err(fail(
+            "is a CalculiX B32R beam expanded into a brick integrated at its section's points: \
+             it has no preload (initial stress) formulation"
+                .into(),
+        ));
+    }
     let m = (model.materials.get(prop.material))
         .ok_or_else(|| fail(format!("property {} names a missing material", prop.id)))?;
     if m.stiffness().is_some() {
