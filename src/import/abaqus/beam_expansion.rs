@@ -79,6 +79,7 @@ impl Parser {
     /// Replace every B32/B32R element by ccx's brick, add the expanded nodes and tie the beam
     /// nodes to them (module doc).
     pub(super) fn expand_quadratic_beams(&mut self) -> Result<(), ImportError> {
+        self.check_general_sections()?;
         let beams: Vec<BeamElement> = (0..self.b.model.elements.len())
             .filter(|&e| self.b.model.elements[e].kind == ElementKind::Beam3)
             .map(|e| self.beam_element(e))
@@ -143,6 +144,27 @@ impl Parser {
             }
         }
         tie_beam_nodes(model, &expanded)
+    }
+
+    /// ccx 2.20 takes `*BEAM GENERAL SECTION` (PIPE, BOX) for B32R elements only.
+    fn check_general_sections(&self) -> Result<(), ImportError> {
+        let m = &self.b.model;
+        for (k, s) in self.sections.iter().enumerate().filter(|(_, s)| s.general) {
+            let other = (0..m.elements.len())
+                .find(|&e| m.elements[e].property == Some(k) && self.b.elem_card[e] != "B32R");
+            if let Some(e) = other {
+                return Err(self.err(
+                    s.loc,
+                    format!("*BEAM GENERAL SECTION ELSET={}", s.elset),
+                    format!(
+                        "CalculiX 2.20 takes *BEAM GENERAL SECTION on B32R elements only \
+                         (element {} is {})",
+                        m.elements[e].id, self.b.elem_card[e]
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The element's section, checked against what ccx 2.20 accepts (module doc).
@@ -227,13 +249,6 @@ impl Parser {
                 ))
             }
         };
-        if s.general && !reduced {
-            return refuse(format!(
-                "CalculiX 2.20 takes *BEAM GENERAL SECTION, SECTION=PIPE/BOX on B32R elements \
-                 only (element {} is {card})",
-                el.id
-            ));
-        }
         let n1 = s.orientation.unwrap_or([0.0, 0.0, -1.0]);
         let len = norm(n1);
         if !(len > 1e-10 && len.is_finite()) {
