@@ -1,5 +1,5 @@
 //! CalculiX's quadratic beams B32/B32R as ccx 2.20 computes them (issue 34): our own decks in
-//! `fixtures/ccx_beams/` (RECT, PIPE, BOX, a beam oblique to the axes, an arc in an oblique
+//! `fixtures/ccx_beams/` (RECT, CIRC, PIPE, BOX, a beam oblique to the axes, an arc in an oblique
 //! plane, B32's full integration, a simply supported pipe) match ccx's frequencies stored in
 //! its `results.json` to ccx's printed digits; a slender cantilever bends as Euler–Bernoulli
 //! says in each plane (so the section's 1- and 2-directions are where the card puts them); the
@@ -33,6 +33,8 @@ fn expanded_beams_match_calculix() {
     for stem in [
         "rect_cantilever",
         "rect_b32",
+        "circ_cantilever",
+        "circ_b32",
         "pipe_cantilever",
         "pipe_pinned",
         "box_cantilever",
@@ -103,18 +105,19 @@ fn refusal(name: &str, text: &str) -> String {
 
 #[test]
 fn sections_and_joints_not_expanded_are_refused_by_name() {
-    // CIRC: ccx maps the circle onto the brick; not formed here
+    // *BEAM SECTION, SECTION=PIPE: ccx 2.20 knows RECT and CIRC there (PIPE under *BEAM
+    // GENERAL SECTION)
     let e = refusal(
-        "circ",
+        "pipe",
         &small_deck(
             LINE,
             TWO,
-            "*BEAM SECTION, ELSET=EALL, MATERIAL=STEEL, SECTION=CIRC\n0.1, 0.1\n0, 1, 0\n",
+            "*BEAM SECTION, ELSET=EALL, MATERIAL=STEEL, SECTION=PIPE\n0.1, 0.01\n0, 1, 0\n",
             "",
         ),
     );
     assert!(
-        e.contains("circ.inp:15: *BEAM SECTION ELSET=EALL") && e.contains("SECTION=CIRC"),
+        e.contains("pipe.inp:15: *BEAM SECTION ELSET=EALL") && e.contains("RECT or CIRC"),
         "{e}"
     );
     // *BEAM GENERAL SECTION on B31: ccx takes PIPE and BOX for B32R only

@@ -458,7 +458,7 @@ fn table(results: &BTreeMap<String, Outcome>) -> String {
          refused with those figures, as are C3D10M and S3R, which ccx 2.20 refuses itself; \
          `--ignore S4R=S4` (B31R=B31, …) reads them as the base type on purpose. B32 and \
          B32R beams are expanded into 20-node bricks as ccx does (section integration of \
-         RECT, PIPE and BOX, the beam node tied to its section; \
+         RECT, CIRC, PIPE and BOX, the beam node tied to its section; \
          `src/import/abaqus/beam_expansion.rs`); our own decks in `fixtures/ccx_beams/` \
          (`tests/ccx_beams.rs`) check them against ccx without the suite.\n\n",
     );

@@ -14,6 +14,9 @@ use super::{BeamSection, SectionShape};
 pub enum BeamBrickSection {
     /// `*BEAM SECTION, SECTION=RECT`: the whole rectangle.
     Rect,
+    /// `*BEAM SECTION, SECTION=CIRC`: an ellipse of diameters a × b (ccx reads the card's
+    /// values as diameters), the brick's corner nodes on it; integrated as RECT.
+    Circ,
     /// `*BEAM GENERAL SECTION, SECTION=PIPE`: `ratio` = inner / outer radius.
     Pipe {
         /// Inner over outer radius, 0 ≤ ratio < 1.

@@ -3,8 +3,9 @@
 //! ξ along the beam, integrated — stiffness and mass alike, as ccx's e_c3d does for its
 //! C3D20RB elements — at points that follow the section's shape (ccx beamintscheme, gauss3d13):
 //!
-//! * RECT: 2 Gauss points along ξ × a 5 × 5 product rule in (η, ζ) on the points 0,
-//!   ±√(1/3), ±√(6/7) with the weights that make it exact to degree 5 (28/45, 27/55, 98/495);
+//! * RECT and CIRC: 2 Gauss points along ξ × a 5 × 5 product rule in (η, ζ) on the points 0,
+//!   ±√(1/3), ±√(6/7) with the weights that make it exact to degree 5 (28/45, 27/55, 98/495)
+//!   (for CIRC the brick's corner nodes lie on the circle: the map makes the square round);
 //! * PIPE: 2 Gauss points along ξ × 8 points at 45° on the circle of radius √((1 + ρ²)/2)
 //!   (ρ = inner / outer radius), each weighing (π/4)(1 − ρ²)/2, which integrates 1, η², ζ²
 //!   over the annulus exactly;
@@ -20,7 +21,7 @@ use crate::model::BeamBrickSection;
 /// The points (η, ζ) and weights of the section's rule on [−1, 1]² (module doc).
 pub fn section_points(section: &BeamBrickSection) -> Vec<([f64; 2], f64)> {
     match *section {
-        BeamBrickSection::Rect => {
+        BeamBrickSection::Rect | BeamBrickSection::Circ => {
             let (a, b) = ((1.0f64 / 3.0).sqrt(), (6.0f64 / 7.0).sqrt());
             let line = [
                 (-b, 98.0 / 495.0),

@@ -11,7 +11,9 @@
 //!   there) are refused.
 //! * **Expanded nodes**: 8 around each end node, 4 (the corners) around the middle node, on
 //!   the section's bounding rectangle: x = p + t₁ n1 ζ/2 − t₂ n2 η/2 (η, ζ ∈ {−1, 0, 1}),
-//!   t₁ × t₂ the section's size (RECT a × b, BOX a × b, PIPE 2r × 2r). The brick's ξ runs from
+//!   t₁ × t₂ the section's size (RECT a × b, BOX a × b, PIPE 2r × 2r, CIRC the two values as
+//!   diameters, as ccx reads them, its corner nodes moved in by 1/√2 onto the ellipse). The
+//!   brick's ξ runs from
 //!   the first to the last beam node. B32R → C3D20R with the section's integration
 //!   ([`crate::model::Model::beam_bricks`]); B32 (RECT only, as ccx) → C3D20, 3 × 3 × 3.
 //! * **The beam node** follows the section around it ([`section_tie`]): its translation is the
@@ -24,8 +26,8 @@
 //!   does not constrain the node, ccx leaves it unconnected; here its dofs follow the section
 //!   and add no stiffness or mass, so the frequencies are the same.
 //!
-//! Refused (errors naming the card and line): CIRC sections, OFFSET1/OFFSET2, sections other
-//! than RECT (`*BEAM SECTION`) and PIPE, BOX (`*BEAM GENERAL SECTION`, B32R only, as ccx),
+//! Refused (errors naming the card and line): OFFSET1/OFFSET2, sections other than RECT, CIRC
+//! (`*BEAM SECTION`) and PIPE, BOX (`*BEAM GENERAL SECTION`, B32R only, as ccx),
 //! anisotropic materials, a *TRANSFORM on a beam node, beam nodes shared with other elements,
 //! masses, springs, MPCs or rigid elements (ccx joins those with further MPCs), and nodes where
 //! the elements' axes or sections differ (ccx's knots).
@@ -61,8 +63,10 @@ struct BeamElement {
     e: usize,
     /// B32R (reduced integration at the section's points) or B32 (C3D20).
     reduced: bool,
-    /// The section's integration; `None` for B32 (full integration of the rectangle).
+    /// The section's integration; `None` for B32 (full integration of the brick).
     brick: Option<BeamBrickSection>,
+    /// The section's kind (ccx compares it where elements meet).
+    shape: BeamBrickSection,
     /// Section size along n1 and n2.
     size: [f64; 2],
     /// The card's 1-direction, unit.
@@ -105,7 +109,12 @@ impl Parser {
                 let idx = *expanded.entry((node, k)).or_insert_with(|| {
                     let (n1, n2) = axes[&node];
                     let p = model.nodes[node].x;
-                    let (eta, zeta) = (f64::from(key[0]), f64::from(key[1]));
+                    let (mut eta, mut zeta) = (f64::from(key[0]), f64::from(key[1]));
+                    // CIRC: the corners on the circle (ccx gen3dfrom1d)
+                    if b.shape == BeamBrickSection::Circ && eta != 0.0 && zeta != 0.0 {
+                        eta /= std::f64::consts::SQRT_2;
+                        zeta /= std::f64::consts::SQRT_2;
+                    }
                     next_id += 1;
                     model.nodes.push(Node {
                         id: next_id,
@@ -208,7 +217,7 @@ impl Parser {
         let d = &s.dims;
         let positive = d.iter().all(|v| *v > 0.0 && v.is_finite());
         let (brick, size) = match (&bs.shape, s.general) {
-            (Some(SectionShape::Rectangle { .. }), false) if positive => {
+            (Some(SectionShape::Rectangle { .. }), false) if positive && d.len() >= 2 => {
                 (BeamBrickSection::Rect, [d[0], d[1]])
             }
             (Some(SectionShape::Tube { .. }), true) if positive && d[1] < d[0] => (
@@ -229,17 +238,16 @@ impl Parser {
                     [d[0], d[1]],
                 )
             }
-            (Some(SectionShape::Circle { .. }), false) => {
-                return refuse(format!(
-                    "SECTION=CIRC on {card} elements is not supported (ccx maps a circle onto \
-                     the brick); SECTION=RECT and *BEAM GENERAL SECTION PIPE, BOX are"
-                ))
-            }
+            // ccx: the values are the diameters along n1 and n2 (one value: a circle)
+            (Some(SectionShape::Circle { .. }), false) if positive => (
+                BeamBrickSection::Circ,
+                [d[0], d.get(1).copied().unwrap_or(d[0])],
+            ),
             (_, false) => {
                 return refuse(format!(
-                    "{card} elements take SECTION=RECT (CalculiX 2.20: RECT or CIRC under \
-                     *BEAM SECTION; PIPE and BOX under *BEAM GENERAL SECTION), with positive \
-                     sizes: {d:?}"
+                    "{card} elements take SECTION=RECT or CIRC under *BEAM SECTION (CalculiX \
+                     2.20; PIPE and BOX under *BEAM GENERAL SECTION), with positive sizes: \
+                     {d:?}"
                 ))
             }
             (_, true) => {
@@ -258,6 +266,7 @@ impl Parser {
             e,
             reduced,
             brick: reduced.then_some(brick),
+            shape: brick,
             size,
             n1: n1.map(|c| c / len),
         })
@@ -388,7 +397,7 @@ impl Parser {
                     && dot(t, t_ref) > SAME_AXES
                     && (a.size[0] - b.size[0]).abs() < 1e-10
                     && (a.size[1] - b.size[1]).abs() < 1e-10
-                    && std::mem::discriminant(&a.brick) == std::mem::discriminant(&b.brick)
+                    && std::mem::discriminant(&a.shape) == std::mem::discriminant(&b.shape)
             };
             if let Some(other) = list.iter().find(|l| !fits(l)) {
                 let b = &beams[other.1];
