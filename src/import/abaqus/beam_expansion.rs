@@ -24,7 +24,8 @@
 //!   independent dofs: a `*BOUNDARY` on it holds the section as ccx does, a load on it reaches
 //!   the section through the same relation, and it can be an interface node. Where the deck
 //!   does not constrain the node, ccx leaves it unconnected; here its dofs follow the section
-//!   and add no stiffness or mass, so the frequencies are the same.
+//!   and add no stiffness or mass, so the frequencies are the same. A preload (`*STEP,
+//!   PERTURBATION`) forms the bricks' initial stress at the same section points.
 //!
 //! Refused (errors naming the card and line): OFFSET1/OFFSET2, sections other than RECT, CIRC
 //! (`*BEAM SECTION`) and PIPE, BOX (`*BEAM GENERAL SECTION`, B32R only, as ccx),
