@@ -1,6 +1,6 @@
 //! CalculiX's quadratic beams B32/B32R as ccx 2.20 computes them (issue 34): our own decks in
 //! `fixtures/ccx_beams/` (RECT, CIRC, PIPE, BOX, a beam oblique to the axes, an arc in an oblique
-//! plane, B32's full integration, a simply supported pipe; preloaded by a pull on the tip's
+//! plane, with section offsets, B32's full integration, a simply supported pipe; preloaded by a pull on the tip's
 //! beam node or by gravity, as ccx perturbs the static state) match ccx's frequencies stored in
 //! its `results.json` to ccx's printed digits; a slender cantilever bends as Euler–Bernoulli
 //! says in each plane (so the section's 1- and 2-directions are where the card puts them); the
@@ -42,6 +42,7 @@ fn expanded_beams_match_calculix() {
         "oblique_rect",
         "oblique_arc_box",
         "slender_rect",
+        "arc_offset",
         "pull_rect",
         "gravity_rect",
     ] {
@@ -136,18 +137,18 @@ fn sections_and_joints_not_expanded_are_refused_by_name() {
         e.contains("b31.inp:11: *BEAM GENERAL SECTION ELSET=EALL") && e.contains("B32R"),
         "{e}"
     );
-    // OFFSET1: not formed
+    // OFFSET1 that is no number
     let e = refusal(
         "offset",
         &small_deck(
             LINE,
             TWO,
-            &RECT.replace("SECTION=RECT", "SECTION=RECT, OFFSET1=0.5"),
+            &RECT.replace("SECTION=RECT", "SECTION=RECT, OFFSET1=half"),
             "",
         ),
     );
     assert!(
-        e.contains("offset.inp:15") && e.contains("OFFSET1=0.5"),
+        e.contains("offset.inp:15") && e.contains("bad OFFSET1=half"),
         "{e}"
     );
     // two beams at a right angle: ccx's rigid knot

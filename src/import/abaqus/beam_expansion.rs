@@ -10,7 +10,8 @@
 //!   the mean tangent, and n1 = n2 × t. Nodes where they do not agree (ccx makes a rigid knot
 //!   there) are refused.
 //! * **Expanded nodes**: 8 around each end node, 4 (the corners) around the middle node, on
-//!   the section's bounding rectangle: x = p + t₁ n1 ζ/2 − t₂ n2 η/2 (η, ζ ∈ {−1, 0, 1}),
+//!   the section's bounding rectangle: x = p + t₁ n1 (ζ/2 − o₁) − t₂ n2 (η/2 + o₂)
+//!   (η, ζ ∈ {−1, 0, 1}; o₁, o₂ ccx's OFFSET1, OFFSET2 in section sizes),
 //!   t₁ × t₂ the section's size (RECT a × b, BOX a × b, PIPE 2r × 2r, CIRC the two values as
 //!   diameters, as ccx reads them, its corner nodes moved in by 1/√2 onto the ellipse). The
 //!   brick's ξ runs from
@@ -27,7 +28,7 @@
 //!   and add no stiffness or mass, so the frequencies are the same. A preload (`*STEP,
 //!   PERTURBATION`) forms the bricks' initial stress at the same section points.
 //!
-//! Refused (errors naming the card and line): OFFSET1/OFFSET2, sections other than RECT, CIRC
+//! Refused (errors naming the card and line): sections other than RECT, CIRC
 //! (`*BEAM SECTION`) and PIPE, BOX (`*BEAM GENERAL SECTION`, B32R only, as ccx),
 //! anisotropic materials, a *TRANSFORM on a beam node, beam nodes shared with other elements,
 //! masses, springs, MPCs or rigid elements (ccx joins those with further MPCs), and nodes where
@@ -70,6 +71,8 @@ struct BeamElement {
     shape: BeamBrickSection,
     /// Section size along n1 and n2.
     size: [f64; 2],
+    /// CalculiX's OFFSET1, OFFSET2 (in section sizes).
+    offsets: [f64; 2],
     /// The card's 1-direction, unit.
     n1: [f64; 3],
 }
@@ -120,7 +123,8 @@ impl Parser {
                     model.nodes.push(Node {
                         id: next_id,
                         x: std::array::from_fn(|c| {
-                            p[c] + b.size[0] * n1[c] * zeta / 2.0 - b.size[1] * n2[c] * eta / 2.0
+                            p[c] + b.size[0] * n1[c] * (zeta / 2.0 - b.offsets[0])
+                                - b.size[1] * n2[c] * (eta / 2.0 + b.offsets[1])
                         }),
                         displacement_frame: None,
                     });
@@ -201,12 +205,8 @@ impl Parser {
             ));
         };
         let refuse = |msg: String| Err(self.err(s.loc, sent.clone(), msg));
-        if s.offsets != [0.0, 0.0] {
-            return refuse(format!(
-                "OFFSET1={}, OFFSET2={} on {card} elements (expanded into bricks) are not \
-                 supported",
-                s.offsets[0], s.offsets[1]
-            ));
+        if !s.offsets.iter().all(|o| o.is_finite()) {
+            return refuse(format!("OFFSET1, OFFSET2 must be finite: {:?}", s.offsets));
         }
         let mat = &self.b.model.materials[self.b.model.properties[k].material];
         if mat.stiffness().is_some() {
@@ -269,6 +269,7 @@ impl Parser {
             brick: reduced.then_some(brick),
             shape: brick,
             size,
+            offsets: s.offsets,
             n1: n1.map(|c| c / len),
         })
     }
@@ -398,6 +399,8 @@ impl Parser {
                     && dot(t, t_ref) > SAME_AXES
                     && (a.size[0] - b.size[0]).abs() < 1e-10
                     && (a.size[1] - b.size[1]).abs() < 1e-10
+                    && (a.offsets[0] - b.offsets[0]).abs() < 1e-10
+                    && (a.offsets[1] - b.offsets[1]).abs() < 1e-10
                     && std::mem::discriminant(&a.shape) == std::mem::discriminant(&b.shape)
             };
             if let Some(other) = list.iter().find(|l| !fits(l)) {
