@@ -169,3 +169,27 @@ fn sections_and_joints_not_expanded_are_refused_by_name() {
         "{e}"
     );
 }
+
+/// The beam node stays in the model as an interface node: a Craig–Bampton body with the tip's
+/// beam node as interface (its six dofs follow the section, no stiffer than ccx's model) has
+/// the full model's first frequencies, ccx's.
+#[test]
+fn a_beam_node_is_an_interface_node() {
+    let dir = scratch("ccx_beams_interface");
+    let out = dir.join("tip.flexbody");
+    let o = common::exe()
+        .arg("build")
+        .arg(fixture("rect_cantilever.inp"))
+        .args(["--interface", "21", "--fmax", "3000", "--units", "si"])
+        .args(["--mass", "consistent", "-q", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let body = file::read(&out).unwrap();
+    let ccx = common::ccx_frequencies("ccx_beams", "rect_cantilever");
+    for (a, b) in body.modes.frequency_hz.iter().zip(&ccx).take(3) {
+        assert!((a - b).abs() / b < 1e-4, "{a} against ccx {b}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
