@@ -7,8 +7,9 @@
 //!   geometry at the node, n2 = t × n1 / |t × n1| with n1 the section card's direction line
 //!   ((0, 0, −1) without it). Elements at a node share one set of axes when their n2 and t lie
 //!   within 20° and their sections agree (ccx's test); then n2 is their mean, made normal to
-//!   the mean tangent, and n1 = n2 × t. Nodes where they do not agree (ccx makes a rigid knot
-//!   there) are refused.
+//!   the mean tangent, and n1 = n2 × t. Where they do not agree, each group of agreeing
+//!   elements has its own axes and expanded nodes, and all of them are joined at the node by
+//!   ccx's knot ([`knot_tie`]: rigid, plus a uniform expansion).
 //! * **Expanded nodes**: 8 around each end node, 4 (the corners) around the middle node, on
 //!   the section's bounding rectangle: x = p + t₁ n1 (ζ/2 − o₁) − t₂ n2 (η/2 + o₂)
 //!   (η, ζ ∈ {−1, 0, 1}; o₁, o₂ ccx's OFFSET1, OFFSET2 in section sizes),
@@ -17,8 +18,8 @@
 //!   brick's ξ runs from
 //!   the first to the last beam node. B32R → C3D20R with the section's integration
 //!   ([`crate::model::Model::beam_bricks`]); B32 (RECT only, as ccx) → C3D20, 3 × 3 × 3.
-//! * **The beam node** follows the section around it ([`section_tie`]): its translation is the
-//!   mean of the four corners, its rotation about each axis the corners' linearized mean
+//! * **The beam node** (not a knot) follows the section around it ([`section_tie`]): its
+//!   translation is the mean of the four corners, its rotation about each axis the corners' linearized mean
 //!   rotation (ccx's MEANROTBS MPC, umpc_mean_rot, at the undeformed state). Where the deck
 //!   holds a rotation of the node, the mid-side nodes also stay between their corners (ccx's
 //!   "midfix"). The equations are solved for dofs of the expanded nodes, so the beam node keeps
@@ -31,8 +32,7 @@
 //! Refused (errors naming the card and line): sections other than RECT, CIRC
 //! (`*BEAM SECTION`) and PIPE, BOX (`*BEAM GENERAL SECTION`, B32R only, as ccx),
 //! anisotropic materials, a *TRANSFORM on a beam node, beam nodes shared with other elements,
-//! masses, springs, MPCs or rigid elements (ccx joins those with further MPCs), and nodes where
-//! the elements' axes or sections differ (ccx's knots).
+//! masses, springs, MPCs or rigid elements (ccx joins those with further MPCs).
 
 use std::collections::{BTreeMap, HashMap};
 
@@ -80,6 +80,9 @@ struct BeamElement {
 /// Section axes shared at one beam node: (n1, n2).
 type Axes = ([f64; 3], [f64; 3]);
 
+/// (beam node, index into the beams) → (its group of axes at the node, the axes).
+type NodeAxes = HashMap<(NodeIndex, usize), (usize, Axes)>;
+
 /// One element at a beam node: (element id, index of the beam, tangent, n2).
 type AtNode = (u64, usize, [f64; 3], [f64; 3]);
 
@@ -99,10 +102,10 @@ impl Parser {
         let axes = self.node_axes(&beams)?;
         let model = &mut self.b.model;
         let mut next_id = model.max_node_id();
-        // (beam node, knor index) → expanded node
-        let mut expanded: HashMap<(NodeIndex, usize), NodeIndex> = HashMap::new();
+        // (beam node, group of axes at it, knor index) → expanded node
+        let mut expanded: BTreeMap<(NodeIndex, usize, usize), NodeIndex> = BTreeMap::new();
         let mut solid_property: BTreeMap<usize, usize> = BTreeMap::new();
-        for b in &beams {
+        for (bi, b) in beams.iter().enumerate() {
             let beam_nodes = model.elements[b.e].nodes.clone();
             let mut brick = Vec::with_capacity(20);
             for r in crate::fe::elements::hex20::NODES {
@@ -110,8 +113,8 @@ impl Parser {
                 let key = [r[1] as i8, r[2] as i8];
                 // `EXPANDED` lists every (η, ζ) but the centre, which no brick node has
                 let k = EXPANDED.iter().position(|&q| q == key).unwrap_or(0);
-                let idx = *expanded.entry((node, k)).or_insert_with(|| {
-                    let (n1, n2) = axes[&node];
+                let (group, (n1, n2)) = axes[&(node, bi)];
+                let idx = *expanded.entry((node, group, k)).or_insert_with(|| {
                     let p = model.nodes[node].x;
                     let (mut eta, mut zeta) = (f64::from(key[0]), f64::from(key[1]));
                     // CIRC: the corners on the circle (ccx gen3dfrom1d)
@@ -361,8 +364,10 @@ impl Parser {
         Ok(())
     }
 
-    /// The section axes (n1, n2) at every beam node (module doc; ccx gen3dnor).
-    fn node_axes(&self, beams: &[BeamElement]) -> Result<HashMap<NodeIndex, Axes>, ImportError> {
+    /// The section axes (n1, n2) of every beam at each of its nodes, and the group of beams
+    /// at the node that share them (0, 1, …; more than one group: a knot), keyed by (node,
+    /// index into `beams`) (module doc; ccx gen3dnor).
+    fn node_axes(&self, beams: &[BeamElement]) -> Result<NodeAxes, ImportError> {
         let m = &self.b.model;
         // per node: (element id, beam, tangent, n2)
         let mut at: BTreeMap<NodeIndex, Vec<AtNode>> = BTreeMap::new();
@@ -389,51 +394,49 @@ impl Parser {
                 at.entry(node).or_default().push((el.id, bi, t, n2));
             }
         }
-        let mut out = HashMap::with_capacity(at.len());
+        let mut out = HashMap::new();
         for (node, mut list) in at {
             list.sort_by_key(|l| l.0);
-            let (_, first, t_ref, n_ref) = list[0];
-            let fits = |&(_, bi, t, n): &AtNode| {
-                let (a, b) = (&beams[bi], &beams[first]);
-                dot(n, n_ref) > SAME_AXES
-                    && dot(t, t_ref) > SAME_AXES
-                    && (a.size[0] - b.size[0]).abs() < 1e-10
-                    && (a.size[1] - b.size[1]).abs() < 1e-10
-                    && (a.offsets[0] - b.offsets[0]).abs() < 1e-10
-                    && (a.offsets[1] - b.offsets[1]).abs() < 1e-10
-                    && std::mem::discriminant(&a.shape) == std::mem::discriminant(&b.shape)
-            };
-            if let Some(other) = list.iter().find(|l| !fits(l)) {
-                let b = &beams[other.1];
-                return Err(self.err(
-                    self.b.elem_loc[b.e],
-                    format!("*ELEMENT {} (TYPE={})", other.0, self.b.elem_card[b.e]),
-                    format!(
-                        "at node {} the beam elements {} and {} differ in direction (> 20°), \
-                         section axes or section: CalculiX joins them by a rigid knot, which \
-                         is not supported",
-                        m.nodes[node].id, list[0].0, other.0
-                    ),
-                ));
+            let mut left: Vec<AtNode> = list;
+            let mut group = 0;
+            while !left.is_empty() {
+                // ccx: the element with the smallest number, and those within 20° of it with
+                // the same section, share the node's axes
+                let (_, first, t_ref, n_ref) = left[0];
+                let fits = |&(_, bi, t, n): &AtNode| {
+                    let (a, b) = (&beams[bi], &beams[first]);
+                    dot(n, n_ref) > SAME_AXES
+                        && dot(t, t_ref) > SAME_AXES
+                        && (a.size[0] - b.size[0]).abs() < 1e-10
+                        && (a.size[1] - b.size[1]).abs() < 1e-10
+                        && (a.offsets[0] - b.offsets[0]).abs() < 1e-10
+                        && (a.offsets[1] - b.offsets[1]).abs() < 1e-10
+                        && std::mem::discriminant(&a.shape) == std::mem::discriminant(&b.shape)
+                };
+                let (members, rest): (Vec<AtNode>, Vec<AtNode>) = left.into_iter().partition(fits);
+                left = rest;
+                let sum = |f: &dyn Fn(&AtNode) -> [f64; 3]| {
+                    (members.iter()).fold([0.0; 3], |s, l| std::array::from_fn(|c| s[c] + f(l)[c]))
+                };
+                let t = unit(sum(&|l| l.2)).unwrap_or(t_ref);
+                let n = sum(&|l| l.3);
+                let n2 = unit(std::array::from_fn(|c| n[c] - dot(n, t) * t[c])).unwrap_or(n_ref);
+                for l in &members {
+                    out.insert((node, l.1), (group, (cross(n2, t), n2)));
+                }
+                group += 1;
             }
-            let sum = |f: &dyn Fn(&AtNode) -> [f64; 3]| {
-                list.iter()
-                    .fold([0.0; 3], |s, l| std::array::from_fn(|c| s[c] + f(l)[c]))
-            };
-            let t = unit(sum(&|l| l.2)).unwrap_or(t_ref);
-            let n = sum(&|l| l.3);
-            let n2 = unit(std::array::from_fn(|c| n[c] - dot(n, t) * t[c])).unwrap_or(n_ref);
-            out.insert(node, (cross(n2, t), n2));
         }
         Ok(out)
     }
 }
 
-/// Tie every beam node to the section around it ([`section_tie`]); its held rotations (from
-/// the model's SPCs) ask for the mid-side equations.
+/// Tie every beam node to the section around it ([`section_tie`]; its held rotations, from
+/// the model's SPCs, ask for the mid-side equations), or where the elements at it differ in
+/// axes or section, to all their sections by ccx's knot ([`knot_tie`]).
 fn tie_beam_nodes(
     model: &mut Model,
-    expanded: &HashMap<(NodeIndex, usize), NodeIndex>,
+    expanded: &BTreeMap<(NodeIndex, usize, usize), NodeIndex>,
 ) -> Result<(), ImportError> {
     let mut held: HashMap<NodeIndex, bool> = HashMap::new();
     for s in &model.spcs {
@@ -441,31 +444,89 @@ fn tie_beam_nodes(
             held.insert(s.node, true);
         }
     }
-    let mut beam_nodes: Vec<NodeIndex> = expanded.keys().map(|k| k.0).collect();
-    beam_nodes.sort_unstable();
-    beam_nodes.dedup();
-    for b in beam_nodes {
-        let corners: [NodeIndex; 4] = std::array::from_fn(|k| expanded[&(b, k)]);
+    let mut at: BTreeMap<NodeIndex, Vec<(usize, usize, NodeIndex)>> = BTreeMap::new();
+    for (&(b, group, k), &n) in expanded {
+        at.entry(b).or_default().push((group, k, n));
+    }
+    for (b, around) in at {
+        let id = model.nodes[b].id;
+        let x = |n: NodeIndex| model.nodes[n].x;
+        if around.iter().any(|a| a.0 > 0) {
+            let dependent: Vec<(NodeIndex, [f64; 3])> =
+                around.iter().map(|a| (a.2, x(a.2))).collect();
+            let mpcs = knot_tie(b, x(b), &dependent).map_err(|message| ImportError::Parse {
+                file: model.source.clone(),
+                line: 0,
+                entity: format!("node {id}"),
+                message,
+            })?;
+            model
+                .mpcs
+                .extend(mpcs.into_iter().map(|terms| Mpc { id, terms }));
+            continue;
+        }
+        let get = |k: usize| around.iter().find(|a| a.1 == k).map(|a| a.2);
+        let corners: [NodeIndex; 4] = std::array::from_fn(|k| get(k).unwrap_or(b));
         let midsides: Option<[NodeIndex; 4]> = (4..8)
-            .map(|k| expanded.get(&(b, k)).copied())
+            .map(get)
             .collect::<Option<Vec<_>>>()
             .and_then(|v| v.try_into().ok());
-        let x = |n: NodeIndex| model.nodes[n].x;
         let mids = midsides.filter(|_| held.get(&b).copied().unwrap_or(false));
         let mpcs = section_tie(b, corners.map(|n| (n, x(n))), mids).map_err(|message| {
             ImportError::Parse {
                 file: model.source.clone(),
                 line: 0,
-                entity: format!("node {}", model.nodes[b].id),
+                entity: format!("node {id}"),
                 message,
             }
         })?;
-        let id = model.nodes[b].id;
         model
             .mpcs
             .extend(mpcs.into_iter().map(|terms| Mpc { id, terms }));
     }
     Ok(())
+}
+
+/// ccx's knot (gen3dnor, knotmpc, fillknotmpc; KNOT1 linearized at the undeformed state):
+/// every expanded node around `beam` follows the beam node's translation and rotation and a
+/// uniform expansion α about it, u_i = u_b + θ_b × r_i + α r_i with r_i = x_i − x_b. α is
+/// eliminated: the equation with the largest |r_c| defines it by that node's dof, which stays
+/// independent; every other expanded dof is dependent.
+pub(crate) fn knot_tie(
+    beam: NodeIndex,
+    at: [f64; 3],
+    dependent: &[(NodeIndex, [f64; 3])],
+) -> Result<Vec<Vec<(NodeDof, f64)>>, String> {
+    let dof = |node: NodeIndex, c: usize| NodeDof {
+        node,
+        component: c as u8,
+    };
+    // α, a dof of no node: eliminated below
+    let alpha = dof(usize::MAX, 0);
+    let mut rows: Vec<Vec<(NodeDof, f64)>> = Vec::with_capacity(3 * dependent.len());
+    for &(n, x) in dependent {
+        let r: [f64; 3] = std::array::from_fn(|c| x[c] - at[c]);
+        for c in 0..3 {
+            let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
+            // (θ × r)_c = θ_c1 r_c2 − θ_c2 r_c1
+            let terms = [
+                (dof(n, c), 1.0),
+                (dof(beam, c), -1.0),
+                (dof(beam, 3 + c1), -r[c2]),
+                (dof(beam, 3 + c2), r[c1]),
+                (alpha, -r[c]),
+            ];
+            rows.push(terms.into_iter().filter(|t| t.1 != 0.0).collect());
+        }
+    }
+    let weight =
+        |r: &Vec<(NodeDof, f64)>| r.iter().find(|t| t.0 == alpha).map_or(0.0, |t| t.1.abs());
+    let first = (0..rows.len())
+        .max_by(|&i, &j| weight(&rows[i]).total_cmp(&weight(&rows[j])))
+        .ok_or("a knot without expanded nodes")?;
+    rows.swap(0, first);
+    let solved = solve_for_section_dofs(beam, Some(alpha), rows)?;
+    Ok(solved.into_iter().filter(|m| m[0].0 != alpha).collect())
 }
 
 /// The linear equations that make `beam` follow the section around it, solved for dofs of
@@ -537,14 +598,15 @@ pub(crate) fn section_tie(
             }
         }
     }
-    solve_for_section_dofs(beam, rows)
+    solve_for_section_dofs(beam, None, rows)
 }
 
 /// Gauss–Jordan elimination of `rows` (Σ c u = 0) with pivots among the dofs of nodes other
-/// than `beam` (largest coefficient first): each row becomes u_pivot + Σ c u_free = 0 with no
-/// pivot among the free dofs.
+/// than `beam` (`first` where it can, else the largest coefficient): each row becomes
+/// u_pivot + Σ c u_free = 0 with no pivot among the free dofs.
 fn solve_for_section_dofs(
     beam: NodeIndex,
+    first: Option<NodeDof>,
     rows: Vec<Vec<(NodeDof, f64)>>,
 ) -> Result<Vec<Vec<(NodeDof, f64)>>, String> {
     let mut vars: Vec<NodeDof> = rows.iter().flatten().map(|t| t.0).collect();
@@ -564,10 +626,16 @@ fn solve_for_section_dofs(
     let mut pivots: Vec<usize> = Vec::with_capacity(a.len());
     for i in 0..a.len() {
         let scale = a[i].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let p = (0..vars.len())
-            .filter(|&j| vars[j].node != beam && !pivots.contains(&j))
-            .max_by(|&x, &y| a[i][x].abs().total_cmp(&a[i][y].abs()))
-            .filter(|&j| a[i][j].abs() > 1e-9 * scale)
+        let preferred = first
+            .and_then(|d| col.get(&d).copied())
+            .filter(|&j| !pivots.contains(&j) && a[i][j].abs() > 1e-9 * scale);
+        let p = preferred
+            .or_else(|| {
+                (0..vars.len())
+                    .filter(|&j| vars[j].node != beam && !pivots.contains(&j))
+                    .max_by(|&x, &y| a[i][x].abs().total_cmp(&a[i][y].abs()))
+                    .filter(|&j| a[i][j].abs() > 1e-9 * scale)
+            })
             .ok_or("the section's tie equations are singular (a degenerate section)")?;
         let piv = a[i][p];
         a[i].iter_mut().for_each(|v| *v /= piv);
@@ -672,6 +740,42 @@ mod tests {
         for m in &mpcs {
             let residual: f64 = m.iter().map(|&(d, coef)| coef * stretch(d)).sum();
             assert!(residual.abs() < 1e-12, "{m:?}: {residual}");
+        }
+    }
+
+    /// The knot: a rigid motion plus a uniform expansion of the expanded nodes satisfies
+    /// every equation; all but one of their dofs are dependent (α took the other).
+    #[test]
+    fn knot_tie_is_rigid_motion_with_expansion() {
+        let at = [0.5, 0.2, -0.1];
+        let x: Vec<[f64; 3]> = (0..6)
+            .map(|k| {
+                let t = k as f64;
+                [
+                    at[0] + 0.1 * t.cos(),
+                    at[1] + 0.07 * t.sin(),
+                    at[2] + 0.03 * (t - 2.5),
+                ]
+            })
+            .collect();
+        let dependent: Vec<(NodeIndex, [f64; 3])> =
+            x.iter().enumerate().map(|(i, &p)| (i + 1, p)).collect();
+        let mpcs = knot_tie(0, at, &dependent).unwrap();
+        assert_eq!(mpcs.len(), 3 * 6 - 1);
+        let (v, w, alpha) = ([0.3, -0.1, 0.2], [0.01, -0.02, 0.015], 0.004);
+        let u = |d: NodeDof| -> f64 {
+            let c = usize::from(d.component);
+            if d.node == 0 {
+                return if c < 3 { v[c] } else { w[c - 3] };
+            }
+            let r: [f64; 3] = std::array::from_fn(|i| x[d.node - 1][i] - at[i]);
+            v[c] + cross(w, r)[c] + alpha * r[c]
+        };
+        for m in &mpcs {
+            let residual: f64 = m.iter().map(|&(d, coef)| coef * u(d)).sum();
+            assert!(residual.abs() < 1e-12, "{m:?}: {residual}");
+            assert!(m[0].0.node != 0 && m[0].0.node != usize::MAX);
+            assert!(m.iter().all(|t| t.0.node != usize::MAX));
         }
     }
 }
