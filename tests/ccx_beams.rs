@@ -46,6 +46,7 @@ fn expanded_beams_match_calculix() {
         "arc_offset",
         "knot_l_rect",
         "knot_portal",
+        "mass_spring_rect",
         "pull_rect",
         "gravity_rect",
     ] {
@@ -154,13 +155,19 @@ fn sections_and_joints_not_expanded_are_refused_by_name() {
         e.contains("offset.inp:15") && e.contains("bad OFFSET1=half"),
         "{e}"
     );
-    // a mass on a beam node: ccx joins it with further MPCs
-    let mass = "*ELEMENT, TYPE=MASS, ELSET=M\n9, 5\n*MASS, ELSET=M\n2.0\n";
-    let e = refusal("mass", &small_deck(LINE, TWO, RECT, mass));
+    // rotary inertia on a beam node: not joined here
+    let mass = "*ELEMENT, TYPE=ROTARYI, ELSET=M\n9, 5\n*ROTARY INERTIA, ELSET=M\n2., 2., 2.\n";
+    let e = refusal("rotary", &small_deck(LINE, TWO, RECT, mass));
     assert!(
-        e.contains("*ELEMENT 2 (TYPE=B32R)") && e.contains("beam node 5 is also used by mass 9"),
+        e.contains("*ELEMENT 2 (TYPE=B32R)")
+            && e.contains("beam node 5 is also used by rotary inertia 9"),
         "{e}"
     );
+    // a shell on a beam node
+    let shell = "*ELEMENT, TYPE=S4, ELSET=P\n9, 5, 6, 7, 8\n";
+    let nodes = format!("{LINE}6, 3, 0, 0\n7, 3, 1, 0\n8, 2, 1, 0\n");
+    let e = refusal("shell", &small_deck(&nodes, TWO, RECT, shell));
+    assert!(e.contains("beam node 5 is also used by element 9"), "{e}");
 }
 
 /// The beam node stays in the model as an interface node: a Craig–Bampton body with the tip's

@@ -29,10 +29,12 @@
 //!   and add no stiffness or mass, so the frequencies are the same. A preload (`*STEP,
 //!   PERTURBATION`) forms the bricks' initial stress at the same section points.
 //!
-//! Refused (errors naming the card and line): sections other than RECT, CIRC
-//! (`*BEAM SECTION`) and PIPE, BOX (`*BEAM GENERAL SECTION`, B32R only, as ccx),
-//! anisotropic materials, a *TRANSFORM on a beam node, beam nodes shared with other elements,
-//! masses, springs, MPCs or rigid elements (ccx joins those with further MPCs).
+//! Solid elements, masses and springs on a beam node join its translation, the mean of the
+//! corners, as ccx's gen3dconnect joins them. Refused (errors naming the card and line):
+//! sections other than RECT, CIRC (`*BEAM SECTION`) and PIPE, BOX (`*BEAM GENERAL SECTION`,
+//! B32R only, as ccx), anisotropic materials, a *TRANSFORM on a beam node, beam nodes shared
+//! with shells, rods or B31 beams, rotary inertia or rotational springs, MPCs or rigid
+//! elements (ccx joins those with further MPCs).
 
 use std::collections::{BTreeMap, HashMap};
 
@@ -301,7 +303,10 @@ impl Parser {
                 ),
             ))
         };
-        for el in m.elements.iter().filter(|e| e.kind != ElementKind::Beam3) {
+        // solid elements join a beam node's translation, which is the mean of its section's
+        // corners, as ccx's gen3dconnect joins them
+        for el in (m.elements.iter()).filter(|e| e.kind != ElementKind::Beam3 && !e.kind.is_solid())
+        {
             if let Some(&n) = el.nodes.iter().find(|n| owner.contains_key(n)) {
                 return refuse(n, format!("element {}", el.id));
             }
@@ -315,18 +320,32 @@ impl Parser {
                 ));
             }
         }
+        // masses and springs on translations likewise (gen3dconnect); on rotations not
+        let rotary = |p: &crate::model::PointMass| {
+            p.inertia.iter().flatten().any(|v| *v != 0.0) || p.offset != [0.0; 3]
+        };
         let used: Vec<(NodeIndex, String)> = (m.point_masses.iter())
-            .map(|p| (p.node, format!("mass {}", p.id)))
+            .filter(|p| rotary(p))
+            .map(|p| (p.node, format!("rotary inertia {}", p.id)))
             .chain(m.springs.iter().flat_map(|s| {
-                std::iter::once(s.a.node)
-                    .chain(s.b.map(|b| b.node))
-                    .map(move |n| (n, format!("spring {}", s.id)))
+                std::iter::once(s.a)
+                    .chain(s.b)
+                    .filter(|d| d.component > 2)
+                    .map(move |d| (d.node, format!("rotational spring {}", s.id)))
             }))
-            .chain(
-                m.scalar_masses
-                    .iter()
-                    .map(|s| (s.a.node, format!("mass {}", s.id))),
-            )
+            .chain(m.scalar_masses.iter().flat_map(|s| {
+                std::iter::once(s.a)
+                    .chain(s.b)
+                    .filter(|d| d.component > 2)
+                    .map(move |d| (d.node, format!("rotational mass {}", s.id)))
+            }))
+            .chain(m.bushes.iter().flat_map(|b| {
+                let rotational = b.k[3..].iter().any(|k| *k != 0.0);
+                std::iter::once(b.a)
+                    .chain(b.b)
+                    .filter(move |_| rotational)
+                    .map(move |n| (n, format!("spring {} with rotational stiffness", b.id)))
+            }))
             .chain((m.mpcs.iter()).flat_map(|c| {
                 (c.terms.iter()).map(move |t| (t.0.node, format!("*EQUATION / MPC {}", c.id)))
             }))
