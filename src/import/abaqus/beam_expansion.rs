@@ -15,12 +15,13 @@
 //!   (η, ζ ∈ {−1, 0, 1}; o₁, o₂ ccx's OFFSET1, OFFSET2 in section sizes),
 //!   t₁ × t₂ the section's size (RECT a × b, BOX a × b, PIPE 2r × 2r, CIRC the two values as
 //!   diameters, as ccx reads them, its corner nodes moved in by 1/√2 onto the ellipse). The
-//!   brick's ξ runs from
-//!   the first to the last beam node. B32R → C3D20R with the section's integration
-//!   ([`crate::model::Model::beam_bricks`]); B32 (RECT only, as ccx) → C3D20, 3 × 3 × 3.
+//!   brick's ξ runs from the first to the last beam node. B32R → C3D20R with the section's
+//!   integration ([`crate::model::Model::beam_bricks`]); B32 (RECT and CIRC, as ccx) → C3D20,
+//!   3 × 3 × 3.
 //! * **The beam node** (not a knot) follows the section around it ([`section_tie`]): its
-//!   translation is the mean of the four corners, its rotation about each axis the corners' linearized mean
-//!   rotation (ccx's MEANROTBS MPC, umpc_mean_rot, at the undeformed state). Where the deck
+//!   translation is the mean of the four corners, its rotation about each axis the corners'
+//!   linearized mean rotation (ccx's MEANROTBS MPC, umpc_mean_rot, at the undeformed state).
+//!   Where the deck
 //!   holds a rotation of the node, the mid-side nodes also stay between their corners (ccx's
 //!   "midfix"). The equations are solved for dofs of the expanded nodes, so the beam node keeps
 //!   independent dofs: a `*BOUNDARY` on it holds the section as ccx does, a load on it reaches
@@ -83,6 +84,8 @@ struct BeamElement {
 type Axes = ([f64; 3], [f64; 3]);
 
 /// (beam node, index into the beams) → (its group of axes at the node, the axes).
+/// (beam node, index into the beams) → (the group of elements at the node sharing axes, the
+/// axes).
 type NodeAxes = HashMap<(NodeIndex, usize), (usize, Axes)>;
 
 /// One element at a beam node: (element id, index of the beam, tangent, n2).
