@@ -1,7 +1,7 @@
 //! The CalculiX test-suite decks in `ccx_tests/` of the external reference data
 //! (`FLEXBODY_REFERENCE`; skipped visibly without it) (real ccx inputs: C3D8,
 //! C3D8I, C3D20R, C3D10, S8/S8R, B32R, SPRINGA, cyclic symmetry): node and element counts
-//! (counted from the decks' data lines) or, for unsupported element types, a clean refusal.
+//! (counted from the decks' data lines; B32R as the bricks ccx expands them into).
 
 mod common;
 
@@ -87,29 +87,26 @@ fn ccx_test_decks_node_and_element_counts() {
     assert_eq!(ids, vec![1, 10, 95, 19, 61, 105, 222, 192]);
 }
 
-/// B32R (and its *BEAM GENERAL SECTION) refused in one error, each with its line; spring5's
-/// SPRINGA, *SPRING and *EQUATION read (a bush of k = 10 on the x axis, one equation).
+/// simplebeampipe3's B32R beams with *BEAM GENERAL SECTION, SECTION=PIPE read as ccx expands
+/// them: 10 C3D20R bricks at the pipe's 16 points, 8 expanded nodes around each of the 11 end
+/// nodes and 4 around each of the 10 middle nodes, every beam node tied by 6 equations and the
+/// clamped node's mid-side nodes by 12 more; spring5's SPRINGA, *SPRING and *EQUATION read (a
+/// bush of k = 10 on the x axis, one equation).
 #[test]
-fn unsupported_element_types_are_refused_springs_read() {
-    let Some(dir) = external_reference(
-        "unsupported_element_types_are_refused_springs_read",
-        "ccx_tests",
-    ) else {
+fn expanded_beams_and_springs_read() {
+    let Some(dir) = external_reference("expanded_beams_and_springs_read", "ccx_tests") else {
         return;
     };
-    let e = abaqus::read(&dir.join("simplebeampipe3.inp")).unwrap_err();
-    let flexbody::import::ImportError::Refused { cards, .. } = &e else {
-        panic!("{e}")
-    };
-    let got: Vec<(usize, &str)> = cards.iter().map(|c| (c.line, c.key.as_str())).collect();
+    let m = abaqus::read(&dir.join("simplebeampipe3.inp")).unwrap();
+    let kinds = |k: ElementKind| m.elements.iter().filter(|e| e.kind == k).count();
+    assert_eq!((kinds(ElementKind::Hex20R), m.elements.len()), (10, 10));
+    assert_eq!(m.nodes.len(), 21 + 11 * 8 + 10 * 4);
+    assert_eq!(m.mpcs.len(), 21 * 6 + 12);
     assert_eq!(
-        got,
-        vec![(28, "B32R"), (46, "*BEAM GENERAL SECTION")],
-        "{e}"
-    );
-    assert!(
-        e.to_string().contains("unsupported element type B32R"),
-        "{e}"
+        m.beam_bricks.get(&0),
+        Some(&flexbody::model::BeamBrickSection::Pipe {
+            ratio: (0.11 - 0.01) / 0.11
+        })
     );
     let m = abaqus::read(&dir.join("spring5.inp")).unwrap();
     assert_eq!((m.bushes.len(), m.mpcs.len()), (1, 1));

@@ -14,8 +14,9 @@ use super::dofs::DofMap;
 use super::elements::beam::{BeamLumping, BeamProps};
 use super::elements::tet10::Tet10MassRule;
 use super::elements::{
-    beam, hex20, hex8, hex8r, prism15, prism6, pyram13, pyram5, quad4_shell, quad8_shell, rod,
-    solid_incompatible, tet10, tet4, tri3_shell, tri6_shell, ElementError, Isotropic, Xyz,
+    beam, hex20, hex20_beam, hex8, hex8r, prism15, prism6, pyram13, pyram5, quad4_shell,
+    quad8_shell, rod, solid_incompatible, tet10, tet4, tri3_shell, tri6_shell, ElementError,
+    Isotropic, Xyz,
 };
 use super::mass::{self, MassKind};
 use super::pattern::Pattern;
@@ -257,6 +258,23 @@ pub fn element_matrices(
                 hex8r::scalar_mass(&x, iso.rho).map_err(elem_err)?,
                 8,
                 false,
+            )
+        }
+        ElementKind::Hex20R if model.beam_bricks.contains_key(&e) => {
+            let x = coords::<20>(model, n);
+            let section = &model.beam_bricks[&e];
+            if general.is_some() {
+                return Err(fail(format!(
+                    "material {} '{}' is anisotropic: a CalculiX beam expanded into a brick \
+                     takes an isotropic material",
+                    mat.id, mat.name
+                )));
+            }
+            solid(
+                hex20_beam::stiffness(&x, &iso, section).map_err(elem_err)?,
+                hex20_beam::scalar_mass(&x, iso.rho, section).map_err(elem_err)?,
+                20,
+                true,
             )
         }
         ElementKind::Hex20 | ElementKind::Hex20R => {

@@ -27,7 +27,7 @@ pub use connector::{Bush, Mpc, NodeDof, RigidBody, ScalarMass, ScalarSpring};
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
 pub use elasticity::{Elasticity, MaterialAxes, PlaneStress, Stiffness6};
 pub use load::{Load, LoadPart};
-pub use section::{Ply, ShellMaterialAxis, ShellSection};
+pub use section::{BeamBrickSection, Ply, ShellMaterialAxis, ShellSection};
 
 /// Dense 0-based index of a node in [`Model::nodes`].
 pub type NodeIndex = usize;
@@ -118,6 +118,9 @@ pub enum ElementKind {
     Tri6,
     /// 8-node quadrilateral (surface element, S8) — graphics/sets only.
     Quad8,
+    /// 3-node quadratic beam (Abaqus/CalculiX B32, B32R): read, then expanded into a 20-node
+    /// brick as ccx does (`import::abaqus::beam_expansion`); never assembled.
+    Beam3,
 }
 
 impl ElementKind {
@@ -133,7 +136,7 @@ impl ElementKind {
             ElementKind::Pyram5 => 5,
             ElementKind::Pyram13 => 13,
             ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2 => 2,
-            ElementKind::Tri3 => 3,
+            ElementKind::Tri3 | ElementKind::Beam3 => 3,
             ElementKind::Quad4 => 4,
             ElementKind::Tri6 => 6,
             ElementKind::Quad8 => 8,
@@ -595,6 +598,10 @@ pub struct Model {
     /// Material x-axes of shell elements given on the element (Nastran CQUAD4/CTRIA3 THETA or
     /// MCID): element index → axis; others use their section's `material_axis`.
     pub shell_axes: BTreeMap<usize, ShellMaterialAxis>,
+    /// Cross-section integration of the 20-node bricks CalculiX makes of B32R beams (element
+    /// index → section; `fe::elements::hex20_beam`): the brick spans the section's bounding
+    /// rectangle and is integrated at the section's own points.
+    pub beam_bricks: BTreeMap<usize, BeamBrickSection>,
     /// Properties (sections).
     pub properties: Vec<Property>,
     /// Materials.

@@ -5,6 +5,34 @@
 //! in the x–y plane), I2 = ∫z² dA.
 
 use super::{BeamSection, SectionShape};
+
+/// The cross-section of a CalculiX B32R beam expanded into a 20-node brick (ccx 2.20
+/// gen3dfrom1d, beamintscheme): the brick spans the section's bounding rectangle, its reference
+/// coordinate ζ along the section's 1-direction (width a), η against its 2-direction (height b);
+/// stiffness and mass are integrated at the section's own points (`fe::elements::hex20_beam`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BeamBrickSection {
+    /// `*BEAM SECTION, SECTION=RECT`: the whole rectangle.
+    Rect,
+    /// `*BEAM SECTION, SECTION=CIRC`: an ellipse of diameters a × b (ccx reads the card's
+    /// values as diameters), the brick's corner nodes on it; integrated as RECT.
+    Circ,
+    /// `*BEAM GENERAL SECTION, SECTION=PIPE`: `ratio` = inner / outer radius.
+    Pipe {
+        /// Inner over outer radius, 0 ≤ ratio < 1.
+        ratio: f64,
+    },
+    /// `*BEAM GENERAL SECTION, SECTION=BOX`: outer a (1-direction) × b (2-direction), walls
+    /// t1 … t4 in CalculiX's order.
+    Box {
+        /// Outer size along the 1-direction.
+        a: f64,
+        /// Outer size along the 2-direction.
+        b: f64,
+        /// Wall thicknesses t1, t2, t3, t4.
+        t: [f64; 4],
+    },
+}
 use std::f64::consts::PI;
 
 /// Torsion constant of a solid rectangle a×b (a ≥ b): J = a b³ [1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))]

@@ -15,6 +15,7 @@ pub mod beam;
 pub mod curved_shell;
 pub mod drill_membrane;
 pub mod hex20;
+pub mod hex20_beam;
 pub mod hex8;
 pub mod hex8r;
 pub mod planar_frame;

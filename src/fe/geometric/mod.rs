@@ -197,6 +197,11 @@ fn formulation(
             .ok_or_else(|| fail(format!("has {} nodes, a line element 2", x.len())))
     };
     let f = match (&prop.section, el.kind) {
+        // a CalculiX B32R expanded into a brick: at its section's points
+        (Section::Solid, ElementKind::Hex20R) if model.beam_bricks.contains_key(&e) => {
+            let rule = crate::fe::elements::hex20_beam::rule(&model.beam_bricks[&e]);
+            Formulation::Solid(SolidElement::hex20_at(&x, mat, &rule).map_err(elem_err)?)
+        }
         (Section::Solid, k) if k.is_solid() => Formulation::Solid(
             SolidElement::with_rules(
                 k,

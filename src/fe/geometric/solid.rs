@@ -134,6 +134,27 @@ impl SolidElement {
         })
     }
 
+    /// A 20-node brick integrated at `rule`: a CalculiX beam expanded into a brick, at its
+    /// section's points (`fe::elements::hex20_beam`), as its stiffness.
+    pub fn hex20_at(
+        x: &[Xyz],
+        mat: Isotropic,
+        rule: &[QuadPoint],
+    ) -> Result<SolidElement, ElementError> {
+        if x.len() != 20 {
+            return Err(ElementError::BadConstants(format!(
+                "a 20-node brick needs 20 nodes, got {}",
+                x.len()
+            )));
+        }
+        Ok(SolidElement {
+            nodes: 20,
+            points: compatible(x, hex20::shape, rule)?,
+            mat,
+            modes: None,
+        })
+    }
+
     /// The integration points (weight w_q det J, N_a, gradients of the nodal shape functions
     /// followed by the incompatible modes').
     pub fn points(&self) -> &[ModePoint] {

@@ -393,6 +393,7 @@ impl Parser {
                 }
             }
             Section::Beam(bs) if n == 0 => {
+                sec.dims.clone_from(&v);
                 let Some(SectionShape::Other { name, .. }) = &bs.shape else {
                     return Ok(());
                 };

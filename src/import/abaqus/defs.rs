@@ -20,6 +20,9 @@ pub(super) fn element_kind(t: &str) -> Option<(Option<ElementKind>, &'static str
         "C3D6" => (Some(Prism6), "C3D6"),
         "C3D15" => (Some(Prism15), "C3D15"),
         "B31" => (Some(Beam2), "B31"),
+        // expanded into 20-node bricks as ccx does (`beam_expansion`)
+        "B32" => (Some(Beam3), "B32"),
+        "B32R" => (Some(Beam3), "B32R"),
         "T3D2" => (Some(Rod2), "T3D2"),
         "S3" => (Some(Tri3), "S3"),
         "S4" => (Some(Quad4), "S4"),

@@ -86,7 +86,9 @@ impl Parser {
             }
             "ELASTIC" | "DENSITY" | "EXPANSION" => self.material_data_keyword(&kw)?,
             "ORIENTATION" => self.orientation_keyword(&kw)?,
-            "SOLID SECTION" | "BEAM SECTION" | "SHELL SECTION" => self.section_keyword(&kw)?,
+            "SOLID SECTION" | "BEAM SECTION" | "BEAM GENERAL SECTION" | "SHELL SECTION" => {
+                self.section_keyword(&kw)?
+            }
             "BOUNDARY" => self.boundary_keyword(&kw),
             "NODAL THICKNESS" => Block::NodalThickness,
             "STEP" => {
@@ -412,10 +414,26 @@ impl Parser {
                 })
             }
         };
+        // CalculiX's OFFSET1, OFFSET2 (section offsets of expanded beams, in section sizes)
+        let mut offsets = [0.0; 2];
+        for (o, key) in offsets.iter_mut().zip(["OFFSET1", "OFFSET2"]) {
+            if let Some(v) = kw.param(key) {
+                *o = v.trim().parse().map_err(|_| {
+                    self.err(
+                        kw.loc,
+                        format!("*{} ELSET={elset}", kw.name),
+                        format!("bad {key}={v}"),
+                    )
+                })?;
+            }
+        }
         self.sections.push(RawSection {
             elset,
             material,
             section,
+            dims: Vec::new(),
+            general: kw.name == "BEAM GENERAL SECTION",
+            offsets,
             orientation: None,
             material_orientation: kw.param("ORIENTATION").map(str::to_owned),
             plies: composite.then(Vec::new),

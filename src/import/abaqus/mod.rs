@@ -6,10 +6,11 @@
 //! comma continues on the next line; element data continue on following lines until the
 //! element's node count is reached.
 //!
-//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8, C3D8I, C3D20(R), C3D6, C3D15, B31, T3D2, S3,
-//! S4, S6, S8, S8R, MASS, ROTARYI, SPRINGA, SPRING1, SPRING2; DASHPOTA take no part), *NSET/*ELSET
-//! (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC (also TYPE=LAMINA), *DENSITY,
-//! *SOLID/*BEAM/*SHELL SECTION (also COMPOSITE: materials.rs),
+//! Supported: *NODE, *ELEMENT (C3D4, C3D10, C3D8, C3D8I, C3D20(R), C3D6, C3D15, B31, B32, B32R,
+//! T3D2, S3, S4, S6, S8, S8R, MASS, ROTARYI, SPRINGA, SPRING1, SPRING2; DASHPOTA take no part),
+//! *NSET/*ELSET (GENERATE; *NSET from ELSET=), *MATERIAL, *ELASTIC (also TYPE=LAMINA), *DENSITY,
+//! *SOLID/*BEAM/*BEAM GENERAL/*SHELL SECTION (also COMPOSITE: materials.rs; B32 and B32R
+//! expanded into 20-node bricks as ccx does: `beam_expansion`),
 //! *BOUNDARY (dof ranges, ENCASTRE, PINNED, X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *SPRING,
 //! *NODAL THICKNESS (`thickness`), *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE; element faces
 //! for *TIE), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
@@ -30,6 +31,7 @@
 //! request asks for K + K_G + K_L(u₀) and the spin softening; NLGEOM and other base steps
 //! are refused.
 
+mod beam_expansion;
 mod connectors;
 mod data;
 mod defs;
@@ -111,6 +113,12 @@ struct RawSection {
     elset: String,
     material: String,
     section: Section,
+    /// A beam section's dimensions as given (`beam_expansion` needs all of them).
+    dims: Vec<f64>,
+    /// `*BEAM GENERAL SECTION` (ccx: PIPE and BOX for B32R).
+    general: bool,
+    /// CalculiX's OFFSET1, OFFSET2 of a beam section.
+    offsets: [f64; 2],
     orientation: Option<[f64; 3]>,
     /// `ORIENTATION=`: the `*ORIENTATION` giving the material axes (materials.rs).
     material_orientation: Option<String>,

@@ -70,6 +70,7 @@ impl Parser {
         self.resolve_incompatible_modes()?;
         self.import_notes();
         self.b.model.loads = self.resolve_loads(&sets)?;
+        self.expand_quadratic_beams()?;
         self.b.model.node_sets = sets.node_sets;
         self.b.model.element_sets = sets.element_sets;
         self.b.model.files = self.b.files.clone();

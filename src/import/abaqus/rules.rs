@@ -26,6 +26,7 @@ use Rule::{Note, Refuse};
 
 /// Keywords the reader honours (`super::keywords`), and the step procedures (`super::steps`).
 pub(super) const HONOURED: &[&str] = &[
+    "BEAM GENERAL SECTION",
     "BEAM SECTION",
     "BOUNDARY",
     "CLOAD",
@@ -77,10 +78,6 @@ const KEYWORDS: &[(&str, Rule)] = &[
     ("ADJUST", Refuse(CONTACT)),
     ("AMPLITUDE", Note(DYNAMIC)),
     ("BASE MOTION", Note(DYNAMIC)),
-    (
-        "BEAM GENERAL SECTION",
-        Refuse("general beam sections are not supported (use *BEAM SECTION)"),
-    ),
     ("CFLUX", Note(THERMAL)),
     ("CHANGE FRICTION", Refuse(CHANGE)),
     ("CHANGE MATERIAL", Refuse(CHANGE)),
