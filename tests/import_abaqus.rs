@@ -306,3 +306,50 @@ fn nset_from_elset_and_named_boundaries() {
     // XSYMM: u1 = ur2 = ur3 = 0.
     assert_eq!(m.spcs[4].dofs, DofMask::from_digits("156").unwrap());
 }
+
+/// B31 sections the beam element cannot form as Abaqus places them are errors naming the
+/// keyword's line and why: a BOX with unequal opposite walls, an I whose node (l) is off its
+/// centroid. The I with l at its centroid and the even BOX are read.
+#[test]
+fn b31_sections_off_their_centroid_are_refused() {
+    let deck = |section: &str, dims: &str| {
+        format!(
+            "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n*ELEMENT, TYPE=B31, ELSET=B\n1, 1, 2\n\
+             *MATERIAL, NAME=S\n*ELASTIC\n2.1e11, 0.3\n*DENSITY\n7850\n\
+             *BEAM SECTION, ELSET=B, MATERIAL=S, SECTION={section}\n{dims}\n0, 0, 1\n"
+        )
+    };
+    let read = |name: &str, text: String| {
+        abaqus::read(&write_deck(name, &[("main.inp", &text)])).map_err(|e| e.to_string())
+    };
+    let e = read(
+        "box-uneven",
+        deck("BOX", "0.05, 0.03, 0.004, 0.002, 0.003, 0.002"),
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("main.inp:12") && e.contains("unequal opposite walls"),
+        "{e}"
+    );
+    assert!(read(
+        "box-even",
+        deck("BOX", "0.05, 0.03, 0.004, 0.002, 0.004, 0.002")
+    )
+    .is_ok());
+    // h = 0.1, b1 = 0.08 (t1 = 0.01), b2 = 0.04 (t2 = 0.01), web 0.005: centroid at
+    // (0.0008·0.005 + 0.0004·0.05 + 0.0004·0.095)/0.0016 = 0.03875 above the bottom
+    let e = read(
+        "i-off",
+        deck("I", "0.05, 0.1, 0.08, 0.04, 0.01, 0.01, 0.005"),
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("main.inp:12") && e.contains("3.875000e-2"),
+        "{e}"
+    );
+    assert!(read(
+        "i-on",
+        deck("I", "0.03875, 0.1, 0.08, 0.04, 0.01, 0.01, 0.005")
+    )
+    .is_ok());
+}

@@ -397,13 +397,13 @@ impl Parser {
                 let Some(SectionShape::Other { name, .. }) = &bs.shape else {
                     return Ok(());
                 };
-                let shape = abaqus_shape(name, &v).ok_or_else(|| {
-                    self.b.err(
-                        loc,
-                        ent.clone(),
-                        format!("SECTION={name} with {} dimensions not supported", v.len()),
-                    )
-                })?;
+                let shape = match abaqus_shape(name, &v) {
+                    Ok(shape) => shape,
+                    // a general section (B32R only) is integrated over its own walls by
+                    // `beam_expansion`: the beam constants are not used
+                    Err(_) if sec.general => return Ok(()),
+                    Err(why) => return Err(self.b.err(loc, ent.clone(), why)),
+                };
                 let mut s = shape
                     .to_section()
                     .ok_or_else(|| self.b.err(loc, ent.clone(), "unsupported shape"))?;

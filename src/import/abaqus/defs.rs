@@ -125,9 +125,10 @@ pub(super) fn transform_frame(id: u64, cyl: bool, a: [f64; 3], b: [f64; 3]) -> O
     }
 }
 
-/// Abaqus *BEAM SECTION shapes (Abaqus Analysis User's Guide, "Beam cross-section library").
-pub(super) fn abaqus_shape(name: &str, v: &[f64]) -> Option<SectionShape> {
-    Some(match (name, v) {
+/// Abaqus *BEAM SECTION shapes (Abaqus Analysis User's Guide, "Beam cross-section library");
+/// `Err` says why a shape is not formed.
+pub(super) fn abaqus_shape(name: &str, v: &[f64]) -> Result<SectionShape, String> {
+    Ok(match (name, v) {
         ("CIRC", [r, ..]) => SectionShape::Circle { radius: *r },
         ("PIPE", [r, t, ..]) => SectionShape::Tube {
             outer_radius: *r,
@@ -137,22 +138,53 @@ pub(super) fn abaqus_shape(name: &str, v: &[f64]) -> Option<SectionShape> {
             width: *a,
             height: *b,
         },
-        // BOX: a (width, 1-dir), b (height, 2-dir), t1..t4; uniform walls assumed (t1 = t3, t2 = t4).
+        // BOX: a (width, 1-dir), b (height, 2-dir), t1..t4 around the box: opposite walls equal
+        // (a wall thicker than its opposite moves the centroid off the node: not formed).
+        ("BOX", [_, _, t1, t2, t3, t4, ..]) if t1 != t3 || t2 != t4 => {
+            return Err(format!(
+                "SECTION=BOX with unequal opposite walls (t1 = {t1}, t3 = {t3}; t2 = {t2}, \
+                 t4 = {t4}) is not supported: its centroid is off the beam node"
+            ))
+        }
         ("BOX", [a, b, t1, t2, ..]) => SectionShape::Box {
             width: *a,
             height: *b,
             t_web: *t2,
             t_flange: *t1,
         },
-        // I: l (centroid offset, ignored), h, b1 (bottom), b2 (top), t1, t2, t3 (web).
-        ("I", [_l, h, b1, b2, t1, t2, t3, ..]) => SectionShape::I {
-            height: *h,
-            width_bottom: *b1,
-            width_top: *b2,
-            t_web: *t3,
-            t_bottom: *t1,
-            t_top: *t2,
-        },
-        _ => return None,
+        // I: l (the beam node's height above the bottom), h, b1 (bottom), b2 (top), t1, t2, t3
+        // (web); formed about the centroid, so l must be the centroid's height.
+        ("I", [l, h, b1, b2, t1, t2, t3, ..]) => {
+            let hw = h - t1 - t2;
+            let parts = [
+                (b1 * t1, 0.5 * t1),
+                (t3 * hw, t1 + 0.5 * hw),
+                (b2 * t2, h - 0.5 * t2),
+            ];
+            let area: f64 = parts.iter().map(|p| p.0).sum();
+            let centroid = parts.iter().map(|p| p.0 * p.1).sum::<f64>() / area;
+            if (l - centroid).abs() > 1e-6 * h {
+                return Err(format!(
+                    "SECTION=I with l = {l}: the beam node is {:.6e} off the section's centroid \
+                     (at {centroid:.6e} above the bottom); an I section off its centroid is not \
+                     supported (give l = {centroid:.6e})",
+                    l - centroid
+                ));
+            }
+            SectionShape::I {
+                height: *h,
+                width_bottom: *b1,
+                width_top: *b2,
+                t_web: *t3,
+                t_bottom: *t1,
+                t_top: *t2,
+            }
+        }
+        _ => {
+            return Err(format!(
+                "SECTION={name} with {} dimensions not supported",
+                v.len()
+            ))
+        }
     })
 }
