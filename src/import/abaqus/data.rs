@@ -397,13 +397,17 @@ impl Parser {
                 let Some(SectionShape::Other { name, .. }) = &bs.shape else {
                     return Ok(());
                 };
-                let shape = match abaqus_shape(name, &v) {
-                    Ok(shape) => shape,
-                    // a general section (B32R only) is integrated over its own walls by
-                    // `beam_expansion`: the beam constants are not used
-                    Err(_) if sec.general => return Ok(()),
-                    Err(why) => return Err(self.b.err(loc, ent.clone(), why)),
+                // a general section (B32R only) is integrated over its own walls by
+                // `beam_expansion`, which reads `dims`: its beam constants are not used, so an
+                // uneven BOX stands in with its first two walls
+                let even = |mut d: Vec<f64>| {
+                    if sec.general && name == "BOX" && d.len() >= 6 {
+                        (d[4], d[5]) = (d[2], d[3]);
+                    }
+                    d
                 };
+                let shape = abaqus_shape(name, &even(v.clone()))
+                    .map_err(|why| self.b.err(loc, ent.clone(), why))?;
                 let mut s = shape
                     .to_section()
                     .ok_or_else(|| self.b.err(loc, ent.clone(), "unsupported shape"))?;
