@@ -9,8 +9,6 @@
 
 use std::path::PathBuf;
 
-use flexbody_reader as file;
-
 mod common;
 use common::exe;
 
@@ -72,22 +70,7 @@ fn strip(
 
 /// Build `deck` with normal modes (the deck's consistent mass and 4 modes) → frequencies.
 fn freqs(name: &str, deck: &str) -> Vec<f64> {
-    let path = scratch(&format!("{name}.bdf"));
-    std::fs::write(&path, deck).unwrap();
-    let out = scratch(&format!("{name}.flexbody"));
-    let o = exe()
-        .arg("build")
-        .arg(&path)
-        .args(["--units", "si", "--method", "normal", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        o.status.success(),
-        "{name}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    file::read(&out).unwrap().modes.frequency_hz.clone()
+    common::build_bdf_modes(&format!("drilling-{name}"), deck).0
 }
 
 /// Out of plane (in-plane dofs 1, 2, 6 held): the CQUADR/CTRIAR plate is the CQUAD4/CTRIA3 one.

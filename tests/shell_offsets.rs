@@ -10,8 +10,6 @@
 
 use std::path::PathBuf;
 
-use flexbody_reader as file;
-
 mod common;
 use common::exe;
 
@@ -75,20 +73,7 @@ fn plate_deck(n: usize, layers: &[(u32, f64, f64)], tria: bool) -> String {
 
 /// Build `deck` (normal modes, the deck's mass and mode count) → (frequencies, stderr).
 fn build(name: &str, deck: &str) -> (Vec<f64>, String) {
-    let path = scratch(&format!("{name}.bdf"));
-    std::fs::write(&path, deck).unwrap();
-    let out = scratch(&format!("{name}.flexbody"));
-    let o = exe()
-        .arg("build")
-        .arg(&path)
-        .args(["--units", "si", "--method", "normal", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(o.status.success(), "{name}: {stderr}");
-    let body = file::read(&out).unwrap();
-    (body.modes.frequency_hz.clone(), stderr)
+    common::build_bdf_modes(&format!("offsets-{name}"), deck)
 }
 
 fn leissa_hz(h: f64, m: f64, n: f64) -> f64 {

@@ -124,6 +124,27 @@ pub fn lowest_eigenvalues(
         .eigenvalues
 }
 
+/// `flexbody build` of the Nastran deck `text` (written as `NAME.bdf` in a scratch folder) with
+/// normal modes and SI units (the deck's mass and mode count); panics with the build's stderr
+/// on failure → (frequencies, stderr).
+pub fn build_bdf_modes(name: &str, text: &str) -> (Vec<f64>, String) {
+    let dir = scratch(name);
+    let path = dir.join(format!("{name}.bdf"));
+    std::fs::write(&path, text).unwrap();
+    let out = dir.join(format!("{name}.flexbody"));
+    let o = exe()
+        .arg("build")
+        .arg(&path)
+        .args(["--units", "si", "--method", "normal", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{name}: {stderr}");
+    let body = flexbody_reader::read(&out).unwrap();
+    (body.modes.frequency_hz, stderr)
+}
+
 /// Hz from ω².
 pub fn hz(lambda: f64) -> f64 {
     lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
