@@ -193,6 +193,7 @@ pub fn element_matrices(
             )))
         }
     };
+    let isotropic = general.is_none();
     let mut k_or = |iso_k: &dyn Fn() -> Result<Vec<f64>, ElementError>| match general.take() {
         Some(k) => Ok(k),
         None => iso_k(),
@@ -234,6 +235,17 @@ pub fn element_matrices(
                 10,
                 true,
             )
+        }
+        // CalculiX 2.20's C3D8I (modes with mass, Guyan-condensed) in a consistent-mass build
+        ElementKind::Hex8
+            if model.params.solid_bubbles
+                && model.params.ccx_solid_rules
+                && !lumped
+                && isotropic =>
+        {
+            let x = coords::<8>(model, n);
+            let (k, m) = solid_incompatible::hex8_ccx_matrices(&x, &iso).map_err(elem_err)?;
+            ElementMatrices { dpn: 3, k, m }
         }
         ElementKind::Hex8 => {
             let x = coords::<8>(model, n);

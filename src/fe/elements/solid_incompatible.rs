@@ -42,6 +42,98 @@ pub fn prism6_stiffness(x: &[Xyz; 6], mat: &Isotropic) -> Result<Vec<f64>, Eleme
     condense(&full_stiffness(&prism6_points(x)?, mat), 18, 3)
 }
 
+/// CalculiX 2.20's C3D8I (its shape8hu, shape8humass, e_c3d), stiffness and consistent mass
+/// (24×24 each): Wilson's modes with gradients through J₀⁻¹ (no det J₀/det J factor), 2×2×2
+/// Gauss, and — unlike Abaqus and ccx 2.11 — mass on the modes: ρ∫[N, P]ᵀ[N, P] dV over the 8
+/// nodal functions and P = 1 − ξ², 1 − η², 1 − ζ². ccx keeps the 9 mode dofs as three extra
+/// nodes per element; here they are condensed with their static shapes T = −K_ii⁻¹K_ic
+/// (Guyan): K = K_cc + K_ci T, M = [I; T]ᵀ M [I; T], so the body keeps physical nodes only.
+pub fn hex8_ccx_matrices(
+    x: &[Xyz; 8],
+    mat: &Isotropic,
+) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
+    check_solid_material(mat)?;
+    let rule = quadrature::cube(2);
+    let (_, _, _) = map_point(x, super::hex8::shape, &[0.0; 3], 0)?;
+    let inv0 = jacobian_inverse(x, super::hex8::shape, &[0.0; 3]);
+    let (nc, ni) = (24, 9);
+    let nt = nc + ni;
+    let mut points = Vec::with_capacity(rule.len());
+    // scalar mass over the 8 nodal functions and the 3 modes (11×11)
+    let mut ms = [[0.0; 11]; 11];
+    for (p, q) in rule.iter().enumerate() {
+        let (n, g, det) = map_point(x, super::hex8::shape, &q.xi, p)?;
+        let mut grads: Vec<Xyz> = g.to_vec();
+        for m in hex_modes(&q.xi) {
+            grads.push(std::array::from_fn(|i| {
+                (0..3).map(|c| inv0[i][c] * m[c]).sum::<f64>()
+            }));
+        }
+        let w = q.w * det;
+        let vals: Vec<f64> = n
+            .iter()
+            .copied()
+            .chain(q.xi.iter().map(|c| 1.0 - c * c))
+            .collect();
+        for a in 0..11 {
+            for b in 0..11 {
+                ms[a][b] += mat.rho * vals[a] * vals[b] * w;
+            }
+        }
+        points.push(ModePoint {
+            w,
+            n: n.to_vec(),
+            grads,
+        });
+    }
+    let kfull = full_stiffness(&points, mat);
+    // T = −K_ii⁻¹ K_ic (ni × nc)
+    let kic: Vec<f64> = (0..ni)
+        .flat_map(|i| (0..nc).map(move |j| (i, j)))
+        .map(|(i, j)| kfull[(nc + i) * nt + j])
+        .collect();
+    let t: Vec<f64> = solve_modes(&kfull, nc, ni, kic, nc)?
+        .iter()
+        .map(|v| -v)
+        .collect();
+    // the full mass (dofs: 8 nodes × xyz, then 3 modes × xyz) and [I; T]ᵀ M [I; T]
+    let mfull = |i: usize, j: usize| {
+        if i % 3 == j % 3 {
+            ms[i / 3][j / 3]
+        } else {
+            0.0
+        }
+    };
+    let basis = |row: usize, col: usize| {
+        if row < nc {
+            f64::from(u8::from(row == col))
+        } else {
+            t[(row - nc) * nc + col]
+        }
+    };
+    // M T' where T' = [I; T] (nt × nc)
+    let mut mt = vec![0.0; nt * nc];
+    for i in 0..nt {
+        for j in 0..nc {
+            mt[i * nc + j] = (0..nt).map(|k| mfull(i, k) * basis(k, j)).sum();
+        }
+    }
+    let mut m = vec![0.0; nc * nc];
+    for i in 0..nc {
+        for j in 0..nc {
+            m[i * nc + j] = (0..nt).map(|k| basis(k, i) * mt[k * nc + j]).sum();
+        }
+    }
+    for i in 0..nc {
+        for j in 0..i {
+            let v = 0.5 * (m[i * nc + j] + m[j * nc + i]);
+            m[i * nc + j] = v;
+            m[j * nc + i] = v;
+        }
+    }
+    Ok((condense(&kfull, nc, ni)?, m))
+}
+
 /// Strain rows (6 × 3n: εxx εyy εzz γxy γyz γzx) of gradients g.
 pub(crate) fn strain_rows(g: &[Xyz]) -> Vec<[f64; 6]> {
     let mut b = vec![[0.0; 6]; 3 * g.len()];
@@ -364,5 +456,54 @@ mod tests {
         assert!((got - want).abs() < 1e-9 * want, "{got} vs {want}");
         let locked = energy(&super::super::hex8::stiffness(&x, &mat).unwrap(), &u);
         assert!(locked > 1.5 * want, "{locked} vs {want}");
+    }
+
+    /// ccx 2.20's C3D8I: on a brick (J = J₀ everywhere) its stiffness is the Taylor-corrected
+    /// one; its Guyan mass keeps the total mass ρV for every rigid translation and is heavier
+    /// than the compatible mass on bending shapes (the modes' mass).
+    #[test]
+    fn ccx_c3d8i_on_a_brick() {
+        let x: [Xyz; 8] = std::array::from_fn(|a| {
+            let c = crate::fe::elements::hex8::NODES[a];
+            [0.3 * c[0], 0.1 * c[1], 0.2 * c[2]]
+        });
+        let (k, m) = hex8_ccx_matrices(&x, &steel()).unwrap();
+        let taylor = hex8_stiffness(&x, &steel()).unwrap();
+        let scale = taylor.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        assert!(k
+            .iter()
+            .zip(&taylor)
+            .all(|(a, b)| (a - b).abs() <= 1e-12 * scale));
+        let volume = 0.6 * 0.2 * 0.4;
+        for dir in 0..3 {
+            let r: Vec<f64> = (0..24).map(|i| f64::from(u8::from(i % 3 == dir))).collect();
+            let mass: f64 = (0..24)
+                .flat_map(|i| (0..24).map(move |j| (i, j)))
+                .map(|(i, j)| r[i] * m[i * 24 + j] * r[j])
+                .sum();
+            assert!((mass - 7850.0 * volume).abs() <= 1e-12 * mass, "{mass}");
+        }
+        let compatible = crate::fe::elements::expand_scalar_mass(
+            &crate::fe::elements::hex8::scalar_mass(&x, 7850.0).unwrap(),
+            8,
+        );
+        // bending about y: u_x = ξ ζ at the corners
+        let nodes = crate::fe::elements::hex8::NODES;
+        let u: Vec<f64> = (0..24)
+            .map(|i| {
+                if i % 3 == 0 {
+                    nodes[i / 3][0] * nodes[i / 3][2]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let quad = |mm: &[f64]| -> f64 {
+            (0..24)
+                .flat_map(|i| (0..24).map(move |j| (i, j)))
+                .map(|(i, j)| u[i] * mm[i * 24 + j] * u[j])
+                .sum()
+        };
+        assert!(quad(&m) > quad(&compatible) * (1.0 + 1e-6));
     }
 }
