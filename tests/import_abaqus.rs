@@ -353,3 +353,29 @@ fn b31_sections_off_their_centroid_are_refused() {
     )
     .is_ok());
 }
+
+/// C3D8I with an orthotropic material keeps massless incompatible modes (ccx 2.20 gives them
+/// mass for every material; flexbody forms that for isotropic C3D8I): a warning says so; an
+/// isotropic C3D8I deck has none.
+#[test]
+fn anisotropic_c3d8i_is_a_warning() {
+    let deck = |elastic: &str| {
+        format!(
+            "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n\
+             *ELEMENT, TYPE=C3D8I, ELSET=E\n1,1,2,3,4,5,6,7,8\n*MATERIAL, NAME=M\n{elastic}\
+             *DENSITY\n7850\n*SOLID SECTION, ELSET=E, MATERIAL=M\n"
+        )
+    };
+    let ortho = "*ELASTIC, TYPE=ORTHO\n2.2e11, 1e11, 2.1e11, 1e11, 1e11, 2e11, 8e10, 8e10,\n8e10\n";
+    let m = abaqus::read(&write_deck("c3d8i-ortho", &[("main.inp", &deck(ortho))])).unwrap();
+    assert!(
+        m.warnings.iter().any(|w| w
+            .message
+            .starts_with("1 C3D8I elements with an anisotropic material")),
+        "{:?}",
+        m.warnings
+    );
+    let iso = "*ELASTIC\n2.1e11, 0.3\n";
+    let m = abaqus::read(&write_deck("c3d8i-iso", &[("main.inp", &deck(iso))])).unwrap();
+    assert!(!m.warnings.iter().any(|w| w.message.contains("C3D8I")));
+}

@@ -81,10 +81,39 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
     let mut model = p.finish()?;
     // a CalculiX deck means what ccx makes of it: its C3D4/C3D6 integration (ModelParams)
     model.params.ccx_solid_rules = true;
+    anisotropic_c3d8i_warning(&mut model);
     if opts.inp_shells == crate::import::InpShells::Expanded {
         shell_expansion::expand(&mut model, &shells)?;
     }
     Ok(model)
+}
+
+/// C3D8I with an anisotropic material keeps massless incompatible modes (Abaqus, ccx 2.11):
+/// ccx 2.20 gives them mass (`solid_incompatible::hex8_ccx_matrices`, isotropic only), so its
+/// higher modes are lower — a warning naming the elements' count.
+fn anisotropic_c3d8i_warning(model: &mut Model) {
+    if !model.params.solid_bubbles {
+        return;
+    }
+    let anisotropic = |e: &crate::model::Element| {
+        e.kind == crate::model::ElementKind::Hex8
+            && e.property
+                .and_then(|p| model.properties.get(p))
+                .and_then(|p| model.materials.get(p.material))
+                .is_some_and(|m| m.stiffness().is_some())
+    };
+    let count = model.elements.iter().filter(|e| anisotropic(e)).count();
+    if count > 0 {
+        model.warnings.push(crate::model::ImportWarning {
+            file: model.source.clone(),
+            message: format!(
+                "{count} C3D8I elements with an anisotropic material are formed with massless \
+                 incompatible modes (as Abaqus and ccx 2.11); ccx 2.20 gives the modes mass, \
+                 which lowers its higher modes (an isotropic 10 × 2 × 2 C3D8I bar: 3.6 % at \
+                 mode 7; flexbody forms that for isotropic C3D8I only)"
+            ),
+        });
+    }
 }
 
 /// Node reference: a node id or a node-set name.
