@@ -417,12 +417,7 @@ pub fn matrices_drilling(
 ) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
     props.check()?;
     let f = ShellFrame::new(x)?;
-    let plate = ShellProps {
-        membrane: None,
-        drill_factor: 0.0,
-        ..*props
-    };
-    let mut k = local_stiffness(&f, &plate)?;
+    let mut k = local_stiffness(&f, &props.plate_only())?;
     let membrane = super::drill_membrane::quad_stiffness(&f.p, &props.d_membrane(), 1.0)?;
     shell::add_drilling_membrane(&mut k, &membrane, 4);
     shell::apply_warping(&mut k, &f.h);

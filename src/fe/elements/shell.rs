@@ -121,6 +121,16 @@ pub struct ShellProps {
 }
 
 impl ShellProps {
+    /// The same section without membrane stiffness and drilling penalty: the plate part of a
+    /// shell whose membrane comes from elsewhere (CQUADR/CTRIAR, `drill_membrane`).
+    pub fn plate_only(&self) -> ShellProps {
+        ShellProps {
+            membrane: None,
+            drill_factor: 0.0,
+            ..*self
+        }
+    }
+
     /// One isotropic material for membrane, bending and shear (12I/t³ = 1, t_s/t = 5/6).
     pub fn isotropic(t: f64, mat: Isotropic) -> ShellProps {
         ShellProps {

@@ -393,12 +393,7 @@ pub fn matrices_drilling(
 ) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
     props.check()?;
     let f = ShellFrame::new(x)?;
-    let plate = ShellProps {
-        membrane: None,
-        drill_factor: 0.0,
-        ..*props
-    };
-    let mut k = local_stiffness(&f, &plate)?;
+    let mut k = local_stiffness(&f, &props.plate_only())?;
     let membrane = super::drill_membrane::tri_stiffness(&f.p, &props.d_membrane(), 1.0)?;
     shell::add_drilling_membrane(&mut k, &membrane, 3);
     let k = shell::to_basic(&k, 3, &f.axes);
