@@ -33,6 +33,7 @@ pub mod mass;
 pub mod pattern;
 pub mod preload;
 pub mod quadrature;
+pub mod rigid_mass;
 mod rigid_body;
 pub mod shell_section;
 
