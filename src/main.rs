@@ -5,7 +5,8 @@ use std::process::ExitCode;
 /// The system allocator, with a failed allocation reported by stage and size (exit 2), never an
 /// abort ([`flexbody::cli::alloc_guard`]).
 #[global_allocator]
-static ALLOCATOR: flexbody::cli::alloc_guard::GuardedAlloc = flexbody::cli::alloc_guard::GuardedAlloc;
+static ALLOCATOR: flexbody::cli::alloc_guard::GuardedAlloc =
+    flexbody::cli::alloc_guard::GuardedAlloc;
 
 fn main() -> ExitCode {
     flexbody::cli::alloc_guard::install();

@@ -460,7 +460,11 @@ impl ModelArgs {
 /// given alone (clap's `default_missing_value`, repeated here).
 const OPTIONAL_VALUE_OPTIONS: [(&str, &[&str], &str); 2] = [
     ("--stress-modes", &["both", "stress", "strain"], "both"),
-    ("--residual-vectors", &["loads", "interface", "both"], "loads"),
+    (
+        "--residual-vectors",
+        &["loads", "interface", "both"],
+        "loads",
+    ),
 ];
 
 /// The command line with an option of optional value (`--stress-modes [FIELDS]`,

@@ -33,8 +33,8 @@ pub mod mass;
 pub mod pattern;
 pub mod preload;
 pub mod quadrature;
-pub mod rigid_mass;
 mod rigid_body;
+pub mod rigid_mass;
 pub mod shell_section;
 
 pub use assembly::{assemble, Assembled, AssemblySpec, BeamTheory};

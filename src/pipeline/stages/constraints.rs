@@ -214,7 +214,11 @@ fn dependent_dof_cause(model: &Model, node: NodeIndex, c: usize) -> String {
             model.nodes[independent].id, model.nodes[independent].id
         );
     }
-    if model.spcs.iter().any(|s| s.node == node && s.dofs.contains(c)) {
+    if model
+        .spcs
+        .iter()
+        .any(|s| s.node == node && s.dofs.contains(c))
+    {
         return "the model's SPC holds it; give a free node, or leave this component out with \
                 NODE:DOFS (e.g. 7:123)"
             .to_owned();
