@@ -260,13 +260,14 @@ fn shell_blocks() -> Vec<String> {
 
 /// Every shell block of docs/using-in-solvers.md runs as it stands, in order, in one folder
 /// (with `flexbody` on PATH and the repository's `fixtures/` beside it, as a reader in a
-/// checkout has them): build, the exports (exudyn, MBDyn, VTU, both K/M exports, SID), view
-/// and the geometric-stiffness build each make their file; then the exudyn section's Python blocks run on that NPZ and file.
+/// checkout has them): build, the exports (exudyn, MBDyn, VTU, both K/M exports, SID), the
+/// stress section's `conrod_stress.flexbody` (issue 47), view and the geometric-stiffness build
+/// each make their file; then the exudyn section's Python blocks run on that NPZ and file.
 #[cfg(unix)]
 #[test]
 fn the_docs_shell_blocks_run_as_they_stand_in_order() {
     let blocks = shell_blocks();
-    assert_eq!(blocks.len(), 6, "{blocks:?}");
+    assert_eq!(blocks.len(), 7, "{blocks:?}");
     let dir = scratch("shell-blocks");
     let bin = dir.join("bin");
     std::fs::create_dir_all(&bin).unwrap();

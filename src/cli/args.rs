@@ -82,7 +82,8 @@ pub(crate) struct ModelArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) thickness: Option<f64>,
     /// Interface nodes: node ids (every free component), NODE:DOFS with Nastran component digits
-    /// (e.g. 1:126) and/or node-set names, comma separated. Default: the deck's ASET/BSET.
+    /// (e.g. 1:126) and/or node-set names, comma separated. Default: for `build` the deck's
+    /// ASET/BSET; with `check --model` and `export --to mtx` the file's recipe.
     #[arg(long, value_delimiter = ',')]
     pub(crate) interface: Vec<String>,
     /// How a node set named in --interface is attached: rbe2 (rigid spider, default), rbe3
@@ -413,6 +414,85 @@ fn utc_now() -> String {
         rem % 3600 / 60,
         rem % 60
     )
+}
+
+impl ModelArgs {
+    /// The model options given on the command line, as their flags (`--interface`, …): `check`
+    /// and `export` use them only to rebuild the model, so without `--model` they are an error,
+    /// never silently ignored.
+    pub(crate) fn given(&self) -> Vec<&'static str> {
+        let mut given = Vec::new();
+        let flags = [
+            ("--format", self.format.is_some()),
+            ("--material", self.material.is_some()),
+            ("--thickness", self.thickness.is_some()),
+            ("--interface", !self.interface.is_empty()),
+            ("--spider", self.spider.is_some()),
+            ("--subcase", self.subcase.is_some()),
+            ("--ignore", !self.ignore.is_empty()),
+            ("--inp-shells", self.inp_shells.is_some()),
+        ];
+        for (flag, present) in flags {
+            if present {
+                given.push(flag);
+            }
+        }
+        given
+    }
+
+    /// An error when model options were given although no model is read (`what` says which
+    /// command and target reads none).
+    pub(crate) fn refuse_without_model(&self, what: &str) -> anyhow::Result<()> {
+        let given = self.given();
+        if given.is_empty() {
+            return Ok(());
+        }
+        anyhow::bail!(
+            "{}: {what} reads no FE model, so {} would be ignored; these options rebuild the \
+             model given with --model MODEL",
+            given.join(", "),
+            if given.len() == 1 { "it" } else { "they" }
+        )
+    }
+}
+
+/// Options whose value is optional, the words that value may be, and the value they take when
+/// given alone (clap's `default_missing_value`, repeated here).
+const OPTIONAL_VALUE_OPTIONS: [(&str, &[&str], &str); 2] = [
+    ("--stress-modes", &["both", "stress", "strain"], "both"),
+    (
+        "--residual-vectors",
+        &["loads", "interface", "both"],
+        "loads",
+    ),
+];
+
+/// The command line with an option of optional value (`--stress-modes [FIELDS]`,
+/// `--residual-vectors [KIND]`) written `--stress-modes=both` when the word after it is a path
+/// (it names an existing file, or holds a `.` or `/`, which none of the values does), so the
+/// option does not swallow the model path: `build --stress-modes plate.bdf` (issue 47).
+pub fn attach_optional_values<I: IntoIterator<Item = std::ffi::OsString>>(
+    args: I,
+) -> Vec<std::ffi::OsString> {
+    let args: Vec<std::ffi::OsString> = args.into_iter().collect();
+    let mut out = Vec::with_capacity(args.len());
+    for (k, arg) in args.iter().enumerate() {
+        let option = OPTIONAL_VALUE_OPTIONS
+            .iter()
+            .find(|(flag, _, _)| arg.to_str() == Some(flag));
+        let next = args.get(k + 1).map(|n| n.to_string_lossy());
+        match (option, next) {
+            (Some((flag, values, default)), Some(next))
+                if !next.starts_with('-')
+                    && !values.contains(&next.trim().to_ascii_lowercase().as_str())
+                    && (next.contains(['.', '/']) || std::path::Path::new(&*next).exists()) =>
+            {
+                out.push(format!("{flag}={default}").into());
+            }
+            _ => out.push(arg.clone()),
+        }
+    }
+    out
 }
 
 /// `--model` options given explicitly; each overrides the file's recipe.

@@ -13,8 +13,8 @@ pub(crate) fn command(a: &BuildArgs) -> anyhow::Result<()> {
         crate::body::damping::parse_damping(d)?; // refuse a bad value before the build
     }
     if let Some(limit) = &a.max_memory {
-        // Read by the solve layer right before each factorization; set before any thread starts.
-        std::env::set_var(crate::solve::cholesky::MEMORY_ENV, limit);
+        // Read by the solve layer right before each factorization; errors name the flag.
+        crate::solve::cholesky::set_memory_limit_flag(limit)?;
     }
     // Refuse an unusable -o (a folder, a missing folder, no permission) before the build.
     crate::write::check_output_path(&a.output)?;
@@ -108,8 +108,9 @@ fn print_report(a: &BuildArgs, out: &BuildOutput) {
     for i in &r.interfaces {
         if let Some(s) = &i.spider {
             eprintln!(
-                "flexbody: interface {}: {} nodes → centre node {} at ({:.6e}, {:.6e}, {:.6e}) by {:?} ({:.3e} from the node average)",
-                i.entry, s.set_nodes, s.centre_node_id, s.centre[0], s.centre[1], s.centre[2], s.method, s.offset_from_node_average
+                "flexbody: interface {}: {} nodes → centre node {} at ({:.6e}, {:.6e}, {:.6e}) by {:?} ({:.3e} {} from the node average)",
+                i.entry, s.set_nodes, s.centre_node_id, s.centre[0], s.centre[1], s.centre[2], s.method, s.offset_from_node_average,
+                out.body.units.length.name
             );
         }
     }

@@ -83,7 +83,30 @@ fn model_checks(
     frequencies_against_full_solve(body, &rebuilt, r)?;
     identities_against_model(body, &rebuilt, r);
     geometric_stiffness_against_model(body, &rebuilt, r)?;
+    lumped_inertia_against_consistent(&rebuilt, r);
     Ok(())
+}
+
+/// A lumped-mass file: its rigid-body inertia against the consistent mass of the same mesh, for
+/// information (the build warned beyond 1 %; `--mass consistent` is exact; issue 47).
+fn lumped_inertia_against_consistent(rebuilt: &Rebuilt, r: &mut CheckReport) {
+    if rebuilt.assembly.mass != fe::MassKind::Lumped {
+        return;
+    }
+    let Ok(cmp) = fe::rigid_mass::compare(&rebuilt.model, &rebuilt.assembly) else {
+        return;
+    };
+    let (l, c) = (&cmp.lumped, &cmp.consistent);
+    r.push(
+        "rigid-body inertia: lumped vs consistent mass",
+        cmp.worst(),
+        f64::INFINITY,
+        format!(
+            "mass {:.4e} vs {:.4e}, principal inertia ({:.4e}, {:.4e}, {:.4e}) vs ({:.4e}, {:.4e}, {:.4e}); --mass consistent is exact",
+            l.mass, c.mass, l.principal[0], l.principal[1], l.principal[2],
+            c.principal[0], c.principal[1], c.principal[2]
+        ),
+    );
 }
 
 /// A model of several connected parts: the rigid-body modes counted from its parts (as `build`
@@ -527,7 +550,10 @@ pub(crate) fn command(a: &CheckArgs) -> anyhow::Result<bool> {
         .map_err(flexbody_reader::ReadError::named)
         .with_context(|| format!("{} is not a valid flexbody file", a.file.display()))?;
     let model = match &a.model {
-        None => None,
+        None => {
+            a.model_args.refuse_without_model("check without --model")?;
+            None
+        }
         Some(path) => Some(crate::pipeline::recipe::model_input(
             body.recipe.as_ref(),
             path.clone(),

@@ -69,6 +69,8 @@ pub(crate) fn command(file: &PathBuf, to: &str, a: ExportArgs) -> anyhow::Result
     if let Some(mass) = a.mass {
         anyhow::bail!("--mass {mass}: only --to mtx writes a mass matrix");
     }
+    a.model_args
+        .refuse_without_model(&format!("--to {to} (exported from the file alone)"))?;
     crate::write::check_output_path(output)?;
     let summary = crate::export::export(&body, target, output)?;
     for n in &summary.notes {

@@ -295,6 +295,13 @@ pub fn render_text(s: &Summary) -> String {
         "centre       [{:.6e}, {:.6e}, {:.6e}]",
         mp.center_of_mass[0], mp.center_of_mass[1], mp.center_of_mass[2]
     );
+    if s.mass_kind == "Lumped" {
+        // the file alone cannot tell how far a lumped mass's inertia is from the exact one
+        let _ = writeln!(
+            o,
+            "             (lumped mass: `flexbody check FILE --model MODEL` compares this inertia with the consistent mass's)"
+        );
+    }
     let _ = writeln!(o, "inertia about centre of mass:");
     for row in &mp.inertia_center_of_mass {
         let _ = writeln!(
@@ -482,14 +489,15 @@ fn render_recipe(o: &mut String, r: &flexbody_reader::Recipe) {
         if let Some(s) = &i.spider {
             let _ = write!(
                 o,
-                " ({} spider over {} nodes, centre ({:.6e}, {:.6e}, {:.6e}) by {}, {:.3e} from the node average)",
+                " ({} spider over {} nodes, centre ({:.6e}, {:.6e}, {:.6e}) by {}, {:.3e} {} from the node average)",
                 s.kind,
                 s.set_nodes.len(),
                 s.centre[0],
                 s.centre[1],
                 s.centre[2],
                 s.fit,
-                s.offset_from_node_average
+                s.offset_from_node_average,
+                p.units.length.name
             );
         }
         let _ = writeln!(o);

@@ -1,6 +1,7 @@
 //! The command line: each subcommand reads its arguments, runs the library and prints what it
 //! found. `src/main.rs` parses, calls [`run`] and turns the outcome into an exit code.
 //!
+//! * [`alloc_guard`] — a failed allocation as an error naming the stage and the size.
 //! * [`args`](mod@args) — the arguments (clap) and their conversion into the library's specs.
 //! * `build` — `flexbody build`: the pipeline with stage progress, the file, the report.
 //! * [`check`](mod@check) — the verification report behind `flexbody check`.
@@ -8,6 +9,7 @@
 //! * `export` — `flexbody export`: a file to another solver's format.
 //! * `view` — `flexbody view`: the HTML page that animates a file's modes.
 
+pub mod alloc_guard;
 pub mod args;
 mod build;
 pub mod check;
@@ -19,9 +21,22 @@ mod view;
 pub use args::Cli;
 use args::Command;
 
+/// The process's command line, parsed ([`args::attach_optional_values`] first).
+pub fn parse_command_line() -> Cli {
+    use clap::Parser;
+    Cli::parse_from(args::attach_optional_values(std::env::args_os()))
+}
+
 /// Runs the parsed command line: `Ok(true)` when it succeeded, `Ok(false)` when `check` found a
 /// failed check, `Err` when it could not run.
 pub fn run(cli: &Cli) -> anyhow::Result<bool> {
+    alloc_guard::set_stage(match &cli.command {
+        Command::Build(_) => "import",
+        Command::Inspect { .. } => "inspect",
+        Command::Check(_) => "check",
+        Command::Export { .. } => "export",
+        Command::View { .. } => "view",
+    });
     match &cli.command {
         Command::Build(args) => build::command(args).map(|()| true),
         Command::Inspect { file, json } => inspect::command(file, *json).map(|()| true),

@@ -37,6 +37,8 @@ struct Live {
     last_log: Option<Instant>,
     /// [`log_every`].
     every: Duration,
+    /// The running factorization's description ("factorizing K (…)"), for its share lines.
+    factor: String,
 }
 
 impl StageProgress {
@@ -69,6 +71,7 @@ impl StageProgress {
     }
 
     pub(crate) fn stage(&mut self, name: &str) {
+        super::alloc_guard::set_stage(name);
         self.end_current();
         self.current = Some((name.to_string(), Instant::now()));
         let mut l = self.live.lock().unwrap_or_else(|p| p.into_inner());
@@ -78,6 +81,7 @@ impl StageProgress {
             eigen_start: None,
             last_log: Some(Instant::now()),
             every: log_every(),
+            factor: String::new(),
         };
         if let Some(bar) = &self.bar {
             bar.set_message(format!("{name:<14}"));
@@ -111,11 +115,15 @@ impl StageProgress {
 /// [`log_every`].
 fn show(bar: &indicatif::ProgressBar, l: &mut Live, e: &Event) {
     let what = match *e {
-        Event::FactorStart { n, flops, single } => format!(
-            "factorizing K ({n} equations, {:.1} GFlop{})",
-            flops / 1e9,
-            if single { ", f32" } else { "" }
-        ),
+        Event::FactorStart { n, flops, single } => {
+            l.factor = format!(
+                "factorizing K ({n} equations, {:.1} GFlop{})",
+                flops / 1e9,
+                if single { ", f32" } else { "" }
+            );
+            l.factor.clone()
+        }
+        Event::FactorProgress { share } => format!("{}: {:.0} % done", l.factor, 100.0 * share),
         Event::FactorEnd => "factorized".into(),
         Event::Solves { columns } => format!("solving for {columns} right-hand sides"),
         Event::Eigen { converged, wanted } => {

@@ -34,6 +34,7 @@ pub mod pattern;
 pub mod preload;
 pub mod quadrature;
 mod rigid_body;
+pub mod rigid_mass;
 pub mod shell_section;
 
 pub use assembly::{assemble, Assembled, AssemblySpec, BeamTheory};

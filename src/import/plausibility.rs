@@ -61,45 +61,77 @@ fn in_si(e: f64, rho: f64, u: &flexbody_reader::Units) -> (f64, f64) {
     (e * u.force.si / (l * l), rho * u.mass.si / (l * l * l))
 }
 
-fn plausible_in_si(e: f64, rho: f64) -> bool {
+/// Bar wave speeds √(E/ρ) of real solids in m/s: soft elastomers (~20) … diamond (1.8e4), a
+/// factor 2–3 wider. Steel's E in MPa read as Pa with ρ in kg/m³ gives 5.2 m/s.
+const WAVE_SPEED_SI_RANGE: (f64, f64) = (10.0, 5e4);
+
+/// Which of E (Pa) and ρ (kg/m³) is no real solid's, in words ("ρ is off (… kg/m³)"), or
+/// `None` when the pair is plausible: each in its range and, with mass, their wave speed too.
+fn quantity_off(e: f64, rho: f64) -> Option<String> {
     let inside = |x: f64, (lo, hi): (f64, f64)| x >= lo && x <= hi;
-    inside(e, E_PA_RANGE) && (rho == 0.0 || inside(rho, RHO_KG_M3_RANGE))
+    let e_ok = inside(e, E_PA_RANGE);
+    let rho_ok = rho == 0.0 || inside(rho, RHO_KG_M3_RANGE);
+    match (e_ok, rho_ok) {
+        (false, false) => Some(format!(
+            "E and ρ are both off (no solid has E = {e:.3e} Pa or ρ = {rho:.3e} kg/m³)"
+        )),
+        (false, true) => Some(format!("E is off (no solid has E = {e:.3e} Pa)")),
+        (true, false) => Some(format!("ρ is off (no solid has ρ = {rho:.3e} kg/m³)")),
+        (true, true) if rho > 0.0 && !inside((e / rho).sqrt(), WAVE_SPEED_SI_RANGE) => Some(format!(
+            "E and ρ do not belong together (wave speed √(E/ρ) = {:.3e} m/s, outside the {:e} … {:e} m/s of real solids): one of them is in other units",
+            (e / rho).sqrt(),
+            WAVE_SPEED_SI_RANGE.0,
+            WAVE_SPEED_SI_RANGE.1
+        )),
+        (true, true) => None,
+    }
+}
+
+/// The materials whose E and ρ can be judged (positive, finite; `material_warnings` says what
+/// is wrong with the others).
+fn judged(model: &Model) -> impl Iterator<Item = &crate::model::Material> {
+    (model.materials.iter())
+        .filter(|m| m.e > 0.0 && m.rho >= 0.0 && m.e.is_finite() && m.rho.is_finite())
 }
 
 /// Warnings for materials whose E and ρ, read in the declared unit system `units` (named
 /// `units_name`), are no real solid's — the mark of a wrong `--units` (steel's 7850 read as
-/// t/mm³, 210e9 read as MPa) — naming the material and the systems of `candidates` in which
-/// its numbers are plausible.
+/// t/mm³, 210e9 read as MPa) — naming the material, the quantity that is off and the preset of
+/// `candidates` in which *every* material of the model is plausible, or saying that none is (a
+/// material that mixes unit systems: E in MPa with ρ in kg/m³; issue 47).
 pub fn unit_system_warnings(
     model: &Model,
     units: &flexbody_reader::Units,
     units_name: &str,
     candidates: &[(&str, flexbody_reader::Units)],
 ) -> Vec<String> {
+    let off_in = |u: &flexbody_reader::Units, m: &crate::model::Material| {
+        let (e, rho) = in_si(m.e, m.rho, u);
+        quantity_off(e, rho)
+    };
+    let fits: Vec<&str> = (candidates.iter())
+        .filter(|(_, u)| judged(model).all(|m| off_in(u, m).is_none()))
+        .map(|(name, _)| *name)
+        .collect();
     let mut out = Vec::new();
-    for m in &model.materials {
-        if !(m.e > 0.0 && m.rho >= 0.0 && m.e.is_finite() && m.rho.is_finite()) {
-            continue; // material_warnings says what is wrong with these
-        }
-        let (e, rho) = in_si(m.e, m.rho, units);
-        if plausible_in_si(e, rho) {
+    for m in judged(model) {
+        let Some(off) = off_in(units, m) else {
             continue;
-        }
-        let fits: Vec<String> = candidates
-            .iter()
-            .filter(|(_, u)| {
-                let (e, rho) = in_si(m.e, m.rho, u);
-                plausible_in_si(e, rho)
-            })
-            .map(|(name, _)| (*name).to_owned())
-            .collect();
+        };
+        let (e, rho) = in_si(m.e, m.rho, units);
         let hint = if fits.is_empty() {
-            "in none of the unit systems --units offers".to_owned()
+            format!(
+                "no --units preset makes every material plausible (none of {}): a material's numbers mix unit systems; fix the one that is off in the model (or --material)",
+                candidates.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+            )
         } else {
-            format!("they fit --units {}", fits.join(" or "))
+            format!(
+                "they fit --units {} (every material of the model does): check --units",
+                fits.join(" or ")
+            )
         };
         out.push(format!(
-            "material {}: E = {:e}, ρ = {:e} read in {units_name} ({}, {}, {}, {}) are E = {e:.3e} Pa and ρ = {rho:.3e} kg/m³, which no solid has; {hint}: check --units",
+            "material {}: E = {:e}, ρ = {:e} read in {units_name} ({}, {}, {}, {}) are E = {e:.3e} Pa and ρ = {rho:.3e} kg/m³, which no solid has: {off}; {hint}",
             m.name, m.e, m.rho, units.mass.name, units.length.name, units.time.name, units.force.name
         ));
     }
@@ -149,6 +181,32 @@ mod tests {
         assert!(unit_system_warnings(&steel_mm, &mmts, "mm-t-s", &candidates).is_empty());
         let w = unit_system_warnings(&steel_mm, &si, "si", &candidates);
         assert!(w.len() == 1 && w[0].contains("fit --units mm-t-s"), "{w:?}");
+    }
+
+    /// Two materials that fit different presets (steel in SI, aluminium in mm-t-s): no preset
+    /// makes every material plausible, and the hint says so instead of naming either.
+    #[test]
+    fn a_preset_is_named_only_when_every_material_fits_it() {
+        let si = units(("kg", 1.0), ("m", 1.0), ("N", 1.0));
+        let mmts = units(("t", 1000.0), ("mm", 1e-3), ("N", 1.0));
+        let candidates = [("si", si.clone()), ("mm-t-s", mmts.clone())];
+        let model = Model {
+            materials: vec![
+                Material::steel(),
+                Material::isotropic(2, "ALU", 7.0e4, 0.33, 2.7e-9),
+            ],
+            ..Default::default()
+        };
+        let w = unit_system_warnings(&model, &si, "si", &candidates);
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].contains("material ALU")
+                && w[0].contains("ρ is off")
+                && w[0].contains("no --units preset makes every material plausible"),
+            "{}",
+            w[0]
+        );
+        assert!(!w[0].contains("they fit"), "{}", w[0]);
     }
 
     fn warn(m: Material) -> Vec<ImportWarning> {

@@ -79,9 +79,29 @@ pub const SINGULAR_PIVOT: f64 = 1e-14;
 /// `K`, `M`, `G` suffix for KiB, MiB, GiB).
 pub const MEMORY_ENV: &str = "FLEXBODY_MAX_MEMORY";
 
-/// Bytes a numeric factorization may use and where that figure came from: [`MEMORY_ENV`] when
-/// set, else `MemAvailable` of `/proc/meminfo`; `None` when neither is known (no check).
+/// The limit `flexbody build --max-memory` set for this process (bytes), named by its flag in
+/// the errors it causes.
+static FLAG_LIMIT: std::sync::OnceLock<u64> = std::sync::OnceLock::new();
+
+/// Sets the memory limit from the `--max-memory` flag's text (its errors name the flag, not
+/// [`MEMORY_ENV`]); the first call wins.
+pub fn set_memory_limit_flag(text: &str) -> Result<(), SolveError> {
+    let bytes = parse_bytes(text).ok_or_else(|| {
+        SolveError::Invalid(format!(
+            "--max-memory {text}: expected bytes, optionally with a K, M or G suffix"
+        ))
+    })?;
+    let _ = FLAG_LIMIT.set(bytes); // a second call keeps the first limit
+    Ok(())
+}
+
+/// Bytes a numeric factorization may use and where that figure came from: `--max-memory`
+/// ([`set_memory_limit_flag`]), else [`MEMORY_ENV`] when set, else `MemAvailable` of
+/// `/proc/meminfo`; `None` when none is known (no check).
 pub fn memory_limit() -> Result<Option<(u64, &'static str)>, SolveError> {
+    if let Some(&bytes) = FLAG_LIMIT.get() {
+        return Ok(Some((bytes, "--max-memory")));
+    }
     if let Ok(v) = std::env::var(MEMORY_ENV) {
         return parse_bytes(&v)
             .map(|b| Some((b, MEMORY_ENV)))
@@ -312,7 +332,7 @@ impl SparseLlt {
             flops: stats.flops,
             single: false,
         });
-        let factored = factor_numeric(&symbolic, &mut values, a, par);
+        let factored = factor_numeric(&symbolic, &mut values, a, par, stats.flops);
         super::progress::report(super::progress::Event::FactorEnd);
         factored?;
         let min_pivot = min_pivot(&symbolic, |p| values[p], a);
@@ -360,7 +380,7 @@ impl SparseLlt {
                 flops: stats.flops,
                 single: true,
             });
-            let factored = factor_numeric(&symbolic, &mut values, a32, par);
+            let factored = factor_numeric(&symbolic, &mut values, a32, par, stats.flops);
             super::progress::report(super::progress::Event::FactorEnd);
             factored?;
         }
@@ -601,18 +621,21 @@ fn factor_numeric<T: faer::traits::ComplexField>(
     values: &mut [T],
     a: SparseColMatRef<'_, usize, T>,
     par: Par,
+    flops: f64,
 ) -> Result<(), SolveError> {
     let req = symbolic.factorize_numeric_llt_scratch::<T>(par, Default::default());
     let mut buf = MemBuffer::new(req);
-    let res = symbolic.factorize_numeric_llt(
-        values,
-        a,
-        Side::Lower,
-        LltRegularization::default(),
-        par,
-        MemStack::new(&mut buf),
-        Default::default(),
-    );
+    let res = with_share_reported(flops, || {
+        symbolic.factorize_numeric_llt(
+            values,
+            a,
+            Side::Lower,
+            LltRegularization::default(),
+            par,
+            MemStack::new(&mut buf),
+            Default::default(),
+        )
+    });
     if let Err(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }) = res {
         // faer 0.24 reports the simplicial pivot 1-based and the supernodal one 0-based, both in
         // the permuted order
@@ -626,6 +649,42 @@ fn factor_numeric<T: faer::traits::ComplexField>(
         return Err(SolveError::NonPositivePivot { dof });
     }
     Ok(())
+}
+
+/// Runs the numeric factorization `factor` of `flops` floating-point operations (the analysis's
+/// count) while, with a progress reporter installed, a watcher reports the share done four times
+/// a second ([`Event::FactorProgress`](super::progress::Event::FactorProgress)): the flops the
+/// dense kernels (faer's x86-64 gemm, which counts them) did since the start over `flops`,
+/// capped at 0.99 — the supernodes' updates and dense factors, where a large factorization
+/// spends its time, run through those kernels (issue 47: a log heard nothing for the 7.5 s of
+/// a 128k-dof factorization).
+fn with_share_reported<R>(flops: f64, factor: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if super::progress::active() && flops > 0.0 {
+        use std::sync::atomic::{AtomicBool, Ordering};
+        let counter = &private_gemm_x86::FLOPS;
+        let start = counter.load(Ordering::Relaxed);
+        let done = AtomicBool::new(false);
+        return std::thread::scope(|scope| {
+            let watcher = scope.spawn(|| {
+                while !done.load(Ordering::Acquire) {
+                    std::thread::park_timeout(std::time::Duration::from_millis(250));
+                    if done.load(Ordering::Acquire) {
+                        break;
+                    }
+                    let counted = counter.load(Ordering::Relaxed).saturating_sub(start);
+                    super::progress::report(super::progress::Event::FactorProgress {
+                        share: (counted as f64 / flops).min(0.99),
+                    });
+                }
+            });
+            let out = factor();
+            done.store(true, Ordering::Release);
+            watcher.thread().unpark();
+            out
+        });
+    }
+    factor()
 }
 
 /// `solve` (the row kernels) on blocks of at most [`supernodal::MAX_LANES`] columns of `rhs`.

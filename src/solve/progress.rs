@@ -22,6 +22,13 @@ pub enum Event {
         /// An f32 factor (`--precision mixed`).
         single: bool,
     },
+    /// The share of the factorization announced by the last `FactorStart` done so far: its
+    /// dense kernels' flops against the analysis's count, below 1 until `FactorEnd` (a few
+    /// times a second while it runs; only where the kernels count their work, x86-64).
+    FactorProgress {
+        /// Share done, 0 … 0.99.
+        share: f64,
+    },
     /// The factorization announced by the last `FactorStart` is done.
     FactorEnd,
     /// Solves with a factor for many right-hand sides (constraint modes, attachment modes).
@@ -52,6 +59,11 @@ pub fn set_reporter(reporter: Option<Reporter>) {
     let mut slot = REPORTER.write().unwrap_or_else(|e| e.into_inner());
     *slot = reporter;
     ACTIVE.store(active, Ordering::Release);
+}
+
+/// Whether a reporter is installed (a phase may skip work done only to report).
+pub fn active() -> bool {
+    ACTIVE.load(Ordering::Acquire)
 }
 
 /// Sends `event` to the reporter, if one is installed.

@@ -288,6 +288,11 @@ pub(crate) fn build(
     let others: Vec<(u64, u32, u32)> = (d.elements.other_ids.iter())
         .map(|(id, c)| (*id, c.loc.file, c.loc.line))
         .collect();
+    // rigid elements too, for messages about them (issue 47), where their id names no other
+    // element (MSC keeps the two id spaces apart; a shared id keeps the element's line)
+    let rigid: Vec<(u64, u32, u32)> = (d.elements.rigid_ids.iter())
+        .map(|(id, c)| (*id, c.loc.file, c.loc.line))
+        .collect();
     let mut b = d.b;
     b.model.loads =
         super::loads::resolve(&d.loads, &files, &b.model, &d.nodes, &elements, &load_sel)?;
@@ -312,6 +317,13 @@ pub(crate) fn build(
     let offsets = with_mid_plane_offsets(&b.model, &d.elements.shell_offsets, &d.properties);
     shell_offsets(&mut b.model, &offsets, &files)?;
     b.model.element_sources.extend(others);
+    b.model
+        .element_sources
+        .sort_unstable_by_key(|&(id, _, _)| id);
+    let rigid: Vec<(u64, u32, u32)> = (rigid.into_iter())
+        .filter(|r| b.model.element_location(r.0).is_none())
+        .collect();
+    b.model.element_sources.extend(rigid);
     b.model
         .element_sources
         .sort_unstable_by_key(|&(id, _, _)| id);

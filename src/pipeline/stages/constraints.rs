@@ -166,9 +166,9 @@ impl<'a> Independent<'a> {
                 let r = self.reduced_index[self.dofs.first[node] + c];
                 if r == usize::MAX {
                     Err(self.plan.request_error(format!(
-                        "{what} node {id} dof {} is not independent (constrained by an SPC or a dependent dof of a rigid element); \
-                         interface and reference dofs must be independent — use an RBE2 spider (--spider rbe2) or another node",
-                        c + 1
+                        "{what} node {id} dof {} is not independent: {}",
+                        c + 1,
+                        dependent_dof_cause(self.model, node, c)
                     )))
                 } else {
                     Ok(r)
@@ -188,6 +188,44 @@ impl<'a> Independent<'a> {
         node_mask(self.model, node, self.count(node), explicit, what)
             .map_err(|e| self.plan.request_error(e))
     }
+}
+
+/// Why component `c` (0-based) of `node` is eliminated, with advice that applies to a plain
+/// node id (issue 47): the RBE2 that drives it (id, `file:line`, its independent node), else an
+/// SPC, else the other dependent-dof makers.
+fn dependent_dof_cause(model: &Model, node: NodeIndex, c: usize) -> String {
+    use crate::model::RigidElement;
+    let rbe2 = model.rigid_elements.iter().find_map(|r| match r {
+        RigidElement::Rbe2 {
+            id,
+            independent,
+            dependent,
+            dofs,
+        } if dofs.contains(c) && dependent.contains(&node) => Some((*id, *independent)),
+        RigidElement::Rbe2 { .. } | RigidElement::Rbe3 { .. } => None,
+    });
+    if let Some((id, independent)) = rbe2 {
+        let place = model
+            .element_location(id)
+            .map_or(String::new(), |l| format!(" ({l})"));
+        return format!(
+            "RBE2 {id}{place} makes it follow its independent node {}; give that node (--interface {}) \
+             or a node no rigid element drives",
+            model.nodes[independent].id, model.nodes[independent].id
+        );
+    }
+    if model
+        .spcs
+        .iter()
+        .any(|s| s.node == node && s.dofs.contains(c))
+    {
+        return "the model's SPC holds it; give a free node, or leave this component out with \
+                NODE:DOFS (e.g. 7:123)"
+            .to_owned();
+    }
+    "it is a dependent dof of a rigid element (RBE3 reference, RBAR, RBE1) or an MPC; give one \
+     of that element's independent nodes or a node no constraint drives"
+        .to_owned()
 }
 
 /// The interface dofs (independent numbering) and each interface node's components.
