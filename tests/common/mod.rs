@@ -116,8 +116,8 @@ pub fn on_ci() -> bool {
 pub fn skipped_install(what: &str, install: &str) {
     if on_ci() {
         panic!(
-            "{what}: {install} is missing, and CI=true: .ci/run installs it, so this check \
-             must run in CI"
+            "{what}: this check needs what `{install}` installs, and CI=true: .ci/run installs \
+             it, so the check must run in CI, not skip"
         );
     }
     skipped(&format!("{what} (install: {install})"));
