@@ -52,12 +52,8 @@ fn expanded_beams_match_calculix() {
     ] {
         let ours = build(stem, &dir);
         let ccx = common::ccx_frequencies("ccx_beams", stem);
-        assert_eq!(ours.len(), ccx.len(), "{stem}: {ours:?}");
-        let worst = (ours.iter().zip(&ccx))
-            .map(|(a, b)| (a - b).abs() / b)
-            .fold(0.0, f64::max);
         // ccx prints 7 significant digits
-        assert!(worst <= 1e-6, "{stem}: {worst:e}\n{ours:?}\n{ccx:?}");
+        common::assert_frequencies(stem, &ours, &ccx, 0, 1e-6);
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -188,8 +184,10 @@ fn a_beam_node_is_an_interface_node() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let body = file::read(&out).unwrap();
     let ccx = common::ccx_frequencies("ccx_beams", "rect_cantilever");
-    for (a, b) in body.modes.frequency_hz.iter().zip(&ccx).take(3) {
-        assert!((a - b).abs() / b < 1e-4, "{a} against ccx {b}");
-    }
+    let ours = &body.modes.frequency_hz;
+    assert!(ours.len() >= 3, "{ours:?}");
+    // measured 8.3e-6
+    let worst = common::assert_frequencies("tip interface", &ours[..3], &ccx[..3], 0, 5e-5);
+    eprintln!("a_beam_node_is_an_interface_node: worst {worst:.2e}");
     let _ = std::fs::remove_dir_all(&dir);
 }

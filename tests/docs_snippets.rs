@@ -16,7 +16,7 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use common::{exe, python_has, run_python, scratch, skipped};
+use common::{exe, python_has, run_python, scratch, skipped_install};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -89,9 +89,9 @@ fn the_docs_exudyn_snippets_are_the_examples_line_for_line() {
 #[test]
 fn the_docs_exudyn_snippets_run_with_and_without_damping() {
     if !python_has("exudyn") || !python_has("numpy") {
-        skipped(
-            "the docs' exudyn snippets (docs_snippets): python3 cannot import exudyn and numpy \
-             (pip install exudyn)",
+        skipped_install(
+            "the docs' exudyn snippets (docs_snippets): python3 cannot import exudyn and numpy",
+            "pip install exudyn numpy",
         );
         return;
     }
@@ -151,9 +151,10 @@ fn the_docs_joint_recipes_are_the_joints_examples_line_for_line() {
 #[test]
 fn the_revolute_recipe_pendulum_equals_exudyns_own_hcb_pendulum() {
     if !python_has("exudyn") || !python_has("numpy") || !python_has("scipy") {
-        skipped(
+        skipped_install(
             "the revolute recipe's acceptance (docs_snippets): python3 cannot import exudyn, \
-             numpy and scipy (pip install exudyn scipy)",
+             numpy and scipy",
+            "pip install exudyn numpy scipy",
         );
         return;
     }
@@ -209,9 +210,9 @@ fn exudyns_stress_sensor_gives_the_files_stress_shapes_times_the_modal_coordinat
     assert_eq!(docs.len(), 1, "{docs:?}");
     assert_eq!(docs, snippet_blocks("examples/stress_exudyn.py"));
     if !python_has("exudyn") || !python_has("numpy") {
-        skipped(
-            "the stress recipe (docs_snippets): python3 cannot import exudyn and numpy \
-             (pip install exudyn)",
+        skipped_install(
+            "the stress recipe (docs_snippets): python3 cannot import exudyn and numpy",
+            "pip install exudyn numpy",
         );
         return;
     }
@@ -317,7 +318,11 @@ fn the_docs_shell_blocks_run_as_they_stand_in_order() {
         // the first block builds with --damping 2%: the damping block sets the matrix
         assert!(out.contains("dampingMatrixReduced set (8 modes"), "{out}");
     } else {
-        skipped("the exudyn blocks on the shell blocks' files (docs_snippets): no exudyn");
+        skipped_install(
+            "the exudyn blocks on the shell blocks' files (docs_snippets): python3 cannot \
+             import exudyn and numpy",
+            "pip install exudyn numpy",
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

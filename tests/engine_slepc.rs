@@ -4,7 +4,8 @@
 //! native engine's to 1e-9, both files pass `check --model`, and `--verify-band` proves the modes
 //! complete with either engine. Without `mpirun` or a Python
 //! with slepc4py (Debian: openmpi-bin, python3-slepc4py-real) the comparison is skipped with a
-//! visible message; the refusal of other methods is always tested.
+//! visible message (`common::skipped_install`: a failure under `CI=true`, where `.ci/run`
+//! installs them); the refusal of other methods is always tested.
 
 use common::{exe, scratch};
 use std::path::Path;
@@ -30,7 +31,10 @@ fn frequencies(file: &Path) -> Vec<f64> {
 #[test]
 fn slepc_engine_gives_the_native_frequencies_on_the_conrod() {
     if let Err(why) = flexbody::solve::slepc::available() {
-        println!("SLEPc engine test skipped: {why} (Debian: openmpi-bin, python3-slepc4py-real)");
+        common::skipped_install(
+            &format!("the SLEPc engine check (engine_slepc): {why}"),
+            "apt-get install openmpi-bin python3-slepc4py-real",
+        );
         return;
     }
     let dir = scratch("slepc-conrod");

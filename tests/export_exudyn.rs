@@ -65,9 +65,10 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
     }
 
     if !python_has("exudyn") || !python_has("scipy") {
-        eprintln!(
-            "SKIPPED the exudyn checks of export_exudyn: python3 cannot import exudyn and scipy \
-             (pip install exudyn scipy); the NPZ was written but not loaded in exudyn"
+        common::skipped_install(
+            "the exudyn checks of export_exudyn: python3 cannot import exudyn and scipy; the NPZ \
+             was written but not loaded in exudyn",
+            "pip install exudyn scipy",
         );
         return;
     }
@@ -96,8 +97,10 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
 #[test]
 fn the_pendulum_example_runs_and_swings_like_the_rigid_pendulum_of_the_files_mass_properties() {
     if !python_has("exudyn") || !python_has("scipy") || !python_has("matplotlib") {
-        eprintln!(
-            "SKIPPED the pendulum example: python3 cannot import exudyn, scipy and matplotlib"
+        common::skipped_install(
+            "the pendulum example (export_exudyn): python3 cannot import exudyn, scipy and \
+             matplotlib",
+            "pip install exudyn scipy matplotlib",
         );
         return;
     }
@@ -156,7 +159,10 @@ fn figure(text: &str, label: &str) -> f64 {
 #[test]
 fn the_slider_crank_example_follows_the_rigid_closed_form_within_the_rods_stretch() {
     if !python_has("exudyn") || !python_has("numpy") {
-        eprintln!("SKIPPED the slider-crank example: python3 cannot import exudyn and numpy");
+        common::skipped_install(
+            "the slider-crank example (export_exudyn): python3 cannot import exudyn and numpy",
+            "pip install exudyn numpy",
+        );
         return;
     }
     let out = run_python("examples/slider_crank_exudyn.py", &["0.01"], None);
@@ -211,9 +217,10 @@ fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
 #[test]
 fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
     if !python_has("exudyn") || !python_has("numpy") {
-        eprintln!(
-            "SKIPPED the flexbody.exudyn helper check: python3 cannot import exudyn and numpy \
-             (pip install exudyn)"
+        common::skipped_install(
+            "the flexbody.exudyn helper check (export_exudyn): python3 cannot import exudyn and \
+             numpy",
+            "pip install exudyn numpy",
         );
         return;
     }

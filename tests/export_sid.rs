@@ -32,9 +32,9 @@ fn run(args: &[&str]) -> String {
 /// EMBSlib's reader compiled with our stand-in header, or None (with the reason printed).
 fn embslib_dumper(dir: &Path) -> Option<PathBuf> {
     let Ok(include) = std::env::var("FLEXBODY_EMBSLIB_INCLUDE") else {
-        println!(
-            "EMBSlib check skipped: set FLEXBODY_EMBSLIB_INCLUDE to the folder holding EMBSlib's \
-             ReadSID_C.h to load the files with EMBSlib's own reader"
+        common::skipped(
+            "the EMBSlib check of export_sid: set FLEXBODY_EMBSLIB_INCLUDE to the folder holding \
+             EMBSlib's ReadSID_C.h to load the files with EMBSlib's own reader",
         );
         return None;
     };
@@ -79,7 +79,10 @@ fn check_sid(name: &str, model: &str, build_args: &[&str]) -> String {
     let text = std::fs::read_to_string(&sid).unwrap();
     assert!(text.ends_with(" end part\n"), "{name}: truncated SID file");
     if !python_has("numpy") {
-        println!("SID check of {name} skipped: python3 with numpy is not available");
+        common::skipped_install(
+            &format!("the SID check of {name} (export_sid): python3 cannot import numpy"),
+            "pip install numpy",
+        );
         return summary;
     }
     let mut check = Command::new("python3");
@@ -102,6 +105,20 @@ fn check_sid(name: &str, model: &str, build_args: &[&str]) -> String {
         "{name}: SID check failed:\n{stdout}\n{}",
         String::from_utf8_lossy(&o.stderr)
     );
+    // the script's own skips (welib missing; a model too big for welib's dense mass matrix)
+    for line in stdout
+        .lines()
+        .filter(|l| l.starts_with("welib check skipped:"))
+    {
+        if line.contains("cannot import welib") {
+            common::skipped_install(
+                &format!("the welib check of {name} (export_sid): {line}"),
+                "pip install welib==4.2.0",
+            );
+        } else {
+            common::skipped(&format!("the welib check of {name} (export_sid): {line}"));
+        }
+    }
     let _ = std::fs::remove_dir_all(&dir);
     summary
 }

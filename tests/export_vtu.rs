@@ -18,7 +18,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::{base64_block, exe, python_has, scratch, skipped};
+use common::{base64_block, exe, python_has, scratch, skipped_install};
 use flexbody_reader as file;
 
 fn run(args: &[&str]) {
@@ -86,10 +86,12 @@ fn check(name: &str, model: &Path, build_args: &[&str]) -> file::ReducedBody {
         flex.len()
     );
     if !python_has("meshio") || !python_has("numpy") {
-        skipped(&format!(
-            "the meshio check of export_vtu ({name}): python3 cannot import meshio and numpy \
-             (pip install meshio)"
-        ));
+        skipped_install(
+            &format!(
+                "the meshio check of export_vtu ({name}): python3 cannot import meshio and numpy"
+            ),
+            "pip install meshio numpy",
+        );
     } else {
         let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
         let o = Command::new("python3")

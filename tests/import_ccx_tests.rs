@@ -1,18 +1,28 @@
 //! The CalculiX test-suite decks in `ccx_tests/` of the external reference data
-//! (`FLEXBODY_REFERENCE`; skipped visibly without it) (real ccx inputs: C3D8,
+//! (`FLEXBODY_REFERENCE`), else from Debian's `calculix-ccx-test` (`common::ccx_suite`; skipped
+//! visibly without either, a failure under `CI=true`) (real ccx inputs: C3D8,
 //! C3D8I, C3D20R, C3D10, S8/S8R, B32R, SPRINGA, cyclic symmetry): node and element counts
 //! (counted from the decks' data lines; B32R as the bricks ccx expands them into).
 
 mod common;
 
-use common::external_reference;
+use common::ccx_suite;
 use flexbody::import::{abaqus, ImportOptions};
 use flexbody::model::ElementKind;
 
 #[test]
 fn ccx_test_decks_node_and_element_counts() {
-    let Some(dir) = external_reference("ccx_test_decks_node_and_element_counts", "ccx_tests")
-    else {
+    let decks = [
+        "beam8f.inp",
+        "beamdy1.inp",
+        "beamf.inp",
+        "beamfsh1.inp",
+        "beampsensfreq.inp",
+        "dloadlinIf.inp",
+        "segmenttet.inp",
+        "shellf.inp",
+    ];
+    let Some(dir) = ccx_suite("ccx_test_decks_node_and_element_counts", &decks) else {
         return;
     };
     let deck = |name: &str| dir.join(name);
@@ -94,7 +104,8 @@ fn ccx_test_decks_node_and_element_counts() {
 /// bush of k = 10 on the x axis, one equation).
 #[test]
 fn expanded_beams_and_springs_read() {
-    let Some(dir) = external_reference("expanded_beams_and_springs_read", "ccx_tests") else {
+    let decks = ["simplebeampipe3.inp", "spring5.inp"];
+    let Some(dir) = ccx_suite("expanded_beams_and_springs_read", &decks) else {
         return;
     };
     let m = abaqus::read(&dir.join("simplebeampipe3.inp")).unwrap();

@@ -220,9 +220,12 @@ fn lumped_mass_variant() {
         flexible_hz(&ff),
         ss.frequencies_hz()
     );
-    // HRZ lumping lowers the bending frequencies (consistent mass bounds from above): 135.40 vs
-    // 138.89 Hz free-free, 87.30 vs 88.62 Hz extended simply supported
+    // HRZ lumping lowers the bending frequencies below the consistent-mass values of the paper
+    // (Wang, Niu & Feng 2023, normal mode approach: Table 2 free-free 138.91 Hz, Table 3
+    // extended simply supported 88.64 Hz), by less than 3 % (measured 135.40 Hz, −2.5 %;
+    // 87.30 Hz, −1.5 %)
+    let (paper_free, paper_supported) = (138.91, 88.64);
     let (fl, sl) = (flexible_hz(&ff)[0], ss.frequencies_hz()[0]);
-    assert!(fl < 138.8885 && fl > 0.97 * 138.8885, "{fl}");
-    assert!(sl < 88.6247 && sl > 0.97 * 88.6247, "{sl}");
+    assert!(fl < paper_free && fl > 0.97 * paper_free, "{fl}");
+    assert!(sl < paper_supported && sl > 0.97 * paper_supported, "{sl}");
 }

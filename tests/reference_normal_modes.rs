@@ -83,7 +83,10 @@ fn normal_modes_with_the_big_end_held_build_check_and_match_scipy() {
         .output()
         .is_ok_and(|o| o.status.success());
     if !has_scipy {
-        println!("SciPy comparison skipped: python3 with scipy is not available");
+        common::skipped_install(
+            "the SciPy comparison of reference_normal_modes: python3 cannot import scipy",
+            "pip install scipy",
+        );
         return;
     }
     let freqs: Vec<String> = file

@@ -101,3 +101,32 @@ fn tests_reach_outside_data_only_through_the_skipping_helper() {
         "paths outside the repository: {offenders:?}"
     );
 }
+
+/// Every skip goes through `tests/common`'s `skipped` / `skipped_install` (printed past the
+/// harness's capture, counted by `.ci/run`, a failure under `CI=true` for what `.ci/run`
+/// installs): no test prints its own skip line with `println!`/`eprintln!`, which a passing run
+/// never shows.
+#[test]
+fn skips_go_through_the_common_helper() {
+    let mut offenders = Vec::new();
+    for entry in std::fs::read_dir(root().join("tests")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "rs") || path.ends_with("repository_files.rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        for (at, _) in text.match_indices("println!(") {
+            // the macro's arguments: up to the first `);` after it
+            let call = &text[at..];
+            let call = &call[..call.find(");").unwrap_or(call.len())];
+            if call.to_ascii_lowercase().contains("skip") {
+                let line = text[..at].matches('\n').count() + 1;
+                offenders.push(format!("{}:{line}", path.display()));
+            }
+        }
+    }
+    assert!(
+        offenders.is_empty(),
+        "skips printed without common::skipped: {offenders:?}"
+    );
+}

@@ -299,11 +299,13 @@ fn nastran_cquad8_ctria6_with_corner_thicknesses() {
 fn calculix_shellf_s8_plate_is_leissas_plate() {
     let deck = Path::new("/usr/share/doc/calculix-ccx-test/examples/test/shellf.inp");
     if !deck.exists() {
-        common::skipped(&format!(
-            "calculix_shellf_s8_plate_is_leissas_plate: needs {} (Debian package \
-             calculix-ccx-test)",
-            deck.display()
-        ));
+        common::skipped_install(
+            &format!(
+                "calculix_shellf_s8_plate_is_leissas_plate: needs {}",
+                deck.display()
+            ),
+            "apt-get install calculix-ccx-test",
+        );
         return;
     }
     let model = read_model(deck, &native()).unwrap();

@@ -15,7 +15,7 @@ mod common;
 use std::path::PathBuf;
 use std::process::Command;
 
-use common::{exe, scratch, skipped};
+use common::{exe, scratch, skipped_install};
 use flexbody::export::vtu::significant;
 use flexbody_reader as file;
 
@@ -197,9 +197,9 @@ fn body_attribute(dom: &str, name: &str) -> Option<String> {
 #[test]
 fn the_page_draws_each_mode_in_headless_chromium_without_errors() {
     let Some(browser) = chromium() else {
-        skipped(
-            "the headless-browser check of view_html: no chromium on the PATH \
-             (apt-get install chromium)",
+        skipped_install(
+            "the headless-browser check of view_html: no chromium on the PATH",
+            "apt-get install chromium",
         );
         return;
     };

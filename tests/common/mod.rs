@@ -49,11 +49,125 @@ pub fn external_reference(test: &str, rel: &str) -> Option<PathBuf> {
     None
 }
 
+/// Debian's `calculix-ccx-test` folder: CalculiX's test decks with their `.dat.ref` results
+/// (ccx 2.11's), many gzipped.
+pub const DEBIAN_CCX_SUITE: &str = "/usr/share/doc/calculix-ccx-test/examples/test";
+
+/// A folder holding the CalculiX test-suite files `names` (decks, `.dat.ref`s): `ccx_tests/` of
+/// the external reference data when it has them all, else a scratch copy from Debian's
+/// `calculix-ccx-test` (`NAME` or `NAME.gz`, decompressed); `None` after a skip without either
+/// (a failure under `CI=true`: `.ci/run` installs the package).
+pub fn ccx_suite(test: &str, names: &[&str]) -> Option<PathBuf> {
+    let external = external_reference_dir().join("ccx_tests");
+    if names.iter().all(|n| external.join(n).exists()) {
+        return Some(external);
+    }
+    let debian = Path::new(DEBIAN_CCX_SUITE);
+    let find = |n: &str| {
+        let plain = debian.join(n);
+        let zipped = debian.join(format!("{n}.gz"));
+        (plain.exists().then_some(plain)).or(zipped.exists().then_some(zipped))
+    };
+    if names.iter().any(|n| find(n).is_none()) {
+        skipped_install(
+            &format!(
+                "{test}: needs {names:?} from CalculiX's test suite: neither {} nor {DEBIAN_CCX_SUITE} \
+                 holds them",
+                external.display()
+            ),
+            "apt-get install calculix-ccx-test",
+        );
+        return None;
+    }
+    let dir = scratch(&format!("ccx-suite-{test}"));
+    for n in names {
+        // find(n) is Some: every name was found just above
+        let from = find(n).unwrap();
+        let text = if from.extension().is_some_and(|e| e == "gz") {
+            let o = Command::new("gzip").arg("-dc").arg(&from).output().unwrap();
+            assert!(o.status.success(), "gzip -dc {}", from.display());
+            o.stdout
+        } else {
+            std::fs::read(&from).unwrap()
+        };
+        std::fs::write(dir.join(n), text).unwrap();
+    }
+    Some(dir)
+}
+
 /// Prints `SKIPPED <what>` where the test runner shows it: straight to the process's stderr,
-/// past the harness's capture of `println!`/`eprintln!`, so a skip is never silent.
+/// past the harness's capture of `println!`/`eprintln!`, so a skip is never silent (`.ci/run`
+/// counts these lines). For what `.ci/run` does not install (data outside the repository, a
+/// library the user points to); a check of something `.ci/run` installs skips through
+/// [`skipped_install`].
 pub fn skipped(what: &str) {
     use std::io::Write;
     let _ = writeln!(std::io::stderr(), "SKIPPED {what}");
+}
+
+/// Whether this run is CI's (`CI=true`, as CI runs `.ci/run`).
+pub fn on_ci() -> bool {
+    std::env::var("CI").is_ok_and(|v| v == "true")
+}
+
+/// A check that cannot run because `install` (a Debian or PyPI package `.ci/run` installs) is
+/// missing: a visible skip ([`skipped`]) on a developer's machine, a failure under `CI=true`,
+/// where `.ci/run` has installed it and a missing tool means the check silently stopped running.
+pub fn skipped_install(what: &str, install: &str) {
+    if on_ci() {
+        panic!(
+            "{what}: this check needs what `{install}` installs, and CI=true: .ci/run installs \
+             it, so the check must run in CI, not skip"
+        );
+    }
+    skipped(&format!("{what} (install: {install})"));
+}
+
+/// The relative differences |ours − reference| / reference of the modes after the first `rigid`
+/// (zero-frequency modes, compared by count only), or why the two cannot be compared: not the
+/// same number of modes (a build that lost a mode never "matches" on the rest).
+pub fn frequency_differences(
+    ours: &[f64],
+    reference: &[f64],
+    rigid: usize,
+) -> Result<Vec<f64>, String> {
+    if ours.len() != reference.len() {
+        return Err(format!(
+            "{} modes against the reference's {} (ours {ours:?}, reference {reference:?})",
+            ours.len(),
+            reference.len()
+        ));
+    }
+    if rigid > ours.len() {
+        return Err(format!(
+            "{rigid} rigid modes of {} (ours {ours:?})",
+            ours.len()
+        ));
+    }
+    Ok((ours[rigid..].iter().zip(&reference[rigid..]))
+        .map(|(a, b)| (a - b).abs() / b.abs())
+        .collect())
+}
+
+/// The one comparison of frequencies with a reference: asserts the mode counts are equal, then
+/// that each mode after the first `rigid` is within `tol` (relative) of the reference's;
+/// returns the worst relative difference. Compare the first n of a longer list by passing
+/// `&x[..n]` after asserting the list is that long.
+pub fn assert_frequencies(
+    what: &str,
+    ours: &[f64],
+    reference: &[f64],
+    rigid: usize,
+    tol: f64,
+) -> f64 {
+    let rel =
+        frequency_differences(ours, reference, rigid).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let worst = rel.iter().cloned().fold(0.0, f64::max);
+    assert!(
+        rel.iter().all(|r| *r <= tol),
+        "{what}: worst relative difference {worst:.2e} > {tol:.0e}\nours      {ours:?}\nreference {reference:?}"
+    );
+    worst
 }
 
 pub fn steel() -> Material {
