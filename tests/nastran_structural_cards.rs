@@ -131,17 +131,18 @@ fn scalar_points_are_made_by_the_scalar_elements_that_name_them() {
     let exact = [hz((a - d) / 2.0), hz((a + d) / 2.0)];
     let body = format!(
         "CELAS3,11,31,0,1\nCELAS3,12,32,1,2\nPELAS,31,{k1:?},,,32,{k2:?}\n\
-         CMASS3,21,41,1\nCMASS4,22,{m2:?},,2\nPMASS,41,{m1:?}\nENDDATA\n"
+         CMASS3,21,41,1\nCMASS4,22,{m2:?},,2\nPMASS,41,{m1:?}\n"
     );
+    // the SPOINT last, so that every other card keeps its line
     let declared = read(&write(
         "implicit",
         "declared.bdf",
-        &format!("BEGIN BULK\nSPOINT,1,2\n{body}"),
+        &format!("BEGIN BULK\n{body}SPOINT,1,2\nENDDATA\n"),
     ));
     let mut implicit = read(&write(
         "implicit",
         "implicit.bdf",
-        &format!("BEGIN BULK\n{body}"),
+        &format!("BEGIN BULK\n{body}ENDDATA\n"),
     ));
     let notes = std::mem::take(&mut implicit.deck.notes);
     assert!(
@@ -302,7 +303,9 @@ fn genel_equals_the_bush_it_stands_for() {
 }
 
 /// A CBUSH1D (PBUSH1D K = EA/L) on an oblique axis equals a massless CROD of that axial
-/// stiffness (frequencies through the CLI, measured 2e-16); PBUSH1D's damping and nonlinear
+/// stiffness (frequencies through the CLI). The clamped grid 1 carries a CONM2 with inertia:
+/// its six dofs are then held by its PS in both decks (with translations alone, the build's
+/// rigid-mode expectation would take the CELAS2s, which resist rigid rotation, for free ones); PBUSH1D's damping and nonlinear
 /// SPRING line are notes, its mass is refused.
 #[test]
 fn cbush1d_equals_a_crod_of_the_same_axial_stiffness() {
@@ -311,7 +314,7 @@ fn cbush1d_equals_a_crod_of_the_same_axial_stiffness() {
     let deck = |link: &str| {
         format!(
             "BEGIN BULK\nMAT1,1,{e:?},,.3,0.\nGRID,1,,0.,0.,0.,,123456\nGRID,2,,.3,.4,1.2\n\
-             CONM2,10,2,,2.\nCELAS2,11,1.e6,2,1,1,1\nCELAS2,12,3.e6,2,2,1,2\n{link}ENDDATA\n"
+             CONM2,10,2,,2.\nCONM2,13,1,,1.,,,,\n,1.,,1.,,,1.\nCELAS2,11,1.e6,2,1,1,1\nCELAS2,12,3.e6,2,2,1,2\n{link}ENDDATA\n"
         )
     };
     let rod = "CROD,1,5,1,2\nPROD,5,1,1.e-4\n";
