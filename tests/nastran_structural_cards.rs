@@ -251,8 +251,8 @@ fn genel_equals_the_bush_it_stands_for() {
     // lower triangle of a diagonal 6 × 6, column by column
     let triangle = |diag: [f64; 6]| {
         let mut v = Vec::new();
-        for c in 0..6 {
-            v.push(format!("{:?}", diag[c]));
+        for (c, d) in diag.iter().enumerate() {
+            v.push(format!("{d:?}"));
             v.extend((c + 1..6).map(|_| "0.".to_owned()));
         }
         v

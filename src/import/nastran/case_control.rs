@@ -319,8 +319,8 @@ impl CaseControl {
             .filter_map(|mass| {
                 let of = |scope: Option<u64>| {
                     (self.matrices.iter())
-                        .filter(|m| m.mass == mass && m.subcase == scope)
-                        .next_back()
+                        .rev()
+                        .find(|m| m.mass == mass && m.subcase == scope)
                 };
                 subcase.and_then(|s| of(Some(s))).or_else(|| of(None))
             })

@@ -141,20 +141,20 @@ fn stiffness_terms(
             out.push((a, b, v));
         }
     };
-    for i in 0..m {
-        for j in 0..m {
-            push(ui[i], ui[j], k[i * m + j]);
+    for (i, &p) in ui.iter().enumerate() {
+        for (j, &q) in ui.iter().enumerate() {
+            push(p, q, k[i * m + j]);
         }
-        for j in 0..n {
-            push(ui[i], ud[j], -ks[i * n + j]);
-            push(ud[j], ui[i], -ks[i * n + j]);
+        for (j, &q) in ud.iter().enumerate() {
+            push(p, q, -ks[i * n + j]);
+            push(q, p, -ks[i * n + j]);
         }
     }
-    for a in 0..n {
-        for b in 0..n {
+    for (a, &p) in ud.iter().enumerate() {
+        for (b, &q) in ud.iter().enumerate() {
             // (Sᵀ K S)_ab = Σ_l S_la (K S)_lb
             let v: f64 = (0..m).map(|l| s[l * n + a] * ks[l * n + b]).sum();
-            push(ud[a], ud[b], v);
+            push(p, q, v);
         }
     }
     out
