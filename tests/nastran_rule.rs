@@ -24,11 +24,11 @@ fn base() -> String {
     s
 }
 
-/// Cards this importer does not model: a gap (refused with its own reason), a shear panel, a
+/// Cards this importer does not model: a gap (refused with its own reason), a fastener, a
 /// shell-normal PARAM and a line without a card name.
 fn refused_deck() -> String {
     base()
-        + "CGAP,50,60,3,4\nPARAM,SNORM,20.\nCSHEAR,70,2,1,2,3,4\nCGAP,51,60,5,6\n"
+        + "CGAP,50,60,3,4\nPARAM,SNORM,20.\nCFAST,70,2,1,2,3,4\nCGAP,51,60,5,6\n"
         + "  ,1,2\nENDDATA\n"
 }
 
@@ -49,7 +49,7 @@ fn unknown_stiffness_cards_are_refused_together_with_file_line_and_id() {
         vec![
             (line_of(&text, "CGAP,50"), "CGAP 50", "CGAP"),
             (line_of(&text, "PARAM,SNORM"), "PARAM SNORM", "PARAM:SNORM"),
-            (line_of(&text, "CSHEAR"), "CSHEAR 70", "CSHEAR"),
+            (line_of(&text, "CFAST"), "CFAST 70", "CFAST"),
             (line_of(&text, "CGAP,51"), "CGAP 51", "CGAP"),
             (line_of(&text, "  ,1,2"), "(a line without a card name)", ""),
         ]
@@ -60,11 +60,8 @@ fn unknown_stiffness_cards_are_refused_together_with_file_line_and_id() {
         assert!(msg.contains(&format!("{file}:{line}: {entity}: ")), "{msg}");
     }
     assert!(msg.contains("CGAP 50: a gap is a contact element"), "{msg}");
-    assert!(
-        msg.contains("CSHEAR 70: not read by this importer"),
-        "{msg}"
-    );
-    assert!(msg.contains("--ignore CGAP,CSHEAR,PARAM:SNORM "), "{msg}");
+    assert!(msg.contains("CFAST 70: not read by this importer"), "{msg}");
+    assert!(msg.contains("--ignore CFAST,CGAP,PARAM:SNORM "), "{msg}");
     assert_eq!(
         (e.file(), e.line()),
         (Some(file.as_str()), Some(line_of(&text, "CGAP,50")))
@@ -79,7 +76,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
         ignore_cards: vec![
             "cgap".into(),
             "param snorm".into(),
-            "CSHEAR".into(),
+            "CFAST".into(),
             "CWELD".into(),
         ],
         ..Default::default()
@@ -88,7 +85,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
     assert_eq!(
         m.elements.len(),
         12,
-        "the CBARs are kept, the CSHEAR dropped"
+        "the CBARs are kept, the CFAST dropped"
     );
     let w: Vec<&str> = m.warnings.iter().map(|w| w.message.as_str()).collect();
     let file = path.display().to_string();
@@ -104,7 +101,7 @@ fn ignored_cards_are_dropped_with_a_warning_naming_lines_and_counts() {
                 "1 PARAM:SNORM ({file}:{})",
                 line_of(&text, "PARAM")
             ))
-            && m.contains("1 CSHEAR (")),
+            && m.contains("1 CFAST (")),
         "{w:?}"
     );
     assert!(
@@ -219,7 +216,7 @@ fn cli_refuses_a_deck_with_an_unknown_stiffness_card_and_the_library_builds_it_i
 fn case_control_preload_and_added_matrices_are_refused() {
     let text = base().replace(
         "METHOD = 1\n",
-        "METHOD = 1\nSTATSUB(BUCKLE) = 2\nK2GG = KAAX\n",
+        "METHOD = 1\nSTATSUB(BUCKLE) = 2\nK2PP = KAAX\n",
     ) + "CGAP,50,60,3,4\nENDDATA\n";
     let path = write("rule_case", "statsub.bdf", &text);
     let e = read_model(&path, &ImportOptions::default()).unwrap_err();
@@ -231,13 +228,13 @@ fn case_control_preload_and_added_matrices_are_refused() {
         got,
         vec![
             (line_of(&text, "STATSUB"), "STATSUB(BUCKLE) (case control)"),
-            (line_of(&text, "K2GG"), "K2GG (case control)"),
+            (line_of(&text, "K2PP"), "K2PP (case control)"),
             (line_of(&text, "CGAP"), "CGAP 50"),
         ]
     );
     assert!(e.to_string().contains("buckling preload"), "{e}");
     let opts = ImportOptions {
-        ignore_cards: vec!["STATSUB(BUCKLE)".into(), "K2GG".into(), "CGAP".into()],
+        ignore_cards: vec!["STATSUB(BUCKLE)".into(), "K2PP".into(), "CGAP".into()],
         ..Default::default()
     };
     let m = read_model(&path, &opts).unwrap();

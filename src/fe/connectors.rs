@@ -8,9 +8,11 @@
 //! * Bush (MSC QRG "CBUSH"; [`crate::model::Bush`]): K_e = Cᵀ diag(k) C with
 //!   C = [−E H_a, E H_b] (grounded: C = E H_a), H_n = [I, −d̃_n; 0, I], d_n = x_s − x_n, E =
 //!   diag(R, R); basic frame, rotated to the nodes' frames by the assembler.
+//! * A matrix given term by term ([`crate::model::DofMatrix`]: GENEL, DMIG): its terms as
+//!   written, on the nodes' own dofs, one small matrix per node pair.
 
 use super::FeError;
-use crate::model::{Bush, Model, NodeDof, NodeIndex};
+use crate::model::{Bush, DofMatrix, Model, NodeDof, NodeIndex};
 
 /// One connector's matrices over its nodes, node-major with 6 slots per node: component c of
 /// node i at row/column 6i + c (a scalar point's dof in slot 0), row-major.
@@ -78,7 +80,52 @@ pub fn connector_matrices(model: &Model) -> Result<Vec<ConnectorMatrices>, FeErr
     for b in &model.bushes {
         out.push(bush(model, b)?);
     }
+    for d in &model.dof_matrices {
+        out.extend(dof_matrix(d));
+    }
     Ok(out)
+}
+
+/// A matrix given term by term ([`DofMatrix`]) as one small matrix per node pair it couples
+/// (and per node for its terms within one node): its size follows its terms, never n².
+fn dof_matrix(d: &DofMatrix) -> Vec<ConnectorMatrices> {
+    use std::collections::BTreeMap;
+    type Terms = (Vec<(NodeDof, NodeDof, f64)>, Vec<(NodeDof, NodeDof, f64)>);
+    let mut blocks: BTreeMap<(NodeIndex, NodeIndex), Terms> = BTreeMap::new();
+    for (terms, stiffness) in [(&d.stiffness, true), (&d.mass, false)] {
+        for &(a, b, v) in terms {
+            let key = (a.node.min(b.node), a.node.max(b.node));
+            let block = blocks.entry(key).or_default();
+            let list = if stiffness {
+                &mut block.0
+            } else {
+                &mut block.1
+            };
+            list.push((a, b, v));
+        }
+    }
+    blocks
+        .into_iter()
+        .map(|((p, q), (k_terms, m_terms))| {
+            let nodes = if p == q { vec![p] } else { vec![p, q] };
+            let n = 6 * nodes.len();
+            let slot = |x: NodeDof| 6 * usize::from(x.node != p) + usize::from(x.component);
+            let fill = |terms: &[(NodeDof, NodeDof, f64)]| {
+                let mut mat = vec![0.0; n * n];
+                for &(a, b, v) in terms {
+                    mat[slot(a) * n + slot(b)] += v;
+                }
+                mat
+            };
+            ConnectorMatrices {
+                what: d.what.clone(),
+                nodes,
+                k: fill(&k_terms),
+                m: fill(&m_terms),
+                basic: d.basic,
+            }
+        })
+        .collect()
 }
 
 /// The basic-frame stiffness of a bush (module formula).

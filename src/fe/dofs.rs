@@ -148,6 +148,14 @@ impl DofMap {
                 raise(d.node, need(d), &|| format!("scalar mass {}", s.id))?;
             }
         }
+        for matrix in &model.dof_matrices {
+            for &(a, b, _) in matrix.stiffness.iter().chain(&matrix.mass) {
+                for d in [a, b] {
+                    check(d, &|| matrix.what.clone())?;
+                    raise(d.node, need(d), &|| matrix.what.clone())?;
+                }
+            }
+        }
         for m in &model.mpcs {
             for (d, _) in &m.terms {
                 check(*d, &|| format!("MPC {}", m.id))?;

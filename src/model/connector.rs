@@ -68,6 +68,35 @@ pub struct Bush {
     pub location: [f64; 3],
 }
 
+/// A symmetric stiffness and mass matrix given term by term on dofs (Nastran GENEL, DMIG
+/// matrices selected by K2GG/M2GG, CBUSH1D): on the nodes' own (displacement-frame) dofs, or
+/// on the basic frame's components, added to K and M as written. A term (a, b, v) adds v at
+/// row a, column b; both triangles are listed.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct DofMatrix {
+    /// What it is, for messages (`GENEL 12`, `DMIG KAX (K2GG)`).
+    pub what: String,
+    /// Stiffness terms.
+    pub stiffness: Vec<(NodeDof, NodeDof, f64)>,
+    /// Mass terms (already scaled by WTMASS where the format says so).
+    pub mass: Vec<(NodeDof, NodeDof, f64)>,
+    /// The components are the basic frame's (rotated into the nodes' displacement frames by
+    /// the assembler); else the nodes' own.
+    pub basic: bool,
+}
+
+impl DofMatrix {
+    /// Every node a term of the matrix names, ascending, once.
+    pub fn nodes(&self) -> Vec<NodeIndex> {
+        let mut nodes: Vec<NodeIndex> = (self.stiffness.iter().chain(&self.mass))
+            .flat_map(|(a, b, _)| [a.node, b.node])
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+}
+
 /// A linear multipoint constraint Σ cᵢ uᵢ = 0; the first term's dof is the dependent one
 /// (Nastran MPC, MSC QRG "MPC": u₁ = −Σᵢ₌₂ (cᵢ/c₁) uᵢ).
 #[derive(Debug, Clone, PartialEq)]

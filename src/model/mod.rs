@@ -23,7 +23,7 @@ pub mod offset_mass;
 pub mod section;
 pub mod shell_offset;
 
-pub use connector::{Bush, Mpc, NodeDof, RigidBody, ScalarMass, ScalarSpring};
+pub use connector::{Bush, DofMatrix, Mpc, NodeDof, RigidBody, ScalarMass, ScalarSpring};
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
 pub use elasticity::{Elasticity, MaterialAxes, PlaneStress, Stiffness6};
 pub use load::{Load, LoadPart};
@@ -625,6 +625,8 @@ pub struct Model {
     pub bushes: Vec<Bush>,
     /// Scalar masses (CMASS1–4).
     pub scalar_masses: Vec<ScalarMass>,
+    /// Stiffness and mass matrices given term by term on dofs (GENEL, DMIG by K2GG/M2GG).
+    pub dof_matrices: Vec<DofMatrix>,
     /// The nodes that are scalar points (Nastran SPOINT: one dof, no position; their `x` is
     /// the origin and means nothing), ascending.
     pub scalar_points: Vec<NodeIndex>,
@@ -695,6 +697,7 @@ impl Model {
         out.extend((self.springs.iter()).filter_map(|s| pair(s.a.node, s.b.map(|b| b.node))));
         out.extend((self.scalar_masses.iter()).filter_map(|s| pair(s.a.node, s.b.map(|b| b.node))));
         out.extend(self.bushes.iter().filter_map(|s| pair(s.a, s.b)));
+        out.extend((self.dof_matrices.iter().map(DofMatrix::nodes)).filter(|n| n.len() > 1));
         for nodes in (self.mpcs.iter())
             .map(|m| m.terms.iter().map(|t| t.0.node).collect::<Vec<_>>())
             .chain(self.rigid_bodies.iter().map(|r| r.nodes().collect()))

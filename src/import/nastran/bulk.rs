@@ -47,6 +47,8 @@ pub(super) struct Bulk<'a> {
     pub sets: SetCards<'a>,
     pub solution: SolutionCards<'a>,
     pub loads: LoadCards<'a>,
+    pub dmig: super::dmig::DmigCards<'a>,
+    pub shear: super::shear::ShearCards<'a>,
 }
 
 impl Bulk<'_> {
@@ -208,9 +210,19 @@ pub(crate) fn build(
         }
         match cards::rule(&g) {
             Some(cards::Rule::Geometry) => geometry.take(card, &files)?,
-            _ => others.push(card),
+            _ => {
+                if matches!(
+                    card.name.as_str(),
+                    "CELAS3" | "CELAS4" | "CMASS3" | "CMASS4"
+                ) {
+                    geometry.scalar_users.push(card);
+                }
+                others.push(card)
+            }
         }
     }
+    // the defaults of blank CBAR/CBEAM fields are read before any CBAR/CBEAM (`elements`)
+    others.sort_by_key(|c| !matches!(c.name.as_str(), "BAROR" | "BEAMOR"));
     let thru = ThruBudget::for_bytes(bytes);
     let (coords, nodes) = super::geometry::place_nodes(&geometry, &files, &thru, &mut b)?;
 
@@ -231,6 +243,8 @@ pub(crate) fn build(
         sets: SetCards::default(),
         solution: SolutionCards::default(),
         loads: LoadCards::default(),
+        dmig: Default::default(),
+        shear: Default::default(),
     };
     for card in others {
         let g = C::new(card, &files);
@@ -257,6 +271,12 @@ pub(crate) fn build(
         }
     }
     d.refused.splice(0..0, refused);
+    for (command, why, loc) in &case.noted {
+        let entry = (d.notes)
+            .entry(format!("{command} (case control)"))
+            .or_insert_with(|| (why, Vec::new()));
+        entry.1.push(*loc);
+    }
     if !d.refused.is_empty() {
         return Err(ImportError::Refused {
             file: files[0].clone(),
@@ -271,12 +291,15 @@ pub(crate) fn build(
     super::elements::check_ids(&mut d)?;
     let (pids, mids) = super::properties::resolve(&mut d)?;
     let element_sets = super::elements::assign_properties(&mut d, &pids, &mids)?;
+    super::shear::resolve(&mut d, &mids)?;
     super::elements::orient(&mut d)?;
     super::mass::resolve(&mut d)?;
     super::scalar::resolve(&mut d)?;
     super::bush::resolve(&mut d)?;
+    super::dmig::resolve(&mut d, &case, &effective)?;
     super::sets::resolve_spc(&mut d, &case, &effective)?;
     super::sets::resolve_mpc(&mut d, &effective)?;
+    super::shell::blank_midsides(&mut d)?;
     super::solution::resolve_method(&mut d, &effective)?;
     super::sets::resolve_dof_sets(&mut d);
     super::properties::warnings(&mut d);

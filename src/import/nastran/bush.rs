@@ -14,6 +14,15 @@
 //!   (structural damping) are notes, RCV (stress recovery) is output; a non-zero M (a mass of
 //!   the bush) is refused.
 //!
+//! * `CBUSH1D EID PID GA GB CID` with `PBUSH1D PID K C M – SA SE` (MSC QRG "CBUSH1D",
+//!   "PBUSH1D"): a spring K along the element axis (from GA to GB, or the x axis of system
+//!   CID), on the grids' translations (the line of action passes through both grids: no
+//!   rotation takes part); a grounded one (GB blank) is refused, as a grounded CBUSH is by
+//!   the build. C (damping) is a note; a non-zero M (the element's mass) is refused, as PBUSH
+//!   M; the SHOCKA, SPRING, DAMPER and GENER lines (nonlinear force–velocity and
+//!   force–deflection laws) are a note: MSC uses them in nonlinear transient solutions only,
+//!   a normal-modes analysis uses K.
+//!
 //! Coordinate systems CID and OCID must be rectangular (a cylindrical one is refused).
 
 use std::collections::HashMap;
@@ -23,7 +32,7 @@ use super::coord::{cross, dir_to_basic, sub, unit};
 use super::fields::C;
 use super::lex::Card;
 use crate::import::error::ImportError;
-use crate::model::{Bush, CoordKind};
+use crate::model::{Bush, CoordKind, DofMatrix, NodeDof};
 
 /// The raw records of CBUSH and PBUSH.
 #[derive(Default)]
@@ -32,12 +41,61 @@ pub(super) struct BushCards<'a> {
     pub pbush: HashMap<u64, [f64; 6]>,
     /// CBUSH cards with their resolved end nodes.
     pub cbush: Vec<(&'a Card, usize, Option<usize>)>,
+    /// PBUSH1D K by PID.
+    pub pbush1d: HashMap<u64, f64>,
+    /// CBUSH1D cards with their resolved end nodes.
+    pub cbush1d: Vec<(&'a Card, usize, Option<usize>)>,
 }
 
-/// Reader of CBUSH.
-pub(super) fn cbush<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
-    let eid = g.id(0, "EID")?;
+/// Reader of CBUSH1D (module doc).
+pub(super) fn cbush1d<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let (eid, a, b) = ends(d, g)?;
     d.elements.other_ids.push((eid, g.card));
+    d.bushes.cbush1d.push((g.card, a, b));
+    Ok(())
+}
+
+/// Reader of PBUSH1D (module doc).
+pub(super) fn pbush1d<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let pid = g.id(0, "PID")?;
+    d.properties.others.push((pid, g.card));
+    let k = g.real_or(1, 0.0)?;
+    if !k.is_finite() {
+        return Err(g.err(1, format!("stiffness {k} is not finite")));
+    }
+    if g.real_or(2, 0.0)? != 0.0 {
+        d.note_as("PBUSH1D C".into(), g, super::cards::DAMPING);
+    }
+    if g.real_or(3, 0.0)? != 0.0 {
+        d.refuse(
+            g,
+            "PBUSH1D M: a mass of the bush is not supported (model it with CONM2)",
+        );
+    }
+    for at in (8..g.card.fields.len()).step_by(8) {
+        match g.text(at).to_ascii_uppercase().as_str() {
+            "" => {}
+            word @ ("SHOCKA" | "SPRING" | "DAMPER" | "GENER") => d.note_as(
+                format!("PBUSH1D {word}"),
+                g,
+                "a nonlinear force law, used by MSC Nastran in nonlinear transient solutions \
+                 only: a normal-modes analysis uses the linear K",
+            ),
+            other => {
+                return Err(g.err(
+                    at,
+                    format!("unknown PBUSH1D keyword '{other}' (SHOCKA, SPRING, DAMPER or GENER)"),
+                ))
+            }
+        }
+    }
+    d.bushes.pbush1d.insert(pid, k);
+    Ok(())
+}
+
+/// The element id and end grids of a CBUSH or CBUSH1D (GB blank or 0: grounded).
+fn ends(d: &mut Bulk, g: &C) -> Result<(u64, usize, Option<usize>), ImportError> {
+    let eid = g.id(0, "EID")?;
     let ga = d.grid(g, 2, g.id(2, "GA")?)?;
     let gb = match g.int(3)? {
         None | Some(0) => None,
@@ -47,6 +105,109 @@ pub(super) fn cbush<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> 
     if gb == Some(ga) {
         return Err(g.err(3, "GA and GB are the same grid"));
     }
+    Ok((eid, ga, gb))
+}
+
+/// The CBUSH1D springs as matrices on the grids' translations: k (e·(u_b − u_a))², e the
+/// unit axis, in the basic frame (module doc). The spring acts along the line GA–GB, so no
+/// rotation takes part: it is not a CBUSH with an offset spring point.
+fn resolve_1d(d: &mut Bulk) -> Result<(), ImportError> {
+    let model = &d.b.model;
+    let mut out = Vec::new();
+    for &(card, a, b) in &d.bushes.cbush1d {
+        let g = C::new(card, d.files);
+        let eid = g.id(0, "EID")?;
+        let pid = match g.int(1)? {
+            None => eid,
+            Some(p) if p > 0 => p as u64,
+            Some(p) => return Err(g.err(1, format!("bad property id {p}"))),
+        };
+        let k = *d.bushes.pbush1d.get(&pid).ok_or_else(|| {
+            g.err(
+                1,
+                format!("references PBUSH1D {pid}, which the deck does not define"),
+            )
+        })?;
+        let Some(b) = b else {
+            return Err(g.err(
+                3,
+                "GB is blank: a CBUSH1D to ground would hold the body (a flexible body is free \
+                 or held at its interfaces); model the mount in the multibody model",
+            ));
+        };
+        let (xa, xb) = (model.nodes[a].x, model.nodes[b].x);
+        let x = match g.int(4)? {
+            Some(cid) if cid >= 0 => system_axes(d, &g, 4, cid)?[0],
+            Some(cid) => return Err(g.err(4, format!("bad coordinate system id CID {cid}"))),
+            None => sub(xb, xa),
+        };
+        let e = unit(x)
+            .filter(|_| x.iter().map(|c| c * c).sum::<f64>() > 1e-16)
+            .ok_or_else(|| {
+                g.err(
+                    4,
+                    "CID is blank, but GB is at GA: the element axis needs a CID",
+                )
+            })?;
+        let mut terms = Vec::new();
+        axial_spring(k, e, a, b, &mut terms);
+        out.push(DofMatrix {
+            what: format!("CBUSH1D {eid}"),
+            stiffness: terms,
+            mass: Vec::new(),
+            basic: true,
+        });
+    }
+    d.b.model.dof_matrices.extend(out);
+    Ok(())
+}
+
+/// The terms of a spring k along the unit vector e (basic) between the translations of
+/// grids a and b: k (e·(u_b − u_a))², i.e. ±k e eᵀ in the four blocks.
+pub(super) fn axial_spring(
+    k: f64,
+    e: [f64; 3],
+    a: usize,
+    b: usize,
+    out: &mut Vec<(NodeDof, NodeDof, f64)>,
+) {
+    let dof = |node, component| NodeDof { node, component };
+    for (p, sp) in [(a, -1.0), (b, 1.0)] {
+        for (q, sq) in [(a, -1.0), (b, 1.0)] {
+            for i in 0..3u8 {
+                for j in 0..3u8 {
+                    let v = k * sp * sq * e[usize::from(i)] * e[usize::from(j)];
+                    out.push((dof(p, i), dof(q, j), v));
+                }
+            }
+        }
+    }
+}
+
+/// The axes (rows, in basic) of rectangular system `cid` (0 = basic) named in field `field`.
+fn system_axes(d: &Bulk, g: &C, field: usize, cid: i64) -> Result<[[f64; 3]; 3], ImportError> {
+    if cid == 0 {
+        return Ok([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    }
+    let cs = (d.coords.get(&cid))
+        .map(|&i| &d.b.model.coord_systems[i])
+        .ok_or_else(|| g.err(field, format!("unknown coordinate system {cid}")))?;
+    if cs.kind != CoordKind::Rectangular {
+        return Err(g.err(
+            field,
+            format!(
+                "coordinate system {cid} is not rectangular: not supported for a {}",
+                g.card.name
+            ),
+        ));
+    }
+    Ok(cs.axes)
+}
+
+/// Reader of CBUSH.
+pub(super) fn cbush<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let (eid, ga, gb) = ends(d, g)?;
+    d.elements.other_ids.push((eid, g.card));
     d.bushes.cbush.push((g.card, ga, gb));
     Ok(())
 }
@@ -112,25 +273,7 @@ pub(super) fn resolve(d: &mut Bulk) -> Result<(), ImportError> {
             )
         })?;
         // a rectangular system by id (0 = basic): its axes (rows) in basic
-        let system = |field: usize, cid: i64| -> Result<[[f64; 3]; 3], ImportError> {
-            if cid == 0 {
-                return Ok([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
-            }
-            let cs = d
-                .coords
-                .get(&cid)
-                .map(|&i| &model.coord_systems[i])
-                .ok_or_else(|| g.err(field, format!("unknown coordinate system {cid}")))?;
-            if cs.kind != CoordKind::Rectangular {
-                return Err(g.err(
-                    field,
-                    format!(
-                        "coordinate system {cid} is not rectangular: not supported for a CBUSH"
-                    ),
-                ));
-            }
-            Ok(cs.axes)
-        };
+        let system = |field: usize, cid: i64| system_axes(d, &g, field, cid);
         let xa = model.nodes[a].x;
         let xb = b.map(|b| model.nodes[b].x);
         let axis = xb
@@ -193,7 +336,7 @@ pub(super) fn resolve(d: &mut Bulk) -> Result<(), ImportError> {
         });
     }
     d.b.model.bushes = out;
-    Ok(())
+    resolve_1d(d)
 }
 
 /// The orientation vector of a CBUSH in basic: towards grid GO, or X1–X3 in GA's displacement

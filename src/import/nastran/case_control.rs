@@ -1,9 +1,13 @@
 //! Nastran case control: the part of a deck between `CEND` and `BEGIN BULK` that says which
 //! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC`, `MPC`, `METHOD`, `LOAD`,
-//! `STATSUB(PRELOAD)` and `TEMP(LOAD)` (global, i.e. above the first subcase, or inside a
-//! subcase, which overrides the global value). Refused: the commands that would change the body
-//! and are not modelled (`K2GG`, `M2GG`, `K2PP`, `M2PP`, `STATSUB(BUCKLE)`). Every other
-//! command is output or solution control this tool has no use for and is skipped.
+//! `STATSUB(PRELOAD)`, `TEMP(LOAD)`, `K2GG` and `M2GG` (global, i.e. above the first subcase,
+//! or inside a subcase, which overrides the global value). Refused: the commands that would
+//! change the body and are not modelled (`K2PP`, `M2PP`, `STATSUB(BUCKLE)`). Noted: `B2GG`,
+//! `B2PP` (damping) and `P2G` (a load). Every other command is output or solution control this
+//! tool has no use for and is skipped.
+//!
+//! `K2GG = KAX`, `K2GG = 2.0*KAX, KBX` (MSC QRG "K2GG"): the DMIG matrices added to the g-set
+//! stiffness, each times its factor (default 1); `M2GG` alike for the mass (module `dmig`).
 //!
 //! `STATSUB(PRELOAD) = n` in the modes' subcase (MSC QRG "STATSUB"; SOL 103 with differential
 //! stiffness) names static subcase n, whose `LOAD` and `TEMP(LOAD)` (module `temperature`) are
@@ -73,26 +77,42 @@ pub(crate) struct Subcase {
 /// refused with the bulk-data cards (`cards`), and may be dropped on purpose by name.
 const REFUSED: &[(&str, &str)] = &[
     (
-        "K2GG",
-        "adds a stiffness matrix (DMIG) to the model: not modelled",
-    ),
-    (
         "K2PP",
-        "adds a stiffness matrix (DMIG) to the model: not modelled",
-    ),
-    (
-        "M2GG",
-        "adds a mass matrix (DMIG) to the model: not modelled",
+        "adds a stiffness matrix (DMIG) on the p-set (grids, scalar points and extra points) of \
+         a dynamic response: not modelled (a matrix of the structure is selected by K2GG)",
     ),
     (
         "M2PP",
-        "adds a mass matrix (DMIG) to the model: not modelled",
+        "adds a mass matrix (DMIG) on the p-set (grids, scalar points and extra points) of a \
+         dynamic response: not modelled (a matrix of the structure is selected by M2GG)",
     ),
     (
         "STATSUB(BUCKLE)",
         "a buckling preload (SOL 105): flexbody reduces normal modes; use STATSUB(PRELOAD)",
     ),
 ];
+
+/// Case-control commands that cannot change the body: (command, why). A note each.
+const NOTED: &[(&str, &str)] = &[
+    ("B2GG", super::cards::DAMPING),
+    ("B2PP", super::cards::DAMPING),
+    (
+        "P2G",
+        "a load matrix (DMIG) of a static or response analysis: not part of the body or its modes",
+    ),
+];
+
+/// `K2GG = …` or `M2GG = …`: DMIG matrices added to the g-set stiffness or mass.
+#[derive(Debug, Clone)]
+pub(crate) struct MatrixSelection {
+    /// `M2GG` (mass), else `K2GG` (stiffness).
+    pub mass: bool,
+    /// (factor, DMIG name), in the command's order.
+    pub terms: Vec<(f64, String)>,
+    /// The subcase it is written in (`None`: above the first subcase).
+    pub subcase: Option<u64>,
+    pub loc: Loc,
+}
 
 /// The parsed case control.
 #[derive(Debug, Clone, Default)]
@@ -104,6 +124,10 @@ pub(crate) struct CaseControl {
     pub subcases: Vec<Subcase>,
     /// Commands that change the body and are not modelled: (command, why, where).
     pub refused: Vec<(String, &'static str, Loc)>,
+    /// Commands that cannot change the body: (command, why, where).
+    pub noted: Vec<(String, &'static str, Loc)>,
+    /// `K2GG` and `M2GG` commands, in deck order.
+    pub matrices: Vec<MatrixSelection>,
 }
 
 /// The selections the build uses: of the one (or the chosen) subcase, global values filled in.
@@ -202,6 +226,27 @@ pub(crate) fn parse(
                 continue;
             }
         }
+        if let Some(&(command, why)) = NOTED.iter().find(|r| r.0 == word) {
+            cc.noted.push((command.to_owned(), why, loc));
+            continue;
+        }
+        if matches!(word, "K2GG" | "M2GG") {
+            let terms = matrix_terms(value).ok_or_else(|| {
+                err(
+                    files,
+                    loc,
+                    word,
+                    format!("{word} = '{value}': expected DMIG names, each with an optional factor (2.0*KAX, KBX)"),
+                )
+            })?;
+            cc.matrices.push(MatrixSelection {
+                mass: word == "M2GG",
+                terms,
+                subcase: current.map(|k| cc.subcases[k].id),
+                loc,
+            });
+            continue;
+        }
         let slot = match word {
             "SPC" => 0,
             "METHOD" | "METH" if !describer.contains("FLUID") => 1,
@@ -240,7 +285,48 @@ pub(crate) fn parse(
     Ok(cc)
 }
 
+/// The terms of a `K2GG`/`M2GG` value: `NAME`, `s*NAME`, comma-separated, optionally in
+/// parentheses; `None` when a term is not of that form.
+fn matrix_terms(value: &str) -> Option<Vec<(f64, String)>> {
+    let inner = value.trim();
+    let inner = inner
+        .strip_prefix('(')
+        .and_then(|v| v.strip_suffix(')'))
+        .unwrap_or(inner);
+    let name_ok = |n: &str| {
+        n.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+            && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    };
+    inner
+        .split(',')
+        .map(|t| {
+            let t = t.trim();
+            let (factor, name) = match t.split_once('*') {
+                Some((f, n)) => (super::fields::nastran_real(f.trim())?, n.trim()),
+                None => (1.0, t),
+            };
+            (name_ok(name) && factor.is_finite()).then(|| (factor, name.to_ascii_uppercase()))
+        })
+        .collect()
+}
+
 impl CaseControl {
+    /// The `K2GG` and `M2GG` that apply to subcase `subcase`: its own, else the global one
+    /// (the last of a scope, for each of the two).
+    pub(crate) fn matrix_selections(&self, subcase: Option<u64>) -> Vec<&MatrixSelection> {
+        [false, true]
+            .into_iter()
+            .filter_map(|mass| {
+                let of = |scope: Option<u64>| {
+                    (self.matrices.iter())
+                        .rev()
+                        .find(|m| m.mass == mass && m.subcase == scope)
+                };
+                subcase.and_then(|s| of(Some(s))).or_else(|| of(None))
+            })
+            .collect()
+    }
+
     /// The selections of subcase `k` with the global ones filled in.
     fn scope_of(&self, k: usize) -> Scope {
         let s = self.subcases[k].scope;

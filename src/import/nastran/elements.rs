@@ -9,7 +9,8 @@
 //! * `CPYRAM EID PID G1 … G5 G6 … G13`: 5 or 13 nodes (base, apex, mid-sides 1-2 2-3 3-4 4-1
 //!   1-5 2-5 3-5 4-5), with a PSOLID.
 //! * `CROD EID PID G1 G2`; `CQUAD4/CTRIA3 EID PID G1 …`, `CQUAD8/CTRIA6 EID PID G1 … G8/G6`
-//!   (all mid-side grids needed; thickness fields: `shell`).
+//!   (a blank mid-side grid makes its edge straight, `shell::blank_midsides`; thickness
+//!   fields: `shell`).
 //! * `CONROD EID G1 G2 MID A J C NSM`: a rod with its property on the card (as CROD + PROD).
 
 use std::collections::BTreeMap;
@@ -42,6 +43,10 @@ pub(super) struct ElementCards<'a> {
     pub other_ids: Vec<(u64, &'a Card)>,
     /// Ids of the rigid elements: unique among themselves.
     pub rigid_ids: Vec<(u64, &'a Card)>,
+    /// CQUAD8/CTRIA6 with blank mid-side grids: (element index, the blank slots, card place).
+    pub blank_midsides: Vec<(usize, Vec<usize>, Loc)>,
+    /// BAROR and BEAMOR: the defaults of blank CBAR resp. CBEAM fields.
+    pub bar_defaults: [Option<&'a Card>; 2],
 }
 
 /// The property of an element as its card gives it.
@@ -82,9 +87,76 @@ const ELEMENTS: &[ElementCard] = &[
     ("CTRIA6", 6, &[(6, Tri6)]),
 ];
 
+/// Reader of BAROR and BEAMOR (MSC QRG "BAROR": `BAROR – PID – – X1/G0 X2 X3 OFFT`): the
+/// PID, orientation (X1–X3 or G0, taken together when X1/G0 is blank) and OFFT of every CBAR
+/// (BEAMOR: CBEAM) that leaves them blank. One of each per deck.
+pub(super) fn orientation_defaults<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    let slot = usize::from(g.card.name == "BEAMOR");
+    if let Some(first) = d.elements.bar_defaults[slot] {
+        return Err(g.err_card(format!(
+            "second {} card (the first is on line {}): only one may appear",
+            g.card.name, first.loc.line
+        )));
+    }
+    if g.int(1)?.is_some_and(|p| p <= 0) {
+        return Err(g.err(1, "bad property id"));
+    }
+    d.elements.bar_defaults[slot] = Some(g.card);
+    Ok(())
+}
+
+/// A CBAR/CBEAM card with its blank PID, X1–X3/G0 and OFFT fields taken from the BAROR /
+/// BEAMOR (`None`: no default applies).
+fn with_defaults(d: &Bulk, g: &C) -> Option<Card> {
+    let slot = match g.card.name.as_str() {
+        "CBAR" => 0,
+        "CBEAM" => 1,
+        _ => return None,
+    };
+    let defaults = d.elements.bar_defaults[slot]?;
+    let mut card = g.card.clone();
+    let blank = |c: &Card, k: usize| c.fields.get(k).is_none_or(|f| f.text.is_empty());
+    let mut take: Vec<usize> = Vec::new();
+    if blank(g.card, 1) {
+        take.push(1);
+    }
+    if (4..7).all(|k| blank(g.card, k)) {
+        take.extend(4..7);
+    }
+    if blank(g.card, 7) {
+        take.push(7);
+    }
+    take.retain(|&k| !blank(defaults, k));
+    if take.is_empty() {
+        return None;
+    }
+    let line = g.card.loc.line;
+    for k in take {
+        if card.fields.len() <= k {
+            card.fields.resize_with(k + 1, || super::lex::Field {
+                text: String::new(),
+                line,
+            });
+        }
+        card.fields[k].text = defaults.fields[k].text.clone();
+    }
+    Some(card)
+}
+
 /// Reader of the structural element cards (module doc).
 pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
-    let (name, kind, ids, o) = parse(g)?;
+    let filled = with_defaults(d, g);
+    let filled = filled.as_ref().map(|c| C::new(c, d.files));
+    let g: &C = filled.as_ref().unwrap_or(g);
+    if old_orientation_flag(g).is_some() {
+        d.note_as(
+            format!("{} field 9 = 1 or 2", g.card.name),
+            g,
+            "as OFFT: it is the orientation flag F of older decks (NASTRAN-95: 1 = X1–X3 \
+             given, 2 = G0 given), read as that flag, and OFFT takes its default GGG",
+        );
+    }
+    let (name, kind, ids, o, blank) = parse(g)?;
     let eid = g.id(0, "EID")?;
     let pid = match g.int(1)? {
         Some(p) if p > 0 => p as u64,
@@ -92,6 +164,9 @@ pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
         None => eid,
     };
     let k = d.b.model.elements.len();
+    if !blank.is_empty() {
+        d.elements.blank_midsides.push((k, blank, g.card.loc));
+    }
     if let Some(o) = o {
         d.elements.orient.push((k, o, g.card.loc));
     }
@@ -151,8 +226,15 @@ pub(super) fn conrod<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError>
     Ok(())
 }
 
-/// An element card read: card name, kind, external node ids in Abaqus order, orientation.
-type Parsed = (&'static str, ElementKind, Vec<usize>, Option<Orientation>);
+/// An element card read: card name, kind, external node ids in Abaqus order, orientation,
+/// the slots of blank CQUAD8/CTRIA6 mid-side grids.
+type Parsed = (
+    &'static str,
+    ElementKind,
+    Vec<usize>,
+    Option<Orientation>,
+    Vec<usize>,
+);
 
 /// Element card → [`Parsed`].
 fn parse(g: &C) -> Result<Parsed, ImportError> {
@@ -162,19 +244,37 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
         .ok_or_else(|| g.err_card("not an element card"))?;
     let mut ids = Vec::with_capacity(range);
     let mut last = 0;
+    // CQUAD8/CTRIA6: a blank mid-side grid makes its edge straight (`shell::blank_midsides`)
+    let corners = match name {
+        "CQUAD8" => 4,
+        "CTRIA6" => 3,
+        _ => range,
+    };
+    let mut blank = Vec::new();
     for k in 2..2 + range {
         if let Some(v) = g.int(k)? {
             if v <= 0 {
                 return Err(g.err(k, format!("bad node id {v}")));
             }
+            while ids.len() < k - 2 && ids.len() >= corners {
+                // a blank mid-side grid before this one: its edge's first corner holds the slot
+                blank.push(ids.len());
+                ids.push(ids[ids.len() - corners]);
+            }
             if ids.len() != k - 2 {
                 return Err(g.err(
                     k,
-                    "blank node field before a given node (partial mid-side nodes not supported)",
+                    "blank node field before a given node (only CQUAD8/CTRIA6 mid-side grids may be blank)",
                 ));
             }
             ids.push(v as usize);
             last = k;
+        }
+    }
+    if ids.len() >= corners && ids.len() < range && corners < range {
+        while ids.len() < range {
+            blank.push(ids.len());
+            ids.push(ids[ids.len() - corners]);
         }
     }
     let Some(&(_, kind)) = kinds.iter().find(|(n, _)| *n == ids.len()) else {
@@ -200,10 +300,14 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
         if s.is_empty() {
             return Err(g.err(
                 4,
-                "orientation X1/G0 is blank (BAROR defaults not supported)",
+                format!(
+                    "orientation X1/G0 is blank, and no {} gives it",
+                    if name == "CBAR" { "BAROR" } else { "BEAMOR" }
+                ),
             ));
         }
-        if !s.contains('.') && !s.contains(['e', 'E']) {
+        let integer = !s.contains('.') && !s.contains(['e', 'E']);
+        if old_orientation_flag(g) == Some(2) || (integer && old_orientation_flag(g).is_none()) {
             Some(Orientation::Node(g.id(4, "G0")?))
         } else {
             let v = [g.real_or(4, 0.0)?, g.real_or(5, 0.0)?, g.real_or(6, 0.0)?];
@@ -215,7 +319,17 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
     } else {
         None
     };
-    Ok((name, kind, ids, orientation))
+    Ok((name, kind, ids, orientation, blank))
+}
+
+/// The integer 1 or 2 that older decks carry in CBAR/CBEAM field 9 (NASTRAN-95 "F": 1 the
+/// orientation is X1–X3, 2 it is grid G0), where OFFT (or CBEAM's real BIT) now stands.
+fn old_orientation_flag(g: &C) -> Option<u8> {
+    match g.text(7) {
+        "1" => Some(1),
+        "2" => Some(2),
+        _ => None,
+    }
 }
 
 /// OFFT (CBAR/CBEAM field 9; MSC QRG CBAR Remark 8): the frames of the orientation vector (G
@@ -224,12 +338,21 @@ fn parse(g: &C) -> Result<Parsed, ImportError> {
 /// not in the QRG's list is an error.
 fn offt(g: &C, name: &str) -> Result<[u8; 3], ImportError> {
     let t = g.text(7).to_ascii_uppercase();
-    if t.is_empty() || (name == "CBEAM" && !t.bytes().any(|b| b.is_ascii_alphabetic())) {
+    if t.is_empty()
+        || old_orientation_flag(g).is_some()
+        || (name == "CBEAM" && !t.bytes().any(|b| b.is_ascii_alphabetic()))
+    {
         return Ok(*b"GGG");
     }
     const CODES: [&str; 8] = ["GGG", "BGG", "GGO", "BGO", "GOG", "BOG", "GOO", "BOO"];
     if !CODES.contains(&t.as_str()) {
-        return Err(g.err(7, format!("OFFT {t}: one of {} expected", CODES.join(", "))));
+        return Err(g.err(
+            7,
+            format!(
+                "OFFT {t}: one of {} expected (or, in an older deck, the orientation flag 1 or 2)",
+                CODES.join(", ")
+            ),
+        ));
     }
     let b = t.as_bytes();
     Ok([b[0], b[1], b[2]])
@@ -278,7 +401,10 @@ fn pin_flags(g: &C, k: usize) -> Result<crate::model::DofMask, ImportError> {
 /// nonzero one is an error naming it.
 fn unsupported_bar_fields(g: &C, name: &str) -> Result<(), ImportError> {
     let f8 = g.text(7);
-    let bit = name == "CBEAM" && !f8.is_empty() && !f8.bytes().any(|b| b.is_ascii_alphabetic());
+    let bit = name == "CBEAM"
+        && !f8.is_empty()
+        && old_orientation_flag(g).is_none()
+        && !f8.bytes().any(|b| b.is_ascii_alphabetic());
     if bit && g.real(7)?.is_some_and(|v| v != 0.0) {
         return Err(g.err(7, "built-in twist BIT is not implemented"));
     }

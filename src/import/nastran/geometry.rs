@@ -25,6 +25,10 @@ pub(super) struct GeometryCards<'a> {
     pub coords: Vec<&'a Card>,
     pub grdset: Option<&'a Card>,
     pub spoints: Vec<&'a Card>,
+    /// CELAS3/CELAS4/CMASS3/CMASS4: their S1, S2 that no GRID or SPOINT declares are scalar
+    /// points all the same (MSC QRG "SPOINT" remark 2: scalar points may be defined implicitly
+    /// by their use on such connection cards).
+    pub scalar_users: Vec<&'a Card>,
 }
 
 impl<'a> GeometryCards<'a> {
@@ -120,6 +124,7 @@ pub(super) fn place_nodes(
             }
         }
     }
+    implicit_scalar_points(geom, files, &mut spoints, b)?;
     let nodes = b.node_map("GRID")?;
     for (n, m, card) in perm_spc {
         if m.0 == 0 {
@@ -142,6 +147,45 @@ pub(super) fn place_nodes(
         });
     }
     Ok((coord_index, nodes))
+}
+
+/// The scalar points CELAS3/CELAS4/CMASS3/CMASS4 name and no GRID or SPOINT declares, made
+/// as an SPOINT would make them (after the declared ones, ascending id), with a note listing
+/// them: the deck reads as if an SPOINT card declared them.
+fn implicit_scalar_points(
+    geom: &GeometryCards,
+    files: &[String],
+    spoints: &mut std::collections::HashSet<u64>,
+    b: &mut Builder,
+) -> Result<(), ImportError> {
+    let grids: std::collections::HashSet<u64> = b.model.nodes.iter().map(|n| n.id).collect();
+    let mut made: std::collections::BTreeMap<u64, crate::import::text::Loc> = Default::default();
+    for card in &geom.scalar_users {
+        let g = C::new(card, files);
+        for k in [2, 3] {
+            // a bad id is reported by the element's own reader
+            let Ok(Some(id)) = g.int(k) else { continue };
+            let id = id as u64;
+            if id > 0 && !grids.contains(&id) && !spoints.contains(&id) {
+                made.entry(id).or_insert(card.loc);
+            }
+        }
+    }
+    if made.is_empty() {
+        return Ok(());
+    }
+    let list: Vec<String> = made.keys().map(u64::to_string).collect();
+    for (&id, &loc) in &made {
+        spoints.insert(id);
+        b.model.scalar_points.push(b.model.nodes.len());
+        b.add_node(id, [0.0; 3], loc);
+    }
+    b.model.deck.notes.push(format!(
+        "scalar points {} declared by no SPOINT: made from their CELAS3/CELAS4/CMASS3/CMASS4, as \
+         MSC Nastran defines scalar points implicitly (QRG SPOINT)",
+        list.join(", ")
+    ));
+    Ok(())
 }
 
 /// Resolve CORD2R/C/S chains into `out`; returns CID → index. Errors: unknown RID, cycles,

@@ -422,3 +422,61 @@ pub(super) fn apply_thickness(
     }
     Ok(())
 }
+
+/// CQUAD8/CTRIA6 with blank mid-side grids: each such edge straight, as MSC Nastran forms it
+/// (QRG CQUAD8 remark: a deleted mid-side grid makes the edge straight, the displacement linear
+/// along it). A node at the edge's mid-point takes the slot, and an MPC on each of its six dofs
+/// makes it move with the mean of the edge's corners, u_m = ½ (u_a + u_b): it is no dof of
+/// its own. The corners must have the basic displacement frame (the MPC is on the nodes' own
+/// components). One note lists what was made.
+pub(super) fn blank_midsides(d: &mut super::bulk::Bulk) -> Result<(), ImportError> {
+    let list = std::mem::take(&mut d.elements.blank_midsides);
+    if list.is_empty() {
+        return Ok(());
+    }
+    let b = &mut d.b;
+    let mut next = b.model.max_node_id();
+    let first = next + 1;
+    for (k, slots, loc) in list {
+        let (kind, id) = (b.model.elements[k].kind, b.model.elements[k].id);
+        let corners = if kind == ElementKind::Quad8 { 4 } else { 3 };
+        for slot in slots {
+            let edge = slot - corners;
+            let nodes = &b.model.elements[k].nodes;
+            let (na, nb) = (nodes[edge], nodes[(edge + 1) % corners]);
+            let (a, c) = (&b.model.nodes[na], &b.model.nodes[nb]);
+            if a.displacement_frame.is_some() || c.displacement_frame.is_some() {
+                return Err(b.err(
+                    loc,
+                    format!("{} {id}", b.elem_card[k]),
+                    format!(
+                        "mid-side grid {} is blank between grids {} and {}, one of which has a \
+                         displacement frame (CD): not supported (write the mid-side grid)",
+                        slot + 1,
+                        a.id,
+                        c.id
+                    ),
+                ));
+            }
+            let x = std::array::from_fn(|i| 0.5 * (a.x[i] + c.x[i]));
+            next += 1;
+            let m = b.model.nodes.len();
+            b.add_node(next, x, loc);
+            b.model.elements[k].nodes[slot] = m;
+            for component in 0..6u8 {
+                let dof = |node| crate::model::NodeDof { node, component };
+                b.model.mpcs.push(crate::model::Mpc {
+                    id,
+                    terms: vec![(dof(m), 1.0), (dof(na), -0.5), (dof(nb), -0.5)],
+                });
+            }
+        }
+    }
+    b.model.deck.notes.push(format!(
+        "CQUAD8/CTRIA6 with blank mid-side grids: {} edges made straight, as MSC Nastran forms \
+         them: a node at each edge's mid-point (ids {first} … {next}) moving with the mean of its \
+         corners (an MPC on each dof, with the element's id)",
+        next + 1 - first
+    ));
+    Ok(())
+}
