@@ -17,7 +17,7 @@ use flexbody_reader as file;
 fn beam_deck(dir: &Path, name: &str, direction: &str, vertical: bool) -> PathBuf {
     let mut s = String::from("*NODE, NSET=NALL\n");
     let legs = if vertical { 1 } else { 2 };
-    for i in 0..=10 * legs {
+    for i in 0..=10_usize * legs {
         let a = 0.1 * i.min(10) as f64;
         let b = 0.1 * i.saturating_sub(10) as f64;
         let (x, y, z) = if vertical { (0.0, 0.0, a) } else { (a, b, 0.0) };
@@ -104,10 +104,10 @@ fn a_dsload_preload_is_the_dload_of_its_faces() {
         "dsload.inp",
         &format!("*STEP\n*STATIC\n*DSLOAD\nTIPS, P, 1.e6\n{tail}"),
     );
-    // refused as a follower pressure, naming the keyword and its line (line 17 of the deck)
+    // refused as a follower pressure, naming the keyword and its line (line 16 of the deck)
     let err = modes(&ds, &["--modes", "4"]).unwrap_err();
     for want in [
-        "dsload.inp:17: *DSLOAD",
+        "dsload.inp:16: *DSLOAD",
         "pressure",
         "follower",
         "--preload STEP_1",
