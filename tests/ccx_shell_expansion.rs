@@ -70,30 +70,41 @@ fn an_s8_becomes_a_c3d20_with_ccx_nodes_and_equations() {
     assert!(m.spcs.iter().all(|s| s.dofs.0 == 0b11_1111));
 }
 
-/// S4 (ccx 2.20's own C3D8I) is refused naming the element and line, and read as flexbody's
+/// S4 is expanded into ccx 2.20's own C3D8I (a hexahedron with incompatible modes) by
+/// default, refused beside a plain C3D8 naming the element and line, and read as flexbody's
 /// MITC4 shell with `--inp-shells native`.
 #[test]
-fn s4_is_refused_expanded_and_read_native() {
+fn s4_is_expanded_into_c3d8i_or_read_native() {
     let deck = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n\
         *ELEMENT, TYPE=S4, ELSET=P\n7, 1, 2, 3, 4\n\
         *MATERIAL, NAME=STEEL\n*ELASTIC\n210e9, 0.3\n*DENSITY\n7850.\n\
         *SHELL SECTION, ELSET=P, MATERIAL=STEEL\n0.01\n";
     let path = write("s4.inp", deck);
-    let err = read_model(&path, &Default::default())
-        .unwrap_err()
-        .to_string();
-    assert!(
-        err.contains("s4.inp:7: *ELEMENT 7 (TYPE=S4)")
-            && err.contains("C3D8I")
-            && err.contains("--inp-shells native"),
-        "{err}"
-    );
+    let m = read_model(&path, &Default::default()).unwrap();
+    assert_eq!(m.elements[0].kind, ElementKind::Hex8);
+    assert!(m.params.solid_bubbles);
     let native = ImportOptions {
         inp_shells: InpShells::Native,
         ..Default::default()
     };
     let m = read_model(&path, &native).unwrap();
     assert_eq!(m.elements[0].kind, ElementKind::Quad4);
+    // beside a plain C3D8 (whose incompatible modes would change): refused
+    let beside = deck.replace(
+        "*MATERIAL",
+        "*NODE\n5, 0, 0, 1\n6, 1, 0, 1\n8, 1, 1, 1\n9, 0, 1, 1\n*ELEMENT, TYPE=C3D8, ELSET=B\n\
+         20, 1, 2, 3, 4, 5, 6, 8, 9\n*SOLID SECTION, ELSET=B, MATERIAL=STEEL\n*MATERIAL",
+    );
+    let path = write("s4_c3d8.inp", &beside);
+    let err = read_model(&path, &Default::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("s4_c3d8.inp:7: *ELEMENT 7 (TYPE=S4)")
+            && err.contains("C3D8I")
+            && err.contains("--inp-shells native"),
+        "{err}"
+    );
 }
 
 /// Two S8 meeting at more than 20° (a fold) or with another thickness at a node: ccx joins them

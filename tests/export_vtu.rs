@@ -187,7 +187,7 @@ fn shell_vtu_holds_quads_and_both_fibres() {
     let body = check(
         "shell",
         &deck,
-        // flexbody's shells (their fibres); the deck's S4 as ccx makes it is refused
+        // flexbody's shells (their fibres); by default the S4 would be ccx's C3D8I bricks
         &[
             "--method",
             "normal",

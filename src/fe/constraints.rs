@@ -427,9 +427,10 @@ fn rbe3_rows(
     // One observation row per independent dof: g · q ≈ u_dof, weight w.
     let mut obs: Vec<([f64; 6], f64, usize)> = Vec::new();
     for &(node, w, mask) in independent {
-        if !(w >= 0.0 && w.is_finite()) {
+        // negative weights are allowed: CalculiX's area weights of a quadratic face's corners
+        if !w.is_finite() {
             return Err(format!(
-                "weight {w} of node {} is not a non-negative number",
+                "weight {w} of node {} is not a number",
                 model.nodes[node].id
             ));
         }

@@ -7,7 +7,9 @@
 //! of the set (dependent dofs 123: the set's nodes are solid nodes); `Rbe3` makes the centre node
 //! the weighted average of the set instead (unit weights, dofs 123; it adds no stiffness, and
 //! `build` keeps its centre independent so it can be a Craig–Bampton interface node — see
-//! `fe::constraints`); `None` makes every node of the set an interface node.
+//! `fe::constraints`); `None` makes every node of the set an interface node. A set of one node
+//! that is already a spider's reference node (a CalculiX `*COUPLING`'s CONSTRAINT NAME) is that
+//! node, with no new spider.
 //!
 //! The centre is never the plain node average: on an unevenly meshed bore that drifts off the
 //! axis (0.77 mm on a 25 mm bore in the case that motivated this). In order of preference:
@@ -126,6 +128,16 @@ pub enum InterfaceError {
     },
 }
 
+/// Whether `set` is one node that is the reference node of a spider the model already has (a
+/// `*COUPLING`'s CONSTRAINT NAME): that node is the interface itself, no new spider.
+fn spider_reference(model: &Model, set: &[NodeIndex]) -> bool {
+    let [node] = set else { return false };
+    model.rigid_elements.iter().any(|r| match r {
+        RigidElement::Rbe2 { independent, .. } => independent == node,
+        RigidElement::Rbe3 { reference, .. } => reference == node,
+    })
+}
+
 /// Resolve `entries` into interface nodes, adding spider centre nodes and rigid elements to
 /// `model` for node sets. An entry is a node id, `NODE<id>`, or a node-set name (matched
 /// case-insensitively; a set wins over `NODE<id>`), optionally followed by `:DOFS` with Nastran
@@ -162,7 +174,7 @@ pub fn resolve_interfaces(
                 if set.is_empty() {
                     return Err(InterfaceError::EmptySet(entry));
                 }
-                if spider == SpiderKind::None {
+                if spider == SpiderKind::None || spider_reference(model, &set) {
                     InterfaceReport {
                         entry: entry.clone(),
                         name: set_name,

@@ -493,6 +493,7 @@ fn craig_bampton_from_basis(
     let o = orthonormalize(k, m, &basis.t, &basis.labels)?;
     let mut diagnostics = o.diagnostics;
     diagnostics.basis_top_omega2 = basis.fixed_omega2.last().copied();
+    diagnostics.fixed_interface_omega2 = basis.fixed_omega2.clone();
     for (name, s) in &basis.timings {
         diagnostics.notes.push(format!("time {name}: {s:.3} s"));
     }

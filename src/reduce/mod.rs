@@ -168,6 +168,9 @@ pub struct Diagnostics {
     /// (Craig–Bampton) or free-free mode (Craig–Chang, Dietz) in the basis; `None` for normal
     /// modes (their own ω² are exact). Defines the accuracy band of a `--modes N` build.
     pub basis_top_omega2: Option<f64>,
+    /// ω² of every fixed-interface mode of a Craig–Bampton basis (the body with its interface
+    /// held), ascending; empty for the other methods. In the build report (`--json`).
+    pub fixed_interface_omega2: Vec<f64>,
     /// Per mode: the participation share of the origin its label names (see
     /// [`orthonormalize::origin_labels`]); empty = every mode is pure (share 1).
     pub label_shares: Vec<f64>,

@@ -17,6 +17,7 @@ impl Parser {
                 self.load_line(keyword, line, loc);
                 Ok(())
             }
+            Block::SurfaceLoad => self.surface_load_line(line, loc),
             Block::Frequency => {
                 self.frequency_line(line);
                 Ok(())
@@ -128,6 +129,38 @@ impl Parser {
             fields: line.split(',').map(|f| f.trim().to_owned()).collect(),
             loc,
         });
+    }
+
+    /// `*DSLOAD`: surface, P, magnitude — one `*DLOAD` line `element or set, Pn, magnitude` per
+    /// line of the element-face surface (ccx's `dloads.f` reads both alike: face loads Pn).
+    fn surface_load_line(&mut self, line: &str, loc: Loc) -> Result<(), ImportError> {
+        let f: Vec<String> = fields(line).map(str::to_owned).collect();
+        let surface = f
+            .first()
+            .map(|s| s.to_ascii_uppercase())
+            .unwrap_or_default();
+        let ent = format!("*DSLOAD {surface}");
+        if !f.get(1).is_some_and(|t| t.eq_ignore_ascii_case("P")) || f.len() != 3 {
+            return Err(self.err(
+                loc,
+                ent,
+                "only uniform pressure is supported: surface, P, magnitude",
+            ));
+        }
+        let Some(faces) = self.element_surfaces.get(&surface) else {
+            return Err(self.err(
+                loc,
+                ent,
+                format!("unknown element-face surface {surface} (a *DSLOAD needs element faces)"),
+            ));
+        };
+        let lines: Vec<Vec<String>> = (faces.iter())
+            .map(|(target, face, _)| vec![target.clone(), format!("P{face}"), f[2].clone()])
+            .collect();
+        for fields in lines {
+            self.load_line(loads::LoadKeyword::Dload, &fields.join(","), loc);
+        }
+        Ok(())
     }
 
     /// `*FREQUENCY`: the number of eigenvalues of the step.

@@ -136,9 +136,12 @@ impl Parser {
             "COUPLING" => {
                 let r = kw.need("REF NODE", self)?;
                 let s = kw.need("SURFACE", self)?;
+                let upper = |k: &str| kw.param(k).map(str::to_ascii_uppercase);
                 self.couplings.push(RawCoupling {
                     reference: target(&r),
                     surface: s,
+                    name: upper("CONSTRAINT NAME"),
+                    orientation: upper("ORIENTATION"),
                     kind: None,
                     loc,
                 });
@@ -477,7 +480,7 @@ impl Parser {
         }
     }
 
-    /// `*CLOAD` / `*DLOAD` inside a step (`*DSLOAD` refused).
+    /// `*CLOAD` / `*DLOAD` / `*DSLOAD` inside a step.
     fn load_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         if self.steps.current.is_none() {
             return Err(self.err(
@@ -492,11 +495,7 @@ impl Parser {
         match kw.name {
             "CLOAD" => Ok(Block::Load(loads::LoadKeyword::Cload)),
             "DLOAD" => Ok(Block::Load(loads::LoadKeyword::Dload)),
-            _ => Err(self.err(
-                kw.loc,
-                "*DSLOAD",
-                "loads on element-based surfaces are not supported (element-face *SURFACEs are read for *TIE only): give the pressure with *DLOAD, Pn on the elements",
-            )),
+            _ => Ok(Block::SurfaceLoad),
         }
     }
 

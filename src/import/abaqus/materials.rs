@@ -307,6 +307,11 @@ impl Parser {
     }
 
     /// `*ORIENTATION`: the block of its data lines.
+    /// Whether the deck defines `*ORIENTATION, NAME=name` (upper case).
+    pub(super) fn orientation_exists(&self, name: &str) -> bool {
+        self.orientations.iter().any(|o| o.name == name)
+    }
+
     pub(super) fn orientation_keyword(&mut self, kw: &Keyword) -> Result<Block, ImportError> {
         let name = kw.need("NAME", self)?.to_ascii_uppercase();
         let ent = format!("*ORIENTATION {name}");

@@ -33,6 +33,7 @@
 
 mod beam_expansion;
 mod connectors;
+mod coupling;
 mod data;
 mod defs;
 mod keywords;
@@ -162,10 +163,16 @@ enum CouplingKind {
     Distributing(DofMask),
 }
 
+/// One `*COUPLING` and the `*KINEMATIC` / `*DISTRIBUTING` after it (coupling.rs).
 #[derive(Debug)]
 struct RawCoupling {
     reference: Target,
+    /// `SURFACE=`, upper case.
     surface: String,
+    /// `CONSTRAINT NAME=`, upper case: the reference node's name as an interface.
+    name: Option<String>,
+    /// `ORIENTATION=`, upper case.
+    orientation: Option<String>,
     kind: Option<CouplingKind>,
     loc: Loc,
 }
@@ -212,6 +219,8 @@ enum Block {
     Frequency,
     /// `*CLOAD` / `*DLOAD` data lines (loads.rs).
     Load(loads::LoadKeyword),
+    /// `*DSLOAD` data lines: pressures on element-face surfaces, read as `*DLOAD` Pn lines.
+    SurfaceLoad,
     /// `*SPRING` data lines of spring definition k (connectors.rs).
     Spring(usize),
     /// `*EQUATION` data lines (connectors.rs).

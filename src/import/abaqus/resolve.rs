@@ -4,13 +4,13 @@
 use std::collections::{BTreeMap, HashMap};
 
 use super::temperature::{at_temperature, depends_on_temperature, Row, TemperatureState};
-use super::{CouplingKind, Parser, Target};
+use super::{Parser, Target};
 use crate::import::error::ImportError;
 use crate::import::text::{IdMap, Loc};
 use crate::model::deck::PreloadRequest;
 use crate::model::{
     ConstraintSource, DofMask, EigenRequest, ImportWarning, Material, Model, PointMass, Property,
-    RigidElement, Section, SectionShape, Spc,
+    Section, SectionShape, Spc,
 };
 
 /// The model's ids and sets, resolved: what every later step looks members up in.
@@ -66,12 +66,20 @@ impl Parser {
         self.resolve_transforms(&sets)?;
         self.resolve_connectors(&sets.nodes, &sets.node_sets, &sets.element_sets)?;
         self.resolve_ties(&sets)?;
-        self.resolve_rigid_elements(&sets)?;
+        let reference_names = self.resolve_couplings(&sets)?;
         self.resolve_incompatible_modes()?;
         self.import_notes();
         self.b.model.loads = self.resolve_loads(&sets)?;
         self.expand_quadratic_beams()?;
         self.b.model.node_sets = sets.node_sets;
+        for (name, node) in reference_names {
+            // a coupling's CONSTRAINT NAME names its reference node, unless a set has the name
+            self.b
+                .model
+                .node_sets
+                .entry(name)
+                .or_insert_with(|| vec![node]);
+        }
         self.b.model.element_sets = sets.element_sets;
         self.b.model.files = self.b.files.clone();
         self.b.record_element_sources();
@@ -470,12 +478,46 @@ impl Parser {
                         format!("element {} already has a section", el.id),
                     ));
                 }
+                let orientation = self.beam_direction(s, e)?;
                 let el = &mut self.b.model.elements[e];
                 el.property = Some(k);
-                el.orientation = s.orientation;
+                el.orientation = orientation;
             }
         }
         Ok(())
+    }
+
+    /// The 1-direction of a beam section's element `e`: the section's direction line, or
+    /// without it ccx's default (0, 0, −1) (ccx User's Manual, "Beam element"), refused when
+    /// that is parallel to the element's axis.
+    fn beam_direction(
+        &self,
+        s: &super::RawSection,
+        e: usize,
+    ) -> Result<Option<[f64; 3]>, ImportError> {
+        if s.orientation.is_some() || !matches!(s.section, Section::Beam(_)) {
+            return Ok(s.orientation);
+        }
+        const CCX_DEFAULT: [f64; 3] = [0.0, 0.0, -1.0];
+        let el = &self.b.model.elements[e];
+        if let [a, b, ..] = el.nodes[..] {
+            let (xa, xb) = (self.b.model.nodes[a].x, self.b.model.nodes[b].x);
+            let d = [0, 1, 2].map(|k| xb[k] - xa[k]);
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if len > 0.0 && (d[0] * d[0] + d[1] * d[1]).sqrt() <= 1e-6 * len {
+                return Err(self.err(
+                    s.loc,
+                    format!("*BEAM SECTION ELSET={}", s.elset),
+                    format!(
+                        "no direction line (the section's second data line): ccx's default \
+                         1-direction (0, 0, -1) is parallel to the axis of element {}; give \
+                         the direction",
+                        el.id
+                    ),
+                ));
+            }
+        }
+        Ok(Some(CCX_DEFAULT))
     }
 
     /// `*BOUNDARY`: the model data's, and those of the `*FREQUENCY` step (steps.rs), as SPCs
@@ -591,54 +633,6 @@ impl Parser {
             for n in members {
                 self.b.model.nodes[n].displacement_frame = Some(k);
             }
-        }
-        Ok(())
-    }
-
-    /// Couplings → RBE2 / RBE3 (rigid bodies: connectors.rs).
-    fn resolve_rigid_elements(&mut self, sets: &Sets) -> Result<(), ImportError> {
-        let first = self.b.model.rigid_elements.len() as u64 + 1;
-        for (rid, c) in (first..).zip(&self.couplings) {
-            let ent = format!("*COUPLING SURFACE={}", c.surface);
-            let reference = single(
-                sets.target(&c.reference, c.loc, &ent, self)?,
-                c.loc,
-                &ent,
-                self,
-            )?;
-            let surf = self
-                .surfaces
-                .get(&c.surface)
-                .ok_or_else(|| self.err(c.loc, ent.clone(), "unknown node surface"))?;
-            let mut members = Vec::new();
-            for (t, w, loc) in surf {
-                for n in sets.target(t, *loc, &ent, self)? {
-                    members.push((n, *w));
-                }
-            }
-            let rigid = match c.kind {
-                Some(CouplingKind::Kinematic(d)) => RigidElement::Rbe2 {
-                    id: rid,
-                    independent: reference,
-                    dependent: members
-                        .iter()
-                        .map(|m| m.0)
-                        .filter(|&n| n != reference)
-                        .collect(),
-                    dofs: if d.0 == 0 { DofMask::ALL } else { d },
-                },
-                Some(CouplingKind::Distributing(d)) => RigidElement::Rbe3 {
-                    id: rid,
-                    reference,
-                    ref_dofs: if d.0 == 0 { DofMask::ALL } else { d },
-                    independent: members
-                        .iter()
-                        .map(|&(n, w)| (n, w, DofMask::TRANSLATIONS))
-                        .collect(),
-                },
-                None => return Err(self.err(c.loc, ent, "no *KINEMATIC or *DISTRIBUTING follows")),
-            };
-            self.b.model.rigid_elements.push(rigid);
         }
         Ok(())
     }
@@ -784,7 +778,7 @@ impl Parser {
     }
 }
 
-fn single(v: Vec<usize>, loc: Loc, ent: &str, p: &Parser) -> Result<usize, ImportError> {
+pub(super) fn single(v: Vec<usize>, loc: Loc, ent: &str, p: &Parser) -> Result<usize, ImportError> {
     match v.as_slice() {
         [n] => Ok(*n),
         _ => Err(p.err(

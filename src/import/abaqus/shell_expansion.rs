@@ -15,11 +15,12 @@
 //!   C3D20 nodes 17–20, C3D15 nodes 13–15). ccx's thickness: the section's, or `*NODAL
 //!   THICKNESS` where the section asks for it (`thickness.rs`). `OFFSET=` other than 0 is
 //!   refused by the section reader.
-//! * **Elements**: S8 → C3D20, S8R → C3D20R, S6 → C3D15, S4R → C3D8R, S3 → C3D6, with the
-//!   shell's material (ccx's integration: `ModelParams::ccx_solid_rules`, `fe::elements`);
-//!   bottom face first, in the shell's node order. S4, which ccx 2.20 expands into its own
-//!   C3D8I, is refused (flexbody's incompatible-mode hexahedron is not ccx 2.20's; the
-//!   conformance table, dloadlinIf).
+//! * **Elements**: S8 → C3D20, S8R → C3D20R, S6 → C3D15, S4R → C3D8R, S3 → C3D6, S4 → C3D8I
+//!   (`ModelParams::solid_bubbles`, ccx 2.20's incompatible-mode brick with its modes' mass:
+//!   `fe::elements::solid_incompatible`; refused beside plain C3D8/C3D6 and S3, whose linear
+//!   wedges would take the modes too), with the shell's material (ccx's integration:
+//!   `ModelParams::ccx_solid_rules`, `fe::elements`); bottom face first, in the shell's node
+//!   order.
 //! * **Equations** joining a shell node n (which stays in the model: sets, loads and interfaces
 //!   name it) to its bottom b, middle m and top t nodes, per direction d, the first rule that
 //!   applies making u_b,d the dependent dof:
@@ -56,7 +57,7 @@ use crate::model::{
     RigidElement, Section,
 };
 
-/// The element types this module expands (S4 only to refuse it by name).
+/// The element types this module expands.
 pub const SHELL_TYPES: &[&str] = &["S3", "S4", "S4R", "S6", "S8", "S8R"];
 
 /// Where a shell element was read and as what.
@@ -116,6 +117,8 @@ fn brick_of(card: &str) -> Option<(ElementKind, bool)> {
         "S8R" => (ElementKind::Hex20R, true),
         "S6" => (ElementKind::Prism15, true),
         "S4R" => (ElementKind::Hex8R, false),
+        // ccx's C3D8I: the model's linear hexahedra take the incompatible modes (`expand`)
+        "S4" => (ElementKind::Hex8, false),
         "S3" => (ElementKind::Prism6, false),
         _ => return None,
     })
@@ -227,6 +230,11 @@ pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportErr
         .collect();
     let expanded = expand_nodes(model, &elements)?;
     replace_elements(model, &elements, &expanded);
+    if elements.iter().any(|e| e.place.card == "S4") {
+        // ccx 2.20's C3D8I (`fe::elements::solid_incompatible`); `shell_elements` refused S4
+        // beside plain C3D8/C3D6
+        model.params.solid_bubbles = true;
+    }
     let rules = Joining::of(model, &expanded, &first_place)?;
     rules.write(model, &expanded);
     refuse_moments(model, &expanded);
@@ -260,6 +268,10 @@ fn shell_elements<'a>(
     shells: &'a ShellElements,
 ) -> Result<Vec<ShellElement<'a>>, ImportError> {
     let mut out = Vec::new();
+    // S4 becomes ccx's C3D8I: the model's linear wedges would take incompatible modes too
+    let bubbles = model.params.solid_bubbles
+        || (model.elements.iter())
+            .any(|e| e.property.is_some() && shells.get(&e.id).is_some_and(|p| p.card == "S4"));
     for (index, e) in model.elements.iter().enumerate() {
         let (Some(place), Some(p)) = (shells.get(&e.id), e.property) else {
             continue;
@@ -269,24 +281,35 @@ fn shell_elements<'a>(
         let Section::Shell(sh) = &prop.section else {
             continue;
         };
-        let Some((brick, quadratic)) = brick_of(place.card) else {
+        let (brick, quadratic) = brick_of(place.card)
+            .expect("`shells` holds SHELL_TYPES only, and brick_of maps each of them");
+        if brick == ElementKind::Prism6 && bubbles {
             return Err(parse_err(
                 place,
                 entity,
-                "ccx 2.20 expands S4 into one layer of its C3D8I bricks, which flexbody does \
-                 not form (its incompatible-mode hexahedron is not ccx 2.20's); \
-                 --inp-shells native forms S4 as flexbody's MITC4 shell"
+                "S3 expanded into C3D6 beside C3D8I elements (or S4 shells, which ccx 2.20 \
+                 expands into C3D8I) is not supported (the incompatible modes apply to every \
+                 linear wedge of a model); --inp-shells native forms the shells as flexbody's \
+                 shells"
                     .into(),
             ));
-        };
-        if brick == ElementKind::Prism6 && model.params.solid_bubbles {
-            return Err(parse_err(
-                place,
-                entity,
-                "S3 expanded into C3D6 beside C3D8I elements is not supported (the \
-                 incompatible modes apply to every linear wedge of a model)"
-                    .into(),
-            ));
+        }
+        if place.card == "S4" && !model.params.solid_bubbles {
+            if let Some(plain) = (model.elements.iter())
+                .find(|o| matches!(o.kind, ElementKind::Hex8 | ElementKind::Prism6))
+            {
+                return Err(parse_err(
+                    place,
+                    entity,
+                    format!(
+                        "ccx 2.20 expands S4 into its C3D8I bricks, and C3D8I beside plain \
+                         C3D8/C3D6 elements (element {}) is not supported: the incompatible \
+                         modes apply to every linear hexahedron and wedge of a model; \
+                         --inp-shells native forms S4 as flexbody's MITC4 shell",
+                        plain.id
+                    ),
+                ));
+            }
         }
         let m = prop.material;
         let homogeneous = sh.membrane

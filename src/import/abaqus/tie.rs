@@ -42,9 +42,9 @@ pub(super) struct RawTie {
 }
 
 /// One master face: its element id and nodes (corners, then mid-side nodes).
-struct Face {
-    element: u64,
-    nodes: Vec<NodeIndex>,
+pub(super) struct Face {
+    pub(super) element: u64,
+    pub(super) nodes: Vec<NodeIndex>,
 }
 
 impl Parser {
@@ -262,7 +262,7 @@ impl Parser {
     }
 
     /// The faces of an element-face surface (`None`: no such surface).
-    fn surface_faces(
+    pub(super) fn surface_faces(
         &self,
         name: &str,
         sets: &Sets,
@@ -314,7 +314,7 @@ impl Parser {
     }
 
     /// The nodes of a node surface (`*SURFACE, TYPE=NODE`).
-    fn node_surface(
+    pub(super) fn node_surface(
         &self,
         name: &str,
         sets: &Sets,
