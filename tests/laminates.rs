@@ -697,8 +697,9 @@ fn abaqus_composite_lamina_equals_nastran_pcomp() {
             .modes
             .frequency_hz;
         // 1e-10 before issue 44: the Nastran deck's CQUAD4 now carries MacNeal's residual bending
-        // flexibility, the Abaqus S4 is plain MITC4 (measured up to 0.49 % on mode 6)
-        assert_same(&want, &got, 0, 6e-3, name);
+        // flexibility, the Abaqus S4 is plain MITC4 (measured up to 0.49 % on the cross-ply, 1.17 % on
+        // the angle-ply's mode 5)
+        assert_same(&want, &got, 0, 1.5e-2, name);
         // turned 90° by the section's orientation = the plies at θ + 90°
         let turned: Vec<f64> = angles.iter().map(|a| a + 90.0).collect();
         let want = frequencies(
@@ -715,7 +716,7 @@ fn abaqus_composite_lamina_equals_nastran_pcomp() {
             .unwrap()
             .modes
             .frequency_hz;
-        assert_same(&want, &got, 0, 6e-3, &format!("{name} turned"));
+        assert_same(&want, &got, 0, 1.5e-2, &format!("{name} turned"));
     }
 }
 
