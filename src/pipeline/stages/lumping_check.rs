@@ -69,7 +69,7 @@ fn both_masses(
     let lumped = first_elastic_hz(&constrained.reduced.k, &constrained.reduced.m, &plan.eigen)?;
     let consistent_spec = AssemblySpec {
         mass: MassKind::Consistent,
-        ..plan.assembly.clone()
+        ..plan.assembly
     };
     let assembled = assemble(&interfaced.model, &consistent_spec).map_err(|e| e.to_string())?;
     let reduced = eliminate_constraints(interfaced, &assembled).map_err(|e| e.to_string())?;
