@@ -581,9 +581,10 @@ fn case_control_include_is_followed() {
     );
 }
 
-/// A Nastran deck's quadratic solids lumped (`--mass lumped` over the deck's COUPMASS 1): the
-/// report says they are lumped by HRZ and that MSC's rule differs, with the element count; the
-/// deck's own consistent mass and linear solids get no such note.
+/// A Nastran deck's quadratic solids lumped (`--mass lumped` over the deck's COUPMASS 1): a
+/// warning says they are lumped by HRZ and that MSC's rule differs, with the element count
+/// (its figures: tests/nastran_quad4.rs); the deck's own consistent mass and linear solids get
+/// no such warning.
 #[test]
 fn lumped_quadratic_nastran_solids_are_noted_as_hrz() {
     let note = |case: &str, args: &[&str]| -> Option<String> {
@@ -591,7 +592,7 @@ fn lumped_quadratic_nastran_solids_are_noted_as_hrz() {
         let (o, body) = build(&deck, args, &format!("{case}-lumping.flexbody"));
         assert!(body.is_some(), "{}", String::from_utf8_lossy(&o.stderr));
         let r = report(&o);
-        let notes = r["deck"].as_array().expect("deck notes").clone();
+        let notes = r["warnings"].as_array().expect("warnings").clone();
         notes
             .iter()
             .filter_map(|n| n.as_str())

@@ -53,8 +53,9 @@ fn freqs(dir: &Path, beam: BeamTheory) -> Vec<f64> {
 }
 
 /// Timoshenko beams (the PBEAM gives K1 = K2 = 0.85; the PBAR none, so Euler–Bernoulli as in
-/// Nastran), the deck's own conventions: every f06 mode within 1 % (measured +0.24 %, +0.14 %,
-/// +0.74 %; before: +0.64 %, +0.74 %, −2.79 %). What made the difference, element by element
+/// Nastran), the deck's own conventions: every f06 mode within 1 % (measured +0.18 %, +0.07 %,
+/// +0.55 % with the QUAD4's residual bending flexibility of issue 44; +0.24 %, +0.14 %, +0.74 %
+/// with plain MITC4; before that: +0.64 %, +0.74 %, −2.79 %). What made the difference, element by element
 /// (tests/fe_nastran_shells_energy.rs evaluates our element matrices on Nastran's eigenvectors
 /// against its element strain energies and grid-point kinetic energies):
 /// * MSC Nastran lumps CQUAD4/CTRIA3 mass on translations only (the f06 GPKE of shell grids has

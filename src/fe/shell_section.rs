@@ -144,6 +144,7 @@ pub fn shell_props(
         drill_factor,
         lumped_rotary: true,
         general: general.map(|g| GeneralSection { axis, ..g }),
+        residual_bending: model.params.nastran_deck,
     })
 }
 

@@ -31,27 +31,6 @@ pub struct DeckDefaults {
     pub notes: Vec<String>,
 }
 
-/// A note when a Nastran deck's quadratic solids are lumped: HRZ here, a rule MSC Nastran does
-/// not publish there (`fe::mass` module doc).
-fn quadratic_solid_lumping_note(model: &Model, mass: MassKind) -> Option<String> {
-    use crate::model::ElementKind as K;
-    if !model.params.nastran_deck || mass != MassKind::Lumped {
-        return None;
-    }
-    let quadratic = |k: K| matches!(k, K::Tet10 | K::Hex20 | K::Prism15 | K::Pyram13);
-    let count = model.elements.iter().filter(|e| quadratic(e.kind)).count();
-    (count > 0).then(|| {
-        format!(
-            "mass: the {count} CTETRA/CPENTA/CHEXA/CPYRAM with midside grids are lumped by HRZ (the \
-             consistent diagonal scaled to the element mass, the rule Autodesk Nastran documents \
-             for PARAM,COUPMASS < 0); MSC Nastran's lumping of these elements is not published \
-             and differs on coarse meshes (a two-element CTETRA(10) deck: −7 … −23 % against \
-             MSC 2005's f06 on 10 modes); --mass consistent (or PARAM,COUPMASS,1) compares \
-             mesh for mesh"
-        )
-    })
-}
-
 /// Fill the build's open choices from the deck (see the module doc).
 pub fn deck_defaults(spec: &BuildSpec, model: &Model) -> DeckDefaults {
     let mut out = spec.clone();
@@ -75,9 +54,6 @@ pub fn deck_defaults(spec: &BuildSpec, model: &Model) -> DeckDefaults {
             if c { "consistent" } else { "lumped" }
         )),
         _ => {}
-    }
-    if let Some(note) = quadratic_solid_lumping_note(model, out.mass) {
-        notes.push(note);
     }
     // Mode count or band.
     if spec.modes.is_none() && spec.fmax_hz.is_none() {

@@ -159,6 +159,13 @@ fn run_stages(
     let mut constrained = clock.run(Stage::Constraints, || {
         constraints::constraints(&plan, &interfaced, assembled, report)
     })?;
+    report
+        .warnings
+        .extend(stages::lumping_check::quadratic_lumping_warning(
+            &plan,
+            &interfaced,
+            &constrained,
+        ));
     if stages::preload::has_preload(&plan, &interfaced) {
         clock.run(Stage::Preload, || {
             stages::preload::preload(&plan, &interfaced, &mut constrained, report)

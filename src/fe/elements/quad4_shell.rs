@@ -18,12 +18,27 @@
 //!   correction (QM6: mode derivatives through J₀ at the centre, scaled by det J₀/det J; Taylor,
 //!   Beresford & Wilson, *IJNME* 10 (1976) 1211), condensed statically; passes the membrane
 //!   patch test on any quadrilateral and is free of in-plane shear locking in bending.
+//! * Residual bending flexibility (a Nastran deck's CQUAD4, `ShellProps::residual_bending`):
+//!   MacNeal's QUAD4 (R. H. MacNeal, *Computers & Structures* 8 (1978) 175; *Finite Elements:
+//!   Their Design and Performance* (1994) §6) adds to the transverse shear compliance the
+//!   bending flexibility the element lacks. With its shear constant along a direction (as
+//!   MITC4's e_ξ is along ξ), the element bends under a linearly varying moment as a
+//!   Timoshenko beam element with one-point shear, whose end deflection lacks V ℓ³/(12 D) of
+//!   the cubic beam's; adding ℓ²/(12 D) to the shear compliance restores it exactly:
+//!   S'_k = 1/(1/S_k + ℓ_k²/(12 D_k)) for k = ξ, η, ℓ_k the distance between the midpoints of
+//!   the element's opposite edges along k, S_k = u_kᵀ A_s u_k the shear rigidity and
+//!   D_k = vᵀ D v (v = (c², s², 2cs), u_k = (c, s)) the cylindrical bending rigidity along u_k
+//!   (a laminate's D included; its coupling B is left out). Shear-rigid sections (PSHELL MID3
+//!   blank) keep the ℓ²/(12 D) term alone, as MSC's QUAD4 does. Applied by scaling the
+//!   covariant strains e_k by √(S'_k/S_k): exact for rectangles, the same scaling on skewed
+//!   elements. Rigid motions, constant curvatures (patch test) and converged meshes (ℓ → 0)
+//!   are unchanged; one element over a cantilever's length bends as the beam does.
 //! * Drilling: γ_d (θz − ω)² at the 2×2 points (shell.rs), ω from the bilinear u, v.
 //! * Warped elements: the flat projected element with rigid links to the real nodes (shell.rs);
 //!   exact for rigid motions, approximate (as every flat-facet shell) for strong warping.
 //! * Mass: 2×2 Gauss ∫N_aN_b dA (exact for a parallelogram), shell.rs.
 
-use super::shell::{self, add_btdb, add_outer, ShellFrame, ShellProps};
+use super::shell::{self, add_btdb, add_outer, Resultants, ShellFrame, ShellProps};
 use super::{ElementError, Xyz};
 
 const G: f64 = 0.577_350_269_189_625_8; // 1/√3
@@ -207,6 +222,11 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
     let ec = covariant_shear(p, -1.0, 0.0, 1);
     let ea = covariant_shear(p, 1.0, 0.0, 1);
     let has_shear = sec.shear[0][0] > 0.0 || sec.shear[1][1] > 0.0;
+    let rbf = if props.residual_bending && has_shear {
+        residual_bending_scales(p, &sec, props.shear_rigid())
+    } else {
+        [1.0, 1.0]
+    };
     for (pt, &[xi, eta]) in points.iter().zip(&GAUSS) {
         let MembranePoint { n, g, inv, .. } = pt;
         let w = pt.w;
@@ -242,10 +262,10 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
         // MITC4 shear: e_ξ, e_η interpolated from the tying points, γ = J⁻¹ e.
         if has_shear {
             let exi: Vec<f64> = (0..12)
-                .map(|j| 0.5 * (1.0 - eta) * eb[j] + 0.5 * (1.0 + eta) * ed[j])
+                .map(|j| rbf[0] * (0.5 * (1.0 - eta) * eb[j] + 0.5 * (1.0 + eta) * ed[j]))
                 .collect();
             let eeta: Vec<f64> = (0..12)
-                .map(|j| 0.5 * (1.0 - xi) * ec[j] + 0.5 * (1.0 + xi) * ea[j])
+                .map(|j| rbf[1] * (0.5 * (1.0 - xi) * ec[j] + 0.5 * (1.0 + xi) * ea[j]))
                 .collect();
             let gam: [Vec<f64>; 2] = std::array::from_fn(|r| {
                 (0..12)
@@ -287,6 +307,32 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
     }
     condense_coupled(&mut k, (&mem_dofs, &plate_dofs), &kcc, &kci, &kii, &kip)?;
     Ok(k)
+}
+
+/// √(S'_k/S_k) for k = ξ, η: MacNeal's residual bending flexibility (module doc),
+/// S'_k = 1/(1/S_k + ℓ_k²/(12 D_k)); `shear_rigid`: 1/S_k left out (PSHELL MID3 blank).
+fn residual_bending_scales(p: &[[f64; 2]; 4], sec: &Resultants, shear_rigid: bool) -> [f64; 2] {
+    // between the midpoints of the opposite edges: ξ from edge 4–1 to 2–3, η from 1–2 to 3–4
+    let mid = |a: usize, b: usize, k: usize| 0.5 * (p[a][k] + p[b][k]);
+    let centre_lines = [
+        [mid(1, 2, 0) - mid(3, 0, 0), mid(1, 2, 1) - mid(3, 0, 1)],
+        [mid(2, 3, 0) - mid(0, 1, 0), mid(2, 3, 1) - mid(0, 1, 1)],
+    ];
+    centre_lines.map(|l| {
+        let len2 = l[0] * l[0] + l[1] * l[1];
+        let (c, s) = (l[0] / len2.sqrt(), l[1] / len2.sqrt());
+        let u = [c, s];
+        let v = [c * c, s * s, 2.0 * c * s];
+        let s_k: f64 = (0..2)
+            .map(|i| (0..2).map(|j| u[i] * sec.shear[i][j] * u[j]).sum::<f64>())
+            .sum();
+        let d_k: f64 = (0..3)
+            .map(|i| (0..3).map(|j| v[i] * sec.d[i][j] * v[j]).sum::<f64>())
+            .sum();
+        let shear_compliance = if shear_rigid { 0.0 } else { 1.0 / s_k };
+        let s_eff = 1.0 / (shear_compliance + len2 / (12.0 * d_k));
+        (s_eff / s_k).sqrt()
+    })
 }
 
 /// Adds K_cc and condenses the incompatible modes coupled to the membrane (K_ci) and plate

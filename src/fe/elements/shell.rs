@@ -118,6 +118,11 @@ pub struct ShellProps {
     /// A laminate or plane-stress section: its rigidities replace those of the isotropic
     /// materials above (which then only name the section's primary material).
     pub general: Option<GeneralSection>,
+    /// MSC Nastran's QUAD4 (MacNeal 1978): the 4-node element's transverse shear compliance
+    /// carries the residual bending flexibility ℓ²/(12 D) ([`super::quad4_shell`] module doc), as
+    /// a Nastran deck's CQUAD4 is formed; `false`: plain MITC4 (Abaqus S4, Gmsh). The triangle
+    /// and the quadratic shells ignore it.
+    pub residual_bending: bool,
 }
 
 impl ShellProps {
@@ -143,6 +148,7 @@ impl ShellProps {
             drill_factor: DRILL_FACTOR,
             lumped_rotary: true,
             general: None,
+            residual_bending: false,
         }
     }
 
@@ -249,6 +255,12 @@ impl ShellProps {
             (None, Some((m, _))) => 5.0 / 6.0 * m.g * self.t,
             _ => 0.0,
         }
+    }
+
+    /// The section has no transverse shear flexibility of its own: a homogeneous PSHELL with
+    /// MID3 blank (the element then takes 5/6 G₂t, [`Self::shear_modulus`]).
+    pub fn shear_rigid(&self) -> bool {
+        self.shear.is_none() && self.general.is_none()
     }
 
     /// Drilling penalty γ_d = drill_factor·G t (membrane G, else bending G; a general section:

@@ -29,6 +29,7 @@ pub mod geometric;
 pub mod import;
 pub mod interfaces;
 pub mod invariants;
+pub mod lumping_check;
 pub mod preload;
 pub mod reduction;
 pub mod verify;
