@@ -31,6 +31,7 @@ fn seeds() -> Vec<Vec<u8>> {
         "golden/v1.2",
         "golden/v1.4",
         "golden/v1.6",
+        "golden/v1.8",
         "compat",
     ] {
         let mut names: Vec<_> = std::fs::read_dir(root.join(dir))
@@ -248,7 +249,7 @@ fn rust_and_reference_readers_give_the_same_outcome_on_mutants() {
     let mut state = 0x2545f4914f6cdd1du64;
     let (mut refused, mut accepted) = (0, 0);
     // The golden files in Zip64 form (read as they are), then the mutants.
-    let golden = 5; // golden/v1.0 (2 files), v1.2, v1.4, v1.6
+    let golden = 6; // golden/v1.0 (2 files), v1.2, v1.4, v1.6, v1.8
     for k in 0..golden + 600 {
         let bytes = if k < golden {
             zip64_form(&seeds[k])
@@ -302,4 +303,60 @@ fn rust_and_reference_readers_give_the_same_outcome_on_mutants() {
         refused > 300 && accepted > 20,
         "{refused} refused, {accepted} accepted"
     );
+}
+
+/// The broken and compat fixtures of issue 49 (round 3: SPEC §6 rules 13 and 15, §7.1 step 1,
+/// §9): each is on disk, the Rust reader refuses it with its `.expect` variant (or accepts it),
+/// and the reference reader agrees on every fixture (`--check-fixtures fixtures`).
+#[test]
+fn round_3_fixtures_are_read_alike_by_both_readers() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
+    let broken = [
+        "recipe_preload_max_displacement_1e999",
+        "recipe_preload_max_displacement_negative",
+        "recipe_preload_buckling_factor_1e999",
+        "recipe_preload_buckling_factor_zero",
+        "recipe_geometric_stiffness_option_without_entry",
+        "recipe_geometric_stiffness_entry_without_option",
+        "recipe_preload_with_geometric_stiffness",
+        "recipe_preload_on_free_body",
+        "normal_modes_removed_without_residual_vectors",
+        "geometric_held_with_rigid_mode",
+        "geometric_acceleration_not_zero_under_inertia_relief",
+        "central_header_past_directory_end",
+    ];
+    for stem in broken {
+        let bytes = std::fs::read(root.join(format!("broken/{stem}.flexbody"))).expect(stem);
+        let expect: serde_json::Value = serde_json::from_slice(
+            &std::fs::read(root.join(format!("broken/{stem}.expect"))).expect(stem),
+        )
+        .expect("expect json");
+        let err = flexbody_reader::from_bytes(&bytes).expect_err(stem);
+        assert_eq!(err.variant(), expect["variant"], "{stem}: {err}");
+        let fragment = expect["message"].as_str().expect("message");
+        assert!(err.to_string().contains(fragment), "{stem}: {err}");
+    }
+    for golden in [
+        "compat/recipe_empty_optional_list",
+        "golden/v1.7/three_node_chain_geometric_stiffness",
+        "golden/v1.8/three_node_chain_geometric_stiffness",
+    ] {
+        let bytes = std::fs::read(root.join(format!("{golden}.flexbody"))).expect(golden);
+        flexbody_reader::from_bytes(&bytes).unwrap_or_else(|e| panic!("{golden}: {e}"));
+    }
+    let out = std::process::Command::new("python3")
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("format-spec/reference_reader.py"))
+        .arg("--check-fixtures")
+        .arg(&root)
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    for stem in broken {
+        assert!(
+            text.lines()
+                .any(|l| l.starts_with("ok") && l.contains(&format!("broken/{stem}.flexbody"))),
+            "the reference reader does not refuse {stem} alike:\n{text}"
+        );
+    }
+    assert!(out.status.success(), "the readers differ:\n{text}");
 }

@@ -112,7 +112,7 @@ fn spinning_cantilever_from_the_files_terms_equals_the_preloaded_build_and_wrigh
         String::from_utf8_lossy(&o.stderr)
     );
     let body = flexbody_reader::read(&out).expect("the file reads back");
-    assert_eq!(body.version.minor, 7);
+    assert_eq!(body.version.minor, 8);
     let recipe = body.recipe.as_ref().expect("recipe");
     assert_eq!(
         recipe.options.geometric_stiffness.as_deref(),

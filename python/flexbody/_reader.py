@@ -438,13 +438,17 @@ def validate(b, m):
     rc = b.get("recipe.json")
     if rc is not None:
         stored = [dict(id=int(i), interface=True) for i in ids[nodes["interface"] == 1]]
-        _spec.validate_recipe(rc, {"nodes.bin": stored}, m, _err, _finite_list)
+        others = {"nodes.bin": stored, "modes.bin": {"labels": label_names}, "method.bin": me}
+        if "geometric_stiffness.bin" in b:
+            others["geometric_stiffness.bin"] = b["geometric_stiffness.bin"]
+        _spec.validate_recipe(rc, others, m, _err, _finite_list)
     itf = b.get("interfaces.bin")
     if itf is not None:
         _spec.validate_interfaces(itf, {"method.bin": me, "nodes.bin": _NodeAt(nodes)}, _err, _finite_list)
     gs = b.get("geometric_stiffness.bin")
     if gs is not None:
-        _spec.validate_geometric_stiffness(gs, nm, _err, _count, _finite, _symmetric)
+        _spec.validate_geometric_stiffness(gs, nm, {"modes.bin": {"labels": label_names}}, m["version"],
+                                           _err, _count, _finite, _symmetric)
 
 
 def _finite_list(entry, field, values):

@@ -288,9 +288,11 @@ def typed(v, t, at):
             bad("an object")
         out = {}
         for k, tk in t.items():
-            if isinstance(tk, tuple) and tk[0] == "omit":
+            if isinstance(tk, tuple) and tk[0] == "omit":  # absent (or an empty list): left out
                 if k in v:
-                    out[k] = typed(v[k], tk[1], f"{at}.{k}")
+                    val = typed(v[k], tk[1], f"{at}.{k}")
+                    if not (isinstance(tk[1], tuple) and tk[1][0] == "list" and val == []):
+                        out[k] = val
                 continue
             if k not in v and not (isinstance(tk, tuple) and tk[0] == "opt"):
                 bad(f"an object with member {k}")
@@ -445,6 +447,8 @@ def open_archive(data):
         name, extra = data[at + 46:at + 46 + nn], data[at + 46 + nn:at + 46 + nn + nx]
         if at + 46 + nn + nx + nc > n:
             not_zip(f"damaged central directory header #{i}")
+        if at + 46 + nn + nx + nc > end:  # inside the directory, not only the file
+            not_zip(f"central directory header #{i} runs past the end of the directory")
         sentinels = [v == 0xFFFFFFFF for v in (usize, csize, local)]
         if any(sentinels):  # the Zip64 extra field (id 1) holds those values, 8 bytes each
             values = zip64_values(extra, sum(sentinels))
@@ -800,12 +804,16 @@ def validate(b, m):
         validate_interfaces(itf, b, err, finite)
     gs = b.get("geometric_stiffness.bin")
     if gs is not None:
-        validate_geometric_stiffness(gs, nm, err, count, finite, symmetric)
+        validate_geometric_stiffness(gs, nm, b, m["version"], err, count, finite, symmetric)
 
 
-def validate_geometric_stiffness(gs, nm, err, count, finite, symmetric):
-    """SPEC §6 rule 15: loads valid and not repeated, each matrix M·M, finite, symmetric."""
+def validate_geometric_stiffness(gs, nm, b, version, err, count, finite, symmetric):
+    """SPEC §6 rule 15: a Held body has no Rigid mode; loads valid and not repeated, each matrix
+    M·M, finite, symmetric, and (since 1.8) zero for an acceleration field under inertia relief."""
     E = "geometric_stiffness.bin"
+    if gs["support"] == "Held" and "Rigid" in b["modes.bin"]["labels"]:
+        err("Inconsistent", E, "support is Held, but a mode is labelled Rigid")
+    zero_accelerations = gs["support"] == "InertiaRelief" and (version["major"], version["minor"]) >= (1, 8)
     seen = []
     for q, f in enumerate(gs["fields"]):
         kind, axes = f["load"]
@@ -817,6 +825,8 @@ def validate_geometric_stiffness(gs, nm, err, count, finite, symmetric):
         count(E, f"fields[{q}].matrix", len(f["matrix"]), nm * nm)
         finite(E, f"fields[{q}].matrix", f["matrix"])
         symmetric(E, f"fields[{q}].matrix", f["matrix"], nm)
+        if zero_accelerations and kind in ("Acceleration", "AngularAcceleration") and any(a != 0 for a in f["matrix"]):
+            err("Inconsistent", E, f"fields[{q}].matrix: an acceleration field under InertiaRelief is zero")
 
 
 def bottom_fibre_nodes(entry, nodes, b, err):
@@ -929,6 +939,27 @@ def validate_recipe(rc, b, m, err, finite):
         err("Inconsistent", "recipe.json", "accuracy_band.fmax_hz must be > 0")
     cutoff = rc["accuracy_band"]["basis_cutoff_hz"]
     finite("recipe.json", "accuracy_band.basis_cutoff_hz", [] if cutoff is None else [cutoff])
+    pre = rc.get("preload")
+    if pre is not None:  # the preload's numbers (§5.11)
+        finite("recipe.json", "preload.max_displacement", [pre["max_displacement"]])
+        if pre["max_displacement"] < 0:
+            err("Inconsistent", "recipe.json", "preload.max_displacement must be >= 0")
+        lam = pre["buckling_factor"]
+        if lam is not None:
+            finite("recipe.json", "preload.buckling_factor", [lam])
+            if lam <= 0:
+                err("Inconsistent", "recipe.json", "preload.buckling_factor must be > 0 (null: nothing in compression)")
+    has_gs = "geometric_stiffness.bin" in b  # the recipe's statements about other entries
+    if ("geometric_stiffness" in rc["options"]) != has_gs:
+        err("Inconsistent", "recipe.json", "options.geometric_stiffness present exactly when geometric_stiffness.bin is")
+    if pre is not None:
+        if has_gs:
+            err("Inconsistent", "recipe.json", "a preloaded build has no geometric_stiffness.bin (§5.16)")
+        if "Rigid" in b["modes.bin"]["labels"]:
+            err("Inconsistent", "recipe.json", "a preload needs a held body, but a mode is labelled Rigid (§5.11)")
+    me = b["method.bin"]
+    if me["method"] == "NormalModes" and me["counts"][5] > 0 and "residual_vectors" not in rc["options"]:
+        err("Inconsistent", "recipe.json", "counts.removed_dependent > 0 for normal modes without options.residual_vectors (§5.7)")
 
 
 def validate_interfaces(itf, b, err, finite):

@@ -127,7 +127,8 @@ fn directory_location(b: &[u8], e: u64) -> Result<(u64, u64, u64, u64), ReadErro
 }
 
 /// The Zip64 extra field (id 1) of a central header: the 8-byte values of the fields that hold
-/// 0xFFFFFFFF, in the order uncompressed size, compressed size, local header offset.
+/// 0xFFFFFFFF, in the order uncompressed size, compressed size, local header offset. The first
+/// record with id 1 is read; the records after it are not looked at (SPEC §7.1 step 1).
 fn zip64_values(extra: &[u8], wanted: usize) -> Option<Vec<u64>> {
     let mut at = 0u64;
     while (at as usize) < extra.len() {
@@ -177,6 +178,12 @@ pub(crate) fn open(bytes: &[u8], max_entries: u64) -> Result<Archive<'_>, ReadEr
         let name = slice(bytes, at + 46, n).ok_or_else(bad)?;
         let extra = slice(bytes, at + 46 + n, x).ok_or_else(bad)?;
         slice(bytes, at + 46 + n + x, c).ok_or_else(bad)?;
+        // the header lies inside the directory, not only inside the file (SPEC §7.1 step 1)
+        if at + 46 + n + x + c > end {
+            return Err(not_zip(format!(
+                "central directory header #{i} runs past the end of the directory"
+            )));
+        }
         let sentinel = 0xFFFF_FFFF;
         let wanted = [usize_, compressed, local]
             .iter()

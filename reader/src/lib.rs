@@ -44,13 +44,16 @@ pub use validate::{validate, FRAME_TOL, REL_TOL};
 
 /// The newest format version this crate writes and fully understands. A writer stamps the
 /// oldest version that has everything the file holds ([`version_for`]).
-pub const FORMAT_VERSION: Version = Version { major: 1, minor: 7 };
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 8 };
 
 /// The oldest format version that has everything `body` holds (SPEC §7.3): 1.1 added
 /// `lines.bin`, 1.2 `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`, 1.4
 /// `modal_loads.bin`, 1.5 the shells' bottom-fibre field shapes, 1.6 normal modes that count
 /// residual vectors removed as dependent (`method.counts.removed_dependent` > 0), 1.7
-/// `geometric_stiffness.bin`.
+/// `geometric_stiffness.bin`, 1.8 its beam-column form with the axial and torsional terms and
+/// exact zeros for the acceleration fields under inertia relief (every file with the entry,
+/// except a body whose `version` says 1.7: a 1.7 file read and written again keeps its stamp,
+/// its terms being 1.7's).
 pub fn version_for(body: &ReducedBody) -> Version {
     let normal_removed =
         body.method.method == Method::NormalModes && body.method.counts.removed_dependent > 0;
@@ -70,7 +73,11 @@ pub fn version_for(body: &ReducedBody) -> Version {
         .map(|e| e.2)
         .max()
         .unwrap_or(0);
-    let minor = if normal_removed {
+    let minor = if body.geometric_stiffness.is_some() {
+        // 1.8's terms, unless the body is a 1.7 file read back (its terms stay 1.7's)
+        let read_as_1_7 = body.version.major == 1 && body.version.minor == 7;
+        entry_minor.max(if read_as_1_7 { 7 } else { 8 })
+    } else if normal_removed {
         entry_minor.max(6)
     } else {
         entry_minor

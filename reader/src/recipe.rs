@@ -142,6 +142,14 @@ pub struct RecipeOptions {
     /// (absent: none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub ignore: Vec<String>,
+    /// `--geometric-stiffness`: `inertia` (absent: not given; format 1.7): which unit loads
+    /// `geometric_stiffness.bin` holds.
+    #[serde(
+        default,
+        deserialize_with = "crate::json::present",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub geometric_stiffness: Option<String>,
     /// `--inp-shells`: how an Abaqus/CalculiX deck's shells were formed, `expanded` (one layer
     /// of bricks, as ccx) or `native` (flexbody's shells); absent: not an Abaqus deck, or a
     /// build before this member, which formed them `native`.
@@ -151,14 +159,6 @@ pub struct RecipeOptions {
         skip_serializing_if = "Option::is_none"
     )]
     pub inp_shells: Option<String>,
-    /// `--geometric-stiffness`: `inertia` (absent: not given; format 1.7): which unit loads
-    /// `geometric_stiffness.bin` holds.
-    #[serde(
-        default,
-        deserialize_with = "crate::json::present",
-        skip_serializing_if = "Option::is_none"
-    )]
-    pub geometric_stiffness: Option<String>,
 }
 
 /// One `--interface` entry as resolved.

@@ -452,14 +452,36 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
         crate::interfaces::validate_interfaces(i, body)?;
     }
     if let Some(g) = &body.geometric_stiffness {
-        geometric_stiffness(g, m)?;
+        geometric_stiffness(g, body)?;
     }
     Ok(())
 }
 
-/// Rule 15 (SPEC §5.16): each field's load valid and not repeated, its matrix M×M, finite and
-/// symmetric.
-fn geometric_stiffness(g: &crate::types::GeometricStiffness, m: usize) -> Result<(), ReadError> {
+/// Rule 15 (SPEC §5.16): a `Held` body has no `Rigid` mode; each field's load valid and not
+/// repeated, its matrix M×M, finite and symmetric, and (since 1.8) zero for an acceleration
+/// field under inertia relief.
+fn geometric_stiffness(
+    g: &crate::types::GeometricStiffness,
+    body: &ReducedBody,
+) -> Result<(), ReadError> {
+    use crate::types::{ModeLabel, StaticSupport, UnitLoad};
+    let m = body.modes.omega2.len();
+    if g.support == StaticSupport::Held {
+        if let Some(j) = body
+            .modes
+            .labels
+            .iter()
+            .position(|l| *l == ModeLabel::Rigid)
+        {
+            return Err(inconsistent(
+                GEOMETRIC_STIFFNESS,
+                format!("support is Held, but mode {j} is labelled Rigid"),
+            ));
+        }
+    }
+    let v = body.version;
+    let zero_accelerations =
+        g.support == StaticSupport::InertiaRelief && (v.major, v.minor) >= (1, 8);
     for (q, f) in g.fields.iter().enumerate() {
         if !f.load.is_valid() {
             return Err(inconsistent(
@@ -483,6 +505,21 @@ fn geometric_stiffness(g: &crate::types::GeometricStiffness, m: usize) -> Result
         )?;
         finite(GEOMETRIC_STIFFNESS, &field, &f.matrix)?;
         symmetric(GEOMETRIC_STIFFNESS, &field, &f.matrix, m)?;
+        let rigid_acceleration = matches!(
+            f.load,
+            UnitLoad::Acceleration(_) | UnitLoad::AngularAcceleration(_)
+        );
+        if zero_accelerations && rigid_acceleration {
+            if let Some(k) = f.matrix.iter().position(|a| *a != 0.0) {
+                return Err(inconsistent(
+                    GEOMETRIC_STIFFNESS,
+                    format!(
+                        "{field}[{k}] = {}: an acceleration field under InertiaRelief is zero",
+                        f.matrix[k]
+                    ),
+                ));
+            }
+        }
     }
     Ok(())
 }
@@ -656,6 +693,81 @@ fn recipe(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
         "accuracy_band.basis_cutoff_hz",
         r.accuracy_band.basis_cutoff_hz.iter(),
     )?;
+    if let Some(p) = &r.preload {
+        preload_numbers(p)?;
+    }
+    recipe_against_entries(r, body)
+}
+
+/// Rule 13, the preload's numbers (SPEC §5.11): `max_displacement` finite and ≥ 0,
+/// `buckling_factor` (when not null) finite and > 0.
+fn preload_numbers(p: &crate::RecipePreload) -> Result<(), ReadError> {
+    let d = p.max_displacement;
+    finite(RECIPE, "preload.max_displacement", [&d])?;
+    if d < 0.0 {
+        return Err(inconsistent(
+            RECIPE,
+            format!("preload.max_displacement {d} must be >= 0"),
+        ));
+    }
+    if let Some(l) = p.buckling_factor {
+        finite(RECIPE, "preload.buckling_factor", [&l])?;
+        if l <= 0.0 {
+            return Err(inconsistent(
+                RECIPE,
+                format!("preload.buckling_factor {l} must be > 0 (null: nothing in compression)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Rule 13, last checks (SPEC §5.7, §5.11, §5.16): the recipe's statements about other entries.
+fn recipe_against_entries(r: &crate::Recipe, body: &ReducedBody) -> Result<(), ReadError> {
+    use crate::types::{Method, ModeLabel};
+    let has_gs = body.geometric_stiffness.is_some();
+    if r.options.geometric_stiffness.is_some() != has_gs {
+        return Err(inconsistent(
+            RECIPE,
+            format!(
+                "options.geometric_stiffness is {} but geometric_stiffness.bin is {}",
+                if has_gs { "absent" } else { "present" },
+                if has_gs { "present" } else { "absent" }
+            ),
+        ));
+    }
+    if r.preload.is_some() {
+        if has_gs {
+            return Err(inconsistent(
+                RECIPE,
+                "a preloaded build has no geometric_stiffness.bin (§5.16)".into(),
+            ));
+        }
+        if let Some(j) = body
+            .modes
+            .labels
+            .iter()
+            .position(|l| *l == ModeLabel::Rigid)
+        {
+            return Err(inconsistent(
+                RECIPE,
+                format!("a preload needs a held body, but mode {j} is labelled Rigid (§5.11)"),
+            ));
+        }
+    }
+    let removed = body.method.counts.removed_dependent;
+    if body.method.method == Method::NormalModes
+        && removed > 0
+        && r.options.residual_vectors.is_none()
+    {
+        return Err(inconsistent(
+            RECIPE,
+            format!(
+                "counts.removed_dependent = {removed} for normal modes without \
+                 options.residual_vectors (only residual vectors can be removed, §5.7)"
+            ),
+        ));
+    }
     Ok(())
 }
 

@@ -17,9 +17,16 @@ const MAX_STEPS: usize = 80;
 /// Relative change of the largest Ritz value between two steps that ends the iteration.
 const CONVERGED: f64 = 1e-12;
 
+/// A largest μ = 1/λ at most this fraction of the spectrum's largest |μ| is a zero eigenvalue of
+/// −K_G up to rounding (a null direction of the stress, e.g. the axial dofs of a beam in
+/// tension), not compression: nothing in compression, no buckling factor. Measured: a beam in
+/// pure tension gives μ_max/max|μ| ≈ 1e-16 (it wrote λ₁ = 1.85e22 before this test).
+const NO_COMPRESSION: f64 = 1e-9;
+
 /// The lowest positive buckling factor λ₁ of K φ = −λ K_G φ (K positive definite, both full
 /// symmetric, module doc); `None` when no λ > 0 exists (no compression anywhere: −K_G has no
-/// positive eigenvalue against K).
+/// positive eigenvalue against K, or only one of at most [`NO_COMPRESSION`] of the largest |μ|:
+/// a zero eigenvalue up to rounding).
 pub fn lowest_buckling_factor(
     k: &SparseColMat<usize, f64>,
     kg: &SparseColMat<usize, f64>,
@@ -43,7 +50,7 @@ pub fn lowest_buckling_factor(
     v /= nv;
     let mut basis: Vec<Mat<f64>> = vec![v];
     let (mut alpha, mut beta): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
-    let mut last = f64::NAN;
+    let (mut last, mut scale) = (f64::NAN, 0.0f64);
     for j in 0..MAX_STEPS.min(n) {
         // w = K⁻¹(−K_G v_j)
         let mut w = -sparse_ops::spmm(kg.as_ref(), basis[j].as_ref());
@@ -57,7 +64,8 @@ pub fn lowest_buckling_factor(
             }
         }
         let b = k_inner(&w, &w).max(0.0).sqrt();
-        let top = largest_ritz(&alpha, &beta)?;
+        let (bottom, top) = extreme_ritz(&alpha, &beta)?;
+        scale = bottom.abs().max(top.abs());
         let done = (top - last).abs() <= CONVERGED * top.abs().max(f64::MIN_POSITIVE);
         if done || b <= 1e-14 * alpha.iter().fold(0.0f64, |m, a| m.max(a.abs())) {
             last = top;
@@ -68,12 +76,12 @@ pub fn lowest_buckling_factor(
         w /= b;
         basis.push(w);
     }
-    Ok((last > 0.0).then(|| 1.0 / last))
+    Ok((last > NO_COMPRESSION * scale).then(|| 1.0 / last))
 }
 
-/// Largest eigenvalue of the symmetric tridiagonal matrix with diagonal `alpha` and
-/// off-diagonal `beta` (the first alpha.len() − 1 values).
-fn largest_ritz(alpha: &[f64], beta: &[f64]) -> Result<f64, SolveError> {
+/// Smallest and largest eigenvalue of the symmetric tridiagonal matrix with diagonal `alpha`
+/// and off-diagonal `beta` (the first alpha.len() − 1 values).
+fn extreme_ritz(alpha: &[f64], beta: &[f64]) -> Result<(f64, f64), SolveError> {
     let m = alpha.len();
     let t = Mat::from_fn(m, m, |i, j| {
         if i == j {
@@ -87,7 +95,10 @@ fn largest_ritz(alpha: &[f64], beta: &[f64]) -> Result<f64, SolveError> {
     let ev = t
         .self_adjoint_eigenvalues(faer::Side::Lower)
         .map_err(|e| SolveError::DenseEigen(format!("Lanczos tridiagonal: {e:?}")))?;
-    Ok(ev.iter().copied().fold(f64::NEG_INFINITY, f64::max))
+    let (lo, hi) = (ev.iter().copied()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), e| {
+        (lo.min(e), hi.max(e))
+    });
+    Ok((lo, hi))
 }
 
 #[cfg(test)]

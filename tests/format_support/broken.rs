@@ -4,6 +4,7 @@
 mod container;
 mod geometric;
 mod json;
+mod round3;
 mod rules;
 
 use flexbody::write::{zip_entries, Compression};
@@ -592,6 +593,8 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
     json::cases(base, &mut add);
     rules::cases(base, &mut add);
     geometric::cases(&mut add);
+    // Issue 49, round 3.
+    round3::cases(base, &mut add);
     out
 }
 

@@ -8,7 +8,7 @@ pub mod broken;
 mod geometric;
 mod residual;
 
-pub use geometric::body_3node_geometric_stiffness;
+pub use geometric::{body_3node_geometric_stiffness, body_3node_geometric_stiffness_1_7};
 pub use residual::body_3node_residual_vectors;
 
 use std::path::{Path, PathBuf};
@@ -754,6 +754,10 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         (
             "three_node_chain_residual_vectors",
             body_3node_residual_vectors(),
+        ),
+        (
+            "three_node_chain_geometric_stiffness",
+            body_3node_geometric_stiffness_1_7(),
         ),
         (
             "three_node_chain_geometric_stiffness",

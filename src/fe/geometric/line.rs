@@ -8,11 +8,18 @@
 //!   interpolation with Φ = 12EI/(kGAL²) (Friedman & Kosmatka, *Comput. Struct.* 47 (1993) 473),
 //!   N₁ = (2ξ³ − 3ξ² − Φξ + 1 + Φ)/(1 + Φ), N₂ = L(ξ³ − (2 + Φ/2)ξ² + (1 + Φ/2)ξ)/(1 + Φ),
 //!   N₃ = (−2ξ³ + 3ξ² + Φξ)/(1 + Φ), N₄ = L(ξ³ − (1 − Φ/2)ξ² − (Φ/2)ξ)/(1 + Φ), integrated by
-//!   3-point Gauss (exact). Simplifications, as the usual beam-column: no torsional (Wagner)
-//!   term N I_p/(A L) on the twist, no term on the axial displacement (its relative size is the
-//!   axial strain), no bending-moment coupling.
-//! * Rod: K_G = N/L (I − e eᵀ) ⊗ [1 −1; −1 1] on the translations (the string; Cook, Malkus,
-//!   Plesha & Witt, *Concepts and Applications of FEA*, 4th ed. (2002) §18.2).
+//!   3-point Gauss (exact). With them, as the second variation of ∫ N ε dx with the
+//!   Green–Lagrange axial strain of the section's points ε = u′ + ½(u′² + v′² + w′²) +
+//!   ½ (y² + z²) θₓ′² (so that beams agree with the solids' ∫ σ : E dV, SPEC §5.16; McGuire,
+//!   Gallagher & Ziemian, *Matrix Structural Analysis*, 2nd ed. (2000) eq. 9.19): the axial
+//!   term N/L [1 −1; −1 1] on u and the torsional (Wagner) term N I_p/(A L) [1 −1; −1 1] on the
+//!   twist θₓ, I_p = I_y + I_z the polar moment of area about the centroid (the shear centre of
+//!   a doubly symmetric section; N I_p/A is the torsional buckling load's P r₀² of Timoshenko
+//!   & Gere, *Theory of Elastic Stability* (1961) §5.3, without warping). No bending-moment
+//!   coupling (the element's moments are not in the terms).
+//! * Rod: K_G = N/L I ⊗ [1 −1; −1 1] on the translations (the string N/L (I − e eᵀ) of Cook,
+//!   Malkus, Plesha & Witt, *Concepts and Applications of FEA*, 4th ed. (2002) §18.2, with the
+//!   axial term N/L e eᵀ of the same Green–Lagrange strain).
 //! * Thermal load: ±EA αΔT e_x at the two nodes.
 
 use crate::fe::elements::beam::{local_frame, shear_parameters, to_basic, BeamProps};
@@ -84,6 +91,18 @@ pub fn beam_geometric_stiffness(
     let (r, l) = local_frame(x, Some(v))?;
     let (phy, phz) = shear_parameters(l, mat, p);
     let mut k = [[0.0; 12]; 12];
+    // axial u and twist θx (module doc): N/L and N I_p/(A L) times [1 −1; −1 1]
+    let torsion = if p.area > 0.0 {
+        (p.iy + p.iz) / p.area
+    } else {
+        0.0
+    };
+    for (dof, c) in [(0, n / l), (3, n * torsion / l)] {
+        k[dof][dof] += c;
+        k[dof + 6][dof + 6] += c;
+        k[dof][dof + 6] -= c;
+        k[dof + 6][dof] -= c;
+    }
     for (dofs, ph, s) in [([1, 5, 7, 11], phy, 1.0), ([2, 4, 8, 10], phz, -1.0)] {
         let m = slope_products(l, ph);
         // rotation dofs carry the sign s of θ = s·w′
@@ -97,20 +116,14 @@ pub fn beam_geometric_stiffness(
     Ok(to_basic(&k, &r))
 }
 
-/// Basic-frame K_G (12×12, 6 dofs per node) of a rod with axial force `n`: N/L (I − e eᵀ) on
-/// the translations (module formula).
+/// Basic-frame K_G (12×12, 6 dofs per node) of a rod with axial force `n`: N/L I on the
+/// translations (module formula).
 pub fn rod_geometric_stiffness(x: &[Xyz; 2], n: f64) -> Result<Vec<f64>, ElementError> {
-    let ([ex, _, _], l) = local_frame(x, None)?;
+    let (_, l) = local_frame(x, None)?;
     let mut k = vec![0.0; 144];
-    let pair = [[1.0, -1.0], [-1.0, 1.0]];
-    for a in 0..2 {
-        for b in 0..2 {
-            for i in 0..3 {
-                for j in 0..3 {
-                    let d = if i == j { 1.0 } else { 0.0 };
-                    k[(6 * a + i) * 12 + 6 * b + j] = n / l * pair[a][b] * (d - ex[i] * ex[j]);
-                }
-            }
+    for (a, b, sign) in [(0, 0, 1.0), (0, 1, -1.0), (1, 0, -1.0), (1, 1, 1.0)] {
+        for i in 0..3 {
+            k[(6 * a + i) * 12 + 6 * b + i] = sign * n / l;
         }
     }
     Ok(k)

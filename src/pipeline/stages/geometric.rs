@@ -1,4 +1,4 @@
-//! Geometric stiffness (format 1.7 `geometric_stiffness.bin`, SPEC §5.16; issue 35): when the
+//! Geometric stiffness (format 1.8 `geometric_stiffness.bin`, SPEC §5.16; issue 35): when the
 //! build asks (`--geometric-stiffness inertia`), the modal geometric stiffness of the body's
 //! stress under each of the twelve unit inertia loads — K̂_G,j = Φᵀ K_G(σ(load j)) Φ in the
 //! file's modes, from `fe::preload::modal_geometric_stiffness` — so that a multibody solver
@@ -8,7 +8,9 @@
 //!
 //! The static solve is the preload stage's `Support::Auto`: held when the model's constraints
 //! leave no rigid-body motion free, inertia relief otherwise. The angular loads act about the
-//! origin of the body frame (the model's basic frame, in which the file's nodes are).
+//! origin of the body frame (the model's basic frame, in which the file's nodes are). Under
+//! inertia relief the acceleration and angular-acceleration fields are written as exact zeros
+//! (SPEC §5.16, rule 15 since 1.8).
 //! Refused, never approximated: a build with a preload (its K_r is K + K_G(σ₀), so the unit
 //! loads' stress would be that of another stiffness than the linear one the terms assume).
 
@@ -93,8 +95,9 @@ pub fn modal_terms(
     let rigid = statics::free_rigid_modes(model, &constrained.assembled.dofs, sys.reduced)?;
     let matrices = preload::modal_geometric_stiffness(&sys, phi_r.as_ref(), &cases, &spec)?;
     let q = phi_r.ncols();
+    let held = rigid.ncols() == 0;
     Ok(file::GeometricStiffness {
-        support: if rigid.ncols() == 0 {
+        support: if held {
             file::StaticSupport::Held
         } else {
             file::StaticSupport::InertiaRelief
@@ -102,8 +105,22 @@ pub fn modal_terms(
         fields: (fields.iter().zip(&matrices))
             .map(|((load, _), g)| file::GeometricField {
                 load: unit_load(*load),
-                matrix: (0..q * q).map(|k| g[(k / q, k % q)]).collect(),
+                matrix: if held || !is_rigid_acceleration(*load) {
+                    (0..q * q).map(|k| g[(k / q, k % q)]).collect()
+                } else {
+                    vec![0.0; q * q]
+                },
             })
             .collect(),
     })
+}
+
+/// A rigid-body acceleration field (SPEC §5.16, format 1.8): under inertia relief the body's
+/// inertia balances it everywhere, it leaves no stress, and the file holds its K̂_G as exact
+/// zeros (the solve's rounding, ~1e-14 of the centrifugal terms, is not written).
+fn is_rigid_acceleration(load: InertiaLoad) -> bool {
+    match load {
+        InertiaLoad::Acceleration(_) | InertiaLoad::AngularAcceleration(_) => true,
+        InertiaLoad::AngularVelocity(..) => false,
+    }
 }
