@@ -191,3 +191,72 @@ fn a_bar_held_along_x_on_one_face_keeps_three_rigid_motions() {
     assert!(!dir.join("three.flexbody").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A chain of `n` point masses `m` (`*MASS`) joined by axial springs `k` (SPRINGA) along x, 1 m
+/// apart, held laterally (`*BOUNDARY` 2-3 on every node) and, with `grounded`, along x at node 1.
+fn chain(dir: &Path, name: &str, n: u64, k: f64, m: f64, grounded: bool) -> PathBuf {
+    let mut s = String::from("*NODE, NSET=NALL\n");
+    for i in 1..=n {
+        s += &format!("{i}, {}, 0., 0.\n", (i - 1) as f64);
+    }
+    s += "*ELEMENT, TYPE=SPRINGA, ELSET=SPR\n";
+    for i in 1..n {
+        s += &format!("{i}, {i}, {}\n", i + 1);
+    }
+    s += "*ELEMENT, TYPE=MASS, ELSET=MS\n";
+    for i in 1..=n {
+        s += &format!("{}, {i}\n", 100 + i);
+    }
+    s += &format!("*SPRING, ELSET=SPR\n\n{k}\n*MASS, ELSET=MS\n{m}\n*BOUNDARY\nNALL, 2, 3\n");
+    if grounded {
+        s += "*BOUNDARY\n1, 1, 1\n";
+    }
+    s += &format!("*STEP\n*FREQUENCY\n{}\n*END STEP\n", n - 1);
+    let path = dir.join(format!("{name}.inp"));
+    std::fs::write(&path, s).unwrap();
+    path
+}
+
+#[test]
+fn a_collinear_spring_mass_chain_has_no_rotation_about_its_line() {
+    // translations only, on one line: the rotation about it moves no dof and carries no inertia;
+    // the build's verification (and `check`) expected it as a rigid mode ("expected 1")
+    let dir = scratch("chain");
+    let (n, k, m) = (6u64, 1000.0, 2.0);
+    let hz = |w2: f64| w2.sqrt() / (2.0 * std::f64::consts::PI);
+    // free along x: ω_j² = (4k/m) sin²(jπ/2n), j = 0 … n−1 (j = 0: the translation)
+    let free = build(&chain(&dir, "free", n, k, m, false));
+    assert_eq!(rigid_count(&free), 1, "{:?}", free.modes.frequency_hz);
+    let exact: Vec<f64> = (1..n - 1)
+        .map(|j| {
+            let s = (j as f64 * std::f64::consts::PI / (2.0 * n as f64)).sin();
+            hz(4.0 * k / m * s * s)
+        })
+        .collect();
+    for (a, b) in elastic(&free).iter().zip(&exact) {
+        // measured: 2.4e-16
+        assert!((a - b).abs() <= 4e-15 * b, "{a} against {b}");
+    }
+    assert_eq!(elastic(&free).len(), exact.len());
+    // grounded at node 1: the n − 1 masses of a fixed-free chain, ω_j² = (4k/m)
+    // sin²((2j−1)π / (2(2n−1))), j = 1 … n−1, no rigid mode
+    let grounded = build(&chain(&dir, "grounded", n, k, m, true));
+    assert_eq!(rigid_count(&grounded), 0);
+    let exact: Vec<f64> = (1..n)
+        .map(|j| {
+            let s = ((2 * j - 1) as f64 * std::f64::consts::PI / (2.0 * (2 * n - 1) as f64)).sin();
+            hz(4.0 * k / m * s * s)
+        })
+        .collect();
+    let ours = elastic(&grounded);
+    assert_eq!(ours.len(), exact.len());
+    for (a, b) in ours.iter().zip(&exact) {
+        // measured: 9.0e-16
+        assert!((a - b).abs() <= 9e-15 * b, "{a} against {b}");
+    }
+    for path in [dir.join("free.flexbody"), dir.join("grounded.flexbody")] {
+        let (ok, line) = check(&path, None);
+        assert!(ok, "{line}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -268,9 +268,9 @@ fn centre_of_mass_principal(i7: &Mat<f64>, inv: &file::Invariants) -> Vec<f64> {
 /// The name of the rigid-body mode check (`check --model` replaces the item by name).
 pub const RIGID_MODES: &str = "rigid-body modes as expected";
 
-/// The rigid-body modes against the expectation of `rule`: 6 for a free body (less the rotations
-/// about a line of masses without inertia about it), the rigid motions reference conditions leave
-/// free, or the sum over the model's parts.
+/// The rigid-body modes against the expectation of `rule`: the rigid motions the reference
+/// conditions leave free (6 for a free body) that carry inertia — not the rotation about a line
+/// of translation-only masses — or the sum over the model's parts.
 pub fn rigid_modes(body: &file::ReducedBody, rule: RigidRule<'_>) -> CheckItem {
     let md = &body.modes;
     // rigid: below 1e-4 of the highest frequency, or labelled rigid and below 1e-2 of the first
@@ -292,23 +292,23 @@ pub fn rigid_modes(body: &file::ReducedBody, rule: RigidRule<'_>) -> CheckItem {
             f < 1e-4 * fmax_stored || (*l == file::ModeLabel::Rigid && f < 1e-2 * first_flexible)
         })
         .count();
-    let massless_rotations = if body.method.reference_conditions.is_empty() {
-        zero_inertia_axes(body)
-    } else {
-        0
-    };
-    let from_file = free_rigid_motions(body) - massless_rotations.min(3);
+    let free = free_rigid_motions(body);
+    let from_file = free_rigid_motions_with_inertia(body, &free);
     let labelled = md
         .labels
         .iter()
         .filter(|l| **l == file::ModeLabel::Rigid)
         .count();
-    let file_why = if body.method.reference_conditions.is_empty() && massless_rotations > 0 {
-        "free body; its rotation about the line of its masses has no inertia and is no mode".into()
-    } else if body.method.reference_conditions.is_empty() {
-        "free body".to_string()
-    } else {
-        "rigid motions the reference conditions leave free".to_string()
+    let without_inertia = free.len() - from_file;
+    let file_why = match (body.method.reference_conditions.is_empty(), without_inertia) {
+        (true, 0) => "free body".to_string(),
+        (true, k) => format!(
+            "free body; {k} of its rigid motions (the rotation about the line of its masses) carry no inertia and are no modes"
+        ),
+        (false, 0) => "rigid motions the reference conditions leave free".to_string(),
+        (false, k) => format!(
+            "rigid motions the reference conditions leave free, less {k} that carry no inertia (a rotation about the line of its masses)"
+        ),
     };
     let recorded = body.method.counts.rigid as usize;
     let (expected, why) = match rule {
@@ -474,16 +474,12 @@ pub fn zero_inertia_axes(body: &file::ReducedBody) -> usize {
         .count()
 }
 
-/// Rigid-body motions the reference conditions leave free: 6 − rank(R_c), where R_c holds the
-/// rows of the rigid motion u = t + θ × x (rotations θ) at the held dofs (node frames from the
-/// interface records, else basic); θ is scaled by the body size so the rank test is unit-free.
-fn free_rigid_motions(body: &file::ReducedBody) -> usize {
-    let size = body
-        .nodes
-        .iter()
-        .map(|n| n.xyz.iter().map(|v| v * v).sum::<f64>().sqrt())
-        .fold(0.0f64, f64::max)
-        .max(f64::MIN_POSITIVE);
+/// Rigid-body motions the reference conditions leave free: an orthonormal basis (6 − rank(R_c)
+/// vectors (t, θ·size)) of the null space of R_c, which holds the rows of the rigid motion
+/// u = t + θ × x at the held dofs (node frames from the interface records, else basic); θ is
+/// scaled by the body size so the rank test is unit-free.
+fn free_rigid_motions(body: &file::ReducedBody) -> Vec<[f64; 6]> {
+    let size = rigid_scale(body);
     let eye = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let mut g = faer::Mat::<f64>::zeros(6, 6);
     for rc in &body.method.reference_conditions {
@@ -520,9 +516,61 @@ fn free_rigid_motions(body: &file::ReducedBody) -> usize {
             }
         }
     }
-    let ev = g
+    let Ok((vals, vecs)) = crate::solve::dense::eigh(g.as_ref()) else {
+        return Vec::new();
+    };
+    let top = vals.iter().fold(0.0f64, |a, &b| a.max(b));
+    (0..6)
+        .filter(|&j| !(top > 0.0 && vals[j] > 1e-10 * top))
+        .map(|j| std::array::from_fn(|i| vecs[(i, j)]))
+        .collect()
+}
+
+/// How many of the `free` rigid motions (from [`free_rigid_motions`]) carry inertia: the rank
+/// of Fᵀ G F, G the rigid-body mass matrix of the invariants, [[I1·E, −[I2]×], [[I2]×, I7]]
+/// (u = t + θ × x: Σ m uᵀu = m tᵀt − 2 tᵀ[I2]× θ + θᵀ I7 θ), rotations scaled as in `free`. A
+/// motion without inertia (the rotation about the line of translation-only nodes) is no mode.
+fn free_rigid_motions_with_inertia(body: &file::ReducedBody, free: &[[f64; 6]]) -> usize {
+    let inv = &body.invariants;
+    let i1 = inv.i1.first().copied().unwrap_or(0.0);
+    if i1.is_nan() || i1 <= 0.0 || inv.i2.len() != 3 || inv.i7.len() != 9 || free.is_empty() {
+        return free.len();
+    }
+    let size = rigid_scale(body);
+    let s = &inv.i2;
+    // [I2]× / size
+    let cx = [[0.0, -s[2], s[1]], [s[2], 0.0, -s[0]], [-s[1], s[0], 0.0]];
+    let g = Mat::from_fn(6, 6, |a, b| match (a < 3, b < 3) {
+        (true, true) => i1 * f64::from(u8::from(a == b)),
+        (true, false) => -cx[a][b - 3] / size,
+        (false, true) => cx[a - 3][b] / size,
+        (false, false) => inv.i7[3 * (a - 3) + (b - 3)] / (size * size),
+    });
+    let top = g
+        .self_adjoint_eigenvalues(faer::Side::Lower)
+        .unwrap_or_default()
+        .iter()
+        .fold(0.0f64, |a, &b| a.max(b.abs()));
+    let h = Mat::from_fn(free.len(), free.len(), |p, q| {
+        (0..6)
+            .map(|a| {
+                (0..6)
+                    .map(|b| free[p][a] * g[(a, b)] * free[q][b])
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+    });
+    let ev = h
         .self_adjoint_eigenvalues(faer::Side::Lower)
         .unwrap_or_default();
-    let top = ev.iter().fold(0.0f64, |a, &b| a.max(b));
-    6 - ev.iter().filter(|&&l| top > 0.0 && l > 1e-10 * top).count()
+    ev.iter().filter(|&&v| v > ZERO_INERTIA * top).count()
+}
+
+/// The body size rotations are scaled by in [`free_rigid_motions`].
+fn rigid_scale(body: &file::ReducedBody) -> f64 {
+    body.nodes
+        .iter()
+        .map(|n| n.xyz.iter().map(|v| v * v).sum::<f64>().sqrt())
+        .fold(0.0f64, f64::max)
+        .max(f64::MIN_POSITIVE)
 }

@@ -46,6 +46,7 @@ mod steps;
 mod temperature;
 mod thickness;
 mod tie;
+mod tie_search;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};

@@ -4,30 +4,30 @@
 //! that face by its shape functions, u_s = Σᵢ Nᵢ(ξ, η) u_i for the three translations — one
 //! MPC per component ([`crate::model::Mpc`], eliminated as `*EQUATION`).
 //!
-//! * the tolerance: POSITION TOLERANCE, or (absent or below 1e-10) 2.5 % of CalculiX's
-//!   "typical element size" (`gentiedmpc`: the mean distance from a master triangle's centroid
-//!   to its first edge; here the triangle of each master face's first three corners, which is
-//!   ccx's for linear triangles and rectangles — a gap of 0.0003 m between 0.05 m faces is
-//!   tied, 0.0005 m is not, as ccx 2.20 does); the distance is measured from the node to the
-//!   nearest point of the face (its projection clamped to the face), so that both ccx
-//!   conditions — the orthogonal distance and the overshoot parallel to the face — stay within
-//!   it;
+//! * where a slave node lies on the master surface, and whether it is within the tolerances,
+//!   is found as ccx 2.20 finds it ([`super::tie_search`]: the master faces of all ties cut
+//!   into triangles; the in-face tolerance 2.5 % of their mean centroid-to-edge distance; the
+//!   position tolerance POSITION TOLERANCE, or that in-face tolerance when absent or below
+//!   1e-10); the MPC's coefficients are the face's shape functions at the node's nearest point
+//!   of that face (its projection clamped to the face);
 //! * ADJUST=YES (the default) moves each tied slave node onto the master face, ADJUST=NO keeps it;
-//! * slave nodes no master face reaches stay untied, and so do the components of a slave node
-//!   already held by a `*BOUNDARY` or dependent in an equation (as ccx: "DOF not active"): one
-//!   warning lists them (ccx writes them to `WarnNodeMissTiedContact.nam`); a slave node that
+//! * slave nodes with no master face opposite or farther than the position tolerance stay
+//!   untied, and so do the components of a slave node already held by a `*BOUNDARY` or
+//!   dependent in an equation (as ccx: "DOF not active"): one warning per tie counts them by
+//!   reason and names every node (ccx writes them to `WarnNodeMissTiedContact.nam`; the build's
+//!   `--json` report carries the warning); a slave node that
 //!   is also a node of the master surface is not tied to it;
 //! * CYCLIC SYMMETRY, MULTISTAGE and the fluid ties are refused; nodes in a `*TRANSFORM` frame
 //!   are refused (the equations are in global components).
 
-use std::collections::{BTreeMap, BTreeSet, HashSet};
+use std::collections::{BTreeSet, HashSet};
 
 use super::keywords::Keyword;
 use super::resolve::Sets;
+use super::tie_search::{ccx_face_nodes, Found, MasterTriangles};
 use super::{fields, Block, Parser};
 use crate::import::error::ImportError;
 use crate::import::text::{parse_f64, parse_u64, Loc};
-use crate::model::load::{face_nodes, solid_faces};
 use crate::model::{Mpc, NodeDof, NodeIndex};
 
 /// One `*TIE`: its parameters and its data line.
@@ -139,7 +139,30 @@ impl Parser {
     /// Every `*TIE` → MPCs of its slave nodes on the master faces (module doc).
     pub(super) fn resolve_ties(&mut self, sets: &Sets) -> Result<(), ImportError> {
         let ties = std::mem::take(&mut self.ties);
-        let mut missed: BTreeMap<String, Vec<u64>> = BTreeMap::new();
+        // the master faces of every tie, numbered over all ties (ccx triangulates them all)
+        let mut faces: Vec<Face> = Vec::new();
+        let mut per_tie: Vec<Vec<(usize, Vec<NodeIndex>)>> = Vec::new();
+        for tie in &ties {
+            let ent = format!("*TIE NAME={}", tie.name);
+            let Some((_, master)) = &tie.surfaces else {
+                return Err(self.err(tie.loc, ent, "no data line (slave surface, master surface)"));
+            };
+            let mine = self.surface_faces(master, sets, &ent)?.ok_or_else(|| {
+                self.err(
+                    tie.loc,
+                    ent.clone(),
+                    format!("the master surface {master} must be an element-face *SURFACE"),
+                )
+            })?;
+            per_tie.push(
+                (mine.iter().enumerate())
+                    .map(|(k, f)| (faces.len() + k, f.nodes.clone()))
+                    .collect(),
+            );
+            faces.extend(mine);
+        }
+        let search = MasterTriangles::new(&per_tie, |n| self.b.model.nodes[n].x);
+        let mut untied: Vec<Untied> = Vec::new();
         // components already held by *BOUNDARY or dependent in an equation (ccx: not active)
         let model = &self.b.model;
         let mut inactive: HashSet<(NodeIndex, u8)> = (model.spcs.iter())
@@ -155,45 +178,52 @@ impl Parser {
                     .map(|m| (m.terms[0].0.node, m.terms[0].0.component)),
             )
             .collect();
-        for tie in &ties {
+        for (k, tie) in ties.iter().enumerate() {
             let ent = format!("*TIE NAME={}", tie.name);
-            let Some((slave, master)) = &tie.surfaces else {
-                return Err(self.err(tie.loc, ent, "no data line (slave surface, master surface)"));
+            let Some((slave, _)) = &tie.surfaces else {
+                continue; // checked above
             };
-            let faces = self.surface_faces(master, sets, &ent)?.ok_or_else(|| {
-                self.err(
-                    tie.loc,
-                    ent.clone(),
-                    format!("the master surface {master} must be an element-face *SURFACE"),
-                )
-            })?;
-            let on_master: BTreeSet<NodeIndex> =
-                faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
+            let on_master: BTreeSet<NodeIndex> = (per_tie[k].iter())
+                .flat_map(|(_, nodes)| nodes.iter().copied())
+                .collect();
             let slaves: BTreeSet<NodeIndex> = match self.surface_faces(slave, sets, &ent)? {
                 Some(f) => f.iter().flat_map(|f| f.nodes.iter().copied()).collect(),
                 None => self.node_surface(slave, sets, &ent, tie.loc)?,
             };
             let tolerance = match tie.tolerance {
                 Some(t) if t >= 1e-10 => t,
-                _ => 0.025 * self.typical_size(&faces),
+                _ => search.in_face_tolerance,
+            };
+            let mut missed = Untied {
+                tie: tie.name.clone(),
+                tolerance,
+                in_face: search.in_face_tolerance,
+                ..Untied::default()
             };
             for &n in slaves.iter().filter(|n| !on_master.contains(n)) {
                 let p = self.b.model.nodes[n].x;
-                let best = faces
-                    .iter()
-                    .filter_map(|f| {
-                        let x: Vec<[f64; 3]> =
-                            f.nodes.iter().map(|&m| self.b.model.nodes[m].x).collect();
-                        let (xi, at) = project(&x, p)?;
-                        Some((dist(at, p), f, xi, at))
-                    })
-                    .min_by(|a, b| a.0.total_cmp(&b.0));
-                let Some((_, face, xi, at)) = best.filter(|b| b.0 <= tolerance) else {
-                    missed
-                        .entry(tie.name.clone())
-                        .or_default()
-                        .push(self.b.model.nodes[n].id);
-                    continue;
+                let id = self.b.model.nodes[n].id;
+                let face = match search.find(k, p, tolerance) {
+                    Found::Face(f) => &faces[f],
+                    Found::TooFar(d) => {
+                        missed.too_far.push(id);
+                        missed.farthest = missed.farthest.max(d);
+                        continue;
+                    }
+                    Found::NoFace => {
+                        missed.no_face.push(id);
+                        continue;
+                    }
+                };
+                let x: Vec<[f64; 3]> = (face.nodes.iter())
+                    .map(|&m| self.b.model.nodes[m].x)
+                    .collect();
+                let Some((xi, at)) = project(&x, p) else {
+                    return Err(self.err(
+                        tie.loc,
+                        ent,
+                        format!("the master face of element {} is degenerate", face.element),
+                    ));
                 };
                 for &m in face.nodes.iter().chain(std::iter::once(&n)) {
                     if self.b.model.nodes[m].displacement_frame.is_some() {
@@ -210,10 +240,7 @@ impl Parser {
                 let (shape, _) = face_shape(face.nodes.len(), xi);
                 for c in 0..3u8 {
                     if !inactive.insert((n, c)) {
-                        missed
-                            .entry(tie.name.clone())
-                            .or_default()
-                            .push(self.b.model.nodes[n].id);
+                        missed.held.push(id);
                         continue;
                     }
                     let mut terms = vec![(
@@ -243,19 +270,12 @@ impl Parser {
                     self.b.model.nodes[n].x = at;
                 }
             }
+            untied.push(missed);
         }
-        for (name, mut ids) in missed {
-            ids.sort_unstable();
-            ids.dedup();
-            let shown: Vec<String> = ids.iter().take(10).map(u64::to_string).collect();
+        for u in untied.iter().filter(|u| u.count() > 0) {
             self.b.model.warnings.push(crate::import::ImportWarning {
                 file: self.b.files[0].clone(),
-                message: format!(
-                    "*TIE {name}: {} slave node(s) lie farther than the position tolerance from every master face, or have components already held by *BOUNDARY or an equation, and are not tied there (as CalculiX): {}{}",
-                    ids.len(),
-                    shown.join(", "),
-                    if ids.len() > 10 { ", …" } else { "" }
-                ),
+                message: u.message(),
             });
         }
         Ok(())
@@ -291,19 +311,16 @@ impl Parser {
             };
             for e in elements {
                 let el = &self.b.model.elements[e];
-                let nodes = solid_faces(el.kind)
-                    .filter(|(faces, _)| *face <= faces.len())
-                    .and_then(|(faces, edges)| face_nodes(&el.nodes, faces[*face - 1], edges))
-                    .ok_or_else(|| {
-                        self.err(
-                            *at,
-                            ent.to_owned(),
-                            format!(
-                                "*SURFACE {name}: element {} ({:?}) has no solid face S{face}",
-                                el.id, el.kind
-                            ),
-                        )
-                    })?;
+                let nodes = ccx_face_nodes(el.kind, &el.nodes, *face).ok_or_else(|| {
+                    self.err(
+                        *at,
+                        ent.to_owned(),
+                        format!(
+                            "*SURFACE {name}: element {} ({:?}) has no solid face S{face}",
+                            el.id, el.kind
+                        ),
+                    )
+                })?;
                 out.push(Face {
                     element: el.id,
                     nodes,
@@ -331,34 +348,86 @@ impl Parser {
         }
         Ok(out)
     }
+}
 
-    /// CalculiX's typical element size of the master faces (module doc): the mean distance
-    /// from the centroid of the triangle of each face's first three corners to its first edge,
-    /// 2·area / (3·|edge|).
-    fn typical_size(&self, faces: &[Face]) -> f64 {
-        let sizes: Vec<f64> = faces
-            .iter()
-            .map(|f| {
-                let [a, b, c] = [0, 1, 2].map(|k| self.b.model.nodes[f.nodes[k]].x);
-                let (u, v) = (
-                    [0, 1, 2].map(|k| b[k] - a[k]),
-                    [0, 1, 2].map(|k| c[k] - a[k]),
-                );
-                let cross = [
-                    u[1] * v[2] - u[2] * v[1],
-                    u[2] * v[0] - u[0] * v[2],
-                    u[0] * v[1] - u[1] * v[0],
-                ];
-                let area2 = dist(cross, [0.0; 3]);
-                area2 / (3.0 * dist(a, b)).max(f64::MIN_POSITIVE)
-            })
-            .collect();
-        sizes.iter().sum::<f64>() / sizes.len().max(1) as f64
+/// The slave nodes one tie leaves untied, by reason (ccx writes each to
+/// `WarnNodeMissTiedContact.nam`: a node per search failure, a node per held component).
+#[derive(Default)]
+struct Untied {
+    tie: String,
+    tolerance: f64,
+    in_face: f64,
+    /// Opposite a master face, farther from it than the position tolerance.
+    too_far: Vec<u64>,
+    farthest: f64,
+    /// No master face opposite within the in-face tolerance.
+    no_face: Vec<u64>,
+    /// One entry per component already held by `*BOUNDARY` or an equation.
+    held: Vec<u64>,
+}
+
+impl Untied {
+    /// The entries ccx writes to `WarnNodeMissTiedContact.nam` for this tie.
+    fn count(&self) -> usize {
+        self.too_far.len() + self.no_face.len() + self.held.len()
+    }
+
+    /// The warning: how many, why, and every node id.
+    fn message(&self) -> String {
+        let mut parts = Vec::new();
+        if !self.too_far.is_empty() {
+            parts.push(format!(
+                "{} opposite a master face but farther from it than the position tolerance {:.4e} (up to {:.4e}): nodes {}",
+                self.too_far.len(),
+                self.tolerance,
+                self.farthest,
+                id_ranges(&self.too_far)
+            ));
+        }
+        if !self.no_face.is_empty() {
+            parts.push(format!(
+                "{} with no master face opposite (in-face tolerance {:.4e}): nodes {}",
+                self.no_face.len(),
+                self.in_face,
+                id_ranges(&self.no_face)
+            ));
+        }
+        if !self.held.is_empty() {
+            parts.push(format!(
+                "{} component(s) already held by *BOUNDARY or an equation: nodes {}",
+                self.held.len(),
+                id_ranges(&self.held)
+            ));
+        }
+        format!(
+            "*TIE {}: {} slave node(s) not tied (as CalculiX 2.20, which lists them in WarnNodeMissTiedContact.nam): {}",
+            self.tie,
+            self.count(),
+            parts.join("; ")
+        )
     }
 }
 
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+/// Node ids as sorted runs: "3-7, 12, 15-16".
+fn id_ranges(ids: &[u64]) -> String {
+    let mut v = ids.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    let mut out: Vec<String> = Vec::new();
+    let mut k = 0;
+    while k < v.len() {
+        let mut j = k;
+        while j + 1 < v.len() && v[j + 1] == v[j] + 1 {
+            j += 1;
+        }
+        out.push(if j == k {
+            v[k].to_string()
+        } else {
+            format!("{}-{}", v[k], v[j])
+        });
+        k = j + 1;
+    }
+    out.join(", ")
 }
 
 /// Shape functions of a face of `n` nodes (3: linear triangle, 6: quadratic, 4: bilinear
@@ -479,6 +548,10 @@ fn project(x: &[[f64; 3]], p: [f64; 3]) -> Option<([f64; 2], [f64; 3])> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    }
 
     #[test]
     fn face_shape_functions_interpolate_their_nodes_and_sum_to_one() {
