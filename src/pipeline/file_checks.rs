@@ -560,17 +560,26 @@ fn free_rigid_motions_with_inertia(body: &file::ReducedBody, free: &[[f64; 6]]) 
             })
             .sum::<f64>()
     });
-    let ev = h
-        .self_adjoint_eigenvalues(faer::Side::Lower)
-        .unwrap_or_default();
+    // an eigen failure (non-finite terms) counts every free motion, as without invariants
+    let Ok(ev) = h.self_adjoint_eigenvalues(faer::Side::Lower) else {
+        return free.len();
+    };
     ev.iter().filter(|&&v| v > ZERO_INERTIA * top).count()
 }
 
-/// The body size rotations are scaled by in [`free_rigid_motions`].
+/// The body size rotations are scaled by in [`free_rigid_motions`]: the stored nodes' largest
+/// distance from the origin, or the body's radius of gyration about it, √(tr I7 / (2 I1)),
+/// when larger (a file may store few or no nodes: `--keep-nodes interface`).
 fn rigid_scale(body: &file::ReducedBody) -> f64 {
-    body.nodes
-        .iter()
+    let nodes = (body.nodes.iter())
         .map(|n| n.xyz.iter().map(|v| v * v).sum::<f64>().sqrt())
-        .fold(0.0f64, f64::max)
-        .max(f64::MIN_POSITIVE)
+        .fold(0.0f64, f64::max);
+    let inv = &body.invariants;
+    let gyration = match inv.i1.first() {
+        Some(&m) if m > 0.0 && inv.i7.len() == 9 => {
+            ((inv.i7[0] + inv.i7[4] + inv.i7[8]) / (2.0 * m)).max(0.0).sqrt()
+        }
+        _ => 0.0,
+    };
+    nodes.max(gyration).max(f64::MIN_POSITIVE)
 }
