@@ -128,6 +128,7 @@ fn buckling_factor_is_null_in_tension_and_eulers_in_compression() {
         "λ₁ = {got:.9}, Euler P_cr/P = {:.9}, rel. error {err:+.2e}",
         p_cr / p
     );
-    assert!(err.abs() < 1e-6, "λ₁ = {got} vs {}", p_cr / p);
+    // measured +3.3e-9 (NE CBAR elements)
+    assert!(err.abs() < 3e-8, "λ₁ = {got} vs {}", p_cr / p);
     std::fs::remove_dir_all(&dir).ok();
 }
