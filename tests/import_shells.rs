@@ -180,7 +180,11 @@ ENDDATA
     let m = read("q8.bdf", &q8).unwrap();
     assert_eq!(m.elements[0].nodes.len(), 8);
     assert_eq!(m.mpcs.len(), 4 * 6);
-    assert!(m.deck.notes.iter().any(|n| n.contains("blank mid-side grids")));
+    assert!(m
+        .deck
+        .notes
+        .iter()
+        .any(|n| n.contains("blank mid-side grids")));
 }
 
 const INP: &str = "*NODE

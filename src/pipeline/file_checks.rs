@@ -576,9 +576,10 @@ fn rigid_scale(body: &file::ReducedBody) -> f64 {
         .fold(0.0f64, f64::max);
     let inv = &body.invariants;
     let gyration = match inv.i1.first() {
-        Some(&m) if m > 0.0 && inv.i7.len() == 9 => {
-            ((inv.i7[0] + inv.i7[4] + inv.i7[8]) / (2.0 * m)).max(0.0).sqrt()
-        }
+        Some(&m) if m > 0.0 && inv.i7.len() == 9 => ((inv.i7[0] + inv.i7[4] + inv.i7[8])
+            / (2.0 * m))
+            .max(0.0)
+            .sqrt(),
         _ => 0.0,
     };
     nodes.max(gyration).max(f64::MIN_POSITIVE)
