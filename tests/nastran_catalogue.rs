@@ -175,7 +175,7 @@ fn entries(path: &Path) -> Vec<(String, Vec<u8>)> {
             let mut e = z.by_index(k).unwrap();
             let mut bytes = Vec::new();
             e.read_to_end(&mut bytes).unwrap();
-            (e.name().to_owned(), bytes)
+            (e.name().expect("UTF-8 name").to_string(), bytes)
         })
         .collect()
 }

@@ -92,12 +92,12 @@ fn content(head: &[u8]) -> Content {
         return Content::Archive;
     }
     let text = String::from_utf8_lossy(head);
-    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
     if lines.clone().next() == Some("$MeshFormat") {
         return Content::Model(Format::Gmsh);
     }
     let (mut abaqus, mut nastran) = (0usize, 0usize);
-    for line in lines.by_ref() {
+    for line in lines {
         let bytes = line.as_bytes();
         if bytes[0] == b'*' {
             // a keyword is letters and blanks up to a comma (a Nastran large-field
