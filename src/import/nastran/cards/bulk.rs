@@ -513,7 +513,11 @@ pub(in crate::import::nastran) const CARDS: &[Row] = &[
     ("SPC1", Constraint, Read(sets::spc1)),
     ("SPCADD", Constraint, Read(sets::spcadd)),
     ("SPCAX", Axisymmetric, Refuse(AXISYMMETRIC)),
-    ("SPCD", StaticLoad, Read(loads::card)),
+    (
+        "SPCD",
+        StaticLoad,
+        NoteWhy("an enforced displacement is a load of a static or dynamic load case: in a normal-modes analysis it neither loads nor holds the body (its dofs are held only by the SPC set the case control selects)"),
+    ),
     ("SPCOFF", Constraint, NoteWhy("dofs excluded from AUTOSPC: the build keeps every dof with stiffness or mass either way")),
     ("SPCOFF1", Constraint, NoteWhy("dofs excluded from AUTOSPC: the build keeps every dof with stiffness or mass either way")),
     ("SPLINE1", Aeroelastic, Note),
