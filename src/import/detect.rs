@@ -3,7 +3,8 @@
 //! `SOL`, `GRID`, any card of the catalogue), Gmsh's `$MeshFormat`. `.inp`, `.bdf`, `.nas`,
 //! `.blk`, `.bulk` and `.msh` name a format, which the content must not contradict; `.dat`
 //! (Nastran's and Abaqus's) and other extensions take the content's. A file that looks like
-//! none (a README named `.inp`) or is a flexbody output file is an error saying so.
+//! none (a README named `.inp`) or is a flexbody output file is an error saying so; an empty
+//! file is the error `file:1: empty file`.
 
 use std::io::Read;
 use std::path::Path;
@@ -34,6 +35,10 @@ pub(super) fn format_of(path: &Path) -> Result<Format, ImportError> {
             file: file.clone(),
             source,
         })?;
+    if head.iter().all(u8::is_ascii_whitespace) {
+        // an empty file is no model of any format, whatever its extension says
+        return Err(super::error::parse_err(&file, 1, "file", "empty file"));
+    }
     let by_extension = Format::from_extension(path);
     let decisive = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
         matches!(

@@ -495,7 +495,7 @@ fn solution(
         Disposition::Modes => None,
         Disposition::Response(what) => {
             model.deck.notes.push(format!(
-                "SOL {value} ({what}, {}:{}): the body is the structure's normal modes; the                  response analysis's own cards are notes",
+                "SOL {value} ({what}, {}:{}): the body is the structure's normal modes; the response analysis's own cards are notes",
                 files[loc.file as usize], loc.line
             ));
             None

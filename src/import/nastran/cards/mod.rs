@@ -152,6 +152,7 @@ impl Category {
             Category::Random => "random-response input (spectral densities and their tables), applied after the modes",
             Category::Aeroelastic => "the aerodynamic model, its splines to the structure and the trim, flutter and gust requests: aerodynamic loads on the structure, not part of its stiffness, mass or constraints",
             Category::Optimization => "the design model and responses of SOL 200: outside SOL 200 the analysis model is the cards as written",
+            Category::StaticLoad => "a load of a static or response load case: the normal modes neither carry nor are held by it (the scene's loads and a STATSUB preload are the cards the case control selects)",
             Category::Output | Category::Solution => OUTPUT,
             Category::Thermal => THERMAL,
             Category::MaterialTable => "a material table acts only through a MATTi or MATS1 that names it (a MATTi on a material in use is refused)",
