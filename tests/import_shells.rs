@@ -125,7 +125,7 @@ ENDDATA
 }
 
 #[test]
-fn shell_offsets_are_read_mid4_and_quadratic_shells_are_errors() {
+fn shell_offsets_are_read_mid4_is_an_error_and_blank_midsides_are_straight() {
     let base = format!(
         "BEGIN BULK
 {GRIDS}PSHELL  7       1       .002    1
@@ -174,17 +174,19 @@ ENDDATA
         "CQUAD4  10      7       1       2       3       4",
         "CQUAD8  10      7       1       2       3       4",
     );
-    // a CQUAD8 with its mid-side grids blank has straight edges, as MSC forms it: a node at
-    // each edge's mid-point tied to the mean of its corners on all six dofs
-    // (tests/nastran_structural_cards.rs compares it with the grids written out)
+    // a CQUAD8 with its four mid-side grids blank has straight edges, as MSC Nastran forms it
+    // (issue 44, docs/nastran-structural-cards.md): a node at each edge's mid-point tied by an
+    // MPC on each of its six dofs (the 4-grid form is not read as a CQUAD4)
     let m = read("q8.bdf", &q8).unwrap();
-    assert_eq!(m.elements[0].nodes.len(), 8);
-    assert_eq!(m.mpcs.len(), 4 * 6);
-    assert!(m
-        .deck
-        .notes
-        .iter()
-        .any(|n| n.contains("blank mid-side grids")));
+    assert_eq!((m.nodes.len(), m.mpcs.len()), (8, 4 * 6));
+    assert!(
+        m.deck
+            .notes
+            .iter()
+            .any(|n| n.contains("4 edges made straight")),
+        "{:?}",
+        m.deck.notes
+    );
 }
 
 const INP: &str = "*NODE

@@ -33,6 +33,26 @@ pub enum ImportError {
         /// File.
         file: String,
     },
+    /// The extension names one format, the content looks like another.
+    #[error("{file}: the extension says {extension} but the content looks like {content}; pass --format {option} to read it as {content} (or rename the file)")]
+    FormatMismatch {
+        /// File.
+        file: String,
+        /// The extension's format.
+        extension: &'static str,
+        /// The format the content looks like.
+        content: &'static str,
+        /// The `--format` value of the content's format.
+        option: &'static str,
+    },
+    /// The file is not a model at all.
+    #[error("{file}: not a model file: {what}")]
+    NotAModel {
+        /// File.
+        file: String,
+        /// What it is, or what it lacks.
+        what: String,
+    },
     /// A CalculiX matrix dump could not be read.
     #[error(transparent)]
     CcxMatrix(#[from] CcxMatrixError),
@@ -112,7 +132,9 @@ impl ImportError {
         match self {
             ImportError::Io { file, .. }
             | ImportError::Parse { file, .. }
-            | ImportError::UnknownFormat { file } => Some(file),
+            | ImportError::UnknownFormat { file }
+            | ImportError::FormatMismatch { file, .. }
+            | ImportError::NotAModel { file, .. } => Some(file),
             // the first refused card's file, so that file() and line() name one place
             ImportError::Refused { file, cards } => Some(cards.first().map_or(file, |c| &c.file)),
             ImportError::CcxMatrix(_) => None,

@@ -1,11 +1,13 @@
 //! FE model importers: Abaqus/CalculiX `.inp`, Nastran `.bdf`, Gmsh `.msh`, Matrix Market.
 //!
-//! [`read_model`] picks the reader from the file extension (or [`ImportOptions::format`]) and
+//! [`read_model`] picks the reader from the file's content and extension (module `detect`; or
+//! [`ImportOptions::format`]) and
 //! returns a resolved [`Model`]. Every failure is an [`ImportError`] naming file, line and entity.
 //! Readers never panic on bad input.
 pub mod abaqus;
 pub mod budget;
 pub mod ccx_matrices;
+mod detect;
 pub mod error;
 pub mod gmsh;
 pub mod material_file;
@@ -116,12 +118,10 @@ impl InpShells {
 
 /// Read a model file in any supported format.
 pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportError> {
-    let format = opts
-        .format
-        .or_else(|| Format::from_extension(path))
-        .ok_or_else(|| ImportError::UnknownFormat {
-            file: path.display().to_string(),
-        })?;
+    let format = match opts.format {
+        Some(f) => f,
+        None => detect::format_of(path)?,
+    };
     let mut model = match format {
         Format::Abaqus => abaqus::read_with_options(path, opts)?,
         Format::Nastran => nastran::read_with_options(path, opts)?.0,

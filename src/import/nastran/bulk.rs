@@ -7,6 +7,7 @@
 use std::collections::BTreeMap;
 
 use super::bush::BushCards;
+use super::cards::{self, Rule};
 use super::elements::ElementCards;
 use super::fields::{ThruBudget, C};
 use super::geometry::{CoordIndex, GeometryCards};
@@ -17,10 +18,14 @@ use super::properties::PropertyCards;
 use super::scalar::ScalarCards;
 use super::sets::SetCards;
 use super::solution::SolutionCards;
-use super::{cards, CardCounts};
+use super::CardCounts;
 use crate::import::error::{ImportError, RefusedCard};
 use crate::import::text::{Builder, IdMap, Loc};
 use crate::model::{DofMask, ImportWarning, Model, NodeDof, NodeIndex};
+
+/// The cards noted by the catalogue: category → card key → (the row's own reason, places).
+pub(super) type CategoryNotes =
+    BTreeMap<cards::Category, BTreeMap<String, (Option<&'static str>, Vec<Loc>)>>;
 
 /// What the card readers fill: the model under construction, the node map, and the raw records
 /// of each card family that the resolve pass turns into the model.
@@ -37,6 +42,8 @@ pub(super) struct Bulk<'a> {
     pub thru: ThruBudget,
     /// Cards not read because they cannot change the body: key → (reason, places).
     pub notes: BTreeMap<String, (&'static str, Vec<Loc>)>,
+    /// Cards the catalogue notes, by category: key → (own reason, places).
+    pub noted: CategoryNotes,
     /// Every refused card, in deck order.
     pub refused: Vec<RefusedCard>,
     pub elements: ElementCards<'a>,
@@ -152,6 +159,14 @@ impl Bulk<'_> {
         entry.1.push(g.card.loc);
     }
 
+    /// Card `g` is not read: the catalogue notes it in `category` (with its own reason).
+    pub(super) fn note_in(&mut self, category: cards::Category, g: &C, why: Option<&'static str>) {
+        let entry = (self.noted.entry(category).or_default())
+            .entry(cards::key(g))
+            .or_insert_with(|| (why, Vec::new()));
+        entry.1.push(g.card.loc);
+    }
+
     /// Card `g` is refused, for `reason`.
     pub(super) fn refuse(&mut self, g: &C, reason: impl Into<String>) {
         self.refused.push(RefusedCard {
@@ -209,7 +224,7 @@ pub(crate) fn build(
             }
         }
         match cards::rule(&g) {
-            Some(cards::Rule::Geometry) => geometry.take(card, &files)?,
+            Some(Rule::Geometry) => geometry.take(card, &files)?,
             _ => {
                 if matches!(
                     card.name.as_str(),
@@ -234,6 +249,7 @@ pub(crate) fn build(
         coords,
         thru,
         notes: BTreeMap::new(),
+        noted: BTreeMap::new(),
         refused: Vec::new(),
         elements: ElementCards::default(),
         properties: PropertyCards::default(),
@@ -248,13 +264,15 @@ pub(crate) fn build(
     };
     for card in others {
         let g = C::new(card, &files);
-        match cards::rule(&g) {
-            Some(cards::Rule::Read(read)) => read(&mut d, &g)?,
-            Some(cards::Rule::Note(why)) => d.note(&g, why),
-            Some(cards::Rule::Refuse(why)) => d.refuse(&g, *why),
-            Some(cards::Rule::Geometry) | None => d.refuse(&g, cards::NOT_READ),
+        match cards::row(&g) {
+            Some((_, _, Rule::Read(read))) => read(&mut d, &g)?,
+            Some((_, category, Rule::Note)) => d.note_in(*category, &g, None),
+            Some((_, category, Rule::NoteWhy(why))) => d.note_in(*category, &g, Some(why)),
+            Some((_, _, Rule::Refuse(why))) => d.refuse(&g, *why),
+            Some((_, _, Rule::Geometry | Rule::Command)) | None => d.refuse(&g, cards::NOT_READ),
         }
     }
+    super::material_temperature::decide(&mut d)?;
     // the case control's refused commands first: they come first in the deck
     let mut refused: Vec<RefusedCard> = Vec::new();
     for (command, why, loc) in &case.refused {
@@ -269,6 +287,9 @@ pub(crate) fn build(
                 reason: (*why).to_owned(),
             });
         }
+    }
+    if let Some(refusal) = solution(&case, &files, &ignore, &mut ignored, &mut d.b.model) {
+        refused.insert(0, refusal);
     }
     d.refused.splice(0..0, refused);
     for (command, why, loc) in &case.noted {
@@ -459,6 +480,40 @@ fn statsub_preload(
     Ok(Some(request))
 }
 
+/// The deck's `SOL` (module `sol`): a normal-modes solution passes; a linear response
+/// solution passes with a note; any other is refused (unless ignored as `SOL`).
+fn solution(
+    case: &super::case_control::CaseControl,
+    files: &[String],
+    ignore: &[String],
+    ignored: &mut BTreeMap<String, Vec<Loc>>,
+    model: &mut Model,
+) -> Option<RefusedCard> {
+    use super::sol::Disposition;
+    let (value, loc) = case.sol.as_ref()?;
+    match super::sol::disposition(value) {
+        Disposition::Modes => None,
+        Disposition::Response(what) => {
+            model.deck.notes.push(format!(
+                "SOL {value} ({what}, {}:{}): the body is the structure's normal modes; the response analysis's own cards are notes",
+                files[loc.file as usize], loc.line
+            ));
+            None
+        }
+        Disposition::Refused(_) if ignore.iter().any(|i| i == "SOL") => {
+            ignored.entry("SOL".to_owned()).or_default().push(*loc);
+            None
+        }
+        Disposition::Refused(why) => Some(RefusedCard {
+            file: files[loc.file as usize].clone(),
+            line: loc.line as usize,
+            entity: format!("SOL {value} (executive control)"),
+            key: "SOL".to_owned(),
+            reason: why.to_owned(),
+        }),
+    }
+}
+
 /// An `ignore_cards` name as the card table knows it: upper case; a parameter as
 /// `PARAM:NAME` whether given as `PARAM:NAME`, `PARAM,NAME` or `PARAM NAME`.
 fn ignore_key(name: &str) -> String {
@@ -505,6 +560,20 @@ fn ignored_and_notes(d: &mut Bulk, ignored: &BTreeMap<String, Vec<Loc>>, ignore:
             .deck
             .notes
             .push(format!("{} not read: {why}", places(key, locs, files)));
+    }
+    for (category, cards) in &d.noted {
+        let list: Vec<String> = (cards.iter())
+            .map(|(key, (why, locs))| match why {
+                Some(why) => format!("{} — {why}", places(key, locs, files)),
+                None => places(key, locs, files),
+            })
+            .collect();
+        model.deck.notes.push(format!(
+            "{} cards not read ({}): {}",
+            category.title(),
+            category.why(),
+            list.join("; ")
+        ));
     }
 }
 

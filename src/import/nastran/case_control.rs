@@ -1,10 +1,9 @@
 //! Nastran case control: the part of a deck between `CEND` and `BEGIN BULK` that says which
 //! bulk-data sets a run uses. Read here: `TITLE`, `SUBCASE`, `SPC`, `MPC`, `METHOD`, `LOAD`,
 //! `STATSUB(PRELOAD)`, `TEMP(LOAD)`, `K2GG` and `M2GG` (global, i.e. above the first subcase,
-//! or inside a subcase, which overrides the global value). Refused: the commands that would
-//! change the body and are not modelled (`K2PP`, `M2PP`, `STATSUB(BUCKLE)`). Noted: `B2GG`,
-//! `B2PP` (damping) and `P2G` (a load). Every other command is output or solution control this
-//! tool has no use for and is skipped.
+//! or inside a subcase, which overrides the global value). What every other command is — a
+//! refusal (`K2PP`, `M2PP`, …; and `STATSUB(BUCKLE)` here), a note (`B2GG`, `B2PP`, `P2G`, …;
+//! output and solution control go unsaid) — is the catalogue's (`cards::commands`).
 //!
 //! `K2GG = KAX`, `K2GG = 2.0*KAX, KBX` (MSC QRG "K2GG"): the DMIG matrices added to the g-set
 //! stiffness, each times its factor (default 1); `M2GG` alike for the mass (module `dmig`).
@@ -20,7 +19,12 @@
 //! whose subcases select different constraint or eigenvalue sets describes several analyses;
 //! the build needs one.
 
+use super::cards::{Category, Rule, NOT_READ};
 use crate::import::error::{parse_err, ImportError};
+
+/// Reason of the refusal of a buckling preload.
+const BUCKLE: &str =
+    "a buckling preload (SOL 105): flexbody reduces normal modes; use STATSUB(PRELOAD)";
 use crate::import::text::Loc;
 
 /// A `NAME = n` selection and where it was written.
@@ -73,35 +77,6 @@ pub(crate) struct Subcase {
     pub scope: Scope,
 }
 
-/// Case-control commands that change the body and are not modelled: (command, why). They are
-/// refused with the bulk-data cards (`cards`), and may be dropped on purpose by name.
-const REFUSED: &[(&str, &str)] = &[
-    (
-        "K2PP",
-        "adds a stiffness matrix (DMIG) on the p-set (grids, scalar points and extra points) of \
-         a dynamic response: not modelled (a matrix of the structure is selected by K2GG)",
-    ),
-    (
-        "M2PP",
-        "adds a mass matrix (DMIG) on the p-set (grids, scalar points and extra points) of a \
-         dynamic response: not modelled (a matrix of the structure is selected by M2GG)",
-    ),
-    (
-        "STATSUB(BUCKLE)",
-        "a buckling preload (SOL 105): flexbody reduces normal modes; use STATSUB(PRELOAD)",
-    ),
-];
-
-/// Case-control commands that cannot change the body: (command, why). A note each.
-const NOTED: &[(&str, &str)] = &[
-    ("B2GG", super::cards::DAMPING),
-    ("B2PP", super::cards::DAMPING),
-    (
-        "P2G",
-        "a load matrix (DMIG) of a static or response analysis: not part of the body or its modes",
-    ),
-];
-
 /// `K2GG = …` or `M2GG = …`: DMIG matrices added to the g-set stiffness or mass.
 #[derive(Debug, Clone)]
 pub(crate) struct MatrixSelection {
@@ -128,6 +103,66 @@ pub(crate) struct CaseControl {
     pub noted: Vec<(String, &'static str, Loc)>,
     /// `K2GG` and `M2GG` commands, in deck order.
     pub matrices: Vec<MatrixSelection>,
+    /// The executive control's `SOL` (its value, upper case, and where).
+    pub sol: Option<(String, Loc)>,
+}
+
+/// Executive control statements (before `CEND`; also skipped in a deck without `CEND`).
+const EXECUTIVE: &[&str] = &[
+    "ALTER",
+    "APP",
+    "ASSIGN",
+    "CEND",
+    "CHKPNT",
+    "COMPILE",
+    "COMPILER",
+    "DIAG",
+    "DOMAINSOLVER",
+    "ECHOOFF",
+    "ECHOON",
+    "ENDALTER",
+    "ENDJOB",
+    "EXPAND",
+    "GEOMCHECK",
+    "ID",
+    "INCLUDE",
+    "INIT",
+    "LINK",
+    "MALTER",
+    "MDLPRM",
+    "NASTRAN",
+    "RESTART",
+    "SOL",
+    "TIME",
+];
+
+/// Reason of the refusal of a PARAM the bulk data would honour, given in the case control.
+const PARAM_IN_CASE: &str = "a PARAM that changes the body, given in the case control: this \
+                             importer reads it in the bulk data; move it there";
+
+/// A case control `PARAM,NAME,value` line: a PARAM that is a note passes; one that the bulk
+/// data honours or refuses, or no table names, is refused (command, why, where).
+fn case_param(upper: &str, loc: Loc) -> Option<(String, &'static str, Loc)> {
+    let name = upper[5..]
+        .trim_start_matches([' ', ',', '='])
+        .split([',', ' '])
+        .next()
+        .unwrap_or("");
+    let key = format!("PARAM:{name}");
+    match super::cards::param(name) {
+        Some((_, _, Rule::Note | Rule::NoteWhy(_))) => None,
+        Some((_, _, Rule::Refuse(why))) => Some((key, why, loc)),
+        Some((_, _, Rule::Read(_))) => Some((key, PARAM_IN_CASE, loc)),
+        _ => Some((key, NOT_READ, loc)),
+    }
+}
+
+/// The first word of a command line, upper case: up to a blank, `=`, `(` or `,`.
+fn first_word(upper: &str) -> &str {
+    upper
+        .split(|c: char| c.is_whitespace() || c == '=' || c == '(' || c == ',')
+        .next()
+        .unwrap_or("")
 }
 
 /// The selections the build uses: of the one (or the chosen) subcase, global values filled in.
@@ -157,6 +192,17 @@ pub(crate) fn parse(
         .iter()
         .position(|(l, _)| l.trim().eq_ignore_ascii_case("CEND"))
         .map_or(0, |k| k + 1);
+    // the SOL statement: before CEND, or anywhere in a deck without CEND
+    let executive = if start > 0 { &lines[..start] } else { lines };
+    for (l, loc) in executive {
+        let upper = l.trim().to_ascii_uppercase();
+        if first_word(&upper) == "SOL" {
+            cc.sol = Some((
+                upper[3..].trim().trim_start_matches(',').trim().to_owned(),
+                *loc,
+            ));
+        }
+    }
     // Logical lines: a trailing comma continues a command on the next line.
     let mut logical: Vec<(String, Loc)> = Vec::new();
     let mut open = false;
@@ -174,10 +220,42 @@ pub(crate) fn parse(
     let mut current: Option<usize> = None;
     for (text, loc) in logical {
         let upper = text.to_ascii_uppercase();
-        let word = upper
-            .split(|c: char| c.is_whitespace() || c == '=' || c == '(')
-            .next()
-            .unwrap_or("");
+        let word = first_word(&upper);
+        if EXECUTIVE.contains(&word) {
+            continue;
+        }
+        // the plotter's and XY-plotter's commands follow OUTPUT(PLOT), OUTPUT(XYPLOT), …
+        if word == "OUTPUT" && (upper.contains("PLOT") || upper.contains("XY")) {
+            break;
+        }
+        if word == "PARAM" {
+            if let Some(refusal) = case_param(&upper, loc) {
+                cc.refused.push(refusal);
+            }
+            continue;
+        }
+        match super::cards::command(word) {
+            Some((_, _, Rule::Command)) => {}
+            Some((name, category, rule @ (Rule::Note | Rule::NoteWhy(_)))) => {
+                // output and solution control go unsaid; the others would act in another
+                // analysis (damping, loads, response): a note each
+                if !matches!(category, Category::Output | Category::Solution) {
+                    let why = match rule {
+                        Rule::NoteWhy(why) => why,
+                        _ => category.why(),
+                    };
+                    cc.noted.push(((*name).to_owned(), why, loc));
+                }
+            }
+            Some((name, _, Rule::Refuse(why))) => {
+                cc.refused.push(((*name).to_owned(), why, loc));
+                continue;
+            }
+            Some((_, _, Rule::Geometry | Rule::Read(_))) | None => {
+                cc.refused.push((word.to_owned(), NOT_READ, loc));
+                continue;
+            }
+        }
         if word == "SUBCASE" {
             let id = upper[7..]
                 .trim()
@@ -214,21 +292,9 @@ pub(crate) fn parse(
             .filter(|c| !c.is_whitespace())
             .collect::<String>()
             .to_ascii_uppercase();
-        let command = if word == "STATSUB" && describer.contains("BUCKLE") {
-            "STATSUB(BUCKLE)"
-        } else {
-            word
-        };
-        if let Some(&(command, why)) = REFUSED.iter().find(|r| r.0 == command) {
-            cc.refused.push((command.to_owned(), why, loc));
+        if word == "STATSUB" && describer.contains("BUCKLE") {
             // a refused STATSUB still names its static subcase: not an analysis of its own
-            if word != "STATSUB" {
-                continue;
-            }
-        }
-        if let Some(&(command, why)) = NOTED.iter().find(|r| r.0 == word) {
-            cc.noted.push((command.to_owned(), why, loc));
-            continue;
+            cc.refused.push(("STATSUB(BUCKLE)".to_owned(), BUCKLE, loc));
         }
         if matches!(word, "K2GG" | "M2GG") {
             let terms = matrix_terms(value).ok_or_else(|| {

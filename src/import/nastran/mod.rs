@@ -35,12 +35,14 @@ mod geometry;
 mod lex;
 mod loads;
 mod mass;
+mod material_temperature;
 mod properties;
 mod rigid;
 mod scalar;
 mod sets;
 mod shear;
 mod shell;
+mod sol;
 mod solution;
 mod temperature;
 
@@ -53,6 +55,21 @@ use crate::model::Model;
 
 /// Card counts by card name (`GRID`, `CHEXA`, `PARAM`, …), supported or not.
 pub type CardCounts = BTreeMap<String, usize>;
+
+/// `docs/nastran-cards.md`: the catalogue of bulk data entries, PARAMs and case control
+/// commands with each one's disposition (generated; a test keeps the page equal).
+pub fn catalogue_markdown() -> String {
+    cards::markdown()
+}
+
+/// `name` (upper case) is a bulk data entry of the catalogue (used to tell a Nastran deck by
+/// its content).
+pub(crate) fn is_card_name(name: &str) -> bool {
+    name == "PARAM"
+        || cards::bulk::CARDS
+            .binary_search_by(|r| r.0.cmp(name))
+            .is_ok()
+}
 
 /// Read a Nastran deck (bulk data after `BEGIN BULK`, or a bare bulk file; `INCLUDE` followed).
 pub fn read(path: &Path) -> Result<Model, ImportError> {

@@ -35,6 +35,8 @@ pub(super) struct PropertyCards<'a> {
     /// PCOMP Z0 other than −T/2: PID → (mid-plane offset Z0 + T/2 from the reference plane,
     /// card place), applied with the elements' ZOFFS (`model::shell_offset`).
     pub mid_plane_offsets: BTreeMap<u64, (f64, Loc)>,
+    /// MATT1/MATT2/MATT8/MATT9, decided once every property is read (`material_temperature`).
+    pub temperature_tables: Vec<&'a Card>,
 }
 
 /// Note on the library shapes other than ROD: their J and shear factors are textbook values.
