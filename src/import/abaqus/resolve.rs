@@ -3,6 +3,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::shell_expansion::{expand_elements, Expansion, ShellElements};
 use super::temperature::{at_temperature, depends_on_temperature, Row, TemperatureState};
 use super::{Parser, Target};
 use crate::import::error::ImportError;
@@ -10,7 +11,7 @@ use crate::import::text::{IdMap, Loc};
 use crate::model::deck::PreloadRequest;
 use crate::model::{
     ConstraintSource, DofMask, EigenRequest, ImportWarning, Material, Model, PointMass, Property,
-    Section, SectionShape, Spc,
+    RigidElement, Section, SectionShape, Spc,
 };
 
 /// The model's ids and sets, resolved: what every later step looks members up in.
@@ -50,7 +51,14 @@ impl Sets {
 impl Parser {
     /// The resolve pass: ids → indices and sets, then materials, sections, boundary
     /// conditions, point masses, frames, rigid elements, notes and loads, in that order.
-    pub(super) fn finish(mut self) -> Result<Model, ImportError> {
+    /// When a `*TIE` or `*COUPLING` names faces of shells expanded as ccx expands them, the
+    /// expansion runs before the ties (their faces are the bricks'), and its [`Expansion`] is
+    /// returned for the loads (`shell_expansion::expand_loads`).
+    pub(super) fn finish(
+        mut self,
+        shells: &ShellElements,
+        offsets: &[f64],
+    ) -> Result<(Model, Option<Expansion>), ImportError> {
         let sets = self.resolve_sets()?;
         self.steps.finish_current();
         let base = {
@@ -65,9 +73,20 @@ impl Parser {
         self.resolve_point_masses(&sets)?;
         self.resolve_transforms(&sets)?;
         self.resolve_connectors(&sets.nodes, &sets.node_sets, &sets.element_sets)?;
+        self.resolve_incompatible_modes()?;
+        let expanded_first =
+            self.inp_shells == crate::import::InpShells::Expanded && self.shell_faces_in_use(&sets);
+        let expansion = match expanded_first {
+            true => Some(expand_elements(&mut self.b.model, shells, offsets, true)?),
+            false => None,
+        };
+        let (mpcs, rigid) = (self.b.model.mpcs.len(), self.b.model.rigid_elements.len());
+        let tie_loc = self.ties.first().map(|t| t.loc);
         self.resolve_ties(&sets)?;
         let reference_names = self.resolve_couplings(&sets)?;
-        self.resolve_incompatible_modes()?;
+        if let Some(x) = &expansion {
+            self.refuse_shell_nodes_after_expansion(x, (mpcs, rigid), tie_loc)?;
+        }
         self.import_notes();
         self.b.model.loads = self.resolve_loads(&sets)?;
         self.expand_quadratic_beams()?;
@@ -83,7 +102,59 @@ impl Parser {
         self.b.model.element_sets = sets.element_sets;
         self.b.model.files = self.b.files.clone();
         self.b.record_element_sources();
-        Ok(self.b.model)
+        Ok((self.b.model, expansion))
+    }
+
+    /// Ties and couplings resolved after the expansion (`finish`) must not name the shell nodes
+    /// themselves: the expansion's equations did not see them (ccx would join such a node as a
+    /// connected one).
+    fn refuse_shell_nodes_after_expansion(
+        &self,
+        x: &Expansion,
+        (mpcs, rigid): (usize, usize),
+        tie_loc: Option<Loc>,
+    ) -> Result<(), ImportError> {
+        let m = &self.b.model;
+        let in_mpc = (m.mpcs[mpcs..].iter())
+            .flat_map(|c| c.terms.iter().map(|t| t.0.node))
+            .find(|&n| x.is_shell_node(n))
+            .map(|n| (n, "*TIE"));
+        let in_rigid = (m.rigid_elements[rigid..].iter())
+            .flat_map(|r| match r {
+                RigidElement::Rbe2 {
+                    independent,
+                    dependent,
+                    ..
+                } => std::iter::once(*independent)
+                    .chain(dependent.iter().copied())
+                    .collect::<Vec<_>>(),
+                RigidElement::Rbe3 {
+                    reference,
+                    independent,
+                    ..
+                } => std::iter::once(*reference)
+                    .chain(independent.iter().map(|t| t.0))
+                    .collect(),
+            })
+            .find(|&n| x.is_shell_node(n))
+            .map(|n| (n, "*COUPLING"));
+        let Some((n, what)) = in_mpc.or(in_rigid) else {
+            return Ok(());
+        };
+        let loc = match what {
+            "*TIE" => tie_loc,
+            _ => self.couplings.first().map(|c| c.loc),
+        };
+        Err(self.err(
+            loc.unwrap_or_default(),
+            what,
+            format!(
+                "names shell node {} itself, in a deck whose ties or couplings also name faces \
+                 of shells (SPOS, SNEG): not supported (name the shell's faces, or the nodes of \
+                 a node surface in a deck without shell faces)",
+                m.nodes[n].id
+            ),
+        ))
     }
 
     /// Node and element ids → indices (mass elements checked against both), the node and

@@ -124,6 +124,19 @@ fn brick_of(card: &str) -> Option<(ElementKind, bool)> {
     })
 }
 
+/// The ccx type of the brick a shell type is expanded into (`None`: not a shell type).
+pub fn brick_card(card: &str) -> Option<&'static str> {
+    Some(match card {
+        "S8" => "C3D20",
+        "S8R" => "C3D20R",
+        "S6" => "C3D15",
+        "S4R" => "C3D8R",
+        "S4" => "C3D8I",
+        "S3" => "C3D6",
+        _ => return None,
+    })
+}
+
 /// The number of corner nodes of the shell a brick is made of.
 fn corners(brick: ElementKind) -> usize {
     match brick {
@@ -135,7 +148,7 @@ fn corners(brick: ElementKind) -> usize {
 /// ∂x/∂ξ × ∂x/∂η of a shell element at its local node `j` (ccx's norshell3/4/6/8: the
 /// element's own isoparametric interpolation, Zienkiewicz & Taylor, *The Finite Element
 /// Method* vol. 1, §8.5 serendipity and triangle shape functions).
-fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
+pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
     // (dN/dξ, dN/dη) of every node at node j's local coordinates
     let d: Vec<(f64, f64)> = match kind {
         ElementKind::Tri3 => vec![(-1.0, -1.0), (1.0, 0.0), (0.0, 1.0)],
@@ -216,13 +229,49 @@ struct ShellElement<'a> {
     brick: ElementKind,
     quadratic: bool,
     thickness: Vec<f64>,
+    /// `*SHELL SECTION, OFFSET=` (in thicknesses; SPOS = 0.5, SNEG = −0.5).
+    offset: f64,
 }
 
-/// Expand the deck's shells into bricks as ccx 2.20 does (module doc).
-pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportError> {
-    let elements = shell_elements(model, shells)?;
+/// The expanded nodes of every shell node, from [`expand_elements`] for [`expand_loads`].
+pub struct Expansion {
+    nodes: BTreeMap<NodeIndex, Expanded>,
+}
+
+impl Expansion {
+    /// Whether node `n` is a shell node that was expanded.
+    pub fn is_shell_node(&self, n: NodeIndex) -> bool {
+        self.nodes.contains_key(&n)
+    }
+}
+
+/// Expand the deck's shells into bricks as ccx 2.20 does (module doc); `offsets`: the
+/// `*SHELL SECTION, OFFSET` of each property (in thicknesses).
+pub fn expand(
+    model: &mut Model,
+    shells: &ShellElements,
+    offsets: &[f64],
+) -> Result<(), ImportError> {
+    let expansion = expand_elements(model, shells, offsets, false)?;
+    expand_loads(model, &expansion, shells);
+    Ok(())
+}
+
+/// The bricks, their nodes and the equations joining them to the shell nodes (module doc);
+/// `free_node_dependent`: a free shell node's equation (rule 3) is written with the shell node
+/// dependent, u_n = (u_b + u_t)/2 (or its quadratic form), so that its bottom node stays free
+/// for a `*TIE` or `*COUPLING` on the brick's faces as in ccx (which writes no equation there).
+pub fn expand_elements(
+    model: &mut Model,
+    shells: &ShellElements,
+    offsets: &[f64],
+    free_node_dependent: bool,
+) -> Result<Expansion, ImportError> {
+    let elements = shell_elements(model, shells, offsets)?;
     if elements.is_empty() {
-        return Ok(());
+        return Ok(Expansion {
+            nodes: BTreeMap::new(),
+        });
     }
     // the first shell element of each shell node: where its errors point
     let first_place: BTreeMap<NodeIndex, &Place> = (elements.iter().rev())
@@ -236,14 +285,24 @@ pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportErr
         model.params.solid_bubbles = true;
     }
     let rules = Joining::of(model, &expanded, &first_place)?;
-    rules.write(model, &expanded);
-    refuse_moments(model, &expanded);
-    move_pressures(model, &expanded, shells);
+    rules.write(model, &expanded, free_node_dependent);
+    Ok(Expansion { nodes: expanded })
+}
+
+/// The loads on expanded shells: moments refused, pressures moved to the bricks' bottom faces,
+/// temperatures given to the expanded nodes (module doc).
+pub fn expand_loads(model: &mut Model, expansion: &Expansion, shells: &ShellElements) {
+    let expanded = &expansion.nodes;
+    if expanded.is_empty() {
+        return;
+    }
+    refuse_moments(model, expanded);
+    move_pressures(model, expanded, shells);
     if let Some(preload) = model.deck.preload.as_mut() {
         if let Some((dt, _)) = preload.thermal.as_mut() {
             // ccx gives the expanded nodes the shell node's temperature (gen3dtemp)
             let mut parent = vec![None; model.nodes.len()];
-            for (&n, e) in &expanded {
+            for (&n, e) in expanded {
                 for k in [Some(e.bottom), e.middle, Some(e.top)]
                     .into_iter()
                     .flatten()
@@ -258,7 +317,6 @@ pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportErr
             dt.extend(added);
         }
     }
-    Ok(())
 }
 
 /// The shell elements with a section, checked: homogeneous isotropic sections, types ccx
@@ -266,6 +324,7 @@ pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportErr
 fn shell_elements<'a>(
     model: &Model,
     shells: &'a ShellElements,
+    offsets: &[f64],
 ) -> Result<Vec<ShellElement<'a>>, ImportError> {
     let mut out = Vec::new();
     // S4 becomes ccx's C3D8I: the model's linear wedges would take incompatible modes too
@@ -340,6 +399,7 @@ fn shell_elements<'a>(
             brick,
             quadratic,
             thickness,
+            offset: offsets.get(p).copied().unwrap_or(0.0),
         });
     }
     Ok(out)
@@ -386,6 +446,24 @@ fn expand_nodes(
         let &(rid, rn, rt, rplace) = (normals.iter())
             .min_by_key(|x| x.0)
             .expect("a shell node belongs to at least one element (it was listed by one)");
+        let offset_of = |id: u64| {
+            (list.iter())
+                .map(|&(k, _)| &elements[k])
+                .find(|e| model.elements[e.index].id == id)
+                .map_or(0.0, |e| e.offset)
+        };
+        let ro = offset_of(rid);
+        if let Some(&(id, ..)) = normals.iter().find(|x| offset_of(x.0) != ro) {
+            return Err(parse_err(
+                rplace,
+                format!("node {}", model.nodes[n].id),
+                format!(
+                    "shell elements {rid} and {id} meet there with another OFFSET ({ro} and \
+                     {}): ccx joins them with a rigid knot, which flexbody does not form",
+                    offset_of(id)
+                ),
+            ));
+        }
         let mut sum = [0.0; 3];
         for &(id, v, t, _) in &normals {
             if dot(v, rn) <= SAME_NORMAL || (t - rt).abs() >= 1e-10 {
@@ -419,9 +497,10 @@ fn expand_nodes(
             next_id += 1;
             model.nodes.len() - 1
         };
-        let bottom = add(-0.5);
-        let middle = corner_of_quadratic.then(|| add(0.0));
-        let top = add(0.5);
+        // gen3dfrom2d: the reference surface OFFSET·t above the mid-surface
+        let bottom = add(-0.5 - ro);
+        let middle = corner_of_quadratic.then(|| add(-ro));
+        let top = add(0.5 - ro);
         out.insert(
             n,
             Expanded {
@@ -495,8 +574,8 @@ enum Rule {
 }
 
 /// How one shell node is joined: its rule per direction, the dofs its `*BOUNDARY` holds, the
-/// tangent axes it holds with the held rotation each came from.
-type NodeJoining = ([Rule; 3], DofMask, Vec<(Xyz, usize)>);
+/// tangent axes it holds with the held rotation each came from, whether it is free (rule 3).
+type NodeJoining = ([Rule; 3], DofMask, Vec<(Xyz, usize)>, bool);
 
 /// The joining of every shell node.
 struct Joining {
@@ -624,18 +703,24 @@ impl Joining {
                     "a rotation held in a *TRANSFORM frame of a shell node is not supported".into(),
                 ));
             }
-            nodes.insert(n, ([rule(0), rule(1), rule(2)], held, axes));
+            let free = !joined.contains(&n) && held.0 == 0;
+            nodes.insert(n, ([rule(0), rule(1), rule(2)], held, axes, free));
         }
         Ok(Joining { nodes })
     }
 
-    /// The equations.
-    fn write(&self, model: &mut Model, expanded: &BTreeMap<NodeIndex, Expanded>) {
+    /// The equations (`free_node_dependent`: [`expand_elements`]).
+    fn write(
+        &self,
+        model: &mut Model,
+        expanded: &BTreeMap<NodeIndex, Expanded>,
+        free_node_dependent: bool,
+    ) {
         let dof = |node: NodeIndex, d: usize| NodeDof {
             node,
             component: d as u8,
         };
-        for (&n, (rules, held, axes)) in &self.nodes {
+        for (&n, (rules, held, axes, free)) in &self.nodes {
             let e = expanded[&n];
             // the equations of a shell node are known by its id in messages
             let id = model.nodes[n].id;
@@ -649,9 +734,18 @@ impl Joining {
                     }
                 }
             };
+            let free = free_node_dependent && *free;
             for d in 0..3 {
                 let mut terms = vec![(dof(e.bottom, d), 1.0)];
                 terms.extend(bottom(d).into_iter().map(|(k, c)| (k, -c)));
+                if free {
+                    // the same equation with u_n first (its coefficient made 1)
+                    let k = (terms.iter().position(|(k, _)| k.node == n))
+                        .expect("rules 1 and 3 name the shell node n");
+                    let (_, c) = terms[k];
+                    terms.swap(0, k);
+                    terms.iter_mut().for_each(|t| t.1 /= c);
+                }
                 model.mpcs.push(Mpc { id, terms });
                 if let (true, Some(m)) = (held.contains(d), e.middle) {
                     let terms = vec![(dof(m, d), 1.0), (dof(n, d), -1.0)];
