@@ -355,6 +355,9 @@ struct Parser {
     nodal_thickness_sections: Vec<usize>,
     /// How the shells are formed (`ImportOptions::inp_shells`).
     inp_shells: crate::import::InpShells,
+    /// The shell nodes of shells expanded before the ties (`resolve::finish`): a tie's slave
+    /// node among them is refused (`tie.rs`).
+    expanded_shell_nodes: std::collections::HashSet<usize>,
     /// Bytes of all files read so far (the input budget's base, see `import::budget`).
     input_bytes: u64,
     /// Set members added so far over all sets (bounded by the budget's total).
@@ -434,6 +437,7 @@ impl Parser {
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),
             inp_shells: crate::import::InpShells::Expanded,
+            expanded_shell_nodes: Default::default(),
             input_bytes: 0,
             set_members: 0,
         }

@@ -80,6 +80,9 @@ impl Parser {
             true => Some(expand_elements(&mut self.b.model, shells, offsets, true)?),
             false => None,
         };
+        if let Some(x) = &expansion {
+            self.expanded_shell_nodes = x.shell_nodes().collect();
+        }
         let (mpcs, rigid) = (self.b.model.mpcs.len(), self.b.model.rigid_elements.len());
         let tie_loc = self.ties.first().map(|t| t.loc);
         self.resolve_ties(&sets)?;

@@ -243,6 +243,11 @@ impl Expansion {
     pub fn is_shell_node(&self, n: NodeIndex) -> bool {
         self.nodes.contains_key(&n)
     }
+
+    /// The shell nodes that were expanded.
+    pub fn shell_nodes(&self) -> impl Iterator<Item = NodeIndex> + '_ {
+        self.nodes.keys().copied()
+    }
 }
 
 /// Expand the deck's shells into bricks as ccx 2.20 does (module doc); `offsets`: the

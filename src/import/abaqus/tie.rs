@@ -184,6 +184,18 @@ impl Parser {
                 in_face: search.in_face_tolerance,
                 ..Untied::default()
             };
+            if let Some(&n) = slaves.iter().find(|n| self.expanded_shell_nodes.contains(n)) {
+                return Err(self.err(
+                    tie.loc,
+                    ent,
+                    format!(
+                        "slave node {} is a shell node itself, in a deck whose ties or couplings \
+                         also name faces of shells (SPOS, SNEG): not supported (name the \
+                         shell's faces)",
+                        self.b.model.nodes[n].id
+                    ),
+                ));
+            }
             for &n in slaves.iter().filter(|n| !on_master.contains(n)) {
                 let p = at(&self.b.model.nodes, n);
                 let id = self.b.model.nodes[n].id;
