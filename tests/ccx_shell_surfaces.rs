@@ -37,7 +37,10 @@ fn build(dir: &Path, deck: &Path, extra: &[&str]) -> (Vec<f64>, String) {
 
 /// The largest relative difference of modes `from..` of `ours` to `reference`.
 fn worst(ours: &[f64], reference: &[f64], from: usize) -> f64 {
-    assert!(ours.len() >= reference.len(), "{ours:?} against {reference:?}");
+    assert!(
+        ours.len() >= reference.len(),
+        "{ours:?} against {reference:?}"
+    );
     (ours.iter().zip(reference).skip(from))
         .map(|(a, b)| (a - b).abs() / b)
         .fold(0.0, f64::max)
@@ -126,7 +129,7 @@ fn a_kinematic_coupling_on_a_spos_face_equals_the_brick_layer_written_out() {
     for name in ["coupling_spos_s8r", "coupling_spos_offset_s8r"] {
         let (ours, _) = build(&dir, &deck(name), &["--modes", "10"]);
         let w = worst(&ours, &by_hand, 0);
-        // measured 2.4e-7 (the OFFSET moves the layer rigidly with the held face)
+        // measured 3.0e-7 (the OFFSET moves the layer rigidly with the held face)
         assert!(w <= 1e-6, "{name}: {w:e}: {ours:?} against {by_hand:?}");
         // ccx 2.20 on this deck: the faces read on the unexpanded shell, three rigid modes left
         let ccx = ccx_frequencies("ccx_shell_surfaces", name);
@@ -141,7 +144,11 @@ fn native_shells_tied_by_their_faces_stay_near_calculix() {
     let native = ["--modes", "14", "--inp-shells", "native"];
     // the plate alone: flexbody's curved 8-node shell against ccx's C3D20R layer
     let (ours, _) = build(&dir, &deck("plate_s8r"), &native);
-    let w = worst(&ours, &ccx_frequencies("ccx_shell_surfaces", "plate_s8r"), 6);
+    let w = worst(
+        &ours,
+        &ccx_frequencies("ccx_shell_surfaces", "plate_s8r"),
+        6,
+    );
     // measured 6.3e-3
     assert!(w <= 1e-2, "plate: {w:e}");
     for name in ["tie_spos_s8r", "tie_sneg_c3d10"] {
@@ -157,13 +164,44 @@ fn native_shells_tied_by_their_faces_stay_near_calculix() {
 }
 
 #[test]
+fn a_native_offset_shell_is_its_mid_surface_moved_by_the_offset() {
+    // OFFSET = −0.5 puts the plate's mid-surface t/2 above its nodes and its SPOS face t above
+    // them, where the block stands (tie_spos_offset_s4); without OFFSET the same plate and block
+    // lie t/2 lower (tie_spos_s4): the same body, free, so the same frequencies. Native shells
+    // take OFFSET as Nastran's ZOFFS = −OFFSET·t (`model::shell_offset`) and the face's lever
+    // (1/2 − OFFSET)·t·n (faces.rs): a sign wrong in either unties the block or bends it off.
+    let dir = scratch("ccx-shell-offset-native");
+    let native = ["--modes", "14", "--inp-shells", "native"];
+    let (offset, stderr) = build(&dir, &deck("tie_spos_offset_s4"), &native);
+    assert!(!stderr.contains("not tied"), "{stderr}");
+    let (plain, _) = build(&dir, &deck("tie_spos_s4"), &native);
+    let w = worst(&offset, &plain, 6);
+    // measured 1.2e-13
+    assert!(w <= 1e-12, "{w:e}: {offset:?} against {plain:?}");
+    // a quadratic native shell has no ZOFFS: refused naming the section and its line
+    let path = dir.join("quadratic_offset.inp");
+    std::fs::copy(deck("tie_spos_offset_s8r"), &path).unwrap();
+    let o = build_as_ccx(&path, &native, &dir.join("q.flexbody"));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        e.contains("quadratic_offset.inp:") && e.contains("*SHELL SECTION ELSET=PLATE: OFFSET"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn an_s4_plate_tied_by_its_spos_face_is_near_calculix() {
     let dir = scratch("ccx-shell-faces-s4");
-    let (ours, _) = build(&dir, &deck("tie_spos_s4"), &["--modes", "14"]);
-    let w = worst(&ours, &ccx_frequencies("ccx_shell_surfaces", "tie_spos_s4"), 6);
-    // measured 8.2e-3 (mode 14; 3.4e-4 at mode 7): ccx keeps the C3D8I's incompatible modes in
-    // its eigenproblem, flexbody condenses them (Guyan) for now; the plate alone: 1.6e-3
-    assert!(w <= 1e-2, "{w:e}");
+    for name in ["tie_spos_s4", "tie_spos_offset_s4"] {
+        let (ours, _) = build(&dir, &deck(name), &["--modes", "14"]);
+        let w = worst(&ours, &ccx_frequencies("ccx_shell_surfaces", name), 6);
+        // measured 8.2e-3 (mode 14; 3.4e-4 at mode 7) for both: ccx keeps the C3D8I's
+        // incompatible modes in its eigenproblem, flexbody condenses them (Guyan) for now;
+        // the plate alone (plate_s4): 1.6e-3
+        assert!(w <= 1e-2, "{name}: {w:e}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -199,7 +237,10 @@ fn shell_faces_refused_name_the_surface_and_its_line() {
          *TIE, NAME=T2, POSITION TOLERANCE=0.01\nPN, BLOCKBOT\n",
     );
     let e = run("nodes.inp", nodes);
-    assert!(e.contains("*TIE NAME=T2") && e.contains("is a shell node itself"), "{e}");
+    assert!(
+        e.contains("*TIE NAME=T2") && e.contains("is a shell node itself"),
+        "{e}"
+    );
     // an equation mixing a shell rotation with a translation
     let mixed = std::fs::read_to_string(deck("equation_tie_s8r"))
         .unwrap()

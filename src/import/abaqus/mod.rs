@@ -13,7 +13,7 @@
 //! expanded into 20-node bricks as ccx does: `beam_expansion`),
 //! *BOUNDARY (dof ranges, ENCASTRE, PINNED, X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *SPRING,
 //! *NODAL THICKNESS (`thickness`), *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE; element faces
-//! for *TIE), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
+//! for *TIE and *COUPLING, shells' SPOS/SNEG: `faces`), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
 //! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE; the steps' *CLOAD and *DLOAD
 //! (GRAV, P, Pn) as named scene loads (`loads`). C3D8I is the incompatible-mode hexahedron
 //! (`ModelParams::solid_bubbles`, model-wide: refused beside C3D8/C3D6); C3D8R is CalculiX's

@@ -10,11 +10,13 @@
 //!   thickness there, are averaged (sum of unit normals, normalized). A node where some
 //!   element falls outside that group (a fold, or a jump of thickness) is where ccx forms a
 //!   rigid "knot": refused, naming the node.
-//! * **Nodes** (gen3dfrom2d): each shell node x gets a bottom node x − t/2·n and a top node
-//!   x + t/2·n; a node that is a corner of a quadratic element also a middle node x (ccx's
-//!   C3D20 nodes 17–20, C3D15 nodes 13–15). ccx's thickness: the section's, or `*NODAL
-//!   THICKNESS` where the section asks for it (`thickness.rs`). `OFFSET=` other than 0 is
-//!   refused by the section reader.
+//! * **Nodes** (gen3dfrom2d): each shell node x gets a bottom node x − (1/2 + o)·t·n and a top
+//!   node x + (1/2 − o)·t·n; a node that is a corner of a quadratic element also a middle node
+//!   x − o·t·n (ccx's C3D20 nodes 17–20, C3D15 nodes 13–15), o the section's `OFFSET=` (in
+//!   thicknesses: the shell's nodes lie o·t above its mid-surface; elements of another OFFSET
+//!   meeting at a node are ccx's knot: refused). ccx's thickness: the section's, or `*NODAL
+//!   THICKNESS` where the section asks for it (`thickness.rs`). The equations below do not
+//!   see the offset (as ccx's): a shell node moves as the mean of its bottom and top nodes.
 //! * **Elements**: S8 → C3D20, S8R → C3D20R, S6 → C3D15, S4R → C3D8R, S3 → C3D6, S4 → C3D8I
 //!   (`ModelParams::solid_bubbles`, ccx 2.20's incompatible-mode brick with its modes' mass:
 //!   `fe::elements::solid_incompatible`; refused beside plain C3D8/C3D6 and S3, whose linear
@@ -44,8 +46,17 @@
 //! * **Pressures** `P` on a shell (gen3delem's loads: ccx's `P1`) act on the bricks' bottom faces,
 //!   along +n for p > 0.
 //!
+//! * **Faces** `SNEG`/`SPOS` (`S1`/`S2`) of a shell in a `*TIE` or `*COUPLING` surface are the
+//!   brick's bottom and top faces (`faces.rs`): the expansion then runs before the ties
+//!   ([`expand_elements`] from `resolve::finish`, the loads after them: [`expand_loads`]), and a
+//!   free shell node's rule-3 equation is written with the shell node dependent, so that its
+//!   bottom node stays free for a tie as in ccx (which writes no equation for it).
+//! * `*EQUATION` terms on rotations of shell nodes: ccx 2.20 applies them to rotational dofs of
+//!   the expanded nodes, which no brick has: an equation of such terms only is left out with a
+//!   warning (`connectors.rs`), one mixing them with other dofs is refused.
+//!
 //! What ccx would do with a rigid knot (folds, beams meeting shells, rotations of nodes in
-//! equations or rigid elements, moments and rotary inertia on shell nodes, rotations held in a
+//! rigid elements, moments and rotary inertia on shell nodes, rotations held in a
 //! rotated frame), and composite or non-isotropic shell sections, are refused naming the node
 //! or element and its line.
 

@@ -4,6 +4,9 @@
 //! that face by its shape functions, u_s = Σᵢ Nᵢ(ξ, η) u_i for the three translations — one
 //! MPC per component ([`crate::model::Mpc`], eliminated as `*EQUATION`).
 //!
+//! * the faces of element-face surfaces are read in `faces.rs` (solids' `Sn`, shells' `SNEG`
+//!   and `SPOS`); a native shell's face lies off its nodes by a lever d, and a tie holds the
+//!   face point u + θ × d of such a node (`face_point_terms`);
 //! * where a slave node lies on the master surface, and whether it is within the tolerances,
 //!   is found as ccx 2.20 finds it ([`super::tie_search`]: the master faces of all ties cut
 //!   into triangles; the in-face tolerance 2.5 % of their mean centroid-to-edge distance; the
@@ -184,7 +187,10 @@ impl Parser {
                 in_face: search.in_face_tolerance,
                 ..Untied::default()
             };
-            if let Some(&n) = slaves.iter().find(|n| self.expanded_shell_nodes.contains(n)) {
+            if let Some(&n) = slaves
+                .iter()
+                .find(|n| self.expanded_shell_nodes.contains(n))
+            {
                 return Err(self.err(
                     tie.loc,
                     ent,
