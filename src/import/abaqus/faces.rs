@@ -16,12 +16,12 @@
 use std::collections::BTreeSet;
 
 use super::resolve::Sets;
-use super::shell_expansion::{node_normal, SHELL_TYPES};
+use super::shell_expansion::{node_normal, Expansion, SHELL_TYPES};
 use super::tie_search::ccx_face_nodes;
 use super::{fields, Parser};
 use crate::import::error::ImportError;
 use crate::import::text::{parse_u64, Loc};
-use crate::model::{NodeIndex, Section};
+use crate::model::{NodeIndex, RigidElement, Section};
 
 /// One face of an element-face surface: its element id and nodes (corners, then mid-side
 /// nodes), and for a native shell's face each node's lever from the node to the face.
@@ -186,5 +186,57 @@ impl Parser {
             nodes: el.nodes.clone(),
             lever: Some(lever),
         })
+    }
+
+    /// Ties and couplings resolved after the expansion (`finish`) must not name the shell nodes
+    /// themselves: the expansion's equations did not see them (ccx would join such a node as a
+    /// connected one).
+    pub(super) fn refuse_shell_nodes_after_expansion(
+        &self,
+        x: &Expansion,
+        (mpcs, rigid): (usize, usize),
+        tie_loc: Option<Loc>,
+    ) -> Result<(), ImportError> {
+        let m = &self.b.model;
+        let in_mpc = (m.mpcs[mpcs..].iter())
+            .flat_map(|c| c.terms.iter().map(|t| t.0.node))
+            .find(|&n| x.is_shell_node(n))
+            .map(|n| (n, "*TIE"));
+        let in_rigid = (m.rigid_elements[rigid..].iter())
+            .flat_map(|r| match r {
+                RigidElement::Rbe2 {
+                    independent,
+                    dependent,
+                    ..
+                } => std::iter::once(*independent)
+                    .chain(dependent.iter().copied())
+                    .collect::<Vec<_>>(),
+                RigidElement::Rbe3 {
+                    reference,
+                    independent,
+                    ..
+                } => std::iter::once(*reference)
+                    .chain(independent.iter().map(|t| t.0))
+                    .collect(),
+            })
+            .find(|&n| x.is_shell_node(n))
+            .map(|n| (n, "*COUPLING"));
+        let Some((n, what)) = in_mpc.or(in_rigid) else {
+            return Ok(());
+        };
+        let loc = match what {
+            "*TIE" => tie_loc,
+            _ => self.couplings.first().map(|c| c.loc),
+        };
+        Err(self.err(
+            loc.unwrap_or_default(),
+            what,
+            format!(
+                "names shell node {} itself, in a deck whose ties or couplings also name faces \
+                 of shells (SPOS, SNEG): not supported (name the shell's faces, or the nodes of \
+                 a node surface in a deck without shell faces)",
+                m.nodes[n].id
+            ),
+        ))
     }
 }

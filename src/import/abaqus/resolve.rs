@@ -11,7 +11,7 @@ use crate::import::text::{IdMap, Loc};
 use crate::model::deck::PreloadRequest;
 use crate::model::{
     ConstraintSource, DofMask, EigenRequest, ImportWarning, Material, Model, PointMass, Property,
-    RigidElement, Section, SectionShape, Spc,
+    Section, SectionShape, Spc,
 };
 
 /// The model's ids and sets, resolved: what every later step looks members up in.
@@ -106,58 +106,6 @@ impl Parser {
         self.b.model.files = self.b.files.clone();
         self.b.record_element_sources();
         Ok((self.b.model, expansion))
-    }
-
-    /// Ties and couplings resolved after the expansion (`finish`) must not name the shell nodes
-    /// themselves: the expansion's equations did not see them (ccx would join such a node as a
-    /// connected one).
-    fn refuse_shell_nodes_after_expansion(
-        &self,
-        x: &Expansion,
-        (mpcs, rigid): (usize, usize),
-        tie_loc: Option<Loc>,
-    ) -> Result<(), ImportError> {
-        let m = &self.b.model;
-        let in_mpc = (m.mpcs[mpcs..].iter())
-            .flat_map(|c| c.terms.iter().map(|t| t.0.node))
-            .find(|&n| x.is_shell_node(n))
-            .map(|n| (n, "*TIE"));
-        let in_rigid = (m.rigid_elements[rigid..].iter())
-            .flat_map(|r| match r {
-                RigidElement::Rbe2 {
-                    independent,
-                    dependent,
-                    ..
-                } => std::iter::once(*independent)
-                    .chain(dependent.iter().copied())
-                    .collect::<Vec<_>>(),
-                RigidElement::Rbe3 {
-                    reference,
-                    independent,
-                    ..
-                } => std::iter::once(*reference)
-                    .chain(independent.iter().map(|t| t.0))
-                    .collect(),
-            })
-            .find(|&n| x.is_shell_node(n))
-            .map(|n| (n, "*COUPLING"));
-        let Some((n, what)) = in_mpc.or(in_rigid) else {
-            return Ok(());
-        };
-        let loc = match what {
-            "*TIE" => tie_loc,
-            _ => self.couplings.first().map(|c| c.loc),
-        };
-        Err(self.err(
-            loc.unwrap_or_default(),
-            what,
-            format!(
-                "names shell node {} itself, in a deck whose ties or couplings also name faces \
-                 of shells (SPOS, SNEG): not supported (name the shell's faces, or the nodes of \
-                 a node surface in a deck without shell faces)",
-                m.nodes[n].id
-            ),
-        ))
     }
 
     /// Node and element ids → indices (mass elements checked against both), the node and
