@@ -206,7 +206,7 @@ const INP: &str = "*NODE
 ";
 
 #[test]
-fn abaqus_shell_section_thickness_points_note_and_offset_error() {
+fn abaqus_shell_section_thickness_points_note_and_offset() {
     let m = read("s.inp", INP).unwrap();
     let s = shell(&m, 0);
     assert_eq!(*s, ShellSection::homogeneous(0.003, 0));
@@ -217,9 +217,18 @@ fn abaqus_shell_section_thickness_points_note_and_offset_error() {
         "{:?}",
         m.warnings
     );
+    // OFFSET=SPOS: the nodes on the top surface, the native shell's mid-surface t/2 below
+    // them (Nastran's ZOFFS = −OFFSET·t, model::shell_offset: a node per corner there, rigidly
+    // linked to its grid point)
     let off = INP.replace("MATERIAL=AL\n", "MATERIAL=AL, OFFSET=SPOS\n");
-    let e = read("off.inp", &off).unwrap_err();
-    assert!(e.contains("OFFSET=SPOS"), "{e}");
+    let m = read("off.inp", &off).unwrap();
+    assert_eq!(m.nodes.len(), 8);
+    assert_eq!(m.rigid_elements.len(), 4);
+    let mid = &m.nodes[m.elements[0].nodes[0]];
+    assert!((mid.x[2] + 0.0015).abs() < 1e-15, "{:?}", mid.x);
+    let bad = INP.replace("MATERIAL=AL\n", "MATERIAL=AL, OFFSET=TOP\n");
+    let e = read("bad.inp", &bad).unwrap_err();
+    assert!(e.contains("bad.inp:") && e.contains("OFFSET=TOP"), "{e}");
     let s8 = INP
         .replace("TYPE=S4,", "TYPE=S8R,")
         .replace("1, 1, 2, 3, 4\n", "1, 1, 2, 3, 4, 5, 6, 7, 8\n")

@@ -330,11 +330,26 @@ impl Parser {
     }
 
     /// `*EQUATION`s → linear MPCs (first term dependent), numbered in deck order.
+    ///
+    /// Rotations of shell nodes that ccx 2.20 expands (`--inp-shells expanded`): ccx's
+    /// `gen3dmpc` moves such a term onto the same rotational dof of the node's expanded nodes,
+    /// which no brick has, so the equation constrains nothing (measured:
+    /// `fixtures/ccx_shell_surfaces/equation_*_s8r.inp`, ccx's frequencies with and without it
+    /// are equal). An equation of such rotations only is therefore left out as ccx leaves it,
+    /// with a warning naming it; one that mixes them with other dofs is refused.
     fn resolve_equations(
         &mut self,
         nodes: &IdMap,
         node_sets: &std::collections::BTreeMap<String, Vec<NodeIndex>>,
     ) -> Result<(), ImportError> {
+        let expanded_shell_nodes: std::collections::HashSet<NodeIndex> = match self.inp_shells {
+            crate::import::InpShells::Expanded => (self.b.model.elements.iter())
+                .zip(&self.b.elem_card)
+                .filter(|(_, card)| super::shell_expansion::SHELL_TYPES.contains(card))
+                .flat_map(|(e, _)| e.nodes.iter().copied())
+                .collect(),
+            crate::import::InpShells::Native => Default::default(),
+        };
         let mut out = Vec::new();
         for (k, eq) in self.equations.iter().enumerate() {
             if eq.terms.len() != eq.count {
@@ -361,6 +376,38 @@ impl Parser {
                     },
                     *c,
                 ));
+            }
+            let shell_rotation = |(d, _): &&(NodeDof, f64)| {
+                d.component >= 3 && expanded_shell_nodes.contains(&d.node)
+            };
+            let rotations = terms.iter().filter(shell_rotation).count();
+            if rotations > 0 {
+                let id = self.b.model.nodes
+                    [terms.iter().find(shell_rotation).map_or(0, |t| t.0.node)]
+                .id;
+                if rotations < terms.len() {
+                    return Err(self.err(
+                        eq.loc,
+                        "*EQUATION",
+                        format!(
+                            "a rotation of shell node {id} beside other dofs: ccx 2.20 expands \
+                             the shell into bricks, which have no rotations, and applies the \
+                             term to nothing; not supported (--inp-shells native gives shell \
+                             nodes rotations)"
+                        ),
+                    ));
+                }
+                self.b.model.warnings.push(crate::model::ImportWarning {
+                    file: self.b.file_name(eq.loc).to_owned(),
+                    message: format!(
+                        "line {}: *EQUATION on rotations of shell nodes (node {id}) left out, as \
+                         ccx 2.20 leaves it: its expanded shells' bricks have no rotations, so \
+                         the equation constrains nothing (--inp-shells native applies it to the \
+                         shells' rotations)",
+                        eq.loc.line
+                    ),
+                });
+                continue;
             }
             out.push(Mpc {
                 id: k as u64 + 1,

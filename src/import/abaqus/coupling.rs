@@ -252,6 +252,8 @@ impl Parser {
                     )
                 })?;
                 let card = self.b.elem_card[e];
+                // a shell's face is its brick's (faces.rs): the brick's face rule
+                let card = super::shell_expansion::brick_card(card).unwrap_or(card);
                 let rule = face_rule(card, f.nodes.len()).ok_or_else(|| {
                     self.err(
                         c.loc,

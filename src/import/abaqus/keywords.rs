@@ -378,20 +378,29 @@ impl Parser {
             true => String::new(),
             false => kw.need("MATERIAL", self)?,
         };
+        // OFFSET=: the reference surface (the shell's nodes) OFFSET·t above the mid-surface
+        // (SPOS: its top, 0.5; SNEG: its bottom, −0.5); shell_expansion and faces.rs
+        let mut shell_offset = 0.0;
         let section = match kw.name {
             "SOLID SECTION" => Section::Solid,
             "SHELL SECTION" => {
-                // OFFSET= moves the reference surface off the mid-surface: not modelled.
                 if let Some(o) = kw.param("OFFSET") {
-                    let zero = o.eq_ignore_ascii_case("SMID")
-                        || o.trim().parse::<f64>().is_ok_and(|v| v == 0.0);
-                    if !zero {
-                        return Err(self.err(
-                            kw.loc,
-                            format!("*SHELL SECTION ELSET={elset}"),
-                            format!("OFFSET={o} not supported (mid-surface shells only)"),
-                        ));
-                    }
+                    shell_offset = match o.trim().to_ascii_uppercase().as_str() {
+                        "SMID" => 0.0,
+                        "SPOS" => 0.5,
+                        "SNEG" => -0.5,
+                        v => v
+                            .parse::<f64>()
+                            .ok()
+                            .filter(|v| v.is_finite())
+                            .ok_or_else(|| {
+                                self.err(
+                                    kw.loc,
+                                    format!("*SHELL SECTION ELSET={elset}"),
+                                    format!("OFFSET={o}: a number (in thicknesses), SPOS or SNEG"),
+                                )
+                            })?,
+                    };
                 }
                 if kw.param("NODALTHICKNESS").is_some() {
                     self.nodal_thickness_sections.push(self.sections.len());
@@ -437,6 +446,7 @@ impl Parser {
             dims: Vec::new(),
             general: kw.name == "BEAM GENERAL SECTION",
             offsets,
+            shell_offset,
             orientation: None,
             material_orientation: kw.param("ORIENTATION").map(str::to_owned),
             plies: composite.then(Vec::new),

@@ -13,7 +13,7 @@
 //! expanded into 20-node bricks as ccx does: `beam_expansion`),
 //! *BOUNDARY (dof ranges, ENCASTRE, PINNED, X/Y/ZSYMM), *MASS, *ROTARY INERTIA, *SPRING,
 //! *NODAL THICKNESS (`thickness`), *EQUATION, *RIGID BODY (NSET/ELSET, REF NODE, ROT NODE), *SURFACE (TYPE=NODE; element faces
-//! for *TIE), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
+//! for *TIE and *COUPLING, shells' SPOS/SNEG: `faces`), *TIE (`tie`: slave nodes held on the master faces by MPCs), *COUPLING +
 //! *KINEMATIC / *DISTRIBUTING, *TRANSFORM (R, C), *INCLUDE; the steps' *CLOAD and *DLOAD
 //! (GRAV, P, Pn) as named scene loads (`loads`). C3D8I is the incompatible-mode hexahedron
 //! (`ModelParams::solid_bubbles`, model-wide: refused beside C3D8/C3D6); C3D8R is CalculiX's
@@ -36,11 +36,13 @@ mod connectors;
 mod coupling;
 mod data;
 mod defs;
+mod faces;
 mod keywords;
 mod loads;
 mod materials;
 mod resolve;
 mod rules;
+mod shell_equations;
 pub mod shell_expansion;
 mod steps;
 mod temperature;
@@ -80,14 +82,66 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
         });
     }
     let shells = p.shell_elements();
-    let mut model = p.finish()?;
+    // the shell sections' OFFSETs by property (a section's property is its index)
+    let offsets: Vec<f64> = p.sections.iter().map(|s| s.shell_offset).collect();
+    let native_offsets = p.native_shell_offsets();
+    let (mut model, expanded_first) = p.finish(&shells, &offsets)?;
     // a CalculiX deck means what ccx makes of it: its C3D4/C3D6 integration (ModelParams)
     model.params.ccx_solid_rules = true;
     anisotropic_c3d8i_warning(&mut model);
-    if opts.inp_shells == crate::import::InpShells::Expanded {
-        shell_expansion::expand(&mut model, &shells)?;
+    match (opts.inp_shells, expanded_first) {
+        (_, Some(x)) => shell_expansion::expand_loads(&mut model, &x, &shells),
+        (crate::import::InpShells::Expanded, None) => {
+            shell_expansion::expand(&mut model, &shells, &offsets)?
+        }
+        (crate::import::InpShells::Native, None) => native_offsets.apply(&mut model)?,
     }
     Ok(model)
+}
+
+/// The `*SHELL SECTION, OFFSET`s of native shells: Nastran's ZOFFS = −OFFSET·t
+/// (`model::shell_offset`: the element formed at its mid-surface, ZOFFS along the normal from its
+/// nodes, rigidly linked to them; ccx's mid-surface lies −OFFSET·t along the normal, gen3dfrom2d).
+struct NativeOffsets {
+    /// Per section (= property): its OFFSET, and where it is for messages.
+    sections: Vec<(f64, String, usize, String)>,
+}
+
+impl NativeOffsets {
+    fn apply(&self, model: &mut Model) -> Result<(), ImportError> {
+        let err = |p: usize, msg: String| {
+            let (_, file, line, elset) = &self.sections[p];
+            ImportError::Parse {
+                file: file.clone(),
+                line: *line,
+                entity: format!("*SHELL SECTION ELSET={elset}"),
+                message: msg,
+            }
+        };
+        let mut list = Vec::new();
+        for (elem, e) in model.elements.iter().enumerate() {
+            let Some(p) = e.property else { continue };
+            let Some(&(offset, ..)) = self.sections.get(p).filter(|s| s.0 != 0.0) else {
+                continue;
+            };
+            let Section::Shell(sh) = &model.properties[p].section else {
+                continue;
+            };
+            if model.shell_thickness.contains_key(&elem) {
+                return Err(err(
+                    p,
+                    "OFFSET with *NODAL THICKNESS is not supported".into(),
+                ));
+            }
+            let zoffs = -offset * sh.thickness;
+            list.push(crate::model::shell_offset::ShellOffset { elem, zoffs });
+        }
+        crate::model::shell_offset::offset_shells(model, &list).map_err(|(at, why)| {
+            let p = model.elements[list[at].elem].property;
+            err(p.unwrap_or_default(), format!("OFFSET: {why}"))
+        })?;
+        Ok(())
+    }
 }
 
 /// C3D8I with an anisotropic material keeps massless incompatible modes (Abaqus, ccx 2.11):
@@ -150,6 +204,8 @@ struct RawSection {
     general: bool,
     /// CalculiX's OFFSET1, OFFSET2 of a beam section.
     offsets: [f64; 2],
+    /// `*SHELL SECTION, OFFSET=` in thicknesses (SPOS 0.5, SNEG −0.5).
+    shell_offset: f64,
     orientation: Option<[f64; 3]>,
     /// `ORIENTATION=`: the `*ORIENTATION` giving the material axes (materials.rs).
     material_orientation: Option<String>,
@@ -300,6 +356,9 @@ struct Parser {
     nodal_thickness_sections: Vec<usize>,
     /// How the shells are formed (`ImportOptions::inp_shells`).
     inp_shells: crate::import::InpShells,
+    /// The shell nodes of shells expanded before the ties (`resolve::finish`): a tie's slave
+    /// node among them is refused (`tie.rs`).
+    expanded_shell_nodes: std::collections::HashSet<usize>,
     /// Bytes of all files read so far (the input budget's base, see `import::budget`).
     input_bytes: u64,
     /// Set members added so far over all sets (bounded by the budget's total).
@@ -379,6 +438,7 @@ impl Parser {
             extra_nodes: BTreeMap::new(),
             substituted: BTreeMap::new(),
             inp_shells: crate::import::InpShells::Expanded,
+            expanded_shell_nodes: Default::default(),
             input_bytes: 0,
             set_members: 0,
         }
@@ -399,6 +459,17 @@ impl Parser {
                 (e.id, place)
             })
             .collect()
+    }
+
+    /// The sections' OFFSETs for native shells ([`NativeOffsets`]).
+    fn native_shell_offsets(&self) -> NativeOffsets {
+        let sections = (self.sections.iter())
+            .map(|s| {
+                let file = self.b.file_name(s.loc).to_owned();
+                (s.shell_offset, file, s.loc.line as usize, s.elset.clone())
+            })
+            .collect();
+        NativeOffsets { sections }
     }
 
     fn err(&self, loc: Loc, entity: impl Into<String>, msg: impl Into<String>) -> ImportError {

@@ -3,6 +3,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::shell_expansion::{expand_elements, Expansion, ShellElements};
 use super::temperature::{at_temperature, depends_on_temperature, Row, TemperatureState};
 use super::{Parser, Target};
 use crate::import::error::ImportError;
@@ -50,7 +51,14 @@ impl Sets {
 impl Parser {
     /// The resolve pass: ids → indices and sets, then materials, sections, boundary
     /// conditions, point masses, frames, rigid elements, notes and loads, in that order.
-    pub(super) fn finish(mut self) -> Result<Model, ImportError> {
+    /// When a `*TIE` or `*COUPLING` names faces of shells expanded as ccx expands them, the
+    /// expansion runs before the ties (their faces are the bricks'), and its [`Expansion`] is
+    /// returned for the loads (`shell_expansion::expand_loads`).
+    pub(super) fn finish(
+        mut self,
+        shells: &ShellElements,
+        offsets: &[f64],
+    ) -> Result<(Model, Option<Expansion>), ImportError> {
         let sets = self.resolve_sets()?;
         self.steps.finish_current();
         let base = {
@@ -65,9 +73,23 @@ impl Parser {
         self.resolve_point_masses(&sets)?;
         self.resolve_transforms(&sets)?;
         self.resolve_connectors(&sets.nodes, &sets.node_sets, &sets.element_sets)?;
+        self.resolve_incompatible_modes()?;
+        let expanded_first =
+            self.inp_shells == crate::import::InpShells::Expanded && self.shell_faces_in_use(&sets);
+        let expansion = match expanded_first {
+            true => Some(expand_elements(&mut self.b.model, shells, offsets, true)?),
+            false => None,
+        };
+        if let Some(x) = &expansion {
+            self.expanded_shell_nodes = x.shell_nodes().collect();
+        }
+        let (mpcs, rigid) = (self.b.model.mpcs.len(), self.b.model.rigid_elements.len());
+        let tie_loc = self.ties.first().map(|t| t.loc);
         self.resolve_ties(&sets)?;
         let reference_names = self.resolve_couplings(&sets)?;
-        self.resolve_incompatible_modes()?;
+        if let Some(x) = &expansion {
+            self.refuse_shell_nodes_after_expansion(x, (mpcs, rigid), tie_loc)?;
+        }
         self.import_notes();
         self.b.model.loads = self.resolve_loads(&sets)?;
         self.expand_quadratic_beams()?;
@@ -83,7 +105,7 @@ impl Parser {
         self.b.model.element_sets = sets.element_sets;
         self.b.model.files = self.b.files.clone();
         self.b.record_element_sources();
-        Ok(self.b.model)
+        Ok((self.b.model, expansion))
     }
 
     /// Node and element ids → indices (mass elements checked against both), the node and

@@ -10,20 +10,22 @@
 //!   thickness there, are averaged (sum of unit normals, normalized). A node where some
 //!   element falls outside that group (a fold, or a jump of thickness) is where ccx forms a
 //!   rigid "knot": refused, naming the node.
-//! * **Nodes** (gen3dfrom2d): each shell node x gets a bottom node x − t/2·n and a top node
-//!   x + t/2·n; a node that is a corner of a quadratic element also a middle node x (ccx's
-//!   C3D20 nodes 17–20, C3D15 nodes 13–15). ccx's thickness: the section's, or `*NODAL
-//!   THICKNESS` where the section asks for it (`thickness.rs`). `OFFSET=` other than 0 is
-//!   refused by the section reader.
+//! * **Nodes** (gen3dfrom2d): each shell node x gets a bottom node x − (1/2 + o)·t·n and a top
+//!   node x + (1/2 − o)·t·n; a node that is a corner of a quadratic element also a middle node
+//!   x − o·t·n (ccx's C3D20 nodes 17–20, C3D15 nodes 13–15), o the section's `OFFSET=` (in
+//!   thicknesses: the shell's nodes lie o·t above its mid-surface; elements of another OFFSET
+//!   meeting at a node are ccx's knot: refused). ccx's thickness: the section's, or `*NODAL
+//!   THICKNESS` where the section asks for it (`thickness.rs`). The equations below do not
+//!   see the offset (as ccx's): a shell node moves as the mean of its bottom and top nodes.
 //! * **Elements**: S8 → C3D20, S8R → C3D20R, S6 → C3D15, S4R → C3D8R, S3 → C3D6, S4 → C3D8I
 //!   (`ModelParams::solid_bubbles`, ccx 2.20's incompatible-mode brick with its modes' mass:
 //!   `fe::elements::solid_incompatible`; refused beside plain C3D8/C3D6 and S3, whose linear
 //!   wedges would take the modes too), with the shell's material (ccx's integration:
 //!   `ModelParams::ccx_solid_rules`, `fe::elements`); bottom face first, in the shell's node
 //!   order.
-//! * **Equations** joining a shell node n (which stays in the model: sets, loads and interfaces
-//!   name it) to its bottom b, middle m and top t nodes, per direction d, the first rule that
-//!   applies making u_b,d the dependent dof:
+//! * **Equations** (`shell_equations.rs`) joining a shell node n (which stays in the model:
+//!   sets, loads and interfaces name it) to its bottom b, middle m and top t nodes, per
+//!   direction d, the first rule that applies making u_b,d the dependent dof:
 //!   1. n belongs to a solid element, a spring or a mass (gen3dconnect), or to an equation or
 //!      rigid element (gen3dmpc): u_b + u_t − 2 u_n = 0;
 //!   2. a `*BOUNDARY` holds direction d of n (gen3dboun): u_b + u_t − 2 u_n = 0, and for a
@@ -44,18 +46,24 @@
 //! * **Pressures** `P` on a shell (gen3delem's loads: ccx's `P1`) act on the bricks' bottom faces,
 //!   along +n for p > 0.
 //!
+//! * **Faces** `SNEG`/`SPOS` (`S1`/`S2`) of a shell in a `*TIE` or `*COUPLING` surface are the
+//!   brick's bottom and top faces (`faces.rs`): the expansion then runs before the ties
+//!   ([`expand_elements`] from `resolve::finish`, the loads after them: [`expand_loads`]), and a
+//!   free shell node's rule-3 equation is written with the shell node dependent, so that its
+//!   bottom node stays free for a tie as in ccx (which writes no equation for it).
+//! * `*EQUATION` terms on rotations of shell nodes: ccx 2.20 applies them to rotational dofs of
+//!   the expanded nodes, which no brick has: an equation of such terms only is left out with a
+//!   warning (`connectors.rs`), one mixing them with other dofs is refused.
+//!
 //! What ccx would do with a rigid knot (folds, beams meeting shells, rotations of nodes in
-//! equations or rigid elements, moments and rotary inertia on shell nodes, rotations held in a
+//! rigid elements, moments and rotary inertia on shell nodes, rotations held in a
 //! rotated frame), and composite or non-isotropic shell sections, are refused naming the node
 //! or element and its line.
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, HashMap};
 
 use crate::import::ImportError;
-use crate::model::{
-    DofMask, Elasticity, Element, ElementKind, Model, Mpc, Node, NodeDof, NodeIndex, Property,
-    RigidElement, Section,
-};
+use crate::model::{Elasticity, Element, ElementKind, Model, Node, NodeIndex, Property, Section};
 
 /// The element types this module expands.
 pub const SHELL_TYPES: &[&str] = &["S3", "S4", "S4R", "S6", "S8", "S8R"];
@@ -77,31 +85,31 @@ pub type ShellElements = HashMap<u64, Place>;
 /// cos 20°: ccx's limit for one mean normal (gen3dnor).
 const SAME_NORMAL: f64 = 0.939693;
 /// ccx's limit for a rotation axis along the normal (gen3dboun: a drilling rotation).
-const DRILLING: f64 = 0.999;
+pub(super) const DRILLING: f64 = 0.999;
 /// ccx's limit for a second held rotation along the first (gen3dboun).
-const SAME_AXIS: f64 = 0.9999;
+pub(super) const SAME_AXIS: f64 = 0.9999;
 
-type Xyz = [f64; 3];
+pub(super) type Xyz = [f64; 3];
 
-fn sub(a: Xyz, b: Xyz) -> Xyz {
+pub(super) fn sub(a: Xyz, b: Xyz) -> Xyz {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
-fn dot(a: Xyz, b: Xyz) -> f64 {
+pub(super) fn dot(a: Xyz, b: Xyz) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-fn cross(a: Xyz, b: Xyz) -> Xyz {
+pub(super) fn cross(a: Xyz, b: Xyz) -> Xyz {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
         a[0] * b[1] - a[1] * b[0],
     ]
 }
-fn unit(a: Xyz) -> Option<Xyz> {
+pub(super) fn unit(a: Xyz) -> Option<Xyz> {
     let n = dot(a, a).sqrt();
     (n > 1e-10 && n.is_finite()).then(|| a.map(|c| c / n))
 }
 
-fn parse_err(place: &Place, entity: String, message: String) -> ImportError {
+pub(super) fn parse_err(place: &Place, entity: String, message: String) -> ImportError {
     ImportError::Parse {
         file: place.file.clone(),
         line: place.line,
@@ -124,6 +132,19 @@ fn brick_of(card: &str) -> Option<(ElementKind, bool)> {
     })
 }
 
+/// The ccx type of the brick a shell type is expanded into (`None`: not a shell type).
+pub fn brick_card(card: &str) -> Option<&'static str> {
+    Some(match card {
+        "S8" => "C3D20",
+        "S8R" => "C3D20R",
+        "S6" => "C3D15",
+        "S4R" => "C3D8R",
+        "S4" => "C3D8I",
+        "S3" => "C3D6",
+        _ => return None,
+    })
+}
+
 /// The number of corner nodes of the shell a brick is made of.
 fn corners(brick: ElementKind) -> usize {
     match brick {
@@ -135,7 +156,7 @@ fn corners(brick: ElementKind) -> usize {
 /// ∂x/∂ξ × ∂x/∂η of a shell element at its local node `j` (ccx's norshell3/4/6/8: the
 /// element's own isoparametric interpolation, Zienkiewicz & Taylor, *The Finite Element
 /// Method* vol. 1, §8.5 serendipity and triangle shape functions).
-fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
+pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
     // (dN/dξ, dN/dη) of every node at node j's local coordinates
     let d: Vec<(f64, f64)> = match kind {
         ElementKind::Tri3 => vec![(-1.0, -1.0), (1.0, 0.0), (0.0, 1.0)],
@@ -202,11 +223,11 @@ fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
 
 /// The expanded nodes of one shell node.
 #[derive(Debug, Clone, Copy)]
-struct Expanded {
-    bottom: NodeIndex,
-    middle: Option<NodeIndex>,
-    top: NodeIndex,
-    normal: Xyz,
+pub(super) struct Expanded {
+    pub(super) bottom: NodeIndex,
+    pub(super) middle: Option<NodeIndex>,
+    pub(super) top: NodeIndex,
+    pub(super) normal: Xyz,
 }
 
 /// One shell element to expand: its index, place, brick and thickness at each node.
@@ -216,13 +237,54 @@ struct ShellElement<'a> {
     brick: ElementKind,
     quadratic: bool,
     thickness: Vec<f64>,
+    /// `*SHELL SECTION, OFFSET=` (in thicknesses; SPOS = 0.5, SNEG = −0.5).
+    offset: f64,
 }
 
-/// Expand the deck's shells into bricks as ccx 2.20 does (module doc).
-pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportError> {
-    let elements = shell_elements(model, shells)?;
+/// The expanded nodes of every shell node, from [`expand_elements`] for [`expand_loads`].
+pub struct Expansion {
+    nodes: BTreeMap<NodeIndex, Expanded>,
+}
+
+impl Expansion {
+    /// Whether node `n` is a shell node that was expanded.
+    pub fn is_shell_node(&self, n: NodeIndex) -> bool {
+        self.nodes.contains_key(&n)
+    }
+
+    /// The shell nodes that were expanded.
+    pub fn shell_nodes(&self) -> impl Iterator<Item = NodeIndex> + '_ {
+        self.nodes.keys().copied()
+    }
+}
+
+/// Expand the deck's shells into bricks as ccx 2.20 does (module doc); `offsets`: the
+/// `*SHELL SECTION, OFFSET` of each property (in thicknesses).
+pub fn expand(
+    model: &mut Model,
+    shells: &ShellElements,
+    offsets: &[f64],
+) -> Result<(), ImportError> {
+    let expansion = expand_elements(model, shells, offsets, false)?;
+    expand_loads(model, &expansion, shells);
+    Ok(())
+}
+
+/// The bricks, their nodes and the equations joining them to the shell nodes (module doc);
+/// `free_node_dependent`: a free shell node's equation (rule 3) is written with the shell node
+/// dependent, u_n = (u_b + u_t)/2 (or its quadratic form), so that its bottom node stays free
+/// for a `*TIE` or `*COUPLING` on the brick's faces as in ccx (which writes no equation there).
+pub fn expand_elements(
+    model: &mut Model,
+    shells: &ShellElements,
+    offsets: &[f64],
+    free_node_dependent: bool,
+) -> Result<Expansion, ImportError> {
+    let elements = shell_elements(model, shells, offsets)?;
     if elements.is_empty() {
-        return Ok(());
+        return Ok(Expansion {
+            nodes: BTreeMap::new(),
+        });
     }
     // the first shell element of each shell node: where its errors point
     let first_place: BTreeMap<NodeIndex, &Place> = (elements.iter().rev())
@@ -235,15 +297,25 @@ pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportErr
         // beside plain C3D8/C3D6
         model.params.solid_bubbles = true;
     }
-    let rules = Joining::of(model, &expanded, &first_place)?;
-    rules.write(model, &expanded);
-    refuse_moments(model, &expanded);
-    move_pressures(model, &expanded, shells);
+    let rules = super::shell_equations::Joining::of(model, &expanded, &first_place)?;
+    rules.write(model, &expanded, free_node_dependent);
+    Ok(Expansion { nodes: expanded })
+}
+
+/// The loads on expanded shells: moments refused, pressures moved to the bricks' bottom faces,
+/// temperatures given to the expanded nodes (module doc).
+pub fn expand_loads(model: &mut Model, expansion: &Expansion, shells: &ShellElements) {
+    let expanded = &expansion.nodes;
+    if expanded.is_empty() {
+        return;
+    }
+    refuse_moments(model, expanded);
+    move_pressures(model, expanded, shells);
     if let Some(preload) = model.deck.preload.as_mut() {
         if let Some((dt, _)) = preload.thermal.as_mut() {
             // ccx gives the expanded nodes the shell node's temperature (gen3dtemp)
             let mut parent = vec![None; model.nodes.len()];
-            for (&n, e) in &expanded {
+            for (&n, e) in expanded {
                 for k in [Some(e.bottom), e.middle, Some(e.top)]
                     .into_iter()
                     .flatten()
@@ -258,7 +330,6 @@ pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportErr
             dt.extend(added);
         }
     }
-    Ok(())
 }
 
 /// The shell elements with a section, checked: homogeneous isotropic sections, types ccx
@@ -266,6 +337,7 @@ pub fn expand(model: &mut Model, shells: &ShellElements) -> Result<(), ImportErr
 fn shell_elements<'a>(
     model: &Model,
     shells: &'a ShellElements,
+    offsets: &[f64],
 ) -> Result<Vec<ShellElement<'a>>, ImportError> {
     let mut out = Vec::new();
     // S4 becomes ccx's C3D8I: the model's linear wedges would take incompatible modes too
@@ -340,6 +412,7 @@ fn shell_elements<'a>(
             brick,
             quadratic,
             thickness,
+            offset: offsets.get(p).copied().unwrap_or(0.0),
         });
     }
     Ok(out)
@@ -386,6 +459,24 @@ fn expand_nodes(
         let &(rid, rn, rt, rplace) = (normals.iter())
             .min_by_key(|x| x.0)
             .expect("a shell node belongs to at least one element (it was listed by one)");
+        let offset_of = |id: u64| {
+            (list.iter())
+                .map(|&(k, _)| &elements[k])
+                .find(|e| model.elements[e.index].id == id)
+                .map_or(0.0, |e| e.offset)
+        };
+        let ro = offset_of(rid);
+        if let Some(&(id, ..)) = normals.iter().find(|x| offset_of(x.0) != ro) {
+            return Err(parse_err(
+                rplace,
+                format!("node {}", model.nodes[n].id),
+                format!(
+                    "shell elements {rid} and {id} meet there with another OFFSET ({ro} and \
+                     {}): ccx joins them with a rigid knot, which flexbody does not form",
+                    offset_of(id)
+                ),
+            ));
+        }
         let mut sum = [0.0; 3];
         for &(id, v, t, _) in &normals {
             if dot(v, rn) <= SAME_NORMAL || (t - rt).abs() >= 1e-10 {
@@ -419,9 +510,10 @@ fn expand_nodes(
             next_id += 1;
             model.nodes.len() - 1
         };
-        let bottom = add(-0.5);
-        let middle = corner_of_quadratic.then(|| add(0.0));
-        let top = add(0.5);
+        // gen3dfrom2d: the reference surface OFFSET·t above the mid-surface
+        let bottom = add(-0.5 - ro);
+        let middle = corner_of_quadratic.then(|| add(-ro));
+        let top = add(0.5 - ro);
         out.insert(
             n,
             Expanded {
@@ -483,261 +575,6 @@ fn replace_elements(
         };
         model.shell_thickness.remove(&e.index);
     }
-}
-
-/// How u_b,d of a shell node is joined (module doc, rules 1–3).
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Rule {
-    /// u_b + u_t − 2 u_n = 0.
-    Mean,
-    /// −u_b + 4 u_m − u_t − 2 u_n = 0.
-    Quadratic,
-}
-
-/// How one shell node is joined: its rule per direction, the dofs its `*BOUNDARY` holds, the
-/// tangent axes it holds with the held rotation each came from.
-type NodeJoining = ([Rule; 3], DofMask, Vec<(Xyz, usize)>);
-
-/// The joining of every shell node.
-struct Joining {
-    nodes: BTreeMap<NodeIndex, NodeJoining>,
-}
-
-impl Joining {
-    fn of(
-        model: &Model,
-        expanded: &BTreeMap<NodeIndex, Expanded>,
-        place: &BTreeMap<NodeIndex, &Place>,
-    ) -> Result<Joining, ImportError> {
-        let err = |n: NodeIndex, msg: String| {
-            parse_err(place[&n], format!("node {}", model.nodes[n].id), msg)
-        };
-        // rule 1: solids, springs, masses, equations, rigid elements
-        let mut joined: BTreeSet<NodeIndex> = BTreeSet::new();
-        for e in &model.elements {
-            if e.property.is_none() {
-                continue;
-            }
-            for n in e.nodes.iter().filter(|n| expanded.contains_key(n)) {
-                if !e.kind.is_solid() {
-                    return Err(err(
-                        *n,
-                        format!(
-                            "a shell node of element {} (not a solid): ccx joins expanded \
-                             beams and shells with a rigid knot, which flexbody does not form",
-                            e.id
-                        ),
-                    ));
-                }
-                // a brick of an expanded shell has only new nodes: this is a solid of the deck
-                joined.insert(*n);
-            }
-        }
-        let mut touch = |n: NodeIndex, component: Option<u8>, what: &str| {
-            if !expanded.contains_key(&n) {
-                return Ok(());
-            }
-            if component.is_some_and(|c| c >= 3) {
-                return Err(err(
-                    n,
-                    format!(
-                        "{what} names a rotation of this shell node; expanded as ccx does, \
-                         a shell node has translations only (ccx would form a rigid knot)"
-                    ),
-                ));
-            }
-            joined.insert(n);
-            Ok(())
-        };
-        for m in &model.point_masses {
-            let rotary = m.inertia.iter().flatten().any(|v| *v != 0.0);
-            touch(m.node, rotary.then_some(3), "a *ROTARY INERTIA")?;
-        }
-        for s in &model.springs {
-            for d in std::iter::once(s.a).chain(s.b) {
-                touch(d.node, Some(d.component), "a spring")?;
-            }
-        }
-        for s in &model.scalar_masses {
-            for d in std::iter::once(s.a).chain(s.b) {
-                touch(d.node, Some(d.component), "a mass")?;
-            }
-        }
-        for b in &model.bushes {
-            for n in std::iter::once(b.a).chain(b.b) {
-                touch(n, Some(3), "a bush")?;
-            }
-        }
-        for m in &model.mpcs {
-            for (d, _) in &m.terms {
-                touch(d.node, Some(d.component), "an *EQUATION")?;
-            }
-        }
-        for r in &model.rigid_bodies {
-            for (n, mask) in r.independent.iter().chain(&r.dependent) {
-                touch(*n, mask.dofs().max().map(|k| k as u8), "a rigid body")?;
-            }
-        }
-        for r in &model.rigid_elements {
-            match r {
-                RigidElement::Rbe2 {
-                    independent,
-                    dependent,
-                    ..
-                } => {
-                    touch(*independent, Some(3), "the reference node of a rigid body")?;
-                    for n in dependent {
-                        touch(*n, None, "a rigid body")?;
-                    }
-                }
-                RigidElement::Rbe3 {
-                    reference,
-                    independent,
-                    ..
-                } => {
-                    touch(*reference, Some(3), "the reference node of a coupling")?;
-                    for (n, _, mask) in independent {
-                        touch(*n, mask.dofs().max().map(|k| k as u8), "a coupling")?;
-                    }
-                }
-            }
-        }
-        let mut held: BTreeMap<NodeIndex, DofMask> = BTreeMap::new();
-        for s in model.spcs.iter().filter(|s| expanded.contains_key(&s.node)) {
-            let h = held.entry(s.node).or_insert(DofMask(0));
-            *h = h.union(s.dofs);
-        }
-        let mut nodes = BTreeMap::new();
-        for (&n, e) in expanded {
-            let held = held.get(&n).copied().unwrap_or(DofMask(0));
-            let rule = |d: usize| {
-                if joined.contains(&n) || held.contains(d) || e.middle.is_none() {
-                    Rule::Mean
-                } else {
-                    Rule::Quadratic
-                }
-            };
-            let axes = held_axes(held, e.normal);
-            if !axes.is_empty() && model.nodes[n].displacement_frame.is_some() {
-                return Err(err(
-                    n,
-                    "a rotation held in a *TRANSFORM frame of a shell node is not supported".into(),
-                ));
-            }
-            nodes.insert(n, ([rule(0), rule(1), rule(2)], held, axes));
-        }
-        Ok(Joining { nodes })
-    }
-
-    /// The equations.
-    fn write(&self, model: &mut Model, expanded: &BTreeMap<NodeIndex, Expanded>) {
-        let dof = |node: NodeIndex, d: usize| NodeDof {
-            node,
-            component: d as u8,
-        };
-        for (&n, (rules, held, axes)) in &self.nodes {
-            let e = expanded[&n];
-            // the equations of a shell node are known by its id in messages
-            let id = model.nodes[n].id;
-            // u_b,d = Σ terms (the rule solved for the bottom node)
-            let bottom = |d: usize| -> Vec<(NodeDof, f64)> {
-                match rules[d] {
-                    Rule::Mean => vec![(dof(n, d), 2.0), (dof(e.top, d), -1.0)],
-                    Rule::Quadratic => {
-                        let m = e.middle.expect("the quadratic rule is for middle nodes");
-                        vec![(dof(m, d), 4.0), (dof(e.top, d), -1.0), (dof(n, d), -2.0)]
-                    }
-                }
-            };
-            for d in 0..3 {
-                let mut terms = vec![(dof(e.bottom, d), 1.0)];
-                terms.extend(bottom(d).into_iter().map(|(k, c)| (k, -c)));
-                model.mpcs.push(Mpc { id, terms });
-                if let (true, Some(m)) = (held.contains(d), e.middle) {
-                    let terms = vec![(dof(m, d), 1.0), (dof(n, d), -1.0)];
-                    model.mpcs.push(Mpc { id, terms });
-                }
-            }
-            // the held rotations: (e × n)·(u_t − u_b) − h θ_n,k = 0 with u_b substituted; the
-            // held rotation k of n stands for ccx's angle node (held at 0 as n's rotation is)
-            let x = |k: NodeIndex| model.nodes[k].x;
-            let h = dot(sub(x(e.top), x(e.bottom)), e.normal);
-            let mut rows: Vec<BTreeMap<NodeDof, f64>> = Vec::new();
-            for &(a, k) in axes {
-                let c = cross(a, e.normal);
-                let mut row: BTreeMap<NodeDof, f64> = BTreeMap::new();
-                row.insert(dof(n, k), -h);
-                for (d, cd) in c.into_iter().enumerate() {
-                    *row.entry(dof(e.top, d)).or_default() += cd;
-                    for (k, v) in bottom(d) {
-                        *row.entry(k).or_default() -= cd * v;
-                    }
-                }
-                rows.push(row);
-            }
-            for row in eliminate_top(rows, e.top) {
-                model.mpcs.push(Mpc { id, terms: row });
-            }
-        }
-    }
-}
-
-/// The tangent axes ccx holds for a node whose `*BOUNDARY` holds rotations `held` (gen3dboun,
-/// module doc), in the order ccx reads the dofs.
-fn held_axes(held: DofMask, normal: Xyz) -> Vec<(Xyz, usize)> {
-    let mut axes: Vec<(Xyz, usize)> = Vec::new();
-    for k in (3..6).filter(|&k| held.contains(k)) {
-        let mut a = [0.0; 3];
-        a[k - 3] = 1.0;
-        let along = dot(a, normal);
-        if along.abs() > DRILLING {
-            continue;
-        }
-        match axes.first() {
-            None => {
-                let p = sub(a, normal.map(|c| c * along));
-                let e1 = unit(p).expect("an axis off the normal has a tangent part");
-                axes.push((e1, k));
-            }
-            Some(&(e1, _)) if axes.len() == 1 && dot(a, e1) <= SAME_AXIS => {
-                axes.push((unit(cross(normal, e1)).expect("n ⟂ e1, both unit"), k));
-            }
-            Some(_) => {}
-        }
-    }
-    axes
-}
-
-/// Rows Σ c u = 0, each made an equation whose dependent dof is a top-node dof: the largest
-/// coefficient on the top node, eliminated from the rows after it (no chain between them).
-fn eliminate_top(
-    mut rows: Vec<BTreeMap<NodeDof, f64>>,
-    top: NodeIndex,
-) -> Vec<Vec<(NodeDof, f64)>> {
-    let mut out = Vec::new();
-    for i in 0..rows.len() {
-        let pivot = (rows[i].iter())
-            .filter(|(k, v)| k.node == top && v.abs() > 1e-12)
-            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-            .map(|(k, v)| (*k, *v));
-        let Some((pk, pv)) = pivot else {
-            continue;
-        };
-        let this = rows[i].clone();
-        for row in rows.iter_mut().skip(i + 1) {
-            let f = row.get(&pk).copied().unwrap_or(0.0) / pv;
-            if f != 0.0 {
-                for (k, v) in &this {
-                    *row.entry(*k).or_default() -= f * v;
-                }
-                row.remove(&pk);
-            }
-        }
-        let mut terms = vec![(pk, pv)];
-        terms.extend((this.into_iter()).filter(|(k, v)| *k != pk && v.abs() > 1e-14 * pv.abs()));
-        out.push(terms);
-    }
-    out
 }
 
 /// A pressure `P` on a shell acts, as ccx applies it, on the brick's bottom face (ccx's `P1`),

@@ -4,6 +4,9 @@
 //! that face by its shape functions, u_s = Σᵢ Nᵢ(ξ, η) u_i for the three translations — one
 //! MPC per component ([`crate::model::Mpc`], eliminated as `*EQUATION`).
 //!
+//! * the faces of element-face surfaces are read in `faces.rs` (solids' `Sn`, shells' `SNEG`
+//!   and `SPOS`); a native shell's face lies off its nodes by a lever d, and a tie holds the
+//!   face point u + θ × d of such a node (`face_point_terms`);
 //! * where a slave node lies on the master surface, and whether it is within the tolerances,
 //!   is found as ccx 2.20 finds it ([`super::tie_search`]: the master faces of all ties cut
 //!   into triangles; the in-face tolerance 2.5 % of their mean centroid-to-edge distance; the
@@ -20,14 +23,15 @@
 //! * CYCLIC SYMMETRY, MULTISTAGE and the fluid ties are refused; nodes in a `*TRANSFORM` frame
 //!   are refused (the equations are in global components).
 
-use std::collections::{BTreeSet, HashSet};
+use std::collections::{BTreeSet, HashMap, HashSet};
 
+use super::faces::Face;
 use super::keywords::Keyword;
 use super::resolve::Sets;
-use super::tie_search::{ccx_face_nodes, Found, MasterTriangles};
+use super::tie_search::{Found, MasterTriangles};
 use super::{fields, Block, Parser};
 use crate::import::error::ImportError;
-use crate::import::text::{parse_f64, parse_u64, Loc};
+use crate::import::text::{parse_f64, Loc};
 use crate::model::{Mpc, NodeDof, NodeIndex};
 
 /// One `*TIE`: its parameters and its data line.
@@ -39,12 +43,6 @@ pub(super) struct RawTie {
     /// (slave surface, master surface), from the data line.
     pub surfaces: Option<(String, String)>,
     pub loc: Loc,
-}
-
-/// One master face: its element id and nodes (corners, then mid-side nodes).
-pub(super) struct Face {
-    pub(super) element: u64,
-    pub(super) nodes: Vec<NodeIndex>,
 }
 
 impl Parser {
@@ -108,34 +106,6 @@ impl Parser {
         }
     }
 
-    /// A data line of an element-face `*SURFACE`: element id or element set, face `Sn`.
-    pub(super) fn element_surface_line(
-        &mut self,
-        name: String,
-        line: &str,
-        loc: Loc,
-    ) -> Result<(), ImportError> {
-        let v: Vec<&str> = fields(line).collect();
-        let face = v
-            .get(1)
-            .map(|s| s.trim().to_ascii_uppercase())
-            .and_then(|s| s.strip_prefix('S').and_then(|n| n.parse::<usize>().ok()))
-            .filter(|n| (1..=6).contains(n));
-        let Some(face) = face else {
-            return Err(self.err(
-                loc,
-                format!("*SURFACE NAME={name}"),
-                "element faces are given as 'element or element set, Sn' (n = 1 … 6)",
-            ));
-        };
-        (self.element_surfaces.entry(name).or_default()).push((
-            v[0].trim().to_ascii_uppercase(),
-            face,
-            loc,
-        ));
-        Ok(())
-    }
-
     /// Every `*TIE` → MPCs of its slave nodes on the master faces (module doc).
     pub(super) fn resolve_ties(&mut self, sets: &Sets) -> Result<(), ImportError> {
         let ties = std::mem::take(&mut self.ties);
@@ -161,7 +131,24 @@ impl Parser {
             );
             faces.extend(mine);
         }
-        let search = MasterTriangles::new(&per_tie, |n| self.b.model.nodes[n].x);
+        // a native shell's face lies off its nodes: each node's lever to the face (faces.rs)
+        let mut lever: HashMap<NodeIndex, [f64; 3]> = HashMap::new();
+        let mut slave_faces: Vec<Option<Vec<Face>>> = Vec::new();
+        for tie in &ties {
+            let ent = format!("*TIE NAME={}", tie.name);
+            let slave = tie.surfaces.as_ref().map_or("", |s| s.0.as_str());
+            slave_faces.push(self.surface_faces(slave, sets, &ent)?);
+        }
+        for f in faces.iter().chain(slave_faces.iter().flatten().flatten()) {
+            for (n, d) in f.nodes.iter().zip(f.lever.iter().flatten()) {
+                lever.entry(*n).or_insert(*d);
+            }
+        }
+        let at = |nodes: &[crate::model::Node], n: NodeIndex| {
+            let (x, d) = (nodes[n].x, lever.get(&n).copied());
+            d.map_or(x, |d| [0, 1, 2].map(|k| x[k] + d[k]))
+        };
+        let search = MasterTriangles::new(&per_tie, |n| at(&self.b.model.nodes, n));
         let mut untied: Vec<Untied> = Vec::new();
         // components already held by *BOUNDARY or dependent in an equation (ccx: not active)
         let model = &self.b.model;
@@ -186,7 +173,7 @@ impl Parser {
             let on_master: BTreeSet<NodeIndex> = (per_tie[k].iter())
                 .flat_map(|(_, nodes)| nodes.iter().copied())
                 .collect();
-            let slaves: BTreeSet<NodeIndex> = match self.surface_faces(slave, sets, &ent)? {
+            let slaves: BTreeSet<NodeIndex> = match &slave_faces[k] {
                 Some(f) => f.iter().flat_map(|f| f.nodes.iter().copied()).collect(),
                 None => self.node_surface(slave, sets, &ent, tie.loc)?,
             };
@@ -200,8 +187,23 @@ impl Parser {
                 in_face: search.in_face_tolerance,
                 ..Untied::default()
             };
+            if let Some(&n) = slaves
+                .iter()
+                .find(|n| self.expanded_shell_nodes.contains(n))
+            {
+                return Err(self.err(
+                    tie.loc,
+                    ent,
+                    format!(
+                        "slave node {} is a shell node itself, in a deck whose ties or couplings \
+                         also name faces of shells (SPOS, SNEG): not supported (name the \
+                         shell's faces)",
+                        self.b.model.nodes[n].id
+                    ),
+                ));
+            }
             for &n in slaves.iter().filter(|n| !on_master.contains(n)) {
-                let p = self.b.model.nodes[n].x;
+                let p = at(&self.b.model.nodes, n);
                 let id = self.b.model.nodes[n].id;
                 let face = match search.find(k, p, tolerance) {
                     Found::Face(f) => &faces[f],
@@ -216,9 +218,9 @@ impl Parser {
                     }
                 };
                 let x: Vec<[f64; 3]> = (face.nodes.iter())
-                    .map(|&m| self.b.model.nodes[m].x)
+                    .map(|&m| at(&self.b.model.nodes, m))
                     .collect();
-                let Some((xi, at)) = project(&x, p) else {
+                let Some((xi, foot)) = project(&x, p) else {
                     return Err(self.err(
                         tie.loc,
                         ent,
@@ -243,35 +245,23 @@ impl Parser {
                         missed.held.push(id);
                         continue;
                     }
-                    let mut terms = vec![(
-                        NodeDof {
-                            node: n,
-                            component: c,
-                        },
-                        1.0,
-                    )];
-                    terms.extend(
-                        (face.nodes.iter().zip(&shape))
-                            .filter(|(_, w)| w.abs() > 1e-12)
-                            .map(|(&m, &w)| {
-                                (
-                                    NodeDof {
-                                        node: m,
-                                        component: c,
-                                    },
-                                    -w,
-                                )
-                            }),
-                    );
+                    let mut terms = face_point_terms(n, 1.0, c, &lever);
+                    for (&m, &w) in face.nodes.iter().zip(&shape) {
+                        if w.abs() > 1e-12 {
+                            terms.extend(face_point_terms(m, -w, c, &lever));
+                        }
+                    }
                     let id = self.b.model.mpcs.len() as u64 + 1;
                     self.b.model.mpcs.push(Mpc { id, terms });
                 }
                 if tie.adjust {
-                    self.b.model.nodes[n].x = at;
+                    let d = lever.get(&n).copied().unwrap_or_default();
+                    self.b.model.nodes[n].x = [0, 1, 2].map(|k| foot[k] - d[k]);
                 }
             }
             untied.push(missed);
         }
+
         for u in untied.iter().filter(|u| u.count() > 0) {
             self.b.model.warnings.push(crate::import::ImportWarning {
                 file: self.b.files[0].clone(),
@@ -279,55 +269,6 @@ impl Parser {
             });
         }
         Ok(())
-    }
-
-    /// The faces of an element-face surface (`None`: no such surface).
-    pub(super) fn surface_faces(
-        &self,
-        name: &str,
-        sets: &Sets,
-        ent: &str,
-    ) -> Result<Option<Vec<Face>>, ImportError> {
-        let Some(lines) = self.element_surfaces.get(name) else {
-            return Ok(None);
-        };
-        let mut out = Vec::new();
-        for (target, face, at) in lines {
-            let elements: Vec<usize> = match parse_u64(target) {
-                Some(id) => vec![sets.elems.get(id).ok_or_else(|| {
-                    self.err(
-                        *at,
-                        ent.to_owned(),
-                        format!("*SURFACE {name}: unknown element {id}"),
-                    )
-                })?],
-                None => sets.element_sets.get(target).cloned().ok_or_else(|| {
-                    self.err(
-                        *at,
-                        ent.to_owned(),
-                        format!("*SURFACE {name}: unknown element set {target}"),
-                    )
-                })?,
-            };
-            for e in elements {
-                let el = &self.b.model.elements[e];
-                let nodes = ccx_face_nodes(el.kind, &el.nodes, *face).ok_or_else(|| {
-                    self.err(
-                        *at,
-                        ent.to_owned(),
-                        format!(
-                            "*SURFACE {name}: element {} ({:?}) has no solid face S{face}",
-                            el.id, el.kind
-                        ),
-                    )
-                })?;
-                out.push(Face {
-                    element: el.id,
-                    nodes,
-                });
-            }
-        }
-        Ok(Some(out))
     }
 
     /// The nodes of a node surface (`*SURFACE, TYPE=NODE`).
@@ -406,6 +347,24 @@ impl Untied {
             parts.join("; ")
         )
     }
+}
+
+/// The terms `coefficient` · (u + θ × d)_c of the face point of node `n` (d its lever, none for
+/// a node of a solid): (θ × d)_c = θ_{c+1} d_{c+2} − θ_{c+2} d_{c+1}.
+fn face_point_terms(
+    n: NodeIndex,
+    coefficient: f64,
+    c: u8,
+    lever: &HashMap<NodeIndex, [f64; 3]>,
+) -> Vec<(NodeDof, f64)> {
+    let dof = |component: u8| NodeDof { node: n, component };
+    let mut out = vec![(dof(c), coefficient)];
+    if let Some(d) = lever.get(&n) {
+        let (a, b) = ((c + 1) % 3, (c + 2) % 3);
+        out.push((dof(3 + a), coefficient * d[b as usize]));
+        out.push((dof(3 + b), -coefficient * d[a as usize]));
+    }
+    out
 }
 
 /// Node ids as sorted runs: "3-7, 12, 15-16".
