@@ -59,15 +59,62 @@ pub struct Assembled {
     pub m: SparseColMat<usize, f64>,
 }
 
-/// One element's matrices in the basic frame, node-major with `dpn` dofs per node.
+/// One element's matrices in the basic frame, node-major with `dpn` dofs per node, then its
+/// `interior` dofs (ccx's C3D8I: the incompatible modes, [`DofMap::interior`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ElementMatrices {
     /// Dofs per element node (3 solids, 6 beams, rods and shells).
     pub dpn: usize,
+    /// Interior dofs after the nodal ones (0 but for ccx's C3D8I).
+    pub interior: usize,
     /// Stiffness, row-major.
     pub k: Vec<f64>,
     /// Mass, row-major.
     pub m: Vec<f64>,
+}
+
+impl ElementMatrices {
+    /// Node-major matrices without interior dofs.
+    pub fn nodal(dpn: usize, k: Vec<f64>, m: Vec<f64>) -> ElementMatrices {
+        ElementMatrices {
+            dpn,
+            interior: 0,
+            k,
+            m,
+        }
+    }
+
+    /// Rows (and columns) of `k` and `m`: the nodal dofs, then the interior ones.
+    pub fn size(&self) -> usize {
+        self.k.len().isqrt()
+    }
+
+    /// The mass over the nodal dofs only: the leading block of `m` (the interior dofs' rows
+    /// dropped — what a rigid motion, which excites no interior dof, sees).
+    pub fn nodal_mass(&self) -> Vec<f64> {
+        let nt = self.size();
+        let nc = nt - self.interior;
+        (0..nc * nc)
+            .map(|ij| self.m[(ij / nc) * nt + ij % nc])
+            .collect()
+    }
+}
+
+/// Does element `e` keep interior dofs in the system — ccx 2.20's C3D8I (CalculiX deck, linear
+/// hexahedra with incompatible modes, isotropic material) under consistent mass, whose nine
+/// mode amplitudes carry mass and stay unknowns as ccx keeps them? Under lumped mass the modes
+/// are massless and condensed exactly (ccx's `*FREQUENCY` always uses its consistent mass).
+pub fn keeps_ccx_modes(model: &Model, e: usize, spec: &AssemblySpec) -> bool {
+    let el = &model.elements[e];
+    el.kind == ElementKind::Hex8
+        && model.params.solid_bubbles
+        && model.params.ccx_solid_rules
+        && spec.mass == MassKind::Consistent
+        && el
+            .property
+            .and_then(|p| model.properties.get(p))
+            .and_then(|p| model.materials.get(p.material))
+            .is_some_and(|m| m.stiffness().is_none() && m.plane_stress().is_none())
 }
 
 /// Does the assembler form matrices for this element (solids, beams, rods with a property)?
@@ -204,7 +251,7 @@ pub fn element_matrices(
             (true, false) => mass::diagonal_solid_mass(&mass::row_sum(&ms, nn)),
             (true, true) => mass::diagonal_solid_mass(&mass::hrz(&ms, nn)),
         };
-        ElementMatrices { dpn: 3, k, m }
+        ElementMatrices::nodal(3, k, m)
     };
     let out = match el.kind {
         ElementKind::Tet4 => {
@@ -236,16 +283,16 @@ pub fn element_matrices(
                 true,
             )
         }
-        // CalculiX 2.20's C3D8I (modes with mass, Guyan-condensed) in a consistent-mass build
-        ElementKind::Hex8
-            if model.params.solid_bubbles
-                && model.params.ccx_solid_rules
-                && !lumped
-                && isotropic =>
-        {
+        // CalculiX 2.20's C3D8I (modes with mass, kept as interior dofs) in a consistent build
+        ElementKind::Hex8 if isotropic && keeps_ccx_modes(model, e, spec) => {
             let x = coords::<8>(model, n);
             let (k, m) = solid_incompatible::hex8_ccx_matrices(&x, &iso).map_err(elem_err)?;
-            ElementMatrices { dpn: 3, k, m }
+            ElementMatrices {
+                dpn: 3,
+                interior: solid_incompatible::HEX8_CCX_MODE_DOFS,
+                k,
+                m,
+            }
         }
         ElementKind::Hex8 => {
             let x = coords::<8>(model, n);
@@ -423,7 +470,7 @@ pub fn element_matrices(
                 Some(w) => (beam::offset(&k, &w), beam::offset(&m, &w)),
                 None => (k, m),
             };
-            ElementMatrices { dpn: 6, k, m }
+            ElementMatrices::nodal(6, k, m)
         }
         ElementKind::Rod2 => {
             let (area, j, nsm) = match &prop.section {
@@ -437,7 +484,7 @@ pub fn element_matrices(
             };
             let (k, m) = rod::matrices(&coords::<2>(model, n), &iso, area, j, nsm, lumped)
                 .map_err(elem_err)?;
-            ElementMatrices { dpn: 6, k, m }
+            ElementMatrices::nodal(6, k, m)
         }
         ElementKind::Quad4 | ElementKind::Tri3 => {
             let Section::Shell(s) = &prop.section else {
@@ -466,7 +513,7 @@ pub fn element_matrices(
                 (false, true) => tri3_shell::matrices_drilling(&coords::<3>(model, n), &p, lumped),
             }
             .map_err(elem_err)?;
-            ElementMatrices { dpn: 6, k, m }
+            ElementMatrices::nodal(6, k, m)
         }
         ElementKind::Quad8 | ElementKind::Tri6 => {
             let Section::Shell(s) = &prop.section else {
@@ -497,7 +544,7 @@ pub fn element_matrices(
                 tri6_shell::matrices(&coords::<6>(model, n), &std::array::from_fn(t), &p, lumped)
             }
             .map_err(elem_err)?;
-            ElementMatrices { dpn: 6, k, m }
+            ElementMatrices::nodal(6, k, m)
         }
         other => {
             return Err(fail(format!(
@@ -508,14 +555,15 @@ pub fn element_matrices(
     Ok(out)
 }
 
-/// Rotate an element matrix into the nodes' displacement frames: A' = T A Tᵀ, T = diag(R_a).
+/// Rotate an element matrix into the nodes' displacement frames: A' = T A Tᵀ, T = diag(R_a)
+/// (interior dofs after the nodal ones, if any, stay in the basic frame: T = I there).
 pub(crate) fn to_frames(
     a: &mut [f64],
     nodes: &[usize],
     dpn: usize,
     frames: &[Option<[[f64; 3]; 3]>],
 ) {
-    let nd = nodes.len() * dpn;
+    let nd = a.len().isqrt();
     let blocks: Vec<Option<&[[f64; 3]; 3]>> = nodes
         .iter()
         .flat_map(|&n| std::iter::repeat_n(frames[n].as_ref(), dpn / 3))
@@ -544,7 +592,7 @@ pub(crate) fn to_frames(
 
 /// Assemble K and M of `model`.
 pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError> {
-    let dofs = DofMap::from_model(model)?;
+    let mut dofs = DofMap::from_model(model)?;
     let elems: Vec<usize> = model
         .elements
         .iter()
@@ -552,6 +600,12 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
         .filter(|(_, e)| e.property.is_some() || is_structural(e.kind))
         .map(|(i, _)| i)
         .collect();
+    for &e in &elems {
+        if keeps_ccx_modes(model, e, spec) {
+            dofs.append_interior(e, solid_incompatible::HEX8_CCX_MODE_DOFS);
+        }
+    }
+    let mut interior_blocks = Vec::with_capacity(dofs.interior.len());
     let connectors = super::connectors::connector_matrices(model)?;
     let conn: Vec<&[usize]> = (elems.iter())
         .map(|&e| model.elements[e].nodes.as_slice())
@@ -617,6 +671,11 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
             })
             .collect();
         let mats = results.into_iter().collect::<Result<Vec<_>, FeError>>()?;
+        for (&e, em) in chunk.iter().zip(&mats) {
+            if let Some(block) = interior_block(model, &dofs, e, em)? {
+                interior_blocks.push(block);
+            }
+        }
         // Split the value arrays at the cuts and scatter each range in parallel.
         let mut kparts = Vec::new();
         let mut mparts = Vec::new();
@@ -636,7 +695,7 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
                 let (koff, moff0) = (value_start(lo), mass_start(lo));
                 for (&e, em) in chunk.iter().zip(&mats) {
                     let nodes = &model.elements[e].nodes;
-                    let (dpn, nd) = (em.dpn, em.dpn * nodes.len());
+                    let (dpn, nd) = (em.dpn, em.size());
                     for (la, &a) in nodes.iter().enumerate() {
                         if a < lo || a >= hi {
                             continue;
@@ -695,15 +754,18 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
     }
 
     let n = dofs.n_dofs;
+    let Pattern {
+        mut col_ptr,
+        mut row_idx,
+        ..
+    } = pattern;
+    if !interior_blocks.is_empty() {
+        (col_ptr, row_idx, kv, mv) =
+            with_interior(&dofs, (&col_ptr, &row_idx), (&kv, &mv), &interior_blocks);
+    }
     let m = match spec.mass {
         MassKind::Consistent => {
-            let sym = SymbolicSparseColMat::new_checked(
-                n,
-                n,
-                pattern.col_ptr.clone(),
-                None,
-                pattern.row_idx.clone(),
-            );
+            let sym = SymbolicSparseColMat::new_checked(n, n, col_ptr.clone(), None, row_idx.clone());
             SparseColMat::new(sym, mv)
         }
         MassKind::Lumped => {
@@ -720,14 +782,157 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
             drop_zeros(n, &cp, &ri, &mv)
         }
     };
-    let Pattern {
-        col_ptr, row_idx, ..
-    } = pattern;
     let k = SparseColMat::new(
         SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx),
         kv,
     );
     Ok(Assembled { dofs, k, m })
+}
+
+/// One element's interior dofs and their columns of K and M (consistent mass).
+struct InteriorBlock {
+    /// First interior dof (global).
+    first: usize,
+    /// Number of interior dofs.
+    ni: usize,
+    /// Global dofs of the element's nodal rows, in element order.
+    nodal: Vec<usize>,
+    /// Columns of the interior dofs over all element rows (nodal, then interior): `(nt × ni)`.
+    k: Vec<f64>,
+    /// The same for M.
+    m: Vec<f64>,
+}
+
+/// The interior block of element `e` from its matrices `em`, or `None` when it has none.
+fn interior_block(
+    model: &Model,
+    dofs: &DofMap,
+    e: usize,
+    em: &ElementMatrices,
+) -> Result<Option<InteriorBlock>, FeError> {
+    let range = dofs.interior_of(e).unwrap_or(0..0);
+    let el = &model.elements[e];
+    if range.len() != em.interior {
+        return Err(FeError::Unsupported {
+            source_file: model.element_origin(el.id),
+            id: el.id,
+            kind: el.kind,
+            message: format!(
+                "formed with {} interior dofs where the dof numbering gave it {}",
+                em.interior,
+                range.len()
+            ),
+        });
+    }
+    if range.is_empty() {
+        return Ok(None);
+    }
+    let (nt, ni) = (em.size(), em.interior);
+    let nodal: Vec<usize> = el
+        .nodes
+        .iter()
+        .flat_map(|&a| (0..em.dpn).map(move |c| (a, c)))
+        .map(|(a, c)| dofs.dof(a, c).unwrap_or(usize::MAX))
+        .collect();
+    if nodal.contains(&usize::MAX) || nodal.len() + ni != nt {
+        return Err(FeError::Unsupported {
+            source_file: model.element_origin(el.id),
+            id: el.id,
+            kind: el.kind,
+            message: "a node of an element with interior dofs lacks a translation dof".into(),
+        });
+    }
+    let columns = |a: &[f64]| -> Vec<f64> {
+        (0..nt * ni)
+            .map(|ri| a[(ri / ni) * nt + nt - ni + ri % ni])
+            .collect()
+    };
+    Ok(Some(InteriorBlock {
+        first: range.start,
+        ni,
+        nodal,
+        k: columns(&em.k),
+        m: columns(&em.m),
+    }))
+}
+
+/// K and M (CSC over the nodes' dofs, one pattern for both) extended by the elements' interior
+/// dofs: the physical columns gain the interior rows their elements couple to, each interior
+/// column holds its element's nodal rows and interior rows (rows ascending in every column).
+fn with_interior(
+    dofs: &DofMap,
+    (col_ptr, row_idx): (&[usize], &[usize]),
+    (kv, mv): (&[f64], &[f64]),
+    blocks: &[InteriorBlock],
+) -> (Vec<usize>, Vec<usize>, Vec<f64>, Vec<f64>) {
+    let (np, n) = (dofs.n_physical, dofs.n_dofs);
+    let mut extra = vec![0usize; np];
+    for b in blocks {
+        for &p in &b.nodal {
+            extra[p] += b.ni;
+        }
+    }
+    let mut cp = Vec::with_capacity(n + 1);
+    cp.push(0usize);
+    for j in 0..np {
+        let len = col_ptr[j + 1] - col_ptr[j] + extra[j];
+        cp.push(cp[j] + len);
+    }
+    for b in blocks {
+        let ni = b.ni;
+        for _ in 0..ni {
+            let last = cp[cp.len() - 1];
+            cp.push(last + b.nodal.len() + ni);
+        }
+    }
+    let nnz = cp[n];
+    let (mut ri, mut kk, mut mm) = (vec![0usize; nnz], vec![0.0; nnz], vec![0.0; nnz]);
+    // physical columns: their own entries, then the interior rows in block order
+    let mut fill: Vec<usize> = (0..np)
+        .map(|j| {
+            let (lo, hi) = (col_ptr[j], col_ptr[j + 1]);
+            let at = cp[j];
+            ri[at..at + hi - lo].copy_from_slice(&row_idx[lo..hi]);
+            kk[at..at + hi - lo].copy_from_slice(&kv[lo..hi]);
+            mm[at..at + hi - lo].copy_from_slice(&mv[lo..hi]);
+            at + hi - lo
+        })
+        .collect();
+    for b in blocks {
+        let ni = b.ni;
+        for (l, &p) in b.nodal.iter().enumerate() {
+            for i in 0..ni {
+                let at = fill[p];
+                ri[at] = b.first + i;
+                kk[at] = b.k[l * ni + i];
+                mm[at] = b.m[l * ni + i];
+                fill[p] += 1;
+            }
+        }
+    }
+    // interior columns: the nodal rows ascending, then the block's interior rows
+    for b in blocks {
+        let ni = b.ni;
+        let nc = b.nodal.len();
+        let mut order: Vec<usize> = (0..nc).collect();
+        order.sort_unstable_by_key(|&l| b.nodal[l]);
+        for i in 0..ni {
+            let mut at = cp[b.first + i];
+            for &l in &order {
+                ri[at] = b.nodal[l];
+                kk[at] = b.k[l * ni + i];
+                mm[at] = b.m[l * ni + i];
+                at += 1;
+            }
+            for r in 0..ni {
+                ri[at] = b.first + r;
+                kk[at] = b.k[(nc + r) * ni + i];
+                mm[at] = b.m[(nc + r) * ni + i];
+                at += 1;
+            }
+        }
+    }
+    (cp, ri, kk, mm)
 }
 
 /// Add one connector's matrices ([`super::connectors`]) into the values of K (`kv`, full

@@ -11,6 +11,11 @@
 //! frame, so u_local = R u_basic for translations and rotations alike. Cylindrical frames use
 //! (e_r, e_θ, e_z) and spherical ones (e_R, e_θ, e_φ) evaluated at the node (MSC Nastran QRG,
 //! CORD2C/CORD2S).
+//!
+//! After the nodes' dofs (`0..n_physical`) come the interior dofs of elements that keep
+//! internal unknowns in the system (ccx 2.20's C3D8I: its nine incompatible-mode amplitudes,
+//! as ccx keeps them): no node owns them, `node_of` gives `None`, and they are expressed in the
+//! basic frame. The assembly appends them ([`DofMap::append_interior`]).
 
 use super::elements::beam::{cross, dot, norm, scale, sub};
 use super::mass::point_mass_has_rotary;
@@ -26,8 +31,23 @@ pub struct DofMap {
     pub count: Vec<u8>,
     /// Displacement-frame rotation per node (rows = local axes in the basic frame).
     pub frames: Vec<Option<[[f64; 3]; 3]>>,
-    /// Total number of dofs.
+    /// Total number of dofs: the nodes' then the elements' interior dofs.
     pub n_dofs: usize,
+    /// Number of the nodes' dofs (`0..n_physical`); the interior dofs follow.
+    pub n_physical: usize,
+    /// Interior dof blocks, ascending by element and by first dof.
+    pub interior: Vec<InteriorDofs>,
+}
+
+/// The interior dofs of one element: `first .. first + count`, no node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InteriorDofs {
+    /// Element index in the model.
+    pub element: usize,
+    /// First global dof.
+    pub first: usize,
+    /// Number of dofs.
+    pub count: usize,
 }
 
 impl DofMap {
@@ -204,7 +224,32 @@ impl DofMap {
             count,
             frames,
             n_dofs: next,
+            n_physical: next,
+            interior: Vec::new(),
         })
+    }
+
+    /// Append `count` interior dofs of element `element` (after every dof so far; elements in
+    /// ascending order) and return the first.
+    pub fn append_interior(&mut self, element: usize, count: usize) -> usize {
+        let first = self.n_dofs;
+        self.interior.push(InteriorDofs {
+            element,
+            first,
+            count,
+        });
+        self.n_dofs += count;
+        first
+    }
+
+    /// The interior dofs of element `element`, if it has any.
+    pub fn interior_of(&self, element: usize) -> Option<std::ops::Range<usize>> {
+        let i = self
+            .interior
+            .binary_search_by_key(&element, |b| b.element)
+            .ok()?;
+        let b = self.interior[i];
+        Some(b.first..b.first + b.count)
     }
 
     /// Global dof of component `comp` (0 = ux … 5 = rz) of `node`, if it exists.
@@ -213,9 +258,9 @@ impl DofMap {
         (comp < c).then(|| self.first[node] + comp)
     }
 
-    /// (node, component) of a global dof.
+    /// (node, component) of a global dof; `None` for an interior dof.
     pub fn node_of(&self, dof: usize) -> Option<(usize, usize)> {
-        if dof >= self.n_dofs {
+        if dof >= self.n_physical {
             return None;
         }
         // Last node whose first dof is ≤ dof and that owns dofs.
