@@ -28,6 +28,7 @@ pub mod constraints;
 pub mod dofs;
 pub mod elements;
 pub mod geometric;
+pub mod interior;
 pub mod loads;
 pub mod mass;
 pub mod pattern;

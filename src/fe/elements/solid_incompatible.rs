@@ -108,6 +108,17 @@ pub fn hex8_ccx_matrices(
     Ok((k, m))
 }
 
+/// Physical gradients of ccx 2.20's C3D8I modes 1 − ξ², 1 − η², 1 − ζ² at ξ, as
+/// [`hex8_ccx_matrices`] forms them: J₀⁻¹ ∂P/∂ξ (J₀ at the centre).
+pub fn hex8_ccx_mode_gradients(x: &[Xyz; 8], xi: &Xyz) -> Result<[Xyz; 3], ElementError> {
+    map_point(x, super::hex8::shape, &[0.0; 3], 0)?;
+    let inv0 = jacobian_inverse(x, super::hex8::shape, &[0.0; 3]);
+    let modes = hex_modes(xi);
+    Ok(std::array::from_fn(|m| {
+        std::array::from_fn(|i| (0..3).map(|c| inv0[i][c] * modes[m][c]).sum::<f64>())
+    }))
+}
+
 /// (A + Aᵀ)/2 in place (n × n, row-major).
 fn symmetrize(a: &mut [f64], n: usize) {
     for i in 0..n {
