@@ -233,8 +233,23 @@ fn c3d8i_craig_bampton_fixed_interface_modes_are_calculix_with_the_interface_cla
     let o = exe()
         .arg("build")
         .arg(fixture("c3d8i_distorted.inp"))
-        .args(["--units", "si", "--method", "cb", "--modes", "10", "--mass", "consistent"])
-        .args(["--interface", "11,22,33,44,55,66,77,88,99", "-q", "--json", "-o"])
+        .args([
+            "--units",
+            "si",
+            "--method",
+            "cb",
+            "--modes",
+            "10",
+            "--mass",
+            "consistent",
+        ])
+        .args([
+            "--interface",
+            "11,22,33,44,55,66,77,88,99",
+            "-q",
+            "--json",
+            "-o",
+        ])
         .arg(&out)
         .output()
         .unwrap();
@@ -247,7 +262,13 @@ fn c3d8i_craig_bampton_fixed_interface_modes_are_calculix_with_the_interface_cla
         .map(|v| v.as_f64().unwrap())
         .collect();
     // measured worst 2.8e-7 (ccx's 7 printed digits)
-    let w = common::assert_frequencies("fixed-interface", &fixed, &ccx("c3d8i_tip_clamped"), 0, 3e-6);
+    let w = common::assert_frequencies(
+        "fixed-interface",
+        &fixed,
+        &ccx("c3d8i_tip_clamped"),
+        0,
+        3e-6,
+    );
     // measured 3.6e-15
     let orthonormality = report["orthonormality"].as_f64().unwrap();
     assert!(orthonormality < 1e-12, "{orthonormality:e}");

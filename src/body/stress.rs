@@ -307,11 +307,9 @@ pub fn modal_fields_with_modes(
         if with_modes {
             let x = coords::<8>(model, &el.nodes);
             for (a, g) in grads.iter_mut().enumerate() {
-                let modes = elements::solid_incompatible::hex8_ccx_mode_gradients(
-                    &x,
-                    &hex8::NODES[a],
-                )
-                .map_err(|e| fail(format!("cannot evaluate strains: {e}")))?;
+                let modes =
+                    elements::solid_incompatible::hex8_ccx_mode_gradients(&x, &hex8::NODES[a])
+                        .map_err(|e| fail(format!("cannot evaluate strains: {e}")))?;
                 g.extend(modes);
             }
         }
@@ -536,9 +534,15 @@ mod tests {
             let [x, _, z] = model.nodes[n].x;
             let want = [kappa * z, 0.0, 0.0, 0.0, 0.0, 0.0];
             for c in 0..6 {
-                assert!((with[6 * q + c] - want[c]).abs() < 1e-15, "node {n} comp {c}");
+                assert!(
+                    (with[6 * q + c] - want[c]).abs() < 1e-15,
+                    "node {n} comp {c}"
+                );
             }
-            assert!((without[6 * q + 5] - kappa * (x - 0.5 * l)).abs() < 1e-15, "node {n}");
+            assert!(
+                (without[6 * q + 5] - kappa * (x - 0.5 * l)).abs() < 1e-15,
+                "node {n}"
+            );
         }
     }
 }

@@ -765,7 +765,8 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
     }
     let m = match spec.mass {
         MassKind::Consistent => {
-            let sym = SymbolicSparseColMat::new_checked(n, n, col_ptr.clone(), None, row_idx.clone());
+            let sym =
+                SymbolicSparseColMat::new_checked(n, n, col_ptr.clone(), None, row_idx.clone());
             SparseColMat::new(sym, mv)
         }
         MassKind::Lumped => {

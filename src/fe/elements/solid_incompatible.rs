@@ -471,9 +471,7 @@ mod tests {
             let r: Vec<f64> = (0..nt)
                 .map(|i| f64::from(u8::from(i < 24 && i % 3 == dir)))
                 .collect();
-            let mass: f64 = (0..nt * nt)
-                .map(|ij| r[ij / nt] * m[ij] * r[ij % nt])
-                .sum();
+            let mass: f64 = (0..nt * nt).map(|ij| r[ij / nt] * m[ij] * r[ij % nt]).sum();
             assert!((mass - rho_v).abs() <= 1e-12 * mass, "{mass}");
             let mode = 24 + dir;
             assert!((m[mode * nt + mode] - rho_v * 4.0 / 9.0).abs() <= 1e-12 * rho_v);

@@ -43,14 +43,7 @@ pub fn fields(
             std::array::from_fn(|c| phi[(rows.start + 3 * m + c, j)])
         }))
     };
-    let f = modal_fields_with_modes(
-        model,
-        &stored.nodes,
-        phi.ncols(),
-        &u,
-        &amplitudes,
-        request,
-    )?;
+    let f = modal_fields_with_modes(model, &stored.nodes, phi.ncols(), &u, &amplitudes, request)?;
     // Shells: top fibre in the solids' entries, bottom fibre in the 1.5 entries.
     let u6 = |p: NodeIndex, j: usize| node_shape(dofs, phi, p, j);
     let sf = shell_fields(model, &stored.nodes, phi.ncols(), &u6, request)?;
