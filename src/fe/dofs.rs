@@ -415,4 +415,63 @@ mod tests {
         // e_R = x, e_θ (towards −z from the equator… θ measured from z) = −z, e_φ = y
         assert_eq!(s, [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]);
     }
+
+    /// Two ccx C3D8I in a row: each keeps nine interior dofs after the 36 nodes' dofs
+    /// (`node_of` has none for them), and the assembled K and M rows and columns of one
+    /// element's interior dofs are its own 33 × 33's; under lumped mass there are none.
+    #[test]
+    fn ccx_c3d8i_modes_are_interior_dofs_after_the_nodes() {
+        use crate::fe::elements::{solid_incompatible, Isotropic, Xyz};
+        use crate::fe::{assemble, AssemblySpec, MassKind};
+        use crate::model::generate::{block, BlockElement, BlockSpec};
+        let mut model = block(&BlockSpec {
+            n: [2, 1, 1],
+            size: [0.4, 0.1, 0.1],
+            element: BlockElement::Hex8,
+            material: crate::model::Material::steel(),
+        });
+        model.params.solid_bubbles = true;
+        model.params.ccx_solid_rules = true;
+        let spec = AssemblySpec {
+            mass: MassKind::Consistent,
+            ..Default::default()
+        };
+        let a = assemble(&model, &spec).unwrap();
+        let d = &a.dofs;
+        assert_eq!((d.n_physical, d.n_dofs, d.interior.len()), (36, 54, 2));
+        assert_eq!(d.interior_of(1), Some(45..54));
+        assert_eq!(d.node_of(36), None);
+        let el = &model.elements[0];
+        let x: [Xyz; 8] = std::array::from_fn(|i| model.nodes[el.nodes[i]].x);
+        let mat = &model.materials[0];
+        let (k, m) =
+            solid_incompatible::hex8_ccx_matrices(&x, &Isotropic::new(mat.e, mat.nu, mat.rho))
+                .unwrap();
+        let global = |l: usize| -> usize {
+            if l < 24 {
+                d.dof(el.nodes[l / 3], l % 3).unwrap()
+            } else {
+                36 + l - 24
+            }
+        };
+        let at = |s: &faer::sparse::SparseColMat<usize, f64>, r: usize, c: usize| -> f64 {
+            let s = s.as_ref();
+            (s.row_idx_of_col(c).zip(s.val_of_col(c)))
+                .find(|(i, _)| *i == r)
+                .map_or(0.0, |(_, v)| *v)
+        };
+        let scale = k.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        let mscale = m.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        // the interior dofs' rows and columns are the element's alone
+        for i in 24..33 {
+            for j in 0..33 {
+                let (gi, gj) = (global(i), global(j));
+                assert!((at(&a.k, gi, gj) - k[i * 33 + j]).abs() <= 1e-12 * scale);
+                assert!((at(&a.k, gj, gi) - k[j * 33 + i]).abs() <= 1e-12 * scale);
+                assert!((at(&a.m, gi, gj) - m[i * 33 + j]).abs() <= 1e-12 * mscale);
+            }
+        }
+        let lumped = assemble(&model, &AssemblySpec::default()).unwrap();
+        assert_eq!((lumped.dofs.n_dofs, lumped.dofs.interior.len()), (36, 0));
+    }
 }
