@@ -292,3 +292,34 @@ fn c3d8i_craig_bampton_fixed_interface_modes_are_calculix_with_the_interface_cla
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--write-matrices` of a C3D8I bar writes the system the build reduces: the 40 elements'
+/// nine mode dofs are equations after the nodes' (`dofs.txt`: element id, components 7–15),
+/// not nodes of `coords.csv`.
+#[test]
+fn c3d8i_write_matrices_lists_the_mode_dofs_after_the_nodes() {
+    let dir = scratch("c3d8i-mtx");
+    let o = build_as_ccx(
+        &fixture("c3d8i_bar.inp"),
+        &["-q", "--write-matrices", dir.join("m").to_str().unwrap()],
+        &dir.join("b.flexbody"),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dofs = std::fs::read_to_string(dir.join("m/dofs.txt")).unwrap();
+    let rows: Vec<Vec<u64>> = (dofs.lines())
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(' ').map(|f| f.parse().unwrap()).collect())
+        .collect();
+    // 99 nodes, 9 of them clamped: 90 × 3 node dofs, then 40 × 9 mode dofs
+    assert_eq!(rows.len(), 90 * 3 + 40 * 9);
+    let modes: Vec<&Vec<u64>> = rows.iter().filter(|r| r[2] >= 7).collect();
+    assert_eq!(modes.len(), 360);
+    assert!(rows[..270].iter().all(|r| r[2] <= 3));
+    assert_eq!(*rows.last().unwrap(), vec![630, 40, 15]);
+    let k = std::fs::read_to_string(dir.join("m/K.mtx")).unwrap();
+    let size = k.lines().find(|l| !l.starts_with('%')).unwrap();
+    assert!(size.starts_with("630 630 "), "{size}");
+    let coords = std::fs::read_to_string(dir.join("m/coords.csv")).unwrap();
+    assert_eq!(coords.lines().count(), 1 + 90);
+    let _ = std::fs::remove_dir_all(&dir);
+}
