@@ -62,8 +62,9 @@ fn an_s4_plate_builds_by_default_near_kirchhoff_and_calculix() {
     let worst = (ours.iter().zip(&ccx).take(6))
         .map(|(a, b)| (a - b).abs() / b)
         .fold(0.0, f64::max);
-    // measured 4.9e-5 (mode 5; 1.9e-6 at mode 1): ccx keeps the C3D8I's incompatible modes
-    // in its eigenproblem, flexbody condenses them (Guyan) for now
-    assert!(worst <= 1e-4, "{worst:e}: {ours:?} against {ccx:?}");
+    // measured 3.7e-7: the C3D8I's incompatible modes are interior dofs of the eigenproblem,
+    // as ccx keeps them (4.9e-5 when they were condensed statically)
+    eprintln!("worst of six against ccx: {worst:.2e}");
+    assert!(worst <= 1e-6, "{worst:e}: {ours:?} against {ccx:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -9,6 +9,10 @@
 //! invariants I5, I8, I9 use the node-pair scalar masses m_pq = tr(M_pq)/3 of the translational
 //! 3×3 blocks (exact for solid elements, whose blocks are m_pq·E):
 //! I5_j = Σ m_pq φ̃_jp Φ_q, I8_j = Σ m_pq s̃_p φ̃_jq, I9_jk = Σ m_pq φ̃_jp φ̃_kq.
+//!
+//! Interior dofs (ccx's C3D8I: the amplitudes of its incompatible modes, xyz triples in the
+//! basic frame) are translational fields with mass too: each triple is one more point q of the
+//! sums with s_q = 0 (a rigid motion excites no interior dof) and φ_jq its rows of Φ.
 
 use faer::sparse::SparseColMat;
 use faer::Mat;
@@ -50,30 +54,37 @@ fn rigid_vectors(dofs: &DofMap, x: &[[f64; 3]]) -> Mat<f64> {
     r
 }
 
-/// Node-pair scalar masses m_pq = tr(A_pᵀ M_pq A_q)/3 of the translational blocks (basic axes).
+/// The translational point and component of a dof: (node, c) for a node's c < 3, (nn + k, c)
+/// for the k-th xyz triple of the interior dofs; `None` for rotations and scalar points.
+fn translation_of(dofs: &DofMap, dof: usize) -> Option<(usize, usize)> {
+    if dof >= dofs.n_physical {
+        let k = dof - dofs.n_physical;
+        return Some((dofs.count.len() + k / 3, k % 3));
+    }
+    dofs.node_of(dof).filter(|&(_, c)| c < 3)
+}
+
+/// Point-pair scalar masses m_pq = tr(A_pᵀ M_pq A_q)/3 of the translational blocks (basic axes)
+/// over the nodes and the interior triples ([`translation_of`]).
 fn pair_masses(m: &SparseColMat<usize, f64>, dofs: &DofMap) -> Vec<(usize, usize, f64)> {
     let mut blocks: std::collections::BTreeMap<(usize, usize), [[f64; 3]; 3]> = Default::default();
     let mr = m.as_ref();
     for col in 0..mr.ncols() {
-        let Some((q, b)) = dofs.node_of(col) else {
+        let Some((q, b)) = translation_of(dofs, col) else {
             continue;
         };
-        if b >= 3 {
-            continue;
-        }
         for (row, v) in mr.row_idx_of_col(col).zip(mr.val_of_col(col)) {
-            if let Some((p, a)) = dofs.node_of(row) {
-                if a < 3 {
-                    blocks.entry((p, q)).or_insert([[0.0; 3]; 3])[a][b] += *v;
-                }
+            if let Some((p, a)) = translation_of(dofs, row) {
+                blocks.entry((p, q)).or_insert([[0.0; 3]; 3])[a][b] += *v;
             }
         }
     }
     let eye = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let frame = |p: usize| dofs.frames.get(p).copied().flatten().unwrap_or(eye);
     blocks
         .into_iter()
         .map(|((p, q), blk)| {
-            let (ap, aq) = (dofs.frames[p].unwrap_or(eye), dofs.frames[q].unwrap_or(eye));
+            let (ap, aq) = (frame(p), frame(q));
             // tr(A_pᵀ B A_q) = Σ_{i,a,b} A_p[a][i] B[a][b] A_q[b][i]
             let mut tr = 0.0;
             for i in 0..3 {
@@ -130,16 +141,24 @@ pub fn consistent_invariants(
     if mask[4] || mask[7] || mask[8] {
         let pairs = pair_masses(m, dofs);
         let nn = x.len();
-        // U[p][3j + a]: translation a of node p in mode j (basic); W = M_s U.
-        let u = Mat::from_fn(nn, 3 * nm, |p, c| shape(p, c / 3)[c % 3]);
-        let mut w = Mat::<f64>::zeros(nn, 3 * nm);
-        let mut ms = Mat::<f64>::zeros(nn, 3); // M_s s (for I8)
+        let np = nn + (dofs.n_dofs - dofs.n_physical) / 3;
+        // U[p][3j + a]: translation a of point p in mode j (basic); W = M_s U.
+        let u = Mat::from_fn(np, 3 * nm, |p, c| {
+            if p < nn {
+                shape(p, c / 3)[c % 3]
+            } else {
+                phi[(dofs.n_physical + 3 * (p - nn) + c % 3, c / 3)]
+            }
+        });
+        let position = |q: usize| if q < nn { x[q] } else { [0.0; 3] };
+        let mut w = Mat::<f64>::zeros(np, 3 * nm);
+        let mut ms = Mat::<f64>::zeros(np, 3); // M_s s (for I8)
         for &(p, q, mpq) in &pairs {
             for c in 0..3 * nm {
                 w[(p, c)] += mpq * u[(q, c)];
             }
             for a in 0..3 {
-                ms[(p, a)] += mpq * x[q][a];
+                ms[(p, a)] += mpq * position(q)[a];
             }
         }
         // C[(3j + a), (3k + b)] = Σ_pq m_pq φ_jp[a] φ_kq[b]

@@ -8,6 +8,11 @@
 //! Only solid elements carry fields; a node touched by no solid element gets none. Nodal
 //! averaging mixes the values of elements of different materials at a shared node, as every
 //! corner-averaging post-processor does; the jump is not resolved.
+//!
+//! ccx 2.20's C3D8I, whose incompatible-mode amplitudes are dofs of the system
+//! (`fe::DofMap::interior`), adds its modes' strain: Σ_m ∇P_m(ξ_a) ⊗ α_m at each corner, so a
+//! bending field has no parasitic shear there (the amplitudes cancel it). Other hexahedra with
+//! bubble modes (condensed) are recovered from the nodes alone.
 
 use crate::fe::elements::{self, hex20, hex8, map_point, prism6, tet10, tet4, ElementError, Xyz};
 use crate::model::elasticity::rotate;
@@ -226,6 +231,22 @@ pub fn modal_fields(
     displacement: &dyn Fn(NodeIndex, usize) -> [f64; 3],
     request: FieldRequest,
 ) -> Result<ModalFields, StressError> {
+    modal_fields_with_modes(model, wanted, n_modes, displacement, &|_, _| None, request)
+}
+
+/// The amplitudes (basic frame) of the three incompatible modes of a ccx C3D8I (element index,
+/// mode), or `None` for an element without them.
+pub type ModeAmplitudes<'a> = &'a dyn Fn(usize, usize) -> Option<[[f64; 3]; 3]>;
+
+/// [`modal_fields`] with the incompatible-mode amplitudes of ccx's C3D8I elements (module doc).
+pub fn modal_fields_with_modes(
+    model: &Model,
+    wanted: &[NodeIndex],
+    n_modes: usize,
+    displacement: &dyn Fn(NodeIndex, usize) -> [f64; 3],
+    amplitudes: ModeAmplitudes<'_>,
+    request: FieldRequest,
+) -> Result<ModalFields, StressError> {
     let nn = model.nodes.len();
     // Accumulators per wanted node touched by a solid: slot → (count, sums).
     let WantedSlots {
@@ -239,7 +260,7 @@ pub fn modal_fields(
     let mut sum_stress = vec![0.0; if request.stress { n_modes * k * 6 } else { 0 }];
     let mut fallbacks = 0;
     let mut u = Vec::new();
-    for el in &model.elements {
+    for (e, el) in model.elements.iter().enumerate() {
         if !el.kind.is_solid() || !el.nodes.iter().any(|&n| n < nn && is_wanted[n]) {
             continue;
         }
@@ -276,15 +297,28 @@ pub fn modal_fields(
         } else {
             Vec::new()
         };
-        let Some((grads, fb)) = element_gradients(model, &el.nodes, el.kind)
+        let Some((mut grads, fb)) = element_gradients(model, &el.nodes, el.kind)
             .map_err(|e| fail(format!("cannot evaluate strains: {e}")))?
         else {
             continue; // a solid kind without a formulation (assembly reports it)
         };
         fallbacks += fb;
+        let with_modes = el.kind == ElementKind::Hex8 && amplitudes(e, 0).is_some();
+        if with_modes {
+            let x = coords::<8>(model, &el.nodes);
+            for (a, g) in grads.iter_mut().enumerate() {
+                let modes =
+                    elements::solid_incompatible::hex8_ccx_mode_gradients(&x, &hex8::NODES[a])
+                        .map_err(|e| fail(format!("cannot evaluate strains: {e}")))?;
+                g.extend(modes);
+            }
+        }
         for j in 0..n_modes {
             u.clear();
             u.extend(el.nodes.iter().map(|&n| displacement(n, j)));
+            if with_modes {
+                u.extend(amplitudes(e, j).unwrap_or_default());
+            }
             for (a, &n) in el.nodes.iter().enumerate() {
                 if !is_wanted[n] {
                     continue;
@@ -467,5 +501,48 @@ mod tests {
         assert!((strain[3] / gamma - 1.0).abs() < 1e-12);
         assert!((stress[3] / (steel.g * gamma) - 1.0).abs() < 1e-12);
         assert!(stress[0].abs() < 1e-9 * steel.g * gamma);
+    }
+
+    /// ccx's C3D8I in pure bending u = κxz, w = −κx²/2: with its mode amplitude (the w
+    /// component of 1 − ξ² is κL²/8, the quadratic rest of w) every corner has the exact strain
+    /// ε_xx = κz and no shear; the nodes alone give the parasitic shear γ_zx = κ(x − L/2).
+    #[test]
+    fn c3d8i_mode_amplitudes_remove_the_parasitic_shear_at_the_corners() {
+        let (l, kappa) = (2.0, 1e-3);
+        let model = block(&BlockSpec {
+            n: [1, 1, 1],
+            size: [l, 0.5, 0.4],
+            element: BlockElement::Hex8,
+            material: Material::steel(),
+        });
+        let disp = |n: NodeIndex, _j: usize| -> [f64; 3] {
+            let [x, _, z] = model.nodes[n].x;
+            [kappa * x * z, 0.0, -0.5 * kappa * x * x]
+        };
+        let amplitudes = |_e: usize, _j: usize| -> Option<[[f64; 3]; 3]> {
+            Some([[0.0, 0.0, kappa * l * l / 8.0], [0.0; 3], [0.0; 3]])
+        };
+        let all: Vec<NodeIndex> = (0..8).collect();
+        let request = FieldRequest {
+            stress: false,
+            strain: true,
+        };
+        let with = modal_fields_with_modes(&model, &all, 1, &disp, &amplitudes, request).unwrap();
+        let without = modal_fields(&model, &all, 1, &disp, request).unwrap(); // valid solid
+        let (with, without) = (with.strain.unwrap(), without.strain.unwrap()); // asked for
+        for (q, &n) in all.iter().enumerate() {
+            let [x, _, z] = model.nodes[n].x;
+            let want = [kappa * z, 0.0, 0.0, 0.0, 0.0, 0.0];
+            for c in 0..6 {
+                assert!(
+                    (with[6 * q + c] - want[c]).abs() < 1e-15,
+                    "node {n} comp {c}"
+                );
+            }
+            assert!(
+                (without[6 * q + 5] - kappa * (x - 0.5 * l)).abs() < 1e-15,
+                "node {n}"
+            );
+        }
     }
 }

@@ -18,6 +18,7 @@ use super::elements::{
     quad8_shell, rod, solid_incompatible, tet10, tet4, tri3_shell, tri6_shell, ElementError,
     Isotropic, Xyz,
 };
+use super::interior::{interior_block, with_interior};
 use super::mass::{self, MassKind};
 use super::pattern::Pattern;
 use super::FeError;
@@ -59,15 +60,62 @@ pub struct Assembled {
     pub m: SparseColMat<usize, f64>,
 }
 
-/// One element's matrices in the basic frame, node-major with `dpn` dofs per node.
+/// One element's matrices in the basic frame, node-major with `dpn` dofs per node, then its
+/// `interior` dofs (ccx's C3D8I: the incompatible modes, [`DofMap::interior`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ElementMatrices {
     /// Dofs per element node (3 solids, 6 beams, rods and shells).
     pub dpn: usize,
+    /// Interior dofs after the nodal ones (0 but for ccx's C3D8I).
+    pub interior: usize,
     /// Stiffness, row-major.
     pub k: Vec<f64>,
     /// Mass, row-major.
     pub m: Vec<f64>,
+}
+
+impl ElementMatrices {
+    /// Node-major matrices without interior dofs.
+    pub fn nodal(dpn: usize, k: Vec<f64>, m: Vec<f64>) -> ElementMatrices {
+        ElementMatrices {
+            dpn,
+            interior: 0,
+            k,
+            m,
+        }
+    }
+
+    /// Rows (and columns) of `k` and `m`: the nodal dofs, then the interior ones.
+    pub fn size(&self) -> usize {
+        self.k.len().isqrt()
+    }
+
+    /// The mass over the nodal dofs only: the leading block of `m` (the interior dofs' rows
+    /// dropped — what a rigid motion, which excites no interior dof, sees).
+    pub fn nodal_mass(&self) -> Vec<f64> {
+        let nt = self.size();
+        let nc = nt - self.interior;
+        (0..nc * nc)
+            .map(|ij| self.m[(ij / nc) * nt + ij % nc])
+            .collect()
+    }
+}
+
+/// Does element `e` keep interior dofs in the system — ccx 2.20's C3D8I (CalculiX deck, linear
+/// hexahedra with incompatible modes, isotropic material) under consistent mass, whose nine
+/// mode amplitudes carry mass and stay unknowns as ccx keeps them? Under lumped mass the modes
+/// are massless and condensed exactly (ccx's `*FREQUENCY` always uses its consistent mass).
+pub fn keeps_ccx_modes(model: &Model, e: usize, spec: &AssemblySpec) -> bool {
+    let el = &model.elements[e];
+    el.kind == ElementKind::Hex8
+        && model.params.solid_bubbles
+        && model.params.ccx_solid_rules
+        && spec.mass == MassKind::Consistent
+        && el
+            .property
+            .and_then(|p| model.properties.get(p))
+            .and_then(|p| model.materials.get(p.material))
+            .is_some_and(|m| m.stiffness().is_none() && m.plane_stress().is_none())
 }
 
 /// Does the assembler form matrices for this element (solids, beams, rods with a property)?
@@ -204,7 +252,7 @@ pub fn element_matrices(
             (true, false) => mass::diagonal_solid_mass(&mass::row_sum(&ms, nn)),
             (true, true) => mass::diagonal_solid_mass(&mass::hrz(&ms, nn)),
         };
-        ElementMatrices { dpn: 3, k, m }
+        ElementMatrices::nodal(3, k, m)
     };
     let out = match el.kind {
         ElementKind::Tet4 => {
@@ -236,16 +284,16 @@ pub fn element_matrices(
                 true,
             )
         }
-        // CalculiX 2.20's C3D8I (modes with mass, Guyan-condensed) in a consistent-mass build
-        ElementKind::Hex8
-            if model.params.solid_bubbles
-                && model.params.ccx_solid_rules
-                && !lumped
-                && isotropic =>
-        {
+        // CalculiX 2.20's C3D8I (modes with mass, kept as interior dofs) in a consistent build
+        ElementKind::Hex8 if isotropic && keeps_ccx_modes(model, e, spec) => {
             let x = coords::<8>(model, n);
             let (k, m) = solid_incompatible::hex8_ccx_matrices(&x, &iso).map_err(elem_err)?;
-            ElementMatrices { dpn: 3, k, m }
+            ElementMatrices {
+                dpn: 3,
+                interior: solid_incompatible::HEX8_CCX_MODE_DOFS,
+                k,
+                m,
+            }
         }
         ElementKind::Hex8 => {
             let x = coords::<8>(model, n);
@@ -423,7 +471,7 @@ pub fn element_matrices(
                 Some(w) => (beam::offset(&k, &w), beam::offset(&m, &w)),
                 None => (k, m),
             };
-            ElementMatrices { dpn: 6, k, m }
+            ElementMatrices::nodal(6, k, m)
         }
         ElementKind::Rod2 => {
             let (area, j, nsm) = match &prop.section {
@@ -437,7 +485,7 @@ pub fn element_matrices(
             };
             let (k, m) = rod::matrices(&coords::<2>(model, n), &iso, area, j, nsm, lumped)
                 .map_err(elem_err)?;
-            ElementMatrices { dpn: 6, k, m }
+            ElementMatrices::nodal(6, k, m)
         }
         ElementKind::Quad4 | ElementKind::Tri3 => {
             let Section::Shell(s) = &prop.section else {
@@ -466,7 +514,7 @@ pub fn element_matrices(
                 (false, true) => tri3_shell::matrices_drilling(&coords::<3>(model, n), &p, lumped),
             }
             .map_err(elem_err)?;
-            ElementMatrices { dpn: 6, k, m }
+            ElementMatrices::nodal(6, k, m)
         }
         ElementKind::Quad8 | ElementKind::Tri6 => {
             let Section::Shell(s) = &prop.section else {
@@ -497,7 +545,7 @@ pub fn element_matrices(
                 tri6_shell::matrices(&coords::<6>(model, n), &std::array::from_fn(t), &p, lumped)
             }
             .map_err(elem_err)?;
-            ElementMatrices { dpn: 6, k, m }
+            ElementMatrices::nodal(6, k, m)
         }
         other => {
             return Err(fail(format!(
@@ -508,14 +556,15 @@ pub fn element_matrices(
     Ok(out)
 }
 
-/// Rotate an element matrix into the nodes' displacement frames: A' = T A Tᵀ, T = diag(R_a).
+/// Rotate an element matrix into the nodes' displacement frames: A' = T A Tᵀ, T = diag(R_a)
+/// (interior dofs after the nodal ones, if any, stay in the basic frame: T = I there).
 pub(crate) fn to_frames(
     a: &mut [f64],
     nodes: &[usize],
     dpn: usize,
     frames: &[Option<[[f64; 3]; 3]>],
 ) {
-    let nd = nodes.len() * dpn;
+    let nd = a.len().isqrt();
     let blocks: Vec<Option<&[[f64; 3]; 3]>> = nodes
         .iter()
         .flat_map(|&n| std::iter::repeat_n(frames[n].as_ref(), dpn / 3))
@@ -544,7 +593,7 @@ pub(crate) fn to_frames(
 
 /// Assemble K and M of `model`.
 pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError> {
-    let dofs = DofMap::from_model(model)?;
+    let mut dofs = DofMap::from_model(model)?;
     let elems: Vec<usize> = model
         .elements
         .iter()
@@ -552,6 +601,12 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
         .filter(|(_, e)| e.property.is_some() || is_structural(e.kind))
         .map(|(i, _)| i)
         .collect();
+    for &e in &elems {
+        if keeps_ccx_modes(model, e, spec) {
+            dofs.append_interior(e, solid_incompatible::HEX8_CCX_MODE_DOFS);
+        }
+    }
+    let mut interior_blocks = Vec::with_capacity(dofs.interior.len());
     let connectors = super::connectors::connector_matrices(model)?;
     let conn: Vec<&[usize]> = (elems.iter())
         .map(|&e| model.elements[e].nodes.as_slice())
@@ -617,6 +672,11 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
             })
             .collect();
         let mats = results.into_iter().collect::<Result<Vec<_>, FeError>>()?;
+        for (&e, em) in chunk.iter().zip(&mats) {
+            if let Some(block) = interior_block(model, &dofs, e, em)? {
+                interior_blocks.push(block);
+            }
+        }
         // Split the value arrays at the cuts and scatter each range in parallel.
         let mut kparts = Vec::new();
         let mut mparts = Vec::new();
@@ -636,7 +696,7 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
                 let (koff, moff0) = (value_start(lo), mass_start(lo));
                 for (&e, em) in chunk.iter().zip(&mats) {
                     let nodes = &model.elements[e].nodes;
-                    let (dpn, nd) = (em.dpn, em.dpn * nodes.len());
+                    let (dpn, nd) = (em.dpn, em.size());
                     for (la, &a) in nodes.iter().enumerate() {
                         if a < lo || a >= hi {
                             continue;
@@ -695,15 +755,19 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
     }
 
     let n = dofs.n_dofs;
+    let Pattern {
+        mut col_ptr,
+        mut row_idx,
+        ..
+    } = pattern;
+    if !interior_blocks.is_empty() {
+        (col_ptr, row_idx, kv, mv) =
+            with_interior(&dofs, (&col_ptr, &row_idx), (&kv, &mv), &interior_blocks);
+    }
     let m = match spec.mass {
         MassKind::Consistent => {
-            let sym = SymbolicSparseColMat::new_checked(
-                n,
-                n,
-                pattern.col_ptr.clone(),
-                None,
-                pattern.row_idx.clone(),
-            );
+            let sym =
+                SymbolicSparseColMat::new_checked(n, n, col_ptr.clone(), None, row_idx.clone());
             SparseColMat::new(sym, mv)
         }
         MassKind::Lumped => {
@@ -720,9 +784,6 @@ pub fn assemble(model: &Model, spec: &AssemblySpec) -> Result<Assembled, FeError
             drop_zeros(n, &cp, &ri, &mv)
         }
     };
-    let Pattern {
-        col_ptr, row_idx, ..
-    } = pattern;
     let k = SparseColMat::new(
         SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx),
         kv,

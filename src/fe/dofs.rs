@@ -11,6 +11,11 @@
 //! frame, so u_local = R u_basic for translations and rotations alike. Cylindrical frames use
 //! (e_r, e_θ, e_z) and spherical ones (e_R, e_θ, e_φ) evaluated at the node (MSC Nastran QRG,
 //! CORD2C/CORD2S).
+//!
+//! After the nodes' dofs (`0..n_physical`) come the interior dofs of elements that keep
+//! internal unknowns in the system (ccx 2.20's C3D8I: its nine incompatible-mode amplitudes,
+//! as ccx keeps them): no node owns them, `node_of` gives `None`, and they are expressed in the
+//! basic frame. The assembly appends them ([`DofMap::append_interior`]).
 
 use super::elements::beam::{cross, dot, norm, scale, sub};
 use super::mass::point_mass_has_rotary;
@@ -26,8 +31,23 @@ pub struct DofMap {
     pub count: Vec<u8>,
     /// Displacement-frame rotation per node (rows = local axes in the basic frame).
     pub frames: Vec<Option<[[f64; 3]; 3]>>,
-    /// Total number of dofs.
+    /// Total number of dofs: the nodes' then the elements' interior dofs.
     pub n_dofs: usize,
+    /// Number of the nodes' dofs (`0..n_physical`); the interior dofs follow.
+    pub n_physical: usize,
+    /// Interior dof blocks, ascending by element and by first dof.
+    pub interior: Vec<InteriorDofs>,
+}
+
+/// The interior dofs of one element: `first .. first + count`, no node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InteriorDofs {
+    /// Element index in the model.
+    pub element: usize,
+    /// First global dof.
+    pub first: usize,
+    /// Number of dofs.
+    pub count: usize,
 }
 
 impl DofMap {
@@ -204,7 +224,32 @@ impl DofMap {
             count,
             frames,
             n_dofs: next,
+            n_physical: next,
+            interior: Vec::new(),
         })
+    }
+
+    /// Append `count` interior dofs of element `element` (after every dof so far; elements in
+    /// ascending order) and return the first.
+    pub fn append_interior(&mut self, element: usize, count: usize) -> usize {
+        let first = self.n_dofs;
+        self.interior.push(InteriorDofs {
+            element,
+            first,
+            count,
+        });
+        self.n_dofs += count;
+        first
+    }
+
+    /// The interior dofs of element `element`, if it has any.
+    pub fn interior_of(&self, element: usize) -> Option<std::ops::Range<usize>> {
+        let i = self
+            .interior
+            .binary_search_by_key(&element, |b| b.element)
+            .ok()?;
+        let b = self.interior[i];
+        Some(b.first..b.first + b.count)
     }
 
     /// Global dof of component `comp` (0 = ux … 5 = rz) of `node`, if it exists.
@@ -213,9 +258,9 @@ impl DofMap {
         (comp < c).then(|| self.first[node] + comp)
     }
 
-    /// (node, component) of a global dof.
+    /// (node, component) of a global dof; `None` for an interior dof.
     pub fn node_of(&self, dof: usize) -> Option<(usize, usize)> {
-        if dof >= self.n_dofs {
+        if dof >= self.n_physical {
             return None;
         }
         // Last node whose first dof is ≤ dof and that owns dofs.
@@ -369,5 +414,64 @@ mod tests {
         let s = frame_at(CoordKind::Spherical, [0.0; 3], &axes, [3.0, 0.0, 0.0]);
         // e_R = x, e_θ (towards −z from the equator… θ measured from z) = −z, e_φ = y
         assert_eq!(s, [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]);
+    }
+
+    /// Two ccx C3D8I in a row: each keeps nine interior dofs after the 36 nodes' dofs
+    /// (`node_of` has none for them), and the assembled K and M rows and columns of one
+    /// element's interior dofs are its own 33 × 33's; under lumped mass there are none.
+    #[test]
+    fn ccx_c3d8i_modes_are_interior_dofs_after_the_nodes() {
+        use crate::fe::elements::{solid_incompatible, Isotropic, Xyz};
+        use crate::fe::{assemble, AssemblySpec, MassKind};
+        use crate::model::generate::{block, BlockElement, BlockSpec};
+        let mut model = block(&BlockSpec {
+            n: [2, 1, 1],
+            size: [0.4, 0.1, 0.1],
+            element: BlockElement::Hex8,
+            material: crate::model::Material::steel(),
+        });
+        model.params.solid_bubbles = true;
+        model.params.ccx_solid_rules = true;
+        let spec = AssemblySpec {
+            mass: MassKind::Consistent,
+            ..Default::default()
+        };
+        let a = assemble(&model, &spec).unwrap();
+        let d = &a.dofs;
+        assert_eq!((d.n_physical, d.n_dofs, d.interior.len()), (36, 54, 2));
+        assert_eq!(d.interior_of(1), Some(45..54));
+        assert_eq!(d.node_of(36), None);
+        let el = &model.elements[0];
+        let x: [Xyz; 8] = std::array::from_fn(|i| model.nodes[el.nodes[i]].x);
+        let mat = &model.materials[0];
+        let (k, m) =
+            solid_incompatible::hex8_ccx_matrices(&x, &Isotropic::new(mat.e, mat.nu, mat.rho))
+                .unwrap();
+        let global = |l: usize| -> usize {
+            if l < 24 {
+                d.dof(el.nodes[l / 3], l % 3).unwrap()
+            } else {
+                36 + l - 24
+            }
+        };
+        let at = |s: &faer::sparse::SparseColMat<usize, f64>, r: usize, c: usize| -> f64 {
+            let s = s.as_ref();
+            (s.row_idx_of_col(c).zip(s.val_of_col(c)))
+                .find(|(i, _)| *i == r)
+                .map_or(0.0, |(_, v)| *v)
+        };
+        let scale = k.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        let mscale = m.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        // the interior dofs' rows and columns are the element's alone
+        for i in 24..33 {
+            for j in 0..33 {
+                let (gi, gj) = (global(i), global(j));
+                assert!((at(&a.k, gi, gj) - k[i * 33 + j]).abs() <= 1e-12 * scale);
+                assert!((at(&a.k, gj, gi) - k[j * 33 + i]).abs() <= 1e-12 * scale);
+                assert!((at(&a.m, gi, gj) - m[i * 33 + j]).abs() <= 1e-12 * mscale);
+            }
+        }
+        let lumped = assemble(&model, &AssemblySpec::default()).unwrap();
+        assert_eq!((lumped.dofs.n_dofs, lumped.dofs.interior.len()), (36, 0));
     }
 }

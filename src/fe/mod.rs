@@ -2,13 +2,15 @@
 //! constraints eliminated by u = T u_r.
 //!
 //! ```text
-//! Model ──► DofMap::from_model ──► assemble (K, M over all physical dofs)
+//! Model ──► DofMap::from_model ──► assemble (K, M over the nodes' dofs and ccx C3D8I's
+//!                                     │      interior mode dofs)
 //!                                     │
 //!                                     └──► constraints::eliminate ──► (K_r = TᵀKT, M_r = TᵀMT, T)
 //! ```
 //! * [`elements`] — one file per element kind: shape functions, quadrature, formulas.
 //! * [`dofs::DofMap`] — node ↔ dof numbering (3 or 6 per node, 1 per scalar point,
-//!   node-major, CD frames).
+//!   node-major, CD frames), then the elements' interior dofs (ccx's C3D8I modes).
+//! * [`interior`] — those interior dofs recovered from the nodes' rows of an eigenvector.
 //! * [`mass`] — lumping (row-sum, HRZ) and point masses.
 //! * [`shell_section`] — shell section + materials → element shell constants.
 //! * [`connectors`] — springs, scalar masses and bushes.
@@ -28,6 +30,7 @@ pub mod constraints;
 pub mod dofs;
 pub mod elements;
 pub mod geometric;
+pub mod interior;
 pub mod loads;
 pub mod mass;
 pub mod pattern;

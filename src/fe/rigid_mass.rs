@@ -133,8 +133,9 @@ pub fn lumped_and_consistent(
             let l = element_matrices(model, e, &lumped_spec)?;
             let c = element_matrices(model, e, &consistent_spec)?;
             Ok((
-                element_rigid_mass(&l.m, l.dpn, &x),
-                element_rigid_mass(&c.m, c.dpn, &x),
+                element_rigid_mass(&l.nodal_mass(), l.dpn, &x),
+                // a rigid motion excites no interior dof (ccx's C3D8I modes): the nodal block
+                element_rigid_mass(&c.nodal_mass(), c.dpn, &x),
             ))
         })
         .collect::<Result<Vec<_>, FeError>>()?;

@@ -67,6 +67,12 @@ pub fn constrained_system_of_model(
             owner[first + c] = (model.nodes[node].id, c as u8);
         }
     }
+    // an interior dof (ccx's C3D8I mode amplitude): its element's id, components 7… (mtx.rs)
+    for b in &d.interior {
+        for i in 0..b.count {
+            owner[b.first + i] = (model.elements[b.element].id, (6 + i) as u8);
+        }
+    }
     let dofs: Vec<(u64, u8)> = reduced.retained.iter().map(|&p| owner[p]).collect();
     // Each node with a retained dof, once, in the order of its first dof.
     let position: std::collections::HashMap<u64, [f64; 3]> =
@@ -74,6 +80,7 @@ pub fn constrained_system_of_model(
     let mut seen = std::collections::HashSet::new();
     let nodes = dofs
         .iter()
+        .filter(|(_, c)| *c < 6)
         .filter(|(id, _)| seen.insert(*id))
         .filter_map(|(id, _)| position.get(id).map(|&x| (*id, x)))
         .collect();

@@ -9,7 +9,11 @@
 //!   zeros are not written. Units: the model's.
 //! * `dofs.txt`: equation k (1-based, line k after the `#` comments) = `k node component`, with
 //!   the node's external id and the component 1…6 = ux uy uz rx ry rz in the node's
-//!   displacement frame (Nastran's CD; the basic frame for Abaqus/Gmsh models).
+//!   displacement frame (Nastran's CD; the basic frame for Abaqus/Gmsh models). The interior
+//!   dofs of ccx 2.20's C3D8I (its incompatible-mode amplitudes, no node) come after all the
+//!   nodes' dofs as `k element component` with the element's external id and component
+//!   7…15 = modes 1 − ξ², 1 − η², 1 − ζ² × x y z (basic frame), as ccx numbers them after its
+//!   nodes (its three extra nodes per element).
 //! * `coords.csv`: the coordinates of the nodes `dofs.txt` names, for a peer that needs the
 //!   geometry with K and M (a spider fit, its own Craig–Bampton on nodes it picks by place):
 //!   a `node,x,y,z` header, then one line per node in the order of its first dof, the node's
@@ -35,7 +39,8 @@ pub struct ConstrainedSystem {
     pub k: SparseColMat<usize, f64>,
     /// M_r = Tᵀ M T, full symmetric.
     pub m: SparseColMat<usize, f64>,
-    /// Equation k ↔ (external node id, component 0…5).
+    /// Equation k ↔ (external node id, component 0…5), or for an interior dof (external
+    /// element id, 6 + its index).
     pub dofs: Vec<(u64, u8)>,
     /// Lumped or consistent.
     pub mass: fe::MassKind,
@@ -91,6 +96,12 @@ pub fn write_matrices(
             "# flexbody {}: {source}; equation k = line k: k node component (1-6 = ux uy uz rx ry rz, node displacement frame)",
             env!("CARGO_PKG_VERSION")
         )?;
+        if sys.dofs.iter().any(|&(_, c)| c >= 6) {
+            writeln!(
+                w,
+                "# after the nodes: k element component (7-15 = C3D8I incompatible modes 1-xi^2, 1-eta^2, 1-zeta^2 x ux uy uz, basic frame)"
+            )?;
+        }
         for (k, (node, c)) in sys.dofs.iter().enumerate() {
             writeln!(w, "{} {node} {}", k + 1, c + 1)?;
         }

@@ -10,7 +10,9 @@
 //! integrated element in bending.
 //!
 //! K = K_cc − K_ci K_ii⁻¹ K_ic, each block ∫ Bᵀ D B dV over the element's full rule; the mass is
-//! the compatible element's.
+//! the compatible element's (massless modes: the condensation is exact in the eigenproblem too).
+//! CalculiX 2.20's C3D8I gives its modes mass: [`hex8_ccx_matrices`] returns the uncondensed
+//! element, whose mode dofs the assembly keeps as interior dofs (`fe::dofs::DofMap::interior`).
 
 use super::{check_solid_material, map_point, ElementError, Isotropic, ShapeFn, Xyz};
 use crate::fe::quadrature::{self, QuadPoint};
@@ -42,12 +44,16 @@ pub fn prism6_stiffness(x: &[Xyz; 6], mat: &Isotropic) -> Result<Vec<f64>, Eleme
     condense(&full_stiffness(&prism6_points(x)?, mat), 18, 3)
 }
 
+/// Interior dofs of ccx 2.20's C3D8I: the three incompatible modes × xyz, mode-major
+/// (`[a1x a1y a1z a2x …]`, basic frame), after the 24 nodal dofs.
+pub const HEX8_CCX_MODE_DOFS: usize = 9;
+
 /// CalculiX 2.20's C3D8I (its shape8hu, shape8humass, e_c3d), stiffness and consistent mass
-/// (24×24 each): Wilson's modes with gradients through J₀⁻¹ (no det J₀/det J factor), 2×2×2
-/// Gauss, and — unlike Abaqus and ccx 2.11 — mass on the modes: ρ∫[N, P]ᵀ[N, P] dV over the 8
-/// nodal functions and P = 1 − ξ², 1 − η², 1 − ζ². ccx keeps the 9 mode dofs as three extra
-/// nodes per element; here they are condensed with their static shapes T = −K_ii⁻¹K_ic
-/// (Guyan): K = K_cc + K_ci T, M = [I; T]ᵀ M [I; T], so the body keeps physical nodes only.
+/// over the 24 nodal dofs followed by the [`HEX8_CCX_MODE_DOFS`] mode dofs (33×33 each, the
+/// uncondensed element ccx solves with): Wilson's modes with gradients through J₀⁻¹ (no
+/// det J₀/det J factor), 2×2×2 Gauss, and — unlike Abaqus and ccx 2.11 — mass on the modes:
+/// ρ∫[N, P]ᵀ[N, P] dV over the 8 nodal functions and P = 1 − ξ², 1 − η², 1 − ζ². ccx keeps the
+/// mode dofs as three extra nodes per element; the assembly keeps them as interior dofs.
 pub fn hex8_ccx_matrices(
     x: &[Xyz; 8],
     mat: &Isotropic,
@@ -56,8 +62,7 @@ pub fn hex8_ccx_matrices(
     let rule = quadrature::cube(2);
     let (_, _, _) = map_point(x, super::hex8::shape, &[0.0; 3], 0)?;
     let inv0 = jacobian_inverse(x, super::hex8::shape, &[0.0; 3]);
-    let (nc, ni) = (24, 9);
-    let nt = nc + ni;
+    let nt = 24 + HEX8_CCX_MODE_DOFS;
     let mut points = Vec::with_capacity(rule.len());
     // scalar mass over the 8 nodal functions and the 3 modes (11×11)
     let mut ms = [[0.0; 11]; 11];
@@ -86,52 +91,43 @@ pub fn hex8_ccx_matrices(
             grads,
         });
     }
-    let kfull = full_stiffness(&points, mat);
-    // T = −K_ii⁻¹ K_ic (ni × nc)
-    let kic: Vec<f64> = (0..ni)
-        .flat_map(|i| (0..nc).map(move |j| (i, j)))
-        .map(|(i, j)| kfull[(nc + i) * nt + j])
+    let k = full_stiffness(&points, mat);
+    // the mode block must be regular (a degenerate element otherwise)
+    solve_modes(&k, 24, HEX8_CCX_MODE_DOFS, vec![0.0; HEX8_CCX_MODE_DOFS], 1)?;
+    // M = m ⊗ I₃ over the 11 functions (dofs: 8 nodes × xyz, then 3 modes × xyz)
+    let m = (0..nt * nt)
+        .map(|ij| {
+            let (i, j) = (ij / nt, ij % nt);
+            if i % 3 == j % 3 {
+                ms[i / 3][j / 3]
+            } else {
+                0.0
+            }
+        })
         .collect();
-    let t: Vec<f64> = solve_modes(&kfull, nc, ni, kic, nc)?
-        .iter()
-        .map(|v| -v)
-        .collect();
-    // the full mass (dofs: 8 nodes × xyz, then 3 modes × xyz) and [I; T]ᵀ M [I; T]
-    let mfull = |i: usize, j: usize| {
-        if i % 3 == j % 3 {
-            ms[i / 3][j / 3]
-        } else {
-            0.0
-        }
-    };
-    let basis = |row: usize, col: usize| {
-        if row < nc {
-            f64::from(u8::from(row == col))
-        } else {
-            t[(row - nc) * nc + col]
-        }
-    };
-    // M T' where T' = [I; T] (nt × nc)
-    let mut mt = vec![0.0; nt * nc];
-    for i in 0..nt {
-        for j in 0..nc {
-            mt[i * nc + j] = (0..nt).map(|k| mfull(i, k) * basis(k, j)).sum();
-        }
-    }
-    let mut m = vec![0.0; nc * nc];
-    for i in 0..nc {
-        for j in 0..nc {
-            m[i * nc + j] = (0..nt).map(|k| basis(k, i) * mt[k * nc + j]).sum();
-        }
-    }
-    for i in 0..nc {
+    Ok((k, m))
+}
+
+/// Physical gradients of ccx 2.20's C3D8I modes 1 − ξ², 1 − η², 1 − ζ² at ξ, as
+/// [`hex8_ccx_matrices`] forms them: J₀⁻¹ ∂P/∂ξ (J₀ at the centre).
+pub fn hex8_ccx_mode_gradients(x: &[Xyz; 8], xi: &Xyz) -> Result<[Xyz; 3], ElementError> {
+    map_point(x, super::hex8::shape, &[0.0; 3], 0)?;
+    let inv0 = jacobian_inverse(x, super::hex8::shape, &[0.0; 3]);
+    let modes = hex_modes(xi);
+    Ok(std::array::from_fn(|m| {
+        std::array::from_fn(|i| (0..3).map(|c| inv0[i][c] * modes[m][c]).sum::<f64>())
+    }))
+}
+
+/// (A + Aᵀ)/2 in place (n × n, row-major).
+fn symmetrize(a: &mut [f64], n: usize) {
+    for i in 0..n {
         for j in 0..i {
-            let v = 0.5 * (m[i * nc + j] + m[j * nc + i]);
-            m[i * nc + j] = v;
-            m[j * nc + i] = v;
+            let v = 0.5 * (a[i * n + j] + a[j * n + i]);
+            a[i * n + j] = v;
+            a[j * n + i] = v;
         }
     }
-    Ok((condense(&kfull, nc, ni)?, m))
 }
 
 /// Strain rows (6 × 3n: εxx εyy εzz γxy γyz γzx) of gradients g.
@@ -371,14 +367,7 @@ pub(crate) fn condense(k: &[f64], nc: usize, ni: usize) -> Result<Vec<f64>, Elem
             out[i * nc + j] = k[i * nt + j] - corr;
         }
     }
-    // exact symmetry
-    for i in 0..nc {
-        for j in 0..i {
-            let v = 0.5 * (out[i * nc + j] + out[j * nc + i]);
-            out[i * nc + j] = v;
-            out[j * nc + i] = v;
-        }
-    }
+    symmetrize(&mut out, nc);
     Ok(out)
 }
 
@@ -458,9 +447,9 @@ mod tests {
         assert!(locked > 1.5 * want, "{locked} vs {want}");
     }
 
-    /// ccx 2.20's C3D8I: on a brick (J = J₀ everywhere) its stiffness is the Taylor-corrected
-    /// one; its Guyan mass keeps the total mass ρV for every rigid translation and is heavier
-    /// than the compatible mass on bending shapes (the modes' mass).
+    /// ccx 2.20's C3D8I: on a brick (J = J₀ everywhere) its stiffness condensed is the
+    /// Taylor-corrected one; a rigid translation (zero mode amplitudes) carries ρV, and each
+    /// mode carries ρV·4/9 per component ((1 − ξ²)² = 4/9 at the 2 × 2 × 2 Gauss points).
     #[test]
     fn ccx_c3d8i_on_a_brick() {
         let x: [Xyz; 8] = std::array::from_fn(|a| {
@@ -468,42 +457,24 @@ mod tests {
             [0.3 * c[0], 0.1 * c[1], 0.2 * c[2]]
         });
         let (k, m) = hex8_ccx_matrices(&x, &steel()).unwrap();
+        let nt = 24 + HEX8_CCX_MODE_DOFS;
+        assert_eq!((k.len(), m.len()), (nt * nt, nt * nt));
+        let condensed = condense(&k, 24, HEX8_CCX_MODE_DOFS).unwrap();
         let taylor = hex8_stiffness(&x, &steel()).unwrap();
         let scale = taylor.iter().fold(0.0f64, |s, v| s.max(v.abs()));
-        assert!(k
+        assert!(condensed
             .iter()
             .zip(&taylor)
             .all(|(a, b)| (a - b).abs() <= 1e-12 * scale));
-        let volume = 0.6 * 0.2 * 0.4;
+        let rho_v = 7850.0 * 0.6 * 0.2 * 0.4;
         for dir in 0..3 {
-            let r: Vec<f64> = (0..24).map(|i| f64::from(u8::from(i % 3 == dir))).collect();
-            let mass: f64 = (0..24)
-                .flat_map(|i| (0..24).map(move |j| (i, j)))
-                .map(|(i, j)| r[i] * m[i * 24 + j] * r[j])
-                .sum();
-            assert!((mass - 7850.0 * volume).abs() <= 1e-12 * mass, "{mass}");
+            let r: Vec<f64> = (0..nt)
+                .map(|i| f64::from(u8::from(i < 24 && i % 3 == dir)))
+                .collect();
+            let mass: f64 = (0..nt * nt).map(|ij| r[ij / nt] * m[ij] * r[ij % nt]).sum();
+            assert!((mass - rho_v).abs() <= 1e-12 * mass, "{mass}");
+            let mode = 24 + dir;
+            assert!((m[mode * nt + mode] - rho_v * 4.0 / 9.0).abs() <= 1e-12 * rho_v);
         }
-        let compatible = crate::fe::elements::expand_scalar_mass(
-            &crate::fe::elements::hex8::scalar_mass(&x, 7850.0).unwrap(),
-            8,
-        );
-        // bending about y: u_x = ξ ζ at the corners
-        let nodes = crate::fe::elements::hex8::NODES;
-        let u: Vec<f64> = (0..24)
-            .map(|i| {
-                if i % 3 == 0 {
-                    nodes[i / 3][0] * nodes[i / 3][2]
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        let quad = |mm: &[f64]| -> f64 {
-            (0..24)
-                .flat_map(|i| (0..24).map(move |j| (i, j)))
-                .map(|(i, j)| u[i] * mm[i * 24 + j] * u[j])
-                .sum()
-        };
-        assert!(quad(&m) > quad(&compatible) * (1.0 + 1e-6));
     }
 }

@@ -495,8 +495,13 @@ fn assemble_elementwise(
     )?;
     let n = dofs.n_dofs;
     let Pattern {
-        col_ptr, row_idx, ..
+        mut col_ptr,
+        row_idx,
+        ..
     } = pattern;
+    // the interior dofs (ccx's C3D8I modes) carry no K_G: empty columns
+    let nnz = col_ptr.last().copied().unwrap_or(0);
+    col_ptr.resize(n + 1, nnz);
     Ok(SparseColMat::new(
         SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx),
         values,

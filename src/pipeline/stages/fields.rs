@@ -3,7 +3,7 @@
 //! fibre apart ([`shell_fields`], format 1.5).
 
 use crate::body::shell_stress::{merge, shell_fields};
-use crate::body::stress::{modal_fields, ModalFields};
+use crate::body::stress::{modal_fields_with_modes, ModalFields};
 use crate::model::{Model, NodeIndex};
 use crate::pipeline::plan::Plan;
 use crate::pipeline::stages::constraints::Constrained;
@@ -36,7 +36,14 @@ pub fn fields(
         let s = node_shape(dofs, phi, p, j);
         [s[0], s[1], s[2]]
     };
-    let f = modal_fields(model, &stored.nodes, phi.ncols(), &u, request)?;
+    // ccx's C3D8I: its mode amplitudes are rows of Φ (interior dofs, basic frame)
+    let amplitudes = |e: usize, j: usize| -> Option<[[f64; 3]; 3]> {
+        let rows = dofs.interior_of(e)?;
+        Some(std::array::from_fn(|m| {
+            std::array::from_fn(|c| phi[(rows.start + 3 * m + c, j)])
+        }))
+    };
+    let f = modal_fields_with_modes(model, &stored.nodes, phi.ncols(), &u, &amplitudes, request)?;
     // Shells: top fibre in the solids' entries, bottom fibre in the 1.5 entries.
     let u6 = |p: NodeIndex, j: usize| node_shape(dofs, phi, p, j);
     let sf = shell_fields(model, &stored.nodes, phi.ncols(), &u6, request)?;
