@@ -548,3 +548,146 @@ fn refusals_name_the_command_element_type_and_keyopt_by_line() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("SOLID186 KEYOPT(2)=1"), "{err}");
 }
+
+/// The model's C3D20R mesh as an Abaqus deck (material 1 of the model), `extra` appended.
+fn abaqus_deck(model: &Model, extra: &str) -> String {
+    let mut s = String::from("*NODE\n");
+    for n in &model.nodes {
+        s.push_str(&format!(
+            "{}, {:?}, {:?}, {:?}\n",
+            n.id, n.x[0], n.x[1], n.x[2]
+        ));
+    }
+    s.push_str("*ELEMENT, TYPE=C3D20R, ELSET=ALL\n");
+    for el in &model.elements {
+        let ids: Vec<String> = el
+            .nodes
+            .iter()
+            .map(|&i| model.nodes[i].id.to_string())
+            .collect();
+        s.push_str(&format!(
+            "{}, {},\n{}\n",
+            el.id,
+            ids[..15].join(", "),
+            ids[15..].join(", ")
+        ));
+    }
+    let m = &model.materials[0];
+    s.push_str(&format!(
+        "*MATERIAL, NAME=M\n*ELASTIC\n{:?}, {:?}\n*DENSITY\n{:?}\n*SOLID SECTION, ELSET=ALL, MATERIAL=M\n{extra}",
+        m.e, m.nu, m.rho
+    ));
+    s
+}
+
+/// D, CE and CP in an archive against the *BOUNDARY and *EQUATION they stand for in the same
+/// mesh as C3D20R (lumped mass: the same element matrices through both importers).
+#[test]
+fn d_ce_and_cp_equal_the_abaqus_boundary_and_equations() {
+    let Some(dir) = examples("D, CE and CP against Abaqus *BOUNDARY/*EQUATION") else {
+        return;
+    };
+    let mut extra = String::new();
+    for n in 1..=21 {
+        extra.push_str(&format!("D,{n},ALL,0\n"));
+    }
+    extra.push_str("CP,1,UX,22,23,24\n");
+    extra.push_str("CE,R5.0,DEFI,       2,       1,  0.00000000    \n");
+    extra
+        .push_str("CE,R5.0,NODE,       25,UY  ,  2.00000000    ,       26,UY  , -1.00000000    \n");
+    let work = scratch("ansys-ce-cp");
+    let cdb = work.join("tied.cdb");
+    std::fs::write(&cdb, hexbeam_as_solved(&dir, &extra)).unwrap();
+    let model = read_model(&cdb, &ImportOptions::default()).unwrap();
+    assert_eq!((model.spcs.len(), model.mpcs.len()), (21, 3));
+    let inp = work.join("tied.inp");
+    let mut keywords = String::from("*BOUNDARY\n");
+    for n in 1..=21 {
+        keywords.push_str(&format!("{n}, 1, 3\n"));
+    }
+    keywords.push_str("*EQUATION\n2\n23, 1, 1.0, 22, 1, -1.0\n2\n24, 1, 1.0, 22, 1, -1.0\n");
+    keywords.push_str("2\n25, 2, 2.0, 26, 2, -1.0\n");
+    std::fs::write(&inp, abaqus_deck(&model, &keywords)).unwrap();
+    let ours = build_modes(&cdb, 12, &["--mass", "lumped"]);
+    let abaqus = build_modes(&inp, 12, &["--mass", "lumped"]);
+    let free = build_modes(
+        &{
+            let p = work.join("clamped.cdb");
+            std::fs::write(
+                &p,
+                hexbeam_as_solved(&dir, &extra[..extra.find("CP").unwrap()]),
+            )
+            .unwrap();
+            p
+        },
+        12,
+        &["--mass", "lumped"],
+    );
+    let worst = (ours.iter().zip(&abaqus))
+        .map(|(a, b)| ((a - b) / b).abs())
+        .fold(0.0, f64::max);
+    // measured 0; the ties do change the modes (the untied clamp differs by 1e-4 or more)
+    println!(
+        "D/CE/CP against *BOUNDARY/*EQUATION: {worst:.2e}; untied {:?}",
+        &free[..3]
+    );
+    assert!(worst < 1e-10, "{ours:?} {abaqus:?}");
+    assert!(ours
+        .iter()
+        .zip(&free)
+        .any(|(a, b)| ((a - b) / b).abs() > 1e-4));
+}
+
+/// LUMPM,ON builds the lumped mass (as --mass lumped); F and ACEL are scene loads.
+#[test]
+fn lumpm_and_loads_are_read() {
+    let Some(dir) = examples("LUMPM, F and ACEL") else {
+        return;
+    };
+    let work = scratch("ansys-lumpm");
+    let clamp: String = (1..=21).map(|n| format!("D,{n},ALL,0\n")).collect();
+    let lumped = work.join("lumpm.cdb");
+    let extra =
+        format!("{clamp}LUMPM,ON\nF,      22,FY  ,  150.0    ,  0.0\nACEL,  0.0,  0.0,  9.81\n");
+    std::fs::write(&lumped, hexbeam_as_solved(&dir, &extra)).unwrap();
+    let model = read_model(&lumped, &ImportOptions::default()).unwrap();
+    assert_eq!(model.params.coupled_mass, Some(false));
+    let names: Vec<&str> = model.loads.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(names, ["F", "ACEL"]);
+    assert!(matches!(
+        model.loads[1].parts[..],
+        [flexbody::model::load::LoadPart::Gravity { accel }] if accel == [0.0, 0.0, -9.81]
+    ));
+    let consistent = work.join("consistent.cdb");
+    std::fs::write(&consistent, hexbeam_as_solved(&dir, &clamp)).unwrap();
+    let by_lumpm = build_modes(&lumped, 8, &[]);
+    let by_option = build_modes(&consistent, 8, &["--mass", "lumped"]);
+    let by_default = build_modes(&consistent, 8, &[]);
+    assert_eq!(by_lumpm, by_option);
+    assert!((by_default[0] - PACKAGE_HZ[0]).abs() < 1e-6 * PACKAGE_HZ[0]);
+    assert!((by_lumpm[0] - by_default[0]).abs() > 1e-3 * by_default[0]);
+}
+
+/// A temperature table is read at TREF when it holds TREF, refused otherwise.
+#[test]
+fn temperature_tables_are_read_at_tref_or_refused() {
+    let Some(dir) = examples("temperature tables") else {
+        return;
+    };
+    let text = std::fs::read_to_string(dir.join("HexBeam.cdb")).unwrap();
+    let table =
+        "MPTEMP,R5.0, 2, 1,  20.0, 100.0,\nMPDATA,R5.0, 2,EX  ,       1, 1, 7.1e10, 6.5e10,\n";
+    let work = scratch("ansys-tables");
+    let path = work.join("t.cdb");
+    std::fs::write(&path, format!("{text}{table}TREF,100.0\n")).unwrap();
+    let model = read_model(&path, &ImportOptions::default()).unwrap();
+    assert_eq!(model.materials[0].e, 6.5e10);
+    std::fs::write(&path, format!("{text}{table}TREF,50.0\n")).unwrap();
+    let err = read_model(&path, &ImportOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("material 1 EX: a table over 2 temperatures"),
+        "{err}"
+    );
+}
