@@ -159,9 +159,8 @@ pub(super) fn columns<'a>(text: &'a str, lay: &Layout) -> Vec<Option<&'a str>> {
     let bytes = text.trim_end_matches(['\r', '\n']);
     let mut out = Vec::with_capacity(lay.ints + lay.reals);
     let mut at = 0;
-    let widths = std::iter::repeat(lay.int_width)
-        .take(lay.ints)
-        .chain(std::iter::repeat(lay.real_width).take(lay.reals));
+    let widths = std::iter::repeat_n(lay.int_width, lay.ints)
+        .chain(std::iter::repeat_n(lay.real_width, lay.reals));
     for w in widths {
         let end = (at + w).min(bytes.len());
         let s = bytes.get(at..end).map(str::trim).filter(|s| !s.is_empty());
@@ -337,8 +336,8 @@ impl<'a> Lines<'a> {
                     let (m, more) = self.required(start, "EBLOCK")?;
                     let cols = columns(more, &lay);
                     let want = count as usize - nodes.len();
-                    for k in 0..want.min(lay.ints) {
-                        nodes.push(int_col(&self.file, m, "EBLOCK", cols[k])?);
+                    for col in cols.iter().take(want.min(lay.ints)) {
+                        nodes.push(int_col(&self.file, m, "EBLOCK", *col)?);
                     }
                 }
                 ElementRecord {

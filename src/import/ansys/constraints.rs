@@ -34,13 +34,16 @@ fn force_of(label: &str) -> Option<usize> {
     })
 }
 
+/// A constraint equation's terms: (node id, 0-based dof, coefficient).
+pub(super) type Terms = Vec<(u64, u8, f64)>;
+
 /// The constraints and loads read, by external node id.
 #[derive(Debug, Default)]
 pub(super) struct Raw {
     /// (line, node, dof mask bits).
     pub held: Vec<(usize, u64, u8)>,
     /// Constraint equations: (line, terms (node, dof, coefficient)).
-    pub equations: Vec<(usize, Vec<(u64, u8, f64)>)>,
+    pub equations: Vec<(usize, Terms)>,
     /// Coupled sets: set number → (first line, dof, nodes).
     pub coupled: BTreeMap<i64, (usize, u8, Vec<u64>)>,
     /// Nodal forces: (line, node, component, value).

@@ -34,13 +34,16 @@ fn label(name: &str) -> Option<Label> {
     })
 }
 
+/// A property's table: its first line and its (temperature, value) pairs.
+type Table = (usize, Vec<(f64, f64)>);
+
 /// The property tables read so far.
 #[derive(Debug, Default)]
 pub(super) struct Tables {
     /// The current MPTEMP temperatures.
     temps: Vec<f64>,
     /// (material, label) → (first line, (temperature, value) pairs).
-    props: BTreeMap<(i64, String), (usize, Vec<(f64, f64)>)>,
+    props: BTreeMap<(i64, String), Table>,
     /// Labels without effect: label → lines.
     pub noted: BTreeMap<String, Vec<usize>>,
 }
