@@ -691,3 +691,26 @@ fn temperature_tables_are_read_at_tref_or_refused() {
         "{err}"
     );
 }
+
+/// sector.cdb (SOLID185, its default KEYOPT(2)=0): refused by the element's line, naming the
+/// KEYOPT.
+#[test]
+fn sector_solid185_is_refused_naming_its_keyopt() {
+    let Some(dir) = examples("sector.cdb refused") else {
+        return;
+    };
+    let work = scratch("ansys-sector");
+    let o = exe()
+        .arg("build")
+        .arg(dir.join("sector.cdb"))
+        .args(["--units", "si", "-o"])
+        .arg(work.join("sector.flexbody"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("sector.cdb:697: EBLOCK element of type 2 (SOLID185, ET line 36): SOLID185 KEYOPT(2)=0 (B-bar"),
+        "{err}"
+    );
+}

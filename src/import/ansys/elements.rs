@@ -74,6 +74,7 @@ pub(super) fn form(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refus
         ));
     };
     match disposition {
+        Disposition::Refused(_) if number == 185 => return Err(solid185(t)),
         Disposition::Refused(why) => return Err(format!("{name}: {why}")),
         Disposition::Note(_) => return Ok(Formed::NoStiffness),
         Disposition::Honoured(_) => {}
@@ -127,6 +128,19 @@ fn solid187(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
         );
     }
     Ok(Formed::Element(ElementKind::Tet10, n.clone()))
+}
+
+/// SOLID185's refusal, naming its KEYOPT(2) formulation.
+fn solid185(t: &ElementType) -> Refusal {
+    let k2 = t.keyopts.get(&2).copied().unwrap_or(0);
+    let what = match k2 {
+        0 => "B-bar selective reduced integration, the default",
+        1 => "uniform reduced integration with ANSYS's hourglass control",
+        2 => "enhanced strain",
+        3 => "simplified enhanced strain",
+        _ => "an unknown formulation",
+    };
+    format!("SOLID185 KEYOPT(2)={k2} ({what}): formulation not formed here")
 }
 
 /// No id repeats.
