@@ -123,9 +123,9 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
     ("NUMOFF", C::Session, N("an id offset for a later archive: no effect on one archive")),
     ("OMEGA", C::Analysis, R(ROTATION)),
     ("QRDOPT", C::Analysis, N("an option of the QR-damped eigensolver: no effect on the body")),
-    ("R", C::Material, H("real constants (used by no element formed here: kept unused)")),
+    ("R", C::Material, H("a real constant set (MASS21's masses)")),
     ("REAL", C::Mesh, N(ATTRIBUTE)),
-    ("RLBLOCK", C::Material, H("real constant sets (used by no element formed here: kept unused)")),
+    ("RLBLOCK", C::Material, H("real constant sets (MASS21's masses)")),
     ("SECBLOCK", C::Material, R(SECTION)),
     ("SECCONTROL", C::Material, R(SECTION)),
     ("SECDATA", C::Material, R(SECTION)),
@@ -142,7 +142,7 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
 /// Element types by number: name and disposition (KEYOPTs in the text).
 pub(crate) const ELEMENT_TYPES: &[(u32, &str, Disposition)] = &[
     (14, "COMBIN14", R("spring-damper: formulation not formed here")),
-    (21, "MASS21", R("structural mass: formulation not formed here")),
+    (21, "MASS21", H("a point mass: KEYOPT(3)=0 with MASSX = MASSY = MASSZ and the rotary inertias IXX, IYY, IZZ, or KEYOPT(3)=2 (mass only), from its real constant set; directional masses, KEYOPT(2)=1 (nodal frame) and the 2-D forms are refused")),
     (152, "SURF152", R("surface effect element: formulation not formed here")),
     (153, "SURF153", R("surface effect element: formulation not formed here")),
     (154, "SURF154", R("surface effect element: formulation not formed here")),

@@ -49,6 +49,8 @@ pub(super) enum Formed {
     Element(ElementKind, Vec<u64>),
     /// An element without stiffness or mass (MESH200): not in the model.
     NoStiffness,
+    /// A point mass (MASS21) at this node id: mass and the diagonal rotary inertia.
+    PointMass(u64, f64, [f64; 3]),
 }
 
 /// Why an element cannot be formed (the refusal's reason; the KEYOPT named when it is one).
@@ -66,7 +68,11 @@ fn unsupported_keyopts(t: &ElementType, allowed: &[u32]) -> Result<(), Refusal> 
 }
 
 /// The element of record `rec` of type `t` (a type the catalogue honours or notes).
-pub(super) fn form(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
+pub(super) fn form(
+    t: &ElementType,
+    rec: &ElementRecord,
+    reals: Option<&[f64]>,
+) -> Result<Formed, Refusal> {
     let Some((number, name, disposition)) = t.row else {
         return Err(format!(
             "element type {} is not in the catalogue",
@@ -80,6 +86,7 @@ pub(super) fn form(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refus
         Disposition::Honoured(_) => {}
     }
     match number {
+        21 => mass21(t, rec, reals),
         186 => solid186(t, rec),
         187 => solid187(t, rec),
         // every honoured row of the catalogue is matched above; a new one must be added here
@@ -130,6 +137,40 @@ fn solid187(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     Ok(Formed::Element(ElementKind::Tet10, n.clone()))
 }
 
+/// MASS21: KEYOPT(3)=0 (3-D mass with rotary inertia: reals MASSX, MASSY, MASSZ, IXX, IYY, IZZ)
+/// with MASSX = MASSY = MASSZ, or KEYOPT(3)=2 (3-D mass without rotary inertia: the real MASS),
+/// in the global frame (KEYOPT(2)=0); directional masses and the 2-D forms are refused.
+fn mass21(t: &ElementType, rec: &ElementRecord, reals: Option<&[f64]>) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[3])?;
+    let node = match rec.nodes.as_slice() {
+        [n] if *n > 0 => *n,
+        _ => return Err("MASS21 without its one node".into()),
+    };
+    let Some(r) = reals else {
+        return Err(format!(
+            "MASS21 with real constant set {} not defined",
+            rec.real
+        ));
+    };
+    let value = |k: usize| r.get(k).copied().unwrap_or(0.0);
+    match t.keyopts.get(&3).copied().unwrap_or(0) {
+        0 => {
+            let (mx, my, mz) = (value(0), value(1), value(2));
+            if mx != my || mx != mz {
+                return Err(format!(
+                    "MASS21 with directional masses MASSX={mx}, MASSY={my}, MASSZ={mz}: only \
+                     equal masses are formed here"
+                ));
+            }
+            Ok(Formed::PointMass(node, mx, [value(3), value(4), value(5)]))
+        }
+        2 => Ok(Formed::PointMass(node, value(0), [0.0; 3])),
+        k => Err(format!(
+            "MASS21 KEYOPT(3)={k} (a 2-D mass): formulation not formed here"
+        )),
+    }
+}
+
 /// SOLID185's refusal, naming its KEYOPT(2) formulation.
 fn solid185(t: &ElementType) -> Refusal {
     let k2 = t.keyopts.get(&2).copied().unwrap_or(0);
@@ -172,11 +213,11 @@ mod tests {
         let mut t = ElementType::new(3, "186");
         let nodes: Vec<u64> = (1..=20).collect();
         assert_eq!(
-            form(&t, &record(nodes.clone())),
+            form(&t, &record(nodes.clone()), None),
             Ok(Formed::Element(ElementKind::Hex20R, nodes.clone()))
         );
         t.keyopts.insert(2, 1);
-        let why = form(&t, &record(nodes)).unwrap_err();
+        let why = form(&t, &record(nodes), None).unwrap_err();
         assert!(why.contains("SOLID186 KEYOPT(2)=1"), "{why}");
     }
 
@@ -185,14 +226,14 @@ mod tests {
         let t = ElementType::new(3, "SOLID187");
         let r = record(vec![4, 5, 6, 7]);
         assert_eq!(
-            form(&t, &r),
+            form(&t, &r, None),
             Ok(Formed::Element(ElementKind::Tet4, vec![4, 5, 6, 7]))
         );
         let r = record(vec![4, 5, 6, 7, 8, 0, 0, 0, 0, 0]);
-        assert!(form(&t, &r).is_err());
+        assert!(form(&t, &r, None).is_err());
         let t = ElementType::new(3, "200");
-        assert_eq!(form(&t, &r), Ok(Formed::NoStiffness));
+        assert_eq!(form(&t, &r, None), Ok(Formed::NoStiffness));
         let t = ElementType::new(3, "181");
-        assert!(form(&t, &r).unwrap_err().contains("SHELL181"));
+        assert!(form(&t, &r, None).unwrap_err().contains("SHELL181"));
     }
 }

@@ -66,6 +66,8 @@ struct Archive {
     components: Vec<(usize, String, bool, Vec<u64>)>,
     raw: constraints::Raw,
     lumped: Option<(usize, bool)>,
+    /// Real constant sets (`R`, `RLBLOCK`).
+    reals: BTreeMap<i64, Vec<f64>>,
     eigen: Option<EigenRequest>,
     /// Command name → lines of the commands noted.
     noted: BTreeMap<String, Vec<usize>>,
@@ -205,12 +207,15 @@ impl Archive {
                 self.components
                     .push((c.line, c.field(0).to_owned(), node, items));
             }
-            "R" => self.noted.entry("R".into()).or_default().push(c.line),
+            "R" => {
+                let values = (1..c.fields.len().max(1))
+                    .map(|k| c.real(file, k))
+                    .collect::<Result<Vec<_>, _>>()?;
+                self.reals.insert(c.int(file, 0)?, values);
+            }
             "RLBLOCK" => {
                 let sets = lines.rlblock(c.line, c.int(file, 0)?.max(0) as usize)?;
-                if !sets.is_empty() {
-                    self.noted.entry("RLBLOCK".into()).or_default().push(c.line);
-                }
+                self.reals.extend(sets);
             }
             "D" => self.raw.d(file, c, &mut refused)?,
             "CE" => {
@@ -395,9 +400,38 @@ impl Archive {
                 index.insert(r.id, None);
                 continue;
             }
-            match elements::form(t, r) {
+            match elements::form(t, r, self.reals.get(&r.real).map(Vec::as_slice)) {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
+                    if index.insert(r.id, None).is_some() {
+                        return Err(parse_err(
+                            file,
+                            r.line,
+                            format!("element {}", r.id),
+                            "duplicate element id",
+                        ));
+                    }
+                }
+                Ok(Formed::PointMass(id, mass, inertia)) => {
+                    let node = node_map.get(id).ok_or_else(|| {
+                        parse_err(
+                            file,
+                            r.line,
+                            format!("EBLOCK element {}", r.id),
+                            format!("references unknown node {id}"),
+                        )
+                    })?;
+                    model.point_masses.push(crate::model::PointMass {
+                        id: r.id,
+                        node,
+                        mass,
+                        offset: [0.0; 3],
+                        inertia: [
+                            [inertia[0], 0.0, 0.0],
+                            [0.0, inertia[1], 0.0],
+                            [0.0, 0.0, inertia[2]],
+                        ],
+                    });
                     if index.insert(r.id, None).is_some() {
                         return Err(parse_err(
                             file,
