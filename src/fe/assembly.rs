@@ -340,9 +340,14 @@ pub fn element_matrices(
         ElementKind::Hex20 | ElementKind::Hex20R => {
             let x = coords::<20>(model, n);
             let reduced = el.kind == ElementKind::Hex20R;
+            let mass = if model.params.ansys_solid_rules && !lumped {
+                hex20::scalar_mass_irons14(&x, iso.rho)
+            } else {
+                hex20::scalar_mass(&x, iso.rho, reduced && !lumped)
+            };
             solid(
                 k_or(&|| hex20::stiffness(&x, &iso, reduced)).map_err(elem_err)?,
-                hex20::scalar_mass(&x, iso.rho, reduced && !lumped).map_err(elem_err)?,
+                mass.map_err(elem_err)?,
                 20,
                 true,
             )

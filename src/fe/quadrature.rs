@@ -58,6 +58,34 @@ pub fn cube(n: usize) -> Vec<QuadPoint> {
     out
 }
 
+/// Irons' 14-point rule on the cube [−1, 1]³ (degree 5): the six points (±b, 0, 0)… with weight
+/// 320/361 and the eight (±c, ±c, ±c) with weight 121/361, b² = 19/30, c² = 19/33 (Irons, "Quadrature
+/// rules for brick based finite elements", IJNME 3 (1971) 293). ANSYS integrates SOLID186's
+/// consistent mass with it.
+pub fn cube_irons14() -> Vec<QuadPoint> {
+    let (b, c) = ((19.0f64 / 30.0).sqrt(), (19.0f64 / 33.0).sqrt());
+    let (wb, wc) = (320.0 / 361.0, 121.0 / 361.0);
+    let mut out = Vec::with_capacity(14);
+    for k in 0..3 {
+        for s in [-1.0, 1.0] {
+            let mut xi = [0.0; 3];
+            xi[k] = s * b;
+            out.push(QuadPoint { xi, w: wb });
+        }
+    }
+    for sz in [-1.0, 1.0] {
+        for sy in [-1.0, 1.0] {
+            for sx in [-1.0, 1.0] {
+                out.push(QuadPoint {
+                    xi: [sx * c, sy * c, sz * c],
+                    w: wc,
+                });
+            }
+        }
+    }
+    out
+}
+
 /// Centroid rule on the unit tetrahedron {ξ, η, ζ ≥ 0, ξ + η + ζ ≤ 1} (degree 1).
 pub fn tet1() -> Vec<QuadPoint> {
     vec![QuadPoint {

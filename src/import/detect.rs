@@ -1,7 +1,8 @@
 //! A model file's format from its content where the extension is not decisive: Abaqus/CalculiX
 //! keyword lines (`*NODE`, `*HEADING`, …), Nastran cards and statements (`BEGIN BULK`, `CEND`,
-//! `SOL`, `GRID`, any card of the catalogue), Gmsh's `$MeshFormat`. `.inp`, `.bdf`, `.nas`,
-//! `.blk`, `.bulk` and `.msh` name a format, which the content must not contradict; `.dat`
+//! `SOL`, `GRID`, any card of the catalogue), ANSYS archives' `NBLOCK`/`EBLOCK`, Gmsh's
+//! `$MeshFormat`. `.inp`, `.bdf`, `.nas`,
+//! `.blk`, `.bulk`, `.cdb` and `.msh` name a format, which the content must not contradict; `.dat`
 //! (Nastran's and Abaqus's) and other extensions take the content's. A file that looks like
 //! none (a README named `.inp`) or is a flexbody output file is an error saying so; an empty
 //! file is the error `file:1: empty file`.
@@ -43,21 +44,24 @@ pub(super) fn format_of(path: &Path) -> Result<Format, ImportError> {
     let decisive = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
         matches!(
             e.to_ascii_lowercase().as_str(),
-            "inp" | "bdf" | "nas" | "blk" | "bulk" | "msh"
+            "inp" | "bdf" | "nas" | "blk" | "bulk" | "msh" | "cdb"
         )
     });
     match content(&head) {
         Content::Archive => Err(ImportError::NotAModel {
             file,
             what: "a zip archive — a .flexbody file is flexbody's output, not a model: read it \
-                   with `flexbody inspect` or `flexbody check` (build takes a model: .inp, .bdf, \
+                   with `flexbody inspect` or `flexbody check` (build takes a model: .inp, .bdf, .cdb, \
                    .msh; --format names its format)"
                 .into(),
         }),
+        // an archive without a mesh block (a CDWRITE of commands only) is still an archive
+        Content::Nothing if by_extension == Some(Format::Ansys) => Ok(Format::Ansys),
         Content::Nothing => Err(ImportError::NotAModel {
             file,
             what: "it does not look like an Abaqus/CalculiX deck (no *KEYWORD line), a Nastran \
-                   deck (no bulk data card, no BEGIN BULK) or a Gmsh mesh (no $MeshFormat)"
+                   deck (no bulk data card, no BEGIN BULK), an ANSYS archive (no NBLOCK/EBLOCK) or a \
+                   Gmsh mesh (no $MeshFormat)"
                 .into(),
         }),
         Content::Model(found) => match by_extension {
@@ -78,6 +82,7 @@ fn name(f: Format) -> &'static str {
         Format::Abaqus => "Abaqus/CalculiX",
         Format::Nastran => "Nastran",
         Format::Gmsh => "Gmsh",
+        Format::Ansys => "ANSYS",
     }
 }
 
@@ -87,6 +92,7 @@ fn option(f: Format) -> &'static str {
         Format::Abaqus => "inp",
         Format::Nastran => "bdf",
         Format::Gmsh => "msh",
+        Format::Ansys => "cdb",
     }
 }
 
@@ -100,6 +106,11 @@ fn content(head: &[u8]) -> Content {
     let lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
     if lines.clone().next() == Some("$MeshFormat") {
         return Content::Model(Format::Gmsh);
+    }
+    // an NBLOCK or EBLOCK header is an ANSYS archive's alone (its *SET and *IF lines would
+    // otherwise count as Abaqus keywords)
+    if lines.clone().any(super::ansys::is_block_header) {
+        return Content::Model(Format::Ansys);
     }
     let (mut abaqus, mut nastran) = (0usize, 0usize);
     for line in lines {
@@ -154,6 +165,9 @@ mod tests {
             Content::Model(Format::Gmsh)
         );
         assert_eq!(content(b"PK\x03\x04rest"), Content::Archive);
+        let cdb =
+            b"/PREP7\n*SET,_BUTTON ,  1.0\n*IF,_CDRDOFF,EQ,1,THEN\nET,1,186\nNBLOCK,6,SOLID,1,1\n";
+        assert_eq!(content(cdb), Content::Model(Format::Ansys));
         let readme = b"# My model\n\nRun it with the solver of your choice.\n";
         assert_eq!(content(readme), Content::Nothing);
     }

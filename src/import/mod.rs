@@ -1,10 +1,12 @@
-//! FE model importers: Abaqus/CalculiX `.inp`, Nastran `.bdf`, Gmsh `.msh`, Matrix Market.
+//! FE model importers: Abaqus/CalculiX `.inp`, Nastran `.bdf`, ANSYS `.cdb` (and `.full`
+//! matrices), Gmsh `.msh`, Matrix Market.
 //!
 //! [`read_model`] picks the reader from the file's content and extension (module `detect`; or
 //! [`ImportOptions::format`]) and
 //! returns a resolved [`Model`]. Every failure is an [`ImportError`] naming file, line and entity.
 //! Readers never panic on bad input.
 pub mod abaqus;
+pub mod ansys;
 pub mod budget;
 pub mod ccx_matrices;
 mod detect;
@@ -32,6 +34,8 @@ pub enum Format {
     Nastran,
     /// Gmsh 4.1 mesh, ASCII or binary (`.msh`).
     Gmsh,
+    /// ANSYS Mechanical APDL archive (`.cdb`, as `CDWRITE` writes it).
+    Ansys,
 }
 
 impl Format {
@@ -42,6 +46,7 @@ impl Format {
             "inp" => Some(Format::Abaqus),
             "bdf" | "nas" | "dat" | "blk" | "bulk" => Some(Format::Nastran),
             "msh" => Some(Format::Gmsh),
+            "cdb" => Some(Format::Ansys),
             _ => None,
         }
     }
@@ -52,6 +57,7 @@ impl Format {
             "inp" | "abaqus" | "calculix" | "ccx" => Some(Format::Abaqus),
             "bdf" | "nastran" | "nas" => Some(Format::Nastran),
             "msh" | "gmsh" => Some(Format::Gmsh),
+            "cdb" | "ansys" | "mapdl" => Some(Format::Ansys),
             _ => None,
         }
     }
@@ -126,6 +132,7 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
         Format::Abaqus => abaqus::read_with_options(path, opts)?,
         Format::Nastran => nastran::read_with_options(path, opts)?.0,
         Format::Gmsh => gmsh::read(path, None)?,
+        Format::Ansys => ansys::read_with_options(path, opts)?,
     };
     if model.files.is_empty() {
         model.files.push(path.display().to_string());

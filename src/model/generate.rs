@@ -78,6 +78,7 @@ pub fn block(spec: &BlockSpec) -> Model {
             coupled_mass: None,
             solid_bubbles: false,
             ccx_solid_rules: false,
+            ansys_solid_rules: false,
             k6rot: None,
             nastran_deck: false,
         },

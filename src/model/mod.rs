@@ -562,6 +562,10 @@ pub struct ModelParams {
     /// and mass in one loop): C3D4 mass with one point (every entry ρV/16), C3D6 stiffness and
     /// mass with two points (`quadrature::wedge_centroid`). Set by the Abaqus/CalculiX importer.
     pub ccx_solid_rules: bool,
+    /// ANSYS's integration rules where they differ from the standard ones: SOLID186's
+    /// consistent mass with Irons' 14-point rule (`quadrature::cube_irons14`). Set by the ANSYS
+    /// importer.
+    pub ansys_solid_rules: bool,
     /// Nastran `PARAM,K6ROT`: the drilling stiffness of CQUAD4/CTRIA3 shells is the penalty
     /// γ_d = K6ROT·10⁻⁶·G t (`fe::elements::shell`); `None` = MSC's default 100.
     pub k6rot: Option<f64>,

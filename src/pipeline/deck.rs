@@ -43,10 +43,10 @@ pub fn deck_defaults(spec: &BuildSpec, model: &Model) -> DeckDefaults {
     match (spec.mass_explicit, model.params.coupled_mass) {
         (false, Some(true)) => {
             out.mass = MassKind::Consistent;
-            notes.push("mass: consistent, because the deck has PARAM,COUPMASS > 0 (--mass lumped overrides)".into());
+            notes.push("mass: consistent, because the deck asks for it (PARAM,COUPMASS > 0; an ANSYS archive without LUMPM,ON) (--mass lumped overrides)".into());
         }
         (false, Some(false)) => notes.push(
-            "mass: lumped, because the deck has PARAM,COUPMASS ≤ 0 (Nastran's lumped mass)".into(),
+            "mass: lumped, because the deck asks for it (PARAM,COUPMASS ≤ 0: Nastran's lumped mass; ANSYS's LUMPM,ON)".into(),
         ),
         (true, Some(c)) if (spec.mass == MassKind::Consistent) != c => notes.push(format!(
             "mass: {:?} as --mass asks, although the deck's PARAM,COUPMASS asks for {} mass",

@@ -82,6 +82,7 @@ fn format_name(f: Format) -> &'static str {
         Format::Abaqus => "inp",
         Format::Nastran => "bdf",
         Format::Gmsh => "msh",
+        Format::Ansys => "cdb",
     }
 }
 

@@ -82,6 +82,12 @@ pub fn scalar_mass(x: &[Xyz; 20], rho: f64, reduced: bool) -> Result<Vec<f64>, E
     solid_scalar_mass(x, shape, &rule, rho)
 }
 
+/// Scalar consistent mass 20×20 with Irons' 14-point rule (`quadrature::cube_irons14`), as ANSYS
+/// forms SOLID186's (checked against the K and M of ansys-mapdl-reader's `file.full`).
+pub fn scalar_mass_irons14(x: &[Xyz; 20], rho: f64) -> Result<Vec<f64>, ElementError> {
+    solid_scalar_mass(x, shape, &quadrature::cube_irons14(), rho)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,540 @@
+//! The archive's lines as commands and blocks: a command is a comma-separated line
+//! (`NAME,field,field,…`, a `!` comment stripped); a block command (`NBLOCK`, `EBLOCK`,
+//! `CMBLOCK`, `RLBLOCK`, `CE,R5.0,DEFI`) is followed by a Fortran format line and fixed-width
+//! records, read here by the widths the format line gives (as `CDWRITE` writes them; the
+//! MAPDL Command Reference's `NBLOCK`/`EBLOCK`/`CMBLOCK`/`RLBLOCK` describe the records).
+
+use crate::import::error::{parse_err, ImportError};
+use crate::import::text::{bad_number, parse_f64};
+
+/// One command line: its upper-case name and its fields after the name (trimmed).
+#[derive(Debug, Clone)]
+pub(super) struct Command<'a> {
+    /// 1-based line.
+    pub line: usize,
+    /// Upper-case command name (`/COM`, `*SET`, `NBLOCK`, `D`, …).
+    pub name: String,
+    /// Fields after the name, trimmed (may be empty strings).
+    pub fields: Vec<&'a str>,
+}
+
+impl Command<'_> {
+    /// Field `i` (0-based after the name), trimmed; "" when absent.
+    pub fn field(&self, i: usize) -> &str {
+        self.fields.get(i).copied().unwrap_or("")
+    }
+
+    /// Field `i` as a real (blank = 0, as APDL reads a blank numeric field).
+    pub fn real(&self, file: &str, i: usize) -> Result<f64, ImportError> {
+        let s = self.field(i);
+        if s.is_empty() {
+            return Ok(0.0);
+        }
+        parse_f64(s).ok_or_else(|| parse_err(file, self.line, &self.name, bad_number(s)))
+    }
+
+    /// Field `i` as an integer (a real with no fraction is accepted, `2.` = 2; blank = 0).
+    pub fn int(&self, file: &str, i: usize) -> Result<i64, ImportError> {
+        let s = self.field(i);
+        if s.is_empty() {
+            return Ok(0);
+        }
+        int_of(s).ok_or_else(|| {
+            parse_err(
+                file,
+                self.line,
+                &self.name,
+                format!("field {} '{s}' is not an integer", i + 2),
+            )
+        })
+    }
+}
+
+/// An integer field, also written as a real without fraction.
+fn int_of(s: &str) -> Option<i64> {
+    let s = s.trim();
+    s.parse::<i64>().ok().or_else(|| {
+        let v = parse_f64(s)?;
+        (v.fract() == 0.0 && v.abs() < 9.0e15).then_some(v as i64)
+    })
+}
+
+/// The command of a line, or `None` for a blank or comment-only line.
+pub(super) fn command(text: &str, line: usize) -> Option<Command<'_>> {
+    let body = strip_comment(text).trim_end();
+    if body.trim().is_empty() {
+        return None;
+    }
+    let mut parts = body.split(',');
+    let name = parts.next().unwrap_or("").trim().to_ascii_uppercase();
+    let fields = parts.map(str::trim).collect();
+    Some(Command { line, name, fields })
+}
+
+/// The line without its `!` comment (a `!` inside quotes is text).
+fn strip_comment(text: &str) -> &str {
+    let mut quoted = false;
+    for (i, c) in text.char_indices() {
+        match c {
+            '\'' => quoted = !quoted,
+            '!' if !quoted => return &text[..i],
+            _ => {}
+        }
+    }
+    text
+}
+
+/// The field widths of a Fortran format line such as `(3i9,6e21.13e3)` or `(19i10)`: the
+/// integer count and width, the real count and width (0 when absent).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Layout {
+    pub ints: usize,
+    pub int_width: usize,
+    pub reals: usize,
+    pub real_width: usize,
+}
+
+/// Read a format line (the line after a block command).
+pub(super) fn layout(file: &str, line: usize, text: &str) -> Result<Layout, ImportError> {
+    let bad = || {
+        parse_err(
+            file,
+            line,
+            "format",
+            format!(
+                "'{}' is not a block format such as (3i9,6e21.13e3)",
+                text.trim()
+            ),
+        )
+    };
+    let t = text.trim();
+    let inner = t
+        .strip_prefix('(')
+        .and_then(|s| s.strip_suffix(')'))
+        .ok_or_else(bad)?;
+    let mut out = Layout {
+        ints: 0,
+        int_width: 0,
+        reals: 0,
+        real_width: 0,
+    };
+    for item in inner.split(',') {
+        let item = item.trim().to_ascii_lowercase();
+        let kind_at = item
+            .find(|c: char| c.is_ascii_alphabetic())
+            .ok_or_else(bad)?;
+        let count: usize = if kind_at == 0 {
+            1
+        } else {
+            item[..kind_at].parse().map_err(|_| bad())?
+        };
+        let kind = &item[kind_at..kind_at + 1];
+        let rest = &item[kind_at + 1..];
+        let width: usize = rest
+            .split('.')
+            .next()
+            .and_then(|w| w.parse().ok())
+            .ok_or_else(bad)?;
+        if width == 0 || width > 64 || count > 64 {
+            return Err(bad());
+        }
+        match kind {
+            "i" if out.reals == 0 => {
+                out.ints += count;
+                out.int_width = width;
+            }
+            "e" | "g" | "f" | "d" => {
+                out.reals += count;
+                out.real_width = width;
+            }
+            _ => return Err(bad()),
+        }
+    }
+    Ok(out)
+}
+
+/// The fixed-width fields of a record line: `ints` integer columns then `reals` real columns;
+/// columns past the line's end are absent (`None`).
+pub(super) fn columns<'a>(text: &'a str, lay: &Layout) -> Vec<Option<&'a str>> {
+    let bytes = text.trim_end_matches(['\r', '\n']);
+    let mut out = Vec::with_capacity(lay.ints + lay.reals);
+    let mut at = 0;
+    let widths = std::iter::repeat_n(lay.int_width, lay.ints)
+        .chain(std::iter::repeat_n(lay.real_width, lay.reals));
+    for w in widths {
+        let end = (at + w).min(bytes.len());
+        let s = bytes.get(at..end).map(str::trim).filter(|s| !s.is_empty());
+        out.push(s);
+        at += w;
+    }
+    out
+}
+
+/// An integer column (blank = 0).
+pub(super) fn int_col(
+    file: &str,
+    line: usize,
+    what: &str,
+    col: Option<&str>,
+) -> Result<i64, ImportError> {
+    match col {
+        None => Ok(0),
+        Some(s) => {
+            int_of(s).ok_or_else(|| parse_err(file, line, what, format!("'{s}' is not an integer")))
+        }
+    }
+}
+
+/// A real column (blank = 0).
+pub(super) fn real_col(
+    file: &str,
+    line: usize,
+    what: &str,
+    col: Option<&str>,
+) -> Result<f64, ImportError> {
+    match col {
+        None => Ok(0.0),
+        Some(s) => parse_f64(s).ok_or_else(|| parse_err(file, line, what, bad_number(s))),
+    }
+}
+
+/// One node record of an `NBLOCK`.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct NodeRecord {
+    pub line: usize,
+    pub id: u64,
+    pub x: [f64; 3],
+    /// The nodal coordinate system's rotation angles THXY, THYZ, THZX (degrees).
+    pub angles: [f64; 3],
+}
+
+/// One element record of an `EBLOCK`.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct ElementRecord {
+    pub line: usize,
+    pub id: u64,
+    pub mat: i64,
+    pub etype: i64,
+    pub real: i64,
+    pub section: i64,
+    pub esys: i64,
+    /// Node ids as written (0 = a dropped mid-side node).
+    pub nodes: Vec<u64>,
+}
+
+/// The lines of the file, 1-based line numbers, with a cursor.
+pub(super) struct Lines<'a> {
+    lines: Vec<&'a str>,
+    next: usize,
+    pub file: String,
+}
+
+impl<'a> Lines<'a> {
+    pub fn new(file: &str, text: &'a str) -> Lines<'a> {
+        Lines {
+            lines: text.lines().collect(),
+            next: 0,
+            file: file.to_owned(),
+        }
+    }
+
+    /// The next line and its 1-based number.
+    pub fn next_line(&mut self) -> Option<(usize, &'a str)> {
+        let l = *self.lines.get(self.next)?;
+        self.next += 1;
+        Some((self.next, l))
+    }
+
+    /// The next line, or an error: the block started at `start` ended early.
+    fn required(&mut self, start: usize, block: &str) -> Result<(usize, &'a str), ImportError> {
+        let file = self.file.clone();
+        self.next_line().ok_or_else(|| {
+            parse_err(
+                &file,
+                start,
+                block,
+                "the file ends inside the block (its records or its end line -1 are missing)",
+            )
+        })
+    }
+
+    /// The block's format line.
+    fn format(&mut self, start: usize, block: &str) -> Result<Layout, ImportError> {
+        let (n, text) = self.required(start, block)?;
+        layout(&self.file, n, text)
+    }
+
+    /// `NBLOCK,NUMFIELD,Solkey,…`: node records up to the end line (`-1` or `N,R5.3,LOC,-1`).
+    pub fn nblock(&mut self, start: usize) -> Result<Vec<NodeRecord>, ImportError> {
+        let lay = self.format(start, "NBLOCK")?;
+        let mut out = Vec::new();
+        loop {
+            let (n, text) = self.required(start, "NBLOCK")?;
+            let t = text.trim();
+            if t.is_empty() {
+                continue;
+            }
+            if t.starts_with('N') || t.starts_with('n') || t.starts_with("-1") {
+                return Ok(out);
+            }
+            let cols = columns(text, &lay);
+            let id = int_col(&self.file, n, "NBLOCK node", cols[0])?;
+            if id <= 0 {
+                return Err(parse_err(&self.file, n, "NBLOCK", format!("node id {id}")));
+            }
+            let mut reals = [0.0; 6];
+            for (k, r) in reals.iter_mut().enumerate() {
+                *r = real_col(
+                    &self.file,
+                    n,
+                    &format!("NBLOCK node {id}"),
+                    cols.get(lay.ints + k).copied().flatten(),
+                )?;
+            }
+            out.push(NodeRecord {
+                line: n,
+                id: id as u64,
+                x: [reals[0], reals[1], reals[2]],
+                angles: [reals[3], reals[4], reals[5]],
+            });
+        }
+    }
+
+    /// `EBLOCK,NUM_NODES,Solkey,…`: element records up to the end line `-1`. `solid`: the
+    /// SOLID layout (11 attribute fields, then nodes, continued on the next line past 8);
+    /// otherwise the layout of contact/surface elements (element, type, real, material, esys,
+    /// nodes).
+    pub fn eblock(&mut self, start: usize, solid: bool) -> Result<Vec<ElementRecord>, ImportError> {
+        let lay = self.format(start, "EBLOCK")?;
+        let mut out = Vec::new();
+        loop {
+            let (n, text) = self.required(start, "EBLOCK")?;
+            if text.trim().is_empty() {
+                continue;
+            }
+            let cols = columns(text, &lay);
+            let file = self.file.clone();
+            let f = |k: usize| int_col(&file, n, "EBLOCK", cols.get(k).copied().flatten());
+            if f(0)? == -1 {
+                return Ok(out);
+            }
+            let record = if solid {
+                let count = f(8)?;
+                if !(1..=64).contains(&count) {
+                    return Err(parse_err(
+                        &self.file,
+                        n,
+                        "EBLOCK",
+                        format!("field 9 (the number of nodes) is {count}"),
+                    ));
+                }
+                let mut nodes = Vec::with_capacity(count as usize);
+                for k in 11..lay.ints.min(11 + count as usize) {
+                    nodes.push(f(k)?);
+                }
+                while nodes.len() < count as usize {
+                    let (m, more) = self.required(start, "EBLOCK")?;
+                    let cols = columns(more, &lay);
+                    let want = count as usize - nodes.len();
+                    for col in cols.iter().take(want.min(lay.ints)) {
+                        nodes.push(int_col(&self.file, m, "EBLOCK", *col)?);
+                    }
+                }
+                ElementRecord {
+                    line: n,
+                    id: f(10)?.max(0) as u64,
+                    mat: f(0)?,
+                    etype: f(1)?,
+                    real: f(2)?,
+                    section: f(3)?,
+                    esys: f(4)?,
+                    nodes: nodes.into_iter().map(|v| v.max(0) as u64).collect(),
+                }
+            } else {
+                let nodes = (5..lay.ints)
+                    .filter_map(|k| cols.get(k).copied().flatten())
+                    .map(|s| int_col(&self.file, n, "EBLOCK", Some(s)).map(|v| v.max(0) as u64))
+                    .collect::<Result<Vec<_>, _>>()?;
+                ElementRecord {
+                    line: n,
+                    id: f(0)?.max(0) as u64,
+                    etype: f(1)?,
+                    real: f(2)?,
+                    mat: f(3)?,
+                    section: 0,
+                    esys: f(4)?,
+                    nodes,
+                }
+            };
+            if record.id == 0 {
+                return Err(parse_err(&self.file, n, "EBLOCK", "element id 0"));
+            }
+            out.push(record);
+        }
+    }
+
+    /// `CMBLOCK,Cname,Entity,NUMITEMS`: the items (a negative item −b after a makes the range
+    /// a..b).
+    pub fn cmblock(&mut self, start: usize, count: usize) -> Result<Vec<u64>, ImportError> {
+        let lay = self.format(start, "CMBLOCK")?;
+        let mut raw: Vec<i64> = Vec::with_capacity(count.min(1 << 20));
+        while raw.len() < count {
+            let (n, text) = self.required(start, "CMBLOCK")?;
+            for col in columns(text, &lay).into_iter().flatten() {
+                if raw.len() < count {
+                    raw.push(int_col(&self.file, n, "CMBLOCK", Some(col))?);
+                }
+            }
+        }
+        let mut out: Vec<u64> = Vec::with_capacity(raw.len());
+        for (k, &v) in raw.iter().enumerate() {
+            match (v, out.last().copied()) {
+                (v, Some(a)) if v < 0 && k > 0 => {
+                    let b = v.unsigned_abs();
+                    if b < a || b - a > crate::import::budget::expansion_limit(1 << 24) {
+                        return Err(parse_err(
+                            &self.file,
+                            start,
+                            "CMBLOCK",
+                            format!("range {a} to {b} is not ascending or too long"),
+                        ));
+                    }
+                    out.extend(a + 1..=b);
+                }
+                (v, _) if v > 0 => out.push(v as u64),
+                (v, _) => {
+                    return Err(parse_err(
+                        &self.file,
+                        start,
+                        "CMBLOCK",
+                        format!("item {v} is not an id"),
+                    ))
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// `RLBLOCK,NUMSETS,…`: each set's number and values (two format lines, then per set a line
+    /// `set, count, up to 6 values` and continuation lines of 7).
+    pub fn rlblock(
+        &mut self,
+        start: usize,
+        sets: usize,
+    ) -> Result<Vec<(i64, Vec<f64>)>, ImportError> {
+        let first = self.format(start, "RLBLOCK")?;
+        let next = self.format(start, "RLBLOCK")?;
+        let mut out = Vec::new();
+        for _ in 0..sets {
+            let (n, text) = self.required(start, "RLBLOCK")?;
+            let cols = columns(text, &first);
+            let set = int_col(&self.file, n, "RLBLOCK", cols[0])?;
+            let count = int_col(&self.file, n, "RLBLOCK", cols.get(1).copied().flatten())?;
+            if !(0..=10_000).contains(&count) {
+                return Err(parse_err(
+                    &self.file,
+                    n,
+                    "RLBLOCK",
+                    format!("{count} values"),
+                ));
+            }
+            let mut values = Vec::new();
+            let mut row = cols[first.ints..].to_vec();
+            let mut at = n;
+            while values.len() < count as usize {
+                if row.is_empty() {
+                    let (m, more) = self.required(start, "RLBLOCK")?;
+                    row = columns(more, &next);
+                    at = m;
+                }
+                let c = row.remove(0);
+                values.push(real_col(&self.file, at, "RLBLOCK", c)?);
+            }
+            out.push((set, values));
+        }
+        Ok(out)
+    }
+
+    /// `CE,R5.0,DEFI,NTERM,NCE,CONST` followed by `CE,R5.0,NODE,n,lab,coef[,n,lab,coef]`
+    /// lines: the terms (node id, dof label, coefficient).
+    pub fn ce_terms(
+        &mut self,
+        start: usize,
+        count: usize,
+    ) -> Result<Vec<(u64, String, f64, usize)>, ImportError> {
+        let mut out = Vec::new();
+        while out.len() < count {
+            let (n, text) = self.required(start, "CE")?;
+            let c = command(text, n).ok_or_else(|| {
+                parse_err(
+                    &self.file,
+                    n,
+                    "CE",
+                    "a blank line inside a constraint equation",
+                )
+            })?;
+            if c.name != "CE" || !c.field(1).eq_ignore_ascii_case("NODE") {
+                return Err(parse_err(
+                    &self.file,
+                    n,
+                    &c.name,
+                    format!(
+                        "expected a CE,R5.0,NODE line of the constraint equation begun at \
+                         line {start}"
+                    ),
+                ));
+            }
+            for k in (2..c.fields.len()).step_by(3) {
+                if c.field(k).is_empty() || out.len() >= count {
+                    continue;
+                }
+                let node = c.int(&self.file, k)?;
+                if node <= 0 {
+                    return Err(parse_err(&self.file, n, "CE", format!("node {node}")));
+                }
+                out.push((
+                    node as u64,
+                    c.field(k + 1).to_ascii_uppercase(),
+                    c.real(&self.file, k + 2)?,
+                    n,
+                ));
+            }
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn format_lines_give_the_widths() {
+        let l = layout("f", 1, "(3i9,6e21.13e3)").unwrap();
+        assert_eq!((l.ints, l.int_width, l.reals, l.real_width), (3, 9, 6, 21));
+        let l = layout("f", 1, "(19i10)").unwrap();
+        assert_eq!((l.ints, l.int_width, l.reals), (19, 10, 0));
+        assert!(layout("f", 1, "3i9").is_err());
+    }
+
+    #[test]
+    fn columns_split_touching_numbers() {
+        let l = layout("f", 1, "(3i8,6e20.13)").unwrap();
+        let line =
+            "    1041      14       0 5.9375753402710E+00 7.6067792251706E-03-2.5005263090134E-01";
+        let c = columns(line, &l);
+        assert_eq!(c[0], Some("1041"));
+        assert_eq!(c[5], Some("-2.5005263090134E-01"));
+        assert_eq!(c[6], None);
+    }
+
+    #[test]
+    fn comments_and_fields() {
+        let c = command("CMBLOCK,NCOMP2  ,NODE,      42  ! users node component", 7).unwrap();
+        assert_eq!(
+            (c.name.as_str(), c.field(0), c.field(2)),
+            ("CMBLOCK", "NCOMP2", "42")
+        );
+        assert!(command("   ! only a comment", 1).is_none());
+    }
+}

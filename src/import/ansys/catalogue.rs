@@ -1,0 +1,263 @@
+//! The catalogue: what the reader does with every command and element type a `CDWRITE`
+//! archive can hold — the rule "honoured or refused, never dropped" as two tables, each row a
+//! name, a [`Category`] and a [`Disposition`]. A command or element type in no table is
+//! refused by its line. `docs/ansys-commands.md` is generated from the tables ([`markdown`]; a
+//! test keeps the page equal to it).
+
+/// What the reader does with a command or an element type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Disposition {
+    /// Read into the model (the text says how, for the documentation).
+    Honoured(&'static str),
+    /// Not read: it cannot change the body (the reason); one note per command name.
+    Note(&'static str),
+    /// Refused, with the reason.
+    Refused(&'static str),
+}
+
+/// What a row is about: the documentation's headings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum Category {
+    Mesh,
+    Material,
+    Constraint,
+    Load,
+    Analysis,
+    Session,
+}
+
+impl Category {
+    const ALL: [Category; 6] = [
+        Category::Mesh,
+        Category::Material,
+        Category::Constraint,
+        Category::Load,
+        Category::Analysis,
+        Category::Session,
+    ];
+
+    pub(crate) fn title(self) -> &'static str {
+        match self {
+            Category::Mesh => "nodes, elements, element types, components",
+            Category::Material => "materials, real constants, sections",
+            Category::Constraint => "constraints",
+            Category::Load => "loads",
+            Category::Analysis => "analysis settings",
+            Category::Session => "session, output and GUI settings",
+        }
+    }
+}
+
+use Category as C;
+use Disposition::{Honoured as H, Note as N, Refused as R};
+
+const SESSION: &str = "a session, output or GUI setting: no effect on the body";
+const ATTRIBUTE: &str =
+    "the active attribute for elements made later in a session; EBLOCK gives every element its own";
+const DAMPING: &str =
+    "damping of a response analysis: the body's modal damping is chosen with --damping";
+const SOLUTION: &str = "a solution control of a nonlinear or transient analysis: no effect on \
+                        the body's normal modes";
+const ROTATION: &str = "a rotating reference frame (spin softening, gyroscopic terms): not \
+                        formed here (when nonzero)";
+const SECTION: &str = "sections of shells and beams: those elements are not formed here";
+const SURFACE_LOAD: &str = "surface and body loads on elements are not read (F and ACEL are)";
+
+/// Every command, sorted by name (the name as the archive writes it, upper case).
+pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
+    ("*ELSE", C::Session, N("CDWRITE's preamble: the archive is read whole, its NUMOFF have no effect on one archive")),
+    ("*ENDIF", C::Session, N("CDWRITE's preamble: the archive is read whole, its NUMOFF have no effect on one archive")),
+    ("*IF", C::Session, N("CDWRITE's preamble: the archive is read whole, its NUMOFF have no effect on one archive")),
+    ("*SET", C::Session, N("a scalar parameter (GUI colours and fonts, status flags): no effect on the body")),
+    ("/COM", C::Session, N("a comment")),
+    ("/GO", C::Session, N(SESSION)),
+    ("/GOPR", C::Session, N(SESSION)),
+    ("/NOPR", C::Session, N(SESSION)),
+    ("/PREP7", C::Session, N(SESSION)),
+    ("/TITLE", C::Session, N("the title: no effect on the body")),
+    ("/UNITS", C::Session, N("a label of the unit system: the build's --units says the archive's units")),
+    ("ACEL", C::Load, H("a scene load named ACEL: the inertia load of the acceleration (ACEL,0,0,9.81 is gravity along −z); zero: nothing")),
+    ("ALPHAD", C::Analysis, N(DAMPING)),
+    ("ANTYPE", C::Analysis, N("the analysis type: the body is the structure's normal modes whatever the archive's analysis")),
+    ("BETAD", C::Analysis, N(DAMPING)),
+    ("BF", C::Load, R(SURFACE_LOAD)),
+    ("BFE", C::Load, R(SURFACE_LOAD)),
+    ("BFUNIF", C::Load, N("a uniform temperature: no effect on a linear body whose material tables are read at the reference temperature")),
+    ("CE", C::Constraint, H("a constraint equation: an MPC Σ cᵢ uᵢ = 0 (a nonzero constant is refused)")),
+    ("CGLOC", C::Analysis, R(ROTATION)),
+    ("CGOMEGA", C::Analysis, R(ROTATION)),
+    ("CMBLOCK", C::Mesh, H("a node component becomes a node set (usable as an --interface name); an element component an element set")),
+    ("CP", C::Constraint, H("a coupled set: MPCs making the listed nodes' dof equal to the first node's")),
+    ("CRPLIM", C::Analysis, N(SOLUTION)),
+    ("CSYS", C::Mesh, N("the active coordinate system of a session: the archive's coordinates are global")),
+    ("D", C::Constraint, H("a zero displacement (UX…ROTZ, ALL) held as a reference condition, as the other formats' SPCs; a nonzero value is refused")),
+    ("DCGOMG", C::Analysis, R(ROTATION)),
+    ("DMPRAT", C::Analysis, N(DAMPING)),
+    ("DMPSTR", C::Analysis, N(DAMPING)),
+    ("DOF", C::Session, N("the active dof labels: the elements give their dofs")),
+    ("DOMEGA", C::Analysis, R(ROTATION)),
+    ("EBLOCK", C::Mesh, H("elements (SOLID and contact layouts), formed by their type and KEYOPTs (table below)")),
+    ("EN", C::Mesh, H("the end line of an EBLOCK")),
+    ("ERESX", C::Session, N(SESSION)),
+    ("ESYS", C::Mesh, N(ATTRIBUTE)),
+    ("ET", C::Mesh, H("an element type (table below)")),
+    ("EXTOPT", C::Session, N("an extrusion option of the solid modeller: no effect on the mesh")),
+    ("F", C::Load, H("a nodal force or moment (FX…MZ): a scene load named F")),
+    ("FINISH", C::Session, N(SESSION)),
+    ("IRLF", C::Analysis, N("inertia relief of a static analysis: the body's reference conditions are chosen with --reference")),
+    ("KEYOP", C::Mesh, H("an element type's KEYOPT (as CDWRITE writes KEYOPT)")),
+    ("KEYOPT", C::Mesh, H("an element type's KEYOPT")),
+    ("KUSE", C::Analysis, N(SOLUTION)),
+    ("LOCAL", C::Mesh, R("a local coordinate system: nodal coordinate systems are not read")),
+    ("LUMPM", C::Analysis, H("LUMPM,ON: lumped mass (the default is ANSYS's consistent mass); --mass overrides")),
+    ("MAT", C::Mesh, N(ATTRIBUTE)),
+    ("MODCONTROL", C::Analysis, N("a modal output control: no effect on the body")),
+    ("MODOPT", C::Analysis, H("the mode count and band of the build when --modes/--fmax do not say")),
+    ("MP", C::Material, H("a material constant (the MPDATA labels below)")),
+    ("MPDATA", C::Material, H("EX, EY, EZ, PRXY/NUXY…, GXY…, DENS of an isotropic material (orthotropic values refused); thermal, damping and friction labels are noted; a temperature table is read at TREF or refused")),
+    ("MPTEMP", C::Material, H("the temperatures of the following MPDATA")),
+    ("N", C::Mesh, H("the end line of an NBLOCK (N,R5.3,LOC,-1)")),
+    ("NBLOCK", C::Mesh, H("nodes; nonzero nodal rotation angles are refused")),
+    ("NCNV", C::Analysis, N(SOLUTION)),
+    ("NEQIT", C::Analysis, N(SOLUTION)),
+    ("NUMOFF", C::Session, N("an id offset for a later archive: no effect on one archive")),
+    ("OMEGA", C::Analysis, R(ROTATION)),
+    ("QRDOPT", C::Analysis, N("an option of the QR-damped eigensolver: no effect on the body")),
+    ("R", C::Material, H("a real constant set (MASS21's masses)")),
+    ("REAL", C::Mesh, N(ATTRIBUTE)),
+    ("RLBLOCK", C::Material, H("real constant sets (MASS21's masses)")),
+    ("SECBLOCK", C::Material, R(SECTION)),
+    ("SECCONTROL", C::Material, R(SECTION)),
+    ("SECDATA", C::Material, R(SECTION)),
+    ("SECNUM", C::Mesh, N(ATTRIBUTE)),
+    ("SECOFFSET", C::Material, R(SECTION)),
+    ("SECTYPE", C::Material, R(SECTION)),
+    ("SF", C::Load, R(SURFACE_LOAD)),
+    ("SFE", C::Load, R(SURFACE_LOAD)),
+    ("TIME", C::Analysis, N(SOLUTION)),
+    ("TREF", C::Material, H("the reference temperature at which temperature tables are read")),
+    ("TYPE", C::Mesh, N(ATTRIBUTE)),
+];
+
+/// Element types by number: name and disposition (KEYOPTs in the text).
+pub(crate) const ELEMENT_TYPES: &[(u32, &str, Disposition)] = &[
+    (14, "COMBIN14", R("spring-damper: formulation not formed here")),
+    (21, "MASS21", H("a point mass: KEYOPT(3)=0 with MASSX = MASSY = MASSZ and the rotary inertias IXX, IYY, IZZ, or KEYOPT(3)=2 (mass only), from its real constant set; directional masses, KEYOPT(2)=1 (nodal frame) and the 2-D forms are refused")),
+    (152, "SURF152", R("surface effect element: formulation not formed here")),
+    (153, "SURF153", R("surface effect element: formulation not formed here")),
+    (154, "SURF154", R("surface effect element: formulation not formed here")),
+    (156, "SURF156", R("surface effect element: formulation not formed here")),
+    (169, "TARGE169", R("bonded contact target: formulation not formed here")),
+    (170, "TARGE170", R("bonded contact target: formulation not formed here")),
+    (171, "CONTA171", R("bonded contact: formulation not formed here")),
+    (172, "CONTA172", R("bonded contact: formulation not formed here")),
+    (173, "CONTA173", R("bonded contact: formulation not formed here")),
+    (174, "CONTA174", R("bonded contact: formulation not formed here")),
+    (175, "CONTA175", R("bonded contact: formulation not formed here")),
+    (177, "CONTA177", R("bonded contact: formulation not formed here")),
+    (178, "CONTA178", R("node-to-node contact: formulation not formed here")),
+    (180, "LINK180", R("spar: formulation not formed here")),
+    (181, "SHELL181", R("4-node shell: formulation not formed here")),
+    (182, "PLANE182", R("a 2-D element: a body is three-dimensional")),
+    (183, "PLANE183", R("a 2-D element: a body is three-dimensional")),
+    (184, "MPC184", R("rigid link/beam: formulation not formed here")),
+    (185, "SOLID185", R("8-node brick: none of its KEYOPT(2) formulations (B-bar, uniform reduced, enhanced strain, simplified enhanced strain) is formed here")),
+    (186, "SOLID186", H("20-node brick, KEYOPT(2)=0 (the default): uniform reduced 2×2×2 integration, as Abaqus C3D20R; KEYOPT(2)=1 (full integration), degenerate wedge/pyramid/tet shapes and dropped mid-side nodes are refused by line")),
+    (187, "SOLID187", H("10-node tetrahedron as Abaqus C3D10; written with its 4 corner nodes only (mid-side nodes dropped: straight edges, linear displacement) it is exactly the 4-node tetrahedron C3D4")),
+    (188, "BEAM188", R("2-node beam: formulation not formed here")),
+    (189, "BEAM189", R("3-node beam: formulation not formed here")),
+    (190, "SOLSH190", R("solid shell: formulation not formed here")),
+    (200, "MESH200", N("a meshing-only element: it carries no stiffness or mass")),
+    (281, "SHELL281", R("8-node shell: formulation not formed here")),
+    (285, "SOLID285", R("4-node tetrahedron with nodal pressure: formulation not formed here")),
+    (288, "PIPE288", R("pipe: formulation not formed here")),
+    (289, "PIPE289", R("pipe: formulation not formed here")),
+];
+
+/// The row of a command name (upper case), if listed.
+pub(crate) fn command(name: &str) -> Option<(Category, Disposition)> {
+    COMMANDS
+        .binary_search_by(|r| r.0.cmp(name))
+        .ok()
+        .map(|i| (COMMANDS[i].1, COMMANDS[i].2))
+}
+
+/// The element type with this number (`ET,1,186`) or name (`ET,1,SOLID186`).
+pub(crate) fn element_type(key: &str) -> Option<(u32, &'static str, Disposition)> {
+    let key = key.trim().to_ascii_uppercase();
+    let by_number = key.parse::<u32>().ok();
+    ELEMENT_TYPES
+        .iter()
+        .find(|r| Some(r.0) == by_number || r.1 == key)
+        .copied()
+}
+
+fn disposition_text(d: Disposition) -> String {
+    match d {
+        Disposition::Honoured(how) => format!("honoured: {how}"),
+        Disposition::Note(why) => format!("note: {why}"),
+        Disposition::Refused(why) => format!("refused: {why}"),
+    }
+}
+
+/// `docs/ansys-commands.md`: both tables (a test keeps the page equal).
+pub fn markdown() -> String {
+    let mut s = String::from(
+        "# ANSYS: what the importer does with each archive command and element type\n\n\
+         Generated from the catalogue (`src/import/ansys/catalogue.rs`) by \
+         `cargo test --lib ansys::catalogue` with `FLEXBODY_BLESS=1`; a test keeps this page \
+         equal to it. Every command and element type a `CDWRITE` archive (`.cdb`) can hold is \
+         *honoured* (read into the model), a *note* (it cannot change the body's stiffness, \
+         mass or constraints; the build reports one note per command with its lines) or \
+         *refused* (the import stops with every refused line of the archive; `--ignore NAME` \
+         drops a command or element type on purpose). A name in no table is refused by its \
+         line. See `docs/ansys.md` for the element formulations and the `.full` reader.\n",
+    );
+    for cat in Category::ALL {
+        let rows: Vec<_> = COMMANDS.iter().filter(|r| r.1 == cat).collect();
+        s.push_str(&format!(
+            "\n## Commands: {} ({})\n\n| command | disposition |\n|---|---|\n",
+            cat.title(),
+            rows.len()
+        ));
+        for (name, _, d) in rows {
+            s.push_str(&format!("| {name} | {} |\n", disposition_text(*d)));
+        }
+    }
+    s.push_str(&format!(
+        "\n## Element types ({})\n\n| number | name | disposition |\n|---|---|---|\n",
+        ELEMENT_TYPES.len()
+    ));
+    for (n, name, d) in ELEMENT_TYPES {
+        s.push_str(&format!("| {n} | {name} | {} |\n", disposition_text(*d)));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tables_are_sorted_and_unique() {
+        assert!(COMMANDS.windows(2).all(|w| w[0].0 < w[1].0));
+        assert!(ELEMENT_TYPES.windows(2).all(|w| w[0].0 < w[1].0));
+        assert!(COMMANDS.iter().all(|r| r.0 == r.0.to_ascii_uppercase()));
+    }
+
+    /// `docs/ansys-commands.md` is the catalogue's page (`FLEXBODY_BLESS=1` rewrites it).
+    #[test]
+    fn documentation_page_is_generated_from_the_catalogue() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/ansys-commands.md");
+        let page = markdown();
+        if std::env::var_os("FLEXBODY_BLESS").is_some() {
+            std::fs::write(path, &page).expect("docs/ansys-commands.md is writable");
+        }
+        let on_disk = std::fs::read_to_string(path).unwrap_or_default();
+        assert!(
+            on_disk == page,
+            "docs/ansys-commands.md differs from the catalogue: regenerate it with \
+             FLEXBODY_BLESS=1 cargo test --lib ansys::catalogue"
+        );
+    }
+}

@@ -1,0 +1,210 @@
+//! `D`, `CE`, `CP` (constraints) and `F`, `ACEL` (scene loads) → the model's SPCs, MPCs and
+//! loads. `D` holds a dof at zero (as the other formats' SPCs: a reference condition of the
+//! body); `CE` is the MPC Σ cᵢ uᵢ = 0 it states; `CP` makes the listed nodes' dof equal to the
+//! first node's (one two-term MPC per further node: the MPC the coupled set stands for).
+
+use std::collections::BTreeMap;
+
+use super::blocks::Command;
+use crate::import::error::ImportError;
+
+/// A dof label's 0-based component (UX…ROTZ), `None` for a label not structural.
+pub(super) fn dof_of(label: &str) -> Option<u8> {
+    Some(match label.trim().to_ascii_uppercase().as_str() {
+        "UX" => 0,
+        "UY" => 1,
+        "UZ" => 2,
+        "ROTX" => 3,
+        "ROTY" => 4,
+        "ROTZ" => 5,
+        _ => return None,
+    })
+}
+
+/// A force label's component (FX…MZ).
+fn force_of(label: &str) -> Option<usize> {
+    Some(match label.trim().to_ascii_uppercase().as_str() {
+        "FX" => 0,
+        "FY" => 1,
+        "FZ" => 2,
+        "MX" => 3,
+        "MY" => 4,
+        "MZ" => 5,
+        _ => return None,
+    })
+}
+
+/// A constraint equation's terms: (node id, 0-based dof, coefficient).
+pub(super) type Terms = Vec<(u64, u8, f64)>;
+
+/// The constraints and loads read, by external node id.
+#[derive(Debug, Default)]
+pub(super) struct Raw {
+    /// (line, node, dof mask bits).
+    pub held: Vec<(usize, u64, u8)>,
+    /// Constraint equations: (line, terms (node, dof, coefficient)).
+    pub equations: Vec<(usize, Terms)>,
+    /// Coupled sets: set number → (first line, dof, nodes).
+    pub coupled: BTreeMap<i64, (usize, u8, Vec<u64>)>,
+    /// Nodal forces: (line, node, component, value).
+    pub forces: Vec<(usize, u64, usize, f64)>,
+    /// ACEL: (line, acceleration).
+    pub acel: Option<(usize, [f64; 3])>,
+}
+
+/// A refusal: line and reason.
+pub(super) type Refused = (usize, String);
+
+/// A node field: a positive node number (a component name or ALL is refused).
+fn node_field(file: &str, c: &Command, i: usize) -> Result<Option<u64>, ImportError> {
+    let s = c.field(i);
+    if s.chars()
+        .all(|ch| ch.is_ascii_digit() || ch == '.' || ch == '+')
+        && !s.is_empty()
+    {
+        let n = c.int(file, i)?;
+        return Ok((n > 0).then_some(n as u64));
+    }
+    Ok(None)
+}
+
+impl Raw {
+    /// `D,NODE,Lab,VALUE,VALUE2`.
+    pub fn d(
+        &mut self,
+        file: &str,
+        c: &Command,
+        refused: &mut Vec<Refused>,
+    ) -> Result<(), ImportError> {
+        let Some(node) = node_field(file, c, 0)? else {
+            refused.push((
+                c.line,
+                format!("D on '{}': only node numbers are read", c.field(0)),
+            ));
+            return Ok(());
+        };
+        let lab = c.field(1).to_ascii_uppercase();
+        let mask = match (lab.as_str(), dof_of(&lab)) {
+            ("ALL", _) => 0b11_1111,
+            (_, Some(k)) => 1u8 << k,
+            (_, None) => {
+                refused.push((
+                    c.line,
+                    format!("D on dof {lab}: only UX…ROTZ and ALL are read"),
+                ));
+                return Ok(());
+            }
+        };
+        if c.real(file, 2)? != 0.0 || c.real(file, 3)? != 0.0 {
+            refused.push((
+                c.line,
+                "D with a nonzero value: an enforced displacement is not a constraint of the \
+                 body"
+                    .into(),
+            ));
+            return Ok(());
+        }
+        self.held.push((c.line, node, mask));
+        Ok(())
+    }
+
+    /// A constraint equation's terms (from the `CE,R5.0,DEFI` block) and its constant.
+    pub fn ce(
+        &mut self,
+        line: usize,
+        terms: Vec<(u64, String, f64, usize)>,
+        constant: f64,
+        refused: &mut Vec<Refused>,
+    ) {
+        if constant != 0.0 {
+            refused.push((
+                line,
+                format!("CE with the constant {constant}: an enforced motion is not read"),
+            ));
+            return;
+        }
+        let mut out = Vec::with_capacity(terms.len());
+        for (node, lab, coef, at) in terms {
+            match dof_of(&lab) {
+                Some(k) => out.push((node, k, coef)),
+                None => {
+                    refused.push((at, format!("CE term on dof {lab}: only UX…ROTZ are read")));
+                    return;
+                }
+            }
+        }
+        self.equations.push((line, out));
+    }
+
+    /// `CP,NSET,Lab,NODE1,…,NODE17` (the same NSET again adds nodes).
+    pub fn cp(
+        &mut self,
+        file: &str,
+        c: &Command,
+        refused: &mut Vec<Refused>,
+    ) -> Result<(), ImportError> {
+        let set = c.int(file, 0)?;
+        let lab = c.field(1).to_ascii_uppercase();
+        let Some(k) = dof_of(&lab) else {
+            refused.push((c.line, format!("CP on dof {lab}: only UX…ROTZ are read (ALL couples every dof: write one set per dof)")));
+            return Ok(());
+        };
+        let mut nodes = Vec::new();
+        for i in 2..c.fields.len() {
+            if c.field(i).is_empty() {
+                continue;
+            }
+            match node_field(file, c, i)? {
+                Some(n) => nodes.push(n),
+                None => {
+                    refused.push((
+                        c.line,
+                        format!("CP node '{}': only node numbers are read", c.field(i)),
+                    ));
+                    return Ok(());
+                }
+            }
+        }
+        let entry = self.coupled.entry(set).or_insert((c.line, k, Vec::new()));
+        if entry.1 != k {
+            refused.push((c.line, format!("CP set {set} on {lab} after another dof")));
+            return Ok(());
+        }
+        entry.2.extend(nodes);
+        Ok(())
+    }
+
+    /// `F,NODE,Lab,VALUE` (the imaginary part VALUE2 must be zero).
+    pub fn f(
+        &mut self,
+        file: &str,
+        c: &Command,
+        refused: &mut Vec<Refused>,
+    ) -> Result<(), ImportError> {
+        let Some(node) = node_field(file, c, 0)? else {
+            refused.push((
+                c.line,
+                format!("F on '{}': only node numbers are read", c.field(0)),
+            ));
+            return Ok(());
+        };
+        let lab = c.field(1);
+        let Some(k) = force_of(lab) else {
+            refused.push((c.line, format!("F of {lab}: only FX…MZ are read")));
+            return Ok(());
+        };
+        if c.real(file, 3)? != 0.0 {
+            refused.push((c.line, "F with an imaginary part: not read".into()));
+            return Ok(());
+        }
+        self.forces.push((c.line, node, k, c.real(file, 2)?));
+        Ok(())
+    }
+
+    /// `ACEL,ACELX,ACELY,ACELZ` (all zero: nothing).
+    pub fn acel(&mut self, file: &str, c: &Command) -> Result<(), ImportError> {
+        let a = [c.real(file, 0)?, c.real(file, 1)?, c.real(file, 2)?];
+        self.acel = (a != [0.0; 3]).then_some((c.line, a));
+        Ok(())
+    }
+}

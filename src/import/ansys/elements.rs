@@ -1,0 +1,239 @@
+//! Element types (`ET`, `KEYOPT`) and the elements of an `EBLOCK` as the model's element kinds,
+//! formed as ANSYS forms them for the KEYOPTs the archive sets, or refused naming the KEYOPT.
+//!
+//! Node orders: SOLID186's I…P, Q…X, Y…B (corners, bottom and top mid-sides, vertical
+//! mid-sides) and SOLID187's I…L, M…R are Abaqus's C3D20 and C3D10 orders (MAPDL Element
+//! Reference, SOLID186/SOLID187 geometry figures), so the node lists are taken as written.
+
+use std::collections::BTreeMap;
+
+use super::blocks::ElementRecord;
+use super::catalogue::{self, Disposition};
+use crate::model::ElementKind;
+
+/// An element type of the archive (`ET,ITYPE,Ename` and its `KEYOPT`s).
+#[derive(Debug, Clone)]
+pub(super) struct ElementType {
+    /// The `ET` line.
+    pub line: usize,
+    /// As written (`186` or `SOLID186`).
+    pub written: String,
+    /// The catalogue row (`None`: not in the catalogue).
+    pub row: Option<(u32, &'static str, Disposition)>,
+    /// KEYOPT(k) → value, nonzero ones only.
+    pub keyopts: BTreeMap<u32, i64>,
+}
+
+impl ElementType {
+    /// The name in messages (`SOLID186`, or the text written).
+    pub fn name(&self) -> String {
+        self.row
+            .map_or_else(|| self.written.clone(), |r| r.1.to_owned())
+    }
+
+    /// From the `ET` fields (type number, name or number, KOP1…KOP6).
+    pub fn new(line: usize, written: &str) -> ElementType {
+        ElementType {
+            line,
+            written: written.trim().to_owned(),
+            row: catalogue::element_type(written),
+            keyopts: BTreeMap::new(),
+        }
+    }
+}
+
+/// What an element record becomes.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Formed {
+    /// An element of this kind on these node ids.
+    Element(ElementKind, Vec<u64>),
+    /// An element without stiffness or mass (MESH200): not in the model.
+    NoStiffness,
+    /// A point mass (MASS21) at this node id: mass and the diagonal rotary inertia.
+    PointMass(u64, f64, [f64; 3]),
+}
+
+/// Why an element cannot be formed (the refusal's reason; the KEYOPT named when it is one).
+pub(super) type Refusal = String;
+
+/// The KEYOPTs of `t` other than `allowed` that are set: each one refused by name.
+fn unsupported_keyopts(t: &ElementType, allowed: &[u32]) -> Result<(), Refusal> {
+    match t.keyopts.iter().find(|(k, _)| !allowed.contains(k)) {
+        Some((k, v)) => Err(format!(
+            "{} KEYOPT({k})={v}: this option's formulation is not formed here",
+            t.name()
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The element of record `rec` of type `t` (a type the catalogue honours or notes).
+pub(super) fn form(
+    t: &ElementType,
+    rec: &ElementRecord,
+    reals: Option<&[f64]>,
+) -> Result<Formed, Refusal> {
+    let Some((number, name, disposition)) = t.row else {
+        return Err(format!(
+            "element type {} is not in the catalogue",
+            t.written
+        ));
+    };
+    match disposition {
+        Disposition::Refused(_) if number == 185 => return Err(solid185(t)),
+        Disposition::Refused(why) => return Err(format!("{name}: {why}")),
+        Disposition::Note(_) => return Ok(Formed::NoStiffness),
+        Disposition::Honoured(_) => {}
+    }
+    match number {
+        21 => mass21(t, rec, reals),
+        186 => solid186(t, rec),
+        187 => solid187(t, rec),
+        // every honoured row of the catalogue is matched above; a new one must be added here
+        other => Err(format!("element type {other} ({name}) has no former")),
+    }
+}
+
+/// SOLID186: KEYOPT(2)=0 (the default) is uniform reduced integration 2×2×2 (C3D20R); full
+/// integration and the degenerate shapes are refused.
+fn solid186(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[])?;
+    let n = &rec.nodes;
+    if n.len() != 20 || n.contains(&0) {
+        return Err(format!(
+            "SOLID186 with {} of its 20 nodes (dropped mid-side nodes): not formed here",
+            n.iter().filter(|&&v| v != 0).count()
+        ));
+    }
+    if !distinct(n) {
+        return Err(
+            "SOLID186 in a degenerate shape (wedge, pyramid or tetrahedron: repeated nodes): \
+             not formed here"
+                .into(),
+        );
+    }
+    Ok(Formed::Element(ElementKind::Hex20R, n.clone()))
+}
+
+/// SOLID187: the 10-node tetrahedron (C3D10); with its mid-side nodes dropped the element's
+/// displacement is linear on straight edges, which is exactly the 4-node tetrahedron (C3D4).
+fn solid187(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[])?;
+    let n = &rec.nodes;
+    let corners = &n[..n.len().min(4)];
+    if corners.len() < 4 || corners.contains(&0) || !distinct(corners) {
+        return Err("SOLID187 without four distinct corner nodes".into());
+    }
+    let mids: Vec<u64> = n.iter().skip(4).copied().collect();
+    if mids.iter().all(|&m| m == 0) {
+        return Ok(Formed::Element(ElementKind::Tet4, corners.to_vec()));
+    }
+    if mids.len() != 6 || mids.contains(&0) || !distinct(n) {
+        return Err(
+            "SOLID187 with some of its mid-side nodes dropped: not formed here (all or none)"
+                .into(),
+        );
+    }
+    Ok(Formed::Element(ElementKind::Tet10, n.clone()))
+}
+
+/// MASS21: KEYOPT(3)=0 (3-D mass with rotary inertia: reals MASSX, MASSY, MASSZ, IXX, IYY, IZZ)
+/// with MASSX = MASSY = MASSZ, or KEYOPT(3)=2 (3-D mass without rotary inertia: the real MASS),
+/// in the global frame (KEYOPT(2)=0); directional masses and the 2-D forms are refused.
+fn mass21(t: &ElementType, rec: &ElementRecord, reals: Option<&[f64]>) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[3])?;
+    let node = match rec.nodes.as_slice() {
+        [n] if *n > 0 => *n,
+        _ => return Err("MASS21 without its one node".into()),
+    };
+    let Some(r) = reals else {
+        return Err(format!(
+            "MASS21 with real constant set {} not defined",
+            rec.real
+        ));
+    };
+    let value = |k: usize| r.get(k).copied().unwrap_or(0.0);
+    match t.keyopts.get(&3).copied().unwrap_or(0) {
+        0 => {
+            let (mx, my, mz) = (value(0), value(1), value(2));
+            if mx != my || mx != mz {
+                return Err(format!(
+                    "MASS21 with directional masses MASSX={mx}, MASSY={my}, MASSZ={mz}: only \
+                     equal masses are formed here"
+                ));
+            }
+            Ok(Formed::PointMass(node, mx, [value(3), value(4), value(5)]))
+        }
+        2 => Ok(Formed::PointMass(node, value(0), [0.0; 3])),
+        k => Err(format!(
+            "MASS21 KEYOPT(3)={k} (a 2-D mass): formulation not formed here"
+        )),
+    }
+}
+
+/// SOLID185's refusal, naming its KEYOPT(2) formulation.
+fn solid185(t: &ElementType) -> Refusal {
+    let k2 = t.keyopts.get(&2).copied().unwrap_or(0);
+    let what = match k2 {
+        0 => "B-bar selective reduced integration, the default",
+        1 => "uniform reduced integration with ANSYS's hourglass control",
+        2 => "enhanced strain",
+        3 => "simplified enhanced strain",
+        _ => "an unknown formulation",
+    };
+    format!("SOLID185 KEYOPT(2)={k2} ({what}): formulation not formed here")
+}
+
+/// No id repeats.
+fn distinct(ids: &[u64]) -> bool {
+    let mut v = ids.to_vec();
+    v.sort_unstable();
+    v.windows(2).all(|w| w[0] != w[1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn record(nodes: Vec<u64>) -> ElementRecord {
+        ElementRecord {
+            line: 9,
+            id: 1,
+            mat: 1,
+            etype: 1,
+            real: 0,
+            section: 0,
+            esys: 0,
+            nodes,
+        }
+    }
+
+    #[test]
+    fn solid186_default_is_reduced_and_keyopt2_is_refused_by_name() {
+        let mut t = ElementType::new(3, "186");
+        let nodes: Vec<u64> = (1..=20).collect();
+        assert_eq!(
+            form(&t, &record(nodes.clone()), None),
+            Ok(Formed::Element(ElementKind::Hex20R, nodes.clone()))
+        );
+        t.keyopts.insert(2, 1);
+        let why = form(&t, &record(nodes), None).unwrap_err();
+        assert!(why.contains("SOLID186 KEYOPT(2)=1"), "{why}");
+    }
+
+    #[test]
+    fn solid187_without_mid_sides_is_the_linear_tetrahedron() {
+        let t = ElementType::new(3, "SOLID187");
+        let r = record(vec![4, 5, 6, 7]);
+        assert_eq!(
+            form(&t, &r, None),
+            Ok(Formed::Element(ElementKind::Tet4, vec![4, 5, 6, 7]))
+        );
+        let r = record(vec![4, 5, 6, 7, 8, 0, 0, 0, 0, 0]);
+        assert!(form(&t, &r, None).is_err());
+        let t = ElementType::new(3, "200");
+        assert_eq!(form(&t, &r, None), Ok(Formed::NoStiffness));
+        let t = ElementType::new(3, "181");
+        assert!(form(&t, &r, None).unwrap_err().contains("SHELL181"));
+    }
+}

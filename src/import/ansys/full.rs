@@ -1,0 +1,274 @@
+//! ANSYS full files (`Jobname.full`): the assembled K and M, the dof reference table and the
+//! constrained dofs, as a matrix import ([`MatrixModel`], like the Matrix Market and CalculiX
+//! dumps), node coordinates and components from the matching archive.
+//!
+//! Layout (MAPDL Programmer's Reference, "Description of the Full File"; checked against
+//! ansys-mapdl-reader's `file.full`): a sequence of Fortran records `[n][flags][n words][1
+//! word]`, word pointers counting 4-byte words from the file start. The standard header (at
+//! word 0) is followed by the full header (100 integers: `neqn` at 2, `numdof` at 8, the term
+//! counts and pointers as low/high word pairs), the dof labels (1 = UX … 6 = ROTZ), the nodal
+//! equivalence table (node numbers in equation order); at `ptrDOF` the dofs per node, then the
+//! constraint table (a negative entry: the equation is constrained). K (at `ptrSTF`) and M (at
+//! `ptrMAS`) are written row by row: a record of 1-based column numbers, then a record of their
+//! values; each pair of the symmetric matrix is written once. Compressed records, unsymmetric
+//! or lumped matrices and constraint equations in the file are refused.
+
+use std::path::Path;
+
+use crate::import::ccx_matrices::{EquationDof, SymmetricTriplets};
+use crate::import::error::{parse_err, ImportError};
+use crate::import::matrix_market::MatrixModel;
+use crate::model::Model;
+
+/// The content of a full file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FullFile {
+    /// Equation k ↔ (node, direction), every equation of the file (constrained ones too).
+    pub dofs: Vec<EquationDof>,
+    /// Whether equation k is constrained (the file's constraint table).
+    pub constrained: Vec<bool>,
+    /// Stiffness, upper triangle over all equations.
+    pub k: SymmetricTriplets,
+    /// Mass, upper triangle over all equations (`None`: the file holds no mass matrix).
+    pub m: Option<SymmetricTriplets>,
+}
+
+/// A reader over the file's words; every failure names the file and the word pointer.
+struct Words<'a> {
+    bytes: &'a [u8],
+    file: &'a str,
+}
+
+impl Words<'_> {
+    fn err(&self, at: u64, what: impl Into<String>) -> ImportError {
+        parse_err(self.file, 1, format!("word {at}"), what)
+    }
+
+    fn word(&self, at: u64) -> Result<i32, ImportError> {
+        let i = usize::try_from(at * 4).map_err(|_| self.err(at, "pointer past the file"))?;
+        let b = self
+            .bytes
+            .get(i..i + 4)
+            .ok_or_else(|| self.err(at, "the file ends inside a record (truncated?)"))?;
+        Ok(i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    }
+
+    /// The record at `at`: its word count, its data's first word, the pointer after it.
+    fn record(&self, at: u64) -> Result<(usize, u64, u64), ImportError> {
+        let n = self.word(at)?;
+        let flags = self.word(at + 1)? as u32;
+        let byte = (flags >> 24) as u8;
+        if byte & 0b0011_1000 != 0 {
+            return Err(self.err(
+                at,
+                "a compressed record (sparse or zlib): write the full file uncompressed \
+                 (/FCOMP,FULL,0) to read it",
+            ));
+        }
+        if n < 0 {
+            return Err(self.err(at, format!("record length {n}")));
+        }
+        let end = at + 2 + n as u64 + 1;
+        if end * 4 > self.bytes.len() as u64 {
+            return Err(self.err(at, "the file ends inside a record (truncated?)"));
+        }
+        Ok((n as usize, at + 2, end))
+    }
+
+    fn ints(&self, at: u64) -> Result<(Vec<i32>, u64), ImportError> {
+        let (n, data, end) = self.record(at)?;
+        let v = (0..n as u64)
+            .map(|k| self.word(data + k))
+            .collect::<Result<_, _>>()?;
+        Ok((v, end))
+    }
+
+    /// A record of `count` doubles.
+    fn doubles(&self, at: u64, count: usize) -> Result<(Vec<f64>, u64), ImportError> {
+        let (n, data, end) = self.record(at)?;
+        if n < 2 * count {
+            return Err(self.err(at, format!("{n} words for {count} values")));
+        }
+        let start = (data * 4) as usize;
+        let v = (0..count)
+            .map(|k| {
+                let b = &self.bytes[start + 8 * k..start + 8 * k + 8];
+                f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]])
+            })
+            .collect();
+        Ok((v, end))
+    }
+}
+
+/// Two header words (low, high) as one pointer or count.
+fn long(header: &[i32], low: usize) -> u64 {
+    (header.get(low).copied().unwrap_or(0) as u32 as u64)
+        | ((header.get(low + 1).copied().unwrap_or(0) as u32 as u64) << 32)
+}
+
+/// Read a full file.
+pub fn read_full(path: &Path) -> Result<FullFile, ImportError> {
+    let file = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| ImportError::Io {
+        file: file.clone(),
+        source,
+    })?;
+    let w = Words {
+        bytes: &bytes,
+        file: &file,
+    };
+    if w.word(0)? != 100 {
+        return Err(ImportError::NotAModel {
+            file,
+            what: "not a little-endian ANSYS binary file (its first record is not the \
+                   100-word standard header)"
+                .into(),
+        });
+    }
+    let (_, after_standard) = w.ints(0)?;
+    let (header, after_header) = w.ints(after_standard)?;
+    let get = |k: usize| header.get(k).copied().unwrap_or(0);
+    if get(0) != -4 && get(0) != 4 {
+        return Err(w.err(
+            after_standard,
+            format!("full header's fun04 is {}, not −4", get(0)),
+        ));
+    }
+    let neqn = usize::try_from(get(1)).map_err(|_| w.err(after_standard, "negative neqn"))?;
+    for (k, what) in [
+        (10, "a lumped mass matrix"),
+        (13, "an unsymmetric matrix"),
+        (20, "constraint equations"),
+    ] {
+        if get(k) != 0 {
+            return Err(w.err(after_standard, format!("the file holds {what}: not read")));
+        }
+    }
+    let (labels, after_labels) = w.ints(after_header)?;
+    let (neqv, _) = w.ints(after_labels)?;
+    let (ndof, after_ndof) = w.ints(long(&header, 35))?;
+    let (table, _) = w.ints(after_ndof)?;
+    if ndof.len() != neqv.len() || table.len() != neqn {
+        return Err(w.err(
+            long(&header, 35),
+            "the dof tables do not match the equation count",
+        ));
+    }
+    let mut dofs = Vec::with_capacity(neqn);
+    for (&node, &count) in neqv.iter().zip(&ndof) {
+        for j in 0..count.max(0) as usize {
+            let label = labels.get(j).copied().unwrap_or(0);
+            if !(1..=6).contains(&label) || node <= 0 {
+                return Err(w.err(
+                    after_header,
+                    format!("node {node}: dof label {label} is not UX…ROTZ"),
+                ));
+            }
+            dofs.push(EquationDof {
+                node: node as u64,
+                dir: (label - 1) as u8,
+            });
+        }
+    }
+    if dofs.len() != neqn {
+        return Err(w.err(
+            long(&header, 35),
+            format!("{} dofs for {neqn} equations", dofs.len()),
+        ));
+    }
+    let k = matrix(&w, long(&header, 18), neqn, long(&header, 8))?;
+    let m_terms = (get(33) as u32 as u64) | ((get(21) as u32 as u64) << 32);
+    let m = match long(&header, 26) {
+        0 => None,
+        at => Some(matrix(&w, at, neqn, m_terms)?),
+    };
+    Ok(FullFile {
+        dofs,
+        constrained: table.iter().map(|&c| c < 0).collect(),
+        k,
+        m,
+    })
+}
+
+/// A matrix written row by row from `at` (see the module doc); `terms` is the header's count.
+fn matrix(
+    w: &Words,
+    mut at: u64,
+    neqn: usize,
+    terms: u64,
+) -> Result<SymmetricTriplets, ImportError> {
+    let start = at;
+    let mut upper = Vec::with_capacity(terms.min(1 << 26) as usize);
+    for row in 0..neqn {
+        let (cols, next) = w.ints(at)?;
+        let (values, next) = w.doubles(next, cols.len())?;
+        for (&c, &v) in cols.iter().zip(&values) {
+            let c = c as i64 - 1;
+            if c < 0 || c as usize >= neqn {
+                return Err(w.err(at, format!("row {} names column {}", row + 1, c + 1)));
+            }
+            let c = c as usize;
+            upper.push((row.min(c), row.max(c), v));
+        }
+        at = next;
+    }
+    if upper.len() as u64 != terms {
+        return Err(w.err(
+            start,
+            format!("{} terms read, the header says {terms}", upper.len()),
+        ));
+    }
+    Ok(SymmetricTriplets { n: neqn, upper })
+}
+
+/// A [`MatrixModel`] of the full file's free equations (constrained rows and columns removed,
+/// as the constrained dofs of a CalculiX dump are absent), node coordinates from `mesh` (the
+/// archive the file was solved from). The file must hold M.
+pub fn matrix_model(path: &Path, mesh: &Model) -> Result<MatrixModel, ImportError> {
+    let file = path.display().to_string();
+    let full = read_full(path)?;
+    let m = full
+        .m
+        .ok_or_else(|| parse_err(&file, 1, "file", "the full file holds no mass matrix"))?;
+    let mut free = vec![usize::MAX; full.dofs.len()];
+    let mut dofs = Vec::new();
+    for (k, d) in full.dofs.iter().enumerate() {
+        if !full.constrained[k] {
+            free[k] = dofs.len();
+            dofs.push(*d);
+        }
+    }
+    let keep = |t: SymmetricTriplets| SymmetricTriplets {
+        n: dofs.len(),
+        upper: t
+            .upper
+            .into_iter()
+            .filter(|&(r, c, _)| free[r] != usize::MAX && free[c] != usize::MAX)
+            .map(|(r, c, v)| (free[r], free[c], v))
+            .collect(),
+    };
+    let (k, m) = (keep(full.k), keep(m));
+    let index = mesh.node_index_by_id();
+    let mut nodes = Vec::new();
+    let mut seen = std::collections::HashSet::new();
+    for d in &dofs {
+        if seen.insert(d.node) {
+            let i = index.get(&d.node).ok_or_else(|| {
+                parse_err(
+                    &file,
+                    1,
+                    format!("node {}", d.node),
+                    format!("node not in the archive {}", mesh.source),
+                )
+            })?;
+            nodes.push(mesh.nodes[*i].clone());
+        }
+    }
+    Ok(MatrixModel {
+        source: file,
+        nodes,
+        dofs,
+        k,
+        m,
+    })
+}

@@ -1,0 +1,256 @@
+//! `MPTEMP`/`MPDATA`/`MP`: material property tables → isotropic materials. A table with one
+//! temperature is the constant; a table with several is read at `TREF` when one of its
+//! temperatures is `TREF`, otherwise refused. Orthotropic values (EY ≠ EX, GXY inconsistent with
+//! EX and PRXY, …) are refused; thermal, damping and friction labels cannot change K or M of a
+//! linear body and are noted.
+
+use std::collections::BTreeMap;
+
+use super::blocks::Command;
+use crate::import::error::ImportError;
+use crate::model::Material;
+
+/// What a property label is to the body.
+enum Label {
+    Modulus,
+    Poisson,
+    Shear,
+    Density,
+    /// No effect on K or M (the reason's word).
+    NoEffect,
+}
+
+fn label(name: &str) -> Option<Label> {
+    Some(match name {
+        "EX" | "EY" | "EZ" => Label::Modulus,
+        "PRXY" | "PRYZ" | "PRXZ" | "NUXY" | "NUYZ" | "NUXZ" => Label::Poisson,
+        "GXY" | "GYZ" | "GXZ" => Label::Shear,
+        "DENS" => Label::Density,
+        "ALPX" | "ALPY" | "ALPZ" | "CTEX" | "CTEY" | "CTEZ" | "THSX" | "THSY" | "THSZ" | "REFT"
+        | "KXX" | "KYY" | "KZZ" | "C" | "ENTH" | "HF" | "EMIS" | "QRATE" | "MU" | "DAMP"
+        | "DMPR" | "DMPS" | "RSVX" | "RSVY" | "RSVZ" | "PERX" | "PERY" | "PERZ" | "MURX"
+        | "MURY" | "MURZ" | "VISC" | "SONC" => Label::NoEffect,
+        _ => return None,
+    })
+}
+
+/// A property's table: its first line and its (temperature, value) pairs.
+type Table = (usize, Vec<(f64, f64)>);
+
+/// The property tables read so far.
+#[derive(Debug, Default)]
+pub(super) struct Tables {
+    /// The current MPTEMP temperatures.
+    temps: Vec<f64>,
+    /// (material, label) → (first line, (temperature, value) pairs).
+    props: BTreeMap<(i64, String), Table>,
+    /// Labels without effect: label → lines.
+    pub noted: BTreeMap<String, Vec<usize>>,
+}
+
+/// A refusal: line and reason.
+pub(super) type Refused = (usize, String);
+
+impl Tables {
+    /// `MPTEMP,R5.0,LENGTH,STLOC,T1,…` or `MPTEMP,STLOC,T1,…` (no fields: clear).
+    pub fn mptemp(&mut self, file: &str, c: &Command) -> Result<(), ImportError> {
+        let archive_form = c.field(0).eq_ignore_ascii_case("R5.0");
+        let first = if archive_form { 2 } else { 0 };
+        if c.fields.iter().all(|f| f.is_empty()) {
+            self.temps.clear();
+            return Ok(());
+        }
+        let start = (c.int(file, first)?.max(1) - 1) as usize;
+        let count = if archive_form {
+            c.int(file, 1)?.max(0) as usize
+        } else {
+            c.fields.len().saturating_sub(first + 1)
+        };
+        if start > 10_000 || count > 100 {
+            return Err(crate::import::error::parse_err(
+                file,
+                c.line,
+                "MPTEMP",
+                "table location or length out of range",
+            ));
+        }
+        if start == 0 {
+            self.temps.clear();
+        }
+        for k in 0..count {
+            let t = c.real(file, first + 1 + k)?;
+            if self.temps.len() <= start + k {
+                self.temps.resize(start + k + 1, 0.0);
+            }
+            self.temps[start + k] = t;
+        }
+        Ok(())
+    }
+
+    /// `MPDATA,R5.0,LENGTH,LAB,MAT,STLOC,C1,…` or `MPDATA,LAB,MAT,STLOC,C1,…`; `MP,LAB,MAT,C0`.
+    pub fn mpdata(
+        &mut self,
+        file: &str,
+        c: &Command,
+        refused: &mut Vec<Refused>,
+    ) -> Result<(), ImportError> {
+        let (lab_at, values): (usize, Vec<f64>) = if c.name == "MP" {
+            if (2..6).any(|k| !c.field(k).is_empty() && c.real(file, k).is_ok_and(|v| v != 0.0)) {
+                refused.push((
+                    c.line,
+                    "MP with temperature coefficients C1…C4: a temperature-dependent property \
+                     is not read"
+                        .into(),
+                ));
+                return Ok(());
+            }
+            (0, vec![c.real(file, 2)?])
+        } else if c.field(0).eq_ignore_ascii_case("R5.0") {
+            let count = c.int(file, 1)?.clamp(0, 100) as usize;
+            (
+                2,
+                (0..count)
+                    .map(|k| c.real(file, 5 + k))
+                    .collect::<Result<_, _>>()?,
+            )
+        } else {
+            let count = c.fields.len().saturating_sub(3);
+            (
+                0,
+                (0..count)
+                    .map(|k| c.real(file, 3 + k))
+                    .collect::<Result<_, _>>()?,
+            )
+        };
+        let lab = c.field(lab_at).to_ascii_uppercase();
+        let mat = c.int(file, lab_at + 1)?;
+        match label(&lab) {
+            None => {
+                refused.push((c.line, format!("material property {lab} is not read")));
+                return Ok(());
+            }
+            Some(Label::NoEffect) => {
+                self.noted.entry(lab).or_default().push(c.line);
+                return Ok(());
+            }
+            Some(_) => {}
+        }
+        let start = if c.name == "MP" {
+            0
+        } else {
+            (c.int(file, lab_at + 2)?.max(1) - 1) as usize
+        };
+        let entry = self
+            .props
+            .entry((mat, lab))
+            .or_insert_with(|| (c.line, Vec::new()));
+        if start == 0 {
+            entry.1.clear();
+        }
+        for (k, v) in values.into_iter().enumerate() {
+            let t = self.temps.get(start + k).copied().unwrap_or(0.0);
+            entry.1.push((t, v));
+        }
+        Ok(())
+    }
+
+    /// The materials by number, read at `tref`; refusals for tables not readable there and
+    /// for orthotropic values.
+    pub fn resolve(&self, tref: f64, refused: &mut Vec<Refused>) -> BTreeMap<i64, Material> {
+        let mut values: BTreeMap<i64, BTreeMap<&str, (usize, f64)>> = BTreeMap::new();
+        for ((mat, lab), (line, table)) in &self.props {
+            let v = match table.as_slice() {
+                [(_, v)] => *v,
+                many => match many.iter().find(|(t, _)| *t == tref) {
+                    Some((_, v)) => *v,
+                    None => {
+                        refused.push((
+                            *line,
+                            format!(
+                                "material {mat} {lab}: a table over {} temperatures without the \
+                                 reference temperature TREF = {tref}: a temperature-dependent \
+                                 property is not read",
+                                many.len()
+                            ),
+                        ));
+                        continue;
+                    }
+                },
+            };
+            values
+                .entry(*mat)
+                .or_default()
+                .insert(lab.as_str(), (*line, v));
+        }
+        let mut out = BTreeMap::new();
+        for (mat, v) in values {
+            if let Some(m) = isotropic(mat, &v, refused) {
+                out.insert(mat, m);
+            }
+        }
+        out
+    }
+}
+
+/// One material's values as an isotropic material, or a refusal (orthotropic, no EX).
+fn isotropic(
+    mat: i64,
+    v: &BTreeMap<&str, (usize, f64)>,
+    refused: &mut Vec<Refused>,
+) -> Option<Material> {
+    let line = v.values().map(|x| x.0).min().unwrap_or(0);
+    let same = |labels: &[&str]| -> Result<Option<f64>, String> {
+        let found: Vec<(&str, f64)> = labels
+            .iter()
+            .filter_map(|l| v.get(l).map(|x| (*l, x.1)))
+            .collect();
+        match found.split_first() {
+            None => Ok(None),
+            Some(((l0, v0), rest)) => {
+                match rest.iter().find(|(_, x)| (x - v0).abs() > 1e-12 * v0.abs()) {
+                    Some((l, x)) => Err(format!("{l} = {x} differs from {l0} = {v0}")),
+                    None => Ok(Some(*v0)),
+                }
+            }
+        }
+    };
+    let checked = (|| -> Result<Material, String> {
+        let e = same(&["EX", "EY", "EZ"])?.ok_or("no EX")?;
+        let nu = same(&["PRXY", "PRYZ", "PRXZ", "NUXY", "NUYZ", "NUXZ"])?;
+        let g = same(&["GXY", "GYZ", "GXZ"])?;
+        let nu = match (nu, g) {
+            (Some(nu), Some(g)) => {
+                let iso = e / (2.0 * (1.0 + nu));
+                if (g - iso).abs() > 1e-9 * iso {
+                    return Err(format!(
+                        "GXY = {g} is not EX/(2(1+PRXY)) = {iso} (orthotropic)"
+                    ));
+                }
+                nu
+            }
+            (Some(nu), None) => nu,
+            // ANSYS: PRXY from EX and GXY
+            (None, Some(g)) => e / (2.0 * g) - 1.0,
+            // ANSYS's default Poisson's ratio for an isotropic material is 0.3
+            (None, None) => 0.3,
+        };
+        let rho = v.get("DENS").map_or(0.0, |x| x.1);
+        Ok(Material::isotropic(
+            mat.max(0) as u64,
+            &format!("MAT{mat}"),
+            e,
+            nu,
+            rho,
+        ))
+    })();
+    match checked {
+        Ok(m) => Some(m),
+        Err(why) => {
+            refused.push((
+                line,
+                format!("material {mat}: {why}: only isotropic materials are read"),
+            ));
+            None
+        }
+    }
+}

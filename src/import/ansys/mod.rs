@@ -1,0 +1,673 @@
+//! ANSYS Mechanical APDL archives (`.cdb`, as `CDWRITE` writes them) and full files (`.full`,
+//! [`full`]).
+//!
+//! The archive is read line by line ([`blocks`]): every command and element type has a row in
+//! the catalogue ([`catalogue`], `docs/ansys-commands.md`) — honoured, a note (one per command,
+//! with its lines) or refused; a name in no table is refused by its line, and every refusal of
+//! the archive is listed in one error (`ImportOptions::ignore_cards` drops a name on purpose).
+//! Elements are formed by type and KEYOPT ([`elements`]), materials from `MPTEMP`/`MPDATA`
+//! ([`materials`]), `D`/`CE`/`CP`/`F`/`ACEL` in [`constraints`], node and element components
+//! (`CMBLOCK`) become the model's named sets.
+
+mod blocks;
+pub mod catalogue;
+mod constraints;
+mod elements;
+pub mod full;
+mod materials;
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+use self::blocks::{Command, ElementRecord, Lines, NodeRecord};
+use self::catalogue::Disposition;
+use self::elements::{ElementType, Formed};
+use super::error::{parse_err, ImportError, RefusedCard};
+use super::text::IdMap;
+use super::ImportOptions;
+use crate::model::deck::{ConstraintSource, EigenRequest};
+use crate::model::load::{Load, LoadPart};
+use crate::model::{DofMask, Element, Model, Mpc, Node, NodeDof, Property, Section, Spc};
+
+/// Read an archive with default options.
+pub fn read(path: &Path) -> Result<Model, ImportError> {
+    read_with_options(path, &ImportOptions::default())
+}
+
+/// Whether a line (upper case, trimmed) is one only an ANSYS archive has: an `NBLOCK` or
+/// `EBLOCK` header (for format detection by content).
+pub(crate) fn is_block_header(line: &str) -> bool {
+    let head = line.get(..7).unwrap_or("");
+    head.eq_ignore_ascii_case("NBLOCK,") || head.eq_ignore_ascii_case("EBLOCK,")
+}
+
+/// Read an archive.
+pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, ImportError> {
+    let file = path.display().to_string();
+    let text = super::text::read_text(path)?;
+    let ignored: BTreeSet<String> = opts
+        .ignore_cards
+        .iter()
+        .map(|s| s.trim().to_ascii_uppercase())
+        .collect();
+    let mut archive = Archive::default();
+    archive.read(&file, &text, &ignored)?;
+    archive.resolve(&file, &ignored)
+}
+
+/// What the archive holds, by external ids, before the resolve pass.
+#[derive(Debug, Default)]
+struct Archive {
+    nodes: Vec<NodeRecord>,
+    elements: Vec<ElementRecord>,
+    types: BTreeMap<i64, ElementType>,
+    materials: materials::Tables,
+    tref: f64,
+    components: Vec<(usize, String, bool, Vec<u64>)>,
+    raw: constraints::Raw,
+    lumped: Option<(usize, bool)>,
+    /// Real constant sets (`R`, `RLBLOCK`).
+    reals: BTreeMap<i64, Vec<f64>>,
+    eigen: Option<EigenRequest>,
+    /// Command name → lines of the commands noted.
+    noted: BTreeMap<String, Vec<usize>>,
+    /// Names dropped by `--ignore` → lines.
+    dropped: BTreeMap<String, Vec<usize>>,
+    /// (line, entity, key, reason).
+    refused: Vec<(usize, String, String, String)>,
+}
+
+/// Commands refused only when a field is nonzero (a rotating frame): all zero is a note.
+const REFUSED_WHEN_NONZERO: [&str; 5] = ["OMEGA", "DOMEGA", "CGLOC", "CGOMEGA", "DCGOMG"];
+
+impl Archive {
+    fn refuse(&mut self, line: usize, key: &str, reason: impl Into<String>) {
+        self.refused
+            .push((line, key.to_owned(), key.to_owned(), reason.into()));
+    }
+
+    /// Every line, in order: commands dispatched by the catalogue, blocks read whole.
+    fn read(
+        &mut self,
+        file: &str,
+        text: &str,
+        ignored: &BTreeSet<String>,
+    ) -> Result<(), ImportError> {
+        let mut lines = Lines::new(file, text);
+        while let Some((n, line)) = lines.next_line() {
+            let Some(c) = blocks::command(line, n) else {
+                continue;
+            };
+            if c.name.contains('=') {
+                self.noted
+                    .entry("parameter assignment".into())
+                    .or_default()
+                    .push(n);
+                continue;
+            }
+            if ignored.contains(&c.name) {
+                self.dropped.entry(c.name.clone()).or_default().push(n);
+                // a dropped block's records are still skipped as the block
+                self.skip_block(&mut lines, &c)?;
+                continue;
+            }
+            match catalogue::command(&c.name) {
+                None => self.refuse(
+                    n,
+                    &c.name,
+                    format!(
+                        "command {} is not in the catalogue (docs/ansys-commands.md)",
+                        c.name
+                    ),
+                ),
+                Some((_, Disposition::Note(_))) => {
+                    self.noted.entry(c.name.clone()).or_default().push(n)
+                }
+                Some((_, Disposition::Refused(why))) => {
+                    let zero = REFUSED_WHEN_NONZERO.contains(&c.name.as_str())
+                        && (0..c.fields.len()).all(|k| c.real(file, k).is_ok_and(|v| v == 0.0));
+                    if zero {
+                        self.noted.entry(c.name.clone()).or_default().push(n);
+                    } else {
+                        self.refuse(n, &c.name, why);
+                        self.skip_block(&mut lines, &c)?;
+                    }
+                }
+                Some((_, Disposition::Honoured(_))) => self.honour(file, &mut lines, &c)?,
+            }
+        }
+        Ok(())
+    }
+
+    /// The records of a block command not read (dropped or refused), so that they are not
+    /// taken for commands.
+    fn skip_block(&mut self, lines: &mut Lines, c: &Command) -> Result<(), ImportError> {
+        match c.name.as_str() {
+            "NBLOCK" => drop(lines.nblock(c.line)?),
+            "EBLOCK" => drop(lines.eblock(c.line, c.field(1).eq_ignore_ascii_case("SOLID"))?),
+            "CMBLOCK" => drop(lines.cmblock(c.line, c.int(&lines.file, 2)?.max(0) as usize)?),
+            "RLBLOCK" => drop(lines.rlblock(c.line, c.int(&lines.file, 0)?.max(0) as usize)?),
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// A command the catalogue honours.
+    fn honour(&mut self, file: &str, lines: &mut Lines, c: &Command) -> Result<(), ImportError> {
+        let mut refused = Vec::new();
+        match c.name.as_str() {
+            "NBLOCK" => {
+                let nodes = lines.nblock(c.line)?;
+                self.nodes.extend(nodes);
+            }
+            "EBLOCK" => {
+                let solid = c.field(1).eq_ignore_ascii_case("SOLID");
+                let els = lines.eblock(c.line, solid)?;
+                self.elements.extend(els);
+            }
+            "N" | "EN" => {} // block end lines outside a block: nothing to end
+            "ET" => {
+                let t = c.int(file, 0)?;
+                self.types.insert(t, ElementType::new(c.line, c.field(1)));
+            }
+            "KEYOPT" | "KEYOP" => {
+                let (t, k, v) = (c.int(file, 0)?, c.int(file, 1)?, c.int(file, 2)?);
+                match self.types.get_mut(&t) {
+                    Some(et) if (1..=18).contains(&k) => {
+                        if v == 0 {
+                            et.keyopts.remove(&(k as u32));
+                        } else {
+                            et.keyopts.insert(k as u32, v);
+                        }
+                    }
+                    _ => refused.push((
+                        c.line,
+                        format!(
+                            "KEYOPT of element type {t} (no ET before it) or KEYOPT number {k}"
+                        ),
+                    )),
+                }
+            }
+            "MPTEMP" => self.materials.mptemp(file, c)?,
+            "MPDATA" | "MP" => self.materials.mpdata(file, c, &mut refused)?,
+            "TREF" => self.tref = c.real(file, 0)?,
+            "CMBLOCK" => {
+                let count = c.int(file, 2)?.max(0) as usize;
+                let items = lines.cmblock(c.line, count)?;
+                let node = c.field(1).eq_ignore_ascii_case("NODE");
+                if !node && !c.field(1).eq_ignore_ascii_case("ELEM") {
+                    refused.push((
+                        c.line,
+                        format!(
+                            "component of {}: only NODE and ELEM components are read",
+                            c.field(1)
+                        ),
+                    ));
+                }
+                self.components
+                    .push((c.line, c.field(0).to_owned(), node, items));
+            }
+            "R" => {
+                let values = (1..c.fields.len().max(1))
+                    .map(|k| c.real(file, k))
+                    .collect::<Result<Vec<_>, _>>()?;
+                self.reals.insert(c.int(file, 0)?, values);
+            }
+            "RLBLOCK" => {
+                let sets = lines.rlblock(c.line, c.int(file, 0)?.max(0) as usize)?;
+                self.reals.extend(sets);
+            }
+            "D" => self.raw.d(file, c, &mut refused)?,
+            "CE" => {
+                if c.field(1).eq_ignore_ascii_case("DEFI") {
+                    let count = c.int(file, 2)?.clamp(0, 100_000) as usize;
+                    let constant = c.real(file, 4)?;
+                    let terms = lines.ce_terms(c.line, count)?;
+                    self.raw.ce(c.line, terms, constant, &mut refused);
+                } else {
+                    refused.push((
+                        c.line,
+                        "CE: only the archive's CE,R5.0,DEFI form is read".into(),
+                    ));
+                }
+            }
+            "CP" => self.raw.cp(file, c, &mut refused)?,
+            "F" => self.raw.f(file, c, &mut refused)?,
+            "ACEL" => self.raw.acel(file, c)?,
+            "LUMPM" => {
+                let on = c.field(0).eq_ignore_ascii_case("ON") || c.field(0) == "1";
+                self.lumped = Some((c.line, on));
+            }
+            "MODOPT" => {
+                let count = c.int(file, 1)?;
+                let (lo, hi) = (c.real(file, 2)?, c.real(file, 3)?);
+                self.eigen = Some(EigenRequest {
+                    source: format!("MODOPT,{},{count} (line {})", c.field(0), c.line),
+                    count: (count > 0).then_some(count as usize),
+                    lower_hz: (lo > 0.0).then_some(lo),
+                    upper_hz: (hi > 0.0).then_some(hi),
+                });
+            }
+            other => {
+                return Err(parse_err(
+                    file,
+                    c.line,
+                    other,
+                    "honoured by the catalogue but read by no reader",
+                ))
+            }
+        }
+        for (line, why) in refused {
+            self.refuse(line, &c.name, why);
+        }
+        Ok(())
+    }
+
+    /// The model: nodes, formed elements, materials, sets, constraints and loads; or every
+    /// refusal of the archive in one error.
+    fn resolve(mut self, file: &str, ignored: &BTreeSet<String>) -> Result<Model, ImportError> {
+        let mut refused_materials = Vec::new();
+        let materials = self.materials.resolve(self.tref, &mut refused_materials);
+        for (line, why) in refused_materials {
+            self.refuse(line, "MPDATA", why);
+        }
+        for (lab, lines) in std::mem::take(&mut self.materials.noted) {
+            self.noted.insert(format!("MPDATA {lab}"), lines);
+        }
+        let mut model = Model {
+            source: file.to_owned(),
+            ..Default::default()
+        };
+        model.params.wtmass = 1.0;
+        model.params.ansys_solid_rules = true;
+        model.files.push(file.to_owned());
+        for r in &self.nodes {
+            if r.angles != [0.0; 3] {
+                self.refused.push((
+                    r.line,
+                    format!("NBLOCK node {}", r.id),
+                    "NBLOCK".into(),
+                    "a nodal coordinate system (rotation angles): not read".into(),
+                ));
+            }
+            model.nodes.push(Node {
+                id: r.id,
+                x: r.x,
+                displacement_frame: None,
+            });
+        }
+        let node_map = IdMap::build(model.nodes.iter().map(|n| n.id)).map_err(|(_, b)| {
+            parse_err(
+                file,
+                self.nodes[b].line,
+                format!("node {}", self.nodes[b].id),
+                "duplicate node id",
+            )
+        })?;
+        let elements = self.form_elements(file, ignored, &node_map, &materials, &mut model)?;
+        self.constraints(file, &node_map, &mut model)?;
+        self.components(file, &node_map, &elements, &mut model)?;
+        if !self.refused.is_empty() {
+            let cards = self
+                .refused
+                .iter()
+                .map(|(line, entity, key, reason)| RefusedCard {
+                    file: file.to_owned(),
+                    line: *line,
+                    entity: entity.clone(),
+                    key: key.clone(),
+                    reason: reason.clone(),
+                })
+                .collect();
+            return Err(ImportError::Refused {
+                file: file.to_owned(),
+                cards,
+            });
+        }
+        model.params.coupled_mass = Some(!self.lumped.is_some_and(|l| l.1));
+        model.deck.eigen = self.eigen.take();
+        let mut groups: BTreeMap<&str, Vec<String>> = BTreeMap::new();
+        for (name, lines) in &self.noted {
+            let title = catalogue::command(name).map_or("other lines", |(c, _)| c.title());
+            groups.entry(title).or_default().push(format!(
+                "{} {name} ({})",
+                lines.len(),
+                list(lines)
+            ));
+        }
+        let notes = &mut model.deck.notes;
+        notes.push(format!(
+            "ANSYS archive: {} mass (ANSYS's default is consistent mass, LUMPM,ON lumped; SOLID186's \
+             consistent mass with ANSYS's 14-point rule)",
+            if self.lumped.is_some_and(|l| l.1) { "lumped" } else { "consistent" }
+        ));
+        for (title, items) in groups {
+            notes.push(format!(
+                "ANSYS archive, {title}: not read, no effect on the body (docs/ansys-commands.md \
+                 says why): {}",
+                items.join("; ")
+            ));
+        }
+        for (name, lines) in &self.dropped {
+            notes.push(format!(
+                "ANSYS archive: {} {name} ({}) dropped as --ignore asks",
+                lines.len(),
+                list(lines)
+            ));
+        }
+        Ok(model)
+    }
+
+    /// The elements formed by type and KEYOPT, their properties (one solid property per
+    /// material number); refusals grouped by type and reason, named by the first element's line.
+    /// Returns the element ids → index (elements without stiffness: `None`).
+    fn form_elements(
+        &mut self,
+        file: &str,
+        ignored: &BTreeSet<String>,
+        node_map: &IdMap,
+        materials: &BTreeMap<i64, crate::model::Material>,
+        model: &mut Model,
+    ) -> Result<BTreeMap<u64, Option<usize>>, ImportError> {
+        let mut property_of: BTreeMap<i64, usize> = BTreeMap::new();
+        for (mat, m) in materials {
+            model.materials.push(m.clone());
+            model.properties.push(Property {
+                id: (*mat).max(0) as u64,
+                name: format!("MAT{mat}"),
+                material: model.materials.len() - 1,
+                section: Section::Solid,
+            });
+            property_of.insert(*mat, model.properties.len() - 1);
+        }
+        let mut refusals: BTreeMap<(i64, String), (usize, usize)> = BTreeMap::new();
+        let mut index: BTreeMap<u64, Option<usize>> = BTreeMap::new();
+        let mut skipped: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        for r in &self.elements {
+            let Some(t) = self.types.get(&r.etype) else {
+                return Err(parse_err(
+                    file,
+                    r.line,
+                    format!("EBLOCK element {}", r.id),
+                    format!("element type {} has no ET", r.etype),
+                ));
+            };
+            if ignored.contains(&t.name()) {
+                skipped
+                    .entry(format!("{} (--ignore)", t.name()))
+                    .or_default()
+                    .push(r.line);
+                index.insert(r.id, None);
+                continue;
+            }
+            match elements::form(t, r, self.reals.get(&r.real).map(Vec::as_slice)) {
+                Ok(Formed::NoStiffness) => {
+                    skipped.entry(t.name()).or_default().push(r.line);
+                    if index.insert(r.id, None).is_some() {
+                        return Err(parse_err(
+                            file,
+                            r.line,
+                            format!("element {}", r.id),
+                            "duplicate element id",
+                        ));
+                    }
+                }
+                Ok(Formed::PointMass(id, mass, inertia)) => {
+                    let node = node_map.get(id).ok_or_else(|| {
+                        parse_err(
+                            file,
+                            r.line,
+                            format!("EBLOCK element {}", r.id),
+                            format!("references unknown node {id}"),
+                        )
+                    })?;
+                    model.point_masses.push(crate::model::PointMass {
+                        id: r.id,
+                        node,
+                        mass,
+                        offset: [0.0; 3],
+                        inertia: [
+                            [inertia[0], 0.0, 0.0],
+                            [0.0, inertia[1], 0.0],
+                            [0.0, 0.0, inertia[2]],
+                        ],
+                    });
+                    if index.insert(r.id, None).is_some() {
+                        return Err(parse_err(
+                            file,
+                            r.line,
+                            format!("element {}", r.id),
+                            "duplicate element id",
+                        ));
+                    }
+                }
+                Ok(Formed::Element(kind, ids)) => {
+                    let mut nodes = Vec::with_capacity(ids.len());
+                    for id in ids {
+                        nodes.push(node_map.get(id).ok_or_else(|| {
+                            parse_err(
+                                file,
+                                r.line,
+                                format!("EBLOCK element {}", r.id),
+                                format!("references unknown node {id}"),
+                            )
+                        })?);
+                    }
+                    model.elements.push(Element {
+                        id: r.id,
+                        kind,
+                        nodes,
+                        property: property_of.get(&r.mat).copied(),
+                        orientation: None,
+                    });
+                    model.element_sources.push((r.id, 0, r.line as u32));
+                    if index.insert(r.id, Some(model.elements.len() - 1)).is_some() {
+                        return Err(parse_err(
+                            file,
+                            r.line,
+                            format!("element {}", r.id),
+                            "duplicate element id",
+                        ));
+                    }
+                }
+                Err(why) => {
+                    let e = refusals.entry((r.etype, why)).or_insert((r.line, 0));
+                    e.1 += 1;
+                }
+            }
+        }
+        model.element_sources.sort_unstable_by_key(|s| s.0);
+        for ((etype, why), (line, count)) in refusals {
+            let t = &self.types[&etype];
+            let name = t.name();
+            self.refused.push((
+                line,
+                format!(
+                    "EBLOCK element of type {etype} ({name}, ET line {})",
+                    t.line
+                ),
+                name,
+                format!("{why} ({count} element(s), the first here)"),
+            ));
+        }
+        for (name, lines) in skipped {
+            self.noted
+                .insert(format!("{name} elements (no stiffness or mass)"), lines);
+        }
+        Ok(index)
+    }
+
+    /// D → SPCs (one constraint source), CE/CP → MPCs, F/ACEL → loads.
+    fn constraints(
+        &mut self,
+        file: &str,
+        node_map: &IdMap,
+        model: &mut Model,
+    ) -> Result<(), ImportError> {
+        let node = |id: u64, line: usize, what: &str| {
+            node_map
+                .get(id)
+                .ok_or_else(|| parse_err(file, line, what, format!("unknown node {id}")))
+        };
+        let first = model.spcs.len();
+        for &(line, id, mask) in &self.raw.held {
+            model.spcs.push(Spc {
+                node: node(id, line, "D")?,
+                dofs: DofMask(mask),
+                set_id: 0,
+            });
+        }
+        if let Some(&(line, ..)) = self.raw.held.first() {
+            model.constraint_sources.push(ConstraintSource {
+                card: "D".into(),
+                id: format!("{} D line(s)", self.raw.held.len()),
+                file: file.to_owned(),
+                line,
+                set: None,
+                spcs: first..model.spcs.len(),
+                permanent: false,
+            });
+        }
+        let mut id = 0u64;
+        let mut zero_first = Vec::new();
+        for (line, terms) in &self.raw.equations {
+            id += 1;
+            let mut t = Vec::with_capacity(terms.len());
+            for &(n, k, c) in terms {
+                t.push((
+                    NodeDof {
+                        node: node(n, *line, "CE")?,
+                        component: k,
+                    },
+                    c,
+                ));
+            }
+            if t.first().is_none_or(|x| x.1 == 0.0) {
+                zero_first.push(*line);
+                continue;
+            }
+            model.mpcs.push(Mpc { id, terms: t });
+        }
+        for line in zero_first {
+            self.refuse(
+                line,
+                "CE",
+                "a constraint equation whose first coefficient is zero",
+            );
+        }
+        for (line, k, nodes) in self.raw.coupled.values() {
+            let Some((&lead, rest)) = nodes.split_first() else {
+                continue;
+            };
+            let lead = node(lead, *line, "CP")?;
+            for &n in rest {
+                id += 1;
+                let dependent = node(n, *line, "CP")?;
+                model.mpcs.push(Mpc {
+                    id,
+                    terms: vec![
+                        (
+                            NodeDof {
+                                node: dependent,
+                                component: *k,
+                            },
+                            1.0,
+                        ),
+                        (
+                            NodeDof {
+                                node: lead,
+                                component: *k,
+                            },
+                            -1.0,
+                        ),
+                    ],
+                });
+            }
+        }
+        if !self.raw.forces.is_empty() {
+            let mut parts = Vec::new();
+            for &(line, n, k, v) in &self.raw.forces {
+                let mut values = [0.0; 6];
+                values[k] = v;
+                parts.push(LoadPart::Nodal {
+                    node: node(n, line, "F")?,
+                    values,
+                });
+            }
+            let lines: Vec<usize> = self.raw.forces.iter().map(|f| f.0).collect();
+            model.loads.push(Load {
+                name: "F".into(),
+                source: format!("F ({file}:{})", list(&lines)),
+                selected: true,
+                parts,
+                problem: None,
+            });
+        }
+        if let Some((line, a)) = self.raw.acel {
+            // ANSYS's ACEL is the acceleration of the frame: the inertia load acts against it
+            model.loads.push(Load {
+                name: "ACEL".into(),
+                source: format!("ACEL ({file}:{line})"),
+                selected: true,
+                parts: vec![LoadPart::Gravity {
+                    accel: a.map(|v| -v),
+                }],
+                problem: None,
+            });
+        }
+        Ok(())
+    }
+
+    /// CMBLOCK components → node and element sets.
+    fn components(
+        &mut self,
+        file: &str,
+        node_map: &IdMap,
+        elements: &BTreeMap<u64, Option<usize>>,
+        model: &mut Model,
+    ) -> Result<(), ImportError> {
+        for (line, name, is_node, items) in &self.components {
+            if *is_node {
+                let mut set = Vec::with_capacity(items.len());
+                for &id in items {
+                    set.push(node_map.get(id).ok_or_else(|| {
+                        parse_err(
+                            file,
+                            *line,
+                            format!("CMBLOCK {name}"),
+                            format!("unknown node {id}"),
+                        )
+                    })?);
+                }
+                model.node_sets.insert(name.clone(), set);
+            } else {
+                let mut set = Vec::with_capacity(items.len());
+                for &id in items {
+                    match elements.get(&id) {
+                        Some(Some(i)) => set.push(*i),
+                        Some(None) => {}
+                        None => {
+                            return Err(parse_err(
+                                file,
+                                *line,
+                                format!("CMBLOCK {name}"),
+                                format!("unknown element {id}"),
+                            ))
+                        }
+                    }
+                }
+                model.element_sets.insert(name.clone(), set);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// "12, 14, 15, …": the first lines of a list.
+fn list(lines: &[usize]) -> String {
+    let mut s: Vec<String> = lines.iter().take(8).map(usize::to_string).collect();
+    if lines.len() > 8 {
+        s.push("…".into());
+    }
+    s.join(", ")
+}
