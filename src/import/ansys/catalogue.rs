@@ -142,7 +142,7 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
 /// Element types by number: name and disposition (KEYOPTs in the text).
 pub(crate) const ELEMENT_TYPES: &[(u32, &str, Disposition)] = &[
     (14, "COMBIN14", R("spring-damper: formulation not formed here")),
-    (21, "MASS21", H("a point mass: KEYOPT(3)=0 with MASSX = MASSY = MASSZ and the rotary inertias IXX, IYY, IZZ, or KEYOPT(3)=2 (mass only), from its real constant set; directional masses, KEYOPT(2)=1 (nodal frame) and the 2-D forms are refused")),
+    (21, "MASS21", H("a point mass: KEYOPT(3)=0 with MASSX = MASSY = MASSZ, or KEYOPT(3)=2 (mass only), from its real constant set; rotary inertias (no element read here gives a node rotational stiffness), directional masses, KEYOPT(2)=1 (nodal frame) and the 2-D forms are refused")),
     (152, "SURF152", R("surface effect element: formulation not formed here")),
     (153, "SURF153", R("surface effect element: formulation not formed here")),
     (154, "SURF154", R("surface effect element: formulation not formed here")),

@@ -162,7 +162,21 @@ fn mass21(t: &ElementType, rec: &ElementRecord, reals: Option<&[f64]>) -> Result
                      equal masses are formed here"
                 ));
             }
-            Ok(Formed::PointMass(node, mx, [value(3), value(4), value(5)]))
+            let inertia = [value(3), value(4), value(5)];
+            // No element type honoured from an archive has rotational dofs (SHELL18x, BEAM18x
+            // and MPC184 are refused), so a rotary inertia would sit on rotations without
+            // stiffness: three zero-frequency modes, as ANSYS would find them. Refused here by
+            // line rather than by the build's rigid-mode check; to be relaxed with the first
+            // element type that gives a node rotational stiffness.
+            if inertia.iter().any(|&i| i != 0.0) {
+                return Err(format!(
+                    "MASS21 on node {node} with rotary inertia IXX={}, IYY={}, IZZ={}: no \
+                     element type read from an archive gives a node rotational stiffness, so \
+                     the rotations would be free (set KEYOPT(3)=2 or zero inertias)",
+                    inertia[0], inertia[1], inertia[2]
+                ));
+            }
+            Ok(Formed::PointMass(node, mx, inertia))
         }
         2 => Ok(Formed::PointMass(node, value(0), [0.0; 3])),
         k => Err(format!(
@@ -235,5 +249,22 @@ mod tests {
         assert_eq!(form(&t, &r, None), Ok(Formed::NoStiffness));
         let t = ElementType::new(3, "181");
         assert!(form(&t, &r, None).unwrap_err().contains("SHELL181"));
+    }
+
+    #[test]
+    fn mass21_with_rotary_inertia_is_refused_without_rotational_stiffness() {
+        let t = ElementType::new(3, "21");
+        let r = record(vec![22]);
+        let mass_only = [2.0e-4, 2.0e-4, 2.0e-4, 0.0, 0.0, 0.0];
+        assert_eq!(
+            form(&t, &r, Some(&mass_only)),
+            Ok(Formed::PointMass(22, 2.0e-4, [0.0; 3]))
+        );
+        let with_inertia = [2.0e-4, 2.0e-4, 2.0e-4, 1.0e-7, 0.0, 0.0];
+        let why = form(&t, &r, Some(&with_inertia)).unwrap_err();
+        assert!(
+            why.contains("MASS21 on node 22") && why.contains("IXX=0.0000001"),
+            "{why}"
+        );
     }
 }
