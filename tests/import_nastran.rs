@@ -264,7 +264,10 @@ GRID    99      0       0.      0.      0.
     let (m, counts) = nastran::read_with_counts(&path).unwrap();
     assert_eq!(counts["GRID"], 5, "cards after ENDDATA are not read");
     assert_eq!(m.params.wtmass, 0.5);
-    assert_eq!(m.params.coupled_mass, Some(true));
+    assert_eq!(
+        m.params.coupled_mass.as_ref().map(|m| m.consistent),
+        Some(true)
+    );
     assert_eq!(m.materials[0].rho, 4000.0);
     // CORD2R 20: origin (1,0,0), z = basic z, x = basic x. CORD2C 10 in 20: origin (1,0,0).
     // GRID 1 in 10: r = 2, θ = 90°, z = 0 → (1, 2, 0); CD = 20.

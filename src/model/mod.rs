@@ -547,13 +547,23 @@ pub struct ImportWarning {
     pub message: String,
 }
 
+/// The mass a deck asks for, and what in the deck asks for it (for the build's note).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DeckMass {
+    /// Consistent (`true`) or lumped mass.
+    pub consistent: bool,
+    /// What asks for it, as the note names it (`PARAM,COUPMASS,1 at deck.bdf:12`).
+    pub asked_by: String,
+}
+
 /// Mass-unit hints from the input (Nastran PARAM,WTMASS; PARAM,COUPMASS).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ModelParams {
     /// PARAM,WTMASS factor (1.0 when absent). Already applied to densities and point masses.
     pub wtmass: f64,
-    /// PARAM,COUPMASS > 0 asks for consistent mass.
-    pub coupled_mass: Option<bool>,
+    /// The mass the deck's solver would form, when the deck says (PARAM,COUPMASS; an ANSYS
+    /// archive's LUMPM).
+    pub coupled_mass: Option<DeckMass>,
     /// Linear hexahedra and wedges (CHEXA 8, CPENTA 6) with incompatible (bubble) modes, as MSC
     /// Nastran forms them for PSOLID ISOP blank (`fe::elements::solid_incompatible`); `false`:
     /// fully integrated (CalculiX/Abaqus C3D8, C3D6).

@@ -40,20 +40,26 @@ pub fn deck_defaults(spec: &BuildSpec, model: &Model) -> DeckDefaults {
         notes.push(format!("case control: subcase {s} used"));
     }
     // Mass.
-    match (spec.mass_explicit, model.params.coupled_mass) {
-        (false, Some(true)) => {
-            out.mass = MassKind::Consistent;
-            notes.push("mass: consistent, because the deck asks for it (PARAM,COUPMASS > 0; an ANSYS archive without LUMPM,ON) (--mass lumped overrides)".into());
+    if let Some(asked) = &model.params.coupled_mass {
+        let kind = |c: bool| if c { "consistent" } else { "lumped" };
+        if !spec.mass_explicit {
+            if asked.consistent {
+                out.mass = MassKind::Consistent;
+            }
+            notes.push(format!(
+                "mass: {}, because the deck asks for it ({}) (--mass {} overrides)",
+                kind(asked.consistent),
+                asked.asked_by,
+                kind(!asked.consistent)
+            ));
+        } else if (spec.mass == MassKind::Consistent) != asked.consistent {
+            notes.push(format!(
+                "mass: {} as --mass asks, although the deck asks for {} mass ({})",
+                kind(spec.mass == MassKind::Consistent),
+                kind(asked.consistent),
+                asked.asked_by
+            ));
         }
-        (false, Some(false)) => notes.push(
-            "mass: lumped, because the deck asks for it (PARAM,COUPMASS ≤ 0: Nastran's lumped mass; ANSYS's LUMPM,ON)".into(),
-        ),
-        (true, Some(c)) if (spec.mass == MassKind::Consistent) != c => notes.push(format!(
-            "mass: {:?} as --mass asks, although the deck's PARAM,COUPMASS asks for {} mass",
-            spec.mass,
-            if c { "consistent" } else { "lumped" }
-        )),
-        _ => {}
     }
     // Mode count or band.
     if spec.modes.is_none() && spec.fmax_hz.is_none() {

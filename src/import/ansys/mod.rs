@@ -324,7 +324,20 @@ impl Archive {
                 cards,
             });
         }
-        model.params.coupled_mass = Some(!self.lumped.is_some_and(|l| l.1));
+        model.params.coupled_mass = Some(match self.lumped {
+            Some((line, true)) => crate::model::DeckMass {
+                consistent: false,
+                asked_by: format!("LUMPM,ON at {file}:{line}"),
+            },
+            Some((line, false)) => crate::model::DeckMass {
+                consistent: true,
+                asked_by: format!("LUMPM,OFF at {file}:{line}"),
+            },
+            None => crate::model::DeckMass {
+                consistent: true,
+                asked_by: "an ANSYS archive without LUMPM,ON (ANSYS's default)".into(),
+            },
+        });
         model.deck.eigen = self.eigen.take();
         let mut groups: BTreeMap<&str, Vec<String>> = BTreeMap::new();
         for (name, lines) in &self.noted {

@@ -76,7 +76,11 @@ pub(super) fn k6rot<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> 
 
 /// Reader of PARAM,COUPMASS.
 pub(super) fn coupmass<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
-    d.b.model.params.coupled_mass = Some(g.real_or(1, -1.0)? > 0.0);
+    let value = g.real_or(1, -1.0)?;
+    d.b.model.params.coupled_mass = Some(crate::model::DeckMass {
+        consistent: value > 0.0,
+        asked_by: format!("PARAM,COUPMASS,{value} at {}:{}", g.file, g.card.loc.line),
+    });
     Ok(())
 }
 
