@@ -413,30 +413,25 @@ impl Archive {
                 index.insert(r.id, None);
                 continue;
             }
-            match elements::form(t, r, self.reals.get(&r.real).map(Vec::as_slice)) {
+            let node_of = |id: u64| {
+                node_map.get(id).ok_or_else(|| {
+                    parse_err(
+                        file,
+                        r.line,
+                        format!("EBLOCK element {}", r.id),
+                        format!("references unknown node {id}"),
+                    )
+                })
+            };
+            let slot = match elements::form(t, r, self.reals.get(&r.real).map(Vec::as_slice)) {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
-                    if index.insert(r.id, None).is_some() {
-                        return Err(parse_err(
-                            file,
-                            r.line,
-                            format!("element {}", r.id),
-                            "duplicate element id",
-                        ));
-                    }
+                    None
                 }
                 Ok(Formed::PointMass(id, mass, inertia)) => {
-                    let node = node_map.get(id).ok_or_else(|| {
-                        parse_err(
-                            file,
-                            r.line,
-                            format!("EBLOCK element {}", r.id),
-                            format!("references unknown node {id}"),
-                        )
-                    })?;
                     model.point_masses.push(crate::model::PointMass {
                         id: r.id,
-                        node,
+                        node: node_of(id)?,
                         mass,
                         offset: [0.0; 3],
                         inertia: [
@@ -445,27 +440,13 @@ impl Archive {
                             [0.0, 0.0, inertia[2]],
                         ],
                     });
-                    if index.insert(r.id, None).is_some() {
-                        return Err(parse_err(
-                            file,
-                            r.line,
-                            format!("element {}", r.id),
-                            "duplicate element id",
-                        ));
-                    }
+                    None
                 }
                 Ok(Formed::Element(kind, ids)) => {
-                    let mut nodes = Vec::with_capacity(ids.len());
-                    for id in ids {
-                        nodes.push(node_map.get(id).ok_or_else(|| {
-                            parse_err(
-                                file,
-                                r.line,
-                                format!("EBLOCK element {}", r.id),
-                                format!("references unknown node {id}"),
-                            )
-                        })?);
-                    }
+                    let nodes = ids
+                        .into_iter()
+                        .map(node_of)
+                        .collect::<Result<Vec<_>, _>>()?;
                     model.elements.push(Element {
                         id: r.id,
                         kind,
@@ -474,19 +455,21 @@ impl Archive {
                         orientation: None,
                     });
                     model.element_sources.push((r.id, 0, r.line as u32));
-                    if index.insert(r.id, Some(model.elements.len() - 1)).is_some() {
-                        return Err(parse_err(
-                            file,
-                            r.line,
-                            format!("element {}", r.id),
-                            "duplicate element id",
-                        ));
-                    }
+                    Some(model.elements.len() - 1)
                 }
                 Err(why) => {
                     let e = refusals.entry((r.etype, why)).or_insert((r.line, 0));
                     e.1 += 1;
+                    continue;
                 }
+            };
+            if index.insert(r.id, slot).is_some() {
+                return Err(parse_err(
+                    file,
+                    r.line,
+                    format!("element {}", r.id),
+                    "duplicate element id",
+                ));
             }
         }
         model.element_sources.sort_unstable_by_key(|s| s.0);
