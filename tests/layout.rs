@@ -395,3 +395,408 @@ fn no_function_over_200_lines_but_the_listed_ones() {
          no longer exist): take them off the list: {stale:?}"
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// File-level uses (issue 48): a file's uses are the files its paths resolve to.
+//
+// A path is `crate::…`, `super::…`, `self::…`, or a child module's name in the file that
+// declares it (`stages::file::…` in `pipeline/mod.rs`), `use` groups (`crate::a::{b, c::d}`)
+// expanded. It resolves to the deepest module file it names; a name a module re-exports
+// (`pub use report::{BuildError, …}`, `pub use pipeline as build`) is followed to the file that
+// defines it. `lib.rs` and `main.rs` only declare and call; a file's `#[cfg(test)]` module is
+// left out (its `use super::*` is the test's, not the file's). A module's file using the modules
+// it declares (`pipeline/mod.rs` calling its stages) is not counted: the children using their
+// parent's items is the direction that counts, and a circle is one between siblings.
+
+/// The module tree of `src/`: module path (`["pipeline", "stages", "file"]`) → its file.
+fn module_files() -> BTreeMap<Vec<String>, PathBuf> {
+    let root = src();
+    rust_files(&root)
+        .into_iter()
+        .filter_map(|file| {
+            let rel = file.strip_prefix(&root).ok()?.to_path_buf();
+            let mut parts: Vec<String> = rel
+                .components()
+                .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                .collect();
+            let last = parts.pop()?;
+            match last.as_str() {
+                "lib.rs" if parts.is_empty() => {}
+                "main.rs" if parts.is_empty() => return None,
+                "mod.rs" => {}
+                name => parts.push(name.trim_end_matches(".rs").to_owned()),
+            }
+            Some((parts, file))
+        })
+        .collect()
+}
+
+/// A file's code as its uses are read: comments and its `#[cfg(test)]` module left out.
+fn code_of(file: &Path) -> String {
+    let text = std::fs::read_to_string(file).expect("a source file");
+    let text = match text.find("#[cfg(test)]\nmod ") {
+        Some(k) => &text[..k],
+        None => &text[..],
+    };
+    without_comments(text)
+}
+
+/// The paths of a `use` tree starting at `code[k..]` (`a::b::{c, d::e}` → `a::b::c`,
+/// `a::b::d::e`), each as its segments; `prefix` is what precedes it.
+fn path_tree(code: &str, k: usize, prefix: &[String], out: &mut Vec<Vec<String>>) {
+    let bytes = code.as_bytes();
+    let mut path = prefix.to_vec();
+    let mut k = k;
+    loop {
+        while k < bytes.len() && bytes[k].is_ascii_whitespace() {
+            k += 1;
+        }
+        if k < bytes.len() && bytes[k] == b'{' {
+            // a group: its items up to the matching brace, split at top-level commas
+            let mut depth = 0;
+            let mut start = k + 1;
+            for j in k..bytes.len() {
+                match bytes[j] {
+                    b'{' => depth += 1,
+                    b'}' | b',' if depth == 1 => {
+                        path_tree(code, start, &path, out);
+                        start = j + 1;
+                        if bytes[j] == b'}' {
+                            return;
+                        }
+                    }
+                    b'}' => depth -= 1,
+                    _ => {}
+                }
+            }
+            return;
+        }
+        let end = code[k..]
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .map_or(code.len(), |e| k + e);
+        if end == k {
+            break;
+        }
+        path.push(code[k..end].to_owned());
+        if code[end..].starts_with("::") {
+            k = end + 2;
+        } else {
+            break;
+        }
+    }
+    if !path.is_empty() {
+        out.push(path);
+    }
+}
+
+/// The absolute paths a file's code names: `crate::`, `super::`, `self::` and child-module
+/// paths made absolute from `module` (the file's module path).
+fn named_paths(code: &str, module: &[String], children: &BTreeSet<String>) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    let bytes = code.as_bytes();
+    let word_start = |k: usize| {
+        k == 0
+            || !(bytes[k - 1].is_ascii_alphanumeric()
+                || bytes[k - 1] == b'_'
+                || bytes[k - 1] == b':')
+    };
+    let mut k = 0;
+    while k < code.len() {
+        if !code.is_char_boundary(k) || !word_start(k) {
+            k += 1;
+            continue;
+        }
+        let rest = &code[k..];
+        let (base, skip): (Vec<String>, usize) = if rest.starts_with("crate::") {
+            (Vec::new(), "crate::".len())
+        } else if rest.starts_with("self::") {
+            (module.to_vec(), "self::".len())
+        } else if rest.starts_with("super::") {
+            let mut base = module.to_vec();
+            let mut skip = 0;
+            while code[k + skip..].starts_with("super::") {
+                base.pop();
+                skip += "super::".len();
+            }
+            (base, skip)
+        } else if let Some(child) = children
+            .iter()
+            .find(|c| rest.starts_with(&format!("{c}::")))
+        {
+            let mut base = module.to_vec();
+            base.push(child.clone());
+            (base, child.len() + 2)
+        } else {
+            k += 1;
+            continue;
+        };
+        path_tree(code, k + skip, &base, &mut out);
+        k += skip.max(1);
+    }
+    out
+}
+
+/// Module path → (name → the absolute path it re-exports), from each module's `pub use`.
+fn re_exports(
+    files: &BTreeMap<Vec<String>, PathBuf>,
+    children: &BTreeMap<Vec<String>, BTreeSet<String>>,
+) -> BTreeMap<Vec<String>, BTreeMap<String, Vec<String>>> {
+    let mut out = BTreeMap::new();
+    for (module, file) in files {
+        let code = code_of(file);
+        let mut names = BTreeMap::new();
+        for (k, _) in code.match_indices("pub use ") {
+            let statement = &code[k + "pub use ".len()..];
+            let statement = &statement[..statement.find(';').unwrap_or(statement.len())];
+            // `a as b`: the alias names a
+            if let Some((used, alias)) = statement.split_once(" as ") {
+                let mut target = module.clone();
+                target.extend(used.trim().split("::").map(str::to_owned));
+                names.insert(alias.trim().to_owned(), target);
+                continue;
+            }
+            let kids = children.get(module).cloned().unwrap_or_default();
+            let mut paths = Vec::new();
+            // a bare path in a `pub use` is relative to the module (edition 2018: child or crate)
+            let with_prefix = if statement.starts_with("crate::")
+                || statement.starts_with("super::")
+                || statement.starts_with("self::")
+            {
+                statement.to_owned()
+            } else {
+                format!("self::{statement}")
+            };
+            paths.extend(named_paths(&with_prefix, module, &kids));
+            for path in paths {
+                if let Some(last) = path.last() {
+                    names.insert(last.clone(), path);
+                }
+            }
+        }
+        out.insert(module.clone(), names);
+    }
+    out
+}
+
+/// The file a path names: the deepest module along it, re-exports followed.
+fn resolve(
+    path: &[String],
+    files: &BTreeMap<Vec<String>, PathBuf>,
+    exports: &BTreeMap<Vec<String>, BTreeMap<String, Vec<String>>>,
+    depth: usize,
+) -> Option<PathBuf> {
+    let mut module: Vec<String> = Vec::new();
+    for (i, segment) in path.iter().enumerate() {
+        let mut next = module.clone();
+        next.push(segment.clone());
+        if files.contains_key(&next) {
+            module = next;
+            continue;
+        }
+        let target = exports.get(&module).and_then(|e| e.get(segment));
+        if let (Some(target), true) = (target, depth < 8) {
+            let mut followed = target.clone();
+            followed.extend(path[i + 1..].iter().cloned());
+            if followed != path {
+                return resolve(&followed, files, exports, depth + 1);
+            }
+        }
+        break;
+    }
+    files.get(&module).cloned()
+}
+
+/// `file` is the file of a module below `module` (`pipeline/stages/file.rs` below `pipeline`).
+fn is_below(file: &Path, module: &[String], files: &BTreeMap<Vec<String>, PathBuf>) -> bool {
+    files
+        .iter()
+        .any(|(m, f)| f == file && m.len() > module.len() && m.starts_with(module))
+}
+
+/// File → (file it uses → one path that makes the use), over `src/` (lib.rs and main.rs left
+/// out).
+fn file_uses() -> BTreeMap<String, BTreeMap<String, String>> {
+    let files = module_files();
+    let mut children: BTreeMap<Vec<String>, BTreeSet<String>> = BTreeMap::new();
+    for module in files.keys().filter(|m| !m.is_empty()) {
+        let (name, parent) = module.split_last().expect("a non-empty path");
+        children
+            .entry(parent.to_vec())
+            .or_default()
+            .insert(name.clone());
+    }
+    let exports = re_exports(&files, &children);
+    let mut uses: BTreeMap<String, BTreeMap<String, String>> = BTreeMap::new();
+    for (module, file) in files.iter().filter(|(m, _)| !m.is_empty()) {
+        let from = shown(file);
+        let kids = children.get(module).cloned().unwrap_or_default();
+        let entry = uses.entry(from.clone()).or_default();
+        for path in named_paths(&code_of(file), module, &kids) {
+            if let Some(to) = resolve(&path, &files, &exports, 0) {
+                if is_below(&to, module, &files) {
+                    continue; // a module's file uses the modules it declares: not a circle
+                }
+                let to = shown(&to);
+                if to != from && to != "src/lib.rs" {
+                    entry.entry(to).or_insert_with(|| path.join("::"));
+                }
+            }
+        }
+    }
+    uses
+}
+
+/// The circles of `uses`: its strongly connected parts of more than one file (Tarjan).
+fn circles(uses: &BTreeMap<String, BTreeMap<String, String>>) -> Vec<Vec<String>> {
+    struct Search<'a> {
+        uses: &'a BTreeMap<String, BTreeMap<String, String>>,
+        index: BTreeMap<&'a str, usize>,
+        low: BTreeMap<&'a str, usize>,
+        stack: Vec<&'a str>,
+        on_stack: BTreeSet<&'a str>,
+        parts: Vec<Vec<String>>,
+    }
+    fn visit<'a>(s: &mut Search<'a>, v: &'a str) {
+        let n = s.index.len();
+        s.index.insert(v, n);
+        s.low.insert(v, n);
+        s.stack.push(v);
+        s.on_stack.insert(v);
+        for w in s.uses.get(v).into_iter().flat_map(|u| u.keys()) {
+            let w = w.as_str();
+            if !s.index.contains_key(w) {
+                visit(s, w);
+                let low = s.low[v].min(s.low[w]);
+                s.low.insert(v, low);
+            } else if s.on_stack.contains(w) {
+                let low = s.low[v].min(s.index[w]);
+                s.low.insert(v, low);
+            }
+        }
+        if s.low[v] == s.index[v] {
+            let mut part = Vec::new();
+            while let Some(w) = s.stack.pop() {
+                s.on_stack.remove(w);
+                part.push(w.to_owned());
+                if w == v {
+                    break;
+                }
+            }
+            if part.len() > 1 {
+                part.sort();
+                s.parts.push(part);
+            }
+        }
+    }
+    let mut s = Search {
+        uses,
+        index: BTreeMap::new(),
+        low: BTreeMap::new(),
+        stack: Vec::new(),
+        on_stack: BTreeSet::new(),
+        parts: Vec::new(),
+    };
+    for v in uses.keys() {
+        if !s.index.contains_key(v.as_str()) {
+            visit(&mut s, v);
+        }
+    }
+    s.parts
+}
+
+#[test]
+fn file_uses_are_read_from_paths_groups_children_and_re_exports() {
+    let uses = file_uses();
+    let used = |from: &str, to: &str| uses.get(from).is_some_and(|u| u.contains_key(to));
+    // a child module's path in the file that declares it
+    assert!(used(
+        "src/pipeline/mod.rs",
+        "src/pipeline/stages/reduction.rs"
+    ));
+    // a re-exported name followed to its file
+    assert!(used("src/pipeline/plan.rs", "src/pipeline/spec.rs"));
+    // `super::` from a file
+    assert!(used("src/cli/build.rs", "src/cli/args.rs"));
+    // the circle finder finds a circle
+    let mut toy: BTreeMap<String, BTreeMap<String, String>> = BTreeMap::new();
+    for (a, b) in [("a", "b"), ("b", "c"), ("c", "a"), ("c", "d")] {
+        toy.entry(a.into())
+            .or_default()
+            .insert(b.into(), String::new());
+    }
+    assert_eq!(
+        circles(&toy),
+        vec![vec!["a".to_string(), "b".into(), "c".into()]]
+    );
+}
+
+/// File-level circles still there, each with its reason: (the files or folders, ending `/`,
+/// every file of the circle is in; why). A circle not listed fails, and so does an entry no
+/// circle matches any more.
+const CIRCLES_LEFT: &[(&[&str], &str)] = &[
+    (
+        // the card readers take `&mut Bulk` and the bulk holds each family's collected cards:
+        // readers returning records the bulk assembles is a change through 20 files
+        &["src/import/nastran/"],
+        "Nastran card readers mutate the Bulk that holds their families' cards",
+    ),
+    (
+        // `interior_block` recovers C3D8I modes with assembly's ElementMatrices: the element
+        // work (an Element trait, issue 48's other half) rewrites assembly.rs
+        &["src/fe/assembly.rs", "src/fe/interior.rs"],
+        "fe/assembly.rs is being rewritten by the Element-trait work",
+    ),
+    (
+        // `cross` is one of the vector helpers the Element-trait work gathers in one module
+        &[
+            "src/import/abaqus/shell_equations.rs",
+            "src/import/abaqus/shell_expansion.rs",
+        ],
+        "shell_expansion's `cross` moves with the vector helpers of the Element-trait work",
+    ),
+];
+
+/// Whether every file of `circle` is named by `allowed` (a file, or a folder ending `/`).
+fn circle_allowed(circle: &[String], allowed: &[&str]) -> bool {
+    circle.iter().all(|file| {
+        allowed
+            .iter()
+            .any(|a| file == a || (a.ends_with('/') && file.starts_with(a)))
+    })
+}
+
+#[test]
+fn no_import_circle_between_files() {
+    let uses = file_uses();
+    let found = circles(&uses);
+    let unlisted: Vec<String> = found
+        .iter()
+        .filter(|part| !CIRCLES_LEFT.iter().any(|(a, _)| circle_allowed(part, a)))
+        .map(|part| {
+            let steps: Vec<String> = part
+                .iter()
+                .flat_map(|from| {
+                    uses[from]
+                        .iter()
+                        .filter(|(to, _)| part.contains(to))
+                        .map(move |(to, path)| format!("{from} → {to} ({path})"))
+                })
+                .collect();
+            steps.join("; ")
+        })
+        .collect();
+    assert!(
+        unlisted.is_empty(),
+        "files use each other in a circle (move the shared type or function below both): \
+         {unlisted:#?}"
+    );
+    let stale: Vec<&str> = CIRCLES_LEFT
+        .iter()
+        .filter(|(a, _)| !found.iter().any(|part| circle_allowed(part, a)))
+        .map(|(_, why)| *why)
+        .collect();
+    assert!(
+        stale.is_empty(),
+        "CIRCLES_LEFT lists circles that are gone: take them off the list: {stale:?}"
+    );
+}

@@ -345,7 +345,7 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
             .parse()
             .map_err(|e: String| anyhow::anyhow!("--precision {e}"))?,
         beam_mass: parse_beam_mass(&a.beam_mass)?,
-        scene: crate::pipeline::scene::SceneSpec {
+        scene: crate::pipeline::SceneSpec {
             gravity: a.gravity.clone(),
             loads: a.loads.clone(),
             residual_vectors: a
@@ -365,6 +365,7 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
             .as_deref()
             .map(crate::pipeline::options::parse_geometric_stiffness)
             .transpose()?,
+        damping: a.damping.clone(),
     })
 }
 

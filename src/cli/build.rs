@@ -10,7 +10,8 @@ pub(crate) fn command(a: &BuildArgs) -> anyhow::Result<()> {
     use anyhow::Context;
     let spec = build_spec(a)?;
     if let Some(d) = &a.damping {
-        crate::body::damping::parse_damping(d)?; // refuse a bad value before the build
+        // refuse a bad value before the build (the pipeline applies it, spec.damping)
+        crate::body::damping::parse_damping(d)?;
     }
     if let Some(limit) = &a.max_memory {
         // Read by the solve layer right before each factorization; errors name the flag.
@@ -27,10 +28,6 @@ pub(crate) fn command(a: &BuildArgs) -> anyhow::Result<()> {
                 f.error
             })
             .with_context(|| format!("cannot build {}", a.model.display()))?;
-        let mut out = out;
-        if let Some(d) = &a.damping {
-            crate::body::damping::apply(&mut out.body, d)?;
-        }
         progress.stage("write");
         crate::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
         if let Some(dir) = &a.write_matrices {

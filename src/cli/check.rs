@@ -32,7 +32,7 @@ use crate::pipeline::file_checks::{partial_nodes, rigid_modes, RigidRule, RIGID_
 use crate::pipeline::interface::resolve_interfaces;
 use crate::pipeline::precheck::expected_rigid_motions;
 use crate::pipeline::stages::constraints::eliminate_constraints;
-use crate::pipeline::stages::interfaces::WithInterfaces;
+use crate::pipeline::stages::WithInterfaces;
 use crate::reduce::select::ModeCount;
 use crate::solve::EigenSpec;
 
@@ -201,7 +201,7 @@ struct Rebuilt {
     /// Reference-condition dofs in the independent numbering.
     fixed: Vec<usize>,
     /// The preload applied to K_r as `build` did (stages::preload).
-    preload: Option<crate::pipeline::stages::preload::PreloadSummary>,
+    preload: Option<crate::pipeline::stages::PreloadSummary>,
     /// The assembly options `build` used (mass, beam lumping).
     assembly: AssemblySpec,
 }

@@ -29,6 +29,7 @@ use rayon::prelude::*;
 
 use super::dofs::DofMap;
 use super::elements::beam::sub;
+use super::rigid_body::Expr;
 use super::FeError;
 use crate::model::{DofMask, Model, NodeIndex, RigidElement};
 
@@ -87,9 +88,6 @@ impl Reduced {
         out
     }
 }
-
-/// A linear expression over physical dofs: Σ (dof, coefficient).
-pub(super) type Expr = Vec<(usize, f64)>;
 
 /// What made a dof dependent, for messages.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -12,9 +12,11 @@
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
-use super::constraints::Expr;
 use super::dofs::DofMap;
 use crate::model::{Model, Mpc, NodeIndex, RigidBody};
+
+/// A linear expression over physical dofs: Σ (dof, coefficient) — a constraint row.
+pub(super) type Expr = Vec<(usize, f64)>;
 
 /// The rigid row of dof `c` of node `n` about `x0` (module formula).
 pub(super) fn rigid_row(

@@ -8,7 +8,9 @@
 //!
 //! The result is plain triplets (no linear algebra in `import`).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
+
+pub use crate::import::error::CcxMatrixError;
 
 /// Upper-triangle (row ≤ col) entries of a symmetric n×n matrix, 0-based.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -51,29 +53,6 @@ pub struct CcxMatrices {
     pub k: SymmetricTriplets,
     /// Mass, upper triangle (`None` when no `.mas` file exists).
     pub m: Option<SymmetricTriplets>,
-}
-
-/// Errors reading a CalculiX matrix dump; each names the file and line.
-#[derive(Debug, thiserror::Error)]
-pub enum CcxMatrixError {
-    /// The file could not be read.
-    #[error("{path}: cannot read: {source}")]
-    Io {
-        /// File.
-        path: PathBuf,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// A line does not have the expected shape.
-    #[error("{path}:{line}: {message}")]
-    Syntax {
-        /// File.
-        path: PathBuf,
-        /// 1-based line number.
-        line: usize,
-        /// What is wrong.
-        message: String,
-    },
 }
 
 fn read(path: &Path) -> Result<String, CcxMatrixError> {

@@ -1,7 +1,7 @@
 //! The one error type of every importer: each failure names the file, the 1-based line and the
 //! entity (card or keyword plus its id) it is about, so a user can jump to the offending record.
 
-use super::ccx_matrices::CcxMatrixError;
+use std::path::PathBuf;
 
 /// An import failure.
 #[derive(Debug, thiserror::Error)]
@@ -173,4 +173,27 @@ pub(crate) fn parse_err(
         entity: entity.into(),
         message: message.into(),
     }
+}
+
+/// Errors reading a CalculiX matrix dump (`import::ccx_matrices`); each names the file and line.
+#[derive(Debug, thiserror::Error)]
+pub enum CcxMatrixError {
+    /// The file could not be read.
+    #[error("{path}: cannot read: {source}")]
+    Io {
+        /// File.
+        path: PathBuf,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// A line does not have the expected shape.
+    #[error("{path}:{line}: {message}")]
+    Syntax {
+        /// File.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
 }

@@ -1,10 +1,7 @@
-//! What a deck asks for, applied to a build the way its own solver would apply it:
+//! What a deck asks for, applied to a build the way its own solver would apply it (the deck's
+//! defaults — mass, mode count or band, interface, title — are resolved with the rest of the
+//! build's options in [`super::plan`]):
 //!
-//! * **defaults** — `PARAM,COUPMASS > 0` → consistent mass unless the user chose `--mass`;
-//!   the case control's `METHOD` → `EIGRL`/`EIGR` (ND, V1, V2) → the mode count or band unless
-//!   `--modes`/`--fmax` are given; bulk-data ASET/ASET1/BSET/BSET1 → the interface unless
-//!   `--interface` is given; QSET/QSET1 → the mode count when nothing else gives one; TITLE →
-//!   the header title. Each choice is a note in the build report.
 //! * **held components** — a dof held by GRID PS / GRDSET or by a selected SPC set is in
 //!   Nastran's s-set and so cannot be in the a-set (interface) or be a reference dof: a node
 //!   given as a plain id loses its held components (one note names them); a held component
@@ -14,123 +11,8 @@
 
 use std::collections::BTreeMap;
 
-use crate::fe::{DofMap, MassKind};
+use crate::fe::DofMap;
 use crate::model::{DofMask, Model, NodeIndex};
-use crate::pipeline::BuildSpec;
-use crate::reduce::select::ModeCount;
-
-/// The spec with the deck's defaults filled in, the mode count the deck asks for (when the
-/// spec gives none) and the notes saying so.
-#[derive(Debug, Clone)]
-pub struct DeckDefaults {
-    /// `spec` with mass, interface, title and mode count resolved.
-    pub spec: BuildSpec,
-    /// A band from the deck's eigenvalue request (`None`: use `spec`'s count/fmax).
-    pub band: Option<ModeCount>,
-    /// What was taken from the deck, for the report.
-    pub notes: Vec<String>,
-}
-
-/// Fill the build's open choices from the deck (see the module doc).
-pub fn deck_defaults(spec: &BuildSpec, model: &Model) -> DeckDefaults {
-    let mut out = spec.clone();
-    let mut notes: Vec<String> = model.deck.notes.clone();
-    let mut band = None;
-    if let Some(s) = model.deck.subcase {
-        notes.push(format!("case control: subcase {s} used"));
-    }
-    // Mass.
-    if let Some(asked) = &model.params.coupled_mass {
-        let kind = |c: bool| if c { "consistent" } else { "lumped" };
-        if !spec.mass_explicit {
-            if asked.consistent {
-                out.mass = MassKind::Consistent;
-            }
-            notes.push(format!(
-                "mass: {}, because the deck asks for it ({}) (--mass {} overrides)",
-                kind(asked.consistent),
-                asked.asked_by,
-                kind(!asked.consistent)
-            ));
-        } else if (spec.mass == MassKind::Consistent) != asked.consistent {
-            notes.push(format!(
-                "mass: {} as --mass asks, although the deck asks for {} mass ({})",
-                kind(spec.mass == MassKind::Consistent),
-                kind(asked.consistent),
-                asked.asked_by
-            ));
-        }
-    }
-    // Mode count or band.
-    if spec.modes.is_none() && spec.fmax_hz.is_none() {
-        if let Some(e) = &model.deck.eigen {
-            out.modes = e.count;
-            if let Some(hi) = e.upper_hz.filter(|h| *h > 0.0) {
-                band = Some(ModeCount::BelowHz(hi));
-            }
-            let what = match (e.count, band) {
-                (Some(n), Some(_)) => format!(
-                    "the modes below {} Hz, at most {n}",
-                    e.upper_hz.unwrap_or(0.0)
-                ),
-                (Some(n), None) => format!("{n} modes"),
-                (None, _) => format!("the modes below {} Hz", e.upper_hz.unwrap_or(0.0)),
-            };
-            notes.push(format!(
-                "mode count: {what}, from the deck's {} (give --modes or --fmax to override)",
-                e.source
-            ));
-            if let Some(lo) = e.lower_hz.filter(|l| *l > 0.0) {
-                notes.push(format!(
-                    "the eigenvalue request's lower bound V1 = {lo} Hz is not used: a reduction keeps every mode from 0 Hz"
-                ));
-            }
-        } else if let Some((q, cards)) = &model.deck.qset_modes {
-            out.modes = Some(*q);
-            notes.push(format!(
-                "mode count: {q}, the number of q-set dofs of the deck's {cards} (give --modes or --fmax to override)"
-            ));
-        }
-    } else if let Some(e) = &model.deck.eigen {
-        notes.push(format!(
-            "the deck's {} is not used: --modes/--fmax given",
-            e.source
-        ));
-    }
-    if let (Some((q, cards)), true) = (&model.deck.qset_modes, model.deck.eigen.is_some()) {
-        notes.push(format!(
-            "the deck's {cards} ({q} q-set dofs) do not set the mode count: the eigenvalue request does"
-        ));
-    }
-    // Interface from the a-set / b-set.
-    if spec.interface.is_empty() && !model.interface.is_empty() {
-        let mut per_node: BTreeMap<NodeIndex, u8> = BTreeMap::new();
-        for i in &model.interface {
-            *per_node.entry(i.node).or_default() |= i.dofs.0;
-        }
-        out.interface = per_node
-            .iter()
-            .map(|(&n, &m)| format!("{}:{}", model.nodes[n].id, DofMask(m).digits()))
-            .collect();
-        notes.push(format!(
-            "interface: the deck's {} (--interface overrides)",
-            model.deck.interface_source.as_deref().unwrap_or("ASET")
-        ));
-    } else if !spec.interface.is_empty() && !model.interface.is_empty() {
-        notes.push(format!(
-            "the deck's {} is not used: --interface given",
-            model.deck.interface_source.as_deref().unwrap_or("ASET")
-        ));
-    }
-    if out.title.is_none() {
-        out.title = model.deck.title.clone().filter(|t| !t.is_empty());
-    }
-    DeckDefaults {
-        spec: out,
-        band,
-        notes,
-    }
-}
 
 /// The components of `node` held by the model's constraints, with the card that holds each
 /// (`card id (file:line)`), in Nastran component order.

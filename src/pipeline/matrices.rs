@@ -45,7 +45,7 @@ pub fn constrained_system_of_model(
     spec: &BuildSpec,
     model: Model,
 ) -> Result<ConstrainedSystem, BuildError> {
-    let plan = Plan::resolve(spec, &model);
+    let plan = Plan::resolve(spec, &model)?;
     let interfaced = attach(&plan, model)?;
     let assembled = assemble(&interfaced.model, &plan.assembly)?;
     let mut reduced = eliminate_constraints(&interfaced, &assembled)?;

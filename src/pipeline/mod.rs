@@ -42,7 +42,7 @@ pub mod stages;
 pub mod verify;
 
 pub use report::{BuildError, BuildOutput, BuildReport, Stage, STAGES};
-pub use spec::{BuildMethod, BuildSpec, GeometricLoads, KeepNodes, DEFAULT_MODES};
+pub use spec::{BuildMethod, BuildSpec, GeometricLoads, KeepNodes, SceneSpec, DEFAULT_MODES};
 
 use plan::Plan;
 use stages::{assembly, constraints, fields, file, import, interfaces, invariants, reduction};
@@ -133,7 +133,7 @@ fn run_stages(
     report: &mut BuildReport,
 ) -> Result<BuildOutput, BuildError> {
     // The deck's own requests (COUPMASS, METHOD, ASET, TITLE) fill the choices left open.
-    let plan = Plan::resolve(spec, &model);
+    let plan = Plan::resolve(spec, &model)?;
     report.notes = plan.deck_notes.clone();
     report.warnings = (model.warnings.iter())
         .map(|w| format!("{}: {}", w.file, w.message))
@@ -166,13 +166,22 @@ fn run_stages(
             &interfaced,
             &constrained,
         ));
-    if stages::preload::has_preload(&plan, &interfaced) {
+    let preload = if stages::preload::has_preload(&plan, &interfaced) {
         clock.run(Stage::Preload, || {
             stages::preload::preload(&plan, &interfaced, &mut constrained, report)
-        })?;
-    }
+        })?
+    } else {
+        None
+    };
     let mut basis = clock.run(Stage::Reduction, || {
-        reduction::reduction(&plan, &interfaced.model, &mut constrained, hook, report)
+        reduction::reduction(
+            &plan,
+            &interfaced.model,
+            &mut constrained,
+            preload,
+            hook,
+            report,
+        )
     })?;
     let mass = clock.run(Stage::Invariants, || {
         invariants::invariants(&plan, &interfaced.model, &mut constrained, &basis)
@@ -189,7 +198,7 @@ fn run_stages(
     }
     let stored = file::stored_nodes(&plan, &interfaced, &constrained)?;
     let fields = if plan.spec.fields.is_empty() {
-        fields::FieldShapes::default()
+        stages::FieldShapes::default()
     } else {
         clock.run(Stage::StressShapes, || {
             fields::fields(

@@ -16,8 +16,9 @@ use crate::fe::{self, BeamLumping};
 use crate::import::Format;
 use crate::model::{DofMask, Material, Model, RigidElement};
 use crate::pipeline::interface::{InterfaceReport, SpiderKind};
+use crate::pipeline::plan::ModeRequest;
 use crate::pipeline::scene::SceneSpec;
-use crate::pipeline::stages::preload::PreloadSummary;
+use crate::pipeline::stages::PreloadSummary;
 use crate::pipeline::{BuildMethod, BuildSpec, KeepNodes};
 use crate::reduce::select::FMAX_FACTOR;
 use crate::reduce::ModeSet;
@@ -39,9 +40,9 @@ pub const BAND_FMAX: &str = "fmax";
 /// divided by [`FMAX_FACTOR`]); for Craig–Chang and Dietz, whose basis holds the free-free modes
 /// exactly, the highest retained free-free frequency; for normal modes, which are exact
 /// eigenpairs, the highest mode kept that is not a residual-vector mode.
-pub fn accuracy_band(spec: &BuildSpec, set: &ModeSet) -> file::AccuracyBand {
+pub fn accuracy_band(spec: &BuildSpec, modes: &ModeRequest, set: &ModeSet) -> file::AccuracyBand {
     let hz = |w2: f64| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI);
-    if let Some(f) = spec.fmax_hz {
+    if let Some(f) = modes.fmax_hz {
         return file::AccuracyBand {
             fmax_hz: f,
             rule: BAND_FMAX.into(),
@@ -153,6 +154,7 @@ pub fn model_files(files: &[String]) -> Result<Vec<file::ModelFile>, String> {
 /// node ids and spiders), the interfaces as resolved, the accuracy band and the preload.
 pub fn recipe(
     spec: &BuildSpec,
+    modes: &ModeRequest,
     model: &Model,
     interfaces: &[InterfaceReport],
     band: file::AccuracyBand,
@@ -172,8 +174,8 @@ pub fn recipe(
             BuildMethod::Dietz => "dietz",
         }
         .into(),
-        modes: spec.modes.map(|n| n as u64),
-        fmax_hz: spec.fmax_hz,
+        modes: modes.count.map(|n| n as u64),
+        fmax_hz: modes.fmax_hz,
         mass: match spec.mass {
             fe::MassKind::Lumped => "lumped",
             fe::MassKind::Consistent => "consistent",

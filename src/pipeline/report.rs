@@ -61,6 +61,9 @@ pub enum BuildError {
     /// Stress/strain shapes could not be recovered.
     #[error(transparent)]
     Fields(#[from] crate::body::stress::StressError),
+    /// `--damping` does not fit the body's modes (or is no damping specification).
+    #[error(transparent)]
+    Damping(#[from] crate::body::damping::DampingError),
     /// The built body failed its own verification (nothing was written).
     #[error("{file}: {failures}")]
     Verify {

@@ -20,31 +20,7 @@ use crate::model::{ElementKind, Load, LoadPart, Model, NodeIndex};
 use crate::pipeline::options::OptionError;
 use crate::reduce::residual::ResidualKind;
 
-/// The scene options of a build.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct SceneSpec {
-    /// `--gravity` as given.
-    pub gravity: Option<String>,
-    /// `--load` entries as given.
-    pub loads: Vec<String>,
-    /// `--residual-vectors`.
-    pub residual_vectors: Option<ResidualKind>,
-    /// `--select participation:ε`: the ε (see [`crate::reduce::participation`]).
-    pub select: Option<f64>,
-    /// `--preload LOAD[,LOAD…]`: the scene loads whose linear static state preloads the modes
-    /// (the preload stage); empty: the deck's preload, if any.
-    pub preload: Vec<String>,
-}
-
-impl SceneSpec {
-    /// Whether the scene asks for anything.
-    pub fn is_empty(&self) -> bool {
-        self.gravity.is_none()
-            && self.loads.is_empty()
-            && self.residual_vectors.is_none()
-            && self.select.is_none()
-    }
-}
+pub use crate::pipeline::SceneSpec;
 
 fn bad(option: &'static str, value: &str, expected: &str) -> OptionError {
     OptionError {

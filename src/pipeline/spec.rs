@@ -12,6 +12,7 @@ use crate::fe::{self, BeamLumping};
 use crate::import::Format;
 use crate::model::{DofMask, Material};
 use crate::pipeline::interface::SpiderKind;
+use crate::reduce::residual::ResidualKind;
 
 /// Reduction method asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -100,7 +101,7 @@ pub struct BuildSpec {
     /// consistent mass (see [`crate::pipeline::deck`]).
     pub mass_explicit: bool,
     /// The scene: loads (`--gravity`, `--load`) and residual vectors (`--residual-vectors`).
-    pub scene: crate::pipeline::scene::SceneSpec,
+    pub scene: SceneSpec,
     /// `--verify-band`: prove every eigenproblem's returned modes complete by an inertia count
     /// (one extra LDLᵀ factorization each; [`crate::solve::EigenSpec::verify_band`]).
     pub verify_band: bool,
@@ -112,6 +113,9 @@ pub struct BuildSpec {
     /// `--geometric-stiffness`: which unit loads' modal geometric stiffness the file holds
     /// (`geometric_stiffness.bin`, format 1.7; `None`: no entry).
     pub geometric_stiffness: Option<GeometricLoads>,
+    /// `--damping` as given: the modal damping ratios the file holds
+    /// ([`crate::body::damping::parse_damping`]; `None`: no `damping.bin`).
+    pub damping: Option<String>,
 }
 
 /// The unit loads of `--geometric-stiffness` (SPEC §5.16).
@@ -157,6 +161,7 @@ impl BuildSpec {
             engine: None,
             precision: Default::default(),
             geometric_stiffness: None,
+            damping: None,
         }
     }
 
@@ -192,3 +197,29 @@ impl BuildSpec {
 
 /// Default number of modes when neither `modes` nor `fmax_hz` is given.
 pub const DEFAULT_MODES: usize = 20;
+
+/// The scene options of a build.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SceneSpec {
+    /// `--gravity` as given.
+    pub gravity: Option<String>,
+    /// `--load` entries as given.
+    pub loads: Vec<String>,
+    /// `--residual-vectors`.
+    pub residual_vectors: Option<ResidualKind>,
+    /// `--select participation:ε`: the ε (see [`crate::reduce::participation`]).
+    pub select: Option<f64>,
+    /// `--preload LOAD[,LOAD…]`: the scene loads whose linear static state preloads the modes
+    /// (the preload stage); empty: the deck's preload, if any.
+    pub preload: Vec<String>,
+}
+
+impl SceneSpec {
+    /// Whether the scene asks for anything.
+    pub fn is_empty(&self) -> bool {
+        self.gravity.is_none()
+            && self.loads.is_empty()
+            && self.residual_vectors.is_none()
+            && self.select.is_none()
+    }
+}

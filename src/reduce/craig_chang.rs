@@ -9,6 +9,7 @@
 use super::orthonormalize::{orthonormalize, rigid_flags};
 use super::select::{solve_count, ModeCount};
 use super::{complement, Method, ModeLabel, ModeSet, ReduceError};
+use crate::solve::dense::{determinate_support, NO_DETERMINATE_SUPPORT};
 use crate::solve::{sparse_ops, trace_ratio, EigenSolution, EigenSpec, SparseColMat, SparseLlt};
 use faer::Mat;
 
@@ -76,42 +77,6 @@ pub(crate) fn free_free(
     Ok((s, nr))
 }
 
-/// `r` dofs at which the rigid modes Xr (n × r) are independent (greedy pivoted QR on the rows of
-/// Xr): holding them at zero is a statically determinate support.
-pub fn determinate_support(xr: &Mat<f64>) -> Result<Vec<usize>, ReduceError> {
-    let (n, r) = (xr.nrows(), xr.ncols());
-    let mut res = xr.clone();
-    let mut support = Vec::with_capacity(r);
-    let norm0 = (0..n)
-        .map(|i| (0..r).map(|j| xr[(i, j)].powi(2)).sum::<f64>())
-        .fold(0.0, f64::max);
-    for _ in 0..r {
-        let (mut best, mut bv) = (usize::MAX, 0.0);
-        for i in 0..n {
-            let v: f64 = (0..r).map(|j| res[(i, j)].powi(2)).sum();
-            if v > bv {
-                best = i;
-                bv = v;
-            }
-        }
-        if best == usize::MAX || bv <= 1e-12 * norm0 {
-            return Err(ReduceError::Rigid(
-                "rigid modes are not independent at any dof set".into(),
-            ));
-        }
-        support.push(best);
-        let q: Vec<f64> = (0..r).map(|j| res[(best, j)] / bv.sqrt()).collect();
-        for i in 0..n {
-            let d: f64 = (0..r).map(|j| res[(i, j)] * q[j]).sum();
-            for j in 0..r {
-                res[(i, j)] -= d * q[j];
-            }
-        }
-    }
-    support.sort_unstable();
-    Ok(support)
-}
-
 /// Inertia-relief static solver: y with K y = P f, Xrᵀ M y = 0 (f → P f → support solve → purify).
 pub(crate) struct InertiaRelief<'a> {
     m: &'a SparseColMat<usize, f64>,
@@ -131,7 +96,8 @@ impl<'a> InertiaRelief<'a> {
     ) -> Result<Self, ReduceError> {
         let n = k.nrows();
         let support = if xr.ncols() > 0 {
-            determinate_support(&xr)?
+            determinate_support(&xr)
+                .ok_or_else(|| ReduceError::Rigid(NO_DETERMINATE_SUPPORT.into()))?
         } else {
             vec![]
         };

@@ -131,3 +131,41 @@ pub fn projected(
     solve_upper_triangular_in_place(l.transpose(), u.as_mut(), Par::Seq);
     Ok((vals, u))
 }
+
+/// Why [`determinate_support`] found none, as the reductions and the preload say it.
+pub const NO_DETERMINATE_SUPPORT: &str = "rigid modes are not independent at any dof set";
+
+/// `r` dofs at which the rigid modes Xr (n × r) are independent (greedy pivoted QR on the rows of
+/// Xr): holding them at zero is a statically determinate support; `None` when the modes are
+/// not independent at any dof set ([`NO_DETERMINATE_SUPPORT`]).
+pub fn determinate_support(xr: &Mat<f64>) -> Option<Vec<usize>> {
+    let (n, r) = (xr.nrows(), xr.ncols());
+    let mut res = xr.clone();
+    let mut support = Vec::with_capacity(r);
+    let norm0 = (0..n)
+        .map(|i| (0..r).map(|j| xr[(i, j)].powi(2)).sum::<f64>())
+        .fold(0.0, f64::max);
+    for _ in 0..r {
+        let (mut best, mut bv) = (usize::MAX, 0.0);
+        for i in 0..n {
+            let v: f64 = (0..r).map(|j| res[(i, j)].powi(2)).sum();
+            if v > bv {
+                best = i;
+                bv = v;
+            }
+        }
+        if best == usize::MAX || bv <= 1e-12 * norm0 {
+            return None;
+        }
+        support.push(best);
+        let q: Vec<f64> = (0..r).map(|j| res[(best, j)] / bv.sqrt()).collect();
+        for i in 0..n {
+            let d: f64 = (0..r).map(|j| res[(i, j)] * q[j]).sum();
+            for j in 0..r {
+                res[(i, j)] -= d * q[j];
+            }
+        }
+    }
+    support.sort_unstable();
+    Some(support)
+}

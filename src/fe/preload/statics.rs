@@ -19,8 +19,9 @@ use super::PreloadError;
 use crate::fe::constraints::Reduced;
 use crate::fe::dofs::DofMap;
 use crate::model::Model;
-use crate::reduce::craig_chang::{determinate_support, InertiaRelief};
+use crate::reduce::craig_chang::InertiaRelief;
 use crate::reduce::{complement, ReduceError};
+use crate::solve::dense::{determinate_support, NO_DETERMINATE_SUPPORT};
 use crate::solve::{trace_ratio, EigenSpec, SolveError};
 
 /// A geometric rigid motion with ω² below this fraction of the model's K/M scale (the median
@@ -134,7 +135,7 @@ pub fn solve(
     let n = red.k.nrows();
     // the support the inertia relief will choose, to name a singular pivot's dof
     let support = if xr.ncols() > 0 {
-        determinate_support(&xr)?
+        determinate_support(&xr).ok_or_else(|| ReduceError::Rigid(NO_DETERMINATE_SUPPORT.into()))?
     } else {
         Vec::new()
     };

@@ -30,7 +30,8 @@
 //! `ORIENTATION` changes nothing when every translation (`*KINEMATIC`) or every rotation or none
 //! (`*DISTRIBUTING`) is coupled; otherwise it is refused (local dofs are not formed).
 
-use super::resolve::{single, Sets};
+use super::resolve::single;
+use super::sets::Sets;
 use super::tie::face_shape;
 use super::{CouplingKind, Parser, RawCoupling};
 use crate::import::error::ImportError;

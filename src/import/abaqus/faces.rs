@@ -15,7 +15,7 @@
 
 use std::collections::BTreeSet;
 
-use super::resolve::Sets;
+use super::sets::Sets;
 use super::shell_expansion::{node_normal, Expansion, SHELL_TYPES};
 use super::tie_search::ccx_face_nodes;
 use super::{fields, Parser};

@@ -42,6 +42,7 @@ mod loads;
 mod materials;
 mod resolve;
 mod rules;
+mod sets;
 mod shell_equations;
 pub mod shell_expansion;
 mod steps;

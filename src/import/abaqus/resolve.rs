@@ -3,50 +3,17 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::sets::Sets;
 use super::shell_expansion::{expand_elements, Expansion, ShellElements};
 use super::temperature::{at_temperature, depends_on_temperature, Row, TemperatureState};
 use super::{Parser, Target};
 use crate::import::error::ImportError;
-use crate::import::text::{IdMap, Loc};
+use crate::import::text::Loc;
 use crate::model::deck::PreloadRequest;
 use crate::model::{
     ConstraintSource, DofMask, EigenRequest, ImportWarning, Material, Model, PointMass, Property,
     Section, SectionShape, Spc,
 };
-
-/// The model's ids and sets, resolved: what every later step looks members up in.
-pub(super) struct Sets {
-    /// Node id → index.
-    pub(super) nodes: IdMap,
-    /// Element id → index.
-    pub(super) elems: IdMap,
-    pub(super) node_sets: BTreeMap<String, Vec<usize>>,
-    pub(super) element_sets: BTreeMap<String, Vec<usize>>,
-}
-
-impl Sets {
-    /// The nodes of a `*BOUNDARY`/`*RIGID BODY`/`*COUPLING` target: a node id or a node set.
-    pub(super) fn target(
-        &self,
-        t: &Target,
-        loc: Loc,
-        ent: &str,
-        p: &Parser,
-    ) -> Result<Vec<usize>, ImportError> {
-        match t {
-            Target::Node(id) => self
-                .nodes
-                .get(*id)
-                .map(|i| vec![i])
-                .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node {id}"))),
-            Target::Set(s) => self
-                .node_sets
-                .get(s)
-                .cloned()
-                .ok_or_else(|| p.err(loc, ent.to_owned(), format!("unknown node set {s}"))),
-        }
-    }
-}
 
 impl Parser {
     /// The resolve pass: ids → indices and sets, then materials, sections, boundary

@@ -13,7 +13,7 @@
 //!   differs from the initial one and α ≠ 0; that thermal preload is refused by line. With
 //!   zero expansion (CalculiX beamft) the temperatures change the material data only.
 
-use super::resolve::Sets;
+use super::sets::Sets;
 use super::{Parser, Target};
 use crate::import::error::ImportError;
 use crate::import::text::Loc;

@@ -14,7 +14,7 @@
 
 use std::collections::HashMap;
 
-use super::resolve::Sets;
+use super::sets::Sets;
 use super::{Parser, Target};
 use crate::import::error::ImportError;
 use crate::import::text::Loc;

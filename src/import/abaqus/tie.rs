@@ -27,7 +27,7 @@ use std::collections::{BTreeSet, HashMap, HashSet};
 
 use super::faces::Face;
 use super::keywords::Keyword;
-use super::resolve::Sets;
+use super::sets::Sets;
 use super::tie_search::{Found, MasterTriangles};
 use super::{fields, Block, Parser};
 use crate::import::error::ImportError;

@@ -5,7 +5,7 @@ use crate::fe::rigid_mass;
 use crate::fe::{assemble, Assembled, MassKind};
 use crate::pipeline::deck::constraint_summary;
 use crate::pipeline::plan::Plan;
-use crate::pipeline::stages::interfaces::WithInterfaces;
+use crate::pipeline::stages::WithInterfaces;
 use crate::pipeline::{BuildError, BuildReport};
 
 /// The assembly stage.

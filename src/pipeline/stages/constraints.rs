@@ -10,35 +10,11 @@ use crate::model::{DofMask, Model, NodeIndex};
 use crate::pipeline::deck::{node_mask, reference_entries};
 use crate::pipeline::interface::reference_names;
 use crate::pipeline::plan::Plan;
-use crate::pipeline::precheck::{before_reduction, expected_rigid_motions, RigidExpectation};
+use crate::pipeline::precheck::{before_reduction, expected_rigid_motions};
 use crate::pipeline::stages::empty_matrix;
-use crate::pipeline::stages::interfaces::WithInterfaces;
+use crate::pipeline::stages::WithInterfaces;
+use crate::pipeline::stages::{Constrained, ReferenceNodes};
 use crate::pipeline::{BuildError, BuildReport};
-
-/// Reference conditions per node: the components held.
-pub type ReferenceNodes = Vec<(NodeIndex, DofMask)>;
-
-/// The system the reduction starts from.
-#[derive(Debug, Clone)]
-pub struct Constrained {
-    /// The physical assembly: its dof map and M (K is freed once eliminated).
-    pub assembled: Assembled,
-    /// K_r = Tᵀ K T, M_r = Tᵀ M T over the independent dofs, and T.
-    pub reduced: Reduced,
-    /// Interface dofs in the independent numbering.
-    pub interface_dofs: Vec<usize>,
-    /// The components of each interface node (in `WithInterfaces::interface_nodes` order).
-    pub interface_masks: Vec<DofMask>,
-    /// Reference-condition dofs in the independent numbering.
-    pub reference_dofs: Vec<usize>,
-    /// Reference conditions per node, the model's own SPCs included (what the file records).
-    pub reference_nodes: ReferenceNodes,
-    /// The preload `reduced.k` carries (K_T,r; set by the preload stage).
-    pub preload: Option<crate::pipeline::stages::preload::PreloadSummary>,
-    /// The rigid-body modes a model of several connected parts must have (`None`: one part,
-    /// the file's reference conditions tell), for the verify stage.
-    pub expected_rigid: Option<RigidExpectation>,
-}
 
 /// The constraints stage.
 pub fn constraints(

@@ -3,23 +3,15 @@
 //! fibre apart ([`shell_fields`], format 1.5).
 
 use crate::body::shell_stress::{merge, shell_fields};
-use crate::body::stress::{modal_fields_with_modes, ModalFields};
+use crate::body::stress::modal_fields_with_modes;
 use crate::model::{Model, NodeIndex};
 use crate::pipeline::plan::Plan;
-use crate::pipeline::stages::constraints::Constrained;
-use crate::pipeline::stages::file::StoredNodes;
 use crate::pipeline::stages::node_shape;
-use crate::pipeline::stages::reduction::ReducedBasis;
+use crate::pipeline::stages::Constrained;
+use crate::pipeline::stages::FieldShapes;
+use crate::pipeline::stages::ReducedBasis;
+use crate::pipeline::stages::StoredNodes;
 use crate::pipeline::{BuildError, BuildReport};
-
-/// The field shapes of the file.
-#[derive(Debug, Clone, Default)]
-pub struct FieldShapes {
-    /// Solids and the shells' top fibre (`None`: not asked, or no stored node has any).
-    pub top: Option<ModalFields>,
-    /// The shells' bottom fibre.
-    pub bottom: Option<ModalFields>,
-}
 
 /// The stress shapes stage.
 pub fn fields(

@@ -16,23 +16,15 @@ use crate::pipeline::interface_entry::interfaces_entry;
 use crate::pipeline::plan::Plan;
 use crate::pipeline::recipe::{accuracy_band, recipe};
 use crate::pipeline::scene::modal_loads;
-use crate::pipeline::stages::constraints::Constrained;
-use crate::pipeline::stages::fields::FieldShapes;
-use crate::pipeline::stages::interfaces::WithInterfaces;
-use crate::pipeline::stages::invariants::MassProperties;
 use crate::pipeline::stages::node_shape;
-use crate::pipeline::stages::reduction::ReducedBasis;
+use crate::pipeline::stages::Constrained;
+use crate::pipeline::stages::FieldShapes;
+use crate::pipeline::stages::MassProperties;
+use crate::pipeline::stages::ReducedBasis;
+use crate::pipeline::stages::StoredNodes;
+use crate::pipeline::stages::WithInterfaces;
 use crate::pipeline::{BuildError, BuildSpec, KeepNodes};
 use crate::reduce::{self, ModeSet};
-
-/// The nodes the file stores, and the graphics faces they are picked from.
-#[derive(Debug, Clone)]
-pub struct StoredNodes {
-    /// The free outer faces of the mesh (and beam lines).
-    pub faces: Vec<GraphicsFace>,
-    /// The stored nodes, ascending: `--keep-nodes`, plus every interface and reference node.
-    pub nodes: Vec<NodeIndex>,
-}
 
 /// The nodes whose shapes go into the file (`--keep-nodes`).
 pub fn stored_nodes(
@@ -76,7 +68,7 @@ pub fn assemble_file(
     let (nodes, faces, lines) = geometry(model, stored, &position, &is_interface);
     let dofs = &constrained.assembled.dofs;
     let modes = modes_record(set, &stored.nodes, dofs, &basis.phi);
-    let method = method_record(spec, set, interfaced, constrained, &position, &modes.labels);
+    let method = method_record(plan, set, interfaced, constrained, &position, &modes.labels);
     let top = fields.top.as_ref();
     let mut body = file::ReducedBody {
         version: flexbody_reader::FORMAT_VERSION,
@@ -85,7 +77,7 @@ pub fn assemble_file(
             version: env!("CARGO_PKG_VERSION").into(),
         },
         units: spec.units.clone(),
-        header: header(spec, model, method.method, &stored.nodes, &is_interface),
+        header: header(plan, model, method.method, &stored.nodes, &is_interface),
         nodes,
         faces,
         nodal_mass: stored
@@ -117,13 +109,14 @@ pub fn assemble_file(
     };
     body.modal_loads = modal_loads(&basis.scene, set);
     body.geometric_stiffness = basis.geometric_stiffness.clone();
-    let band = accuracy_band(spec, set);
+    let band = accuracy_band(spec, &plan.modes, set);
     let recipe = recipe(
         spec,
+        &plan.modes,
         model,
         &interfaced.interfaces,
         band,
-        constrained.preload.as_ref(),
+        basis.preload.as_ref(),
     )
     .map_err(|e| plan.request_error(e))?;
     body.recipe = Some(recipe);
@@ -132,6 +125,10 @@ pub fn assemble_file(
         body.strain_shapes_bottom = field_shapes(b, b.strain.as_ref(), &position);
     }
     body.interfaces = interfaces_entry(model, &interfaced.interfaces, &body.nodes);
+    if let Some(text) = &spec.damping {
+        // the ratios per mode, and the text in the recipe
+        crate::body::damping::apply(&mut body, text)?;
+    }
     body.version = file::version_for(&body);
     Ok(body)
 }
@@ -222,13 +219,14 @@ fn modes_record(set: &ModeSet, stored: &[NodeIndex], dofs: &DofMap, phi: &Mat<f6
 /// The method record: method, mass, interface dofs and frames, reference conditions, the mode
 /// counts by origin (SPEC §5.7) and the cutoffs.
 fn method_record(
-    spec: &BuildSpec,
+    plan: &Plan,
     set: &ModeSet,
     interfaced: &WithInterfaces,
     constrained: &Constrained,
     position: &[u32],
     labels: &[file::ModeLabel],
 ) -> file::MethodRecord {
+    let spec = &plan.spec;
     let dofs = &constrained.assembled.dofs;
     let (method, interface_count, fixed_count) = method_counts(set);
     let identity3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
@@ -290,7 +288,7 @@ fn method_record(
             },
         },
         cutoffs: file::Cutoffs {
-            fmax_hz: spec.fmax_hz,
+            fmax_hz: plan.modes.fmax_hz,
             shift_fraction,
             dependency_tolerance: (method != file::Method::NormalModes)
                 .then_some(set.diagnostics.dependency_tol),
@@ -343,12 +341,13 @@ fn file_mass_kind(spec: &BuildSpec) -> file::MassKind {
 
 /// The header: title (default: the model file name), creation time when asked, and the request.
 fn header(
-    spec: &BuildSpec,
+    plan: &Plan,
     model: &Model,
     method: file::Method,
     stored: &[NodeIndex],
     is_interface: &HashSet<NodeIndex>,
 ) -> file::Header {
+    let spec = &plan.spec;
     let keep_nodes = match &spec.keep_nodes {
         KeepNodes::All => file::KeepNodes::All,
         KeepNodes::Surface => file::KeepNodes::InterfaceAndSurface,
@@ -371,8 +370,8 @@ fn header(
         created_utc: spec.created_utc.clone(),
         request: file::Request {
             method,
-            fmax_hz: spec.fmax_hz,
-            mode_count: spec.modes.map(|n| n as u64),
+            fmax_hz: plan.modes.fmax_hz,
+            mode_count: plan.modes.count.map(|n| n as u64),
             keep_nodes,
             invariant_set: spec.invariants,
             mass_kind: file_mass_kind(spec),

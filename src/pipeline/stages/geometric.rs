@@ -21,8 +21,8 @@ use crate::fe::preload::{
 };
 use crate::model::Model;
 use crate::pipeline::plan::Plan;
-use crate::pipeline::stages::constraints::Constrained;
-use crate::pipeline::stages::reduction::ReducedBasis;
+use crate::pipeline::stages::Constrained;
+use crate::pipeline::stages::ReducedBasis;
 use crate::pipeline::{BuildError, GeometricLoads};
 
 /// The unit load of the file for a unit inertia field of `fe::preload`.
@@ -46,7 +46,7 @@ pub fn geometric_stiffness(
     let Some(loads) = plan.spec.geometric_stiffness else {
         return Ok(());
     };
-    if let Some(p) = &constrained.preload {
+    if let Some(p) = &basis.preload {
         return Err(plan.request_error(format!(
             "--geometric-stiffness with a preload ({}): the modes are those of K + K_G(σ₀), and \
              the unit loads' stress for the file's terms must come from the linear K; build \

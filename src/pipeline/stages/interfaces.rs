@@ -3,25 +3,13 @@
 //! rigid elements added, and with a node at each point mass's offset centre of gravity
 //! (`model::offset_mass`).
 
-use crate::model::offset_mass::{place_offset_masses, MassNode};
-use crate::model::{Model, NodeIndex};
-use crate::pipeline::interface::{resolve_interfaces, InterfaceReport};
+use crate::model::offset_mass::place_offset_masses;
+use crate::model::Model;
+use crate::pipeline::interface::resolve_interfaces;
 use crate::pipeline::plan::Plan;
 use crate::pipeline::scene::scene_loads;
+use crate::pipeline::stages::WithInterfaces;
 use crate::pipeline::{BuildError, BuildMethod};
-
-/// The model with its interface spiders, and the interfaces as resolved.
-#[derive(Debug, Clone)]
-pub struct WithInterfaces {
-    /// The model, spider centre nodes and rigid elements included.
-    pub model: Model,
-    /// One per `--interface` entry.
-    pub interfaces: Vec<InterfaceReport>,
-    /// Every interface's nodes, in entry order (a spider's centre node for a node set).
-    pub interface_nodes: Vec<NodeIndex>,
-    /// The nodes made at offset centres of gravity of point masses (`model::offset_mass`).
-    pub mass_nodes: Vec<MassNode>,
-}
 
 /// The interfaces stage: the request checked against the method, the interfaces attached, the
 /// scene's loads checked against the model (a bad `--load`/`--gravity` is reported now, not

@@ -5,24 +5,16 @@
 
 use faer::Mat;
 
-use crate::body::invariants::{compute_invariants, Invariants, MassPoint};
+use crate::body::invariants::{compute_invariants, MassPoint};
 use crate::body::invariants_consistent::consistent_invariants;
 use crate::fe::{self, assemble, Assembled, AssemblySpec, BeamLumping, DofMap, MassKind};
 use crate::model::{Model, NodeIndex};
 use crate::pipeline::plan::Plan;
-use crate::pipeline::stages::constraints::Constrained;
 use crate::pipeline::stages::node_shape;
-use crate::pipeline::stages::reduction::ReducedBasis;
+use crate::pipeline::stages::Constrained;
+use crate::pipeline::stages::ReducedBasis;
+use crate::pipeline::stages::{MassProperties, NodalMass};
 use crate::pipeline::BuildError;
-
-/// The body's mass as the file stores it and its invariants.
-#[derive(Debug, Clone)]
-pub struct MassProperties {
-    /// Per node: structure and point masses lumped to it, inertia about it (basic frame).
-    pub nodal: NodalMass,
-    /// The nine invariants (those the spec selects).
-    pub invariants: Invariants,
-}
 
 /// The invariants stage.
 pub fn invariants(
@@ -57,9 +49,6 @@ pub fn invariants(
     };
     Ok(MassProperties { nodal, invariants })
 }
-
-/// Per-node lumped mass and inertia of the structure (point masses excluded), basic frame.
-pub type NodalMass = Vec<(f64, [[f64; 3]; 3])>;
 
 /// Mass points for the invariants: every node with its lumped structural mass (a lumped assembly
 /// of the model without point masses, or `lumped` when that is already it), plus one point per point mass at its centre of gravity,

@@ -11,8 +11,9 @@
 use crate::fe::{assemble, AssemblySpec, MassKind};
 use crate::model::ElementKind;
 use crate::pipeline::plan::Plan;
-use crate::pipeline::stages::constraints::{eliminate_constraints, Constrained};
-use crate::pipeline::stages::interfaces::WithInterfaces;
+use crate::pipeline::stages::constraints::eliminate_constraints;
+use crate::pipeline::stages::Constrained;
+use crate::pipeline::stages::WithInterfaces;
 use crate::solve::{lowest_modes, trace_ratio, EigenSpec, SparseColMat};
 
 /// Largest system (independent dofs) the two extra eigen solves are made on.

@@ -4,8 +4,8 @@
 //! the geometric stiffness of its stress and K_T,r = K_r + Tᵀ K_G T (+ Tᵀ K_L(u₀) T, the
 //! initial-displacement stiffness, for a CalculiX perturbation step), which replaces K_r for the
 //! reduction (every method unchanged; `fe::preload`, whose module doc is the design note).
-//! Takes the constrained system, returns it with K_T,r and a [`PreloadSummary`] for the report
-//! and the recipe. `flexbody check --model` rebuilds the same K_T with [`apply`].
+//! Takes the constrained system, puts K_T,r in it and returns a [`PreloadSummary`] for the
+//! report and the recipe. `flexbody check --model` rebuilds the same K_T with [`apply`].
 //!
 //! Refused, never dropped: a deck preload the importer could not read (its request's
 //! problem, a load with a problem), a pressure in a deck's preload (its solver adds the
@@ -22,51 +22,10 @@ use crate::model::load::LoadPart;
 use crate::model::{Load, Model};
 use crate::pipeline::plan::Plan;
 use crate::pipeline::scene::{scene_loads, SceneSpec};
-use crate::pipeline::stages::constraints::Constrained;
-use crate::pipeline::stages::interfaces::WithInterfaces;
+use crate::pipeline::stages::Constrained;
+use crate::pipeline::stages::PreloadSummary;
+use crate::pipeline::stages::WithInterfaces;
 use crate::pipeline::{BuildError, BuildReport};
-
-/// What the preload was and what it did (report and recipe).
-#[derive(Debug, Clone, PartialEq)]
-pub struct PreloadSummary {
-    /// Where it came from: `--preload NAMES` or the deck's step.
-    pub source: String,
-    /// The scene loads it is made of (a CENTRIF is a part of its step's load).
-    pub loads: Vec<String>,
-    /// The largest translation |u₀| of the static solution.
-    pub max_displacement: f64,
-    /// The external id of the node where it is.
-    pub max_displacement_node: u64,
-    /// The lowest buckling factor λ₁ (`None`: nothing in compression).
-    pub buckling_factor: Option<f64>,
-    /// The tangent carries K_L(u₀) too (CalculiX's perturbation of the static state).
-    pub initial_displacement: bool,
-    /// The tangent carries the spin softening of the preload's centrifugal loads.
-    pub spin_softening: bool,
-}
-
-impl PreloadSummary {
-    /// The build report's note.
-    pub fn note(&self) -> String {
-        let factor = match self.buckling_factor {
-            Some(l) => format!("lowest buckling factor λ₁ = {l:.6}"),
-            None => "no buckling factor (nothing in compression)".into(),
-        };
-        let tangent = match (self.initial_displacement, self.spin_softening) {
-            (true, true) => "K + K_G + K_L(u0) − Ω²M⊥ (the perturbed static state with the spin softening of its centrifugal loads, as CalculiX's *STEP, PERTURBATION)",
-            (true, false) => "K + K_G + K_L(u0) (the perturbed static state, as CalculiX's *STEP, PERTURBATION)",
-            (false, true) => "K + K_G − Ω²M⊥ (with the spin softening of its centrifugal loads)",
-            (false, false) => "K + K_G",
-        };
-        format!(
-            "preloaded: {} ({}): linear static preload, max |u0| {:.6e} at node {}, {factor}; the modes are those of {tangent}",
-            self.source,
-            self.loads.join(", "),
-            self.max_displacement,
-            self.max_displacement_node
-        )
-    }
-}
 
 /// The share of the part's size (bounding-box diagonal) above which a preload's displacement is
 /// no longer small: the linear preload then misses the initial-displacement stiffness.
@@ -107,13 +66,13 @@ pub fn has_preload(plan: &Plan, interfaced: &WithInterfaces) -> bool {
 }
 
 /// The preload stage (module doc): K_T,r in place of `constrained.reduced.k` when the build
-/// has a preload, its summary in `constrained.preload` and the report.
+/// has a preload; returns its summary (also noted in the report).
 pub fn preload(
     plan: &Plan,
     interfaced: &WithInterfaces,
     constrained: &mut Constrained,
     report: &mut BuildReport,
-) -> Result<(), BuildError> {
+) -> Result<Option<PreloadSummary>, BuildError> {
     let summary = apply(
         &interfaced.model,
         &constrained.assembled,
@@ -140,8 +99,7 @@ pub fn preload(
             report.warnings.push(w);
         }
     }
-    constrained.preload = summary;
-    Ok(())
+    Ok(summary)
 }
 
 /// The preload of `model` (the `--preload` names of `scene`, else the deck's request) applied

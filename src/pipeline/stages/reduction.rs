@@ -10,8 +10,9 @@ use crate::pipeline::plan::Plan;
 use crate::pipeline::scene::{
     reduced_loads, removed_note, residual_loads, select_by_scene, SceneLoads,
 };
-use crate::pipeline::stages::constraints::Constrained;
 use crate::pipeline::stages::empty_matrix;
+use crate::pipeline::stages::ReducedBasis;
+use crate::pipeline::stages::{Constrained, PreloadSummary};
 use crate::pipeline::{BuildError, BuildMethod, BuildReport};
 use crate::reduce::massless::{self, MasslessDofs};
 use crate::reduce::participation::{self, Participation};
@@ -19,24 +20,6 @@ use crate::reduce::select::{self, ModeCount};
 use crate::reduce::{self, ModeSet, ReduceError};
 use crate::solve::{Precision, SparseColMat};
 
-/// The reduced basis of the body.
-#[derive(Debug, Clone)]
-pub struct ReducedBasis {
-    /// The mode set over the independent dofs.
-    pub set: ModeSet,
-    /// Its shapes over the physical dofs, Φ = T Φ_r.
-    pub phi: Mat<f64>,
-    /// The scene's loads on the independent dofs.
-    pub scene: SceneLoads,
-    /// The physical consistent M was released for the native Craig–Bampton reduction (issue 22:
-    /// as large as K); the invariants stage assembles it again.
-    pub mass_released: bool,
-    /// The modal geometric stiffness per unit load (`--geometric-stiffness`; set by the
-    /// geometric-stiffness stage).
-    pub geometric_stiffness: Option<flexbody_reader::GeometricStiffness>,
-}
-
-/// The reduction stage; `hook` sees the mode set last, before it is expanded.
 /// A Craig–Bampton set with no fixed-interface mode below the cutoff is a Guyan (static)
 /// reduction: worth a warning, since the user asked for a frequency band (issue 31).
 fn guyan_only(set: &ModeSet, fmax_hz: Option<f64>) -> Option<String> {
@@ -67,15 +50,17 @@ fn guyan_only(set: &ModeSet, fmax_hz: Option<f64>) -> Option<String> {
     })
 }
 
+/// The reduction stage; `hook` sees the mode set last, before it is expanded.
 pub fn reduction(
     plan: &Plan,
     model: &Model,
     constrained: &mut Constrained,
+    preload: Option<PreloadSummary>,
     hook: &mut dyn FnMut(&mut ModeSet),
     report: &mut BuildReport,
 ) -> Result<ReducedBasis, BuildError> {
     let spec = &plan.spec;
-    let count = plan.mode_count()?;
+    let count = plan.modes.solve;
     let massless = massless_dofs(plan, constrained)?;
     check_engine_request(plan, constrained)?;
     // The scene's loads on the independent dofs (f_r = Tᵀf; gravity is M·g with the physical M).
@@ -94,7 +79,7 @@ pub fn reduction(
         constrained.assembled.m = empty_matrix();
     }
     let mut set = reduce_by_method(plan, constrained, count, &massless)?;
-    if let Some(w) = guyan_only(&set, spec.fmax_hz) {
+    if let Some(w) = guyan_only(&set, plan.modes.fmax_hz) {
         // a warning with the cutoff, in place of the library's note
         (set.diagnostics.notes).retain(|n| n != crate::reduce::craig_bampton::GUYAN_NOTE);
         report.warnings.push(w);
@@ -108,6 +93,7 @@ pub fn reduction(
         phi,
         scene,
         mass_released,
+        preload,
         geometric_stiffness: None,
     })
 }
@@ -270,10 +256,7 @@ fn fit_to_scene(
             ));
         }
     }
-    if let (Some(n), true) = (
-        spec.modes,
-        spec.fmax_hz.is_some() || plan.deck_band.is_some(),
-    ) {
+    if let Some(n) = plan.modes.cap {
         // Both given: the count caps the band (CB keeps its constraint-derived modes on top).
         let extra = if spec.method == BuildMethod::Normal {
             0
@@ -285,7 +268,7 @@ fn fit_to_scene(
     if let Some(eps) = spec.scene.select {
         // the band: --fmax, else the candidates' top read back through FMAX_FACTOR
         let top = set.frequencies_hz().into_iter().fold(0.0f64, f64::max);
-        let band = spec.fmax_hz.unwrap_or(top / select::FMAX_FACTOR);
+        let band = plan.modes.fmax_hz.unwrap_or(top / select::FMAX_FACTOR);
         let (s, rep) = select_by_scene(
             k_r,
             m_r,

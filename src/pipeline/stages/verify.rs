@@ -4,8 +4,8 @@
 use flexbody_reader::ReducedBody;
 
 use crate::pipeline::plan::Plan;
-use crate::pipeline::stages::constraints::Constrained;
-use crate::pipeline::stages::reduction::ReducedBasis;
+use crate::pipeline::stages::Constrained;
+use crate::pipeline::stages::ReducedBasis;
 use crate::pipeline::verify::verify_body;
 use crate::pipeline::BuildError;
 
