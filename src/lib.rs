@@ -22,7 +22,7 @@
 //!   [`inspect`](mod@inspect)).
 //! * [`export`] — a `.flexbody` file → other solvers' formats.
 //!
-//! See `ARCHITECTURE.md` and `../shared/DESIGN.md`.
+//! See `ARCHITECTURE.md` and `docs/design.md`.
 #![allow(non_snake_case)]
 
 pub mod body;
@@ -38,9 +38,7 @@ pub mod write;
 
 // Crate-root paths kept for programs written against the flat layout (`flexbody::build::…`,
 // `flexbody::check::…`, `flexbody::stress`, …): each names the module where the code lives now.
-pub use body::{damping, faces, invariants, invariants_consistent, shell_stress, stress};
+pub use body::{damping, shell_stress, stress};
 pub use cli::{check, inspect};
 pub use pipeline as build;
-pub use pipeline::{
-    deck, diagnose, interface, interface_entry, options, precheck, recipe, scene, verify,
-};
+pub use pipeline::{diagnose, interface, options, recipe, scene};

@@ -2,7 +2,7 @@
 //!
 //! From lumped nodal mass m_p, nodal inertia I_p (3×3, about the node), undeformed position s_p,
 //! translational mode rows Φ_p (3×M) and rotational rows Φ*_p (3×M) at **every** mass node
-//! (DESIGN.md §3; `../shared/research/formats.md` §1.3, checked there against a real MNF):
+//! (docs/design.md §3; `../shared/research/formats.md` §1.3, checked there against a real MNF):
 //!
 //! | # | definition | size |
 //! |---|---|---|

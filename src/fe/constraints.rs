@@ -107,7 +107,9 @@ impl std::fmt::Display for Owner {
     }
 }
 
-/// Build T and the reduced K, M.
+/// Build T and the reduced K, M: the held dofs ([`held_dofs`]), the dependent dofs of rigid
+/// elements, rigid bodies and MPCs ([`dependent_dofs`]), T by substitution over the dofs left
+/// ([`substitution_rows`]), then the automatic SPCs of dofs with neither stiffness nor mass.
 pub fn eliminate(
     model: &Model,
     dofs: &DofMap,
@@ -115,22 +117,61 @@ pub fn eliminate(
     m: &SparseColMat<usize, f64>,
     spec: &ConstraintSpec,
 ) -> Result<Reduced, FeError> {
-    let n = dofs.n_dofs;
-    let err = |message: String| FeError::Constraint {
+    let fixed = held_dofs(model, dofs, spec)?;
+    let dep = dependent_dofs(model, dofs, spec, &fixed)?;
+    // in dof order, so the error names the same dof every run
+    if let Some(d) = (0..dofs.n_dofs).find(|d| fixed[*d] && dep.contains_key(d)) {
+        let (node, c) = dofs.node_of(d).unwrap_or((0, 0));
+        return Err(constraint_error(
+            model,
+            format!(
+                "dof {} of node {} is constrained by an SPC and is dependent in {}",
+                c + 1,
+                model.nodes[node].id,
+                dep[&d].1
+            ),
+        ));
+    }
+    let (rows, retained) = substitution_rows(model, dofs, &dep, &fixed)?;
+    let (t, k_r, m_r) = triple(&rows, retained.len(), k, m);
+    if spec.auto_spc {
+        return Ok(without_empty_dofs(rows, retained, (t, k_r, m_r), k, m));
+    }
+    Ok(Reduced {
+        t,
+        k: k_r,
+        m: m_r,
+        retained,
+        auto_spc: Vec::new(),
+    })
+}
+
+/// The constraint error of `model`.
+fn constraint_error(model: &Model, message: String) -> FeError {
+    FeError::Constraint {
         source_file: model.source.clone(),
         message,
-    };
-    let node_ok = |node: usize, what: &str| -> Result<(), FeError> {
-        if node < model.nodes.len() {
-            Ok(())
-        } else {
-            Err(err(format!(
+    }
+}
+
+/// `node` is an index of `model`, else an error naming `what` refers to it.
+fn check_node(model: &Model, node: usize, what: &str) -> Result<(), FeError> {
+    if node < model.nodes.len() {
+        Ok(())
+    } else {
+        Err(constraint_error(
+            model,
+            format!(
                 "{what} refers to node index {node} beyond the {} nodes",
                 model.nodes.len()
-            )))
-        }
-    };
-    let mut fixed = vec![false; n];
+            ),
+        ))
+    }
+}
+
+/// The held dofs: the model's SPCs of the selected sets and `spec.fixed`.
+fn held_dofs(model: &Model, dofs: &DofMap, spec: &ConstraintSpec) -> Result<Vec<bool>, FeError> {
+    let mut fixed = vec![false; dofs.n_dofs];
     let mut fix = |node: usize, mask: DofMask| {
         for c in mask.dofs() {
             if let Some(d) = dofs.dof(node, c) {
@@ -139,7 +180,7 @@ pub fn eliminate(
         }
     };
     for s in &model.spcs {
-        node_ok(s.node, "SPC")?;
+        check_node(model, s.node, "SPC")?;
         if spec
             .spc_sets
             .as_ref()
@@ -149,11 +190,20 @@ pub fn eliminate(
         }
     }
     for &(node, mask) in &spec.fixed {
-        node_ok(node, "fixed dof")?;
+        check_node(model, node, "fixed dof")?;
         fix(node, mask);
     }
+    Ok(fixed)
+}
 
-    // Dependent dof → (expression over physical dofs, what made it dependent).
+/// Dependent dof → (expression over physical dofs, what made it dependent): the rows of the
+/// rigid elements, rigid bodies and MPCs; a dof dependent twice is an error.
+fn dependent_dofs(
+    model: &Model,
+    dofs: &DofMap,
+    spec: &ConstraintSpec,
+    fixed: &[bool],
+) -> Result<HashMap<usize, (Expr, Owner)>, FeError> {
     let mut dep: HashMap<usize, (Expr, Owner)> = HashMap::new();
     let mut add_dep = |d: usize, e: Expr, owner: Owner| -> Result<(), FeError> {
         if let Some((_, other)) = dep.get(&d) {
@@ -162,108 +212,124 @@ pub fn eliminate(
                 (Owner::Rigid(a), Owner::Rigid(b)) => format!("rigid elements {a} and {b}"),
                 _ => format!("{other} and {owner}"),
             };
-            return Err(err(format!(
-                "dof {} of node {} is dependent in {both}",
-                c + 1,
-                model.nodes.get(node).map_or(0, |n| n.id)
-            )));
+            return Err(constraint_error(
+                model,
+                format!(
+                    "dof {} of node {} is dependent in {both}",
+                    c + 1,
+                    model.nodes.get(node).map_or(0, |n| n.id)
+                ),
+            ));
         }
         dep.insert(d, (e, owner));
         Ok(())
     };
     for r in &model.rigid_elements {
-        match r {
-            RigidElement::Rbe2 {
-                id,
-                independent,
-                dependent,
-                dofs: mask,
-            } => {
-                node_ok(*independent, "RBE2")?;
-                let i = *independent;
-                for &d in dependent {
-                    node_ok(d, "RBE2")?;
-                    if d == i {
-                        return Err(err(format!(
-                            "RBE2 {id}: node {} is both independent and dependent",
-                            model.nodes[d].id
-                        )));
-                    }
-                    let h = rbe2_map(model, dofs, i, d);
-                    for c in mask.dofs() {
-                        let Some(dd) = dofs.dof(d, c) else { continue };
-                        let e: Expr = (0..6)
-                            .filter_map(|q| dofs.dof(i, q).map(|di| (di, h[c][q])))
-                            .filter(|t| t.1 != 0.0)
-                            .collect();
-                        add_dep(dd, e, Owner::Rigid(*id))?;
-                    }
-                }
-            }
-            RigidElement::Rbe3 {
-                id,
-                reference,
-                ref_dofs,
-                independent,
-            } => {
-                node_ok(*reference, "RBE3")?;
-                for &(nd, _, _) in independent {
-                    node_ok(nd, "RBE3")?;
-                }
-                let rows = rbe3_rows(model, dofs, *reference, *ref_dofs, independent)
-                    .map_err(|m| err(format!("RBE3 {id}: {m}")))?;
-                let rows: Vec<(usize, Expr)> = rows
-                    .into_iter()
-                    .filter_map(|(c, e)| dofs.dof(*reference, c).map(|dd| (dd, e)))
-                    .collect();
-                if spec.independent_rbe3_reference.contains(reference) {
-                    let usable = |d: usize| !fixed[d];
-                    for (dd, e) in rbe3_solved_for_weighted(&rows, usable).map_err(|m| {
-                        err(format!(
-                            "RBE3 {id}: reference node {} cannot stay independent: {m}",
-                            model.nodes[*reference].id
-                        ))
-                    })? {
-                        add_dep(dd, e, Owner::Rigid(*id))?;
-                    }
-                } else {
-                    for (dd, e) in rows {
-                        add_dep(dd, e, Owner::Rigid(*id))?;
-                    }
-                }
-            }
+        for (dd, e, owner) in rigid_element_rows(model, dofs, spec, fixed, r)? {
+            add_dep(dd, e, owner)?;
         }
     }
     for body in &model.rigid_bodies {
         for node in body.nodes() {
-            node_ok(node, "rigid element")?;
+            check_node(model, node, "rigid element")?;
         }
         let rows = super::rigid_body::rigid_body_rows(model, dofs, body)
-            .map_err(|m| err(format!("rigid element {}: {m}", body.id)))?;
+            .map_err(|m| constraint_error(model, format!("rigid element {}: {m}", body.id)))?;
         for (dd, e) in rows {
             add_dep(dd, e, Owner::Rigid(body.id))?;
         }
     }
     for mpc in &model.mpcs {
         for (d, _) in &mpc.terms {
-            node_ok(d.node, "MPC")?;
+            check_node(model, d.node, "MPC")?;
         }
         let (dd, e) = super::rigid_body::mpc_row(model, dofs, mpc)
-            .map_err(|m| err(format!("MPC {}: {m}", mpc.id)))?;
+            .map_err(|m| constraint_error(model, format!("MPC {}: {m}", mpc.id)))?;
         add_dep(dd, e, Owner::Mpc(mpc.id))?;
     }
-    for (&d, (_, id)) in &dep {
-        if fixed[d] {
-            let (node, c) = dofs.node_of(d).unwrap_or((0, 0));
-            return Err(err(format!(
-                "dof {} of node {} is constrained by an SPC and is dependent in {id}",
-                c + 1,
-                model.nodes[node].id
-            )));
+    Ok(dep)
+}
+
+/// The dependent dofs of one RBE2 or RBE3, in order, with their expressions.
+fn rigid_element_rows(
+    model: &Model,
+    dofs: &DofMap,
+    spec: &ConstraintSpec,
+    fixed: &[bool],
+    r: &RigidElement,
+) -> Result<Vec<(usize, Expr, Owner)>, FeError> {
+    let err = |message: String| constraint_error(model, message);
+    let mut out = Vec::new();
+    match r {
+        RigidElement::Rbe2 {
+            id,
+            independent,
+            dependent,
+            dofs: mask,
+        } => {
+            check_node(model, *independent, "RBE2")?;
+            let i = *independent;
+            for &d in dependent {
+                check_node(model, d, "RBE2")?;
+                if d == i {
+                    return Err(err(format!(
+                        "RBE2 {id}: node {} is both independent and dependent",
+                        model.nodes[d].id
+                    )));
+                }
+                let h = rbe2_map(model, dofs, i, d);
+                for c in mask.dofs() {
+                    let Some(dd) = dofs.dof(d, c) else { continue };
+                    let e: Expr = (0..6)
+                        .filter_map(|q| dofs.dof(i, q).map(|di| (di, h[c][q])))
+                        .filter(|t| t.1 != 0.0)
+                        .collect();
+                    out.push((dd, e, Owner::Rigid(*id)));
+                }
+            }
+        }
+        RigidElement::Rbe3 {
+            id,
+            reference,
+            ref_dofs,
+            independent,
+        } => {
+            check_node(model, *reference, "RBE3")?;
+            for &(nd, _, _) in independent {
+                check_node(model, nd, "RBE3")?;
+            }
+            let rows = rbe3_rows(model, dofs, *reference, *ref_dofs, independent)
+                .map_err(|m| err(format!("RBE3 {id}: {m}")))?;
+            let rows: Vec<(usize, Expr)> = rows
+                .into_iter()
+                .filter_map(|(c, e)| dofs.dof(*reference, c).map(|dd| (dd, e)))
+                .collect();
+            let rows = if spec.independent_rbe3_reference.contains(reference) {
+                let usable = |d: usize| !fixed[d];
+                rbe3_solved_for_weighted(&rows, usable).map_err(|m| {
+                    err(format!(
+                        "RBE3 {id}: reference node {} cannot stay independent: {m}",
+                        model.nodes[*reference].id
+                    ))
+                })?
+            } else {
+                rows
+            };
+            out.extend(rows.into_iter().map(|(dd, e)| (dd, e, Owner::Rigid(*id))));
         }
     }
+    Ok(out)
+}
 
-    // Retained dofs, then rows of T by substitution.
+/// The retained dofs (neither held nor dependent) and every dof's row of T over them, by
+/// substitution of the dependent dofs' expressions.
+fn substitution_rows(
+    model: &Model,
+    dofs: &DofMap,
+    dep: &HashMap<usize, (Expr, Owner)>,
+    fixed: &[bool],
+) -> Result<(Vec<Expr>, Vec<usize>), FeError> {
+    let n = dofs.n_dofs;
     let mut red = vec![usize::MAX; n];
     let mut retained = Vec::new();
     for d in 0..n {
@@ -275,61 +341,76 @@ pub fn eliminate(
     let mut rows: Vec<Option<Expr>> = vec![None; n];
     let mut state = vec![0u8; n];
     for d in 0..n {
-        resolve(d, &dep, &fixed, &red, &mut rows, &mut state).map_err(|(d, id)| {
+        resolve(d, dep, fixed, &red, &mut rows, &mut state).map_err(|(d, id)| {
             let (node, c) = dofs.node_of(d).unwrap_or((0, 0));
-            err(format!(
-                "{id}: dependency cycle through dof {} of node {}",
-                c + 1,
-                model.nodes[node].id
-            ))
+            constraint_error(
+                model,
+                format!(
+                    "{id}: dependency cycle through dof {} of node {}",
+                    c + 1,
+                    model.nodes[node].id
+                ),
+            )
         })?;
     }
-    let rows: Vec<Expr> = rows.into_iter().map(Option::unwrap_or_default).collect();
-    let (mut t, mut k_r, mut m_r) = triple(&rows, retained.len(), k, m);
+    let rows = rows.into_iter().map(Option::unwrap_or_default).collect();
+    Ok((rows, retained))
+}
 
+/// The automatic SPCs: retained dofs with neither stiffness nor mass on K_r's and M_r's
+/// diagonal are dropped from T (their physical dofs in `auto_spc`).
+fn without_empty_dofs(
+    rows: Vec<Expr>,
+    mut retained: Vec<usize>,
+    (mut t, mut k_r, mut m_r): (
+        SparseColMat<usize, f64>,
+        SparseColMat<usize, f64>,
+        SparseColMat<usize, f64>,
+    ),
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+) -> Reduced {
+    let diag = |a: &SparseColMat<usize, f64>, j: usize| {
+        let a = a.as_ref();
+        a.row_idx_of_col(j)
+            .zip(a.val_of_col(j))
+            .find(|(i, _)| *i == j)
+            .map_or(0.0, |(_, v)| *v)
+    };
+    let drop: Vec<bool> = (0..retained.len())
+        .map(|j| diag(&k_r, j) == 0.0 && diag(&m_r, j) == 0.0)
+        .collect();
     let mut auto = Vec::new();
-    if spec.auto_spc {
-        let diag = |a: &SparseColMat<usize, f64>, j: usize| {
-            let a = a.as_ref();
-            a.row_idx_of_col(j)
-                .zip(a.val_of_col(j))
-                .find(|(i, _)| *i == j)
-                .map_or(0.0, |(_, v)| *v)
-        };
-        let drop: Vec<bool> = (0..retained.len())
-            .map(|j| diag(&k_r, j) == 0.0 && diag(&m_r, j) == 0.0)
-            .collect();
-        if drop.iter().any(|&b| b) {
-            let mut new_idx = vec![usize::MAX; retained.len()];
-            let mut kept = Vec::new();
-            for (j, &d) in retained.iter().enumerate() {
-                if drop[j] {
-                    auto.push(d);
-                } else {
-                    new_idx[j] = kept.len();
-                    kept.push(d);
-                }
+    if drop.iter().any(|&b| b) {
+        let mut new_idx = vec![usize::MAX; retained.len()];
+        let mut kept = Vec::new();
+        for (j, &d) in retained.iter().enumerate() {
+            if drop[j] {
+                auto.push(d);
+            } else {
+                new_idx[j] = kept.len();
+                kept.push(d);
             }
-            let rows2: Vec<Expr> = rows
-                .iter()
-                .map(|r| {
-                    r.iter()
-                        .filter(|(j, _)| !drop[*j])
-                        .map(|&(j, v)| (new_idx[j], v))
-                        .collect()
-                })
-                .collect();
-            retained = kept;
-            (t, k_r, m_r) = triple(&rows2, retained.len(), k, m);
         }
+        let rows2: Vec<Expr> = rows
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .filter(|(j, _)| !drop[*j])
+                    .map(|&(j, v)| (new_idx[j], v))
+                    .collect()
+            })
+            .collect();
+        retained = kept;
+        (t, k_r, m_r) = triple(&rows2, retained.len(), k, m);
     }
-    Ok(Reduced {
+    Reduced {
         t,
         k: k_r,
         m: m_r,
         retained,
         auto_spc: auto,
-    })
+    }
 }
 
 /// Resolve the T row of dof d over retained dofs; Err((dof, element id)) on a cycle.

@@ -1,7 +1,7 @@
 //! Interface definition: turn the user's `--interface` list (node ids, `NODE:DOFS` with Nastran
 //! component digits, and node-set names) into
 //! interface nodes, building a spider for each node set the way engineers attach joints to solid
-//! meshes (DESIGN.md §3 "Interface spiders").
+//! meshes (docs/design.md §3 "Interface spiders").
 //!
 //! A node set becomes, by default, a rigid RBE2-type spider from a new centre node to every node
 //! of the set (dependent dofs 123: the set's nodes are solid nodes); `Rbe3` makes the centre node
