@@ -18,8 +18,8 @@
 //!   crate) and the Matrix Market writer of K and M.
 //! * [`pipeline`] — `flexbody build` as the list of those stages ([`build::build`], also
 //!   [`build`]), and what they share: deck defaults, interfaces, scene loads, checks, recipe.
-//! * [`cli`] — the command line: arguments, the commands, what they print ([`check`](mod@check),
-//!   [`inspect`](mod@inspect)).
+//! * [`cli`] — the command line: arguments, the commands, what they print
+//!   ([`inspect`](mod@inspect)).
 //! * [`export`] — a `.flexbody` file → other solvers' formats.
 //!
 //! See `ARCHITECTURE.md` and `docs/design.md`.
@@ -39,6 +39,6 @@ pub mod write;
 // Crate-root paths kept for programs written against the flat layout (`flexbody::build::…`,
 // `flexbody::check::…`, `flexbody::stress`, …): each names the module where the code lives now.
 pub use body::{damping, shell_stress, stress};
-pub use cli::{check, inspect};
+pub use cli::inspect;
 pub use pipeline as build;
-pub use pipeline::{diagnose, interface, options, recipe, scene};
+pub use pipeline::{check, diagnose, interface, options, recipe, scene};

@@ -366,6 +366,7 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
             .map(crate::pipeline::options::parse_geometric_stiffness)
             .transpose()?,
         damping: a.damping.clone(),
+        constrained_system: a.write_matrices.is_some(),
     })
 }
 

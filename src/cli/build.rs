@@ -30,8 +30,9 @@ pub(crate) fn command(a: &BuildArgs) -> anyhow::Result<()> {
             .with_context(|| format!("cannot build {}", a.model.display()))?;
         progress.stage("write");
         crate::write::write_reduced_body(&a.output, &out.body, &Default::default())?;
-        if let Some(dir) = &a.write_matrices {
-            crate::pipeline::matrices::export_mtx(&spec, dir)?;
+        if let (Some(dir), Some(sys)) = (&a.write_matrices, &out.constrained_system) {
+            let source = crate::pipeline::matrices::source_name(&spec.model);
+            crate::write::mtx::write_matrices(dir, sys, &source)?;
         }
         Ok(out)
     };

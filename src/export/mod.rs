@@ -10,7 +10,6 @@
 //! * [`view`] — `flexbody view`: one self-contained HTML page that animates the modes.
 //! * [`mtx`] — the model's K and M in Matrix Market (from the model, not the file: the file's
 //!   recipe says how the model was built, [`mtx::export_body_matrices`]).
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use flexbody_reader::{ModeLabel, ReducedBody};
@@ -140,8 +139,8 @@ pub fn mode_label_name(label: ModeLabel) -> &'static str {
     }
 }
 
-/// Writes `bytes` to `path` through `path`'s folder/.NAME.tmp-PID, fsync and rename; on any
-/// error the temp file is removed and `path` is untouched.
+/// Writes `bytes` to `path` by [`crate::write::write_replacing`] (temp file beside it, fsync,
+/// rename; on any error `path` is untouched).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ExportError> {
     let io = |action: &'static str| {
         move |source| ExportError::Io {
@@ -156,26 +155,6 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ExportError> {
             "it is a folder: give a file name",
         )));
     }
-    let name = path
-        .file_name()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "export".into());
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp).map_err(io("creating the temp file beside it"))?;
-        f.write_all(bytes)
-            .map_err(io("writing the temp file beside it"))?;
-        f.sync_all()
-            .map_err(io("syncing the temp file beside it"))?;
-        drop(f);
-        std::fs::rename(&tmp, path).map_err(io("renaming the temp file onto the target"))
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    crate::write::write_replacing(path, |w| w.write_all(bytes))
+        .map_err(|(action, source)| io(action)(source))
 }

@@ -12,6 +12,7 @@ use crate::pipeline::plan::Plan;
 use crate::pipeline::stages::constraints::eliminate_constraints;
 use crate::pipeline::stages::import::import;
 use crate::pipeline::stages::interfaces::attach;
+use crate::pipeline::stages::{PreloadSummary, WithInterfaces};
 use crate::pipeline::{BuildError, BuildSpec};
 use crate::write::mtx::{write_matrices, ConstrainedSystem, MatrixWriteError};
 
@@ -39,18 +40,16 @@ pub fn constrained_system(spec: &BuildSpec) -> Result<ConstrainedSystem, BuildEr
     constrained_system_of_model(&spec.with_beam_lumping_resolved(), model)
 }
 
-/// [`constrained_system`] for a model in memory: the deck's defaults, the interface spiders,
-/// assembly, elimination and the preload (K_T,r in place of K_r) by the build's own stages.
-pub fn constrained_system_of_model(
-    spec: &BuildSpec,
-    model: Model,
-) -> Result<ConstrainedSystem, BuildError> {
+/// The stages up to the reduction as `build` runs them, for a model in memory: the plan (deck
+/// defaults), the interface spiders, assembly, elimination and the preload (K_T,r in place of
+/// K_r). `export --to mtx` and `check --model` rebuild through this.
+pub fn constrained_stages(spec: &BuildSpec, model: Model) -> Result<ConstrainedStages, BuildError> {
     let plan = Plan::resolve(spec, &model)?;
     let interfaced = attach(&plan, model)?;
     let assembled = assemble(&interfaced.model, &plan.assembly)?;
     let mut reduced = eliminate_constraints(&interfaced, &assembled)?;
     // a preloaded build reduces K_T,r = K_r + Tᵀ K_G T: that is the K written
-    crate::pipeline::stages::preload::apply(
+    let preload = crate::pipeline::stages::preload::apply(
         &interfaced.model,
         &assembled,
         &mut reduced,
@@ -58,8 +57,55 @@ pub fn constrained_system_of_model(
         &plan.spec.scene,
         plan.spec.par(),
     )?;
-    let model = &interfaced.model;
-    let d = &assembled.dofs;
+    Ok(ConstrainedStages {
+        plan,
+        interfaced,
+        assembled,
+        reduced,
+        preload,
+    })
+}
+
+/// What [`constrained_stages`] returns: each stage's result up to the reduction.
+pub struct ConstrainedStages {
+    /// The options resolved.
+    pub plan: Plan,
+    /// The model with its interface spiders.
+    pub interfaced: WithInterfaces,
+    /// The physical K, M and dof map.
+    pub assembled: fe::Assembled,
+    /// K_r (K_T,r with a preload), M_r and T.
+    pub reduced: fe::Reduced,
+    /// The preload applied, if any.
+    pub preload: Option<PreloadSummary>,
+}
+
+/// [`constrained_system`] for a model in memory.
+pub fn constrained_system_of_model(
+    spec: &BuildSpec,
+    model: Model,
+) -> Result<ConstrainedSystem, BuildError> {
+    let c = constrained_stages(spec, model)?;
+    Ok(system_of(
+        &c.plan,
+        &c.interfaced.model,
+        &c.assembled.dofs,
+        &c.reduced.retained,
+        c.reduced.k,
+        c.reduced.m,
+    ))
+}
+
+/// The constrained system of the build's own stages (`build --write-matrices`): `k`, `m` the
+/// K_r, M_r the reduction starts from, with the dof table and the nodes' coordinates.
+pub fn system_of(
+    plan: &Plan,
+    model: &Model,
+    d: &fe::DofMap,
+    retained: &[usize],
+    k: crate::solve::SparseColMat<usize, f64>,
+    m: crate::solve::SparseColMat<usize, f64>,
+) -> ConstrainedSystem {
     // Physical dof → (node, component): dofs are numbered node-major from `first`.
     let mut owner = vec![(0u64, 0u8); d.n_dofs];
     for (node, (&first, &count)) in d.first.iter().zip(&d.count).enumerate() {
@@ -73,7 +119,7 @@ pub fn constrained_system_of_model(
             owner[b.first + i] = (model.elements[b.element].id, (6 + i) as u8);
         }
     }
-    let dofs: Vec<(u64, u8)> = reduced.retained.iter().map(|&p| owner[p]).collect();
+    let dofs: Vec<(u64, u8)> = retained.iter().map(|&p| owner[p]).collect();
     // Each node with a retained dof, once, in the order of its first dof.
     let position: std::collections::HashMap<u64, [f64; 3]> =
         model.nodes.iter().map(|nd| (nd.id, nd.x)).collect();
@@ -84,24 +130,28 @@ pub fn constrained_system_of_model(
         .filter(|(id, _)| seen.insert(*id))
         .filter_map(|(id, _)| position.get(id).map(|&x| (*id, x)))
         .collect();
-    Ok(ConstrainedSystem {
+    ConstrainedSystem {
         dofs,
         nodes,
-        k: reduced.k,
-        m: reduced.m,
+        k,
+        m,
         mass: plan.spec.mass,
         physical_dofs: d.n_dofs,
-    })
+    }
 }
 
 /// The `mtx` export target: the constrained K, M of `spec`'s model written to `dir`.
 pub fn export_mtx(spec: &BuildSpec, dir: &Path) -> Result<Vec<PathBuf>, MtxError> {
     let sys = constrained_system(spec)?;
-    let source = spec.model.file_name().map_or_else(
-        || spec.model.display().to_string(),
+    Ok(write_matrices(dir, &sys, &source_name(&spec.model))?)
+}
+
+/// The model as the Matrix Market files' headers name it: its file name.
+pub fn source_name(model: &Path) -> String {
+    model.file_name().map_or_else(
+        || model.display().to_string(),
         |f| f.to_string_lossy().into_owned(),
-    );
-    Ok(write_matrices(dir, &sys, &source)?)
+    )
 }
 
 /// The build options a body was made with, from its recipe (`recipe.json`), for exporting the
@@ -124,12 +174,22 @@ pub fn spec_from_body_with(
 ) -> Result<BuildSpec, crate::pipeline::options::OptionError> {
     let input =
         crate::pipeline::recipe::model_input(body.recipe.as_ref(), model.to_path_buf(), overrides)?;
-    let mut spec = BuildSpec::new(model.to_path_buf(), body.units.clone(), &[]);
+    Ok(spec_of_input(body, input))
+}
+
+/// The spec of the build that made `body`, from its model input (the recipe's options with
+/// the ones given on top): what `check --model` and `export --to mtx` rebuild.
+pub fn spec_of_input(
+    body: &flexbody_reader::ReducedBody,
+    input: crate::pipeline::recipe::ModelInput,
+) -> BuildSpec {
+    let mut spec = BuildSpec::new(input.path, body.units.clone(), &[]);
     spec.format = input.format;
     spec.material = input.material;
     spec.thickness = input.thickness;
     spec.subcase = input.subcase;
-    spec.ignore = input.ignore.clone();
+    spec.ignore = input.ignore;
+    spec.inp_shells = input.inp_shells;
     spec.interface = input.interface;
     spec.spider = input.spider;
     spec.beam_mass = input.beam_mass;
@@ -139,7 +199,7 @@ pub fn spec_from_body_with(
         flexbody_reader::MassKind::Consistent => fe::MassKind::Consistent,
     };
     spec.mass_explicit = true;
-    Ok(spec)
+    spec
 }
 
 /// `flexbody export FILE --to mtx --model MODEL -o DIR`: the constrained K, M of the build that

@@ -25,6 +25,7 @@ use std::time::Instant;
 use crate::model::Model;
 use crate::reduce::ModeSet;
 
+pub mod check;
 pub mod deck;
 pub mod diagnose;
 pub mod file_checks;
@@ -173,6 +174,13 @@ fn run_stages(
     } else {
         None
     };
+    // `--write-matrices`: K_r, M_r as the reduction gets them (it may take them over)
+    let constrained_system = plan.spec.constrained_system.then(|| {
+        let (model, reduced) = (&interfaced.model, &constrained.reduced);
+        let dofs = &constrained.assembled.dofs;
+        let (k, m) = (reduced.k.clone(), reduced.m.clone());
+        matrices::system_of(&plan, model, dofs, &reduced.retained, k, m)
+    });
     let mut basis = clock.run(Stage::Reduction, || {
         reduction::reduction(
             &plan,
@@ -230,6 +238,7 @@ fn run_stages(
     Ok(BuildOutput {
         body,
         report: std::mem::take(report),
+        constrained_system,
     })
 }
 

@@ -35,6 +35,9 @@ pub struct BuildOutput {
     pub body: file::ReducedBody,
     /// What was done.
     pub report: BuildReport,
+    /// The constrained K_r, M_r the reduction started from, with their dof table
+    /// (`BuildSpec::constrained_system`, `--write-matrices`).
+    pub constrained_system: Option<crate::write::mtx::ConstrainedSystem>,
 }
 
 /// Errors of the pipeline; each names the file and the entity.

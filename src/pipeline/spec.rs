@@ -116,6 +116,9 @@ pub struct BuildSpec {
     /// `--damping` as given: the modal damping ratios the file holds
     /// ([`crate::body::damping::parse_damping`]; `None`: no `damping.bin`).
     pub damping: Option<String>,
+    /// `--write-matrices`: the output carries the constrained K_r, M_r the reduction starts
+    /// from (copied after the preload stage; [`super::BuildOutput::constrained_system`]).
+    pub constrained_system: bool,
 }
 
 /// The unit loads of `--geometric-stiffness` (SPEC §5.16).
@@ -162,6 +165,7 @@ impl BuildSpec {
             precision: Default::default(),
             geometric_stiffness: None,
             damping: None,
+            constrained_system: false,
         }
     }
 

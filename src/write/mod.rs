@@ -299,16 +299,38 @@ pub fn write_reduced_body(
     }
     let (dir, _, prefix) = output_parts(path);
     remove_stale_temp_files(&dir, &prefix);
+    write_replacing(path, |w| w.write_all(&bytes)).map_err(|(action, source)| WriteError::Io {
+        path: path.to_path_buf(),
+        action,
+        source,
+    })
+}
+
+/// What failed in [`write_replacing`]: the step (`"creating the temp file beside it"`, …) and
+/// its cause.
+pub type ReplaceError = (&'static str, std::io::Error);
+
+/// The one way flexbody writes a file (the `.flexbody` file, every export, the Matrix Market
+/// files): `fill` writes the content into `path`'s folder/.NAME.tmp-PID (buffered), then fsync
+/// and rename over `path`. On any error the temp file is removed and `path` is untouched; the
+/// error names the step that failed.
+pub fn write_replacing(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), ReplaceError> {
+    let (dir, _, prefix) = output_parts(path);
     let tmp = dir.join(format!("{prefix}{}", std::process::id()));
     let result = (|| {
-        let mut f =
-            std::fs::File::create(&tmp).map_err(io(path, "creating the temp file beside it"))?;
-        f.write_all(&bytes)
-            .map_err(io(path, "writing the temp file beside it"))?;
-        f.sync_all()
-            .map_err(io(path, "syncing the temp file beside it"))?;
-        drop(f);
-        std::fs::rename(&tmp, path).map_err(io(path, "renaming the temp file onto the target"))
+        let file =
+            std::fs::File::create(&tmp).map_err(|e| ("creating the temp file beside it", e))?;
+        let mut w = std::io::BufWriter::new(file);
+        fill(&mut w).map_err(|e| ("writing the temp file beside it", e))?;
+        let file =
+            (w.into_inner()).map_err(|e| ("writing the temp file beside it", e.into_error()))?;
+        file.sync_all()
+            .map_err(|e| ("syncing the temp file beside it", e))?;
+        drop(file);
+        std::fs::rename(&tmp, path).map_err(|e| ("renaming the temp file onto the target", e))
     })();
     if result.is_err() {
         // Best effort: the temp file may not exist if creation itself failed.

@@ -77,7 +77,6 @@ pub fn constraints(
         interface_masks,
         reference_dofs,
         reference_nodes,
-        preload: None,
         expected_rigid,
     })
 }

@@ -105,8 +105,6 @@ pub struct Constrained {
     pub reference_dofs: Vec<usize>,
     /// Reference conditions per node, the model's own SPCs included (what the file records).
     pub reference_nodes: ReferenceNodes,
-    /// The preload `reduced.k` carries (K_T,r; set by the preload stage).
-    pub preload: Option<crate::pipeline::stages::PreloadSummary>,
     /// The rigid-body modes a model of several connected parts must have (`None`: one part,
     /// the file's reference conditions tell), for the verify stage.
     pub expected_rigid: Option<RigidExpectation>,
