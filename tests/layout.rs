@@ -446,13 +446,13 @@ fn path_tree(code: &str, k: usize, prefix: &[String], out: &mut Vec<Vec<String>>
             // a group: its items up to the matching brace, split at top-level commas
             let mut depth = 0;
             let mut start = k + 1;
-            for j in k..bytes.len() {
-                match bytes[j] {
+            for (j, &byte) in bytes.iter().enumerate().skip(k) {
+                match byte {
                     b'{' => depth += 1,
                     b'}' | b',' if depth == 1 => {
                         path_tree(code, start, &path, out);
                         start = j + 1;
-                        if bytes[j] == b'}' {
+                        if byte == b'}' {
                             return;
                         }
                     }
