@@ -123,9 +123,9 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
     ("NUMOFF", C::Session, N("an id offset for a later archive: no effect on one archive")),
     ("OMEGA", C::Analysis, R(ROTATION)),
     ("QRDOPT", C::Analysis, N("an option of the QR-damped eigensolver: no effect on the body")),
-    ("R", C::Material, H("a real constant set (MASS21's masses)")),
+    ("R", C::Material, H("a real constant set (MASS21's masses, COMBIN14's stiffness)")),
     ("REAL", C::Mesh, N(ATTRIBUTE)),
-    ("RLBLOCK", C::Material, H("real constant sets (MASS21's masses)")),
+    ("RLBLOCK", C::Material, H("real constant sets (MASS21's masses, COMBIN14's stiffness)")),
     ("SECBLOCK", C::Material, R(SECTION)),
     ("SECCONTROL", C::Material, R(SECTION)),
     ("SECDATA", C::Material, R(SECTION)),
@@ -141,8 +141,8 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
 
 /// Element types by number: name and disposition (KEYOPTs in the text).
 pub(crate) const ELEMENT_TYPES: &[(u32, &str, Disposition)] = &[
-    (14, "COMBIN14", R("spring-damper: formulation not formed here")),
-    (21, "MASS21", H("a point mass: KEYOPT(3)=0 with MASSX = MASSY = MASSZ, or KEYOPT(3)=2 (mass only), from its real constant set; rotary inertias (no element read here gives a node rotational stiffness), directional masses, KEYOPT(2)=1 (nodal frame) and the 2-D forms are refused")),
+    (14, "COMBIN14", H("spring: KEYOPT(2)=0 with KEYOPT(3)=0, the 3-D longitudinal spring along I→J (as Abaqus SPRINGA); KEYOPT(2)=1…3, the 1-D spring between UX, UY or UZ of I and J (as Nastran CELAS2); K from the real constant set (K = 0: no stiffness), damping CV1/CV2 not read (a note); refused: torsional and 2-D (KEYOPT(3)=1, 2), rotational 1-D (KEYOPT(2)=4…6; no element read here gives rotations stiffness or mass), thermal/pressure (KEYOPT(2)=7, 8), an initial length or preload, coincident nodes of the 3-D spring")),
+    (21, "MASS21", H("a point mass: KEYOPT(3)=0 with MASSX = MASSY = MASSZ, or KEYOPT(3)=2 (mass only), from its real constant set, with its rotary inertias IXX, IYY, IZZ on a node an MPC184 rigid beam joins; refused: rotary inertias elsewhere (no other element read here gives a node rotational stiffness), directional masses, KEYOPT(2)=1 (nodal frame) and the 2-D forms are refused")),
     (152, "SURF152", R("surface effect element: formulation not formed here")),
     (153, "SURF153", R("surface effect element: formulation not formed here")),
     (154, "SURF154", R("surface effect element: formulation not formed here")),
@@ -160,7 +160,7 @@ pub(crate) const ELEMENT_TYPES: &[(u32, &str, Disposition)] = &[
     (181, "SHELL181", R("4-node shell: formulation not formed here")),
     (182, "PLANE182", R("a 2-D element: a body is three-dimensional")),
     (183, "PLANE183", R("a 2-D element: a body is three-dimensional")),
-    (184, "MPC184", R("rigid link/beam: formulation not formed here")),
+    (184, "MPC184", H("rigid link (KEYOPT(1)=0): the linearized constraint keeping the distance of I and J, e·(u_J − u_I) = 0, one linear MPC; rigid beam (KEYOPT(1)=1): J follows the rigid motion of I in all six dofs, an RBE2; KEYOPT(2)=0 or 1 (direct elimination, Lagrange multipliers: the same constraint); the slider and joints (other KEYOPT(1)) are refused")),
     (185, "SOLID185", R("8-node brick: none of its KEYOPT(2) formulations (B-bar, uniform reduced, enhanced strain, simplified enhanced strain) is formed here")),
     (186, "SOLID186", H("20-node brick, KEYOPT(2)=0 (the default): uniform reduced 2×2×2 integration, as Abaqus C3D20R; KEYOPT(2)=1 (full integration), degenerate wedge/pyramid/tet shapes and dropped mid-side nodes are refused by line")),
     (187, "SOLID187", H("10-node tetrahedron as Abaqus C3D10; written with its 4 corner nodes only (mid-side nodes dropped: straight edges, linear displacement) it is exactly the 4-node tetrahedron C3D4")),

@@ -51,6 +51,26 @@ pub(super) enum Formed {
     NoStiffness,
     /// A point mass (MASS21) at this node id: mass and the diagonal rotary inertia.
     PointMass(u64, f64, [f64; 3]),
+    /// A spring (COMBIN14) between two node ids.
+    Spring(Spring),
+    /// An MPC184 rigid link (KEYOPT(1)=0) from node id I to J: their distance kept.
+    RigidLink(u64, u64),
+    /// An MPC184 rigid beam (KEYOPT(1)=1) from node id I to J: J follows I's rigid motion.
+    RigidBeam(u64, u64),
+}
+
+/// A COMBIN14 spring between nodes `a` and `b` (ids).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Spring {
+    pub a: u64,
+    pub b: u64,
+    /// The stiffness K (real constant 1).
+    pub k: f64,
+    /// Along the line from a to b (KEYOPT(2)=0, KEYOPT(3)=0), or between the same translation
+    /// 0…2 of both nodes (KEYOPT(2)=1…3).
+    pub along: Option<u8>,
+    /// Damping CV1 or CV2 is set (not read: an undamped body).
+    pub damped: bool,
 }
 
 /// Why an element cannot be formed (the refusal's reason; the KEYOPT named when it is one).
@@ -86,11 +106,118 @@ pub(super) fn form(
         Disposition::Honoured(_) => {}
     }
     match number {
+        14 => combin14(t, rec, reals),
         21 => mass21(t, rec, reals),
+        184 => mpc184(t, rec),
         186 => solid186(t, rec),
         187 => solid187(t, rec),
         // every honoured row of the catalogue is matched above; a new one must be added here
         other => Err(format!("element type {other} ({name}) has no former")),
+    }
+}
+
+/// COMBIN14 (MAPDL Element Reference "COMBIN14"): KEYOPT(2)=0 with KEYOPT(3)=0, the 3-D
+/// longitudinal spring (uniaxial along I→J, no bending or torsion), and KEYOPT(2)=1…3, the 1-D
+/// spring between UX, UY or UZ of I and J (nodal directions: the archive's nodes have no
+/// rotation); real constants K, CV1, CV2 (the damping not read), a nonzero initial length or
+/// preload (ILEN, IFORCE) refused. The torsional (KEYOPT(3)=1), 2-D (KEYOPT(3)=2) and rotational
+/// 1-D (KEYOPT(2)=4…6) springs need rotational dofs no element read here gives stiffness or
+/// mass; KEYOPT(2)=7, 8 are thermal and pressure elements.
+fn combin14(
+    t: &ElementType,
+    rec: &ElementRecord,
+    reals: Option<&[f64]>,
+) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[1, 2, 3])?;
+    let keyopt = |k: u32| t.keyopts.get(&k).copied().unwrap_or(0);
+    let along = match (keyopt(2), keyopt(3)) {
+        (0, 0) => None,
+        (0, k3) => {
+            return Err(format!(
+                "COMBIN14 KEYOPT(3)={k3} ({}): not formed here",
+                if k3 == 1 {
+                    "torsional: its rotations have no stiffness or mass from another element read here"
+                } else {
+                    "a 2-D element"
+                }
+            ))
+        }
+        (k2 @ 1..=3, _) => Some((k2 - 1) as u8),
+        (k2, _) => {
+            return Err(format!(
+                "COMBIN14 KEYOPT(2)={k2} ({}): not formed here",
+                if k2 <= 6 {
+                    "a 1-D rotational spring: its rotations have no stiffness or mass from another element read here"
+                } else {
+                    "a thermal or pressure element"
+                }
+            ))
+        }
+    };
+    let Some(reals) = reals else {
+        return Err(format!(
+            "COMBIN14: real constant set {} is not defined",
+            rec.real
+        ));
+    };
+    let real = |k: usize| reals.get(k).copied().unwrap_or(0.0);
+    if !(real(0) >= 0.0 && real(0).is_finite()) {
+        return Err(format!(
+            "COMBIN14: stiffness K = {} (negative or not finite)",
+            real(0)
+        ));
+    }
+    if let Some(v) = reals.iter().skip(3).find(|v| **v != 0.0) {
+        return Err(format!(
+            "COMBIN14: real constant {v} past CV2 (an initial length or preload, ILEN/IFORCE): not read"
+        ));
+    }
+    let nodes: Vec<u64> = rec.nodes.iter().copied().filter(|&n| n != 0).collect();
+    let [a, b] = nodes[..] else {
+        return Err(format!(
+            "COMBIN14 with {} nodes (I and J expected)",
+            nodes.len()
+        ));
+    };
+    if real(0) == 0.0 {
+        return Ok(Formed::NoStiffness);
+    }
+    Ok(Formed::Spring(Spring {
+        a,
+        b,
+        k: real(0),
+        along,
+        damped: real(1) != 0.0 || real(2) != 0.0,
+    }))
+}
+
+/// MPC184 (MAPDL Element Reference "MPC184-Link/Beam"): KEYOPT(1)=0, the rigid link (UX, UY,
+/// UZ at I and J; the linearized constraint keeps their distance: e·(u_J − u_I) = 0, e the unit
+/// vector I→J), KEYOPT(1)=1, the rigid beam (all six dofs: J moves rigidly with I, an RBE2);
+/// KEYOPT(2)=0 (direct elimination) and 1 (Lagrange multipliers) impose the same constraint.
+/// Other KEYOPT(1) values (the slider and the joints) are refused.
+fn mpc184(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[1, 2])?;
+    let nodes: Vec<u64> = rec.nodes.iter().copied().filter(|&n| n != 0).collect();
+    let [a, b] = nodes[..] else {
+        return Err(format!(
+            "MPC184 with {} nodes (I and J expected)",
+            nodes.len()
+        ));
+    };
+    if a == b {
+        return Err("MPC184 from a node to itself".into());
+    }
+    match (
+        t.keyopts.get(&1).copied().unwrap_or(0),
+        t.keyopts.get(&2).copied().unwrap_or(0),
+    ) {
+        (_, k2) if k2 != 0 && k2 != 1 => Err(format!("MPC184 KEYOPT(2)={k2}: not formed here")),
+        (0, _) => Ok(Formed::RigidLink(a, b)),
+        (1, _) => Ok(Formed::RigidBeam(a, b)),
+        (k1, _) => Err(format!(
+            "MPC184 KEYOPT(1)={k1} (a slider or joint): not formed here"
+        )),
     }
 }
 
@@ -162,20 +289,9 @@ fn mass21(t: &ElementType, rec: &ElementRecord, reals: Option<&[f64]>) -> Result
                      equal masses are formed here"
                 ));
             }
+            // a rotary inertia is kept only on a node an MPC184 rigid beam joins (the model's
+            // check after every element is formed): no other element read here has rotations
             let inertia = [value(3), value(4), value(5)];
-            // No element type honoured from an archive has rotational dofs (SHELL18x, BEAM18x
-            // and MPC184 are refused), so a rotary inertia would sit on rotations without
-            // stiffness: three zero-frequency modes, as ANSYS would find them. Refused here by
-            // line rather than by the build's rigid-mode check; to be relaxed with the first
-            // element type that gives a node rotational stiffness.
-            if inertia.iter().any(|&i| i != 0.0) {
-                return Err(format!(
-                    "MASS21 on node {node} with rotary inertia IXX={}, IYY={}, IZZ={}: no \
-                     element type read from an archive gives a node rotational stiffness, so \
-                     the rotations would be free (set KEYOPT(3)=2 or zero inertias)",
-                    inertia[0], inertia[1], inertia[2]
-                ));
-            }
             Ok(Formed::PointMass(node, mx, inertia))
         }
         2 => Ok(Formed::PointMass(node, value(0), [0.0; 3])),
@@ -252,7 +368,7 @@ mod tests {
     }
 
     #[test]
-    fn mass21_with_rotary_inertia_is_refused_without_rotational_stiffness() {
+    fn mass21_keeps_its_rotary_inertia_for_the_model_to_check() {
         let t = ElementType::new(3, "21");
         let r = record(vec![22]);
         let mass_only = [2.0e-4, 2.0e-4, 2.0e-4, 0.0, 0.0, 0.0];
@@ -261,10 +377,9 @@ mod tests {
             Ok(Formed::PointMass(22, 2.0e-4, [0.0; 3]))
         );
         let with_inertia = [2.0e-4, 2.0e-4, 2.0e-4, 1.0e-7, 0.0, 0.0];
-        let why = form(&t, &r, Some(&with_inertia)).unwrap_err();
-        assert!(
-            why.contains("MASS21 on node 22") && why.contains("IXX=0.0000001"),
-            "{why}"
+        assert_eq!(
+            form(&t, &r, Some(&with_inertia)),
+            Ok(Formed::PointMass(22, 2.0e-4, [1.0e-7, 0.0, 0.0]))
         );
     }
 }

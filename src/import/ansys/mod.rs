@@ -27,7 +27,10 @@ use super::text::IdMap;
 use super::ImportOptions;
 use crate::model::deck::{ConstraintSource, EigenRequest};
 use crate::model::load::{Load, LoadPart};
-use crate::model::{DofMask, Element, Model, Mpc, Node, NodeDof, Property, Section, Spc};
+use crate::model::{
+    Bush, DofMask, Element, Model, Mpc, Node, NodeDof, NodeIndex, Property, RigidElement,
+    ScalarSpring, Section, Spc,
+};
 
 /// Read an archive with default options.
 pub fn read(path: &Path) -> Result<Model, ImportError> {
@@ -55,6 +58,33 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
     archive.resolve(&file, &ignored)
 }
 
+/// The nodes and node components of an archive, nothing else: the mesh a full file's matrices
+/// were assembled on ([`full::read_model`]). The archive's elements, materials, constraints and
+/// loads are not read (the full file's K, M and constraint table are the body), so a command or
+/// element type this reader would refuse does not stop it; a nodal rotation (NBLOCK angles) is
+/// refused, as the full file's dofs would be in the rotated frame. Also returns the names of
+/// the element components left out.
+pub(crate) fn read_mesh(path: &Path) -> Result<(Model, Vec<String>), ImportError> {
+    let file = path.display().to_string();
+    let text = super::text::read_text(path)?;
+    let mut archive = Archive::default();
+    archive.read(&file, &text, &BTreeSet::new())?;
+    archive.refused.clear();
+    let mut model = Model {
+        source: file.clone(),
+        ..Default::default()
+    };
+    let node_map = archive.place_nodes(&file, &mut model)?;
+    archive.refusals(&file)?;
+    let element_components = (archive.components.iter())
+        .filter(|c| !c.2)
+        .map(|c| c.1.clone())
+        .collect();
+    archive.components.retain(|c| c.2);
+    archive.components(&file, &node_map, &BTreeMap::new(), &mut model)?;
+    Ok((model, element_components))
+}
+
 /// What the archive holds, by external ids, before the resolve pass.
 #[derive(Debug, Default)]
 struct Archive {
@@ -66,6 +96,8 @@ struct Archive {
     components: Vec<(usize, String, bool, Vec<u64>)>,
     raw: constraints::Raw,
     lumped: Option<(usize, bool)>,
+    /// The MPC184 rigid links' MPCs (indices into the model's).
+    links: Vec<usize>,
     /// Real constant sets (`R`, `RLBLOCK`).
     reals: BTreeMap<i64, Vec<f64>>,
     eigen: Option<EigenRequest>,
@@ -278,52 +310,13 @@ impl Archive {
             source: file.to_owned(),
             ..Default::default()
         };
-        model.params.wtmass = 1.0;
         model.params.ansys_solid_rules = true;
-        model.files.push(file.to_owned());
-        for r in &self.nodes {
-            if r.angles != [0.0; 3] {
-                self.refused.push((
-                    r.line,
-                    format!("NBLOCK node {}", r.id),
-                    "NBLOCK".into(),
-                    "a nodal coordinate system (rotation angles): not read".into(),
-                ));
-            }
-            model.nodes.push(Node {
-                id: r.id,
-                x: r.x,
-                displacement_frame: None,
-            });
-        }
-        let node_map = IdMap::build(model.nodes.iter().map(|n| n.id)).map_err(|(_, b)| {
-            parse_err(
-                file,
-                self.nodes[b].line,
-                format!("node {}", self.nodes[b].id),
-                "duplicate node id",
-            )
-        })?;
+        let node_map = self.place_nodes(file, &mut model)?;
         let elements = self.form_elements(file, ignored, &node_map, &materials, &mut model)?;
         self.constraints(file, &node_map, &mut model)?;
+        free_dependents(&mut model, &self.links);
         self.components(file, &node_map, &elements, &mut model)?;
-        if !self.refused.is_empty() {
-            let cards = self
-                .refused
-                .iter()
-                .map(|(line, entity, key, reason)| RefusedCard {
-                    file: file.to_owned(),
-                    line: *line,
-                    entity: entity.clone(),
-                    key: key.clone(),
-                    reason: reason.clone(),
-                })
-                .collect();
-            return Err(ImportError::Refused {
-                file: file.to_owned(),
-                cards,
-            });
-        }
+        self.refusals(file)?;
         model.params.coupled_mass = Some(match self.lumped {
             Some((line, true)) => crate::model::DeckMass {
                 consistent: false,
@@ -371,6 +364,57 @@ impl Archive {
         Ok(model)
     }
 
+    /// The archive's nodes into `model` (its source and files too); a nodal rotation is refused.
+    fn place_nodes(&mut self, file: &str, model: &mut Model) -> Result<IdMap, ImportError> {
+        model.params.wtmass = 1.0;
+        model.files.push(file.to_owned());
+        for r in &self.nodes {
+            if r.angles != [0.0; 3] {
+                self.refused.push((
+                    r.line,
+                    format!("NBLOCK node {}", r.id),
+                    "NBLOCK".into(),
+                    "a nodal coordinate system (rotation angles): not read".into(),
+                ));
+            }
+            model.nodes.push(Node {
+                id: r.id,
+                x: r.x,
+                displacement_frame: None,
+            });
+        }
+        IdMap::build(model.nodes.iter().map(|n| n.id)).map_err(|(_, b)| {
+            parse_err(
+                file,
+                self.nodes[b].line,
+                format!("node {}", self.nodes[b].id),
+                "duplicate node id",
+            )
+        })
+    }
+
+    /// Every refusal gathered, as one error (none: `Ok`).
+    fn refusals(&self, file: &str) -> Result<(), ImportError> {
+        if self.refused.is_empty() {
+            return Ok(());
+        }
+        let cards = self
+            .refused
+            .iter()
+            .map(|(line, entity, key, reason)| RefusedCard {
+                file: file.to_owned(),
+                line: *line,
+                entity: entity.clone(),
+                key: key.clone(),
+                reason: reason.clone(),
+            })
+            .collect();
+        Err(ImportError::Refused {
+            file: file.to_owned(),
+            cards,
+        })
+    }
+
     /// The elements formed by type and KEYOPT, their properties (one solid property per
     /// material number); refusals grouped by type and reason, named by the first element's line.
     /// Returns the element ids → index (elements without stiffness: `None`).
@@ -396,6 +440,9 @@ impl Archive {
         let mut refusals: BTreeMap<(i64, String), (usize, usize)> = BTreeMap::new();
         let mut index: BTreeMap<u64, Option<usize>> = BTreeMap::new();
         let mut skipped: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        let mut damped = Vec::new();
+        // MASS21 with rotary inertia: (line, type, point mass)
+        let mut rotary = Vec::new();
         for r in &self.elements {
             let Some(t) = self.types.get(&r.etype) else {
                 return Err(parse_err(
@@ -429,6 +476,9 @@ impl Archive {
                     None
                 }
                 Ok(Formed::PointMass(id, mass, inertia)) => {
+                    if inertia.iter().any(|&i| i != 0.0) {
+                        rotary.push((r.line, r.etype, model.point_masses.len()));
+                    }
                     model.point_masses.push(crate::model::PointMass {
                         id: r.id,
                         node: node_of(id)?,
@@ -439,6 +489,35 @@ impl Archive {
                             [0.0, inertia[1], 0.0],
                             [0.0, 0.0, inertia[2]],
                         ],
+                    });
+                    None
+                }
+                Ok(Formed::Spring(s)) => {
+                    if s.damped {
+                        damped.push(r.line);
+                    }
+                    if let Err(why) = place_spring(r.id, &s, node_of(s.a)?, node_of(s.b)?, model) {
+                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                        continue;
+                    }
+                    None
+                }
+                Ok(Formed::RigidLink(a, b)) => {
+                    let Some(mpc) = rigid_link(r.id, node_of(a)?, node_of(b)?, model) else {
+                        let why = "MPC184 rigid link on coincident nodes: no direction".into();
+                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                        continue;
+                    };
+                    self.links.push(model.mpcs.len());
+                    model.mpcs.push(mpc);
+                    None
+                }
+                Ok(Formed::RigidBeam(a, b)) => {
+                    model.rigid_elements.push(RigidElement::Rbe2 {
+                        id: r.id,
+                        independent: node_of(a)?,
+                        dependent: vec![node_of(b)?],
+                        dofs: DofMask::ALL,
                     });
                     None
                 }
@@ -472,6 +551,10 @@ impl Archive {
                 ));
             }
         }
+        for why in rotary_without_rotations(model, &rotary) {
+            let e = refusals.entry(why.1).or_insert((why.0, 0));
+            e.1 += 1;
+        }
         model.element_sources.sort_unstable_by_key(|s| s.0);
         for ((etype, why), (line, count)) in refusals {
             let t = &self.types[&etype];
@@ -485,6 +568,12 @@ impl Archive {
                 name,
                 format!("{why} ({count} element(s), the first here)"),
             ));
+        }
+        if !damped.is_empty() {
+            self.noted.insert(
+                "COMBIN14 damping CV1/CV2 (not read: the body is undamped; --damping gives modal damping)".into(),
+                damped,
+            );
         }
         for (name, lines) in skipped {
             self.noted
@@ -657,6 +746,121 @@ impl Archive {
         }
         Ok(())
     }
+}
+
+/// A COMBIN14 spring into the model: a bush along I→J, or a scalar spring between the same
+/// translation of both nodes; the refusal's reason when the longitudinal spring has no direction.
+fn place_spring(
+    id: u64,
+    s: &elements::Spring,
+    a: NodeIndex,
+    b: NodeIndex,
+    model: &mut Model,
+) -> Result<(), String> {
+    match s.along {
+        None => {
+            let bush = Bush::axial(id, (a, model.nodes[a].x), (b, model.nodes[b].x), s.k)
+                .ok_or("COMBIN14 KEYOPT(2)=0 on coincident nodes: the longitudinal spring has no direction")?;
+            model.bushes.push(bush);
+        }
+        Some(component) => model.springs.push(ScalarSpring {
+            id,
+            a: NodeDof { node: a, component },
+            b: Some(NodeDof { node: b, component }),
+            k: s.k,
+        }),
+    }
+    Ok(())
+}
+
+/// The MASS21 rotary inertias (`rotary`: line, element type, point mass) on nodes no MPC184
+/// rigid beam joins: their rotations have no stiffness from any element read from an archive,
+/// so they would be three zero-frequency modes (ANSYS would find them too). Each as its
+/// refusal: (line, (element type, reason)).
+fn rotary_without_rotations(
+    model: &Model,
+    rotary: &[(usize, i64, usize)],
+) -> Vec<(usize, (i64, String))> {
+    let mut rotating = BTreeSet::new();
+    for r in &model.rigid_elements {
+        if let RigidElement::Rbe2 {
+            independent,
+            dependent,
+            ..
+        } = r
+        {
+            rotating.insert(*independent);
+            rotating.extend(dependent.iter().copied());
+        }
+    }
+    let mut out = Vec::new();
+    for &(line, etype, k) in rotary {
+        let p = &model.point_masses[k];
+        if !rotating.contains(&p.node) {
+            let i = [p.inertia[0][0], p.inertia[1][1], p.inertia[2][2]];
+            out.push((
+                line,
+                (
+                    etype,
+                    format!(
+                        "MASS21 on node {} with rotary inertia IXX={}, IYY={}, IZZ={}: no MPC184 \
+                         rigid beam joins the node, and no other element read from an archive \
+                         gives its rotations stiffness, so they would be free (set KEYOPT(3)=2 \
+                         or zero inertias)",
+                        model.nodes[p.node].id, i[0], i[1], i[2]
+                    ),
+                ),
+            ));
+        }
+    }
+    out
+}
+
+/// Each MPC184 rigid link's dependent (first) term on a dof no D holds, as ANSYS eliminates a
+/// free dof: the one with the largest coefficient among them (none free: left as it is, for
+/// the constraint stage to name).
+fn free_dependents(model: &mut Model, links: &[usize]) {
+    let held: BTreeSet<(NodeIndex, u8)> = (model.spcs.iter())
+        .flat_map(|s| {
+            (0..6u8)
+                .filter(|c| s.dofs.0 & (1 << c) != 0)
+                .map(|c| (s.node, c))
+        })
+        .collect();
+    for &i in links {
+        let terms = &mut model.mpcs[i].terms;
+        let free = (0..terms.len())
+            .filter(|&k| !held.contains(&(terms[k].0.node, terms[k].0.component)))
+            .max_by(|&a, &b| terms[a].1.abs().total_cmp(&terms[b].1.abs()));
+        if let Some(k) = free {
+            terms.swap(0, k);
+        }
+    }
+}
+
+/// An MPC184 rigid link from a to b (`None` when they coincide): the linearized constant length e·(u_b − u_a) = 0, e the unit
+/// vector a→b; b's component along which e is largest is the dependent (first) term.
+fn rigid_link(id: u64, a: NodeIndex, b: NodeIndex, model: &Model) -> Option<Mpc> {
+    let (xa, xb) = (model.nodes[a].x, model.nodes[b].x);
+    let d = [xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]];
+    let first = (0..3)
+        .max_by(|&i, &j| d[i].abs().total_cmp(&d[j].abs()))
+        .unwrap_or(0);
+    let mut terms = Vec::with_capacity(6);
+    for k in std::iter::once(first).chain((0..3).filter(|&k| k != first)) {
+        for (node, sign) in [(b, 1.0), (a, -1.0)] {
+            if d[k] != 0.0 {
+                terms.push((
+                    NodeDof {
+                        node,
+                        component: k as u8,
+                    },
+                    sign * d[k],
+                ));
+            }
+        }
+    }
+    (!terms.is_empty()).then_some(Mpc { id, terms })
 }
 
 /// "12, 14, 15, …": the first lines of a list.
