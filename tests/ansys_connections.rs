@@ -27,11 +27,12 @@ fn nblock(nodes: &[[f64; 3]]) -> String {
     s
 }
 
-/// An EBLOCK of (type, real, id, nodes) records.
+/// An EBLOCK of (type, real constant set and section, id, nodes) records.
 fn eblock(records: &[(usize, usize, usize, &[usize])]) -> String {
     let mut s = format!("EBLOCK,19,SOLID,{0},{0}\n(19i9)\n", records.len());
+    // the section number is the real constant set's
     for (etype, real, id, nodes) in records {
-        let head = [1, *etype, *real, 0, 0, 0, 0, 0, nodes.len(), 0, *id];
+        let head = [1, *etype, *real, *real, 0, 0, 0, 0, nodes.len(), 0, *id];
         for v in head.iter().chain(nodes.iter()) {
             s.push_str(&format!("{v:>9}"));
         }
@@ -164,7 +165,7 @@ fn frequencies(dir: &str, cdb: &str, modes: usize) -> Vec<f64> {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{stderr}");
     assert!(stderr.contains("COMBIN14 damping"), "{stderr}");
-    flexbody_reader::read(&path.with_extension("flexbody"))
+    flexbody_reader::read(path.with_extension("flexbody"))
         .unwrap()
         .modes
         .frequency_hz
@@ -244,4 +245,81 @@ fn combin14_options_not_formed_are_refused_by_line() {
         "{err}"
     );
     assert!(!path.with_extension("flexbody").exists());
+}
+
+/// Five LINK180 along x (h = 0.4), node 1 clamped, the transverse translations held: the axial
+/// modes of the discrete fixed–free bar, u_j = sin(jθ_k), θ_k = (2k − 1)π/(2n) (half of the
+/// fixed–fixed bar of 2n elements), ω² = 6E/(ρ'h²)·(1 − cos θ)/(2 + cos θ) with the consistent
+/// mass ρ'Ah/6·[2 1; 1 2] and 2E/(ρ'h²)·(1 − cos θ) with the lumped ρ'Ah/2, ρ' = ρ + ADDMAS/A.
+/// Area and added mass from a LINK section, then from real constants.
+#[test]
+fn link180_bar_equals_the_discrete_closed_form() {
+    let (n, h, e, rho, area, added) = (5usize, 0.4, 2.1e11, 7850.0, 1.0e-4, 0.5);
+    let x: Vec<[f64; 3]> = (0..=n).map(|j| [j as f64 * h, 0.0, 0.0]).collect();
+    let records: Vec<(usize, usize, usize, Vec<usize>)> =
+        (1..=n).map(|j| (1, 1, j, vec![j, j + 1])).collect();
+    let as_refs: Vec<(usize, usize, usize, &[usize])> = (records.iter())
+        .map(|(t, r, id, nodes)| (*t, *r, *id, nodes.as_slice()))
+        .collect();
+    let mut held = String::from("D,1,ALL,0\n");
+    for j in 2..=n + 1 {
+        held.push_str(&format!("D,{j},UY,0\nD,{j},UZ,0\n"));
+    }
+    let material = format!(
+        "MPTEMP,R5.0, 1, 1,  0.00000000    ,\nMPDATA,R5.0, 1,EX  ,       1, 1, {e:e},\n\
+         MPTEMP,R5.0, 1, 1,  0.00000000    ,\nMPDATA,R5.0, 1,PRXY,       1, 1, 0.3,\n\
+         MPTEMP,R5.0, 1, 1,  0.00000000    ,\nMPDATA,R5.0, 1,DENS,       1, 1, {rho:e},\n"
+    );
+    let archive = |section: &str| {
+        format!(
+            "/PREP7\nET,1,180\n{section}{}{}{material}{held}FINISH\n",
+            nblock(&x),
+            eblock(&as_refs)
+        )
+    };
+    let by_section = archive(&format!(
+        "SECTYPE,       1,LINK,     ,\nSECDATA, {area:e},\nSECCONTROL, {added:e},\n"
+    ));
+    let by_reals = archive(&format!("R,1,{area:e},{added:e}\n"));
+    let rho_eff = rho + added / area;
+    let theta = |k: usize| (2 * k - 1) as f64 * std::f64::consts::PI / (2 * n) as f64;
+    let consistent: Vec<f64> = (1..=n)
+        .map(|k| 6.0 * e / (rho_eff * h * h) * (1.0 - theta(k).cos()) / (2.0 + theta(k).cos()))
+        .map(hz)
+        .collect();
+    let lumped: Vec<f64> = (1..=n)
+        .map(|k| 2.0 * e / (rho_eff * h * h) * (1.0 - theta(k).cos()))
+        .map(hz)
+        .collect();
+    let work = scratch("ansys-link180");
+    let mut worst: f64 = 0.0;
+    for (name, text) in [("section", &by_section), ("reals", &by_reals)] {
+        let path = work.join(format!("{name}.cdb"));
+        std::fs::write(&path, text).unwrap();
+        for (mass, expected) in [("consistent", &consistent), ("lumped", &lumped)] {
+            let o = exe()
+                .arg("build")
+                .arg(&path)
+                .args([
+                    "--units", "si", "--method", "normal", "--modes", "5", "--mass", mass,
+                ])
+                .arg("-o")
+                .arg(path.with_extension("flexbody"))
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let ours = flexbody_reader::read(path.with_extension("flexbody"))
+                .unwrap()
+                .modes
+                .frequency_hz;
+            assert_eq!(ours.len(), n, "{ours:?}");
+            let d = (ours.iter().zip(expected.iter()))
+                .map(|(a, b)| ((a - b) / b).abs())
+                .fold(0.0, f64::max);
+            println!("LINK180 {name} {mass}: {d:.2e}; {ours:?}");
+            worst = worst.max(d);
+        }
+    }
+    // measured 9.0e-16 (lumped), 2.2e-16 (consistent)
+    assert!(worst < 9e-15, "{worst:e}");
 }

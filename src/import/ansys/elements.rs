@@ -53,10 +53,22 @@ pub(super) enum Formed {
     PointMass(u64, f64, [f64; 3]),
     /// A spring (COMBIN14) between two node ids.
     Spring(Spring),
+    /// A LINK180 spar on these node ids: the rod of this area and added mass per length,
+    /// without torsion.
+    Rod([u64; 2], f64, f64),
     /// An MPC184 rigid link (KEYOPT(1)=0) from node id I to J: their distance kept.
     RigidLink(u64, u64),
     /// An MPC184 rigid beam (KEYOPT(1)=1) from node id I to J: J follows I's rigid motion.
     RigidBeam(u64, u64),
+}
+
+/// A LINK section (`SECTYPE,id,LINK`): its line, the area (`SECDATA`) and the added mass per
+/// length (`SECCONTROL`).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct LinkSection {
+    pub line: usize,
+    pub area: f64,
+    pub added_mass: f64,
 }
 
 /// A COMBIN14 spring between nodes `a` and `b` (ids).
@@ -92,6 +104,7 @@ pub(super) fn form(
     t: &ElementType,
     rec: &ElementRecord,
     reals: Option<&[f64]>,
+    section: Option<&LinkSection>,
 ) -> Result<Formed, Refusal> {
     let Some((number, name, disposition)) = t.row else {
         return Err(format!(
@@ -108,6 +121,7 @@ pub(super) fn form(
     match number {
         14 => combin14(t, rec, reals),
         21 => mass21(t, rec, reals),
+        180 => link180(t, rec, reals, section),
         184 => mpc184(t, rec),
         186 => solid186(t, rec),
         187 => solid187(t, rec),
@@ -189,6 +203,69 @@ fn combin14(
         along,
         damped: real(1) != 0.0 || real(2) != 0.0,
     }))
+}
+
+/// LINK180 (MAPDL Element Reference "LINK180"; Theory Reference 13.180: one integration point,
+/// mass by its equations 11–6 and 11–7): the 2-node spar, axial stiffness EA/L along I→J,
+/// consistent mass ρAL/6·[2 1; 1 2] on each translation (lumped ρAL/2), no bending or torsion —
+/// the rod of [`ElementKind::Rod2`] with J = 0 (Nastran CROD without torsion). Area and added
+/// mass per length from its LINK section, or without one from real constants AREA, ADDMAS
+/// (TENSKEY must be 0). Tension- or compression-only (KEYOPT(3)=1, 2) is refused.
+fn link180(
+    t: &ElementType,
+    rec: &ElementRecord,
+    reals: Option<&[f64]>,
+    section: Option<&LinkSection>,
+) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[2, 3])?;
+    if let Some(&k) = t.keyopts.get(&3) {
+        return Err(format!(
+            "LINK180 KEYOPT(3)={k} ({}-only): a nonlinear element, not formed here",
+            if k == 1 { "tension" } else { "compression" }
+        ));
+    }
+    let nodes: Vec<u64> = rec.nodes.iter().copied().filter(|&n| n != 0).collect();
+    let [a, b] = nodes[..] else {
+        return Err(format!(
+            "LINK180 with {} nodes (I and J expected)",
+            nodes.len()
+        ));
+    };
+    if a == b {
+        return Err("LINK180 from a node to itself".into());
+    }
+    let (area, added_mass) = match (section, reals) {
+        (Some(s), _) => (s.area, s.added_mass),
+        (None, Some(r)) => {
+            if r.get(2).is_some_and(|&v| v != 0.0) {
+                return Err(format!(
+                    "LINK180 real constant TENSKEY = {} (tension- or compression-only): not formed here",
+                    r[2]
+                ));
+            }
+            (
+                r.first().copied().unwrap_or(0.0),
+                r.get(1).copied().unwrap_or(0.0),
+            )
+        }
+        (None, None) => {
+            return Err(format!(
+                "LINK180 without a LINK section (section {}) or real constants (set {})",
+                rec.section, rec.real
+            ))
+        }
+    };
+    if !(area > 0.0 && area.is_finite() && added_mass >= 0.0 && added_mass.is_finite()) {
+        let from = section.map_or_else(
+            || format!("real constant set {}", rec.real),
+            |s| format!("the LINK section of line {}", s.line),
+        );
+        return Err(format!(
+            "LINK180 with area {area} and added mass {added_mass} from {from} (area > 0, added \
+             mass ≥ 0)"
+        ));
+    }
+    Ok(Formed::Rod([a, b], area, added_mass))
 }
 
 /// MPC184 (MAPDL Element Reference "MPC184-Link/Beam"): KEYOPT(1)=0, the rigid link (UX, UY,
@@ -343,11 +420,11 @@ mod tests {
         let mut t = ElementType::new(3, "186");
         let nodes: Vec<u64> = (1..=20).collect();
         assert_eq!(
-            form(&t, &record(nodes.clone()), None),
+            form(&t, &record(nodes.clone()), None, None),
             Ok(Formed::Element(ElementKind::Hex20R, nodes.clone()))
         );
         t.keyopts.insert(2, 1);
-        let why = form(&t, &record(nodes), None).unwrap_err();
+        let why = form(&t, &record(nodes), None, None).unwrap_err();
         assert!(why.contains("SOLID186 KEYOPT(2)=1"), "{why}");
     }
 
@@ -356,15 +433,15 @@ mod tests {
         let t = ElementType::new(3, "SOLID187");
         let r = record(vec![4, 5, 6, 7]);
         assert_eq!(
-            form(&t, &r, None),
+            form(&t, &r, None, None),
             Ok(Formed::Element(ElementKind::Tet4, vec![4, 5, 6, 7]))
         );
         let r = record(vec![4, 5, 6, 7, 8, 0, 0, 0, 0, 0]);
-        assert!(form(&t, &r, None).is_err());
+        assert!(form(&t, &r, None, None).is_err());
         let t = ElementType::new(3, "200");
-        assert_eq!(form(&t, &r, None), Ok(Formed::NoStiffness));
+        assert_eq!(form(&t, &r, None, None), Ok(Formed::NoStiffness));
         let t = ElementType::new(3, "181");
-        assert!(form(&t, &r, None).unwrap_err().contains("SHELL181"));
+        assert!(form(&t, &r, None, None).unwrap_err().contains("SHELL181"));
     }
 
     #[test]
@@ -373,12 +450,12 @@ mod tests {
         let r = record(vec![22]);
         let mass_only = [2.0e-4, 2.0e-4, 2.0e-4, 0.0, 0.0, 0.0];
         assert_eq!(
-            form(&t, &r, Some(&mass_only)),
+            form(&t, &r, Some(&mass_only), None),
             Ok(Formed::PointMass(22, 2.0e-4, [0.0; 3]))
         );
         let with_inertia = [2.0e-4, 2.0e-4, 2.0e-4, 1.0e-7, 0.0, 0.0];
         assert_eq!(
-            form(&t, &r, Some(&with_inertia)),
+            form(&t, &r, Some(&with_inertia), None),
             Ok(Formed::PointMass(22, 2.0e-4, [1.0e-7, 0.0, 0.0]))
         );
     }

@@ -16,6 +16,7 @@
 //! `flexbody build Jobname.full` ([`read_model`]) takes the nodes and node components from the
 //! archive of the same job, `Jobname.cdb` beside it.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 use crate::import::ccx_matrices::{EquationDof, SymmetricTriplets};
@@ -278,7 +279,7 @@ pub fn matrix_model(path: &Path, mesh: &Model) -> Result<MatrixModel, ImportErro
 }
 
 /// A full file as a model (`flexbody build Jobname.full`): the nodes and node components of the
-/// archive `Jobname.cdb` beside it ([`super::read_mesh`]: coordinates for spiders, graphics and
+/// archive `Jobname.cdb` beside it ([`read_mesh`]: coordinates for spiders, graphics and
 /// inertia; components as `--interface` names), the file's K and M over its free equations as
 /// one term-by-term matrix on the nodes' own dofs, and its constrained dofs held (SPCs: the
 /// file's rows of those dofs are not the structure's, so they are never released). The mass is
@@ -312,7 +313,7 @@ pub fn read_model(path: &Path) -> Result<Model, ImportError> {
              modal analysis",
         )
     })?;
-    let (mut model, element_components) = super::read_mesh(&cdb)?;
+    let (mut model, element_components) = read_mesh(&cdb)?;
     let index = model.node_index_by_id();
     let mut at = Vec::with_capacity(full.dofs.len());
     for d in &full.dofs {
@@ -357,7 +358,7 @@ pub fn read_model(path: &Path) -> Result<Model, ImportError> {
         mass: terms(m),
         basic: false,
     });
-    let mut held: std::collections::BTreeMap<NodeIndex, u8> = Default::default();
+    let mut held: BTreeMap<NodeIndex, u8> = BTreeMap::new();
     for (d, _) in at.iter().zip(&full.constrained).filter(|(_, c)| **c) {
         *held.entry(d.node).or_default() |= 1 << d.component;
     }
@@ -406,4 +407,31 @@ pub fn read_model(path: &Path) -> Result<Model, ImportError> {
     model.source = file.clone();
     model.files = vec![file, cdb.display().to_string()];
     Ok(model)
+}
+
+/// The nodes and node components of an archive, nothing else: the mesh a full file's matrices
+/// were assembled on ([`read_model`]). The archive's elements, materials, constraints and
+/// loads are not read (the full file's K, M and constraint table are the body), so a command or
+/// element type this reader would refuse does not stop it; a nodal rotation (NBLOCK angles) is
+/// refused, as the full file's dofs would be in the rotated frame. Also returns the names of
+/// the element components left out.
+fn read_mesh(path: &Path) -> Result<(Model, Vec<String>), ImportError> {
+    let file = path.display().to_string();
+    let text = crate::import::text::read_text(path)?;
+    let mut archive = super::Archive::default();
+    archive.read(&file, &text, &BTreeSet::new())?;
+    archive.refused.clear();
+    let mut model = Model {
+        source: file.clone(),
+        ..Default::default()
+    };
+    let node_map = archive.place_nodes(&file, &mut model)?;
+    archive.refusals(&file)?;
+    let element_components = (archive.components.iter())
+        .filter(|c| !c.2)
+        .map(|c| c.1.clone())
+        .collect();
+    archive.components.retain(|c| c.2);
+    archive.components(&file, &node_map, &BTreeMap::new(), &mut model)?;
+    Ok((model, element_components))
 }

@@ -11,6 +11,7 @@
 
 mod blocks;
 pub mod catalogue;
+mod connections;
 mod constraints;
 mod elements;
 pub mod full;
@@ -21,15 +22,17 @@ use std::path::Path;
 
 use self::blocks::{Command, ElementRecord, Lines, NodeRecord};
 use self::catalogue::Disposition;
-use self::elements::{ElementType, Formed};
+use self::connections::{
+    free_dependents, place_spring, rigid_link, rod_property, rotary_without_rotations,
+};
+use self::elements::{ElementType, Formed, LinkSection};
 use super::error::{parse_err, ImportError, RefusedCard};
 use super::text::IdMap;
 use super::ImportOptions;
 use crate::model::deck::{ConstraintSource, EigenRequest};
 use crate::model::load::{Load, LoadPart};
 use crate::model::{
-    Bush, DofMask, Element, Model, Mpc, Node, NodeDof, NodeIndex, Property, RigidElement,
-    ScalarSpring, Section, Spc,
+    DofMask, Element, Model, Mpc, Node, NodeDof, Property, RigidElement, Section, Spc,
 };
 
 /// Read an archive with default options.
@@ -58,33 +61,6 @@ pub fn read_with_options(path: &Path, opts: &ImportOptions) -> Result<Model, Imp
     archive.resolve(&file, &ignored)
 }
 
-/// The nodes and node components of an archive, nothing else: the mesh a full file's matrices
-/// were assembled on ([`full::read_model`]). The archive's elements, materials, constraints and
-/// loads are not read (the full file's K, M and constraint table are the body), so a command or
-/// element type this reader would refuse does not stop it; a nodal rotation (NBLOCK angles) is
-/// refused, as the full file's dofs would be in the rotated frame. Also returns the names of
-/// the element components left out.
-pub(crate) fn read_mesh(path: &Path) -> Result<(Model, Vec<String>), ImportError> {
-    let file = path.display().to_string();
-    let text = super::text::read_text(path)?;
-    let mut archive = Archive::default();
-    archive.read(&file, &text, &BTreeSet::new())?;
-    archive.refused.clear();
-    let mut model = Model {
-        source: file.clone(),
-        ..Default::default()
-    };
-    let node_map = archive.place_nodes(&file, &mut model)?;
-    archive.refusals(&file)?;
-    let element_components = (archive.components.iter())
-        .filter(|c| !c.2)
-        .map(|c| c.1.clone())
-        .collect();
-    archive.components.retain(|c| c.2);
-    archive.components(&file, &node_map, &BTreeMap::new(), &mut model)?;
-    Ok((model, element_components))
-}
-
 /// What the archive holds, by external ids, before the resolve pass.
 #[derive(Debug, Default)]
 struct Archive {
@@ -96,6 +72,9 @@ struct Archive {
     components: Vec<(usize, String, bool, Vec<u64>)>,
     raw: constraints::Raw,
     lumped: Option<(usize, bool)>,
+    /// LINK sections by id, and the section the last SECTYPE opened (`None`: not a LINK one).
+    sections: BTreeMap<i64, LinkSection>,
+    section_now: Option<i64>,
     /// The MPC184 rigid links' MPCs (indices into the model's).
     links: Vec<usize>,
     /// Real constant sets (`R`, `RLBLOCK`).
@@ -248,6 +227,39 @@ impl Archive {
             "RLBLOCK" => {
                 let sets = lines.rlblock(c.line, c.int(file, 0)?.max(0) as usize)?;
                 self.reals.extend(sets);
+            }
+            "SECTYPE" => {
+                let id = c.int(file, 0)?;
+                self.section_now = None;
+                if c.field(1).eq_ignore_ascii_case("LINK") {
+                    let s = LinkSection {
+                        line: c.line,
+                        area: 0.0,
+                        added_mass: 0.0,
+                    };
+                    self.sections.insert(id, s);
+                    self.section_now = Some(id);
+                } else {
+                    refused.push((
+                        c.line,
+                        format!(
+                            "SECTYPE {id},{}: only LINK sections (LINK180's) are read; shell, \
+                             beam and other sections' elements are not formed here",
+                            c.field(1)
+                        ),
+                    ));
+                }
+            }
+            // the data of a section not read is not read either (its SECTYPE is refused)
+            "SECDATA" | "SECCONTROL" => {
+                let value = c.real(file, 0)?;
+                if let Some(s) = self.section_now.and_then(|id| self.sections.get_mut(&id)) {
+                    if c.name == "SECDATA" {
+                        s.area = value;
+                    } else {
+                        s.added_mass = value;
+                    }
+                }
             }
             "D" => self.raw.d(file, c, &mut refused)?,
             "CE" => {
@@ -441,6 +453,7 @@ impl Archive {
         let mut index: BTreeMap<u64, Option<usize>> = BTreeMap::new();
         let mut skipped: BTreeMap<String, Vec<usize>> = BTreeMap::new();
         let mut damped = Vec::new();
+        let mut rods = BTreeMap::new();
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
         for r in &self.elements {
@@ -470,7 +483,8 @@ impl Archive {
                     )
                 })
             };
-            let slot = match elements::form(t, r, self.reals.get(&r.real).map(Vec::as_slice)) {
+            let reals = self.reals.get(&r.real).map(Vec::as_slice);
+            let slot = match elements::form(t, r, reals, self.sections.get(&r.section)) {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
                     None
@@ -501,6 +515,23 @@ impl Archive {
                         continue;
                     }
                     None
+                }
+                Ok(Formed::Rod(ends, area, added_mass)) => {
+                    let key = (r.mat, area.to_bits(), added_mass.to_bits());
+                    let Some(property) = rod_property(model, &mut rods, &property_of, key) else {
+                        let why = format!("LINK180 of material {}, which has no MPDATA", r.mat);
+                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                        continue;
+                    };
+                    model.elements.push(Element {
+                        id: r.id,
+                        kind: crate::model::ElementKind::Rod2,
+                        nodes: vec![node_of(ends[0])?, node_of(ends[1])?],
+                        property: Some(property),
+                        orientation: None,
+                    });
+                    model.element_sources.push((r.id, 0, r.line as u32));
+                    Some(model.elements.len() - 1)
                 }
                 Ok(Formed::RigidLink(a, b)) => {
                     let Some(mpc) = rigid_link(r.id, node_of(a)?, node_of(b)?, model) else {
@@ -746,121 +777,6 @@ impl Archive {
         }
         Ok(())
     }
-}
-
-/// A COMBIN14 spring into the model: a bush along I→J, or a scalar spring between the same
-/// translation of both nodes; the refusal's reason when the longitudinal spring has no direction.
-fn place_spring(
-    id: u64,
-    s: &elements::Spring,
-    a: NodeIndex,
-    b: NodeIndex,
-    model: &mut Model,
-) -> Result<(), String> {
-    match s.along {
-        None => {
-            let bush = Bush::axial(id, (a, model.nodes[a].x), (b, model.nodes[b].x), s.k)
-                .ok_or("COMBIN14 KEYOPT(2)=0 on coincident nodes: the longitudinal spring has no direction")?;
-            model.bushes.push(bush);
-        }
-        Some(component) => model.springs.push(ScalarSpring {
-            id,
-            a: NodeDof { node: a, component },
-            b: Some(NodeDof { node: b, component }),
-            k: s.k,
-        }),
-    }
-    Ok(())
-}
-
-/// The MASS21 rotary inertias (`rotary`: line, element type, point mass) on nodes no MPC184
-/// rigid beam joins: their rotations have no stiffness from any element read from an archive,
-/// so they would be three zero-frequency modes (ANSYS would find them too). Each as its
-/// refusal: (line, (element type, reason)).
-fn rotary_without_rotations(
-    model: &Model,
-    rotary: &[(usize, i64, usize)],
-) -> Vec<(usize, (i64, String))> {
-    let mut rotating = BTreeSet::new();
-    for r in &model.rigid_elements {
-        if let RigidElement::Rbe2 {
-            independent,
-            dependent,
-            ..
-        } = r
-        {
-            rotating.insert(*independent);
-            rotating.extend(dependent.iter().copied());
-        }
-    }
-    let mut out = Vec::new();
-    for &(line, etype, k) in rotary {
-        let p = &model.point_masses[k];
-        if !rotating.contains(&p.node) {
-            let i = [p.inertia[0][0], p.inertia[1][1], p.inertia[2][2]];
-            out.push((
-                line,
-                (
-                    etype,
-                    format!(
-                        "MASS21 on node {} with rotary inertia IXX={}, IYY={}, IZZ={}: no MPC184 \
-                         rigid beam joins the node, and no other element read from an archive \
-                         gives its rotations stiffness, so they would be free (set KEYOPT(3)=2 \
-                         or zero inertias)",
-                        model.nodes[p.node].id, i[0], i[1], i[2]
-                    ),
-                ),
-            ));
-        }
-    }
-    out
-}
-
-/// Each MPC184 rigid link's dependent (first) term on a dof no D holds, as ANSYS eliminates a
-/// free dof: the one with the largest coefficient among them (none free: left as it is, for
-/// the constraint stage to name).
-fn free_dependents(model: &mut Model, links: &[usize]) {
-    let held: BTreeSet<(NodeIndex, u8)> = (model.spcs.iter())
-        .flat_map(|s| {
-            (0..6u8)
-                .filter(|c| s.dofs.0 & (1 << c) != 0)
-                .map(|c| (s.node, c))
-        })
-        .collect();
-    for &i in links {
-        let terms = &mut model.mpcs[i].terms;
-        let free = (0..terms.len())
-            .filter(|&k| !held.contains(&(terms[k].0.node, terms[k].0.component)))
-            .max_by(|&a, &b| terms[a].1.abs().total_cmp(&terms[b].1.abs()));
-        if let Some(k) = free {
-            terms.swap(0, k);
-        }
-    }
-}
-
-/// An MPC184 rigid link from a to b (`None` when they coincide): the linearized constant length e·(u_b − u_a) = 0, e the unit
-/// vector a→b; b's component along which e is largest is the dependent (first) term.
-fn rigid_link(id: u64, a: NodeIndex, b: NodeIndex, model: &Model) -> Option<Mpc> {
-    let (xa, xb) = (model.nodes[a].x, model.nodes[b].x);
-    let d = [xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]];
-    let first = (0..3)
-        .max_by(|&i, &j| d[i].abs().total_cmp(&d[j].abs()))
-        .unwrap_or(0);
-    let mut terms = Vec::with_capacity(6);
-    for k in std::iter::once(first).chain((0..3).filter(|&k| k != first)) {
-        for (node, sign) in [(b, 1.0), (a, -1.0)] {
-            if d[k] != 0.0 {
-                terms.push((
-                    NodeDof {
-                        node,
-                        component: k as u8,
-                    },
-                    sign * d[k],
-                ));
-            }
-        }
-    }
-    (!terms.is_empty()).then_some(Mpc { id, terms })
 }
 
 /// "12, 14, 15, …": the first lines of a list.
