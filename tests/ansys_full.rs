@@ -5,7 +5,7 @@
 //! * normal modes against the 20 frequencies the package states for the file;
 //! * a Craig–Bampton build with an archive component as `--interface`, against the same build
 //!   of the archive itself (its K and M equal the full file's to 5e-12, `tests/ansys_archive.rs`)
-//!   clamped as the full file's constraint table says;
+//!   clamped as the full file's constraint table says, and `check --model` of it;
 //! * a full file without its archive: exit 2 naming what is missing.
 mod ansys_support;
 mod common;
@@ -103,6 +103,21 @@ fn a_cb_build_with_a_component_interface_equals_the_archive() {
     println!("CB from the full file against the archive: {worst:.2e}; {a:?}");
     assert!(worst < 3e-11, "{a:?} {b:?}");
     assert_eq!(from_full.modes.labels, from_archive.modes.labels);
+
+    // `check --model` rebuilds the body from the full file (and its archive, both in the recipe)
+    let check = exe()
+        .arg("check")
+        .arg(work.join("beam.flexbody"))
+        .arg("--model")
+        .arg(work.join("beam.full"))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&check.stdout);
+    assert!(
+        check.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&check.stderr)
+    );
 }
 
 /// A full file without `Jobname.cdb` beside it: exit 2 naming the archive it looked for.
