@@ -44,14 +44,14 @@ pub(super) fn format_of(path: &Path) -> Result<Format, ImportError> {
     let decisive = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
         matches!(
             e.to_ascii_lowercase().as_str(),
-            "inp" | "bdf" | "nas" | "blk" | "bulk" | "msh" | "cdb"
+            "inp" | "bdf" | "nas" | "blk" | "bulk" | "msh" | "cdb" | "full"
         )
     });
     match content(&head) {
         Content::Archive => Err(ImportError::NotAModel {
             file,
             what: "a zip archive — a .flexbody file is flexbody's output, not a model: read it \
-                   with `flexbody inspect` or `flexbody check` (build takes a model: .inp, .bdf, .cdb, \
+                   with `flexbody inspect` or `flexbody check` (build takes a model: .inp, .bdf, .cdb, .full, \
                    .msh; --format names its format)"
                 .into(),
         }),
@@ -83,6 +83,7 @@ fn name(f: Format) -> &'static str {
         Format::Nastran => "Nastran",
         Format::Gmsh => "Gmsh",
         Format::Ansys => "ANSYS",
+        Format::AnsysFull => "ANSYS full file",
     }
 }
 
@@ -93,6 +94,7 @@ fn option(f: Format) -> &'static str {
         Format::Nastran => "bdf",
         Format::Gmsh => "msh",
         Format::Ansys => "cdb",
+        Format::AnsysFull => "full",
     }
 }
 
@@ -101,6 +103,12 @@ fn option(f: Format) -> &'static str {
 fn content(head: &[u8]) -> Content {
     if head.starts_with(b"PK\x03\x04") {
         return Content::Archive;
+    }
+    // an ANSYS binary file: a 100-word standard header record whose file number (its third
+    // word) is 4 for a full file
+    if head.get(..4) == Some(&100i32.to_le_bytes()) && head.get(8..12) == Some(&4i32.to_le_bytes())
+    {
+        return Content::Model(Format::AnsysFull);
     }
     let text = String::from_utf8_lossy(head);
     let lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
@@ -168,6 +176,8 @@ mod tests {
         let cdb =
             b"/PREP7\n*SET,_BUTTON ,  1.0\n*IF,_CDRDOFF,EQ,1,THEN\nET,1,186\nNBLOCK,6,SOLID,1,1\n";
         assert_eq!(content(cdb), Content::Model(Format::Ansys));
+        let full = [100i32, i32::MIN, 4, -1].map(i32::to_le_bytes).concat();
+        assert_eq!(content(&full), Content::Model(Format::AnsysFull));
         let readme = b"# My model\n\nRun it with the solver of your choice.\n";
         assert_eq!(content(readme), Content::Nothing);
     }

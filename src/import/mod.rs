@@ -36,6 +36,8 @@ pub enum Format {
     Gmsh,
     /// ANSYS Mechanical APDL archive (`.cdb`, as `CDWRITE` writes it).
     Ansys,
+    /// ANSYS full file (`Jobname.full`: assembled K and M), nodes from `Jobname.cdb` beside it.
+    AnsysFull,
 }
 
 impl Format {
@@ -47,6 +49,7 @@ impl Format {
             "bdf" | "nas" | "dat" | "blk" | "bulk" => Some(Format::Nastran),
             "msh" => Some(Format::Gmsh),
             "cdb" => Some(Format::Ansys),
+            "full" => Some(Format::AnsysFull),
             _ => None,
         }
     }
@@ -58,6 +61,7 @@ impl Format {
             "bdf" | "nastran" | "nas" => Some(Format::Nastran),
             "msh" | "gmsh" => Some(Format::Gmsh),
             "cdb" | "ansys" | "mapdl" => Some(Format::Ansys),
+            "full" | "ansys-full" => Some(Format::AnsysFull),
             _ => None,
         }
     }
@@ -133,6 +137,7 @@ pub fn read_model(path: &Path, opts: &ImportOptions) -> Result<Model, ImportErro
         Format::Nastran => nastran::read_with_options(path, opts)?.0,
         Format::Gmsh => gmsh::read(path, None)?,
         Format::Ansys => ansys::read_with_options(path, opts)?,
+        Format::AnsysFull => ansys::full::read_model(path)?,
     };
     if model.files.is_empty() {
         model.files.push(path.display().to_string());

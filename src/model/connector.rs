@@ -68,6 +68,54 @@ pub struct Bush {
     pub location: [f64; 3],
 }
 
+impl Bush {
+    /// An axial spring between nodes a and b at xa and xb: strain energy ½ k (e·(u_b − u_a))²,
+    /// e the unit vector from a to b (CalculiX SPRINGA, ANSYS COMBIN14 KEYOPT(2)=0): k along e
+    /// alone, the spring point at node a on the axis, so the rotations do not enter. `None`
+    /// when the nodes coincide (no direction).
+    pub fn axial(
+        id: u64,
+        (a, xa): (NodeIndex, [f64; 3]),
+        (b, xb): (NodeIndex, [f64; 3]),
+        k: f64,
+    ) -> Option<Bush> {
+        let d = [xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]];
+        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if a == b || !(len > 0.0 && len.is_finite()) {
+            return None;
+        }
+        Some(Bush {
+            id,
+            a,
+            b: Some(b),
+            axes: orthonormal_frame(d.map(|c| c / len)),
+            k: [k, 0.0, 0.0, 0.0, 0.0, 0.0],
+            location: xa,
+        })
+    }
+}
+
+/// A right-handed orthonormal frame whose first axis is the unit vector `e1`.
+fn orthonormal_frame(e1: [f64; 3]) -> [[f64; 3]; 3] {
+    let cross = |p: [f64; 3], q: [f64; 3]| {
+        [
+            p[1] * q[2] - p[2] * q[1],
+            p[2] * q[0] - p[0] * q[2],
+            p[0] * q[1] - p[1] * q[0],
+        ]
+    };
+    // the basic axis least aligned with e1
+    let k = (0..3)
+        .min_by(|&i, &j| e1[i].abs().total_cmp(&e1[j].abs()))
+        .unwrap_or(0);
+    let mut t = [0.0; 3];
+    t[k] = 1.0;
+    let e2 = cross(e1, t);
+    let n = (e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]).sqrt();
+    let e2 = e2.map(|c| c / n);
+    [e1, e2, cross(e1, e2)]
+}
+
 /// A symmetric stiffness and mass matrix given term by term on dofs (Nastran GENEL, DMIG
 /// matrices selected by K2GG/M2GG, CBUSH1D): on the nodes' own (displacement-frame) dofs, or
 /// on the basic frame's components, added to K and M as written. A term (a, b, v) adds v at
@@ -86,6 +134,38 @@ pub struct DofMatrix {
 }
 
 impl DofMatrix {
+    /// The matrix with its mass lumped to node blocks, for what needs a mass per node (the
+    /// file's nodal masses): unchanged when no mass term couples two nodes; else diagonal, each
+    /// translation's diagonal terms scaled so that they hold the matrix's mass in that direction
+    /// (HRZ lumping, Hinton, Rock & Zienkiewicz 1976: m_ii' = m_ii · Σ_jk m_jk / Σ_j m_jj over
+    /// the terms of one direction), rotations' diagonal terms kept.
+    pub fn lumped(&self) -> DofMatrix {
+        if self.mass.iter().all(|(a, b, _)| a.node == b.node) {
+            return self.clone();
+        }
+        let (mut total, mut diagonal) = ([0.0; 6], [0.0; 6]);
+        for &(a, b, v) in &self.mass {
+            if a.component == b.component {
+                total[usize::from(a.component)] += v;
+                if a.node == b.node {
+                    diagonal[usize::from(a.component)] += v;
+                }
+            }
+        }
+        let scale = |c: usize| match c {
+            0..=2 if diagonal[c] != 0.0 => total[c] / diagonal[c],
+            _ => 1.0,
+        };
+        let mass = (self.mass.iter())
+            .filter(|(a, b, _)| a == b)
+            .map(|&(a, b, v)| (a, b, v * scale(usize::from(a.component))))
+            .collect();
+        DofMatrix {
+            mass,
+            ..self.clone()
+        }
+    }
+
     /// Every node a term of the matrix names, ascending, once.
     pub fn nodes(&self) -> Vec<NodeIndex> {
         let mut nodes: Vec<NodeIndex> = (self.stiffness.iter().chain(&self.mass))

@@ -84,6 +84,7 @@ fn format_name(f: Format) -> &'static str {
         Format::Nastran => "bdf",
         Format::Gmsh => "msh",
         Format::Ansys => "cdb",
+        Format::AnsysFull => "full",
     }
 }
 

@@ -3,8 +3,7 @@
 //!
 //! * `*ELEMENT, TYPE=SPRINGA` + `*SPRING, ELSET=…` (a blank line, then k): an axial spring
 //!   between two nodes, strain energy ½ k (e·(u_b − u_a))², e the unit vector from a to b
-//!   (CalculiX User's Manual, "SPRINGA"): a bush with k along e alone (the spring point at
-//!   node a, on the axis, so the rotations do not enter).
+//!   (CalculiX User's Manual, "SPRINGA"): [`Bush::axial`].
 //! * `SPRING1` (the dof line: one dof; then k): k on one dof of a node, to ground;
 //!   `SPRING2` (dof at the first node, dof at the second; then k): ½ k (u_a,i − u_b,j)². Their
 //!   dofs are global directions: a node with a `*TRANSFORM` frame is refused.
@@ -308,24 +307,12 @@ impl Parser {
         ent: &str,
     ) -> Result<Bush, ImportError> {
         let (xa, xb) = (self.b.model.nodes[a].x, self.b.model.nodes[b].x);
-        let d = [xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]];
-        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        if a == b || !(len > 0.0 && len.is_finite()) {
-            return Err(self.err(
+        Bush::axial(id, (a, xa), (b, xb), k).ok_or_else(|| {
+            self.err(
                 loc,
                 ent.to_owned(),
                 "its two nodes coincide: an axial spring needs a direction",
-            ));
-        }
-        let e1 = d.map(|c| c / len);
-        let axes = orthonormal_frame(e1);
-        Ok(Bush {
-            id,
-            a,
-            b: Some(b),
-            axes,
-            k: [k, 0.0, 0.0, 0.0, 0.0, 0.0],
-            location: xa,
+            )
         })
     }
 
@@ -502,25 +489,4 @@ impl Parser {
         self.b.model.mpcs.extend(mpcs);
         Ok(())
     }
-}
-
-/// A right-handed orthonormal frame whose first axis is the unit vector `e1`.
-fn orthonormal_frame(e1: [f64; 3]) -> [[f64; 3]; 3] {
-    let cross = |p: [f64; 3], q: [f64; 3]| {
-        [
-            p[1] * q[2] - p[2] * q[1],
-            p[2] * q[0] - p[0] * q[2],
-            p[0] * q[1] - p[1] * q[0],
-        ]
-    };
-    // the basic axis least aligned with e1
-    let k = (0..3)
-        .min_by(|&i, &j| e1[i].abs().total_cmp(&e1[j].abs()))
-        .unwrap_or(0);
-    let mut t = [0.0; 3];
-    t[k] = 1.0;
-    let e2 = cross(e1, t);
-    let n = (e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]).sqrt();
-    let e2 = e2.map(|c| c / n);
-    [e1, e2, cross(e1, e2)]
 }

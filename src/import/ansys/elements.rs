@@ -51,6 +51,38 @@ pub(super) enum Formed {
     NoStiffness,
     /// A point mass (MASS21) at this node id: mass and the diagonal rotary inertia.
     PointMass(u64, f64, [f64; 3]),
+    /// A spring (COMBIN14) between two node ids.
+    Spring(Spring),
+    /// A LINK180 spar on these node ids: the rod of this area and added mass per length,
+    /// without torsion.
+    Rod([u64; 2], f64, f64),
+    /// An MPC184 rigid link (KEYOPT(1)=0) from node id I to J: their distance kept.
+    RigidLink(u64, u64),
+    /// An MPC184 rigid beam (KEYOPT(1)=1) from node id I to J: J follows I's rigid motion.
+    RigidBeam(u64, u64),
+}
+
+/// A LINK section (`SECTYPE,id,LINK`): its line, the area (`SECDATA`) and the added mass per
+/// length (`SECCONTROL`).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct LinkSection {
+    pub line: usize,
+    pub area: f64,
+    pub added_mass: f64,
+}
+
+/// A COMBIN14 spring between nodes `a` and `b` (ids).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Spring {
+    pub a: u64,
+    pub b: u64,
+    /// The stiffness K (real constant 1).
+    pub k: f64,
+    /// Along the line from a to b (KEYOPT(2)=0, KEYOPT(3)=0), or between the same translation
+    /// 0…2 of both nodes (KEYOPT(2)=1…3).
+    pub along: Option<u8>,
+    /// Damping CV1 or CV2 is set (not read: an undamped body).
+    pub damped: bool,
 }
 
 /// Why an element cannot be formed (the refusal's reason; the KEYOPT named when it is one).
@@ -72,6 +104,7 @@ pub(super) fn form(
     t: &ElementType,
     rec: &ElementRecord,
     reals: Option<&[f64]>,
+    section: Option<&LinkSection>,
 ) -> Result<Formed, Refusal> {
     let Some((number, name, disposition)) = t.row else {
         return Err(format!(
@@ -86,11 +119,182 @@ pub(super) fn form(
         Disposition::Honoured(_) => {}
     }
     match number {
+        14 => combin14(t, rec, reals),
         21 => mass21(t, rec, reals),
+        180 => link180(t, rec, reals, section),
+        184 => mpc184(t, rec),
         186 => solid186(t, rec),
         187 => solid187(t, rec),
         // every honoured row of the catalogue is matched above; a new one must be added here
         other => Err(format!("element type {other} ({name}) has no former")),
+    }
+}
+
+/// COMBIN14 (MAPDL Element Reference "COMBIN14"): KEYOPT(2)=0 with KEYOPT(3)=0, the 3-D
+/// longitudinal spring (uniaxial along I→J, no bending or torsion), and KEYOPT(2)=1…3, the 1-D
+/// spring between UX, UY or UZ of I and J (nodal directions: the archive's nodes have no
+/// rotation); real constants K, CV1, CV2 (the damping not read), a nonzero initial length or
+/// preload (ILEN, IFORCE) refused. The torsional (KEYOPT(3)=1), 2-D (KEYOPT(3)=2) and rotational
+/// 1-D (KEYOPT(2)=4…6) springs need rotational dofs no element read here gives stiffness or
+/// mass; KEYOPT(2)=7, 8 are thermal and pressure elements.
+fn combin14(
+    t: &ElementType,
+    rec: &ElementRecord,
+    reals: Option<&[f64]>,
+) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[1, 2, 3])?;
+    let keyopt = |k: u32| t.keyopts.get(&k).copied().unwrap_or(0);
+    let along = match (keyopt(2), keyopt(3)) {
+        (0, 0) => None,
+        (0, k3) => {
+            return Err(format!(
+                "COMBIN14 KEYOPT(3)={k3} ({}): not formed here",
+                if k3 == 1 {
+                    "torsional: its rotations have no stiffness or mass from another element read here"
+                } else {
+                    "a 2-D element"
+                }
+            ))
+        }
+        (k2 @ 1..=3, _) => Some((k2 - 1) as u8),
+        (k2, _) => {
+            return Err(format!(
+                "COMBIN14 KEYOPT(2)={k2} ({}): not formed here",
+                if k2 <= 6 {
+                    "a 1-D rotational spring: its rotations have no stiffness or mass from another element read here"
+                } else {
+                    "a thermal or pressure element"
+                }
+            ))
+        }
+    };
+    let Some(reals) = reals else {
+        return Err(format!(
+            "COMBIN14: real constant set {} is not defined",
+            rec.real
+        ));
+    };
+    let real = |k: usize| reals.get(k).copied().unwrap_or(0.0);
+    if !(real(0) >= 0.0 && real(0).is_finite()) {
+        return Err(format!(
+            "COMBIN14: stiffness K = {} (negative or not finite)",
+            real(0)
+        ));
+    }
+    if let Some(v) = reals.iter().skip(3).find(|v| **v != 0.0) {
+        return Err(format!(
+            "COMBIN14: real constant {v} past CV2 (an initial length or preload, ILEN/IFORCE): not read"
+        ));
+    }
+    let nodes: Vec<u64> = rec.nodes.iter().copied().filter(|&n| n != 0).collect();
+    let [a, b] = nodes[..] else {
+        return Err(format!(
+            "COMBIN14 with {} nodes (I and J expected)",
+            nodes.len()
+        ));
+    };
+    if real(0) == 0.0 {
+        return Ok(Formed::NoStiffness);
+    }
+    Ok(Formed::Spring(Spring {
+        a,
+        b,
+        k: real(0),
+        along,
+        damped: real(1) != 0.0 || real(2) != 0.0,
+    }))
+}
+
+/// LINK180 (MAPDL Element Reference "LINK180"; Theory Reference 13.180: one integration point,
+/// mass by its equations 11–6 and 11–7): the 2-node spar, axial stiffness EA/L along I→J,
+/// consistent mass ρAL/6·[2 1; 1 2] on each translation (lumped ρAL/2), no bending or torsion —
+/// the rod of [`ElementKind::Rod2`] with J = 0 (Nastran CROD without torsion). Area and added
+/// mass per length from its LINK section, or without one from real constants AREA, ADDMAS
+/// (TENSKEY must be 0). Tension- or compression-only (KEYOPT(3)=1, 2) is refused.
+fn link180(
+    t: &ElementType,
+    rec: &ElementRecord,
+    reals: Option<&[f64]>,
+    section: Option<&LinkSection>,
+) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[2, 3])?;
+    if let Some(&k) = t.keyopts.get(&3) {
+        return Err(format!(
+            "LINK180 KEYOPT(3)={k} ({}-only): a nonlinear element, not formed here",
+            if k == 1 { "tension" } else { "compression" }
+        ));
+    }
+    let nodes: Vec<u64> = rec.nodes.iter().copied().filter(|&n| n != 0).collect();
+    let [a, b] = nodes[..] else {
+        return Err(format!(
+            "LINK180 with {} nodes (I and J expected)",
+            nodes.len()
+        ));
+    };
+    if a == b {
+        return Err("LINK180 from a node to itself".into());
+    }
+    let (area, added_mass) = match (section, reals) {
+        (Some(s), _) => (s.area, s.added_mass),
+        (None, Some(r)) => {
+            if r.get(2).is_some_and(|&v| v != 0.0) {
+                return Err(format!(
+                    "LINK180 real constant TENSKEY = {} (tension- or compression-only): not formed here",
+                    r[2]
+                ));
+            }
+            (
+                r.first().copied().unwrap_or(0.0),
+                r.get(1).copied().unwrap_or(0.0),
+            )
+        }
+        (None, None) => {
+            return Err(format!(
+                "LINK180 without a LINK section (section {}) or real constants (set {})",
+                rec.section, rec.real
+            ))
+        }
+    };
+    if !(area > 0.0 && area.is_finite() && added_mass >= 0.0 && added_mass.is_finite()) {
+        let from = section.map_or_else(
+            || format!("real constant set {}", rec.real),
+            |s| format!("the LINK section of line {}", s.line),
+        );
+        return Err(format!(
+            "LINK180 with area {area} and added mass {added_mass} from {from} (area > 0, added \
+             mass ≥ 0)"
+        ));
+    }
+    Ok(Formed::Rod([a, b], area, added_mass))
+}
+
+/// MPC184 (MAPDL Element Reference "MPC184-Link/Beam"): KEYOPT(1)=0, the rigid link (UX, UY,
+/// UZ at I and J; the linearized constraint keeps their distance: e·(u_J − u_I) = 0, e the unit
+/// vector I→J), KEYOPT(1)=1, the rigid beam (all six dofs: J moves rigidly with I, an RBE2);
+/// KEYOPT(2)=0 (direct elimination) and 1 (Lagrange multipliers) impose the same constraint.
+/// Other KEYOPT(1) values (the slider and the joints) are refused.
+fn mpc184(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[1, 2])?;
+    let nodes: Vec<u64> = rec.nodes.iter().copied().filter(|&n| n != 0).collect();
+    let [a, b] = nodes[..] else {
+        return Err(format!(
+            "MPC184 with {} nodes (I and J expected)",
+            nodes.len()
+        ));
+    };
+    if a == b {
+        return Err("MPC184 from a node to itself".into());
+    }
+    match (
+        t.keyopts.get(&1).copied().unwrap_or(0),
+        t.keyopts.get(&2).copied().unwrap_or(0),
+    ) {
+        (_, k2) if k2 != 0 && k2 != 1 => Err(format!("MPC184 KEYOPT(2)={k2}: not formed here")),
+        (0, _) => Ok(Formed::RigidLink(a, b)),
+        (1, _) => Ok(Formed::RigidBeam(a, b)),
+        (k1, _) => Err(format!(
+            "MPC184 KEYOPT(1)={k1} (a slider or joint): not formed here"
+        )),
     }
 }
 
@@ -162,20 +366,9 @@ fn mass21(t: &ElementType, rec: &ElementRecord, reals: Option<&[f64]>) -> Result
                      equal masses are formed here"
                 ));
             }
+            // a rotary inertia is kept only on a node an MPC184 rigid beam joins (the model's
+            // check after every element is formed): no other element read here has rotations
             let inertia = [value(3), value(4), value(5)];
-            // No element type honoured from an archive has rotational dofs (SHELL18x, BEAM18x
-            // and MPC184 are refused), so a rotary inertia would sit on rotations without
-            // stiffness: three zero-frequency modes, as ANSYS would find them. Refused here by
-            // line rather than by the build's rigid-mode check; to be relaxed with the first
-            // element type that gives a node rotational stiffness.
-            if inertia.iter().any(|&i| i != 0.0) {
-                return Err(format!(
-                    "MASS21 on node {node} with rotary inertia IXX={}, IYY={}, IZZ={}: no \
-                     element type read from an archive gives a node rotational stiffness, so \
-                     the rotations would be free (set KEYOPT(3)=2 or zero inertias)",
-                    inertia[0], inertia[1], inertia[2]
-                ));
-            }
             Ok(Formed::PointMass(node, mx, inertia))
         }
         2 => Ok(Formed::PointMass(node, value(0), [0.0; 3])),
@@ -227,11 +420,11 @@ mod tests {
         let mut t = ElementType::new(3, "186");
         let nodes: Vec<u64> = (1..=20).collect();
         assert_eq!(
-            form(&t, &record(nodes.clone()), None),
+            form(&t, &record(nodes.clone()), None, None),
             Ok(Formed::Element(ElementKind::Hex20R, nodes.clone()))
         );
         t.keyopts.insert(2, 1);
-        let why = form(&t, &record(nodes), None).unwrap_err();
+        let why = form(&t, &record(nodes), None, None).unwrap_err();
         assert!(why.contains("SOLID186 KEYOPT(2)=1"), "{why}");
     }
 
@@ -240,31 +433,30 @@ mod tests {
         let t = ElementType::new(3, "SOLID187");
         let r = record(vec![4, 5, 6, 7]);
         assert_eq!(
-            form(&t, &r, None),
+            form(&t, &r, None, None),
             Ok(Formed::Element(ElementKind::Tet4, vec![4, 5, 6, 7]))
         );
         let r = record(vec![4, 5, 6, 7, 8, 0, 0, 0, 0, 0]);
-        assert!(form(&t, &r, None).is_err());
+        assert!(form(&t, &r, None, None).is_err());
         let t = ElementType::new(3, "200");
-        assert_eq!(form(&t, &r, None), Ok(Formed::NoStiffness));
+        assert_eq!(form(&t, &r, None, None), Ok(Formed::NoStiffness));
         let t = ElementType::new(3, "181");
-        assert!(form(&t, &r, None).unwrap_err().contains("SHELL181"));
+        assert!(form(&t, &r, None, None).unwrap_err().contains("SHELL181"));
     }
 
     #[test]
-    fn mass21_with_rotary_inertia_is_refused_without_rotational_stiffness() {
+    fn mass21_keeps_its_rotary_inertia_for_the_model_to_check() {
         let t = ElementType::new(3, "21");
         let r = record(vec![22]);
         let mass_only = [2.0e-4, 2.0e-4, 2.0e-4, 0.0, 0.0, 0.0];
         assert_eq!(
-            form(&t, &r, Some(&mass_only)),
+            form(&t, &r, Some(&mass_only), None),
             Ok(Formed::PointMass(22, 2.0e-4, [0.0; 3]))
         );
         let with_inertia = [2.0e-4, 2.0e-4, 2.0e-4, 1.0e-7, 0.0, 0.0];
-        let why = form(&t, &r, Some(&with_inertia)).unwrap_err();
-        assert!(
-            why.contains("MASS21 on node 22") && why.contains("IXX=0.0000001"),
-            "{why}"
+        assert_eq!(
+            form(&t, &r, Some(&with_inertia), None),
+            Ok(Formed::PointMass(22, 2.0e-4, [1.0e-7, 0.0, 0.0]))
         );
     }
 }

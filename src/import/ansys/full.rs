@@ -12,13 +12,18 @@
 //! `ptrMAS`) are written row by row: a record of 1-based column numbers, then a record of their
 //! values; each pair of the symmetric matrix is written once. Compressed records, unsymmetric
 //! or lumped matrices and constraint equations in the file are refused.
+//!
+//! `flexbody build Jobname.full` ([`read_model`]) takes the nodes and node components from the
+//! archive of the same job, `Jobname.cdb` beside it.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 use crate::import::ccx_matrices::{EquationDof, SymmetricTriplets};
 use crate::import::error::{parse_err, ImportError};
 use crate::import::matrix_market::MatrixModel;
-use crate::model::Model;
+use crate::model::deck::ConstraintSource;
+use crate::model::{DeckMass, DofMask, DofMatrix, Model, NodeDof, NodeIndex, Spc};
 
 /// The content of a full file.
 #[derive(Debug, Clone, PartialEq)]
@@ -271,4 +276,162 @@ pub fn matrix_model(path: &Path, mesh: &Model) -> Result<MatrixModel, ImportErro
         k,
         m,
     })
+}
+
+/// A full file as a model (`flexbody build Jobname.full`): the nodes and node components of the
+/// archive `Jobname.cdb` beside it ([`read_mesh`]: coordinates for spiders, graphics and
+/// inertia; components as `--interface` names), the file's K and M over its free equations as
+/// one term-by-term matrix on the nodes' own dofs, and its constrained dofs held (SPCs: the
+/// file's rows of those dofs are not the structure's, so they are never released). The mass is
+/// the file's (consistent when ANSYS formed it so).
+pub fn read_model(path: &Path) -> Result<Model, ImportError> {
+    let file = path.display().to_string();
+    let cdb = path.with_extension("cdb");
+    if !cdb.is_file() {
+        let job = path
+            .file_stem()
+            .map_or_else(String::new, |s| s.to_string_lossy().into());
+        return Err(parse_err(
+            &file,
+            1,
+            "full file",
+            format!(
+                "no archive {} beside it: a full file's nodes and components are read from the \
+                 archive of the same job (CDWRITE,DB,{job},cdb in ANSYS, or copy the archive \
+                 there under that name)",
+                cdb.display()
+            ),
+        ));
+    }
+    let full = read_full(path)?;
+    let m = full.m.as_ref().ok_or_else(|| {
+        parse_err(
+            &file,
+            1,
+            "full file",
+            "the file holds no mass matrix (a static analysis's full file): write it from a \
+             modal analysis",
+        )
+    })?;
+    let (mut model, element_components) = read_mesh(&cdb)?;
+    let index = model.node_index_by_id();
+    let mut at = Vec::with_capacity(full.dofs.len());
+    for d in &full.dofs {
+        let node = index.get(&d.node).ok_or_else(|| {
+            parse_err(
+                &file,
+                1,
+                format!("node {}", d.node),
+                format!("the node is not in the archive {}", cdb.display()),
+            )
+        })?;
+        at.push(NodeDof {
+            node: *node,
+            component: d.dir,
+        });
+    }
+    // both triangles, as a DofMatrix lists them; terms on constrained equations left out
+    let terms = |t: &SymmetricTriplets| {
+        let mut out = Vec::with_capacity(2 * t.upper.len());
+        for &(r, c, v) in &t.upper {
+            if full.constrained[r] || full.constrained[c] {
+                continue;
+            }
+            out.push((at[r], at[c], v));
+            if r != c {
+                out.push((at[c], at[r], v));
+            }
+        }
+        out
+    };
+    // a zero term on each constrained equation: its node keeps the dof, which the SPC below
+    // holds (a reference condition the build knows of, not a node absent from the system)
+    let mut stiffness = terms(&full.k);
+    stiffness.extend(
+        (at.iter().zip(&full.constrained))
+            .filter(|(_, c)| **c)
+            .map(|(d, _)| (*d, *d, 0.0)),
+    );
+    model.dof_matrices.push(DofMatrix {
+        what: format!("full file {file}"),
+        stiffness,
+        mass: terms(m),
+        basic: false,
+    });
+    let mut held: BTreeMap<NodeIndex, u8> = BTreeMap::new();
+    for (d, _) in at.iter().zip(&full.constrained).filter(|(_, c)| **c) {
+        *held.entry(d.node).or_default() |= 1 << d.component;
+    }
+    let held_dofs: u32 = held.values().map(|m| m.count_ones()).sum();
+    for (&node, &mask) in &held {
+        model.spcs.push(Spc {
+            node,
+            dofs: DofMask(mask),
+            set_id: 0,
+        });
+    }
+    if !held.is_empty() {
+        model.constraint_sources.push(ConstraintSource {
+            card: "full file constraint table".into(),
+            id: format!("{held_dofs} dofs at {} nodes", held.len()),
+            file: file.clone(),
+            line: 1,
+            set: None,
+            spcs: 0..model.spcs.len(),
+            permanent: false,
+        });
+    }
+    // a component's nodes without an equation in the file are no part of the body
+    let carried: std::collections::HashSet<NodeIndex> = at.iter().map(|d| d.node).collect();
+    for set in model.node_sets.values_mut() {
+        set.retain(|n| carried.contains(n));
+    }
+    model.params.coupled_mass = Some(DeckMass {
+        consistent: true,
+        asked_by: format!("the full file {file}'s mass matrix"),
+    });
+    let notes = &mut model.deck.notes;
+    notes.push(format!(
+        "ANSYS full file: K and M of {} equations ({} held by the file's constraint table), nodes \
+         and node components from {} (its elements, materials, constraints and loads not read)",
+        full.dofs.len(),
+        held_dofs,
+        cdb.display()
+    ));
+    if !element_components.is_empty() {
+        notes.push(format!(
+            "ANSYS full file: element components not read (the body has no elements): {}",
+            element_components.join(", ")
+        ));
+    }
+    model.source = file.clone();
+    model.files = vec![file, cdb.display().to_string()];
+    Ok(model)
+}
+
+/// The nodes and node components of an archive, nothing else: the mesh a full file's matrices
+/// were assembled on ([`read_model`]). The archive's elements, materials, constraints and
+/// loads are not read (the full file's K, M and constraint table are the body), so a command or
+/// element type this reader would refuse does not stop it; a nodal rotation (NBLOCK angles) is
+/// refused, as the full file's dofs would be in the rotated frame. Also returns the names of
+/// the element components left out.
+fn read_mesh(path: &Path) -> Result<(Model, Vec<String>), ImportError> {
+    let file = path.display().to_string();
+    let text = crate::import::text::read_text(path)?;
+    let mut archive = super::Archive::default();
+    archive.read(&file, &text, &BTreeSet::new())?;
+    archive.refused.clear();
+    let mut model = Model {
+        source: file.clone(),
+        ..Default::default()
+    };
+    let node_map = archive.place_nodes(&file, &mut model)?;
+    archive.refusals(&file)?;
+    let element_components = (archive.components.iter())
+        .filter(|c| !c.2)
+        .map(|c| c.1.clone())
+        .collect();
+    archive.components.retain(|c| c.2);
+    archive.components(&file, &node_map, &BTreeMap::new(), &mut model)?;
+    Ok((model, element_components))
 }

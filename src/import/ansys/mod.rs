@@ -11,6 +11,7 @@
 
 mod blocks;
 pub mod catalogue;
+mod connections;
 mod constraints;
 mod elements;
 pub mod full;
@@ -21,13 +22,18 @@ use std::path::Path;
 
 use self::blocks::{Command, ElementRecord, Lines, NodeRecord};
 use self::catalogue::Disposition;
-use self::elements::{ElementType, Formed};
+use self::connections::{
+    free_dependents, place_spring, rigid_link, rod_property, rotary_without_rotations,
+};
+use self::elements::{ElementType, Formed, LinkSection};
 use super::error::{parse_err, ImportError, RefusedCard};
 use super::text::IdMap;
 use super::ImportOptions;
 use crate::model::deck::{ConstraintSource, EigenRequest};
 use crate::model::load::{Load, LoadPart};
-use crate::model::{DofMask, Element, Model, Mpc, Node, NodeDof, Property, Section, Spc};
+use crate::model::{
+    DofMask, Element, Model, Mpc, Node, NodeDof, Property, RigidElement, Section, Spc,
+};
 
 /// Read an archive with default options.
 pub fn read(path: &Path) -> Result<Model, ImportError> {
@@ -66,6 +72,11 @@ struct Archive {
     components: Vec<(usize, String, bool, Vec<u64>)>,
     raw: constraints::Raw,
     lumped: Option<(usize, bool)>,
+    /// LINK sections by id, and the section the last SECTYPE opened (`None`: not a LINK one).
+    sections: BTreeMap<i64, LinkSection>,
+    section_now: Option<i64>,
+    /// The MPC184 rigid links' MPCs (indices into the model's).
+    links: Vec<usize>,
     /// Real constant sets (`R`, `RLBLOCK`).
     reals: BTreeMap<i64, Vec<f64>>,
     eigen: Option<EigenRequest>,
@@ -217,6 +228,39 @@ impl Archive {
                 let sets = lines.rlblock(c.line, c.int(file, 0)?.max(0) as usize)?;
                 self.reals.extend(sets);
             }
+            "SECTYPE" => {
+                let id = c.int(file, 0)?;
+                self.section_now = None;
+                if c.field(1).eq_ignore_ascii_case("LINK") {
+                    let s = LinkSection {
+                        line: c.line,
+                        area: 0.0,
+                        added_mass: 0.0,
+                    };
+                    self.sections.insert(id, s);
+                    self.section_now = Some(id);
+                } else {
+                    refused.push((
+                        c.line,
+                        format!(
+                            "SECTYPE {id},{}: only LINK sections (LINK180's) are read; shell, \
+                             beam and other sections' elements are not formed here",
+                            c.field(1)
+                        ),
+                    ));
+                }
+            }
+            // the data of a section not read is not read either (its SECTYPE is refused)
+            "SECDATA" | "SECCONTROL" => {
+                let value = c.real(file, 0)?;
+                if let Some(s) = self.section_now.and_then(|id| self.sections.get_mut(&id)) {
+                    if c.name == "SECDATA" {
+                        s.area = value;
+                    } else {
+                        s.added_mass = value;
+                    }
+                }
+            }
             "D" => self.raw.d(file, c, &mut refused)?,
             "CE" => {
                 if c.field(1).eq_ignore_ascii_case("DEFI") {
@@ -278,52 +322,13 @@ impl Archive {
             source: file.to_owned(),
             ..Default::default()
         };
-        model.params.wtmass = 1.0;
         model.params.ansys_solid_rules = true;
-        model.files.push(file.to_owned());
-        for r in &self.nodes {
-            if r.angles != [0.0; 3] {
-                self.refused.push((
-                    r.line,
-                    format!("NBLOCK node {}", r.id),
-                    "NBLOCK".into(),
-                    "a nodal coordinate system (rotation angles): not read".into(),
-                ));
-            }
-            model.nodes.push(Node {
-                id: r.id,
-                x: r.x,
-                displacement_frame: None,
-            });
-        }
-        let node_map = IdMap::build(model.nodes.iter().map(|n| n.id)).map_err(|(_, b)| {
-            parse_err(
-                file,
-                self.nodes[b].line,
-                format!("node {}", self.nodes[b].id),
-                "duplicate node id",
-            )
-        })?;
+        let node_map = self.place_nodes(file, &mut model)?;
         let elements = self.form_elements(file, ignored, &node_map, &materials, &mut model)?;
         self.constraints(file, &node_map, &mut model)?;
+        free_dependents(&mut model, &self.links);
         self.components(file, &node_map, &elements, &mut model)?;
-        if !self.refused.is_empty() {
-            let cards = self
-                .refused
-                .iter()
-                .map(|(line, entity, key, reason)| RefusedCard {
-                    file: file.to_owned(),
-                    line: *line,
-                    entity: entity.clone(),
-                    key: key.clone(),
-                    reason: reason.clone(),
-                })
-                .collect();
-            return Err(ImportError::Refused {
-                file: file.to_owned(),
-                cards,
-            });
-        }
+        self.refusals(file)?;
         model.params.coupled_mass = Some(match self.lumped {
             Some((line, true)) => crate::model::DeckMass {
                 consistent: false,
@@ -371,6 +376,57 @@ impl Archive {
         Ok(model)
     }
 
+    /// The archive's nodes into `model` (its source and files too); a nodal rotation is refused.
+    fn place_nodes(&mut self, file: &str, model: &mut Model) -> Result<IdMap, ImportError> {
+        model.params.wtmass = 1.0;
+        model.files.push(file.to_owned());
+        for r in &self.nodes {
+            if r.angles != [0.0; 3] {
+                self.refused.push((
+                    r.line,
+                    format!("NBLOCK node {}", r.id),
+                    "NBLOCK".into(),
+                    "a nodal coordinate system (rotation angles): not read".into(),
+                ));
+            }
+            model.nodes.push(Node {
+                id: r.id,
+                x: r.x,
+                displacement_frame: None,
+            });
+        }
+        IdMap::build(model.nodes.iter().map(|n| n.id)).map_err(|(_, b)| {
+            parse_err(
+                file,
+                self.nodes[b].line,
+                format!("node {}", self.nodes[b].id),
+                "duplicate node id",
+            )
+        })
+    }
+
+    /// Every refusal gathered, as one error (none: `Ok`).
+    fn refusals(&self, file: &str) -> Result<(), ImportError> {
+        if self.refused.is_empty() {
+            return Ok(());
+        }
+        let cards = self
+            .refused
+            .iter()
+            .map(|(line, entity, key, reason)| RefusedCard {
+                file: file.to_owned(),
+                line: *line,
+                entity: entity.clone(),
+                key: key.clone(),
+                reason: reason.clone(),
+            })
+            .collect();
+        Err(ImportError::Refused {
+            file: file.to_owned(),
+            cards,
+        })
+    }
+
     /// The elements formed by type and KEYOPT, their properties (one solid property per
     /// material number); refusals grouped by type and reason, named by the first element's line.
     /// Returns the element ids → index (elements without stiffness: `None`).
@@ -396,6 +452,10 @@ impl Archive {
         let mut refusals: BTreeMap<(i64, String), (usize, usize)> = BTreeMap::new();
         let mut index: BTreeMap<u64, Option<usize>> = BTreeMap::new();
         let mut skipped: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        let mut damped = Vec::new();
+        let mut rods = BTreeMap::new();
+        // MASS21 with rotary inertia: (line, type, point mass)
+        let mut rotary = Vec::new();
         for r in &self.elements {
             let Some(t) = self.types.get(&r.etype) else {
                 return Err(parse_err(
@@ -423,12 +483,16 @@ impl Archive {
                     )
                 })
             };
-            let slot = match elements::form(t, r, self.reals.get(&r.real).map(Vec::as_slice)) {
+            let reals = self.reals.get(&r.real).map(Vec::as_slice);
+            let slot = match elements::form(t, r, reals, self.sections.get(&r.section)) {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
                     None
                 }
                 Ok(Formed::PointMass(id, mass, inertia)) => {
+                    if inertia.iter().any(|&i| i != 0.0) {
+                        rotary.push((r.line, r.etype, model.point_masses.len()));
+                    }
                     model.point_masses.push(crate::model::PointMass {
                         id: r.id,
                         node: node_of(id)?,
@@ -439,6 +503,52 @@ impl Archive {
                             [0.0, inertia[1], 0.0],
                             [0.0, 0.0, inertia[2]],
                         ],
+                    });
+                    None
+                }
+                Ok(Formed::Spring(s)) => {
+                    if s.damped {
+                        damped.push(r.line);
+                    }
+                    if let Err(why) = place_spring(r.id, &s, node_of(s.a)?, node_of(s.b)?, model) {
+                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                        continue;
+                    }
+                    None
+                }
+                Ok(Formed::Rod(ends, area, added_mass)) => {
+                    let key = (r.mat, area.to_bits(), added_mass.to_bits());
+                    let Some(property) = rod_property(model, &mut rods, &property_of, key) else {
+                        let why = format!("LINK180 of material {}, which has no MPDATA", r.mat);
+                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                        continue;
+                    };
+                    model.elements.push(Element {
+                        id: r.id,
+                        kind: crate::model::ElementKind::Rod2,
+                        nodes: vec![node_of(ends[0])?, node_of(ends[1])?],
+                        property: Some(property),
+                        orientation: None,
+                    });
+                    model.element_sources.push((r.id, 0, r.line as u32));
+                    Some(model.elements.len() - 1)
+                }
+                Ok(Formed::RigidLink(a, b)) => {
+                    let Some(mpc) = rigid_link(r.id, node_of(a)?, node_of(b)?, model) else {
+                        let why = "MPC184 rigid link on coincident nodes: no direction".into();
+                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                        continue;
+                    };
+                    self.links.push(model.mpcs.len());
+                    model.mpcs.push(mpc);
+                    None
+                }
+                Ok(Formed::RigidBeam(a, b)) => {
+                    model.rigid_elements.push(RigidElement::Rbe2 {
+                        id: r.id,
+                        independent: node_of(a)?,
+                        dependent: vec![node_of(b)?],
+                        dofs: DofMask::ALL,
                     });
                     None
                 }
@@ -472,6 +582,10 @@ impl Archive {
                 ));
             }
         }
+        for why in rotary_without_rotations(model, &rotary) {
+            let e = refusals.entry(why.1).or_insert((why.0, 0));
+            e.1 += 1;
+        }
         model.element_sources.sort_unstable_by_key(|s| s.0);
         for ((etype, why), (line, count)) in refusals {
             let t = &self.types[&etype];
@@ -485,6 +599,12 @@ impl Archive {
                 name,
                 format!("{why} ({count} element(s), the first here)"),
             ));
+        }
+        if !damped.is_empty() {
+            self.noted.insert(
+                "COMBIN14 damping CV1/CV2 (not read: the body is undamped; --damping gives modal damping)".into(),
+                damped,
+            );
         }
         for (name, lines) in skipped {
             self.noted

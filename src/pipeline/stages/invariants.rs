@@ -8,7 +8,7 @@ use faer::Mat;
 use crate::body::invariants::{compute_invariants, MassPoint};
 use crate::body::invariants_consistent::consistent_invariants;
 use crate::fe::{self, assemble, Assembled, AssemblySpec, BeamLumping, DofMap, MassKind};
-use crate::model::{Model, NodeIndex};
+use crate::model::{DofMatrix, Model, NodeIndex};
 use crate::pipeline::plan::Plan;
 use crate::pipeline::stages::node_shape;
 use crate::pipeline::stages::Constrained;
@@ -68,6 +68,8 @@ fn mass_points(
         None => {
             let mut bare = model.clone();
             bare.point_masses.clear();
+            // a matrix's mass coupling nodes (an ANSYS full file's M) lumped per node
+            bare.dof_matrices = model.dof_matrices.iter().map(DofMatrix::lumped).collect();
             own = assemble(
                 &bare,
                 &AssemblySpec {

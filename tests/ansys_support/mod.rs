@@ -1,0 +1,140 @@
+//! What the ANSYS tests share: ansys-mapdl-reader's example files (`pip install
+//! ansys-mapdl-reader`, MIT licence; read from the installed package, not committed), HexBeam
+//! with the material its full file was solved with, the package's frequencies, and a normal
+//! modes build through the CLI.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::common::{exe, skipped_install};
+use flexbody::import::ansys::full;
+
+pub const INSTALL: &str = "pip install ansys-mapdl-reader";
+
+/// The first 20 frequencies of `file.full` as the package states them (Hz;
+/// `ansys/mapdl/reader/examples/examples.py`, `load_km`'s known result).
+pub const PACKAGE_HZ: [f64; 20] = [
+    1283.20036921,
+    1283.20036921,
+    5781.97486169,
+    6919.39887714,
+    6919.39887714,
+    10172.61497694,
+    16497.85701889,
+    16497.85701889,
+    17343.9939669,
+    27457.18472747,
+    27457.18472747,
+    28908.52552073,
+    30326.16886062,
+    39175.76412419,
+    39175.76412419,
+    40503.70406456,
+    49819.91597612,
+    51043.03965541,
+    51043.03965541,
+    52193.86143879,
+];
+
+/// `python3 -c CODE`'s stdout, or `None` when it fails (package not installed).
+pub fn python(code: &str) -> Option<String> {
+    let o = Command::new("python3").args(["-c", code]).output().ok()?;
+    o.status
+        .success()
+        .then(|| String::from_utf8_lossy(&o.stdout).trim().to_owned())
+}
+
+/// The installed package's `examples/` folder.
+pub fn examples(what: &str) -> Option<PathBuf> {
+    let dir =
+        python("import ansys.mapdl.reader.examples as e, os; print(os.path.dirname(e.__file__))");
+    match dir {
+        Some(d) if Path::new(&d).join("HexBeam.cdb").is_file() => Some(PathBuf::from(d)),
+        _ => {
+            skipped_install(what, INSTALL);
+            None
+        }
+    }
+}
+
+/// EX, NUXY, DENS of material 1 in `file.rst`, as ansys-mapdl-reader reads them.
+pub fn rst_material(dir: &Path) -> [f64; 3] {
+    let code = format!(
+        "import ansys.mapdl.reader as r; m = r.read_binary(r'{}').materials[1]; \
+         print(repr(float(m['EX'])), repr(float(m['NUXY'])), repr(float(m['DENS'])))",
+        dir.join("file.rst").display()
+    );
+    let out = python(&code).expect("file.rst's materials");
+    let v: Vec<f64> = out.split_whitespace().map(|s| s.parse().unwrap()).collect();
+    [v[0], v[1], v[2]]
+}
+
+/// HexBeam.cdb with its three MPDATA values replaced by `file.rst`'s material, and `extra`
+/// lines appended.
+pub fn hexbeam_as_solved(dir: &Path, extra: &str) -> String {
+    let text = std::fs::read_to_string(dir.join("HexBeam.cdb")).unwrap();
+    let [ex, nu, rho] = rst_material(dir);
+    let mut out = String::new();
+    for line in text.lines() {
+        let replaced = match line.get(..20) {
+            Some("MPDATA,R5.0, 1,EX  ,") => format!("MPDATA,R5.0, 1,EX  ,       1, 1, {ex:e},"),
+            Some("MPDATA,R5.0, 1,NUXY,") => format!("MPDATA,R5.0, 1,NUXY,       1, 1, {nu:e},"),
+            Some("MPDATA,R5.0, 1,DENS,") => format!("MPDATA,R5.0, 1,DENS,       1, 1, {rho:e},"),
+            _ => line.to_owned(),
+        };
+        out.push_str(&replaced);
+        out.push('\n');
+    }
+    assert_eq!(out.matches("MPDATA").count(), 3);
+    out.push_str(extra);
+    out
+}
+
+/// `D,node,ALL,0` for every node the full file constrains (all its dofs are: the clamp).
+pub fn clamp_lines(f: &full::FullFile) -> String {
+    let mut nodes: Vec<u64> = (f.dofs.iter().zip(&f.constrained))
+        .filter(|(_, c)| **c)
+        .map(|(d, _)| d.node)
+        .collect();
+    nodes.dedup();
+    for n in &nodes {
+        let all = (f.dofs.iter().zip(&f.constrained)).filter(|(d, _)| d.node == *n);
+        assert!(
+            all.clone().all(|(_, c)| *c),
+            "node {n} is clamped in every dof"
+        );
+    }
+    nodes.iter().map(|n| format!("D,{n},ALL,0\n")).collect()
+}
+
+/// The relative differences of `ours` to the package's 20 frequencies.
+pub fn against_package(ours: &[f64]) -> f64 {
+    assert_eq!(ours.len(), 20, "{ours:?}");
+    (ours.iter().zip(PACKAGE_HZ))
+        .map(|(a, b)| ((a - b) / b).abs())
+        .fold(0.0, f64::max)
+}
+
+/// `flexbody build FILE --units si --method normal --modes N EXTRA… -o OUT` → frequencies.
+pub fn build_modes(path: &Path, modes: usize, extra: &[&str]) -> Vec<f64> {
+    let out = path.with_extension("flexbody");
+    let o = exe()
+        .arg("build")
+        .arg(path)
+        .args([
+            "--units",
+            "si",
+            "--method",
+            "normal",
+            "--modes",
+            &modes.to_string(),
+        ])
+        .args(extra)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    flexbody_reader::read(&out).unwrap().modes.frequency_hz
+}
