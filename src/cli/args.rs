@@ -280,7 +280,7 @@ pub(crate) fn import_format(
     name.as_deref()
         .map(|n| {
             crate::import::Format::from_name(n)
-                .ok_or_else(|| anyhow::anyhow!("--format {n}: expected inp, bdf or msh"))
+                .ok_or_else(|| anyhow::anyhow!("--format {n}: expected inp, bdf, msh, cdb or full"))
         })
         .transpose()
 }
