@@ -17,6 +17,10 @@
 //! CalculiX decks form it (`ModelParams::ccx_solid_rules`): ccx's shells S6 become C3D15
 //! (`import::abaqus::shell_expansion`).
 
+use super::element::{
+    integration_points, Element, ElementInput, ElementMatrices, MatricesError, ModePoint,
+    NodalGradients, SolidRules,
+};
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
 
@@ -83,6 +87,42 @@ pub fn stiffness_ccx(x: &[Xyz; 15], mat: &Isotropic) -> Result<Vec<f64>, Element
 /// Scalar mass 15×15 as CalculiX forms C3D15: the same 9 points as its stiffness.
 pub fn scalar_mass_ccx(x: &[Xyz; 15], rho: f64) -> Result<Vec<f64>, ElementError> {
     solid_scalar_mass(x, shape, &quadrature::wedge_ccx(), rho)
+}
+
+/// The 15-node wedge as an [`Element`].
+pub struct Prism15Element;
+
+impl Element for Prism15Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        // C3D15 as CalculiX integrates it; no other format's 15-node wedge is formed yet
+        if !input.model.params.ccx_solid_rules {
+            return Err(MatricesError::Unsupported(format!(
+                "{:?} elements are not assembled (no element formulation yet)",
+                input.kind
+            )));
+        }
+        let x = input.coords::<15>();
+        let k = input.stiffness(|| stiffness_ccx(&x, &input.iso))?;
+        let ms = scalar_mass_ccx(&x, input.iso.rho)?;
+        Ok(input.solid(k, ms, 15, true))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(Some(integration_points(
+            x,
+            shape,
+            &quadrature::wedge_ccx(),
+        )?))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        let _ = x;
+        Ok(None)
+    }
 }
 
 #[cfg(test)]
