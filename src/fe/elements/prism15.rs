@@ -13,13 +13,16 @@
 //!    1---7---2
 //! ```
 //! K and M with CalculiX's 9-point rule (`quadrature::wedge_ccx`, ccx e_c3d `gauss3d8`: the
-//! interior 3-point triangle rule × 3 Gauss points), stiffness and mass in one loop as ccx. Only
-//! CalculiX decks form it (`ModelParams::ccx_solid_rules`): ccx's shells S6 become C3D15
-//! (`import::abaqus::shell_expansion`).
+//! interior 3-point triangle rule × 3 Gauss points), stiffness and mass in one loop as ccx, for
+//! every format: CalculiX C3D15 (and ccx's shells S6, `import::abaqus::shell_expansion`),
+//! Nastran CPENTA with 15 grids, Gmsh's prism15 (type 18) — so one mesh gives the same
+//! frequencies through the three importers (`tests/prism15_formats.rs`). The 3-point triangle
+//! rule integrates the straight wedge's volume exactly but not N_a N_b (degree 4): the
+//! consistent mass sums to ρV and has rank 9 of 15, as ccx's; HRZ lumping keeps its diagonal.
 
 use super::element::{
-    integration_points, Element, ElementInput, ElementMatrices, MatricesError, ModePoint,
-    NodalGradients, SolidRules,
+    first, integration_points, nodal_gradients, Element, ElementInput, ElementMatrices,
+    MatricesError, ModePoint, NodalGradients, SolidRules,
 };
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
@@ -94,13 +97,7 @@ pub struct Prism15Element;
 
 impl Element for Prism15Element {
     fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
-        // C3D15 as CalculiX integrates it; no other format's 15-node wedge is formed yet
-        if !input.model.params.ccx_solid_rules {
-            return Err(MatricesError::Unsupported(format!(
-                "{:?} elements are not assembled (no element formulation yet)",
-                input.kind
-            )));
-        }
+        // every format's 15-node wedge as CalculiX integrates its C3D15
         let x = input.coords::<15>();
         let k = input.stiffness(|| stiffness_ccx(&x, &input.iso))?;
         let ms = scalar_mass_ccx(&x, input.iso.rho)?;
@@ -120,8 +117,9 @@ impl Element for Prism15Element {
     }
 
     fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
-        let _ = x;
-        Ok(None)
+        const THIRD: f64 = 1.0 / 3.0;
+        let grads = nodal_gradients(&first(x), shape, &NODES, [THIRD, THIRD, 0.0])?;
+        Ok(Some(grads))
     }
 }
 
