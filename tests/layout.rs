@@ -7,7 +7,9 @@
 //!   (`export` converts finished files, downstream of the pipeline: its `mtx` target rebuilds
 //!   the model through the pipeline, as `check --model` does);
 //! * no function is longer than [`MAX_FUNCTION_LINES`] lines, but those in
-//!   [`LONG_FUNCTIONS`], each with its reason.
+//!   [`LONG_FUNCTIONS`], each with its reason;
+//! * no `match` over element kinds has a catch-all arm (`_ =>`, `other =>`): a new
+//!   `ElementKind` then fails to compile at every place that must know it (issue 48).
 //!
 //! A module's uses are its `crate::NAME` paths outside comments, a crate-root re-export of
 //! `lib.rs` (`pub use body::{stress, …}`, `pub use pipeline as build`) counting as its module. A
@@ -20,13 +22,7 @@ use std::path::{Path, PathBuf};
 const MAX_FUNCTION_LINES: usize = 200;
 
 /// Functions allowed to be longer than [`MAX_FUNCTION_LINES`]: (file, function, why).
-const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[(
-    // ~200 lines: a match over element kinds that reads as a table (one arm per element
-    // formulation); the spring, mass and bush elements add arms here.
-    "src/fe/assembly.rs",
-    "element_matrices",
-    "a match table over element kinds",
-)];
+const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[];
 
 /// The stages: they may use each other, never the pipeline or the command line.
 const STAGES: &[&str] = &["import", "model", "fe", "solve", "reduce", "body", "write"];
@@ -795,5 +791,111 @@ fn no_import_circle_between_files() {
     assert!(
         stale.is_empty(),
         "CIRCLES_LEFT lists circles that are gone: take them off the list: {stale:?}"
+
+/// The variants of `ElementKind`, read from `src/model/mod.rs`.
+fn element_kinds() -> Vec<String> {
+    let text = std::fs::read_to_string(src().join("model/mod.rs")).expect("model/mod.rs");
+    let code = without_comments(&text);
+    let start = code
+        .find("pub enum ElementKind {")
+        .expect("the ElementKind enum");
+    let body = &code[start..];
+    let body = &body[body.find('{').expect("its brace") + 1..body.find('}').expect("its end")];
+    body.split(',')
+        .map(|v| v.trim().to_owned())
+        .filter(|v| !v.is_empty())
+        .collect()
+}
+
+/// The arm of a catch-all: `_ =>`, `_ if … =>` or a lone binding (`other =>`).
+fn is_catch_all_arm(line: &str) -> bool {
+    let head = line.split("=>").next().unwrap_or("");
+    let pattern = head.split(" if ").next().unwrap_or("").trim();
+    line.contains("=>")
+        && !pattern.is_empty()
+        && pattern
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+        && pattern.starts_with(|c: char| c.is_ascii_lowercase() || c == '_')
+}
+
+/// Does this arm line name an element kind (`ElementKind::Tet4`, `| Hex8`, or a bare variant
+/// under `use ElementKind::*`)?
+fn names_element_kind(line: &str, kinds: &[String]) -> bool {
+    let t = line.trim_start().trim_start_matches('|').trim_start();
+    t.starts_with("ElementKind::")
+        || kinds.iter().any(|k| {
+            t.strip_prefix(k.as_str())
+                .is_some_and(|rest| rest.starts_with([' ', '|', '=', ',']) || rest.is_empty())
+        })
+}
+
+/// The catch-all arms over element kinds in `text`: a catch-all arm line whose sibling arms
+/// (the lines at its indentation up to the enclosing lines of smaller indentation) name an
+/// element kind. Reads rustfmt's layout: arms, their `|` continuations and closing braces at
+/// one indentation.
+fn element_kind_catch_alls(text: &str, kinds: &[String]) -> Vec<usize> {
+    let code = without_comments(text);
+    let lines: Vec<&str> = code.lines().collect();
+    let indent = |l: &str| l.len() - l.trim_start().len();
+    let mut found = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        if line.trim().is_empty() || !is_catch_all_arm(line) {
+            continue;
+        }
+        let level = indent(line);
+        let mut siblings = Vec::new();
+        for range in [
+            &mut (0..i).rev() as &mut dyn Iterator<Item = usize>,
+            &mut (i + 1..lines.len()),
+        ] {
+            for j in range {
+                let l = lines[j];
+                if l.trim().is_empty() || indent(l) > level {
+                    continue;
+                }
+                if indent(l) < level {
+                    break;
+                }
+                siblings.push(l);
+            }
+        }
+        if siblings.iter().any(|l| names_element_kind(l, kinds)) {
+            found.push(i + 1);
+        }
+    }
+    found
+}
+
+#[test]
+fn catch_all_reader_finds_arms_over_element_kinds_only() {
+    let kinds = vec!["Tet4".to_owned(), "Hex8".to_owned()];
+    let over_kinds =
+        "fn f(k: ElementKind) -> u8 {\n    match k {\n        ElementKind::Tet4\n        \
+                      | ElementKind::Hex8 => 1,\n        _ => 0,\n    }\n}\n";
+    assert_eq!(element_kind_catch_alls(over_kinds, &kinds), vec![5]);
+    let bare = "match k {\n    Tet4 => {\n        1\n    }\n    other => g(other),\n}\n";
+    assert_eq!(element_kind_catch_alls(bare, &kinds), vec![5]);
+    let other_enum = "match s {\n    Section::Rod { a } => a,\n    _ => 0,\n}\n";
+    assert!(element_kind_catch_alls(other_enum, &kinds).is_empty());
+    let exhaustive = "match k {\n    ElementKind::Tet4 => 1,\n    ElementKind::Hex8 => 2,\n}\n";
+    assert!(element_kind_catch_alls(exhaustive, &kinds).is_empty());
+}
+
+#[test]
+fn no_catch_all_arm_over_element_kinds() {
+    let kinds = element_kinds();
+    assert!(kinds.len() > 10, "{kinds:?}");
+    let mut found = Vec::new();
+    for file in rust_files(&src()) {
+        let text = std::fs::read_to_string(&file).expect("a source file");
+        for line in element_kind_catch_alls(&text, &kinds) {
+            found.push(format!("{}:{line}", shown(&file)));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "catch-all arms over ElementKind (list the kinds, so that a new kind fails to compile \
+         where it must be handled): {found:#?}"
     );
 }

@@ -25,31 +25,8 @@
 
 use std::collections::HashMap;
 
+use crate::model::load::{self, FaceTable};
 use crate::model::{ElementKind, Model, NodeIndex};
-
-const TET_FACES: &[&[usize]] = &[&[0, 1, 2], &[0, 3, 1], &[1, 3, 2], &[2, 3, 0]];
-const PRISM_FACES: &[&[usize]] = &[
-    &[0, 1, 2],
-    &[3, 5, 4],
-    &[0, 3, 4, 1],
-    &[1, 4, 5, 2],
-    &[2, 5, 3, 0],
-];
-const PYRAM_FACES: &[&[usize]] = &[
-    &[0, 1, 2, 3],
-    &[0, 4, 1],
-    &[1, 4, 2],
-    &[2, 4, 3],
-    &[3, 4, 0],
-];
-const HEX_FACES: &[&[usize]] = &[
-    &[0, 1, 2, 3],
-    &[4, 7, 6, 5],
-    &[0, 4, 5, 1],
-    &[1, 5, 6, 2],
-    &[2, 6, 7, 3],
-    &[3, 7, 4, 0],
-];
 
 /// A polygon to draw: 2 (line), 3 (triangle) or 4 (quadrilateral) node indices into
 /// [`Model::nodes`].
@@ -60,16 +37,8 @@ pub struct GraphicsFace {
 }
 
 /// Corner faces of a solid element kind (local 0-based corner indices), `None` for non-solids.
-fn solid_faces(kind: ElementKind) -> Option<&'static [&'static [usize]]> {
-    match kind {
-        ElementKind::Tet4 | ElementKind::Tet10 => Some(TET_FACES),
-        ElementKind::Prism6 | ElementKind::Prism15 => Some(PRISM_FACES),
-        ElementKind::Pyram5 | ElementKind::Pyram13 => Some(PYRAM_FACES),
-        ElementKind::Hex8 | ElementKind::Hex8R | ElementKind::Hex20 | ElementKind::Hex20R => {
-            Some(HEX_FACES)
-        }
-        _ => None,
-    }
+fn solid_faces(kind: ElementKind) -> Option<FaceTable> {
+    load::solid_faces(kind).map(|(faces, _)| faces)
 }
 
 /// The faces and lines to draw for `model`, in a deterministic order (element order, then face
@@ -108,8 +77,19 @@ pub fn graphics_faces(model: &Model) -> Vec<GraphicsFace> {
                     });
                 }
             }
-            kind => {
-                let Some(faces) = solid_faces(kind) else {
+            // never assembled (expanded into bricks on import): nothing to draw
+            ElementKind::Beam3 => {}
+            ElementKind::Tet4
+            | ElementKind::Tet10
+            | ElementKind::Hex8
+            | ElementKind::Hex8R
+            | ElementKind::Hex20
+            | ElementKind::Hex20R
+            | ElementKind::Prism6
+            | ElementKind::Prism15
+            | ElementKind::Pyram5
+            | ElementKind::Pyram13 => {
+                let Some(faces) = solid_faces(e.kind) else {
                     continue;
                 };
                 let corner_count = faces

@@ -14,7 +14,8 @@
 //! bending field has no parasitic shear there (the amplitudes cancel it). Other hexahedra with
 //! bubble modes (condensed) are recovered from the nodes alone.
 
-use crate::fe::elements::{self, hex20, hex8, map_point, prism6, tet10, tet4, ElementError, Xyz};
+use crate::fe::elements::element::NodalGradients;
+use crate::fe::elements::{self, hex8, ElementError, Xyz};
 use crate::model::elasticity::rotate;
 use crate::model::{ElementKind, Model, NodeIndex, Stiffness6};
 
@@ -65,89 +66,19 @@ pub enum StressError {
     },
 }
 
-/// Physical shape-function gradients ∂N_b/∂x at each of the element's own nodes (index a), plus
-/// the number of corners where the map is degenerate (the centroid gradients stand in there).
-type NodalGradients = (Vec<Vec<Xyz>>, usize);
-
-/// Gradients ∂N_b/∂x_i at ξ = ξ_a for every node a (isoparametric map, `map_point`).
-fn nodal_gradients<const N: usize>(
-    x: &[Xyz; N],
-    shape: elements::ShapeFn<N>,
-    reference_nodes: &[Xyz; N],
-    centroid: Xyz,
-) -> Result<NodalGradients, ElementError> {
-    let mut fallbacks = 0;
-    let mut centre: Option<[Xyz; N]> = None;
-    let mut out = Vec::with_capacity(N);
-    for (a, xi) in reference_nodes.iter().enumerate() {
-        let g = match map_point(x, shape, xi, a) {
-            Ok((_, g, _)) => g,
-            Err(_) => {
-                fallbacks += 1;
-                match centre {
-                    Some(g) => g,
-                    None => {
-                        let g = map_point(x, shape, &centroid, N)?.1;
-                        centre = Some(g);
-                        g
-                    }
-                }
-            }
-        };
-        out.push(g.to_vec());
-    }
-    Ok((out, fallbacks))
-}
-
 fn coords<const N: usize>(model: &Model, nodes: &[NodeIndex]) -> [Xyz; N] {
     std::array::from_fn(|i| model.nodes[nodes[i]].x)
 }
 
-/// Gradients at the nodes of a solid element, or `None` for kinds without a formulation.
+/// Gradients at the nodes of a solid element, or `None` for kinds whose fields are not
+/// recovered (the element's own answer, `Element::nodal_gradients`).
 fn element_gradients(
     model: &Model,
     nodes: &[NodeIndex],
     kind: ElementKind,
 ) -> Result<Option<NodalGradients>, ElementError> {
-    const THIRD: f64 = 1.0 / 3.0;
-    Ok(Some(match kind {
-        ElementKind::Tet4 => nodal_gradients(
-            &coords::<4>(model, nodes),
-            tet4::shape,
-            &tet4::NODES,
-            [0.25; 3],
-        )?,
-        ElementKind::Tet10 => nodal_gradients(
-            &coords::<10>(model, nodes),
-            tet10::shape,
-            &tet10::NODES,
-            [0.25; 3],
-        )?,
-        ElementKind::Hex8 => nodal_gradients(
-            &coords::<8>(model, nodes),
-            hex8::shape,
-            &hex8::NODES,
-            [0.0; 3],
-        )?,
-        // one-point integration: the uniform strain at every node, as ccx's C3D8R stress
-        ElementKind::Hex8R => {
-            let (_, b) = elements::hex8r::uniform_gradients(&coords::<8>(model, nodes))?;
-            (vec![b.to_vec(); 8], 0)
-        }
-        ElementKind::Hex20 | ElementKind::Hex20R => nodal_gradients(
-            &coords::<20>(model, nodes),
-            hex20::shape,
-            &hex20::NODES,
-            [0.0; 3],
-        )?,
-        ElementKind::Prism6 => nodal_gradients(
-            &coords::<6>(model, nodes),
-            prism6::shape,
-            &prism6::NODES,
-            [THIRD, THIRD, 0.0],
-        )?,
-        _ => return Ok(None),
-    }))
+    let x: Vec<Xyz> = nodes.iter().map(|&n| model.nodes[n].x).collect();
+    elements::kinds::element(kind).nodal_gradients(&x)
 }
 
 /// Small-strain tensor in Voigt form with engineering shears:

@@ -11,43 +11,15 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 
 use super::dofs::DofMap;
-use super::elements::beam::{BeamLumping, BeamProps};
-use super::elements::tet10::Tet10MassRule;
-use super::elements::{
-    beam, hex20, hex20_beam, hex8, hex8r, prism15, prism6, pyram13, pyram5, quad4_shell,
-    quad8_shell, rod, solid_incompatible, tet10, tet4, tri3_shell, tri6_shell, ElementError,
-    Isotropic, Xyz,
-};
+pub use super::elements::element::{AssemblySpec, BeamTheory, ElementMatrices};
+use super::elements::element::{ElementInput, MatricesError};
+pub use super::elements::solid_incompatible::keeps_ccx_modes;
+use super::elements::{kinds, solid_incompatible, ElementError, Isotropic, Xyz};
 use super::interior::{interior_block, with_interior};
 use super::mass::{self, MassKind};
 use super::pattern::Pattern;
 use super::FeError;
 use crate::model::{ElementKind, Model, Section};
-
-/// Bending theory of beam elements.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum BeamTheory {
-    /// Euler–Bernoulli (shear-rigid) everywhere, whatever the sections say.
-    EulerBernoulli,
-    /// Timoshenko: shear flexibility from the section's shear factors (Euler–Bernoulli where a
-    /// section has none). The default: the section says what its card means (Nastran PBEAM and
-    /// PBARL shear flexible, PBAR without K1/K2 shear-rigid; see the importers).
-    #[default]
-    Timoshenko,
-}
-
-/// Options of the assembly.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct AssemblySpec {
-    /// Lumped (default) or consistent mass.
-    pub mass: MassKind,
-    /// Integration of the tet10 consistent mass (CalculiX 4-point by default).
-    pub tet10_mass: Tet10MassRule,
-    /// Beam bending theory.
-    pub beam: BeamTheory,
-    /// Rotational inertia of lumped beam masses.
-    pub beam_lumping: BeamLumping,
-}
 
 /// The assembled physical system.
 #[derive(Debug, Clone)]
@@ -60,64 +32,6 @@ pub struct Assembled {
     pub m: SparseColMat<usize, f64>,
 }
 
-/// One element's matrices in the basic frame, node-major with `dpn` dofs per node, then its
-/// `interior` dofs (ccx's C3D8I: the incompatible modes, [`DofMap::interior`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ElementMatrices {
-    /// Dofs per element node (3 solids, 6 beams, rods and shells).
-    pub dpn: usize,
-    /// Interior dofs after the nodal ones (0 but for ccx's C3D8I).
-    pub interior: usize,
-    /// Stiffness, row-major.
-    pub k: Vec<f64>,
-    /// Mass, row-major.
-    pub m: Vec<f64>,
-}
-
-impl ElementMatrices {
-    /// Node-major matrices without interior dofs.
-    pub fn nodal(dpn: usize, k: Vec<f64>, m: Vec<f64>) -> ElementMatrices {
-        ElementMatrices {
-            dpn,
-            interior: 0,
-            k,
-            m,
-        }
-    }
-
-    /// Rows (and columns) of `k` and `m`: the nodal dofs, then the interior ones.
-    pub fn size(&self) -> usize {
-        self.k.len().isqrt()
-    }
-
-    /// The mass over the nodal dofs only: the leading block of `m` (the interior dofs' rows
-    /// dropped — what a rigid motion, which excites no interior dof, sees).
-    pub fn nodal_mass(&self) -> Vec<f64> {
-        let nt = self.size();
-        let nc = nt - self.interior;
-        (0..nc * nc)
-            .map(|ij| self.m[(ij / nc) * nt + ij % nc])
-            .collect()
-    }
-}
-
-/// Does element `e` keep interior dofs in the system — ccx 2.20's C3D8I (CalculiX deck, linear
-/// hexahedra with incompatible modes, isotropic material) under consistent mass, whose nine
-/// mode amplitudes carry mass and stay unknowns as ccx keeps them? Under lumped mass the modes
-/// are massless and condensed exactly (ccx's `*FREQUENCY` always uses its consistent mass).
-pub fn keeps_ccx_modes(model: &Model, e: usize, spec: &AssemblySpec) -> bool {
-    let el = &model.elements[e];
-    el.kind == ElementKind::Hex8
-        && model.params.solid_bubbles
-        && model.params.ccx_solid_rules
-        && spec.mass == MassKind::Consistent
-        && el
-            .property
-            .and_then(|p| model.properties.get(p))
-            .and_then(|p| model.materials.get(p.material))
-            .is_some_and(|m| m.stiffness().is_none() && m.plane_stress().is_none())
-}
-
 /// Does the assembler form matrices for this element (solids, beams, rods with a property)?
 pub fn is_structural(kind: ElementKind) -> bool {
     kind.is_solid()
@@ -125,10 +39,6 @@ pub fn is_structural(kind: ElementKind) -> bool {
             kind,
             ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2
         )
-}
-
-fn coords<const N: usize>(model: &Model, nodes: &[usize]) -> [Xyz; N] {
-    std::array::from_fn(|i| model.nodes[nodes[i]].x)
 }
 
 /// Why an element has no property, and what to do: a mesh without any material (a Gmsh mesh)
@@ -192,7 +102,6 @@ pub fn element_matrices(
         g: mat.g,
         rho: mat.rho,
     };
-    let lumped = spec.mass == MassKind::Lumped;
     if mat.plane_stress().is_some() && !matches!(prop.section, Section::Shell(_)) {
         return Err(fail(format!(
             "material {} '{}' is a plane-stress (shell) material (MAT8, MAT2, *ELASTIC, \
@@ -209,7 +118,7 @@ pub fn element_matrices(
     let n = &el.nodes;
     // A general D (orthotropic/anisotropic material): its solid kernel; the isotropic kernels
     // below only when there is none.
-    let mut general = match mat.stiffness() {
+    let general = match mat.stiffness() {
         None => None,
         Some(d) if el.kind.is_solid() => {
             let x: Vec<Xyz> = n.iter().map(|&i| model.nodes[i].x).collect();
@@ -241,324 +150,23 @@ pub fn element_matrices(
             )))
         }
     };
-    let isotropic = general.is_none();
-    let mut k_or = |iso_k: &dyn Fn() -> Result<Vec<f64>, ElementError>| match general.take() {
-        Some(k) => Ok(k),
-        None => iso_k(),
+    let input = ElementInput {
+        model,
+        index: e,
+        nodes: n,
+        kind: el.kind,
+        property: prop,
+        material: mat,
+        iso,
+        spec,
+        general,
     };
-    let solid = |k: Vec<f64>, ms: Vec<f64>, nn: usize, quadratic: bool| -> ElementMatrices {
-        let m = match (lumped, quadratic) {
-            (false, _) => super::elements::expand_scalar_mass(&ms, nn),
-            (true, false) => mass::diagonal_solid_mass(&mass::row_sum(&ms, nn)),
-            (true, true) => mass::diagonal_solid_mass(&mass::hrz(&ms, nn)),
-        };
-        ElementMatrices::nodal(3, k, m)
-    };
-    let out = match el.kind {
-        ElementKind::Tet4 => {
-            let x = coords::<4>(model, n);
-            solid(
-                k_or(&|| tet4::stiffness(&x, &iso)).map_err(elem_err)?,
-                if model.params.ccx_solid_rules {
-                    tet4::scalar_mass_one_point(&x, iso.rho)
-                } else {
-                    tet4::scalar_mass(&x, iso.rho)
-                }
-                .map_err(elem_err)?,
-                4,
-                false,
-            )
-        }
-        ElementKind::Tet10 => {
-            let x = coords::<10>(model, n);
-            // HRZ lumping uses the exact consistent diagonal (the 4-point one is a cruder estimate).
-            let rule = if lumped {
-                Tet10MassRule::Exact
-            } else {
-                spec.tet10_mass
-            };
-            solid(
-                k_or(&|| tet10::stiffness(&x, &iso)).map_err(elem_err)?,
-                tet10::scalar_mass(&x, iso.rho, rule).map_err(elem_err)?,
-                10,
-                true,
-            )
-        }
-        // CalculiX 2.20's C3D8I (modes with mass, kept as interior dofs) in a consistent build
-        ElementKind::Hex8 if isotropic && keeps_ccx_modes(model, e, spec) => {
-            let x = coords::<8>(model, n);
-            let (k, m) = solid_incompatible::hex8_ccx_matrices(&x, &iso).map_err(elem_err)?;
-            ElementMatrices {
-                dpn: 3,
-                interior: solid_incompatible::HEX8_CCX_MODE_DOFS,
-                k,
-                m,
-            }
-        }
-        ElementKind::Hex8 => {
-            let x = coords::<8>(model, n);
-            let k = k_or(&|| {
-                if model.params.solid_bubbles {
-                    solid_incompatible::hex8_stiffness(&x, &iso)
-                } else {
-                    hex8::stiffness(&x, &iso)
-                }
-            });
-            solid(
-                k.map_err(elem_err)?,
-                hex8::scalar_mass(&x, iso.rho).map_err(elem_err)?,
-                8,
-                false,
-            )
-        }
-        ElementKind::Hex8R => {
-            let x = coords::<8>(model, n);
-            solid(
-                k_or(&|| hex8r::stiffness(&x, &iso)).map_err(elem_err)?,
-                hex8r::scalar_mass(&x, iso.rho).map_err(elem_err)?,
-                8,
-                false,
-            )
-        }
-        ElementKind::Hex20R if model.beam_bricks.contains_key(&e) => {
-            let x = coords::<20>(model, n);
-            let section = &model.beam_bricks[&e];
-            if general.is_some() {
-                return Err(fail(format!(
-                    "material {} '{}' is anisotropic: a CalculiX beam expanded into a brick \
-                     takes an isotropic material",
-                    mat.id, mat.name
-                )));
-            }
-            solid(
-                hex20_beam::stiffness(&x, &iso, section).map_err(elem_err)?,
-                hex20_beam::scalar_mass(&x, iso.rho, section).map_err(elem_err)?,
-                20,
-                true,
-            )
-        }
-        ElementKind::Hex20 | ElementKind::Hex20R => {
-            let x = coords::<20>(model, n);
-            let reduced = el.kind == ElementKind::Hex20R;
-            let mass = if model.params.ansys_solid_rules && !lumped {
-                hex20::scalar_mass_irons14(&x, iso.rho)
-            } else {
-                hex20::scalar_mass(&x, iso.rho, reduced && !lumped)
-            };
-            solid(
-                k_or(&|| hex20::stiffness(&x, &iso, reduced)).map_err(elem_err)?,
-                mass.map_err(elem_err)?,
-                20,
-                true,
-            )
-        }
-        ElementKind::Prism6 => {
-            let x = coords::<6>(model, n);
-            let (k, ms) = if model.params.solid_bubbles {
-                (
-                    k_or(&|| solid_incompatible::prism6_stiffness(&x, &iso)),
-                    prism6::scalar_mass(&x, iso.rho),
-                )
-            } else if model.params.ccx_solid_rules {
-                (
-                    k_or(&|| prism6::stiffness_ccx(&x, &iso)),
-                    prism6::scalar_mass_ccx(&x, iso.rho),
-                )
-            } else {
-                (
-                    k_or(&|| prism6::stiffness(&x, &iso)),
-                    prism6::scalar_mass(&x, iso.rho),
-                )
-            };
-            solid(k.map_err(elem_err)?, ms.map_err(elem_err)?, 6, false)
-        }
-        // C3D15 as CalculiX integrates it; no other format's 15-node wedge is formed yet
-        ElementKind::Prism15 if model.params.ccx_solid_rules => {
-            let x = coords::<15>(model, n);
-            solid(
-                k_or(&|| prism15::stiffness_ccx(&x, &iso)).map_err(elem_err)?,
-                prism15::scalar_mass_ccx(&x, iso.rho).map_err(elem_err)?,
-                15,
-                true,
-            )
-        }
-        ElementKind::Pyram5 => {
-            let x = coords::<5>(model, n);
-            solid(
-                k_or(&|| pyram5::stiffness(&x, &iso)).map_err(elem_err)?,
-                pyram5::scalar_mass(&x, iso.rho).map_err(elem_err)?,
-                5,
-                false,
-            )
-        }
-        ElementKind::Pyram13 => {
-            let x = coords::<13>(model, n);
-            solid(
-                k_or(&|| pyram13::stiffness(&x, &iso)).map_err(elem_err)?,
-                pyram13::scalar_mass(&x, iso.rho).map_err(elem_err)?,
-                13,
-                true,
-            )
-        }
-        ElementKind::Beam2 | ElementKind::Bar2 => {
-            let Section::Beam(s) = &prop.section else {
-                return Err(fail(format!(
-                    "beam element with non-beam property {}",
-                    prop.id
-                )));
-            };
-            let grid_x = coords::<2>(model, n);
-            let offsets = model.beam_offsets.get(&e).copied();
-            if offsets.is_some() && lumped {
-                return Err(fail(
-                    "offsets WA/WB with lumped mass are not implemented (the lumped masses at \
-                     the offset ends would couple the grids' translations and rotations); use \
-                     consistent mass (PARAM,COUPMASS,1 or --mass consistent)"
-                        .into(),
-                ));
-            }
-            // The element runs between its offset ends (grid + W); rigid links join them below.
-            let x = match offsets {
-                Some(w) => [0, 1].map(|i| [0, 1, 2].map(|c| grid_x[i][c] + w[i][c])),
-                None => grid_x,
-            };
-            let (v, iz, iy) = match el.orientation {
-                Some(v) => {
-                    let (v, iz, iy) =
-                        beam::principal_orientation(&x, v, s.i1, s.i2, s.i12).map_err(elem_err)?;
-                    (Some(v), iz, iy)
-                }
-                None => (None, s.i1, s.i2),
-            };
-            let p = BeamProps {
-                area: s.area,
-                iz,
-                iy,
-                j: s.j,
-                // Nastran ignores K1, K2 when I12 ≠ 0 (QRG PBAR Remark 4).
-                shear: if spec.beam == BeamTheory::Timoshenko && s.i12 == 0.0 {
-                    s.shear_factors
-                } else {
-                    None
-                },
-                nsm: s.nsm,
-            };
-            let lumping = lumped.then_some(spec.beam_lumping.for_element(el.kind));
-            let pins = model.beam_pins.get(&e).copied();
-            let (k, m) = match (&s.taper, pins) {
-                (None, None) => beam::matrices(&x, v, &iso, &p, lumping),
-                (None, Some(pins)) => beam::matrices_pinned(&x, v, &iso, &p, lumping, pins),
-                (Some(_), Some(_)) => {
-                    return Err(fail(
-                        "pin flags on a tapered beam are not implemented".into(),
-                    ))
-                }
-                (Some(_), None) => {
-                    let timoshenko = spec.beam == BeamTheory::Timoshenko;
-                    let at = |xi: f64| {
-                        let ([area, iz, iy, j, nsm], k) = s.at(xi);
-                        let shear = k.filter(|_| timoshenko);
-                        BeamProps {
-                            area,
-                            iz,
-                            iy,
-                            j,
-                            shear,
-                            nsm,
-                        }
-                    };
-                    let breaks = s.breakpoints();
-                    super::elements::tapered_beam::matrices(&x, v, &iso, &at, &breaks, lumping)
-                }
-            }
-            .map_err(elem_err)?;
-            let (k, m) = match offsets {
-                Some(w) => (beam::offset(&k, &w), beam::offset(&m, &w)),
-                None => (k, m),
-            };
-            ElementMatrices::nodal(6, k, m)
-        }
-        ElementKind::Rod2 => {
-            let (area, j, nsm) = match &prop.section {
-                Section::Rod { area, j, nsm } => (*area, *j, *nsm),
-                _ => {
-                    return Err(fail(format!(
-                        "rod element with non-rod property {}",
-                        prop.id
-                    )))
-                }
-            };
-            let (k, m) = rod::matrices(&coords::<2>(model, n), &iso, area, j, nsm, lumped)
-                .map_err(elem_err)?;
-            ElementMatrices::nodal(6, k, m)
-        }
-        ElementKind::Quad4 | ElementKind::Tri3 => {
-            let Section::Shell(s) = &prop.section else {
-                return Err(fail(format!(
-                    "shell element with non-shell property {} (plane-stress/strain CPS/CPE \
-                     elements are not supported)",
-                    prop.id
-                )));
-            };
-            let mut p = super::shell_section::shell_props(model, e, prop, s).map_err(fail)?;
-            // Nastran lumps CQUAD4/CTRIA3 without rotary inertia (BeamLumping::Nastran doc).
-            p.lumped_rotary = spec.beam_lumping != BeamLumping::Nastran;
-            let drilling = model.drilling_membranes.contains(&e);
-            if drilling && (p.general.is_some() || p.membrane.is_none()) {
-                return Err(fail(format!(
-                    "a CQUADR/CTRIAR needs a homogeneous section with a membrane (PSHELL MID1 of \
-                     a MAT1); property {} is a laminate, plane-stress or has no membrane \
-                     (not implemented for the drilling membrane)",
-                    prop.id
-                )));
-            }
-            let (k, m) = match (el.kind == ElementKind::Quad4, drilling) {
-                (true, false) => quad4_shell::matrices(&coords::<4>(model, n), &p, lumped),
-                (true, true) => quad4_shell::matrices_drilling(&coords::<4>(model, n), &p, lumped),
-                (false, false) => tri3_shell::matrices(&coords::<3>(model, n), &p, lumped),
-                (false, true) => tri3_shell::matrices_drilling(&coords::<3>(model, n), &p, lumped),
-            }
-            .map_err(elem_err)?;
-            ElementMatrices::nodal(6, k, m)
-        }
-        ElementKind::Quad8 | ElementKind::Tri6 => {
-            let Section::Shell(s) = &prop.section else {
-                return Err(fail(format!(
-                    "shell element with non-shell property {} (plane-stress/strain CPS/CPE \
-                     elements are not supported)",
-                    prop.id
-                )));
-            };
-            let mut p = super::shell_section::shell_props(model, e, prop, s).map_err(fail)?;
-            if p.general.is_some() {
-                return Err(fail(format!(
-                    "property {} is a laminate or plane-stress (PCOMP of several materials, \
-                     MAT8, MAT2) section: the quadratic shells (CQUAD8/CTRIA6, S8/S8R/S6) take \
-                     isotropic sections only; mesh the part with CQUAD4/CTRIA3 (S4/S3)",
-                    prop.id
-                )));
-            }
-            p.lumped_rotary = spec.beam_lumping != BeamLumping::Nastran;
-            let nodal = model.shell_thickness.get(&e);
-            let t = |a: usize| nodal.map_or(p.t, |t| t[a]);
-            if nodal.is_some_and(|t| t.len() != n.len()) {
-                return Err(fail("nodal thicknesses do not match the node count".into()));
-            }
-            let (k, m) = if el.kind == ElementKind::Quad8 {
-                quad8_shell::matrices(&coords::<8>(model, n), &std::array::from_fn(t), &p, lumped)
-            } else {
-                tri6_shell::matrices(&coords::<6>(model, n), &std::array::from_fn(t), &p, lumped)
-            }
-            .map_err(elem_err)?;
-            ElementMatrices::nodal(6, k, m)
-        }
-        other => {
-            return Err(fail(format!(
-                "{other:?} elements are not assembled (no element formulation yet)"
-            )))
-        }
-    };
-    Ok(out)
+    kinds::element(el.kind)
+        .matrices(&input)
+        .map_err(|err| match err {
+            MatricesError::Unsupported(message) => fail(message),
+            MatricesError::Element(err) => elem_err(err),
+        })
 }
 
 /// Rotate an element matrix into the nodes' displacement frames: A' = T A Tᵀ, T = diag(R_a)

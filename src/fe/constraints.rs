@@ -28,9 +28,9 @@ use faer::{Mat, MatRef};
 use rayon::prelude::*;
 
 use super::dofs::DofMap;
-use super::elements::beam::sub;
 use super::rigid_body::Expr;
 use super::FeError;
+use crate::model::geometry::sub;
 use crate::model::{DofMask, Model, NodeIndex, RigidElement};
 
 /// Which constraints to apply.

@@ -17,9 +17,9 @@
 //! as ccx keeps them): no node owns them, `node_of` gives `None`, and they are expressed in the
 //! basic frame. The assembly appends them ([`DofMap::append_interior`]).
 
-use super::elements::beam::{cross, dot, norm, scale, sub};
 use super::mass::point_mass_has_rotary;
 use super::FeError;
+use crate::model::geometry::{cross, dot, norm, scale, sub};
 use crate::model::{CoordKind, ElementKind, Model, NodeDof, RigidElement};
 
 /// Node ↔ dof numbering of a model.
@@ -82,7 +82,16 @@ impl DofMap {
         };
         for e in &model.elements {
             let n = match e.kind {
-                k if k.is_solid() => 3,
+                ElementKind::Tet4
+                | ElementKind::Tet10
+                | ElementKind::Hex8
+                | ElementKind::Hex8R
+                | ElementKind::Hex20
+                | ElementKind::Hex20R
+                | ElementKind::Prism6
+                | ElementKind::Prism15
+                | ElementKind::Pyram5
+                | ElementKind::Pyram13 => 3,
                 ElementKind::Beam2
                 | ElementKind::Bar2
                 | ElementKind::Rod2
@@ -90,7 +99,8 @@ impl DofMap {
                 | ElementKind::Tri3
                 | ElementKind::Quad8
                 | ElementKind::Tri6 => 6,
-                _ => continue,
+                // expanded into bricks on import: never assembled
+                ElementKind::Beam3 => continue,
             };
             if e.property.is_none() {
                 continue;

@@ -43,8 +43,7 @@ pub mod shell_section;
 pub use assembly::{assemble, Assembled, AssemblySpec, BeamTheory};
 pub use constraints::{eliminate, ConstraintSpec, Reduced};
 pub use dofs::DofMap;
-pub use elements::beam::BeamLumping;
-pub use elements::tet10::Tet10MassRule;
+pub use elements::element::{BeamLumping, Tet10MassRule};
 pub use mass::MassKind;
 
 use crate::model::ElementKind;

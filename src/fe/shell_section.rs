@@ -20,11 +20,71 @@
 //!   G12 (MAT2: G33) in their place, as the isotropic section takes 5/6 G (ShellProps::shear_modulus):
 //!   MITC4 and the DKMT do not lock, so a thin plate gives the Kirchhoff answer.
 
+use super::elements::element::{BeamLumping, ElementInput, MatricesError};
 use super::elements::shell::{
     plane_stress, rotate_plane, rotate_shear, GeneralSection, ShellProps, M2, M3,
 };
 use super::elements::Isotropic;
-use crate::model::{Material, Model, Property, ShellSection};
+use crate::model::{Material, Model, Property, Section, ShellSection};
+
+/// The element's shell section, or why it has none (a non-shell property).
+fn shell_section<'a>(input: &ElementInput<'a>) -> Result<&'a ShellSection, MatricesError> {
+    match &input.property.section {
+        Section::Shell(s) => Ok(s),
+        _ => Err(MatricesError::Unsupported(format!(
+            "shell element with non-shell property {} (plane-stress/strain CPS/CPE elements are \
+             not supported)",
+            input.property.id
+        ))),
+    }
+}
+
+/// A flat shell's (CQUAD4/CTRIA3, S4/S3) section properties, and whether it has the drilling
+/// membrane (CQUADR/CTRIAR).
+pub(crate) fn flat_shell_props(input: &ElementInput) -> Result<(ShellProps, bool), MatricesError> {
+    let s = shell_section(input)?;
+    let (model, e) = (input.model, input.index);
+    let mut p = shell_props(model, e, input.property, s).map_err(MatricesError::Unsupported)?;
+    // Nastran lumps CQUAD4/CTRIA3 without rotary inertia (BeamLumping::Nastran doc).
+    p.lumped_rotary = input.spec.beam_lumping != BeamLumping::Nastran;
+    let drilling = model.drilling_membranes.contains(&e);
+    if drilling && (p.general.is_some() || p.membrane.is_none()) {
+        return Err(MatricesError::Unsupported(format!(
+            "a CQUADR/CTRIAR needs a homogeneous section with a membrane (PSHELL MID1 of a \
+             MAT1); property {} is a laminate, plane-stress or has no membrane (not implemented \
+             for the drilling membrane)",
+            input.property.id
+        )));
+    }
+    Ok((p, drilling))
+}
+
+/// A curved shell's (CQUAD8/CTRIA6, S8/S6) section properties and its thickness at each of its
+/// N nodes (the section's, or the element's nodal thicknesses).
+pub(crate) fn curved_shell_props<const N: usize>(
+    input: &ElementInput,
+) -> Result<(ShellProps, [f64; N]), MatricesError> {
+    let s = shell_section(input)?;
+    let (model, e) = (input.model, input.index);
+    let mut p = shell_props(model, e, input.property, s).map_err(MatricesError::Unsupported)?;
+    if p.general.is_some() {
+        return Err(MatricesError::Unsupported(format!(
+            "property {} is a laminate or plane-stress (PCOMP of several materials, MAT8, MAT2) \
+             section: the quadratic shells (CQUAD8/CTRIA6, S8/S8R/S6) take isotropic sections \
+             only; mesh the part with CQUAD4/CTRIA3 (S4/S3)",
+            input.property.id
+        )));
+    }
+    p.lumped_rotary = input.spec.beam_lumping != BeamLumping::Nastran;
+    let nodal = model.shell_thickness.get(&e);
+    if nodal.is_some_and(|t| t.len() != input.nodes.len()) {
+        return Err(MatricesError::Unsupported(
+            "nodal thicknesses do not match the node count".into(),
+        ));
+    }
+    let t = std::array::from_fn(|a| nodal.map_or(p.t, |t| t[a]));
+    Ok((p, t))
+}
 
 fn material(model: &Model, m: usize) -> Result<&Material, String> {
     model

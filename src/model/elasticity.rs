@@ -7,8 +7,11 @@
 //! 11 22 33 12 13 23 — their importer permutes). D is given in the material axes; an element's
 //! D in the basic frame is D' = T D Tᵀ with T the Bond stress transformation of the axes
 //! (Ting, *Anisotropic Elasticity* (1996) §2.8).
+
 // Index notation, as the formulas are written.
 #![allow(clippy::needless_range_loop)]
+
+use super::geometry::{cross, det3, dot, inverse3, scale, sub, unit};
 
 /// A 6×6 elasticity matrix in the order of the module doc, row-major.
 pub type Stiffness6 = [[f64; 6]; 6];
@@ -104,27 +107,6 @@ pub enum MaterialAxes {
     },
 }
 
-fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = dot(&a, &a).sqrt();
-    (n > 0.0 && n.is_finite()).then(|| [a[0] / n, a[1] / n, a[2] / n])
-}
-
 impl MaterialAxes {
     /// Rectangular axes from the point `a` on axis 1 and the point `b` in the 1–2 plane (both
     /// relative to the origin; Abaqus/CalculiX `*ORIENTATION, SYSTEM=RECTANGULAR`), then
@@ -132,8 +114,8 @@ impl MaterialAxes {
     /// are zero or parallel.
     pub fn rectangular(a: [f64; 3], b: [f64; 3], axis: usize, angle_deg: f64) -> Option<Self> {
         let e1 = unit(a)?;
-        let e2 = unit(sub(&b, &scale(&e1, dot(&b, &e1))))?;
-        let e3 = cross(&e1, &e2);
+        let e2 = unit(sub(b, scale(e1, dot(b, e1))))?;
+        let e3 = cross(e1, e2);
         let mut r = [e1, e2, e3];
         if (1..=3).contains(&axis) && angle_deg != 0.0 {
             // Right-handed rotation about local axis k: the other two turn in their plane.
@@ -152,26 +134,22 @@ impl MaterialAxes {
         match self {
             MaterialAxes::Rectangular(r) => *r,
             MaterialAxes::Cylindrical { a, b } => {
-                let e3 = unit(sub(b, a)).unwrap_or([0.0, 0.0, 1.0]);
-                let p = sub(x, a);
-                let radial = sub(&p, &scale(&e3, dot(&p, &e3)));
+                let e3 = unit(sub(*b, *a)).unwrap_or([0.0, 0.0, 1.0]);
+                let p = sub(*x, *a);
+                let radial = sub(p, scale(e3, dot(p, e3)));
                 let e1 = unit(radial).unwrap_or_else(|| {
                     let trial = if e3[0].abs() < 0.9 {
                         [1.0, 0.0, 0.0]
                     } else {
                         [0.0, 1.0, 0.0]
                     };
-                    unit(cross(&e3, &trial)).unwrap_or([1.0, 0.0, 0.0])
+                    unit(cross(e3, trial)).unwrap_or([1.0, 0.0, 0.0])
                 });
-                let e2 = cross(&e3, &e1);
+                let e2 = cross(e3, e1);
                 [e1, e2, e3]
             }
         }
     }
-}
-
-fn scale(a: &[f64; 3], s: f64) -> [f64; 3] {
-    [a[0] * s, a[1] * s, a[2] * s]
 }
 
 /// D in the basic frame from D in the material axes `r` (rows: axes in the basic frame):
@@ -250,20 +228,8 @@ pub fn from_engineering_constants(
 }
 
 fn invert3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
-    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let c = |i: usize, j: usize| {
-        let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
-        let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
-        m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
-    };
-    Some(std::array::from_fn(|i| {
-        std::array::from_fn(|j| c(j, i) / det)
-    }))
+    let det = det3(m);
+    (det != 0.0 && det.is_finite()).then(|| inverse3(m, det))
 }
 
 /// Eigenvalues of a symmetric 6×6 matrix, ascending (cyclic Jacobi; Golub & Van Loan §8.5).

@@ -177,7 +177,14 @@ pub fn solid_faces(kind: ElementKind) -> Option<(FaceTable, EdgeTable)> {
         ElementKind::Pyram13 => (PYRAM_FACES, PYRAM13_EDGES),
         ElementKind::Hex8 | ElementKind::Hex8R => (HEX_FACES, &[]),
         ElementKind::Hex20 | ElementKind::Hex20R => (HEX_FACES, HEX20_EDGES),
-        _ => return None,
+        ElementKind::Beam2
+        | ElementKind::Bar2
+        | ElementKind::Rod2
+        | ElementKind::Beam3
+        | ElementKind::Tri3
+        | ElementKind::Quad4
+        | ElementKind::Tri6
+        | ElementKind::Quad8 => return None,
     })
 }
 

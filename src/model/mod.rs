@@ -18,6 +18,7 @@ pub mod connector;
 pub mod deck;
 pub mod elasticity;
 pub mod generate;
+pub mod geometry;
 pub mod load;
 pub mod offset_mass;
 pub mod section;

@@ -44,7 +44,22 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
     let (p, q) = match e.kind {
         ElementKind::Quad4 => (sub(x(2), x(0)), sub(x(3), x(1))),
         ElementKind::Tri3 => (sub(x(1), x(0)), sub(x(2), x(0))),
-        _ => return None,
+        ElementKind::Tet4
+        | ElementKind::Tet10
+        | ElementKind::Hex8
+        | ElementKind::Hex8R
+        | ElementKind::Hex20
+        | ElementKind::Hex20R
+        | ElementKind::Prism6
+        | ElementKind::Prism15
+        | ElementKind::Pyram5
+        | ElementKind::Pyram13
+        | ElementKind::Beam2
+        | ElementKind::Bar2
+        | ElementKind::Rod2
+        | ElementKind::Beam3
+        | ElementKind::Tri6
+        | ElementKind::Quad8 => return None,
     };
     let n = [
         p[1] * q[2] - p[2] * q[1],

@@ -5,59 +5,11 @@
 //! condensed as in [`super::solid_incompatible`]. The isotropic elements keep their Lamé
 //! kernels.
 
-use super::solid_incompatible::{
-    condense, full_stiffness_d, hex8_points, mode_points_compatible, prism6_points, ModePoint,
-};
-use super::{hex20, hex8, prism6, pyram13, pyram5, tet10, tet4, ElementError, Xyz};
-use crate::fe::quadrature;
+use super::element::SolidRules;
+use super::solid_incompatible::{condense, full_stiffness_d};
+use super::{kinds, ElementError, Xyz};
 use crate::model::elasticity::{rotate, Stiffness6};
 use crate::model::{ElementKind, MaterialAxes};
-
-/// The integration points of a solid of `kind` through `x` (model node order), with the
-/// incompatible modes of hex8 and prism6 when `incompatible`; `None` for a kind without a
-/// general-D formulation (C3D8R: its hourglass control is isotropic).
-fn points(
-    kind: ElementKind,
-    x: &[Xyz],
-    incompatible: bool,
-    ccx_rules: bool,
-) -> Result<Option<Vec<ModePoint>>, ElementError> {
-    fn arr<const N: usize>(x: &[Xyz]) -> [Xyz; N] {
-        std::array::from_fn(|a| x[a])
-    }
-    Ok(Some(match kind {
-        ElementKind::Tet4 => {
-            mode_points_compatible(&arr::<4>(x), tet4::shape, &quadrature::tet1())?
-        }
-        ElementKind::Tet10 => {
-            mode_points_compatible(&arr::<10>(x), tet10::shape, &quadrature::tet4())?
-        }
-        ElementKind::Hex8 if incompatible => hex8_points(&arr::<8>(x))?,
-        ElementKind::Hex8 => {
-            mode_points_compatible(&arr::<8>(x), hex8::shape, &quadrature::cube(2))?
-        }
-        ElementKind::Hex20 => {
-            mode_points_compatible(&arr::<20>(x), hex20::shape, &quadrature::cube(3))?
-        }
-        ElementKind::Hex20R => {
-            mode_points_compatible(&arr::<20>(x), hex20::shape, &quadrature::cube(2))?
-        }
-        ElementKind::Prism6 if incompatible => prism6_points(&arr::<6>(x))?,
-        ElementKind::Prism6 if ccx_rules => {
-            mode_points_compatible(&arr::<6>(x), prism6::shape, &quadrature::wedge_centroid())?
-        }
-        ElementKind::Prism6 => {
-            mode_points_compatible(&arr::<6>(x), prism6::shape, &quadrature::wedge(2))?
-        }
-        ElementKind::Pyram5 => {
-            mode_points_compatible(&arr::<5>(x), pyram5::shape, &quadrature::cube(3))?
-        }
-        ElementKind::Pyram13 => {
-            mode_points_compatible(&arr::<13>(x), pyram13::shape, &quadrature::cube(4))?
-        }
-        _ => return Ok(None),
-    }))
-}
 
 /// Stiffness (3N×3N, row-major) of a solid of `kind` through `x` with the material stiffness
 /// `d` in the material `axes` (basic axes when `None`); `Ok(None)` for a kind without a
@@ -78,7 +30,11 @@ pub fn stiffness(
             x.len()
         )));
     }
-    let Some(points) = points(kind, x, incompatible, ccx_rules)? else {
+    let rules = SolidRules {
+        incompatible,
+        ccx: ccx_rules,
+    };
+    let Some(points) = kinds::element(kind).stiffness_points(x, rules)? else {
         return Ok(None);
     };
     let at_point = |p: usize| -> Stiffness6 {
@@ -105,7 +61,7 @@ pub fn stiffness(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::elements::{solid_incompatible, Isotropic};
+    use crate::fe::elements::{hex8, solid_incompatible, Isotropic};
     use crate::model::elasticity::isotropic;
 
     fn hex() -> [Xyz; 8] {

@@ -17,6 +17,7 @@
 //! ρL/2·(I_p, I_y, I_z) on its rotations. Non-structural mass adds to the translational mass only.
 
 use super::{ElementError, Isotropic, Xyz};
+use crate::model::geometry::{cross, dot, norm, scale, sub};
 
 /// Section constants of a beam element.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -172,35 +173,7 @@ pub fn consistent_mass_local(l: f64, mat: &Isotropic, p: &BeamProps) -> [[f64; 1
     m
 }
 
-/// Which rotational inertia a lumped beam mass carries (translations always get m/2 per node).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum BeamLumping {
-    /// Section rotary inertia ρL/2·(I_p, I_y, I_z) on the rotations; the default.
-    #[default]
-    SectionRotary,
-    /// Torsional inertia ρI_pL/2 only, no bending rotary inertia (as Nastran CBEAM lumped).
-    TorsionOnly,
-    /// No rotational inertia at all (as Nastran CBAR lumped).
-    TranslationsOnly,
-    /// As Nastran lumps each element: a bar (CBAR) none, a beam (CBEAM) torsion only. Resolved
-    /// per element by [`BeamLumping::for_element`]; on its own it means `TorsionOnly`. Shells
-    /// (CQUAD4/CTRIA3) then get translational lumped mass only, as MSC Nastran lumps them
-    /// (`ShellProps::lumped_rotary`).
-    Nastran,
-}
-
-impl BeamLumping {
-    /// The lumping of one element of this kind (resolves `Nastran`).
-    pub fn for_element(self, kind: crate::model::ElementKind) -> BeamLumping {
-        match (self, kind) {
-            (BeamLumping::Nastran, crate::model::ElementKind::Bar2) => {
-                BeamLumping::TranslationsOnly
-            }
-            (BeamLumping::Nastran, _) => BeamLumping::TorsionOnly,
-            (other, _) => other,
-        }
-    }
-}
+pub use super::element::BeamLumping;
 
 /// Local 12×12 lumped (diagonal) mass (module formula; rotational part per `lumping`).
 pub fn lumped_mass_local(
@@ -403,26 +376,6 @@ fn add2(k: &mut [[f64; 12]; 12], a: usize, b: usize, v: [[f64; 2]; 2]) {
             k[d[r]][d[c]] += v[r][c];
         }
     }
-}
-
-pub(crate) fn sub(a: Xyz, b: Xyz) -> Xyz {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub(crate) fn dot(a: Xyz, b: Xyz) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub(crate) fn norm(a: Xyz) -> f64 {
-    dot(a, a).sqrt()
-}
-pub(crate) fn scale(a: Xyz, s: f64) -> Xyz {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-pub(crate) fn cross(a: Xyz, b: Xyz) -> Xyz {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 #[cfg(test)]

@@ -26,9 +26,9 @@
 //!   that no node of a quadratic element gets a negative mass as by row sums (8-node
 //!   serendipity corners: −1/12 of the area), rotations about the nodal director V_a.
 
-use super::beam::{cross, dot, norm, scale, sub};
 use super::shell::{add_outer, ShellProps, DRILL_INERTIA};
 use super::{ElementError, Xyz};
+use crate::model::geometry::{cross, dot, norm, scale, sub};
 
 /// Shape functions N_a and their (r, s) derivatives at a point.
 pub(crate) type Shape = fn(f64, f64) -> (Vec<f64>, Vec<[f64; 2]>);
@@ -406,74 +406,6 @@ pub(crate) fn mass(
         }
     }
     Ok(m)
-}
-
-/// Solve A X = B in place (A n×n, B n×m, row-major) by Gaussian elimination with partial
-/// pivoting; `None` when A is singular to rounding.
-pub(crate) fn solve_dense(a: &mut [f64], n: usize, b: &mut [f64], m: usize) -> Option<()> {
-    let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
-    for c in 0..n {
-        let piv = (c..n).max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))?;
-        let p = a[piv * n + c].abs();
-        if p.is_nan() || p <= 1e-13 * scale {
-            return None;
-        }
-        for j in 0..n {
-            a.swap(c * n + j, piv * n + j);
-        }
-        for j in 0..m {
-            b.swap(c * m + j, piv * m + j);
-        }
-        for r in c + 1..n {
-            let f = a[r * n + c] / a[c * n + c];
-            if f == 0.0 {
-                continue;
-            }
-            for j in c..n {
-                a[r * n + j] -= f * a[c * n + j];
-            }
-            for j in 0..m {
-                b[r * m + j] -= f * b[c * m + j];
-            }
-        }
-    }
-    for c in (0..n).rev() {
-        for j in 0..m {
-            let s: f64 = (c + 1..n).map(|q| a[c * n + q] * b[q * m + j]).sum();
-            b[c * m + j] = (b[c * m + j] - s) / a[c * n + c];
-        }
-    }
-    Some(())
-}
-
-/// Static condensation of the last `drop` dofs of the symmetric `k` (nd×nd):
-/// K_oo − K_oc K_cc⁻¹ K_co ((nd − drop)² row-major).
-pub(crate) fn condense_last(k: &[f64], nd: usize, drop: usize) -> Result<Vec<f64>, ElementError> {
-    let no = nd - drop;
-    let mut kcc: Vec<f64> = (0..drop * drop)
-        .map(|q| k[(no + q / drop) * nd + no + q % drop])
-        .collect();
-    let mut x: Vec<f64> = (0..drop * no)
-        .map(|q| k[(no + q / no) * nd + q % no])
-        .collect();
-    solve_dense(&mut kcc, drop, &mut x, no).ok_or_else(|| {
-        ElementError::BadConstants("singular internal-node stiffness (degenerate element)".into())
-    })?;
-    let mut out = vec![0.0; no * no];
-    for i in 0..no {
-        for j in 0..no {
-            let corr: f64 = (0..drop).map(|c| k[i * nd + no + c] * x[c * no + j]).sum();
-            out[i * no + j] = k[i * nd + j] - corr;
-        }
-    }
-    for i in 0..no {
-        for j in 0..i {
-            let v = 0.5 * (out[i * no + j] + out[j * no + i]);
-            out[i * no + j] = v;
-            out[j * no + i] = v;
-        }
-    }
-    Ok(out)
 }
 
 /// Mid-surface area ∫ |g_r × g_s| dr ds by `rule`.

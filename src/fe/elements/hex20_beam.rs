@@ -14,8 +14,12 @@
 //!
 //! Section coordinates are reference coordinates of the bounding rectangle (η, ζ ∈ [−1, 1]).
 
+use super::element::{
+    first, integration_points, nodal_gradients, Element, ElementInput, ElementMatrices,
+    MatricesError, ModePoint, NodalGradients, SolidRules,
+};
 use super::{hex20, solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
-use crate::fe::quadrature::QuadPoint;
+use crate::fe::quadrature::{self, QuadPoint};
 use crate::model::BeamBrickSection;
 
 /// The points (η, ζ) and weights of the section's rule on [−1, 1]² (module doc).
@@ -118,6 +122,55 @@ pub fn scalar_mass(
     section: &BeamBrickSection,
 ) -> Result<Vec<f64>, ElementError> {
     solid_scalar_mass(x, hex20::shape, &rule(section), rho)
+}
+
+/// The 20-node hexahedron as an [`Element`] (here, as a CalculiX beam expanded into a C3D20R
+/// is one of its forms): full 3×3×3 or, `reduced`, 2×2×2 integration.
+pub struct Hex20Element {
+    /// C3D20R: 2×2×2 points.
+    pub reduced: bool,
+}
+
+impl Element for Hex20Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let x = input.coords::<20>();
+        let (rho, lumped) = (input.iso.rho, input.lumped());
+        if let Some(section) = (input.model.beam_bricks.get(&input.index)).filter(|_| self.reduced)
+        {
+            if input.general.is_some() {
+                let mat = input.material;
+                return Err(MatricesError::Unsupported(format!(
+                    "material {} '{}' is anisotropic: a CalculiX beam expanded into a brick \
+                     takes an isotropic material",
+                    mat.id, mat.name
+                )));
+            }
+            let k = stiffness(&x, &input.iso, section)?;
+            let ms = scalar_mass(&x, rho, section)?;
+            return Ok(input.solid(k, ms, 20, true));
+        }
+        let mass = if input.model.params.ansys_solid_rules && !lumped {
+            hex20::scalar_mass_irons14(&x, rho)
+        } else {
+            hex20::scalar_mass(&x, rho, self.reduced && !lumped)
+        };
+        let k = input.stiffness(|| hex20::stiffness(&x, &input.iso, self.reduced))?;
+        Ok(input.solid(k, mass?, 20, true))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        let rule = quadrature::cube(if self.reduced { 2 } else { 3 });
+        Ok(Some(integration_points(x, hex20::shape, &rule)?))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        let grads = nodal_gradients(&first(x), hex20::shape, &hex20::NODES, [0.0; 3])?;
+        Ok(Some(grads))
+    }
 }
 
 #[cfg(test)]

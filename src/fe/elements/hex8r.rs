@@ -13,6 +13,10 @@
 //! * consistent mass: the one-point rule, ρV/64 for every node pair (N_a = 1/8 at the centre);
 //!   lumped: its row sums, ρV/8 per node, as C3D8.
 
+use super::element::{
+    first, Element, ElementInput, ElementMatrices, MatricesError, ModePoint, NodalGradients,
+    SolidRules,
+};
 use super::hex8::shape;
 use super::{map_point, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
@@ -82,6 +86,34 @@ pub fn stiffness(x: &[Xyz; 8], mat: &Isotropic) -> Result<Vec<f64>, ElementError
 pub fn scalar_mass(x: &[Xyz; 8], rho: f64) -> Result<Vec<f64>, ElementError> {
     let (vol, _) = uniform_gradients(x)?;
     Ok(vec![rho * vol / 64.0; 64])
+}
+
+/// The one-point hexahedron with hourglass control (C3D8R) as an [`Element`].
+pub struct Hex8rElement;
+
+impl Element for Hex8rElement {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let x = input.coords::<8>();
+        let k = input.stiffness(|| stiffness(&x, &input.iso))?;
+        let ms = scalar_mass(&x, input.iso.rho)?;
+        Ok(input.solid(k, ms, 8, false))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        // its hourglass control is isotropic: no general-material or initial-stress form
+        let _ = x;
+        Ok(None)
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        // one-point integration: the uniform strain at every node, as ccx's C3D8R stress
+        let (_, b) = uniform_gradients(&first(x))?;
+        Ok(Some((vec![b.to_vec(); 8], 0)))
+    }
 }
 
 #[cfg(test)]

@@ -12,12 +12,16 @@
 
 pub mod anisotropic;
 pub mod beam;
+pub mod beam_element;
 pub mod curved_shell;
+pub mod dense;
 pub mod drill_membrane;
+pub mod element;
 pub mod hex20;
 pub mod hex20_beam;
 pub mod hex8;
 pub mod hex8r;
+pub mod kinds;
 pub mod planar_frame;
 pub mod prism15;
 pub mod prism6;
@@ -35,6 +39,7 @@ pub mod tri3_shell;
 pub mod tri6_shell;
 
 use super::quadrature::QuadPoint;
+use crate::model::geometry::{det3, inverse3};
 
 /// A point in 3D (basic frame).
 pub type Xyz = [f64; 3];
@@ -114,29 +119,11 @@ pub fn map_point<const N: usize>(
             }
         }
     }
-    let det = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
-        - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
-        + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
+    let det = det3(&j);
     if det.is_nan() || det <= 0.0 {
         return Err(ElementError::NonPositiveJacobian { det, point });
     }
-    let inv = [
-        [
-            (j[1][1] * j[2][2] - j[1][2] * j[2][1]) / det,
-            (j[0][2] * j[2][1] - j[0][1] * j[2][2]) / det,
-            (j[0][1] * j[1][2] - j[0][2] * j[1][1]) / det,
-        ],
-        [
-            (j[1][2] * j[2][0] - j[1][0] * j[2][2]) / det,
-            (j[0][0] * j[2][2] - j[0][2] * j[2][0]) / det,
-            (j[0][2] * j[1][0] - j[0][0] * j[1][2]) / det,
-        ],
-        [
-            (j[1][0] * j[2][1] - j[1][1] * j[2][0]) / det,
-            (j[0][1] * j[2][0] - j[0][0] * j[2][1]) / det,
-            (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / det,
-        ],
-    ];
+    let inv = inverse3(&j, det);
     // ∂N/∂x_i = Σ_k (J⁻¹)_ik ∂N/∂ξ_k
     let mut g = [[0.0; 3]; N];
     for a in 0..N {

@@ -13,10 +13,17 @@
 //!    1---7---2
 //! ```
 //! K and M with CalculiX's 9-point rule (`quadrature::wedge_ccx`, ccx e_c3d `gauss3d8`: the
-//! interior 3-point triangle rule × 3 Gauss points), stiffness and mass in one loop as ccx. Only
-//! CalculiX decks form it (`ModelParams::ccx_solid_rules`): ccx's shells S6 become C3D15
-//! (`import::abaqus::shell_expansion`).
+//! interior 3-point triangle rule × 3 Gauss points), stiffness and mass in one loop as ccx, for
+//! every format: CalculiX C3D15 (and ccx's shells S6, `import::abaqus::shell_expansion`),
+//! Nastran CPENTA with 15 grids, Gmsh's prism15 (type 18) — so one mesh gives the same
+//! frequencies through the three importers (`tests/prism15_formats.rs`). The 3-point triangle
+//! rule integrates the straight wedge's volume exactly but not N_a N_b (degree 4): the
+//! consistent mass sums to ρV and has rank 9 of 15, as ccx's; HRZ lumping keeps its diagonal.
 
+use super::element::{
+    first, integration_points, nodal_gradients, Element, ElementInput, ElementMatrices,
+    MatricesError, ModePoint, NodalGradients, SolidRules,
+};
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
 
@@ -83,6 +90,37 @@ pub fn stiffness_ccx(x: &[Xyz; 15], mat: &Isotropic) -> Result<Vec<f64>, Element
 /// Scalar mass 15×15 as CalculiX forms C3D15: the same 9 points as its stiffness.
 pub fn scalar_mass_ccx(x: &[Xyz; 15], rho: f64) -> Result<Vec<f64>, ElementError> {
     solid_scalar_mass(x, shape, &quadrature::wedge_ccx(), rho)
+}
+
+/// The 15-node wedge as an [`Element`].
+pub struct Prism15Element;
+
+impl Element for Prism15Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        // every format's 15-node wedge as CalculiX integrates its C3D15
+        let x = input.coords::<15>();
+        let k = input.stiffness(|| stiffness_ccx(&x, &input.iso))?;
+        let ms = scalar_mass_ccx(&x, input.iso.rho)?;
+        Ok(input.solid(k, ms, 15, true))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(Some(integration_points(
+            x,
+            shape,
+            &quadrature::wedge_ccx(),
+        )?))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        const THIRD: f64 = 1.0 / 3.0;
+        let grads = nodal_gradients(&first(x), shape, &NODES, [THIRD, THIRD, 0.0])?;
+        Ok(Some(grads))
+    }
 }
 
 #[cfg(test)]

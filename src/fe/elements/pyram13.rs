@@ -20,6 +20,10 @@
 //! the pyramid, Stroud (1971) §2.4; see [`super::pyram5`] for the collapse), exact for the mass
 //! of an undistorted pyramid (degree 4 in r, s and 6 in t with det J ∝ (1 − t)²).
 
+use super::element::{
+    integration_points, Element, ElementInput, ElementMatrices, MatricesError, ModePoint,
+    NodalGradients, SolidRules,
+};
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
 
@@ -104,6 +108,31 @@ pub fn stiffness(x: &[Xyz; 13], mat: &Isotropic) -> Result<Vec<f64>, ElementErro
 /// Scalar consistent mass 13×13, 4×4×4 Gauss on the collapsed cube.
 pub fn scalar_mass(x: &[Xyz; 13], rho: f64) -> Result<Vec<f64>, ElementError> {
     solid_scalar_mass(x, shape, &quadrature::cube(4), rho)
+}
+
+/// The 13-node pyramid as an [`Element`].
+pub struct Pyram13Element;
+
+impl Element for Pyram13Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let x = input.coords::<13>();
+        let k = input.stiffness(|| stiffness(&x, &input.iso))?;
+        let ms = scalar_mass(&x, input.iso.rho)?;
+        Ok(input.solid(k, ms, 13, true))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(Some(integration_points(x, shape, &quadrature::cube(4))?))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        let _ = x;
+        Ok(None)
+    }
 }
 
 #[cfg(test)]

@@ -19,6 +19,10 @@
 //! r, s; 2 in t) and M (degree 2 in r, s; 4 in t) are integrated exactly; ∫∇N_a dV is
 //! polynomial on any pyramid, so the constant-strain patch test holds.
 
+use super::element::{
+    integration_points, Element, ElementInput, ElementMatrices, MatricesError, ModePoint,
+    NodalGradients, SolidRules,
+};
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
 
@@ -58,6 +62,31 @@ pub fn stiffness(x: &[Xyz; 5], mat: &Isotropic) -> Result<Vec<f64>, ElementError
 /// Scalar consistent mass 5×5, 3×3×3 Gauss on the collapsed cube.
 pub fn scalar_mass(x: &[Xyz; 5], rho: f64) -> Result<Vec<f64>, ElementError> {
     solid_scalar_mass(x, shape, &quadrature::cube(3), rho)
+}
+
+/// The 5-node pyramid as an [`Element`].
+pub struct Pyram5Element;
+
+impl Element for Pyram5Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let x = input.coords::<5>();
+        let k = input.stiffness(|| stiffness(&x, &input.iso))?;
+        let ms = scalar_mass(&x, input.iso.rho)?;
+        Ok(input.solid(k, ms, 5, false))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(Some(integration_points(x, shape, &quadrature::cube(3))?))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        let _ = x;
+        Ok(None)
+    }
 }
 
 #[cfg(test)]

@@ -38,8 +38,12 @@
 //!   exact for rigid motions, approximate (as every flat-facet shell) for strong warping.
 //! * Mass: 2×2 Gauss ∫N_aN_b dA (exact for a parallelogram), shell.rs.
 
+use super::element::{
+    Element, ElementInput, ElementMatrices, MatricesError, ModePoint, NodalGradients, SolidRules,
+};
 use super::shell::{self, add_btdb, add_outer, Resultants, ShellFrame, ShellProps};
 use super::{ElementError, Xyz};
+use crate::fe::shell_section;
 
 const G: f64 = 0.577_350_269_189_625_8; // 1/√3
 const GAUSS: [[f64; 2]; 4] = [[-G, -G], [G, -G], [G, G], [-G, G]];
@@ -504,6 +508,34 @@ pub fn corner_strains(f: &ShellFrame<4>, u: &[[f64; 6]; 4]) -> [([f64; 3], [f64;
         }
         (em, k)
     })
+}
+
+/// The 4-node flat shell (MITC4 + QM6, or the drilling membrane) as an [`Element`].
+pub struct Quad4Element;
+
+impl Element for Quad4Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let (p, drilling) = shell_section::flat_shell_props(input)?;
+        let x = input.coords::<4>();
+        let (k, m) = if drilling {
+            matrices_drilling(&x, &p, input.lumped())
+        } else {
+            matrices(&x, &p, input.lumped())
+        }?;
+        Ok(ElementMatrices::nodal(6, k, m))
+    }
+
+    fn stiffness_points(
+        &self,
+        _: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(None)
+    }
+
+    fn nodal_gradients(&self, _: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        Ok(None)
+    }
 }
 
 #[cfg(test)]

@@ -22,8 +22,12 @@
 //!   the consistent diagonal's ratio 6 : 32; rotations about the nodal normal).
 
 use super::curved_shell::{self, Lamina};
+use super::element::{
+    Element, ElementInput, ElementMatrices, MatricesError, ModePoint, NodalGradients, SolidRules,
+};
 use super::shell::ShellProps;
 use super::{ElementError, Xyz};
+use crate::fe::shell_section;
 
 /// Reference points of the 9 nodes.
 const REF: [[f64; 2]; 9] = [
@@ -184,7 +188,7 @@ pub fn matrices(
     let lam9 = Lamina::new(&x9, &t9, shape9, &REF)?;
     let rule = gauss3x3();
     let k9 = curved_shell::stiffness(&lam9, &tying_points(), &weights, &rule, props)?;
-    let k = curved_shell::condense_last(&k9, 54, 6)?;
+    let k = super::dense::condense(&k9, 48, 6, "internal-node stiffness")?;
     let lam8 = Lamina::new(x, t, shape8, &REF[..8])?;
     let m = curved_shell::mass(&lam8, &rule, props, lumped)?;
     Ok((k, m))
@@ -195,6 +199,29 @@ pub fn area(x: &[Xyz; 8]) -> Result<f64, ElementError> {
     let t = [1.0; 8];
     let lam = Lamina::new(x, &t, shape8, &REF[..8])?;
     curved_shell::area(&lam, &gauss3x3())
+}
+
+/// The 8-node curved shell as an [`Element`].
+pub struct Quad8Element;
+
+impl Element for Quad8Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let (p, t) = shell_section::curved_shell_props::<8>(input)?;
+        let (k, m) = matrices(&input.coords::<8>(), &t, &p, input.lumped())?;
+        Ok(ElementMatrices::nodal(6, k, m))
+    }
+
+    fn stiffness_points(
+        &self,
+        _: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(None)
+    }
+
+    fn nodal_gradients(&self, _: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        Ok(None)
+    }
 }
 
 #[cfg(test)]

@@ -9,7 +9,11 @@
 //! ρJL/6·[2 1; 1 2] (e_x e_xᵀ) on rotations; lumped: m/2·I₃ and ρJL/2 (e_x e_xᵀ).
 
 use super::beam::local_frame;
+use super::element::{
+    Element, ElementInput, ElementMatrices, MatricesError, ModePoint, NodalGradients, SolidRules,
+};
 use super::{ElementError, Isotropic, Xyz};
+use crate::model::Section;
 
 /// Basic-frame stiffness and mass (12×12, 6 dofs per node) of a rod.
 pub fn matrices(
@@ -50,6 +54,38 @@ pub fn matrices(
         }
     }
     Ok((k, m))
+}
+
+/// The 2-node rod (axial and torsion) as an [`Element`].
+pub struct RodElement;
+
+impl Element for RodElement {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let (area, j, nsm) = match &input.property.section {
+            Section::Rod { area, j, nsm } => (*area, *j, *nsm),
+            _ => {
+                return Err(MatricesError::Unsupported(format!(
+                    "rod element with non-rod property {}",
+                    input.property.id
+                )))
+            }
+        };
+        let x = input.coords::<2>();
+        let (k, m) = matrices(&x, &input.iso, area, j, nsm, input.lumped())?;
+        Ok(ElementMatrices::nodal(6, k, m))
+    }
+
+    fn stiffness_points(
+        &self,
+        _: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(None)
+    }
+
+    fn nodal_gradients(&self, _: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        Ok(None)
+    }
 }
 
 #[cfg(test)]

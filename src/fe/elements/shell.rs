@@ -44,8 +44,8 @@
 //! measured at about 1.6 kHz on a 4 mm and 3 kHz on a 2 mm steel sheet — a cluster of spurious
 //! modes inside a multibody band; with ε = 10⁻⁴ it sits 100× higher (≈ 0.3 MHz at 2 mm).
 
-use super::beam::{cross, dot, norm, scale, sub};
 use super::{ElementError, Isotropic, Xyz};
+use crate::model::geometry::{cross, dot, norm, scale, sub};
 use crate::model::ShellMaterialAxis;
 
 /// A 3×3 matrix.

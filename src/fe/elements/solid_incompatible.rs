@@ -14,8 +14,18 @@
 //! CalculiX 2.20's C3D8I gives its modes mass: [`hex8_ccx_matrices`] returns the uncondensed
 //! element, whose mode dofs the assembly keeps as interior dofs (`fe::dofs::DofMap::interior`).
 
-use super::{check_solid_material, map_point, ElementError, Isotropic, ShapeFn, Xyz};
+pub use super::element::ModePoint;
+use super::element::{
+    first, integration_points, nodal_gradients, AssemblySpec, Element, ElementInput,
+    ElementMatrices, MatricesError, NodalGradients, SolidRules,
+};
+use super::{
+    check_solid_material, dense, hex8, map_point, prism6, ElementError, Isotropic, ShapeFn, Xyz,
+};
+use crate::fe::mass::MassKind;
 use crate::fe::quadrature::{self, QuadPoint};
+use crate::model::geometry::{det3, inverse3};
+use crate::model::{ElementKind, Model};
 
 /// Reference gradients of the incompatible modes at ξ.
 type ModeGradients = fn(&Xyz) -> Vec<Xyz>;
@@ -60,14 +70,14 @@ pub fn hex8_ccx_matrices(
 ) -> Result<(Vec<f64>, Vec<f64>), ElementError> {
     check_solid_material(mat)?;
     let rule = quadrature::cube(2);
-    let (_, _, _) = map_point(x, super::hex8::shape, &[0.0; 3], 0)?;
-    let inv0 = jacobian_inverse(x, super::hex8::shape, &[0.0; 3]);
+    let (_, _, _) = map_point(x, hex8::shape, &[0.0; 3], 0)?;
+    let inv0 = jacobian_inverse(x, hex8::shape, &[0.0; 3]);
     let nt = 24 + HEX8_CCX_MODE_DOFS;
     let mut points = Vec::with_capacity(rule.len());
     // scalar mass over the 8 nodal functions and the 3 modes (11×11)
     let mut ms = [[0.0; 11]; 11];
     for (p, q) in rule.iter().enumerate() {
-        let (n, g, det) = map_point(x, super::hex8::shape, &q.xi, p)?;
+        let (n, g, det) = map_point(x, hex8::shape, &q.xi, p)?;
         let mut grads: Vec<Xyz> = g.to_vec();
         for m in hex_modes(&q.xi) {
             grads.push(std::array::from_fn(|i| {
@@ -111,23 +121,12 @@ pub fn hex8_ccx_matrices(
 /// Physical gradients of ccx 2.20's C3D8I modes 1 − ξ², 1 − η², 1 − ζ² at ξ, as
 /// [`hex8_ccx_matrices`] forms them: J₀⁻¹ ∂P/∂ξ (J₀ at the centre).
 pub fn hex8_ccx_mode_gradients(x: &[Xyz; 8], xi: &Xyz) -> Result<[Xyz; 3], ElementError> {
-    map_point(x, super::hex8::shape, &[0.0; 3], 0)?;
-    let inv0 = jacobian_inverse(x, super::hex8::shape, &[0.0; 3]);
+    map_point(x, hex8::shape, &[0.0; 3], 0)?;
+    let inv0 = jacobian_inverse(x, hex8::shape, &[0.0; 3]);
     let modes = hex_modes(xi);
     Ok(std::array::from_fn(|m| {
         std::array::from_fn(|i| (0..3).map(|c| inv0[i][c] * modes[m][c]).sum::<f64>())
     }))
-}
-
-/// (A + Aᵀ)/2 in place (n × n, row-major).
-fn symmetrize(a: &mut [f64], n: usize) {
-    for i in 0..n {
-        for j in 0..i {
-            let v = 0.5 * (a[i * n + j] + a[j * n + i]);
-            a[i * n + j] = v;
-            a[j * n + i] = v;
-        }
-    }
 }
 
 /// Strain rows (6 × 3n: εxx εyy εzz γxy γyz γzx) of gradients g.
@@ -145,19 +144,6 @@ pub(crate) fn strain_rows(g: &[Xyz]) -> Vec<[f64; 6]> {
         b[3 * a + 2][5] = gr[0];
     }
     b
-}
-
-/// One integration point of an element with incompatible modes: the weight w = w_q det J, the
-/// nodal shape values N_a and the physical gradients of the N nodal shape functions followed by
-/// those of the modes (Taylor's correction, module doc).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ModePoint {
-    /// w_q det J.
-    pub w: f64,
-    /// N_a at the point.
-    pub n: Vec<f64>,
-    /// ∂N_a/∂x for the N nodes, then ∂P_m/∂x for the modes.
-    pub grads: Vec<Xyz>,
 }
 
 /// The integration points of an N-node element with the incompatible modes `modes` (centre
@@ -189,41 +175,16 @@ pub(crate) fn mode_points<const N: usize>(
     Ok(out)
 }
 
-/// The integration points of an N-node element without incompatible modes.
-pub(crate) fn mode_points_compatible<const N: usize>(
-    x: &[Xyz; N],
-    shape: ShapeFn<N>,
-    rule: &[QuadPoint],
-) -> Result<Vec<ModePoint>, ElementError> {
-    rule.iter()
-        .enumerate()
-        .map(|(p, q)| {
-            let (n, g, det) = map_point(x, shape, &q.xi, p)?;
-            Ok(ModePoint {
-                w: q.w * det,
-                n: n.to_vec(),
-                grads: g.to_vec(),
-            })
-        })
-        .collect()
-}
-
 /// Integration points of the 8-node hexahedron with Wilson's three modes (2×2×2 Gauss).
 pub(crate) fn hex8_points(x: &[Xyz; 8]) -> Result<Vec<ModePoint>, ElementError> {
-    mode_points(
-        x,
-        super::hex8::shape,
-        &quadrature::cube(2),
-        [0.0; 3],
-        hex_modes,
-    )
+    mode_points(x, hex8::shape, &quadrature::cube(2), [0.0; 3], hex_modes)
 }
 
 /// Integration points of the 6-node wedge with the mode 1 − ζ² (3×2 points).
 pub(crate) fn prism6_points(x: &[Xyz; 6]) -> Result<Vec<ModePoint>, ElementError> {
     mode_points(
         x,
-        super::prism6::shape,
+        prism6::shape,
         &quadrature::wedge(2),
         [1.0 / 3.0, 1.0 / 3.0, 0.0],
         wedge_modes,
@@ -279,30 +240,11 @@ fn jacobian_inverse<const N: usize>(x: &[Xyz; N], shape: ShapeFn<N>, xi: &Xyz) -
             }
         }
     }
-    let det = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
-        - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
-        + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
-    [
-        [
-            (j[1][1] * j[2][2] - j[1][2] * j[2][1]) / det,
-            (j[0][2] * j[2][1] - j[0][1] * j[2][2]) / det,
-            (j[0][1] * j[1][2] - j[0][2] * j[1][1]) / det,
-        ],
-        [
-            (j[1][2] * j[2][0] - j[1][0] * j[2][2]) / det,
-            (j[0][0] * j[2][2] - j[0][2] * j[2][0]) / det,
-            (j[0][2] * j[1][0] - j[0][0] * j[1][2]) / det,
-        ],
-        [
-            (j[1][0] * j[2][1] - j[1][1] * j[2][0]) / det,
-            (j[0][1] * j[2][0] - j[0][0] * j[2][1]) / det,
-            (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / det,
-        ],
-    ]
+    inverse3(&j, det3(&j))
 }
 
-/// K_ii⁻¹ B for the mode block K_ii of a (nc + ni)² matrix `k` and `cols` right-hand sides B
-/// (ni × cols, row-major), by Gaussian elimination with partial pivoting.
+/// Solve K_ii X = B for the mode block K_ii of `k` ((nc + ni)², row-major) and `cols`
+/// right-hand sides B (ni × cols, row-major).
 pub(crate) fn solve_modes(
     k: &[f64],
     nc: usize,
@@ -315,60 +257,127 @@ pub(crate) fn solve_modes(
         .flat_map(|i| (0..ni).map(move |j| (i, j)))
         .map(|(i, j)| k[(nc + i) * nt + nc + j])
         .collect();
-    let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
-    for c in 0..ni {
-        let piv = (c..ni)
-            .max_by(|&i, &j| a[i * ni + c].abs().total_cmp(&a[j * ni + c].abs()))
-            .unwrap_or(c);
-        let p = a[piv * ni + c].abs();
-        if p.is_nan() || p <= 1e-13 * scale {
-            return Err(ElementError::BadConstants(
-                "singular incompatible-mode matrix (degenerate element)".into(),
-            ));
-        }
-        for j in 0..ni {
-            a.swap(c * ni + j, piv * ni + j);
-        }
-        for j in 0..cols {
-            b.swap(c * cols + j, piv * cols + j);
-        }
-        for r in c + 1..ni {
-            let f = a[r * ni + c] / a[c * ni + c];
-            for j in c..ni {
-                a[r * ni + j] -= f * a[c * ni + j];
-            }
-            for j in 0..cols {
-                b[r * cols + j] -= f * b[c * cols + j];
-            }
-        }
-    }
-    for c in (0..ni).rev() {
-        for j in 0..cols {
-            let s: f64 = (c + 1..ni).map(|m| a[c * ni + m] * b[m * cols + j]).sum();
-            b[c * cols + j] = (b[c * cols + j] - s) / a[c * ni + c];
-        }
-    }
+    dense::solve_dense(&mut a, ni, &mut b, cols).ok_or_else(|| {
+        ElementError::BadConstants("singular incompatible-mode matrix (degenerate element)".into())
+    })?;
     Ok(b)
 }
 
-/// K_cc − K_ci K_ii⁻¹ K_ic of a (nc + ni)² matrix.
+/// Static condensation of the `ni` mode dofs after the `nc` nodal ones.
 pub(crate) fn condense(k: &[f64], nc: usize, ni: usize) -> Result<Vec<f64>, ElementError> {
-    let nt = nc + ni;
-    // right-hand sides K_ic (ni × nc)
-    let kic: Vec<f64> = (0..ni)
-        .flat_map(|i| (0..nc).map(move |j| (i, j)))
-        .map(|(i, j)| k[(nc + i) * nt + j])
-        .collect();
-    let b = solve_modes(k, nc, ni, kic, nc)?;
-    let mut out = vec![0.0; nc * nc];
-    for i in 0..nc {
-        for j in 0..nc {
-            let corr: f64 = (0..ni).map(|m| k[i * nt + nc + m] * b[m * nc + j]).sum();
-            out[i * nc + j] = k[i * nt + j] - corr;
+    dense::condense(k, nc, ni, "incompatible-mode matrix")
+}
+
+/// Does element `e` keep interior dofs in the system — ccx 2.20's C3D8I (CalculiX deck, linear
+/// hexahedra with incompatible modes, isotropic material) under consistent mass, whose nine
+/// mode amplitudes carry mass and stay unknowns as ccx keeps them? Under lumped mass the modes
+/// are massless and condensed exactly (ccx's `*FREQUENCY` always uses its consistent mass).
+pub fn keeps_ccx_modes(model: &Model, e: usize, spec: &AssemblySpec) -> bool {
+    let el = &model.elements[e];
+    el.kind == ElementKind::Hex8
+        && model.params.solid_bubbles
+        && model.params.ccx_solid_rules
+        && spec.mass == MassKind::Consistent
+        && el
+            .property
+            .and_then(|p| model.properties.get(p))
+            .and_then(|p| model.materials.get(p.material))
+            .is_some_and(|m| m.stiffness().is_none() && m.plane_stress().is_none())
+}
+
+/// The 8-node hexahedron as an [`Element`]: formed here because its incompatible-mode forms
+/// are (`hex8.rs` holds the compatible kernel).
+pub struct Hex8Element;
+
+impl Element for Hex8Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let x = input.coords::<8>();
+        // CalculiX 2.20's C3D8I (modes with mass, kept as interior dofs) in a consistent build
+        if input.general.is_none() && keeps_ccx_modes(input.model, input.index, input.spec) {
+            let (k, m) = hex8_ccx_matrices(&x, &input.iso)?;
+            return Ok(ElementMatrices {
+                dpn: 3,
+                interior: HEX8_CCX_MODE_DOFS,
+                k,
+                m,
+            });
         }
+        let k = input.stiffness(|| {
+            if input.model.params.solid_bubbles {
+                hex8_stiffness(&x, &input.iso)
+            } else {
+                hex8::stiffness(&x, &input.iso)
+            }
+        })?;
+        let ms = hex8::scalar_mass(&x, input.iso.rho)?;
+        Ok(input.solid(k, ms, 8, false))
     }
-    symmetrize(&mut out, nc);
-    Ok(out)
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        rules: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(Some(if rules.incompatible {
+            hex8_points(&first(x))?
+        } else {
+            integration_points(x, hex8::shape, &quadrature::cube(2))?
+        }))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        let grads = nodal_gradients(&first(x), hex8::shape, &hex8::NODES, [0.0; 3])?;
+        Ok(Some(grads))
+    }
+}
+
+/// The 6-node wedge as an [`Element`]: formed here because its incompatible-mode form is
+/// (`prism6.rs` holds the compatible kernels).
+pub struct Prism6Element;
+
+impl Element for Prism6Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let x = input.coords::<6>();
+        let (iso, params) = (&input.iso, &input.model.params);
+        let (k, ms) = if params.solid_bubbles {
+            (
+                input.stiffness(|| prism6_stiffness(&x, iso)),
+                prism6::scalar_mass(&x, iso.rho),
+            )
+        } else if params.ccx_solid_rules {
+            (
+                input.stiffness(|| prism6::stiffness_ccx(&x, iso)),
+                prism6::scalar_mass_ccx(&x, iso.rho),
+            )
+        } else {
+            (
+                input.stiffness(|| prism6::stiffness(&x, iso)),
+                prism6::scalar_mass(&x, iso.rho),
+            )
+        };
+        Ok(input.solid(k?, ms?, 6, false))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        rules: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(Some(if rules.incompatible {
+            prism6_points(&first(x))?
+        } else if rules.ccx {
+            integration_points(x, prism6::shape, &quadrature::wedge_centroid())?
+        } else {
+            integration_points(x, prism6::shape, &quadrature::wedge(2))?
+        }))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        const THIRD: f64 = 1.0 / 3.0;
+        let centroid = [THIRD, THIRD, 0.0];
+        let grads = nodal_gradients(&first(x), prism6::shape, &prism6::NODES, centroid)?;
+        Ok(Some(grads))
+    }
 }
 
 #[cfg(test)]
@@ -403,8 +412,7 @@ mod tests {
     fn incompatible_hex8_passes_patch_test_on_distorted_element() {
         let mat = steel();
         let k = hex8_stiffness(&HEX, &mat).unwrap();
-        let v = super::super::solid_volume(&HEX, super::super::hex8::shape, &quadrature::cube(2))
-            .unwrap();
+        let v = super::super::solid_volume(&HEX, super::hex8::shape, &quadrature::cube(2)).unwrap();
         let full = super::super::hex8::stiffness(&HEX, &mat).unwrap();
         let grad = [[1e-3, 2e-4, -3e-4], [5e-4, -2e-3, 1e-4], [0.0, 7e-4, 4e-4]];
         let u: Vec<f64> = HEX

@@ -15,20 +15,16 @@
 //! can be singular), or an exact degree-5 collapsed Gauss rule (the classical consistent matrix,
 //! ρV/420 × [6 on corner diagonals, 32 on mid-side diagonals, …]).
 
+use super::element::{
+    first, integration_points, nodal_gradients, Element, ElementInput, ElementMatrices,
+    MatricesError, ModePoint, NodalGradients, SolidRules,
+};
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use std::sync::OnceLock;
 
 use crate::fe::quadrature;
 
-/// Which integration rule forms the tet10 consistent mass.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Tet10MassRule {
-    /// The 4-point rule, as CalculiX C3D10 (matches its dumped matrices).
-    #[default]
-    CalculixFourPoint,
-    /// Exact integration of N_a N_b (degree 4) for straight-edged elements.
-    Exact,
-}
+pub use super::element::Tet10MassRule;
 
 /// Reference coordinates of the 10 nodes.
 pub const NODES: [Xyz; 10] = [
@@ -110,6 +106,36 @@ fn is_straight(x: &[Xyz; 10]) -> bool {
             .sum();
         off2 <= 1e-20 * len2
     })
+}
+
+/// The 10-node tetrahedron as an [`Element`].
+pub struct Tet10Element;
+
+impl Element for Tet10Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let x = input.coords::<10>();
+        // HRZ lumping uses the exact consistent diagonal (the 4-point one is a cruder estimate).
+        let rule = if input.lumped() {
+            Tet10MassRule::Exact
+        } else {
+            input.spec.tet10_mass
+        };
+        let k = input.stiffness(|| stiffness(&x, &input.iso))?;
+        let ms = scalar_mass(&x, input.iso.rho, rule)?;
+        Ok(input.solid(k, ms, 10, true))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(Some(integration_points(x, shape, &quadrature::tet4())?))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        Ok(Some(nodal_gradients(&first(x), shape, &NODES, [0.25; 3])?))
+    }
 }
 
 #[cfg(test)]

@@ -10,6 +10,10 @@
 //! ```
 //! K: 1-point rule (exact, constant B); M: 4-point degree-2 rule (exact, M = ρV/20 (1 + δ_ab)).
 
+use super::element::{
+    first, integration_points, nodal_gradients, Element, ElementInput, ElementMatrices,
+    MatricesError, ModePoint, NodalGradients, SolidRules,
+};
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
 
@@ -50,6 +54,34 @@ pub fn scalar_mass(x: &[Xyz; 4], rho: f64) -> Result<Vec<f64>, ElementError> {
 /// but not the consistent matrix.
 pub fn scalar_mass_one_point(x: &[Xyz; 4], rho: f64) -> Result<Vec<f64>, ElementError> {
     solid_scalar_mass(x, shape, &quadrature::tet1(), rho)
+}
+
+/// The 4-node tetrahedron as an [`Element`].
+pub struct Tet4Element;
+
+impl Element for Tet4Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let x = input.coords::<4>();
+        let k = input.stiffness(|| stiffness(&x, &input.iso))?;
+        let ms = if input.model.params.ccx_solid_rules {
+            scalar_mass_one_point(&x, input.iso.rho)
+        } else {
+            scalar_mass(&x, input.iso.rho)
+        }?;
+        Ok(input.solid(k, ms, 4, false))
+    }
+
+    fn stiffness_points(
+        &self,
+        x: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(Some(integration_points(x, shape, &quadrature::tet1())?))
+    }
+
+    fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        Ok(Some(nodal_gradients(&first(x), shape, &NODES, [0.25; 3])?))
+    }
 }
 
 #[cfg(test)]

@@ -27,9 +27,14 @@
 //!   with centred mid-side nodes puts 3/57 of its mass on each corner and 16/57 on each mid-side
 //!   (consistent diagonal 6/180 and 32/180 of the mass).
 
-use super::curved_shell::{self, solve_dense, Lamina};
+use super::curved_shell::{self, Lamina};
+use super::dense::solve_dense;
+use super::element::{
+    Element, ElementInput, ElementMatrices, MatricesError, ModePoint, NodalGradients, SolidRules,
+};
 use super::shell::ShellProps;
 use super::{ElementError, Xyz};
+use crate::fe::shell_section;
 
 /// Reference points of the 6 nodes.
 const REF: [[f64; 2]; 6] = [
@@ -212,6 +217,29 @@ pub fn area(x: &[Xyz; 6]) -> Result<f64, ElementError> {
     let t = [1.0; 6];
     let lam = Lamina::new(x, &t, shape6, &REF)?;
     curved_shell::area(&lam, &rule6())
+}
+
+/// The 6-node curved shell as an [`Element`].
+pub struct Tri6Element;
+
+impl Element for Tri6Element {
+    fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
+        let (p, t) = shell_section::curved_shell_props::<6>(input)?;
+        let (k, m) = matrices(&input.coords::<6>(), &t, &p, input.lumped())?;
+        Ok(ElementMatrices::nodal(6, k, m))
+    }
+
+    fn stiffness_points(
+        &self,
+        _: &[Xyz],
+        _: SolidRules,
+    ) -> Result<Option<Vec<ModePoint>>, ElementError> {
+        Ok(None)
+    }
+
+    fn nodal_gradients(&self, _: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
+        Ok(None)
+    }
 }
 
 #[cfg(test)]

@@ -15,12 +15,10 @@
 //!   linearization Lᵀ K_G,full L, L = [I; R] (the first-order change of
 //!   (K + K_G)_cc − (K + K_G)_ci (K + K_G)_ii⁻¹ (K + K_G)_ic in σ).
 
-use crate::fe::elements::solid_incompatible::{
-    full_stiffness, hex8_points, prism6_points, solve_modes, ModePoint,
-};
-use crate::fe::elements::{hex20, hex8, map_point, prism6, tet10, tet4, ElementError, Isotropic};
-use crate::fe::elements::{ShapeFn, Xyz};
-use crate::fe::quadrature::{self, QuadPoint};
+use crate::fe::elements::element::{integration_points, SolidRules};
+use crate::fe::elements::solid_incompatible::{full_stiffness, solve_modes, ModePoint};
+use crate::fe::elements::{hex20, kinds, ElementError, Isotropic, Xyz};
+use crate::fe::quadrature::QuadPoint;
 use crate::model::ElementKind;
 
 /// Symmetric stress (or strain) components `[xx yy zz xy yz zx]`.
@@ -36,25 +34,6 @@ pub struct SolidElement {
     /// With incompatible modes: the uncondensed stiffness ((3N + ni)²) and R = −K_ii⁻¹ K_ic
     /// (ni × 3N, row-major).
     modes: Option<(Vec<f64>, Vec<f64>)>,
-}
-
-fn compatible<const N: usize>(
-    x: &[Xyz],
-    shape: ShapeFn<N>,
-    rule: &[QuadPoint],
-) -> Result<Vec<ModePoint>, ElementError> {
-    let x: [Xyz; N] = std::array::from_fn(|a| x[a]);
-    rule.iter()
-        .enumerate()
-        .map(|(p, q)| {
-            let (n, g, det) = map_point(&x, shape, &q.xi, p)?;
-            Ok(ModePoint {
-                w: q.w * det,
-                n: n.to_vec(),
-                grads: g.to_vec(),
-            })
-        })
-        .collect()
 }
 
 impl SolidElement {
@@ -87,31 +66,18 @@ impl SolidElement {
             )));
         }
         let bubbles = incompatible && matches!(kind, ElementKind::Hex8 | ElementKind::Prism6);
-        let points = match kind {
-            ElementKind::Tet4 => compatible(x, tet4::shape, &quadrature::tet1())?,
-            ElementKind::Tet10 => compatible(x, tet10::shape, &quadrature::tet4())?,
-            ElementKind::Hex8 if bubbles => hex8_points(&std::array::from_fn(|a| x[a]))?,
-            ElementKind::Hex8 => compatible(x, hex8::shape, &quadrature::cube(2))?,
-            ElementKind::Hex20 => compatible(x, hex20::shape, &quadrature::cube(3))?,
-            ElementKind::Hex20R => compatible(x, hex20::shape, &quadrature::cube(2))?,
-            ElementKind::Prism6 if bubbles => prism6_points(&std::array::from_fn(|a| x[a]))?,
-            ElementKind::Prism6 if ccx_rules => {
-                compatible(x, prism6::shape, &quadrature::wedge_centroid())?
-            }
-            ElementKind::Prism6 => compatible(x, prism6::shape, &quadrature::wedge(2))?,
-            ElementKind::Hex8R => {
-                return Err(ElementError::BadConstants(
-                    "C3D8R (one-point hexahedron with hourglass control) has no preload \
-                     (initial stress) formulation: mesh the preloaded part with C3D8, C3D8I or \
-                     C3D20R"
-                        .into(),
-                ))
-            }
-            other => {
-                return Err(ElementError::BadConstants(format!(
-                    "{other:?} has no solid formulation"
-                )))
-            }
+        let rules = SolidRules {
+            incompatible,
+            ccx: ccx_rules,
+        };
+        let Some(points) = kinds::element(kind).stiffness_points(x, rules)? else {
+            return Err(ElementError::BadConstants(if kind == ElementKind::Hex8R {
+                "C3D8R (one-point hexahedron with hourglass control) has no preload (initial \
+                 stress) formulation: mesh the preloaded part with C3D8, C3D8I or C3D20R"
+                    .into()
+            } else {
+                format!("{kind:?} has no solid formulation")
+            }));
         };
         let nodes = x.len();
         let modes = if bubbles {
@@ -149,7 +115,7 @@ impl SolidElement {
         }
         Ok(SolidElement {
             nodes: 20,
-            points: compatible(x, hex20::shape, rule)?,
+            points: integration_points(x, hex20::shape, rule)?,
             mat,
             modes: None,
         })
@@ -427,6 +393,7 @@ fn mul_voigt(d: &[[f64; 6]; 6], b: &[[f64; 3]; 6]) -> [[f64; 3]; 6] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fe::elements::hex8;
 
     /// A constant uniaxial stress σ on any element: K_G gives vᵀK_Gv = σ V |∂v/∂x|² for a
     /// linear field v (closed form), and a free thermal expansion is stress free.

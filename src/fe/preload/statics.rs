@@ -51,7 +51,7 @@ fn geometric_rigid_motions(model: &Model, dofs: &DofMap) -> Mat<f64> {
                 t[mode] = 1.0;
             } else {
                 th[mode - 3] = 1.0;
-                t = crate::fe::elements::beam::cross(th, r);
+                t = crate::model::geometry::cross(th, r);
             }
             for (off, v) in [(0, t), (3, th)] {
                 if off < usize::from(dofs.count[p]) {

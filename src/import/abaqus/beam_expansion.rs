@@ -41,6 +41,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use super::Parser;
 use crate::import::error::ImportError;
+use crate::model::geometry::{cross, dot, norm, unit_if};
 use crate::model::{
     BeamBrickSection, ElementKind, Model, Mpc, Node, NodeDof, NodeIndex, Property, Section,
     SectionShape,
@@ -686,26 +687,9 @@ fn solve_for_section_dofs(
         .collect())
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
 /// a / |a|, or `None` below ccx's 1e-10.
 fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = norm(a);
-    (n >= 1e-10 && n.is_finite()).then(|| a.map(|c| c / n))
+    unit_if(a, |n| n >= 1e-10 && n.is_finite())
 }
 
 #[cfg(test)]

@@ -91,22 +91,10 @@ pub(super) const SAME_AXIS: f64 = 0.9999;
 
 pub(super) type Xyz = [f64; 3];
 
-pub(super) fn sub(a: Xyz, b: Xyz) -> Xyz {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub(super) fn dot(a: Xyz, b: Xyz) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub(super) fn cross(a: Xyz, b: Xyz) -> Xyz {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
+pub(super) use crate::model::geometry::{cross, dot, sub};
+/// a / |a|, or `None` for a length of 1e-10 or less.
 pub(super) fn unit(a: Xyz) -> Option<Xyz> {
-    let n = dot(a, a).sqrt();
-    (n > 1e-10 && n.is_finite()).then(|| a.map(|c| c / n))
+    crate::model::geometry::unit_if(a, |n| n > 1e-10 && n.is_finite())
 }
 
 pub(super) fn parse_err(place: &Place, entity: String, message: String) -> ImportError {
@@ -149,7 +137,20 @@ pub fn brick_card(card: &str) -> Option<&'static str> {
 fn corners(brick: ElementKind) -> usize {
     match brick {
         ElementKind::Prism6 | ElementKind::Prism15 => 3,
-        _ => 4,
+        ElementKind::Hex8 | ElementKind::Hex8R | ElementKind::Hex20 | ElementKind::Hex20R => 4,
+        // no shell is expanded into these
+        ElementKind::Tet4
+        | ElementKind::Tet10
+        | ElementKind::Pyram5
+        | ElementKind::Pyram13
+        | ElementKind::Beam2
+        | ElementKind::Bar2
+        | ElementKind::Rod2
+        | ElementKind::Beam3
+        | ElementKind::Tri3
+        | ElementKind::Quad4
+        | ElementKind::Tri6
+        | ElementKind::Quad8 => 0,
     }
 }
 
@@ -189,7 +190,22 @@ pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
                     .collect()
             }
         }
-        _ => {
+        // not a shell: no normal (the callers pass shells only)
+        ElementKind::Tet4
+        | ElementKind::Tet10
+        | ElementKind::Hex8
+        | ElementKind::Hex8R
+        | ElementKind::Hex20
+        | ElementKind::Hex20R
+        | ElementKind::Prism6
+        | ElementKind::Prism15
+        | ElementKind::Pyram5
+        | ElementKind::Pyram13
+        | ElementKind::Beam2
+        | ElementKind::Bar2
+        | ElementKind::Rod2
+        | ElementKind::Beam3 => return [0.0; 3],
+        ElementKind::Tri6 => {
             const AT: [(f64, f64); 6] = [
                 (0.0, 0.0),
                 (1.0, 0.0),

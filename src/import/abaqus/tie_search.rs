@@ -18,6 +18,7 @@
 //! The faces' node order is ccx's (`ifaceq`, `ifacet`, `ifacew1/2`): the same orientation as
 //! [`face_nodes`], started at ccx's first corner, which decides the quadrilaterals' diagonal.
 
+use crate::model::geometry::cross;
 use crate::model::load::{face_nodes, solid_faces};
 use crate::model::{ElementKind, NodeIndex};
 
@@ -241,14 +242,6 @@ fn neighbours(triangles: &[Triangle]) -> Vec<[Option<usize>; 3]> {
 
 fn plane_distance(plane: [f64; 4], p: [f64; 3]) -> f64 {
     plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3]
-}
-
-fn cross(u: [f64; 3], v: [f64; 3]) -> [f64; 3] {
-    [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ]
 }
 
 fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {

@@ -47,25 +47,7 @@ pub(crate) fn dir_to_basic(cs: &CoordSystem, v: [f64; 3]) -> [f64; 3] {
     x
 }
 
-/// a × b.
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// a − b.
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// a / |a|; `None` for a zero or non-finite vector.
-pub(crate) fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    (n > 0.0 && n.is_finite()).then(|| a.map(|c| c / n))
-}
+pub(crate) use crate::model::geometry::{cross, sub, unit};
 
 /// CORD2x from basic points A (origin), B (on +z) and C (in the x–z plane):
 /// e3 = (B−A)/|B−A|, e2 = e3 × (C−A) normalised, e1 = e2 × e3. `None` if degenerate.

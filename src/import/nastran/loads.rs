@@ -177,7 +177,16 @@ fn card_parts(
                 let el = &model.elements[e];
                 let face_traction = match el.kind {
                         ElementKind::Quad4 | ElementKind::Tri3 => (el.nodes.clone(), p),
-                        k if k.is_solid() => {
+                        k @ (ElementKind::Tet4
+                        | ElementKind::Tet10
+                        | ElementKind::Hex8
+                        | ElementKind::Hex8R
+                        | ElementKind::Hex20
+                        | ElementKind::Hex20R
+                        | ElementKind::Prism6
+                        | ElementKind::Prism15
+                        | ElementKind::Pyram5
+                        | ElementKind::Pyram13) => {
                             if thru {
                                 return Err(g.err(6, "THRU is for shell elements; a solid face needs G1 and G3/G4"));
                             }
@@ -201,7 +210,12 @@ fn card_parts(
                             // Positive pressure acts inward: against the outward normal.
                             (face, -p)
                         }
-                        k => {
+                        k @ (ElementKind::Beam2
+                        | ElementKind::Bar2
+                        | ElementKind::Rod2
+                        | ElementKind::Beam3
+                        | ElementKind::Tri6
+                        | ElementKind::Quad8) => {
                             return Err(g.err(1, format!("PLOAD4 on element {id} of kind {k:?} is not supported (solids and CQUAD4/CTRIA3 shells)")))
                         }
                     };

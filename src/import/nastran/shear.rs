@@ -20,6 +20,7 @@ use super::fields::C;
 use super::lex::Card;
 use crate::import::error::ImportError;
 use crate::import::text::IdMap;
+use crate::model::geometry::norm;
 use crate::model::{DofMatrix, Elasticity, NodeDof};
 
 /// The raw records of CSHEAR and PSHEAR.
@@ -146,10 +147,6 @@ pub(super) fn resolve(d: &mut Bulk, mids: &IdMap) -> Result<(), ImportError> {
 
 fn dof(node: usize, component: u8) -> NodeDof {
     NodeDof { node, component }
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
 /// A panel's mean plane: its area PA, in-plane axes e₁, e₂ and the corners in them.
