@@ -726,28 +726,12 @@ fn file_uses_are_read_from_paths_groups_children_and_re_exports() {
 /// File-level circles still there, each with its reason: (the files or folders, ending `/`,
 /// every file of the circle is in; why). A circle not listed fails, and so does an entry no
 /// circle matches any more.
-const CIRCLES_LEFT: &[(&[&str], &str)] = &[
-    (
-        // the card readers take `&mut Bulk` and the bulk holds each family's collected cards:
-        // readers returning records the bulk assembles is a change through 20 files
-        &["src/import/nastran/"],
-        "Nastran card readers mutate the Bulk that holds their families' cards",
-    ),
-    (
-        // `interior_block` recovers C3D8I modes with assembly's ElementMatrices: the element
-        // work (an Element trait, issue 48's other half) rewrites assembly.rs
-        &["src/fe/assembly.rs", "src/fe/interior.rs"],
-        "fe/assembly.rs is being rewritten by the Element-trait work",
-    ),
-    (
-        // `cross` is one of the vector helpers the Element-trait work gathers in one module
-        &[
-            "src/import/abaqus/shell_equations.rs",
-            "src/import/abaqus/shell_expansion.rs",
-        ],
-        "shell_expansion's `cross` moves with the vector helpers of the Element-trait work",
-    ),
-];
+const CIRCLES_LEFT: &[(&[&str], &str)] = &[(
+    // the card readers take `&mut Bulk` and the bulk holds each family's collected cards:
+    // readers returning records the bulk assembles is a change through 20 files
+    &["src/import/nastran/"],
+    "Nastran card readers mutate the Bulk that holds their families' cards",
+)];
 
 /// Whether every file of `circle` is named by `allowed` (a file, or a folder ending `/`).
 fn circle_allowed(circle: &[String], allowed: &[&str]) -> bool {
@@ -791,6 +775,8 @@ fn no_import_circle_between_files() {
     assert!(
         stale.is_empty(),
         "CIRCLES_LEFT lists circles that are gone: take them off the list: {stale:?}"
+    );
+}
 
 /// The variants of `ElementKind`, read from `src/model/mod.rs`.
 fn element_kinds() -> Vec<String> {

@@ -45,6 +45,7 @@ mod rules;
 mod sets;
 mod shell_equations;
 pub mod shell_expansion;
+mod shell_nodes;
 mod steps;
 mod temperature;
 mod thickness;

@@ -4,10 +4,9 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::shell_expansion::{
-    cross, dot, parse_err, sub, unit, Expanded, Place, Xyz, DRILLING, SAME_AXIS,
-};
+use super::shell_nodes::{parse_err, unit, Expanded, Place, Xyz, DRILLING, SAME_AXIS};
 use crate::import::ImportError;
+use crate::model::geometry::{cross, dot, sub};
 use crate::model::{DofMask, Model, Mpc, NodeDof, NodeIndex, RigidElement};
 
 /// How u_b,d of a shell node is joined (module doc, rules 1–3).

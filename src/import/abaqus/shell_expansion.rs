@@ -62,50 +62,17 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::shell_nodes::{parse_err, unit, Expanded, Xyz};
+pub use super::shell_nodes::{Place, ShellElements};
 use crate::import::ImportError;
+use crate::model::geometry::{cross, dot};
 use crate::model::{Elasticity, Element, ElementKind, Model, Node, NodeIndex, Property, Section};
 
 /// The element types this module expands.
 pub const SHELL_TYPES: &[&str] = &["S3", "S4", "S4R", "S6", "S8", "S8R"];
 
-/// Where a shell element was read and as what.
-#[derive(Debug, Clone)]
-pub struct Place {
-    /// The element type (one of [`SHELL_TYPES`]).
-    pub card: &'static str,
-    /// File it is in.
-    pub file: String,
-    /// 1-based line.
-    pub line: usize,
-}
-
-/// The deck's shell elements: external element id → where and what.
-pub type ShellElements = HashMap<u64, Place>;
-
 /// cos 20°: ccx's limit for one mean normal (gen3dnor).
 const SAME_NORMAL: f64 = 0.939693;
-/// ccx's limit for a rotation axis along the normal (gen3dboun: a drilling rotation).
-pub(super) const DRILLING: f64 = 0.999;
-/// ccx's limit for a second held rotation along the first (gen3dboun).
-pub(super) const SAME_AXIS: f64 = 0.9999;
-
-pub(super) type Xyz = [f64; 3];
-
-pub(super) use crate::model::geometry::{cross, dot, sub};
-/// a / |a|, or `None` for a length of 1e-10 or less.
-pub(super) fn unit(a: Xyz) -> Option<Xyz> {
-    crate::model::geometry::unit_if(a, |n| n > 1e-10 && n.is_finite())
-}
-
-pub(super) fn parse_err(place: &Place, entity: String, message: String) -> ImportError {
-    ImportError::Parse {
-        file: place.file.clone(),
-        line: place.line,
-        entity,
-        message,
-    }
-}
-
 /// The shell's brick and whether a corner node of it has a middle node.
 fn brick_of(card: &str) -> Option<(ElementKind, bool)> {
     Some(match card {
@@ -235,15 +202,6 @@ pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
         }
     }
     cross(gs, gt)
-}
-
-/// The expanded nodes of one shell node.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Expanded {
-    pub(super) bottom: NodeIndex,
-    pub(super) middle: Option<NodeIndex>,
-    pub(super) top: NodeIndex,
-    pub(super) normal: Xyz,
 }
 
 /// One shell element to expand: its index, place, brick and thickness at each node.
