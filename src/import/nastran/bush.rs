@@ -25,27 +25,11 @@
 //!
 //! Coordinate systems CID and OCID must be rectangular (a cylindrical one is refused).
 
-use std::collections::HashMap;
-
-use super::bulk::Bulk;
 use super::coord::{cross, dir_to_basic, sub, unit};
 use super::fields::C;
-use super::lex::Card;
+use super::reading::Bulk;
 use crate::import::error::ImportError;
 use crate::model::{Bush, CoordKind, DofMatrix, NodeDof};
-
-/// The raw records of CBUSH and PBUSH.
-#[derive(Default)]
-pub(super) struct BushCards<'a> {
-    /// PBUSH K1–K6 by PID.
-    pub pbush: HashMap<u64, [f64; 6]>,
-    /// CBUSH cards with their resolved end nodes.
-    pub cbush: Vec<(&'a Card, usize, Option<usize>)>,
-    /// PBUSH1D K by PID.
-    pub pbush1d: HashMap<u64, f64>,
-    /// CBUSH1D cards with their resolved end nodes.
-    pub cbush1d: Vec<(&'a Card, usize, Option<usize>)>,
-}
 
 /// Reader of CBUSH1D (module doc).
 pub(super) fn cbush1d<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {

@@ -16,21 +16,13 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::bulk::{places, Bulk};
 use super::case_control::{CaseControl, Effective, MatrixSelection};
 use super::fields::C;
 use super::lex::Card;
+use super::reading::Bulk;
 use crate::import::error::{parse_err, ImportError};
+use crate::import::text::places;
 use crate::model::{DofMatrix, NodeDof};
-
-/// The raw DMIG cards, by matrix name.
-#[derive(Default)]
-pub(super) struct DmigCards<'a> {
-    /// Header cards (field 3 is 0).
-    pub headers: BTreeMap<String, &'a Card>,
-    /// Column cards, in deck order.
-    pub columns: BTreeMap<String, Vec<&'a Card>>,
-}
 
 /// Reader of DMIG: header and column cards kept by name (read when selected).
 pub(super) fn dmig<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {

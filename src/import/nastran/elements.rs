@@ -15,57 +15,14 @@
 
 use std::collections::BTreeMap;
 
-use super::bulk::Bulk;
 use super::coord::dir_to_basic;
 use super::fields::C;
 use super::lex::Card;
-use super::shell::ElementThickness;
+use super::reading::Bulk;
+use super::records::{ElementProperty, Orientation};
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::{IdMap, Loc};
 use crate::model::{CoordKind, ElementKind, Property, Section};
-
-/// The raw records of the element cards.
-#[derive(Default)]
-pub(super) struct ElementCards<'a> {
-    /// Property of each element of the builder, in element order, with its card's location.
-    pub pid: Vec<(ElementProperty, Loc)>,
-    /// Corner thicknesses of shell elements.
-    pub shell_t: Vec<ElementThickness>,
-    /// CQUAD4/CTRIA3 ZOFFS (non-zero) with the card's place.
-    pub shell_offsets: Vec<(crate::model::shell_offset::ShellOffset, Loc)>,
-    /// THETA/MCID of shell elements.
-    pub shell_axes: Vec<super::shell::ElementAxis>,
-    /// Orientation of bars and beams: (element index, as given, card location).
-    pub orient: Vec<(usize, Orientation, Loc)>,
-    /// Offsets WA, WB of bars and beams in the displacement frames of GA, GB (OFFT …GG).
-    pub offsets: Vec<(usize, [[f64; 3]; 2], Loc)>,
-    /// Ids of the other cards in the element id space (concentrated masses, springs).
-    pub other_ids: Vec<(u64, &'a Card)>,
-    /// Ids of the rigid elements: unique among themselves.
-    pub rigid_ids: Vec<(u64, &'a Card)>,
-    /// CQUAD8/CTRIA6 with blank mid-side grids: (element index, the blank slots, card place).
-    pub blank_midsides: Vec<(usize, Vec<usize>, Loc)>,
-    /// BAROR and BEAMOR: the defaults of blank CBAR resp. CBEAM fields.
-    pub bar_defaults: [Option<&'a Card>; 2],
-}
-
-/// The property of an element as its card gives it.
-pub(super) enum ElementProperty {
-    /// By property id.
-    Id(u64),
-    /// On the card (CONROD): material id and the rod section.
-    Rod { mid: u64, section: Section },
-}
-
-/// A bar/beam orientation as the card gives it.
-pub(super) enum Orientation {
-    /// X1–X3, in the displacement frame of GA (OFFT G…, the default).
-    Vector([f64; 3]),
-    /// X1–X3 in the basic frame (OFFT B…).
-    Basic([f64; 3]),
-    /// Towards grid G0.
-    Node(u64),
-}
 
 use ElementKind::*;
 /// An element card: its name, how many node fields it has, its kind by node count.

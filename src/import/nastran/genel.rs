@@ -12,8 +12,8 @@
 //!
 //! Without UD and S the element is K on the {u_i} (which then grounds them).
 
-use super::bulk::Bulk;
 use super::fields::C;
+use super::reading::Bulk;
 use crate::import::error::ImportError;
 use crate::model::{DofMatrix, NodeDof};
 

@@ -13,23 +13,16 @@ use super::case_control::Select;
 use super::coord::dir_to_basic;
 use super::fields::C;
 use super::lex::Card;
+use super::records::LoadCards;
 use crate::import::error::ImportError;
 use crate::import::text::IdMap;
 use crate::model::load::{face_nodes, solid_faces};
 use crate::model::{CoordKind, ElementKind, Load, LoadPart, Model};
 
-/// The load cards of a deck, gathered while the bulk data is read.
-#[derive(Default)]
-pub(crate) struct LoadCards<'a> {
-    pub cards: Vec<&'a Card>,
-    /// TEMP and TEMPD: temperature sets (module `temperature`; a thermal preload's).
-    pub temperatures: Vec<&'a Card>,
-}
-
 /// Reader of the static load cards (FORCE, MOMENT, GRAV, PLOAD4, LOAD, and the ones the
 /// scene does not read — PLOAD1, FORCE1, … — whose set is then kept by name, unusable): kept
 /// for [`resolve`]. A load does not change the body.
-pub(super) fn card<'a>(d: &mut super::bulk::Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+pub(super) fn card<'a>(d: &mut super::reading::Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     d.loads.cards.push(g.card);
     Ok(())
 }
@@ -37,7 +30,7 @@ pub(super) fn card<'a>(d: &mut super::bulk::Bulk<'a>, g: &C<'a>) -> Result<(), I
 /// Reader of TEMP and TEMPD: kept for a thermal preload (they change nothing else of normal
 /// modes).
 pub(super) fn temperature_card<'a>(
-    d: &mut super::bulk::Bulk<'a>,
+    d: &mut super::reading::Bulk<'a>,
     g: &C<'a>,
 ) -> Result<(), ImportError> {
     d.loads.temperatures.push(g.card);

@@ -14,24 +14,11 @@
 // Index loops mirror the subscripts of the 6×6 mass matrix.
 #![allow(clippy::needless_range_loop)]
 
-use super::bulk::Bulk;
 use super::coord::dir_to_basic;
 use super::fields::C;
-use super::lex::Card;
+use super::reading::Bulk;
 use crate::import::error::ImportError;
 use crate::model::{CoordKind, PointMass};
-
-/// The raw records of the mass cards.
-#[derive(Default)]
-pub(super) struct MassCards<'a> {
-    /// CONM2: (point mass with CID-frame offset and inertia, CID, card).
-    pub conm2: Vec<(PointMass, i64, &'a Card)>,
-    /// CONM1 cards.
-    pub conm1: Vec<Conm1<'a>>,
-}
-
-/// A CONM1 read: (EID, node, CID, the 6×6 matrix in CID, card).
-pub(super) type Conm1<'a> = (u64, usize, i64, [[f64; 6]; 6], &'a Card);
 
 /// Reader of CONM2.
 pub(super) fn conm2<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {

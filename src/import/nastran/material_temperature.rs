@@ -6,10 +6,10 @@
 
 use std::collections::BTreeSet;
 
-use super::bulk::Bulk;
 use super::cards::Category;
 use super::fields::C;
 use super::lex::Card;
+use super::reading::Bulk;
 use crate::import::error::ImportError;
 use crate::model::Section;
 

@@ -12,8 +12,9 @@
 //!
 //! Layout: `lex` (text → cards), `cards` (the card table: each card's rule), one file per
 //! card family with its reader and its resolve step (`geometry`, `elements`, `properties`,
-//! `shell`, `mass`, `scalar`, `bush`, `rigid`, `sets`, `solution`, `loads`), and `bulk` (the
-//! three passes: geometry, readers, resolve).
+//! `shell`, `mass`, `scalar`, `bush`, `rigid`, `sets`, `solution`, `loads`), below them what
+//! they fill — `reading` (`Bulk`, the state every reader shares) and `records` (each family's
+//! raw records) — and above them `bulk` (the three passes: geometry, readers, resolve).
 //!
 //! Constraints as Nastran applies them: GRID PS / GRDSET always; an SPC/SPC1/SPCADD set only
 //! when the case control selects it (`SPC = n`, global or in the one or chosen subcase; bare
@@ -37,6 +38,8 @@ mod loads;
 mod mass;
 mod material_temperature;
 mod properties;
+mod reading;
+mod records;
 mod rigid;
 mod scalar;
 mod sets;

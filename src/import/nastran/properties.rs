@@ -8,36 +8,14 @@
 //! * `PSOLID PID MID CORDM IN STRESS ISOP FCTN`: ISOP blank means MSC's CHEXA/CPENTA with
 //!   bubble functions, FULL (or 2) full integration.
 
-use super::bulk::Bulk;
 use super::elements::unique_ids;
 use super::fields::C;
-use super::lex::Card;
+use super::reading::Bulk;
 use crate::import::error::ImportError;
-use std::collections::BTreeMap;
 
 use crate::import::text::{IdMap, Loc};
 use crate::model::beam_library::{dimension_count, library_section};
 use crate::model::{BeamSection, BeamTaper, ImportWarning, Material, Property, Section};
-
-/// The raw records of the property and material cards.
-#[derive(Default)]
-pub(super) struct PropertyCards<'a> {
-    /// (PID, MID, section with external material ids, card).
-    pub props: Vec<(u64, u64, Section, &'a Card)>,
-    /// Property cards of the other element families (dampers, springs, masses, bushes): they
-    /// share the property id space; a structural element may not name them.
-    pub others: Vec<(u64, &'a Card)>,
-    /// (MID, material, card).
-    pub mats: Vec<(u64, Material, &'a Card)>,
-    /// PSOLID ISOP: (FULL, other) property ids with their `file:line` — MSC's CHEXA/CPENTA
-    /// default has bubble modes.
-    pub isop: (Vec<String>, Vec<String>),
-    /// PCOMP Z0 other than −T/2: PID → (mid-plane offset Z0 + T/2 from the reference plane,
-    /// card place), applied with the elements' ZOFFS (`model::shell_offset`).
-    pub mid_plane_offsets: BTreeMap<u64, (f64, Loc)>,
-    /// MATT1/MATT2/MATT8/MATT9, decided once every property is read (`material_temperature`).
-    pub temperature_tables: Vec<&'a Card>,
-}
 
 /// Note on the library shapes other than ROD: their J and shear factors are textbook values.
 const LIBRARY_CONSTANTS: &str = "A, I1, I2, I12 of the shape exactly; J and the shear factors K1, K2 (Nastran does not publish its own for this shape) by the rules of src/model/beam_library.rs: thin-walled J (Bredt for closed walls), K = web area / A";

@@ -13,8 +13,8 @@
 //! RBAR, RBAR1 and RBE1 become [`RigidBody`] (`fe` solves for the dependent dofs); their
 //! six independent components must fix the rigid motion (checked there).
 
-use super::bulk::Bulk;
 use super::fields::C;
+use super::reading::Bulk;
 use crate::import::error::ImportError;
 use crate::model::{DofMask, RigidBody, RigidElement};
 

@@ -10,37 +10,11 @@
 //! * GE (structural damping) is a note: a real normal-modes analysis has none. S (stress
 //!   coefficient) is output.
 
-use std::collections::HashMap;
-
-use super::bulk::Bulk;
 use super::fields::C;
-use super::lex::Card;
+use super::reading::Bulk;
+use super::records::ScalarElement;
 use crate::import::error::ImportError;
-use crate::model::{NodeDof, ScalarMass, ScalarSpring};
-
-/// The raw records of the scalar element cards.
-#[derive(Default)]
-pub(super) struct ScalarCards<'a> {
-    /// PELAS by PID: (K, card).
-    pub pelas: HashMap<u64, (f64, &'a Card)>,
-    /// PMASS by PID: (M, card).
-    pub pmass: HashMap<u64, (f64, &'a Card)>,
-    /// The elements, in deck order.
-    pub elements: Vec<ScalarElement<'a>>,
-}
-
-/// A CELASi or CMASSi card read.
-pub(super) struct ScalarElement<'a> {
-    /// A spring (CELAS), else a mass (CMASS).
-    pub spring: bool,
-    pub id: u64,
-    /// The value given on the card (CELAS2/4, CMASS2/4), or the property id (CELAS1/3,
-    /// CMASS1/3).
-    pub value: Result<f64, u64>,
-    pub a: NodeDof,
-    pub b: Option<NodeDof>,
-    pub card: &'a Card,
-}
+use crate::model::{ScalarMass, ScalarSpring};
 
 /// Reader of CELAS1–4 and CMASS1–4.
 pub(super) fn element<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {

@@ -14,37 +14,13 @@
 
 use std::collections::BTreeMap;
 
-use super::bulk::Bulk;
 use super::case_control::{CaseControl, Effective};
 use super::fields::C;
 use super::lex::Card;
+use super::reading::Bulk;
+use super::records::{SetAdd, SetCards};
 use crate::import::error::ImportError;
-use crate::model::{ConstraintSource, DofMask, InterfaceDofs, Mpc, NodeDof, Spc};
-
-/// An SPCADD or MPCADD: (SID, [(set id, field index)], card).
-type SetAdd<'a> = (u64, Vec<(u64, usize)>, &'a Card);
-
-/// One MPC equation read: its terms (dof, coefficient) and its card.
-type MpcCard<'a> = (Vec<(NodeDof, f64)>, &'a Card);
-
-/// The raw records of the set cards.
-#[derive(Default)]
-pub(super) struct SetCards<'a> {
-    /// SPC/SPC1 set id → (node, components, card).
-    pub spc: BTreeMap<u64, Vec<(usize, DofMask, &'a Card)>>,
-    /// SPCADD cards.
-    pub spcadd: Vec<SetAdd<'a>>,
-    /// How many ASET/ASET1/BSET/BSET1 cards were read, by card.
-    pub aset_cards: BTreeMap<&'static str, usize>,
-    /// QSET/QSET1 dofs.
-    pub qset: Vec<(usize, DofMask)>,
-    /// How many QSET/QSET1 cards were read, by card.
-    pub qset_cards: BTreeMap<&'static str, usize>,
-    /// MPC set id → its equations (terms, card).
-    pub mpc: BTreeMap<u64, Vec<MpcCard<'a>>>,
-    /// MPCADD cards.
-    pub mpcadd: Vec<SetAdd<'a>>,
-}
+use crate::model::{ConstraintSource, DofMask, InterfaceDofs, Mpc, Spc};
 
 /// Reader of SPC.
 pub(super) fn spc<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
@@ -367,7 +343,7 @@ pub(super) fn resolve_mpc(d: &mut Bulk, effective: &Effective) -> Result<(), Imp
             sel.id,
             files[sel.loc.file as usize],
             sel.loc.line,
-            super::bulk::places("MPC", &cards, files)
+            crate::import::text::places("MPC", &cards, files)
         ));
     }
     let unselected: Vec<String> = unapplied(&sets.mpc, &adds, &applied, selection)

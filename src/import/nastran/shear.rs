@@ -12,25 +12,13 @@
 //!   direction), else 0.5·F1·T²; on 2-3 and 4-1 alike with F2. Default 0: none.
 //! * Mass: (ρ T + NSM)·PA, a quarter at each grid's translations (lumped).
 
-use std::collections::HashMap;
-
-use super::bulk::Bulk;
 use super::coord::{cross, sub, unit};
 use super::fields::C;
-use super::lex::Card;
+use super::reading::Bulk;
 use crate::import::error::ImportError;
 use crate::import::text::IdMap;
 use crate::model::geometry::norm;
 use crate::model::{DofMatrix, Elasticity, NodeDof};
-
-/// The raw records of CSHEAR and PSHEAR.
-#[derive(Default)]
-pub(super) struct ShearCards<'a> {
-    /// PSHEAR by PID: (MID, T, NSM, F1, F2, card).
-    pub pshear: HashMap<u64, (u64, [f64; 4], &'a Card)>,
-    /// CSHEAR cards with their four grids.
-    pub cshear: Vec<(&'a Card, [usize; 4])>,
-}
 
 /// Reader of CSHEAR.
 pub(super) fn cshear<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {

@@ -31,6 +31,7 @@
 //!   on it.
 
 use super::fields::C;
+use super::records::{ElementAxis, ElementThickness, ThetaOrMcid};
 use crate::import::error::ImportError;
 use crate::import::text::IdMap;
 use crate::model::shell_offset::ShellOffset;
@@ -179,39 +180,6 @@ pub(super) fn resolve_mids(s: &mut ShellSection, mids: &IdMap, g: &C) -> Result<
         p.material = get(p.material, first + stride * (i % n))?;
     }
     Ok(())
-}
-
-/// Corner thicknesses of one shell element card.
-#[derive(Debug, Clone)]
-pub(super) struct ElementThickness {
-    /// Index of the element in the model.
-    pub elem: usize,
-    /// T1..Tn as given (blank = the property's T).
-    pub corners: Vec<Option<f64>>,
-    /// TFLAG = 1: corners are relative to the property's T.
-    pub relative: bool,
-    /// File and line, for messages.
-    pub file: String,
-    pub line: usize,
-}
-
-/// THETA or MCID of a shell element card as given.
-#[derive(Debug, Clone)]
-pub(super) struct ElementAxis {
-    /// Index of the element in the model.
-    pub elem: usize,
-    /// THETA (real, degrees) or MCID (integer).
-    pub value: ThetaOrMcid,
-    /// File and line, for messages.
-    pub file: String,
-    pub line: usize,
-}
-
-/// The THETA/MCID field.
-#[derive(Debug, Clone, Copy)]
-pub(super) enum ThetaOrMcid {
-    Theta(f64),
-    Mcid(u64),
 }
 
 /// THETA (a real: it has a decimal point) or MCID (an integer) of a CQUAD4/CTRIA3/CQUAD8/CTRIA6
@@ -429,7 +397,7 @@ pub(super) fn apply_thickness(
 /// makes it move with the mean of the edge's corners, u_m = ½ (u_a + u_b): it is no dof of
 /// its own. The corners must have the basic displacement frame (the MPC is on the nodes' own
 /// components). One note lists what was made.
-pub(super) fn blank_midsides(d: &mut super::bulk::Bulk) -> Result<(), ImportError> {
+pub(super) fn blank_midsides(d: &mut super::reading::Bulk) -> Result<(), ImportError> {
     let list = std::mem::take(&mut d.elements.blank_midsides);
     if list.is_empty() {
         return Ok(());

@@ -5,31 +5,11 @@
 //! * `PARAM,WTMASS,w`: every structural and concentrated mass times w; `PARAM,COUPMASS,c`:
 //!   c > 0 asks for consistent mass; `PARAM,K6ROT,k`: the shells' drilling stiffness.
 
-use std::collections::BTreeMap;
-
-use super::bulk::Bulk;
 use super::case_control::Effective;
 use super::fields::C;
-use super::lex::Card;
+use super::reading::Bulk;
 use crate::import::error::ImportError;
 use crate::model::EigenRequest;
-
-/// The raw records of the solution cards.
-pub(super) struct SolutionCards<'a> {
-    /// EIGRL/EIGR by SID.
-    pub eigen: BTreeMap<u64, &'a Card>,
-    /// PARAM,WTMASS (1 when absent).
-    pub wtmass: f64,
-}
-
-impl Default for SolutionCards<'_> {
-    fn default() -> Self {
-        SolutionCards {
-            eigen: BTreeMap::new(),
-            wtmass: 1.0,
-        }
-    }
-}
 
 /// Reader of EIGRL and EIGR.
 pub(super) fn eigr<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {

@@ -21,30 +21,10 @@
 pub(super) mod bulk;
 pub(super) mod commands;
 pub(super) mod params;
+mod rule;
 
-use super::bulk::Bulk;
 use super::fields::C;
-use crate::import::error::ImportError;
-
-/// A card reader: one card into its family's raw records (external ids, resolved later).
-pub(super) type Reader = for<'a> fn(&mut Bulk<'a>, &C<'a>) -> Result<(), ImportError>;
-
-/// What the reader does with a card.
-pub(super) enum Rule {
-    /// Read in the first pass, before every other card: coordinate systems and grids place
-    /// the nodes (`geometry`).
-    Geometry,
-    /// Honoured: read by this function.
-    Read(Reader),
-    /// Not read: it cannot change the body, for its category's reason ([`Category::why`]).
-    Note,
-    /// Not read: it cannot change the body, for its category's reason and this one.
-    NoteWhy(&'static str),
-    /// Refused, with the reason.
-    Refuse(&'static str),
-    /// A case control command honoured by the case control reader (`case_control`).
-    Command,
-}
+pub(super) use rule::{Row, Rule};
 
 /// What a catalogue row is about: the heading of the documentation's tables and, for the
 /// cards not read, the note that gathers them (one note per category and deck).
@@ -177,9 +157,6 @@ const THERMAL: &str = "heat transfer and thermal data: no thermal strain or temp
 /// The reason of the refusal of a card, PARAM or command no table names.
 pub(super) const NOT_READ: &str =
     "not read by this importer, and it may change the body's stiffness, mass or constraints";
-
-/// A catalogue row: name, category, rule.
-pub(super) type Row = (&'static str, Category, Rule);
 
 /// Look `name` up in a sorted table.
 fn lookup<'t>(table: &'t [Row], name: &str) -> Option<&'t Row> {
