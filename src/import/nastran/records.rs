@@ -1,8 +1,8 @@
 //! The raw records of each card family: what the card readers (`elements`, `properties`,
 //! `mass`, `scalar`, `bush`, `sets`, `solution`, `loads`, `dmig`, `shear`, `shell`) gather
 //! while the bulk data is read, with external ids, and their resolve passes turn into the
-//! model (`bulk` drives both). Below the readers: a family that needs another's records is
-//! handed them.
+//! model (`bulk` drives both). Below every reader, so that `reading::Bulk`, which holds them,
+//! is below the readers too.
 
 use std::collections::{BTreeMap, HashMap};
 
