@@ -13,6 +13,7 @@
 
 use std::collections::BTreeMap;
 
+use super::geometry::{cross, sub, unit};
 use super::{DofMask, ElementKind, Model, Node, NodeIndex, RigidElement};
 
 /// One shell element's offset, as read from its card.
@@ -40,7 +41,6 @@ pub struct OffsetNodes {
 fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
     let e = &model.elements[elem];
     let x = |k: usize| model.nodes[e.nodes[k]].x;
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let (p, q) = match e.kind {
         ElementKind::Quad4 => (sub(x(2), x(0)), sub(x(3), x(1))),
         ElementKind::Tri3 => (sub(x(1), x(0)), sub(x(2), x(0))),
@@ -61,13 +61,7 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
         | ElementKind::Tri6
         | ElementKind::Quad8 => return None,
     };
-    let n = [
-        p[1] * q[2] - p[2] * q[1],
-        p[2] * q[0] - p[0] * q[2],
-        p[0] * q[1] - p[1] * q[0],
-    ];
-    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    (len > 0.0 && len.is_finite()).then(|| n.map(|c| c / len))
+    unit(cross(p, q))
 }
 
 /// Moves every offset shell onto nodes at its reference plane, rigidly linked to its grid

@@ -24,6 +24,7 @@
 use std::collections::BTreeSet;
 
 use crate::body::faces::graphics_faces;
+use crate::model::geometry::{cross, dot, norm, sub};
 use crate::model::{DofMask, Model, Node, NodeIndex, RigidElement};
 
 /// How a node set named as an interface is attached.
@@ -506,25 +507,10 @@ fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
     }))
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
+/// a / |a| (the callers pass non-zero vectors).
 fn normalize(a: [f64; 3]) -> [f64; 3] {
-    let n = dot(a, a).sqrt();
+    let n = norm(a);
     a.map(|v| v / n)
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 #[cfg(test)]
