@@ -279,4 +279,29 @@ pub(crate) mod test_util {
             }
         }
     }
+    /// The element's nodal gradients of a linear field f = a·x + c are `a` at every node, with
+    /// no centroid fallback counted (what nodal stress recovery needs for a constant strain).
+    pub fn check_linear_field_gradients(element: &dyn element::Element, x: &[Xyz]) {
+        let a = [0.7, -1.3, 2.1];
+        let f: Vec<f64> = x
+            .iter()
+            .map(|p| 0.4 + (0..3).map(|i| a[i] * p[i]).sum::<f64>())
+            .collect();
+        let (grads, fallbacks) = element
+            .nodal_gradients(x)
+            .unwrap() // valid element: cannot fail
+            .expect("the element recovers nodal gradients");
+        assert_eq!(fallbacks, 0);
+        assert_eq!(grads.len(), x.len());
+        for (node, g) in grads.iter().enumerate() {
+            for i in 0..3 {
+                let got: f64 = g.iter().zip(&f).map(|(gb, fb)| gb[i] * fb).sum();
+                assert!(
+                    (got - a[i]).abs() < 1e-12,
+                    "node {node} ∂{i}: {got} vs {}",
+                    a[i]
+                );
+            }
+        }
+    }
 }

@@ -21,8 +21,8 @@
 //! of an undistorted pyramid (degree 4 in r, s and 6 in t with det J ∝ (1 − t)²).
 
 use super::element::{
-    integration_points, Element, ElementInput, ElementMatrices, MatricesError, ModePoint,
-    NodalGradients, SolidRules,
+    first, integration_points, nodal_gradients, Element, ElementInput, ElementMatrices,
+    MatricesError, ModePoint, NodalGradients, SolidRules,
 };
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
@@ -43,6 +43,18 @@ pub const NODES: [Xyz; 13] = [
     [1.0, 1.0, 0.0],
     [-1.0, 1.0, 0.0],
 ];
+
+/// The pyramid's centroid in reference coordinates (ζ = 1/4, t = −1/2).
+const CENTROID: Xyz = [0.0, 0.0, -0.5];
+
+/// Where nodal gradients are taken: at the nodes, except the apex, where the collapsed map's
+/// Jacobian vanishes and a field's gradient depends on the direction of approach; the
+/// centroid's gradients stand in there (exact for a linear field).
+const GRADIENT_POINTS: [Xyz; 13] = {
+    let mut points = NODES;
+    points[4] = CENTROID;
+    points
+};
 
 /// Shape functions and reference gradients (module formulas).
 pub fn shape(x: &Xyz) -> ([f64; 13], [Xyz; 13]) {
@@ -130,8 +142,8 @@ impl Element for Pyram13Element {
     }
 
     fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
-        let _ = x;
-        Ok(None)
+        let grads = nodal_gradients(&first(x), shape, &GRADIENT_POINTS, CENTROID)?;
+        Ok(Some(grads))
     }
 }
 
@@ -168,6 +180,38 @@ mod tests {
                 + 4.0 * l[1] * l[2] * vals[10];
             assert!((got - want).abs() < 1e-13, "r={r} t={t}: {got} vs {want}");
         }
+    }
+
+    /// Nodal gradients of a linear field on a skewed pyramid with curved edges are its gradient
+    /// at every node; at the apex they are the centroid's.
+    #[test]
+    fn pyram13_nodal_gradients_of_a_linear_field_are_exact() {
+        let c = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.1, 0.0],
+            [2.2, 3.0, 0.2],
+            [-0.1, 2.8, 0.0],
+            [0.7, 1.1, 1.5],
+        ];
+        let mid = |a: usize, b: usize, bow: f64| -> Xyz {
+            std::array::from_fn(|i| 0.5 * (c[a][i] + c[b][i]) + if i == 2 { bow } else { 0.0 })
+        };
+        let x = [
+            c[0],
+            c[1],
+            c[2],
+            c[3],
+            c[4],
+            mid(0, 1, 0.05),
+            mid(1, 2, -0.03),
+            mid(2, 3, 0.02),
+            mid(3, 0, 0.0),
+            mid(0, 4, 0.04),
+            mid(1, 4, 0.0),
+            mid(2, 4, -0.02),
+            mid(3, 4, 0.0),
+        ];
+        super::super::test_util::check_linear_field_gradients(&Pyram13Element, &x);
     }
 
     /// Volume of a pyramid with straight edges (mid-sides at the midpoints) and its mass.

@@ -20,8 +20,8 @@
 //! polynomial on any pyramid, so the constant-strain patch test holds.
 
 use super::element::{
-    integration_points, Element, ElementInput, ElementMatrices, MatricesError, ModePoint,
-    NodalGradients, SolidRules,
+    first, integration_points, nodal_gradients, Element, ElementInput, ElementMatrices,
+    MatricesError, ModePoint, NodalGradients, SolidRules,
 };
 use super::{solid_scalar_mass, solid_stiffness, ElementError, Isotropic, Xyz};
 use crate::fe::quadrature;
@@ -34,6 +34,18 @@ pub const NODES: [Xyz; 5] = [
     [-1.0, 1.0, -1.0],
     [0.0, 0.0, 1.0],
 ];
+
+/// The pyramid's centroid in reference coordinates (ζ = 1/4, t = −1/2).
+const CENTROID: Xyz = [0.0, 0.0, -0.5];
+
+/// Where nodal gradients are taken: at the nodes, except the apex, where the collapsed map's
+/// Jacobian vanishes and a field's gradient depends on the direction of approach; the
+/// centroid's gradients stand in there (exact for a linear field).
+const GRADIENT_POINTS: [Xyz; 5] = {
+    let mut points = NODES;
+    points[4] = CENTROID;
+    points
+};
 
 /// Shape functions and reference gradients (module formula).
 pub fn shape(p: &Xyz) -> ([f64; 5], [Xyz; 5]) {
@@ -84,8 +96,8 @@ impl Element for Pyram5Element {
     }
 
     fn nodal_gradients(&self, x: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
-        let _ = x;
-        Ok(None)
+        let grads = nodal_gradients(&first(x), shape, &GRADIENT_POINTS, CENTROID)?;
+        Ok(Some(grads))
     }
 }
 
@@ -96,6 +108,20 @@ mod tests {
     #[test]
     fn pyram5_shape_functions_partition_unity_and_derivatives() {
         super::super::test_util::check_shape(shape, &NODES, &[[0.1, -0.2, 0.3], [0.0; 3]]);
+    }
+
+    /// Nodal gradients of a linear field on a skewed pyramid are its gradient at every node; at
+    /// the apex they are the centroid's.
+    #[test]
+    fn pyram5_nodal_gradients_of_a_linear_field_are_exact() {
+        let x = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.1, 0.0],
+            [2.2, 3.0, 0.2],
+            [-0.1, 2.8, 0.0],
+            [0.7, 1.1, 1.5],
+        ];
+        super::super::test_util::check_linear_field_gradients(&Pyram5Element, &x);
     }
 
     /// Volume and mass of a pyramid with a 2 × 3 base and height 1.5: V = A h / 3 = 3; the
