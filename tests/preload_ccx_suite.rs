@@ -163,8 +163,8 @@ fn beamf2_perturbed_state_equals_ccx() {
 }
 
 /// Our own decks (fixtures/ccx_preload, README there): a bar pulled and bent at its tip as
-/// C3D8, C3D20, C3D20R, C3D10, C3D4 and C3D6 (tip deflection 1.2 % of the length; the last two
-/// with ccx's one- and two-point rules), a C3D8 bar clamped
+/// C3D8, C3D20, C3D20R, C3D10, C3D4, C3D6 and C3D15 (tip deflection 1.2 % of the length; C3D4
+/// and C3D6 with ccx's one- and two-point rules), a C3D8 bar clamped
 /// at both ends heated by 100° (thermal preload), and a C3D20R bar spun at 200 rad/s about an
 /// axis through its root (`*DLOAD CENTRIF`; ccx's perturbation adds the spin softening): every
 /// one of the first 10 perturbation modes equals ccx 2.20's to 1e-6 (ccx prints 7 digits).
@@ -177,6 +177,7 @@ fn own_preloaded_decks_equal_ccx() {
         "loaded_c3d10",
         "loaded_c3d4",
         "loaded_c3d6",
+        "loaded_c3d15",
         "heated_c3d8",
         "spinning_c3d20r",
     ] {
