@@ -808,8 +808,12 @@ pub fn slepc(n: [usize; 3], modes: usize, ranks: usize) -> Res<Value> {
         kii.as_ref(),
         mii.as_ref(),
         kib.as_ref(),
-        modes,
-        eig.tol,
+        flexbody::solve::slepc::Request {
+            count: modes,
+            upper: None,
+            shift: 0.0,
+            tol: eig.tol,
+        },
         &flexbody::solve::slepc::SlepcEngine { ranks },
     )
     .map_err(|e| e.to_string())?;
