@@ -88,6 +88,7 @@ pub fn ours_eigen(
         precision: Default::default(),
         upper: None,
         verify_band: false,
+        engine: None,
     };
     let s = lowest_modes_iterative(&k, &m, &spec).map_err(|e| e.to_string())?;
     let total = t0.elapsed().as_secs_f64();
@@ -494,14 +495,19 @@ pub fn cb_system(n: [usize; 3]) -> Res<System> {
     Ok((red.k, red.m, interface))
 }
 
-/// The CB suite's K_ii: [`cb_system`]'s K restricted to the non-interface dofs (the matrix the
-/// CB build factors).
-pub fn cb_kii(n: [usize; 3]) -> Res<SparseColMat<usize, f64>> {
-    let (k, _, interface) = cb_system(n)?;
+/// The CB suite's K_ii and M_ii: [`cb_system`]'s K and M restricted to the non-interface dofs
+/// (K_ii is the matrix the CB build factors; `ours-eigen K_ii.mtx M_ii.mtx MODES BLOCK TOL
+/// BASIS` runs the CB build's eigen phase alone, σ = 0 as CB, for tuning).
+pub fn cb_interior(n: [usize; 3]) -> Res<(SparseColMat<usize, f64>, SparseColMat<usize, f64>)> {
+    let (k, m, interface) = cb_system(n)?;
     let inner: Vec<usize> = (0..k.nrows())
         .filter(|i| interface.binary_search(i).is_err())
         .collect();
-    flexbody::solve::sparse_ops::submatrix(k.as_ref(), &inner, &inner).map_err(|e| e.to_string())
+    let sub = |a: &SparseColMat<usize, f64>| {
+        flexbody::solve::sparse_ops::submatrix(a.as_ref(), &inner, &inner)
+            .map_err(|e| e.to_string())
+    };
+    Ok((sub(&k)?, sub(&m)?))
 }
 
 /// `ours-cb NX NY NZ MODES`: our whole CB build on the generated block (prints one JSON line).
@@ -678,8 +684,9 @@ pub fn cb(
     // The CHOLMOD peer row: the same K_ii (interface dofs removed), written once.
     let kii_path = dir.join("K_ii.mtx");
     {
-        let kii = cb_kii(n)?;
+        let (kii, mii) = cb_interior(n)?;
         write_mtx(&kii_path, &kii)?;
+        write_mtx(&dir.join("M_ii.mtx"), &mii)?;
     }
     let kii_s = kii_path.display().to_string();
     let mut pairs = Vec::new();
@@ -808,8 +815,12 @@ pub fn slepc(n: [usize; 3], modes: usize, ranks: usize) -> Res<Value> {
         kii.as_ref(),
         mii.as_ref(),
         kib.as_ref(),
-        modes,
-        eig.tol,
+        flexbody::solve::slepc::Request {
+            count: modes,
+            upper: None,
+            shift: 0.0,
+            tol: eig.tol,
+        },
         &flexbody::solve::slepc::SlepcEngine { ranks },
     )
     .map_err(|e| e.to_string())?;

@@ -208,9 +208,10 @@ pub(crate) struct BuildArgs {
     /// extra LDLᵀ factorization per eigenproblem; the report states the proven band).
     #[arg(long)]
     pub(crate) verify_band: bool,
-    /// Solver engine for the Craig–Bampton interior: native (ours) or slepc (PETSc/SLEPc with
-    /// MUMPS under MPI: needs mpirun and slepc4py, e.g. Debian's openmpi-bin and
-    /// python3-slepc4py-real). The reduction, invariants and file stay ours.
+    /// Solver engine for the eigenproblem of normal modes and Craig-Chang and for the
+    /// Craig-Bampton interior: native (ours) or slepc (PETSc/SLEPc with MUMPS under MPI: needs
+    /// mpirun and slepc4py, e.g. Debian's openmpi-bin and python3-slepc4py-real; a --fmax band
+    /// is proven complete by an inertia count). The reduction, invariants and file stay ours.
     #[arg(long, default_value = "native", value_name = "native|slepc")]
     pub(crate) engine: String,
     /// MPI ranks for --engine slepc (mpirun -np N).

@@ -105,8 +105,9 @@ pub struct BuildSpec {
     /// `--verify-band`: prove every eigenproblem's returned modes complete by an inertia count
     /// (one extra LDLᵀ factorization each; [`crate::solve::EigenSpec::verify_band`]).
     pub verify_band: bool,
-    /// `--engine slepc --mpi N`: the Craig–Bampton interior (factorization, constraint modes,
-    /// fixed-interface eigenproblem) on PETSc/SLEPc under MPI; `None`: our own solvers.
+    /// `--engine slepc --mpi N`: the eigenproblem of normal modes and Craig–Chang, and the
+    /// Craig–Bampton interior (factorization, constraint modes, fixed-interface eigenproblem), on
+    /// PETSc/SLEPc under MPI; `None`: our own solvers.
     pub engine: Option<crate::solve::slepc::SlepcEngine>,
     /// `--precision`: arithmetic of the Craig–Bampton interior's factorization.
     pub precision: crate::solve::Precision,

@@ -11,6 +11,7 @@ use crate::solve::{
     SolveError, SparseColMat, SparseLlt, DENSE_MAX,
 };
 use faer::Mat;
+use std::f64::consts::PI;
 use std::time::Instant;
 
 /// Smallest L_jj² / A_jj an f32 factor may keep; below it K_ii is factored in f64 at once.
@@ -402,8 +403,9 @@ pub fn craig_bampton_owned(
 }
 
 /// Craig–Bampton with the factorization of K_ii, the constraint modes and the fixed-interface
-/// eigenproblem on PETSc/SLEPc under MPI ([`crate::solve::slepc`]); a mode count only (no
-/// `--fmax` band). The basis is then orthonormalized here as on the native path.
+/// eigenproblem on PETSc/SLEPc under MPI ([`crate::solve::slepc`]), for a mode count or a band
+/// (`--fmax`: proven complete by Sylvester's inertia count of our K_ii − σM_ii, a missed mode is
+/// an error). The basis is then orthonormalized here as on the native path.
 pub fn craig_bampton_slepc(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
@@ -415,11 +417,18 @@ pub fn craig_bampton_slepc(
     let _par = crate::solve::ParGuard::new(eig.par);
     let n = k.nrows();
     check_dofs("interface dofs", interface, n)?;
-    let ModeCount::Count(count) = modes else {
-        return Err(ReduceError::Dofs {
-            what: "mode count",
-            detail: "--engine slepc takes a mode count (--modes N), not a frequency band".into(),
-        });
+    let inner = complement(interface, n);
+    let (count, upper) = match modes {
+        ModeCount::Count(c) => (c, None),
+        ModeCount::BelowHz(f) => (12.min(inner.len()), Some((2.0 * PI * f).powi(2))),
+        ModeCount::All => {
+            return Err(ReduceError::Dofs {
+                what: "mode count",
+                detail: "--engine slepc takes a mode count (--modes N) or a band (--fmax), not \
+                         every mode"
+                    .into(),
+            })
+        }
     };
     if interface.is_empty() || count == 0 {
         return Err(ReduceError::Dofs {
@@ -428,22 +437,27 @@ pub fn craig_bampton_slepc(
                 .into(),
         });
     }
-    let inner = complement(interface, n);
     super::select::check_count(modes, inner.len(), "the interior (non-interface dofs)")?;
     let kii = sparse_ops::submatrix(k.as_ref(), &inner, &inner)?;
     let kib = sparse_ops::submatrix(k.as_ref(), &inner, interface)?;
     let mii = sparse_ops::submatrix(m.as_ref(), &inner, &inner)?;
-    let sol = crate::solve::slepc::fixed_interface(
+    let request = crate::solve::slepc::Request {
+        count,
+        upper,
+        shift: 0.0,
+        tol: eig.tol,
+    };
+    let mut sol = crate::solve::slepc::fixed_interface(
         kii.as_ref(),
         mii.as_ref(),
         kib.as_ref(),
-        count,
-        eig.tol,
+        request,
         engine,
     )?;
-    // --verify-band: the same inertia count as the native engine, on our K_ii and M_ii
+    // --verify-band, and always for a band: the same inertia count as the native engine, on our
+    // K_ii and M_ii (with a band, over the modes found up to the first one above it)
     let mut eigen = crate::solve::EigenInfo::default();
-    if eig.verify_band {
+    if eig.verify_band || upper.is_some() {
         let checked = crate::solve::verify_band(
             &kii,
             &mii,
@@ -453,9 +467,17 @@ pub fn craig_bampton_slepc(
                 residuals: vec![],
                 info: Default::default(),
             },
-            eig,
+            &EigenSpec {
+                verify_band: true,
+                ..eig.clone()
+            },
         )?;
         eigen.band_proof = checked.info.band_proof;
+    }
+    if let Some(top) = upper {
+        let keep = sol.eigenvalues.iter().filter(|&&l| l <= top).count();
+        sol.eigenvalues.truncate(keep);
+        sol.vectors = sol.vectors.as_ref().subcols(0, keep).to_owned();
     }
     let (t, labels) = basis_matrix(n, interface, &inner, &sol.x, &sol.vectors);
     let basis = CbBasis {

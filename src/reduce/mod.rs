@@ -22,16 +22,20 @@ use thiserror::Error;
 
 pub use orthonormalize::{orthonormalize, Orthonormalized, DEPENDENCY_TOL};
 
-/// The build-report line of a band proven complete by [`crate::solve::EigenSpec::verify_band`]
-/// (`problem` names the eigenproblem, e.g. "fixed-interface").
-pub(crate) fn band_note(info: &crate::solve::EigenInfo, problem: &str) -> Option<String> {
-    info.band_proof.map(|(modes, sigma)| {
+/// The build-report lines of an eigensolution: the external engine that ran it (`--engine
+/// slepc`, with its report) and a band proven complete by
+/// [`crate::solve::EigenSpec::verify_band`] (`problem` names the eigenproblem, e.g.
+/// "fixed-interface").
+pub(crate) fn band_note(info: &crate::solve::EigenInfo, problem: &str) -> Vec<String> {
+    let engine = info.engine_report.clone();
+    let band = info.band_proof.map(|(modes, sigma)| {
         format!(
             "band check: the eigensolver's {modes} lowest {problem} modes are all the \
              eigenvalues below {:.10e} Hz (Sylvester inertia count of K - sigma*M)",
             sigma.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
         )
-    })
+    });
+    engine.into_iter().chain(band).collect()
 }
 
 /// Errors of the reduction methods.

@@ -57,15 +57,15 @@ pub fn solve_count(
     eig: &EigenSpec,
 ) -> Result<EigenSolution, ReduceError> {
     let run = |c: usize, upper: Option<f64>| -> Result<EigenSolution, ReduceError> {
-        Ok(lowest_modes(
-            k,
-            m,
-            &EigenSpec {
-                count: c,
-                upper,
-                ..eig.clone()
-            },
-        )?)
+        let spec = EigenSpec {
+            count: c,
+            upper,
+            ..eig.clone()
+        };
+        Ok(match &eig.engine {
+            Some(engine) => crate::solve::slepc::lowest_modes(k, m, &spec, engine)?,
+            None => lowest_modes(k, m, &spec)?,
+        })
     };
     solve_count_with(k, m, count, eig.shift, &run)
 }

@@ -184,6 +184,9 @@ pub struct EigenSpec {
     /// highest returned eigenvalue; one extra LDLᵀ factorization, [`inertia`]) that the returned
     /// modes are all the eigenvalues below σ; a missed mode is [`SolveError::MissedModes`].
     pub verify_band: bool,
+    /// `--engine slepc --mpi N`: the eigenpairs of [`crate::reduce::select::solve_count`] from
+    /// PETSc/SLEPc under MPI ([`slepc::lowest_modes`]); `None`: ours.
+    pub engine: Option<slepc::SlepcEngine>,
 }
 
 impl Default for EigenSpec {
@@ -199,6 +202,7 @@ impl Default for EigenSpec {
             precision: Precision::Auto,
             upper: None,
             verify_band: false,
+            engine: None,
         }
     }
 }
@@ -234,6 +238,8 @@ pub struct EigenInfo {
     pub seconds_orth: f64,
     /// With [`EigenSpec::verify_band`]: (modes proven complete, the shift σ of the count).
     pub band_proof: Option<(usize, f64)>,
+    /// `--engine slepc`: "engine slepc, N MPI ranks: " and the engine's own report (timings).
+    pub engine_report: Option<String>,
 }
 
 /// Lowest eigenpairs.

@@ -1,10 +1,11 @@
-//! `--engine slepc`: the factorization of K_ii and the fixed-interface eigenproblem of a
-//! Craig–Bampton reduction on PETSc/SLEPc over MPI (issue 22, models past one machine). K_ii,
-//! M_ii and K_ib go to a scratch folder in PETSc's binary format; `mpirun -np N python3
-//! slepc_cb.py` (the script is embedded here) factors K_ii once with MUMPS, solves
-//! K_ii X = K_ib with it and runs SLEPc's Krylov–Schur with shift-and-invert at σ = 0; the
-//! eigenpairs and X are read back. The reduction, orthonormalization, invariants and the file
-//! stay ours.
+//! `--engine slepc`: eigenproblems on PETSc/SLEPc over MPI (issues 22 and 46, models past one
+//! machine) — the lowest modes or a band of normal modes and of Craig–Chang's free-free modes
+//! ([`lowest_modes`]), and the interior of a Craig–Bampton reduction ([`fixed_interface`]). K and
+//! M (and K_ib) go to a scratch folder in PETSc's binary format; `mpirun -np N python3
+//! slepc_engine.py` (the script is embedded here) factors K − σM once with MUMPS, solves
+//! K_ii X = K_ib with it (Craig–Bampton, σ = 0) and runs SLEPc's Krylov–Schur with
+//! shift-and-invert at σ; the eigenpairs and X are read back. The Rayleigh–Ritz check, the band's
+//! inertia proof, the reduction, orthonormalization, invariants and the file stay ours.
 //!
 //! Needs `mpirun` and a Python with petsc4py/slepc4py (Debian: `openmpi-bin`,
 //! `python3-slepc4py-real`); `FLEXBODY_SLEPC_PYTHON` and `FLEXBODY_MPIRUN` override the commands.
@@ -20,14 +21,14 @@ use std::time::Instant;
 use faer::sparse::SparseColMatRef;
 use faer::Mat;
 
-use super::SolveError;
+use super::{EigenInfo, EigenSolution, EigenSpec, SolveError, SparseColMat};
 
 /// PETSc's binary class ids (petscmat.h, petscvec.h).
 const MAT_FILE_CLASSID: i32 = 1_211_216;
 const VEC_FILE_CLASSID: i32 = 1_211_214;
 
 /// The Python side, written next to the matrices for each run.
-const SCRIPT: &str = include_str!("slepc_cb.py");
+const SCRIPT: &str = include_str!("slepc_engine.py");
 
 /// How to run the external engine.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -227,18 +228,100 @@ fn run_dir() -> Result<PathBuf, SolveError> {
     ))
 }
 
-/// Runs the engine on K_ii, M_ii, K_ib (full symmetric K_ii and M_ii) for `count` modes.
+/// What the engine is asked for: the eigenproblem's shift and how many eigenpairs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Request {
+    /// The lowest `count` eigenpairs; with `upper`, the count the band starts from.
+    pub count: usize,
+    /// A band: every eigenvalue ≤ `upper` and the first one above it (the count grows as needed,
+    /// one factorization).
+    pub upper: Option<f64>,
+    /// σ of the one factorization of K − σM (below the spectrum: 0 for K_ii, negative for a free
+    /// body).
+    pub shift: f64,
+    /// SLEPc's relative tolerance.
+    pub tol: f64,
+}
+
+/// Runs the engine on K_ii, M_ii, K_ib (full symmetric K_ii and M_ii) for the fixed-interface
+/// modes of `request` (its shift is 0: the factorization also gives the constraint modes).
 pub fn fixed_interface(
     kii: SparseColMatRef<'_, usize, f64>,
     mii: SparseColMatRef<'_, usize, f64>,
     kib: SparseColMatRef<'_, usize, f64>,
-    count: usize,
-    tol: f64,
+    request: Request,
+    engine: &SlepcEngine,
+) -> Result<SlepcSolution, SolveError> {
+    run(kii, mii, Some(kib), request, engine)
+}
+
+/// Runs the engine on K and M (full symmetric) for the eigenpairs of `request`; the solution's
+/// `x` is empty.
+pub fn eigenpairs(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    request: Request,
+    engine: &SlepcEngine,
+) -> Result<SlepcSolution, SolveError> {
+    run(k, m, None, request, engine)
+}
+
+/// [`crate::solve::lowest_modes`] on the engine: the eigenpairs of `spec` (count, band, shift —
+/// automatic: σ = −10⁻⁶·tr K/tr M as ours, so that free bodies factor) from SLEPc, then our
+/// Rayleigh–Ritz step and checks ([`super::finish`]); a band (`spec.upper`) is always proven
+/// complete by Sylvester's inertia count ([`super::verify_band`]): a missed mode is an error.
+pub fn lowest_modes(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    spec: &EigenSpec,
+    engine: &SlepcEngine,
+) -> Result<EigenSolution, SolveError> {
+    super::validate(k, m, spec.count)?;
+    let request = Request {
+        count: spec.count,
+        upper: spec.upper,
+        shift: spec
+            .shift
+            .unwrap_or_else(|| -1e-6 * super::trace_ratio(k, m)),
+        // SLEPc's test is on the shift-inverted operator: a tenth of ours leaves our
+        // residual check (below) its margin
+        tol: 0.1 * spec.tol,
+    };
+    let sol = eigenpairs(k.as_ref(), m.as_ref(), request, engine)?;
+    let info = EigenInfo {
+        shift: request.shift,
+        seconds_eigen: sol.seconds,
+        engine_report: Some(format!(
+            "engine slepc, {} MPI ranks: {}",
+            engine.ranks, sol.report
+        )),
+        ..Default::default()
+    };
+    let mut vectors = sol.vectors;
+    let checked = super::finish(k, m, &mut vectors, info, spec.tol)?;
+    let band = EigenSpec {
+        verify_band: spec.verify_band || spec.upper.is_some(),
+        ..spec.clone()
+    };
+    super::verify_band(k, m, checked, &band)
+}
+
+fn run(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    kib: Option<SparseColMatRef<'_, usize, f64>>,
+    request: Request,
     engine: &SlepcEngine,
 ) -> Result<SlepcSolution, SolveError> {
     let t = Instant::now();
+    available().map_err(|why| {
+        err(format!(
+            "{why}: install MPI and slepc4py (Debian: openmpi-bin, python3-slepc4py-real) or \
+             set FLEXBODY_MPIRUN / FLEXBODY_SLEPC_PYTHON"
+        ))
+    })?;
     let dir = run_dir()?;
-    let result = run_in(&dir, kii, mii, kib, count, tol, engine);
+    let result = run_in(&dir, k, m, kib, request, engine);
     let _ = std::fs::remove_dir_all(&dir);
     let (x, eigenvalues, vectors, report) = result?;
     Ok(SlepcSolution {
@@ -254,28 +337,34 @@ type Parts = (Mat<f64>, Vec<f64>, Mat<f64>, String);
 
 fn run_in(
     dir: &Path,
-    kii: SparseColMatRef<'_, usize, f64>,
-    mii: SparseColMatRef<'_, usize, f64>,
-    kib: SparseColMatRef<'_, usize, f64>,
-    count: usize,
-    tol: f64,
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    kib: Option<SparseColMatRef<'_, usize, f64>>,
+    request: Request,
     engine: &SlepcEngine,
 ) -> Result<Parts, SolveError> {
-    let (ni, nb) = (kii.nrows(), kib.ncols());
-    write_petsc_mat(&dir.join("Kii.petsc"), kii)?;
-    write_petsc_mat(&dir.join("Mii.petsc"), mii)?;
-    write_petsc_mat(&dir.join("Kib.petsc"), kib)?;
-    let script = dir.join("slepc_cb.py");
+    let n = k.nrows();
+    write_petsc_mat(&dir.join("K.petsc"), k)?;
+    write_petsc_mat(&dir.join("M.petsc"), m)?;
+    if let Some(kib) = kib {
+        write_petsc_mat(&dir.join("Kib.petsc"), kib)?;
+    }
+    let script = dir.join("slepc_engine.py");
     std::fs::write(&script, SCRIPT).map_err(|e| io_err(&script, e))?;
     let (mpirun, python) = commands();
+    let upper = request
+        .upper
+        .map_or_else(|| "none".to_string(), |u| format!("{u:e}"));
     let mut cmd = Command::new(&mpirun);
     cmd.arg("-np")
         .arg(engine.ranks.max(1).to_string())
         .arg(&python)
         .arg(&script)
         .arg(dir)
-        .arg(count.to_string())
-        .arg(format!("{tol:e}"))
+        .arg(request.count.to_string())
+        .arg(format!("{:e}", request.tol))
+        .arg(format!("{:e}", request.shift))
+        .arg(upper)
         // OpenMPI refuses root without these; harmless otherwise
         .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
         .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
@@ -287,24 +376,7 @@ fn run_in(
         ))
     })?;
     if !out.status.success() {
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        // the script's own error (a Python exception or PETSc's message) before mpirun's banner
-        let errors: Vec<&str> = stderr
-            .lines()
-            .filter(|l| l.contains("Error") || l.contains("error") || l.contains("SLEPc"))
-            .take(6)
-            .collect();
-        let tail: Vec<&str> = if errors.is_empty() {
-            stderr.lines().rev().take(8).collect()
-        } else {
-            errors.into_iter().rev().collect()
-        };
-        return Err(err(format!(
-            "{mpirun} -np {} {python} slepc_cb.py failed ({}): {}",
-            engine.ranks,
-            out.status,
-            tail.into_iter().rev().collect::<Vec<_>>().join(" | ")
-        )));
+        return Err(script_failure(&out, &mpirun, &python, engine));
     }
     let report = String::from_utf8_lossy(&out.stdout)
         .lines()
@@ -318,20 +390,57 @@ fn run_in(
         .map(|l| l.trim().parse::<f64>())
         .collect::<Result<_, _>>()
         .map_err(|e| err(format!("values.txt: {e}")))?;
-    if eigenvalues.len() != count || eigenvalues.iter().any(|v| !v.is_finite()) {
+    let count = eigenvalues.len();
+    // a band may hold fewer than the count it started from: its inertia count (always run on a
+    // band, by the callers) decides whether it is complete
+    let enough = match request.upper {
+        None => count == request.count,
+        Some(_) => count > 0,
+    };
+    if !enough || eigenvalues.iter().any(|v| !v.is_finite()) {
         return Err(err(format!(
-            "values.txt holds {} values, expected {count} finite ones",
-            eigenvalues.len()
+            "values.txt holds {count} values, expected {} finite ones",
+            request.count
         )));
     }
-    let vectors = read_petsc_vecs(&dir.join("vectors.petsc"), ni, count)?;
-    let x = read_petsc_vecs(&dir.join("psi.petsc"), ni, nb)?;
-    // ascending (SLEPc returns by distance to the target 0, i.e. ascending here; sort anyway)
+    let vectors = read_petsc_vecs(&dir.join("vectors.petsc"), n, count)?;
+    let x = match kib {
+        Some(kib) => read_petsc_vecs(&dir.join("psi.petsc"), n, kib.ncols())?,
+        None => Mat::zeros(n, 0),
+    };
+    // ascending (the script sorts them; sort anyway)
     let mut order: Vec<usize> = (0..count).collect();
     order.sort_by(|&a, &b| eigenvalues[a].total_cmp(&eigenvalues[b]));
     let vals = order.iter().map(|&i| eigenvalues[i]).collect();
-    let vecs = Mat::from_fn(ni, count, |r, c| vectors[(r, order[c])]);
+    let vecs = Mat::from_fn(n, count, |r, c| vectors[(r, order[c])]);
     Ok((x, vals, vecs, report))
+}
+
+/// The error of a failed script run: its own message (a Python exception or PETSc's) before
+/// mpirun's banner.
+fn script_failure(
+    out: &std::process::Output,
+    mpirun: &str,
+    python: &str,
+    engine: &SlepcEngine,
+) -> SolveError {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let errors: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.contains("Error") || l.contains("error") || l.contains("SLEPc"))
+        .take(6)
+        .collect();
+    let tail: Vec<&str> = if errors.is_empty() {
+        stderr.lines().rev().take(8).collect()
+    } else {
+        errors.into_iter().rev().collect()
+    };
+    err(format!(
+        "{mpirun} -np {} {python} slepc_engine.py failed ({}): {}",
+        engine.ranks,
+        out.status,
+        tail.into_iter().rev().collect::<Vec<_>>().join(" | ")
+    ))
 }
 
 #[cfg(test)]

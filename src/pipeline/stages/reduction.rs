@@ -133,12 +133,15 @@ fn check_engine_request(plan: &Plan, constrained: &Constrained) -> Result<(), Bu
                 .into(),
         ));
     }
-    if spec.engine.is_some()
-        && !(spec.method == BuildMethod::CraigBampton && constrained.reference_dofs.is_empty())
-    {
+    let engine_runs_it = match spec.method {
+        BuildMethod::CraigBampton => constrained.reference_dofs.is_empty(),
+        BuildMethod::Normal | BuildMethod::CraigChang => true,
+        BuildMethod::Dietz => false,
+    };
+    if spec.engine.is_some() && !engine_runs_it {
         return Err(plan.request_error(
-            "--engine slepc runs the Craig-Bampton interior only: use --method cb without \
-             --reference-conditions, or the default engine"
+            "--engine slepc runs normal modes, Craig-Chang and the Craig-Bampton interior \
+             (without --reference-conditions): use one of these methods, or the default engine"
                 .into(),
         ));
     }
