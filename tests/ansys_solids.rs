@@ -115,8 +115,11 @@ fn solid185_keyopt3_equals_ansys_static_solution() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Nodes (id, xyz) and elements (type, node ids) of one of our own small ccx decks.
-fn read_inp(path: &Path) -> (Vec<(u64, [f64; 3])>, Vec<Vec<u64>>) {
+/// Nodes of a mesh: (id, xyz).
+type Nodes = Vec<(u64, [f64; 3])>;
+
+/// Nodes and elements (node ids) of one of our own small ccx decks.
+fn read_inp(path: &Path) -> (Nodes, Vec<Vec<u64>>) {
     let text = std::fs::read_to_string(path).unwrap();
     let (mut nodes, mut elements, mut section) = (Vec::new(), Vec::new(), "");
     for line in text.lines() {
