@@ -4,9 +4,9 @@ script; the repository's commit 0f7498616374328e8489f46fc35e478419546bd1).
 
 The result is a static solution by ANSYS of a 90° sector of a ring (80 SOLID185 with
 KEYOPT(2)=3, simplified enhanced strain; EX = 200000, NUXY = 0.3, DENS = 7.85e-9) spinning about
-z, held by UY on one cut face, UZ on the base and the rotated nodes of the other cut face
-(THXY = 90°, so there UX of the nodal frame is the global −UY... the reactions are rotated to the
-global frame here). The archive holds its nodes (without the nodal rotations: the test needs K
+z, held by UY on one cut face, UZ on the base, and by the nodal UY of the other cut face's
+rotated nodes (THXY = 90°: their nodal Y is the global −X; ANSYS writes their reactions in the
+nodal frame, turned to the global frame here). The archive holds its nodes (without the nodal rotations: the test needs K
 and M only), its elements and material; the csv ANSYS's displacements and reactions, global:
 
     node, x, y, z, ux, uy, uz, fx, fy, fz
