@@ -410,7 +410,7 @@ fn refusals_name_the_command_element_type_and_keyopt_by_line() {
     );
     assert!(!work.join("bad.flexbody").exists());
 
-    // the same mesh as SOLID186 with KEYOPT(2)=1 refused by name (and no shell)
+    // the same mesh as SOLID186 with KEYOPT(3)=1 (layered) refused by name (and no shell)
     let twenty = format!(
         "{}\n{}",
         "        1        2        3        4".repeat(2),
@@ -418,6 +418,7 @@ fn refusals_name_the_command_element_type_and_keyopt_by_line() {
     );
     let solid = cdb
         .replace("ET,2,181\n", "")
+        .replace("KEYOPT,1,2,1\n", "KEYOPT,1,3,1\n")
         .replace("FOOBAR,1,2\n", "")
         .replace(
             &record(2, "        1        2        3        4"),
@@ -437,7 +438,7 @@ fn refusals_name_the_command_element_type_and_keyopt_by_line() {
         .unwrap();
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("SOLID186 KEYOPT(2)=1"), "{err}");
+    assert!(err.contains("SOLID186 KEYOPT(3)=1"), "{err}");
 }
 
 /// The model's solid mesh as an Abaqus deck (C3D20R, C3D10 or C3D4 by node count, in the

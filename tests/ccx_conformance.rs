@@ -510,7 +510,11 @@ const ANSYS_SECTION: &str = "\n## ANSYS: ansys-mapdl-reader's example files\n\n\
     sqrt(a_ii a_jj); 20 clamped modes from the archive 1.4e-12, from the full file 4.7e-11 of \
     the package's frequencies (the mesh with file.rst's material) |\n\
     | TetBeam.cdb | equal | 3913 SOLID187 on corner nodes = the same mesh as CTETRA 4: 0 |\n\
-    | sector.cdb | refused | SOLID185 (no KEYOPT(2) formulation of it is formed here) |\n";
+    | sector.cdb | refused | SOLID185 KEYOPT(2)=0, B-bar (not shown against an ANSYS result \
+    here; KEYOPT(2)=3 is formed) |\n\
+    | cyc_stress.rst (the repository's tests/testfiles, as an archive + solution) | equal | \
+    SOLID185 KEYOPT(2)=3: K u − F_reaction − ω² M r is 1.1e-8 of max \\|K u\\| \
+    (`tests/ansys_solids.rs`) |\n";
 
 #[test]
 fn calculix_frequency_tests_build_and_match_or_are_refused_by_name() {

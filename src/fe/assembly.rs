@@ -126,8 +126,7 @@ pub fn element_matrices(
             let k = super::elements::anisotropic::stiffness(
                 el.kind,
                 &x,
-                model.params.solid_bubbles,
-                model.params.ccx_solid_rules,
+                super::elements::element::SolidRules::of(&model.params),
                 d,
                 axes,
             )

@@ -13,13 +13,11 @@ use crate::model::{ElementKind, MaterialAxes};
 
 /// Stiffness (3N×3N, row-major) of a solid of `kind` through `x` with the material stiffness
 /// `d` in the material `axes` (basic axes when `None`); `Ok(None)` for a kind without a
-/// general-D formulation (module doc). `ccx_rules`: CalculiX's two-point C3D6
-/// (`ModelParams::ccx_solid_rules`).
+/// general-D formulation (module doc); `rules`: the model's ([`SolidRules::of`]).
 pub fn stiffness(
     kind: ElementKind,
     x: &[Xyz],
-    incompatible: bool,
-    ccx_rules: bool,
+    rules: SolidRules,
     d: &Stiffness6,
     axes: Option<&MaterialAxes>,
 ) -> Result<Option<Vec<f64>>, ElementError> {
@@ -30,10 +28,6 @@ pub fn stiffness(
             x.len()
         )));
     }
-    let rules = SolidRules {
-        incompatible,
-        ccx: ccx_rules,
-    };
     let Some(points) = kinds::element(kind).stiffness_points(x, rules)? else {
         return Ok(None);
     };
@@ -82,15 +76,24 @@ mod tests {
         let pairs = [
             (
                 hex8::stiffness(&x, &mat).unwrap(),
-                stiffness(ElementKind::Hex8, &x, false, false, &d, None)
+                stiffness(ElementKind::Hex8, &x, SolidRules::default(), &d, None)
                     .unwrap()
                     .unwrap(),
             ),
             (
                 solid_incompatible::hex8_stiffness(&x, &mat).unwrap(),
-                stiffness(ElementKind::Hex8, &x, true, false, &d, None)
-                    .unwrap()
-                    .unwrap(),
+                stiffness(
+                    ElementKind::Hex8,
+                    &x,
+                    SolidRules {
+                        incompatible: true,
+                        ..SolidRules::default()
+                    },
+                    &d,
+                    None,
+                )
+                .unwrap()
+                .unwrap(),
             ),
         ];
         for (want, got) in pairs {
@@ -104,16 +107,24 @@ mod tests {
             a: [0.0; 3],
             b: [0.2, 1.0, 0.1],
         };
-        let turned = stiffness(ElementKind::Hex8, &x, false, false, &d, Some(&axes))
-            .unwrap()
-            .unwrap();
+        let turned = stiffness(
+            ElementKind::Hex8,
+            &x,
+            SolidRules::default(),
+            &d,
+            Some(&axes),
+        )
+        .unwrap()
+        .unwrap();
         let want = hex8::stiffness(&x, &mat).unwrap();
         let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (a, b) in want.iter().zip(&turned) {
             assert!((a - b).abs() < 1e-12 * scale);
         }
-        assert!(stiffness(ElementKind::Hex8R, &x, false, false, &d, None)
-            .unwrap()
-            .is_none());
+        assert!(
+            stiffness(ElementKind::Hex8R, &x, SolidRules::default(), &d, None)
+                .unwrap()
+                .is_none()
+        );
     }
 }

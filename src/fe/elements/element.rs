@@ -135,6 +135,20 @@ pub struct SolidRules {
     pub incompatible: bool,
     /// CalculiX's rules (C3D6 on two points).
     pub ccx: bool,
+    /// ANSYS's rules (SOLID186 with full integration on Irons' 14 points).
+    pub ansys: bool,
+}
+
+impl SolidRules {
+    /// The rules a model's solids use (`ModelParams::solid_bubbles`, `ccx_solid_rules`,
+    /// `ansys_solid_rules`).
+    pub fn of(params: &crate::model::ModelParams) -> SolidRules {
+        SolidRules {
+            incompatible: params.solid_bubbles,
+            ccx: params.ccx_solid_rules,
+            ansys: params.ansys_solid_rules,
+        }
+    }
 }
 
 /// Physical shape-function gradients ∂N_b/∂x at each of the element's own nodes (index a), plus

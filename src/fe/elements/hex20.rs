@@ -82,6 +82,12 @@ pub fn scalar_mass(x: &[Xyz; 20], rho: f64, reduced: bool) -> Result<Vec<f64>, E
     solid_scalar_mass(x, shape, &rule, rho)
 }
 
+/// Stiffness 60×60 with Irons' 14-point rule (`quadrature::cube_irons14`): ANSYS's SOLID186 with
+/// full integration, KEYOPT(2)=1 (MAPDL Theory Reference §13.186: "14 if KEYOPT(2) = 1").
+pub fn stiffness_irons14(x: &[Xyz; 20], mat: &Isotropic) -> Result<Vec<f64>, ElementError> {
+    solid_stiffness(x, shape, &quadrature::cube_irons14(), mat)
+}
+
 /// Scalar consistent mass 20×20 with Irons' 14-point rule (`quadrature::cube_irons14`), as ANSYS
 /// forms SOLID186's (checked against the K and M of ansys-mapdl-reader's `file.full`).
 pub fn scalar_mass_irons14(x: &[Xyz; 20], rho: f64) -> Result<Vec<f64>, ElementError> {

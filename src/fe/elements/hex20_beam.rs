@@ -154,16 +154,27 @@ impl Element for Hex20Element {
         } else {
             hex20::scalar_mass(&x, rho, self.reduced && !lumped)
         };
-        let k = input.stiffness(|| hex20::stiffness(&x, &input.iso, self.reduced))?;
+        let k = input.stiffness(|| {
+            if input.model.params.ansys_solid_rules && !self.reduced {
+                // SOLID186 KEYOPT(2)=1: ANSYS's full integration is the 14-point rule
+                hex20::stiffness_irons14(&x, &input.iso)
+            } else {
+                hex20::stiffness(&x, &input.iso, self.reduced)
+            }
+        })?;
         Ok(input.solid(k, mass?, 20, true))
     }
 
     fn stiffness_points(
         &self,
         x: &[Xyz],
-        _: SolidRules,
+        rules: SolidRules,
     ) -> Result<Option<Vec<ModePoint>>, ElementError> {
-        let rule = quadrature::cube(if self.reduced { 2 } else { 3 });
+        let rule = match (self.reduced, rules.ansys) {
+            (true, _) => quadrature::cube(2),
+            (false, true) => quadrature::cube_irons14(),
+            (false, false) => quadrature::cube(3),
+        };
         Ok(Some(integration_points(x, hex20::shape, &rule)?))
     }
 

@@ -207,8 +207,7 @@ fn formulation(
                 k,
                 &x,
                 mat,
-                model.params.solid_bubbles,
-                model.params.ccx_solid_rules,
+                crate::fe::elements::element::SolidRules::of(&model.params),
             )
             .map_err(elem_err)?,
         ),

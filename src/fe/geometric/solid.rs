@@ -46,17 +46,20 @@ impl SolidElement {
         mat: Isotropic,
         incompatible: bool,
     ) -> Result<SolidElement, ElementError> {
-        SolidElement::with_rules(kind, x, mat, incompatible, false)
+        let rules = SolidRules {
+            incompatible,
+            ..SolidRules::default()
+        };
+        SolidElement::with_rules(kind, x, mat, rules)
     }
 
-    /// [`SolidElement::new`] with CalculiX's integration rules when `ccx_rules`
-    /// (`ModelParams::ccx_solid_rules`: C3D6 on two points, as its stiffness).
+    /// [`SolidElement::new`] with the model's integration rules ([`SolidRules::of`]: CalculiX's
+    /// C3D6 on two points, ANSYS's SOLID186 full integration on 14, as their stiffness).
     pub fn with_rules(
         kind: ElementKind,
         x: &[Xyz],
         mat: Isotropic,
-        incompatible: bool,
-        ccx_rules: bool,
+        rules: SolidRules,
     ) -> Result<SolidElement, ElementError> {
         if x.len() != kind.node_count() {
             return Err(ElementError::BadConstants(format!(
@@ -65,11 +68,7 @@ impl SolidElement {
                 x.len()
             )));
         }
-        let bubbles = incompatible && matches!(kind, ElementKind::Hex8 | ElementKind::Prism6);
-        let rules = SolidRules {
-            incompatible,
-            ccx: ccx_rules,
-        };
+        let bubbles = rules.incompatible && matches!(kind, ElementKind::Hex8 | ElementKind::Prism6);
         let Some(points) = kinds::element(kind).stiffness_points(x, rules)? else {
             return Err(ElementError::BadConstants(if kind == ElementKind::Hex8R {
                 "C3D8R (one-point hexahedron with hourglass control) has no preload (initial \

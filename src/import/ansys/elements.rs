@@ -113,7 +113,6 @@ pub(super) fn form(
         ));
     };
     match disposition {
-        Disposition::Refused(_) if number == 185 => return Err(solid185(t)),
         Disposition::Refused(why) => return Err(format!("{name}: {why}")),
         Disposition::Note(_) => return Ok(Formed::NoStiffness),
         Disposition::Honoured(_) => {}
@@ -123,6 +122,7 @@ pub(super) fn form(
         21 => mass21(t, rec, reals),
         180 => link180(t, rec, reals, section),
         184 => mpc184(t, rec),
+        185 => solid185(t, rec),
         186 => solid186(t, rec),
         187 => solid187(t, rec),
         // every honoured row of the catalogue is matched above; a new one must be added here
@@ -298,10 +298,19 @@ fn mpc184(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     }
 }
 
-/// SOLID186: KEYOPT(2)=0 (the default) is uniform reduced integration 2×2×2 (C3D20R); full
-/// integration and the degenerate shapes are refused.
+/// SOLID186 (MAPDL Theory Reference §13.186): the 20-node brick with uniform reduced 2×2×2
+/// integration (KEYOPT(2)=0, the default: C3D20R's K, the mass on Irons' 14 points) or full
+/// integration on Irons' 14 points (KEYOPT(2)=1: K and mass); written as a collapsed brick in
+/// ANSYS's wedge or tetrahedron pattern ([`degenerate_shape`]) it is the 15-node wedge on the
+/// 3 × 3 rule or the 10-node tetrahedron on 4 points, whatever KEYOPT(2) says (the Theory
+/// Reference's table); the pyramid and dropped mid-side nodes are refused.
 fn solid186(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
-    unsupported_keyopts(t, &[])?;
+    unsupported_keyopts(t, &[2])?;
+    let full = match t.keyopts.get(&2).copied().unwrap_or(0) {
+        0 => false,
+        1 => true,
+        k => return Err(format!("SOLID186 KEYOPT(2)={k}: not an option of SOLID186")),
+    };
     let n = &rec.nodes;
     if n.len() != 20 || n.contains(&0) {
         return Err(format!(
@@ -309,14 +318,71 @@ fn solid186(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
             n.iter().filter(|&&v| v != 0).count()
         ));
     }
-    if !distinct(n) {
-        return Err(
-            "SOLID186 in a degenerate shape (wedge, pyramid or tetrahedron: repeated nodes): \
-             not formed here"
-                .into(),
-        );
+    if distinct(n) {
+        let kind = if full {
+            ElementKind::Hex20
+        } else {
+            ElementKind::Hex20R
+        };
+        return Ok(Formed::Element(kind, n.clone()));
     }
-    Ok(Formed::Element(ElementKind::Hex20R, n.clone()))
+    match degenerate_shape(n) {
+        Some(Degenerate::Wedge) => Ok(Formed::Element(ElementKind::Prism15, pick(n, &WEDGE))),
+        Some(Degenerate::Tetrahedron) => Ok(Formed::Element(ElementKind::Tet10, pick(n, &TET))),
+        Some(Degenerate::Pyramid) => Err(
+            "SOLID186 as a pyramid (nodes M…P and U…X one node): ANSYS forms its 13-node \
+             pyramid by its own condensation of the 20-node brick on 2×2×2 points (Theory \
+             Reference equations 11–192…197), not shown to be flexbody's 13-node pyramid \
+             (Bedrosian's functions): not formed here"
+                .into(),
+        ),
+        None => Err(
+            "SOLID186 with repeated nodes in no pattern of ANSYS's degenerate shapes (wedge: \
+             K = L = S, O = P = W, A = B; tetrahedron: K = L = S, M…P = U…X, A = B; pyramid: \
+             M…P = U…X): not formed here"
+                .into(),
+        ),
+    }
+}
+
+/// ANSYS's degenerate shapes of a 20-node brick (MAPDL Element Reference, SOLID186's geometry
+/// figure; ansys-mapdl-reader reads them the same way).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Degenerate {
+    Wedge,
+    Pyramid,
+    Tetrahedron,
+}
+
+/// The 20 node positions I…P, Q…X, Y…B, 0-based: the wedge's 15 nodes in C3D15's order (bottom
+/// I, J, K; top M, N, O; edges IJ, JK, KI (T), MN, NO, OM (X); verticals IM, JN, KO (A)).
+const WEDGE: [usize; 15] = [0, 1, 2, 4, 5, 6, 8, 9, 11, 12, 13, 15, 16, 17, 18];
+/// The tetrahedron's 10 nodes in C3D10's order (I, J, K, apex M; IJ, JK, KI, IM, JM, KM).
+const TET: [usize; 10] = [0, 1, 2, 4, 8, 9, 11, 16, 17, 18];
+
+/// The shape of a brick written with repeated nodes: K = L = S (the edge KL collapsed), the top
+/// face to one node (M…P and U…X equal), and what both make; `None` for another pattern. Every
+/// node the shape keeps must be distinct.
+fn degenerate_shape(n: &[u64]) -> Option<Degenerate> {
+    let same = |ix: &[usize]| ix.iter().all(|&i| n[i] == n[ix[0]]);
+    let kl = same(&[2, 3, 10]) && same(&[18, 19]);
+    let apex = same(&[4, 5, 6, 7, 12, 13, 14, 15]);
+    let wedge = kl && same(&[6, 7, 14]);
+    let (shape, kept): (Degenerate, &[usize]) = match (kl, apex, wedge) {
+        (true, true, _) => (Degenerate::Tetrahedron, &TET),
+        (true, false, true) => (Degenerate::Wedge, &WEDGE),
+        (false, true, _) => {
+            let pyramid: Vec<usize> = (0..5).chain(8..12).chain(16..20).collect();
+            return distinct(&pick(n, &pyramid)).then_some(Degenerate::Pyramid);
+        }
+        _ => return None,
+    };
+    distinct(&pick(n, kept)).then_some(shape)
+}
+
+/// The ids at `positions`.
+fn pick(n: &[u64], positions: &[usize]) -> Vec<u64> {
+    positions.iter().map(|&i| n[i]).collect()
 }
 
 /// SOLID187: the 10-node tetrahedron (C3D10); with its mid-side nodes dropped the element's
@@ -378,17 +444,43 @@ fn mass21(t: &ElementType, rec: &ElementRecord, reals: Option<&[f64]>) -> Result
     }
 }
 
-/// SOLID185's refusal, naming its KEYOPT(2) formulation.
-fn solid185(t: &ElementType) -> Refusal {
+/// SOLID185 (MAPDL Theory Reference §13.185): KEYOPT(2)=3, simplified enhanced strain — the
+/// 8-node brick with Wilson's incompatible modes and Taylor's correction on 2×2×2 points, its
+/// mass the compatible brick's on 2×2×2 ([`ElementKind::Hex8`] with
+/// `ModelParams::solid_bubbles`; shown against an ANSYS result, docs/ansys.md). The other
+/// formulations are refused naming KEYOPT(2): B-bar (0, the default), uniform reduced with
+/// ANSYS's hourglass control (1), enhanced strain (2); and the degenerate shapes (repeated
+/// nodes), the layered and mixed u-P forms (KEYOPT(3), KEYOPT(6)).
+fn solid185(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     let k2 = t.keyopts.get(&2).copied().unwrap_or(0);
     let what = match k2 {
-        0 => "B-bar selective reduced integration, the default",
-        1 => "uniform reduced integration with ANSYS's hourglass control",
-        2 => "enhanced strain",
-        3 => "simplified enhanced strain",
-        _ => "an unknown formulation",
+        0 => {
+            "B-bar selective reduced integration, the default: its volumetric average is not \
+              shown against an ANSYS result here"
+        }
+        1 => {
+            "uniform reduced integration with ANSYS's hourglass control: its hourglass \
+              stiffness is not shown here"
+        }
+        2 => "enhanced strain (Simo–Rifai, with ANSYS's volumetric modes): not shown here",
+        3 => {
+            unsupported_keyopts(t, &[2])?;
+            let n = &rec.nodes;
+            if n.len() != 8 || n.contains(&0) || !distinct(n) {
+                return Err(
+                    "SOLID185 KEYOPT(2)=3 with repeated nodes (a degenerate wedge, \
+                            pyramid or tetrahedron): ANSYS's form of the degenerate shapes is \
+                            not shown here"
+                        .into(),
+                );
+            }
+            return Ok(Formed::Element(ElementKind::Hex8, n.clone()));
+        }
+        _ => "not an option of SOLID185",
     };
-    format!("SOLID185 KEYOPT(2)={k2} ({what}): formulation not formed here")
+    Err(format!(
+        "SOLID185 KEYOPT(2)={k2} ({what}): formulation not formed here"
+    ))
 }
 
 /// No id repeats.
@@ -416,7 +508,7 @@ mod tests {
     }
 
     #[test]
-    fn solid186_default_is_reduced_and_keyopt2_is_refused_by_name() {
+    fn solid186_keyopt2_picks_the_rule_and_degenerate_bricks_their_shape() {
         let mut t = ElementType::new(3, "186");
         let nodes: Vec<u64> = (1..=20).collect();
         assert_eq!(
@@ -424,8 +516,37 @@ mod tests {
             Ok(Formed::Element(ElementKind::Hex20R, nodes.clone()))
         );
         t.keyopts.insert(2, 1);
+        assert_eq!(
+            form(&t, &record(nodes.clone()), None, None),
+            Ok(Formed::Element(ElementKind::Hex20, nodes.clone()))
+        );
+        // the wedge: K = L = S (3), O = P = W (7), A = B (19)
+        let mut wedge = nodes.clone();
+        (wedge[3], wedge[10], wedge[7], wedge[14], wedge[19]) = (3, 3, 7, 7, 19);
+        let want = vec![1, 2, 3, 5, 6, 7, 9, 10, 12, 13, 14, 16, 17, 18, 19];
+        assert_eq!(
+            form(&t, &record(wedge.clone()), None, None),
+            Ok(Formed::Element(ElementKind::Prism15, want))
+        );
+        // the tetrahedron: K = L = S (3), M…P = U…X (5), A = B (19)
+        let mut tet = wedge;
+        for p in [4, 5, 6, 7, 12, 13, 14, 15] {
+            tet[p] = 5;
+        }
+        assert_eq!(
+            form(&t, &record(tet.clone()), None, None),
+            Ok(Formed::Element(
+                ElementKind::Tet10,
+                vec![1, 2, 3, 5, 9, 10, 12, 17, 18, 19]
+            ))
+        );
+        // another pattern of repeats is refused
+        tet[0] = 2;
+        let why = form(&t, &record(tet), None, None).unwrap_err();
+        assert!(why.contains("no pattern"), "{why}");
+        t.keyopts.insert(2, 2);
         let why = form(&t, &record(nodes), None, None).unwrap_err();
-        assert!(why.contains("SOLID186 KEYOPT(2)=1"), "{why}");
+        assert!(why.contains("SOLID186 KEYOPT(2)=2"), "{why}");
     }
 
     #[test]
