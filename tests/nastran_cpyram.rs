@@ -294,7 +294,7 @@ fn cpyram_stress_modes_are_finite_and_rigid_modes_strain_free() {
             &block([2, 1, 1], 0.05, cells, [-0.05, 0.05, 0.1]),
         );
         nastran_support::built_hz(&path, 9, &["--stress-modes", "--mass", "consistent"]);
-        let body = flexbody_reader::read(&path.with_extension("flexbody")).unwrap();
+        let body = flexbody_reader::read(path.with_extension("flexbody")).unwrap();
         let stress = body
             .stress_shapes
             .as_ref()
