@@ -88,6 +88,7 @@ pub fn ours_eigen(
         precision: Default::default(),
         upper: None,
         verify_band: false,
+        method: flexbody::solve::EigenMethod::Lanczos,
     };
     let s = lowest_modes_iterative(&k, &m, &spec).map_err(|e| e.to_string())?;
     let total = t0.elapsed().as_secs_f64();

@@ -83,6 +83,7 @@ impl Plan {
                 par: spec.par(),
                 verify_band: spec.verify_band,
                 precision: spec.precision,
+                method: spec.eigensolver,
                 ..Default::default()
             },
             file_name: spec.model.display().to_string(),
