@@ -171,3 +171,105 @@ fn a_cutoff_at_the_band_top_reports_the_missing_modes() {
     let below = s.eigenvalues.iter().filter(|&&l| l <= upper).count();
     assert_eq!(below, 40);
 }
+
+mod common;
+
+fn conrod() -> String {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/models/conrod/conrod.inp")
+        .display()
+        .to_string()
+}
+
+/// Builds the conrod with `extra` options; the flexible frequencies and the recipe's
+/// `options.eigensolver`.
+fn build_conrod(out: &std::path::Path, extra: &[&str]) -> (Vec<f64>, Option<String>) {
+    let o = common::exe()
+        .args(["build", &conrod(), "--interface", "BIG_END,SMALL_END"])
+        .args(["--units", "si", "--threads", "1"])
+        .args(extra)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "{extra:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let body = flexbody_reader::read(out).unwrap();
+    let f = (body.modes.frequency_hz.iter().zip(&body.modes.labels))
+        .filter(|(_, l)| **l != flexbody_reader::ModeLabel::Rigid)
+        .map(|(f, _)| *f)
+        .collect();
+    (f, body.recipe.and_then(|r| r.options.eigensolver))
+}
+
+#[test]
+fn eigensolver_option_gives_lanczos_frequencies_through_the_cli() {
+    let dir = common::scratch("amls-cli");
+    for (method, modes, limit_low, limit_all) in [
+        // measured: normal 2.0e-10 / 1.7e-7, cb 6.3e-6 / 6.9e-5 (its fixed-interface modes'
+        // errors reach the body), craig-chang 2.4e-8 / 2.6e-6 (lower half / all)
+        ("normal", "30", 2e-9, 1e-6),
+        ("cb", "12", 5e-5, 5e-4),
+        ("craig-chang", "12", 2e-7, 2e-5),
+    ] {
+        let mut runs = vec![];
+        for solver in ["lanczos", "amls"] {
+            let out = dir.join(format!("{method}-{solver}.flexbody"));
+            runs.push(build_conrod(
+                &out,
+                &[
+                    "--method",
+                    method,
+                    "--modes",
+                    modes,
+                    "--eigensolver",
+                    solver,
+                ],
+            ));
+        }
+        let (a, b) = (&runs[0], &runs[1]);
+        assert_eq!(a.0.len(), b.0.len());
+        let worst = max_rel(&b.0, &a.0);
+        let half = a.0.len() / 2;
+        let low = max_rel(&b.0[..half], &a.0[..half]);
+        println!(
+            "conrod {method} {modes} modes: AMLS vs Lanczos frequencies, lower half {low:.2e}, \
+             all {worst:.2e}"
+        );
+        assert!(
+            low < limit_low && worst < limit_all,
+            "{method}: {low:e} {worst:e}"
+        );
+        assert_eq!(a.1.as_deref(), Some("lanczos"));
+        assert_eq!(b.1.as_deref(), Some("amls"));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_bad_eigensolver_is_refused_by_name() {
+    for (bad, says) in [
+        ("arnoldi", "expected auto, lanczos, amls or amls:FACTOR"),
+        ("amls:0.5", "cutoff factor must be a number >= 1"),
+    ] {
+        let o = common::exe()
+            .args([
+                "build",
+                &conrod(),
+                "--units",
+                "si",
+                "--eigensolver",
+                bad,
+                "-o",
+            ])
+            .arg(common::scratch("amls-bad").join("x.flexbody"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{bad} accepted");
+        assert!(err.contains("--eigensolver") && err.contains(says), "{err}");
+    }
+}
