@@ -129,7 +129,7 @@ pub fn amls(
 ) -> Result<AmlsSolution, SolveError> {
     let _par = ParGuard::new(spec.par);
     super::validate(k, m, spec.count)?;
-    if !(params.cutoff_factor >= 1.0) || params.leaf_dofs < 2 {
+    if params.cutoff_factor.is_nan() || params.cutoff_factor < 1.0 || params.leaf_dofs < 2 {
         return Err(SolveError::Invalid(format!(
             "AMLS cutoff factor {} (must be >= 1) or leaf size {} (must be >= 2)",
             params.cutoff_factor, params.leaf_dofs
@@ -210,7 +210,7 @@ pub fn amls(
     ritz.residuals.truncate(keep);
     x.truncate(n, keep);
     let seconds_ritz = t1.elapsed().as_secs_f64();
-    if !(ritz.orthonormality <= 1e-9) {
+    if ritz.orthonormality.is_nan() || ritz.orthonormality > 1e-9 {
         return Err(SolveError::CheckFailed {
             what: "|PhiT M Phi - I|max",
             value: ritz.orthonormality,
