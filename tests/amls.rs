@@ -273,3 +273,28 @@ fn a_bad_eigensolver_is_refused_by_name() {
         assert!(err.contains("--eigensolver") && err.contains(says), "{err}");
     }
 }
+
+/// `--eigensolver` has one route: `Plan::resolve` puts it into the eigen settings every solve
+/// reads.
+#[test]
+fn the_plan_carries_the_eigensolver() {
+    use flexbody::build::plan::Plan;
+    use flexbody::build::BuildSpec;
+    let path = std::path::PathBuf::from(conrod());
+    let model = flexbody::import::read_model(&path, &Default::default()).unwrap();
+    for text in ["auto", "lanczos", "amls", "amls:8"] {
+        let method: EigenMethod = text.parse().unwrap();
+        let spec = BuildSpec {
+            eigensolver: method,
+            ..BuildSpec::new(path.clone(), flexbody_reader::Units::si(), &[])
+        };
+        let plan = Plan::resolve(&spec, &model).unwrap();
+        assert_eq!(plan.eigen.method, method);
+        assert_eq!(plan.eigen.method.name(), text);
+    }
+    // auto is Lanczos at every size (docs/amls.md: AMLS was never measured faster)
+    assert_eq!(
+        EigenMethod::Auto.pick(1_000_000, 500),
+        EigenMethod::Lanczos
+    );
+}
