@@ -310,6 +310,20 @@ fn slepc_engine_refuses_what_it_cannot_run() {
         "{stderr}"
     );
     assert!(!out.exists());
+    // AMLS is the native engine's eigensolver
+    let o = build(
+        &["--eigensolver", "amls", "--modes", "6"],
+        "slepc",
+        &[],
+        &out,
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        stderr.contains("--eigensolver amls applies to the native engine only"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
     // an engine name we do not have
     let o = build(&["--modes", "6"], "petsc", &[], &out);
     assert!(!o.status.success());

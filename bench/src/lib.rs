@@ -3,6 +3,7 @@
 //! (peak memory, load), and the suites themselves in their modules.
 
 pub mod accuracy;
+pub mod amls;
 pub mod assembly;
 pub mod chart;
 pub mod scene_accuracy;

@@ -52,7 +52,7 @@ fn node_set(model: &flexbody::model::Model, name: &str) -> Res<Vec<usize>> {
 }
 
 /// A symmetric Matrix Market file as a full (both triangles) sparse matrix.
-fn read_full_mtx(p: &str) -> Res<SparseColMat<usize, f64>> {
+pub(crate) fn read_full_mtx(p: &str) -> Res<SparseColMat<usize, f64>> {
     let s = flexbody::import::matrix_market::read_matrix(std::path::Path::new(p))
         .map_err(|e| e.to_string())?;
     let v: Vec<_> = s
@@ -89,6 +89,7 @@ pub fn ours_eigen(
         upper: None,
         verify_band: false,
         engine: None,
+        method: flexbody::solve::EigenMethod::Lanczos,
     };
     let s = lowest_modes_iterative(&k, &m, &spec).map_err(|e| e.to_string())?;
     let total = t0.elapsed().as_secs_f64();
@@ -265,17 +266,17 @@ pub struct EigenExtras {
 /// The `eigen` suite's system: the generated block clamped at x = 0, assembled and eliminated,
 /// with K and M written to `eigen_<dofs>/K.mtx` and `M.mtx` (the peers and our child processes
 /// read them there).
-struct EigenSystem {
-    model: flexbody::model::Model,
+pub(crate) struct EigenSystem {
+    pub(crate) model: flexbody::model::Model,
     /// Nodes of the clamped face.
-    fixed: Vec<usize>,
-    dofs: usize,
-    dir: std::path::PathBuf,
-    kp: std::path::PathBuf,
-    mp: std::path::PathBuf,
+    pub(crate) fixed: Vec<usize>,
+    pub(crate) dofs: usize,
+    pub(crate) dir: std::path::PathBuf,
+    pub(crate) kp: std::path::PathBuf,
+    pub(crate) mp: std::path::PathBuf,
 }
 
-fn eigen_system(n: [usize; 3]) -> Res<EigenSystem> {
+pub(crate) fn eigen_system(n: [usize; 3]) -> Res<EigenSystem> {
     let model = tet10_block(n);
     let fixed = node_set(&model, "X0")?;
     let asm = assemble(&model, &consistent()).map_err(|e| e.to_string())?;
@@ -357,7 +358,7 @@ pub fn modes(n: [usize; 3], counts: &[usize]) -> Res<Value> {
 }
 
 /// Eigenvalues of a suite part's JSON.
-fn eigenvalues(v: &Value) -> Vec<f64> {
+pub(crate) fn eigenvalues(v: &Value) -> Vec<f64> {
     v["eigenvalues"]
         .as_array()
         .map(|a| a.iter().filter_map(Value::as_f64).collect())

@@ -268,7 +268,7 @@ RECIPE_T = {
                 "gravity": ("omit", STR), "loads": ("omit", ("list", STR)), "residual_vectors": ("omit", STR),
                 "select": ("omit", STR), "preload": ("omit", ("list", STR)),
                 "ignore": ("omit", ("list", STR)), "geometric_stiffness": ("omit", STR),
-                "inp_shells": ("omit", STR)},
+                "inp_shells": ("omit", STR), "eigensolver": ("omit", STR)},
     "interfaces": ("list", {"entry": STR, "nodes": ("list", U64), "spider": ("opt", {
         "kind": STR, "centre_node": U64, "centre": ("arr", F64, 3), "fit": STR,
         "offset_from_node_average": F64, "set_nodes": ("list", U64)})}),

@@ -159,6 +159,14 @@ pub struct RecipeOptions {
         skip_serializing_if = "Option::is_none"
     )]
     pub inp_shells: Option<String>,
+    /// `--eigensolver`: `lanczos`, `amls` or `amls:F` (absent: `auto`, which picks Lanczos
+    /// or AMLS by size and mode count).
+    #[serde(
+        default,
+        deserialize_with = "crate::json::present",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub eigensolver: Option<String>,
 }
 
 /// One `--interface` entry as resolved.

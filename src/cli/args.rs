@@ -224,6 +224,13 @@ pub(crate) struct BuildArgs {
     /// ill-conditioned for it).
     #[arg(long, default_value = "auto", value_name = "auto|f64|mixed")]
     pub(crate) precision: String,
+    /// Eigensolver of normal modes, Craig–Bampton's fixed-interface modes and Craig–Chang:
+    /// lanczos (block shift-invert, exact to 1e-10), amls (automated multilevel substructuring:
+    /// substructure modes up to 4x the band's top eigenvalue, two subspace-iteration steps, a
+    /// Rayleigh–Ritz step on K and M, per-mode residuals and an inertia count that fails the
+    /// build if a mode is missing; amls:F sets the cutoff factor F), or auto (docs/amls.md).
+    #[arg(long, default_value = "auto", value_name = "auto|lanczos|amls|amls:F")]
+    pub(crate) eigensolver: String,
     /// Keep the fewest modes whose estimated frequency-response error at the scene's loads and
     /// interfaces over [0, fmax] stays below EPS (relative to the static response):
     /// participation:EPS, e.g. participation:0.01. The candidates are the modes --fmax/--modes
@@ -345,6 +352,10 @@ pub(crate) fn build_spec(a: &BuildArgs) -> anyhow::Result<BuildSpec> {
             .precision
             .parse()
             .map_err(|e: String| anyhow::anyhow!("--precision {e}"))?,
+        eigensolver: a
+            .eigensolver
+            .parse()
+            .map_err(|e: String| anyhow::anyhow!("--eigensolver {e}"))?,
         beam_mass: parse_beam_mass(&a.beam_mass)?,
         scene: crate::pipeline::SceneSpec {
             gravity: a.gravity.clone(),

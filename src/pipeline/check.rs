@@ -382,8 +382,7 @@ fn identities_against_model(body: &file::ReducedBody, rebuilt: &Rebuilt, r: &mut
             r,
             &f,
             &body.modes.labels,
-            body.method.method == file::Method::NormalModes
-                && !crate::pipeline::scene::has_residual_vectors(body),
+            crate::pipeline::verify::exact_eigenvectors(body),
             n_r,
         );
     }

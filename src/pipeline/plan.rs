@@ -84,6 +84,7 @@ impl Plan {
                 verify_band: spec.verify_band,
                 precision: spec.precision,
                 engine: spec.engine.clone(),
+                method: spec.eigensolver,
                 ..Default::default()
             },
             file_name: spec.model.display().to_string(),

@@ -233,6 +233,8 @@ pub fn recipe(
         preload: spec.scene.preload.clone(),
         geometric_stiffness: (spec.geometric_stiffness)
             .map(|g| crate::pipeline::options::geometric_stiffness_name(g).into()),
+        eigensolver: (spec.eigensolver != crate::solve::EigenMethod::Auto)
+            .then(|| spec.eigensolver.name()),
     };
     let interfaces = interfaces
         .iter()

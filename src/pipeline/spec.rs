@@ -111,6 +111,8 @@ pub struct BuildSpec {
     pub engine: Option<crate::solve::slepc::SlepcEngine>,
     /// `--precision`: arithmetic of the Craig–Bampton interior's factorization.
     pub precision: crate::solve::Precision,
+    /// `--eigensolver`: Lanczos, AMLS or auto for every eigen solve of the build.
+    pub eigensolver: crate::solve::EigenMethod,
     /// `--geometric-stiffness`: which unit loads' modal geometric stiffness the file holds
     /// (`geometric_stiffness.bin`, format 1.7; `None`: no entry).
     pub geometric_stiffness: Option<GeometricLoads>,
@@ -164,6 +166,7 @@ impl BuildSpec {
             verify_band: false,
             engine: None,
             precision: Default::default(),
+            eigensolver: Default::default(),
             geometric_stiffness: None,
             damping: None,
             constrained_system: false,

@@ -6,6 +6,7 @@
 //! [`DENSE_MAX`] go to a dense solver. [`buckling`] gives the lowest buckling factor of a
 //! preload (K φ = −λ K_G φ).
 
+pub mod amls;
 pub mod buckling;
 pub mod cholesky;
 pub mod dense;
@@ -155,6 +156,67 @@ impl std::str::FromStr for Precision {
     }
 }
 
+/// Which eigensolver computes the lowest modes, `build --eigensolver`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum EigenMethod {
+    /// [`EigenMethod::pick`] by size and mode count.
+    #[default]
+    Auto,
+    /// Block shift-invert Lanczos ([`eigen`]): exact to its tolerance.
+    Lanczos,
+    /// AMLS ([`amls`]) with these settings: approximate modes with a Rayleigh–Ritz contract,
+    /// per-mode residuals and an inertia count.
+    Amls(amls::AmlsParams),
+}
+
+impl EigenMethod {
+    /// The solver for `n` dofs and `count` modes. `Auto` is Lanczos at every size: in the
+    /// `amls` bench suite (docs/amls.md) our AMLS was slower than Lanczos at every measured
+    /// size and mode count (20k dofs, 100 modes: 22 s against 4.1 s), so there is no crossover
+    /// for `auto` to pick by yet; `n` and `count` are where such a rule goes.
+    pub fn pick(self, n: usize, count: usize) -> EigenMethod {
+        let _ = (n, count);
+        match self {
+            EigenMethod::Auto => EigenMethod::Lanczos,
+            other => other,
+        }
+    }
+
+    /// The name `--eigensolver` takes (`amls:F` with a cutoff factor other than the default).
+    pub fn name(&self) -> String {
+        match self {
+            EigenMethod::Auto => "auto".into(),
+            EigenMethod::Lanczos => "lanczos".into(),
+            EigenMethod::Amls(p) if p.cutoff_factor == amls::DEFAULT_CUTOFF_FACTOR => "amls".into(),
+            EigenMethod::Amls(p) => format!("amls:{}", p.cutoff_factor),
+        }
+    }
+}
+
+impl std::str::FromStr for EigenMethod {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => Ok(Self::Auto),
+            "lanczos" => Ok(Self::Lanczos),
+            "amls" => Ok(Self::Amls(Default::default())),
+            other => match other.strip_prefix("amls:").map(str::parse::<f64>) {
+                Some(Ok(f)) if f.is_finite() && f >= 1.0 => Ok(Self::Amls(amls::AmlsParams {
+                    cutoff_factor: f,
+                    ..Default::default()
+                })),
+                Some(_) => Err(format!(
+                    "{other}: the AMLS cutoff factor must be a number >= 1 (amls:10 keeps \
+                     substructure modes up to 10 times the band's top eigenvalue)"
+                )),
+                None => Err(format!(
+                    "{other}: expected auto, lanczos, amls or amls:FACTOR"
+                )),
+            },
+        }
+    }
+}
+
 /// What to compute.
 #[derive(Clone, Debug)]
 pub struct EigenSpec {
@@ -187,6 +249,8 @@ pub struct EigenSpec {
     /// `--engine slepc --mpi N`: the eigenpairs of [`crate::reduce::select::solve_count`] from
     /// PETSc/SLEPc under MPI ([`slepc::lowest_modes`]); `None`: ours.
     pub engine: Option<slepc::SlepcEngine>,
+    /// Which eigensolver ([`EigenMethod::pick`] resolves `Auto` per solve).
+    pub method: EigenMethod,
 }
 
 impl Default for EigenSpec {
@@ -203,6 +267,7 @@ impl Default for EigenSpec {
             upper: None,
             verify_band: false,
             engine: None,
+            method: EigenMethod::Auto,
         }
     }
 }
@@ -389,6 +454,9 @@ pub fn lowest_modes(
     validate(k, m, spec.count)?;
     let n = k.nrows();
     let count = spec.count;
+    if let (EigenMethod::Amls(p), true) = (spec.method.pick(n, count), n > DENSE_MAX) {
+        return lowest_modes_amls(k, m, spec, &p);
+    }
     let b = spec.block.unwrap_or(count.min(DEFAULT_BLOCK)).max(1);
     let max_basis = spec.max_basis.unwrap_or_else(|| default_basis(count, b));
     if n <= DENSE_MAX || (2 * max_basis > n && n <= 3000) {
@@ -404,6 +472,25 @@ pub fn lowest_modes(
         return finish(k, m, &mut vecs, info, spec.tol).and_then(|s| verify_band(k, m, s, spec));
     }
     lowest_modes_iterative(k, m, spec)
+}
+
+/// [`amls::amls`] as the other solvers answer: a band the inertia count proves incomplete is
+/// [`SolveError::MissedModes`].
+fn lowest_modes_amls(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    spec: &EigenSpec,
+    params: &amls::AmlsParams,
+) -> Result<EigenSolution, SolveError> {
+    let s = amls::amls(k, m, spec, params)?;
+    match s.missing() {
+        0 => Ok(s.solution),
+        missing => Err(SolveError::MissedModes {
+            found: s.report.returned_below_top,
+            missing,
+            sigma: s.report.band_top,
+        }),
+    }
 }
 
 /// [`lowest_modes`] always on the sparse path (factorization + block shift-invert iteration),
@@ -462,6 +549,10 @@ pub fn lowest_modes_factored(
     validate(k, m, spec.count)?;
     let n = k.nrows();
     let count = spec.count;
+    if let EigenMethod::Amls(p) = spec.method.pick(n, count) {
+        // AMLS factors its own substructures: `llt` is not used
+        return lowest_modes_amls(k, m, spec, &p);
+    }
     let b = spec.block.unwrap_or(count.min(DEFAULT_BLOCK)).max(1);
     if count + 2 * b > n || llt.n() != n {
         return Err(SolveError::TooManyModes {
@@ -613,52 +704,20 @@ fn finish(
     mut info: EigenInfo,
     tol: f64,
 ) -> Result<EigenSolution, SolveError> {
-    let mut kx = sparse_ops::spmm(k.as_ref(), x.as_ref());
-    let mut mx = sparse_ops::spmm(m.as_ref(), x.as_ref());
-    let kp = x.transpose() * &kx;
-    let mp = x.transpose() * &mx;
-    let (vals, y) = dense::projected(kp.as_ref(), mp.as_ref())?;
-    // y is c × c (c = the columns of x)
-    let c = vals.len();
-    for v in [&mut *x, &mut kx, &mut mx] {
-        thin_ops::mul_in_place(v.as_mut(), y.as_ref());
-    }
-    let mut orth = 0.0f64;
-    let mut kd = 0.0f64;
-    let mp = x.transpose() * &mx;
-    let kp = x.transpose() * &kx;
+    let ritz = ritz_in_place(k, m, x)?;
+    let (vals, orth, kd) = (&ritz.values, ritz.orthonormality, ritz.stiffness_diag);
     let lmax = vals
         .iter()
         .fold(0.0f64, |a, &b| a.max(b.abs()))
         .max(f64::MIN_POSITIVE);
-    for j in 0..c {
-        for i in 0..c {
-            let id = if i == j { 1.0 } else { 0.0 };
-            orth = orth.max((mp[(i, j)] - id).abs());
-            kd = kd.max((kp[(i, j)] - id * vals[j]).abs() / lmax);
-        }
-    }
     let scale = trace_ratio(k, m);
     // rounding scales of Kφ and φᵀKφ: the checks never ask for less than rounding leaves
     // (stiffness contrasts, docs/stability.md row 7)
     let (abs_e, abs_n) = sparse_ops::abs_products(k.as_ref(), x.as_ref());
-    let mut residuals = Vec::with_capacity(c);
-    for j in 0..c {
-        let (mut rn, mut kn) = (0.0, 0.0);
-        for i in 0..x.nrows() {
-            let r = kx[(i, j)] - vals[j] * mx[(i, j)];
-            rn += r * r;
-            kn += kx[(i, j)] * kx[(i, j)];
-        }
-        let res = if kn > 0.0 {
-            (rn / kn).sqrt()
-        } else {
-            rn.sqrt()
-        };
-        residuals.push(res);
+    for (j, (&res, &kn)) in ritz.residuals.iter().zip(&ritz.k_norms).enumerate() {
         let flexible = vals[j] > 1e-8 * scale;
-        let floor = sparse_ops::ROUNDING_FACTOR * f64::EPSILON * abs_n[j]
-            / kn.sqrt().max(f64::MIN_POSITIVE);
+        let floor =
+            sparse_ops::ROUNDING_FACTOR * f64::EPSILON * abs_n[j] / kn.max(f64::MIN_POSITIVE);
         let limit = (1e3 * tol).max(1e-8).max(floor);
         if flexible && (res.is_nan() || res > limit) {
             return Err(SolveError::CheckFailed {
@@ -690,9 +749,81 @@ fn finish(
     info.orthonormality = orth;
     info.stiffness_diag = kd;
     Ok(EigenSolution {
-        eigenvalues: vals,
+        eigenvalues: ritz.values,
         vectors: std::mem::replace(x, Mat::zeros(0, 0)),
-        residuals,
+        residuals: ritz.residuals,
         info,
+    })
+}
+
+/// A Rayleigh–Ritz step and what it measured ([`ritz_in_place`]).
+pub(crate) struct Ritz {
+    /// Ritz values, ascending.
+    pub values: Vec<f64>,
+    /// ‖Kφ − λMφ‖ / ‖Kφ‖ per vector (‖Kφ − λMφ‖ where Kφ = 0).
+    pub residuals: Vec<f64>,
+    /// ‖Kφ‖ per vector.
+    pub k_norms: Vec<f64>,
+    /// ‖ΦᵀMΦ − I‖_max after the step.
+    pub orthonormality: f64,
+    /// ‖ΦᵀKΦ − diag(λ)‖_max / max|λ| after the step.
+    pub stiffness_diag: f64,
+}
+
+/// Rayleigh–Ritz on the full K and M: x ← xY with (xᵀKx)Y = (xᵀMx)YΛ, YᵀxᵀMxY = I (the same
+/// span), then the residual of every vector and the measured ΦᵀMΦ − I and ΦᵀKΦ − Λ. x, Kx and
+/// Mx are the only n × c blocks held (issue 22: copies of them were the 519k build's peak).
+pub(crate) fn ritz_in_place(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    x: &mut Mat<f64>,
+) -> Result<Ritz, SolveError> {
+    let mut kx = sparse_ops::spmm(k.as_ref(), x.as_ref());
+    let mut mx = sparse_ops::spmm(m.as_ref(), x.as_ref());
+    let kp = x.transpose() * &kx;
+    let mp = x.transpose() * &mx;
+    let (vals, y) = dense::projected(kp.as_ref(), mp.as_ref())?;
+    // y is c × c (c = the columns of x)
+    let c = vals.len();
+    for v in [&mut *x, &mut kx, &mut mx] {
+        thin_ops::mul_in_place(v.as_mut(), y.as_ref());
+    }
+    let mut orth = 0.0f64;
+    let mut kd = 0.0f64;
+    let mp = x.transpose() * &mx;
+    let kp = x.transpose() * &kx;
+    let lmax = vals
+        .iter()
+        .fold(0.0f64, |a, &b| a.max(b.abs()))
+        .max(f64::MIN_POSITIVE);
+    for j in 0..c {
+        for i in 0..c {
+            let id = if i == j { 1.0 } else { 0.0 };
+            orth = orth.max((mp[(i, j)] - id).abs());
+            kd = kd.max((kp[(i, j)] - id * vals[j]).abs() / lmax);
+        }
+    }
+    let mut residuals = Vec::with_capacity(c);
+    let mut k_norms = Vec::with_capacity(c);
+    for j in 0..c {
+        let (mut rn, mut kn) = (0.0, 0.0);
+        for i in 0..x.nrows() {
+            let r = kx[(i, j)] - vals[j] * mx[(i, j)];
+            rn += r * r;
+            kn += kx[(i, j)] * kx[(i, j)];
+        }
+        residuals.push(if kn > 0.0 {
+            (rn / kn).sqrt()
+        } else {
+            rn.sqrt()
+        });
+        k_norms.push(kn.sqrt());
+    }
+    Ok(Ritz {
+        values: vals,
+        residuals,
+        k_norms,
+        orthonormality: orth,
+        stiffness_diag: kd,
     })
 }

@@ -53,8 +53,7 @@ pub fn nested_dissection(
     // `static uint64_t mt[NN]`): two calls at once race on it, and their orderings then differ
     // from run to run (seen in parallel tests: two analyses of one matrix gave L of 8.1 and
     // 9.7 MB). One call at a time keeps them reproducible.
-    static METIS: std::sync::Mutex<()> = std::sync::Mutex::new(());
-    let _one_at_a_time = METIS.lock().unwrap_or_else(|e| e.into_inner());
+    let _one_at_a_time = metis_lock();
     // SAFETY: every array has the length METIS_NodeND documents (xadj nv+1, adjncy xadj[nv],
     // options METIS_NOPTIONS, perm/iperm nv); vwgt may be null.
     let status = unsafe {
@@ -86,6 +85,13 @@ pub fn nested_dissection(
         out.extend(p * b..(p + 1) * b);
     }
     Ok(out)
+}
+
+/// The lock every METIS call holds (its random generator is a C global; see
+/// [`nested_dissection`]).
+pub(crate) fn metis_lock() -> std::sync::MutexGuard<'static, ()> {
+    static METIS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    METIS.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 fn to_idx(x: usize) -> Result<i32, SolveError> {

@@ -606,6 +606,7 @@ pub fn recipe_3node() -> Recipe {
             preload: Vec::new(),
             ignore: Vec::new(),
             inp_shells: None,
+            eigensolver: None,
             geometric_stiffness: None,
         },
         interfaces: vec![

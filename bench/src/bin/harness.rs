@@ -19,9 +19,9 @@
 //! `ours-eigen`, `ours-cb`, `ours-build`, `ours-assembly` and `inertia K.mtx M.mtx SIGMA` are the suites' own child processes; `solve-kernel K.mtx [B ...]`
 //! times faer's multi-RHS solve against ours on one factorization (for tuning).
 
-use flexbody_bench::{accuracy, assembly, chart, scene_accuracy, suites, Res};
+use flexbody_bench::{accuracy, amls, assembly, chart, scene_accuracy, suites, Res};
 
-const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] [--baseline B] [--inertia] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] [--precision auto|f64|mixed] | modes NX NY NZ [--counts 30,100,200,300] | assembly [N_SHELL [N_TET]] [--repeat R] | slepc NX NY NZ [--modes N] [--mpi N] | accuracy [MODEL.inp] | scene | chart";
+const USAGE: &str = "usage: harness eigen NX NY NZ [--modes N] [--ccx] [--no-superlu] [--baseline B] [--inertia] | cb NX NY NZ [--modes N] [--exudyn] [--ccx] [--repeat R] [--precision auto|f64|mixed] | modes NX NY NZ [--counts 30,100,200,300] | assembly [N_SHELL [N_TET]] [--repeat R] | slepc NX NY NZ [--modes N] [--mpi N] | amls NX NY NZ [--modes N] [--cutoffs 2,4,8] [--no-lanczos] | accuracy [MODEL.inp] | scene | chart";
 
 fn dims(a: &[String]) -> Res<[usize; 3]> {
     let p = |i: usize| -> Res<usize> {
@@ -120,6 +120,20 @@ fn run(args: &[String]) -> Res<()> {
             let n = a[1].parse().map_err(|_| "N".to_string())?;
             let r = a[3].parse().map_err(|_| "REPEATS".to_string())?;
             assembly::ours_assembly(&a[0], n, &a[2], r)?
+        }
+        "amls" => {
+            let cutoffs: Vec<f64> = flag_value(a, "--cutoffs")
+                .unwrap_or_else(|| "2,4,8".into())
+                .split(',')
+                .map(|c| c.trim().parse().ok().filter(|&v: &f64| v >= 1.0))
+                .collect::<Option<_>>()
+                .ok_or_else(|| "--cutoffs F,F,... (each >= 1)".to_string())?;
+            amls::run(dims(a)?, modes(a)?, &cutoffs, !has("--no-lanczos"))?
+        }
+        "ours-amls" if (4..=5).contains(&a.len()) => {
+            let m = a[2].parse().map_err(|_| "MODES".to_string())?;
+            let c = a[3].parse().map_err(|_| "CUTOFF".to_string())?;
+            amls::ours_amls(&a[0], &a[1], m, c, a.get(4).and_then(|s| s.parse().ok()))?
         }
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
         "scene" => scene_accuracy::run()?,

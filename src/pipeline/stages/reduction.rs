@@ -120,8 +120,8 @@ fn massless_dofs(plan: &Plan, constrained: &Constrained) -> Result<MasslessDofs,
     })
 }
 
-/// An explicit `--precision mixed` or `--engine slepc` that the build would not use is refused,
-/// not ignored.
+/// An explicit `--precision mixed`, `--engine slepc` or `--eigensolver amls` that the build
+/// would not use is refused, not ignored.
 fn check_engine_request(plan: &Plan, constrained: &Constrained) -> Result<(), BuildError> {
     let spec = &plan.spec;
     if spec.precision == Precision::Mixed
@@ -138,6 +138,13 @@ fn check_engine_request(plan: &Plan, constrained: &Constrained) -> Result<(), Bu
         BuildMethod::Normal | BuildMethod::CraigChang => true,
         BuildMethod::Dietz => false,
     };
+    if spec.engine.is_some() && matches!(spec.eigensolver, crate::solve::EigenMethod::Amls(_)) {
+        return Err(plan.request_error(
+            "--engine slepc computes the modes with SLEPc's Krylov-Schur: --eigensolver amls \
+             applies to the native engine only (use one or the other)"
+                .into(),
+        ));
+    }
     if spec.engine.is_some() && !engine_runs_it {
         return Err(plan.request_error(
             "--engine slepc runs normal modes, Craig-Chang and the Craig-Bampton interior \
