@@ -197,6 +197,18 @@ fn build_conrod(out: &std::path::Path, extra: &[&str]) -> (Vec<f64>, Option<Stri
         "{extra:?}: {}",
         String::from_utf8_lossy(&o.stderr)
     );
+    // an AMLS build says what its modes are: Rayleigh–Ritz pairs and their largest residual
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let amls = extra
+        .windows(2)
+        .any(|w| w[0] == "--eigensolver" && w[1].starts_with("amls"));
+    assert_eq!(
+        stderr.contains("note: eigensolver amls:")
+            && stderr.contains("Rayleigh-Ritz pairs")
+            && stderr.contains("largest relative residual"),
+        amls,
+        "{extra:?}: {stderr}"
+    );
     let body = flexbody_reader::read(out).unwrap();
     let f = (body.modes.frequency_hz.iter().zip(&body.modes.labels))
         .filter(|(_, l)| **l != flexbody_reader::ModeLabel::Rigid)

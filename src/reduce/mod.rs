@@ -22,8 +22,8 @@ use thiserror::Error;
 
 pub use orthonormalize::{orthonormalize, Orthonormalized, DEPENDENCY_TOL};
 
-/// The build-report lines of an eigensolution: the external engine that ran it (`--engine
-/// slepc`, with its report) and a band proven complete by
+/// The build-report lines of an eigensolution: the solver's own line (`--engine slepc` with
+/// its report, `--eigensolver amls` with its largest residual) and a band proven complete by
 /// [`crate::solve::EigenSpec::verify_band`] (`problem` names the eigenproblem, e.g.
 /// "fixed-interface").
 pub(crate) fn band_note(info: &crate::solve::EigenInfo, problem: &str) -> Vec<String> {

@@ -303,7 +303,9 @@ pub struct EigenInfo {
     pub seconds_orth: f64,
     /// With [`EigenSpec::verify_band`]: (modes proven complete, the shift σ of the count).
     pub band_proof: Option<(usize, f64)>,
-    /// `--engine slepc`: "engine slepc, N MPI ranks: " and the engine's own report (timings).
+    /// The solver's own report line for the build: `--engine slepc` ("engine slepc, N MPI
+    /// ranks: " and the engine's timings) or `--eigensolver amls` (its tree and the largest
+    /// Rayleigh–Ritz residual).
     pub engine_report: Option<String>,
 }
 
