@@ -61,7 +61,7 @@ fn json_report(a: &BuildArgs, out: &BuildOutput) -> serde_json::Value {
         "frequency_hz": out.body.modes.frequency_hz,
         // Craig–Bampton: the body with its interface held (empty for the other methods)
         "fixed_interface_hz": r.diagnostics.fixed_interface_omega2.iter()
-            .map(|w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)).collect::<Vec<_>>(),
+            .map(|&w2| crate::solve::hz(w2)).collect::<Vec<_>>(),
         "stages_s": r.stages.iter().map(|(k, v)| (k.clone(), *v)).collect::<std::collections::BTreeMap<_, _>>(),
         "interfaces": r.interfaces.iter().map(|i| serde_json::json!({
             "entry": i.entry,

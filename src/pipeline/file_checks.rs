@@ -148,9 +148,7 @@ fn generalized_matrices(body: &file::ReducedBody, r: &mut CheckReport) {
         .omega2
         .iter()
         .zip(&md.frequency_hz)
-        .map(|(&w2, &f)| {
-            (w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI) - f).abs() / f.max(1e-300)
-        })
+        .map(|(&w2, &f)| (crate::solve::hz(w2) - f).abs() / f.max(1e-300))
         .filter(|e| e.is_finite())
         .fold(0.0, f64::max);
     r.push("frequencies = √ω²/2π", f_err, 1e-12, "relative".into());

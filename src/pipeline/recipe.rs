@@ -41,7 +41,7 @@ pub const BAND_FMAX: &str = "fmax";
 /// exactly, the highest retained free-free frequency; for normal modes, which are exact
 /// eigenpairs, the highest mode kept that is not a residual-vector mode.
 pub fn accuracy_band(spec: &BuildSpec, modes: &ModeRequest, set: &ModeSet) -> file::AccuracyBand {
-    let hz = |w2: f64| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI);
+    use crate::solve::hz;
     if let Some(f) = modes.fmax_hz {
         return file::AccuracyBand {
             fmax_hz: f,

@@ -66,7 +66,7 @@ pub(crate) fn free_free(
         let first = next.eigenvalues.last().copied().unwrap_or(0.0);
         return Err(super::select::cutoff_below_first(
             cut,
-            first.max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
+            crate::solve::hz(first),
         ));
     }
     if nr == s.eigenvalues.len() {

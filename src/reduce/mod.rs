@@ -32,7 +32,7 @@ pub(crate) fn band_note(info: &crate::solve::EigenInfo, problem: &str) -> Vec<St
         format!(
             "band check: the eigensolver's {modes} lowest {problem} modes are all the \
              eigenvalues below {:.10e} Hz (Sylvester inertia count of K - sigma*M)",
-            sigma.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+            crate::solve::hz(sigma)
         )
     });
     engine.into_iter().chain(band).collect()
@@ -256,10 +256,7 @@ pub struct ModeSet {
 impl ModeSet {
     /// Frequencies in Hz (negative ω² rounding noise maps to 0).
     pub fn frequencies_hz(&self) -> Vec<f64> {
-        self.omega2
-            .iter()
-            .map(|&l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
-            .collect()
+        self.omega2.iter().map(|&l| crate::solve::hz(l)).collect()
     }
 
     /// Number of modes.

@@ -2,7 +2,7 @@
 //! frequency of the scene, `cutoff = FMAX_FACTOR · f_scene`. Rigid-body modes are always kept.
 
 use super::{ModeLabel, ModeSet, ReduceError};
-use crate::solve::{lowest_modes, EigenSolution, EigenSpec, SparseColMat};
+use crate::solve::{hz, lowest_modes, EigenSolution, EigenSpec, SparseColMat};
 
 /// Cutoff factor on the scene's highest frequency. A mode well above the excitation responds
 /// quasi-statically; keeping modes to 3× the highest frequency of interest (the common rule of
@@ -40,10 +40,6 @@ pub enum Selection {
         estimate: f64,
         band_hz: f64,
     },
-}
-
-fn hz(l: f64) -> f64 {
-    l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
 }
 
 /// Lowest eigenpairs by [`ModeCount`]; `BelowHz` runs the solver in band mode (one iteration

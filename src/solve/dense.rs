@@ -61,10 +61,7 @@ pub fn lowest(
     }
     let sigmas: Vec<f64> = match shift {
         Some(s) => vec![s],
-        None => {
-            let scale = super::trace_ratio_dense(k, m);
-            vec![-1e-6 * scale, -1e-3 * scale, -scale]
-        }
+        None => super::automatic_shifts(super::trace_ratio_dense(k, m)),
     };
     let mut last_err = SolveError::NonPositivePivot { dof: 0 };
     for sigma in sigmas {

@@ -159,7 +159,7 @@ impl std::str::FromStr for Precision {
 /// Which eigensolver computes the lowest modes, `build --eigensolver`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum EigenMethod {
-    /// [`EigenMethod::pick`] by size and mode count.
+    /// [`EigenMethod::resolved`]: Lanczos until a crossover is measured.
     #[default]
     Auto,
     /// Block shift-invert Lanczos ([`eigen`]): exact to its tolerance.
@@ -170,12 +170,11 @@ pub enum EigenMethod {
 }
 
 impl EigenMethod {
-    /// The solver for `n` dofs and `count` modes. `Auto` is Lanczos at every size: in the
-    /// `amls` bench suite (docs/amls.md) our AMLS was slower than Lanczos at every measured
-    /// size and mode count (20k dofs, 100 modes: 22 s against 4.1 s), so there is no crossover
-    /// for `auto` to pick by yet; `n` and `count` are where such a rule goes.
-    pub fn pick(self, n: usize, count: usize) -> EigenMethod {
-        let _ = (n, count);
+    /// The solver that runs. `Auto` is Lanczos at every size: in the `amls` bench suite
+    /// (docs/amls.md) our AMLS was slower than Lanczos at every measured size and mode count
+    /// (20k dofs, 100 modes: 22 s against 4.1 s), so there is no crossover for `auto` to pick
+    /// by yet (a rule by size and mode count goes here once one is measured).
+    pub fn resolved(self) -> EigenMethod {
         match self {
             EigenMethod::Auto => EigenMethod::Lanczos,
             other => other,
@@ -249,7 +248,7 @@ pub struct EigenSpec {
     /// `--engine slepc --mpi N`: the eigenpairs of [`crate::reduce::select::solve_count`] from
     /// PETSc/SLEPc under MPI ([`slepc::lowest_modes`]); `None`: ours.
     pub engine: Option<slepc::SlepcEngine>,
-    /// Which eigensolver ([`EigenMethod::pick`] resolves `Auto` per solve).
+    /// Which eigensolver ([`EigenMethod::resolved`] resolves `Auto` per solve).
     pub method: EigenMethod,
 }
 
@@ -354,6 +353,40 @@ impl Drop for ParGuard {
 }
 
 /// A stiffness-over-mass scale of the model: the median of K_ii / M_ii over the dofs with
+/// The frequency of an eigenvalue ω²: √max(ω², 0) / (2π) (SPEC.md's `frequency_hz` rule).
+pub fn hz(omega2: f64) -> f64 {
+    omega2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// The automatic shift σ of a factorization of K − σM: just below zero (−1e-6 of the
+/// stiffness-over-mass `scale`, [`trace_ratio`]), so that a free body's K − σM is positive
+/// definite and its rigid modes come out at λ ≈ 0.
+pub(crate) fn automatic_shift(scale: f64) -> f64 {
+    -1e-6 * scale
+}
+
+/// The shifts a factorization of K − σM tries in turn when none is given: the
+/// [`automatic_shift`], then further below zero where it is not positive definite.
+pub(crate) fn automatic_shifts(scale: f64) -> Vec<f64> {
+    vec![automatic_shift(scale), -1e-3 * scale, -scale]
+}
+
+/// The σ of an inertia count that takes in every returned eigenvalue: just above the highest,
+/// `top` (rigid modes only: 1e-6 of `scale`, above their rounding).
+pub(crate) fn count_shift_above(top: f64, scale: f64) -> f64 {
+    if is_flexible(top, scale) {
+        top * (1.0 + 1e-8)
+    } else {
+        1e-6 * scale
+    }
+}
+
+/// Whether eigenvalue `lambda` is a flexible mode's: above 1e-8 of the model's
+/// stiffness-over-mass `scale` ([`trace_ratio`]); at or below it the mode is rigid.
+pub fn is_flexible(lambda: f64, scale: f64) -> bool {
+    lambda > 1e-8 * scale
+}
+
 /// positive K_ii and M_ii (tr K / tr M when there are none). Used for the automatic shift and
 /// the rigid-mode threshold. The median, not tr K / tr M: a near-rigid insert (stiffness
 /// contrast 1e10) dominates the trace and pushed the shift and the rigid threshold above the
@@ -456,7 +489,7 @@ pub fn lowest_modes(
     validate(k, m, spec.count)?;
     let n = k.nrows();
     let count = spec.count;
-    if let (EigenMethod::Amls(p), true) = (spec.method.pick(n, count), n > DENSE_MAX) {
+    if let (EigenMethod::Amls(p), true) = (spec.method.resolved(), n > DENSE_MAX) {
         return lowest_modes_amls(k, m, spec, &p);
     }
     let b = spec.block.unwrap_or(count.min(DEFAULT_BLOCK)).max(1);
@@ -516,7 +549,7 @@ pub fn lowest_modes_iterative(
     let scale = trace_ratio(k, m);
     let shifts = match spec.shift {
         Some(s) => vec![s],
-        None => vec![-1e-6 * scale, -1e-3 * scale, -scale],
+        None => automatic_shifts(scale),
     };
     let t0 = std::time::Instant::now();
     let mut last = None;
@@ -551,7 +584,7 @@ pub fn lowest_modes_factored(
     validate(k, m, spec.count)?;
     let n = k.nrows();
     let count = spec.count;
-    if let EigenMethod::Amls(p) = spec.method.pick(n, count) {
+    if let EigenMethod::Amls(p) = spec.method.resolved() {
         // AMLS factors its own substructures: `llt` is not used
         return lowest_modes_amls(k, m, spec, &p);
     }
@@ -655,11 +688,7 @@ pub(crate) fn verify_band(
         return Ok(sol);
     }
     let top = sol.eigenvalues.iter().copied().fold(0.0f64, f64::max);
-    let sigma = if top > 1e-8 * trace_ratio(k, m) {
-        top * (1.0 + 1e-8)
-    } else {
-        1e-6 * trace_ratio(k, m)
-    };
+    let sigma = count_shift_above(top, trace_ratio(k, m));
     let found = sol.eigenvalues.len();
     match inertia::check_band(
         k,
@@ -717,7 +746,7 @@ fn finish(
     // (stiffness contrasts, docs/stability.md row 7)
     let (abs_e, abs_n) = sparse_ops::abs_products(k.as_ref(), x.as_ref());
     for (j, (&res, &kn)) in ritz.residuals.iter().zip(&ritz.k_norms).enumerate() {
-        let flexible = vals[j] > 1e-8 * scale;
+        let flexible = is_flexible(vals[j], scale);
         let floor =
             sparse_ops::ROUNDING_FACTOR * f64::EPSILON * abs_n[j] / kn.max(f64::MIN_POSITIVE);
         let limit = (1e3 * tol).max(1e-8).max(floor);

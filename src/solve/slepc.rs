@@ -282,7 +282,7 @@ pub fn lowest_modes(
         upper: spec.upper,
         shift: spec
             .shift
-            .unwrap_or_else(|| -1e-6 * super::trace_ratio(k, m)),
+            .unwrap_or_else(|| super::automatic_shift(super::trace_ratio(k, m))),
         // SLEPc's test is on the shift-inverted operator: a tenth of ours leaves our
         // residual check (below) its margin
         tol: 0.1 * spec.tol,

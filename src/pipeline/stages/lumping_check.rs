@@ -14,7 +14,7 @@ use crate::pipeline::plan::Plan;
 use crate::pipeline::stages::constraints::eliminate_constraints;
 use crate::pipeline::stages::Constrained;
 use crate::pipeline::stages::WithInterfaces;
-use crate::solve::{lowest_modes, trace_ratio, EigenSpec, SparseColMat};
+use crate::solve::{hz, is_flexible, lowest_modes, trace_ratio, EigenSpec, SparseColMat};
 
 /// Largest system (independent dofs) the two extra eigen solves are made on.
 pub const DOF_LIMIT: usize = 30_000;
@@ -52,13 +52,13 @@ fn first_elastic_hz(
         verify_band: false,
         ..eigen.clone()
     };
-    let rigid = 1e-8 * trace_ratio(k, m);
+    let scale = trace_ratio(k, m);
     let modes = lowest_modes(k, m, &spec).map_err(|e| e.to_string())?;
     Ok(modes
         .eigenvalues
         .iter()
-        .find(|&&l| l > rigid)
-        .map(|l| l.sqrt() / (2.0 * std::f64::consts::PI)))
+        .find(|&&l| is_flexible(l, scale))
+        .map(|&l| hz(l)))
 }
 
 /// The first elastic frequency with the build's lumped mass and with the consistent mass.

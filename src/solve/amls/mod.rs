@@ -32,8 +32,8 @@ mod reduce;
 mod tree;
 
 use super::{
-    inertia, sparse_ops, trace_ratio, EigenInfo, EigenSolution, EigenSpec, ParGuard, SolveError,
-    SparseColMat,
+    hz, inertia, is_flexible, sparse_ops, trace_ratio, EigenInfo, EigenSolution, EigenSpec,
+    ParGuard, SolveError, SparseColMat,
 };
 use faer::Mat;
 
@@ -138,7 +138,7 @@ pub fn amls(
     let t0 = std::time::Instant::now();
     let n = k.nrows();
     let scale = trace_ratio(k, m);
-    let sigma = spec.shift.unwrap_or(-1e-6 * scale);
+    let sigma = spec.shift.unwrap_or(super::automatic_shift(scale));
     let a = sparse_ops::add_scaled(k.as_ref(), m.as_ref(), -sigma)?;
     let root = tree::build(a.symbolic(), spec.dofs_per_node, params.leaf_dofs)?;
     let (leaves, largest_leaf, separator_dofs, depth) = root.shape();
@@ -221,8 +221,7 @@ pub fn amls(
     let top = ritz.values.iter().copied().fold(0.0f64, f64::max);
     let band_top = match spec.upper {
         Some(u) => u,
-        None if top > 1e-8 * scale => top * (1.0 + 1e-8),
-        None => 1e-6 * scale,
+        None => super::count_shift_above(top, scale),
     };
     let t2 = std::time::Instant::now();
     let below_top = inertia::count_below(k, m, band_top, spec.dofs_per_node, spec.par)?;
@@ -230,16 +229,16 @@ pub fn amls(
     let returned_below_top = ritz.values.iter().filter(|&&l| l < band_top).count();
     // the largest residual of a flexible mode (a rigid mode's ‖Kφ‖ is rounding noise)
     let worst = (ritz.values.iter().zip(&ritz.residuals).enumerate())
-        .filter(|(_, (&l, _))| l > 1e-8 * scale)
+        .filter(|(_, (&l, _))| is_flexible(l, scale))
         .fold(None, |w: Option<(usize, f64)>, (j, (_, &r))| match w {
             Some((_, wr)) if wr >= r => w,
             _ => Some((j, r)),
         });
-    let hz = |l: f64| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI);
+    let cutoff = mu_cut + sigma;
     let report_line = format!(
         "eigensolver amls: {leaves} substructures, {root_modes} modes at the root (cutoff \
          {:.4e} Hz); Rayleigh-Ritz pairs, |PhiT M Phi - I| {:.1e}{}",
-        hz(mu_cut + sigma),
+        hz(cutoff),
         ritz.orthonormality,
         worst.map_or(String::new(), |(j, r)| format!(
             ", largest relative residual {r:.1e} (mode {})",
@@ -267,7 +266,7 @@ pub fn amls(
             largest_leaf,
             separator_dofs,
             depth,
-            cutoff: mu_cut + sigma,
+            cutoff,
             root_modes,
             band_top,
             below_top,
