@@ -16,6 +16,7 @@ mod constraints;
 mod elements;
 pub mod full;
 mod materials;
+mod shells;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -75,6 +76,9 @@ struct Archive {
     /// LINK sections by id, and the section the last SECTYPE opened (`None`: not a LINK one).
     sections: BTreeMap<i64, LinkSection>,
     section_now: Option<i64>,
+    /// Shell sections by id, and the one the last SECTYPE opened (`None`: not a shell one).
+    shell_sections: BTreeMap<i64, shells::ShellSection>,
+    shell_now: Option<i64>,
     /// The MPC184 rigid links' MPCs (indices into the model's).
     links: Vec<usize>,
     /// Real constant sets (`R`, `RLBLOCK`).
@@ -231,7 +235,13 @@ impl Archive {
             "SECTYPE" => {
                 let id = c.int(file, 0)?;
                 self.section_now = None;
-                if c.field(1).eq_ignore_ascii_case("LINK") {
+                self.shell_now = None;
+                if c.field(1).eq_ignore_ascii_case("SHELL") {
+                    let (s, refusal) = shells::ShellSection::open(c);
+                    refused.extend(refusal.map(|why| (c.line, why)));
+                    self.shell_sections.insert(id, s);
+                    self.shell_now = Some(id);
+                } else if c.field(1).eq_ignore_ascii_case("LINK") {
                     let s = LinkSection {
                         line: c.line,
                         area: 0.0,
@@ -243,12 +253,31 @@ impl Archive {
                     refused.push((
                         c.line,
                         format!(
-                            "SECTYPE {id},{}: only LINK sections (LINK180's) are read; shell, \
-                             beam and other sections' elements are not formed here",
+                            "SECTYPE {id},{}: only LINK (LINK180's) and SHELL (SHELL181's) \
+                             sections are read; beam and other sections' elements are not formed \
+                             here",
                             c.field(1)
                         ),
                     ));
                 }
+            }
+            "SECDATA" | "SECCONTROL" if self.shell_now.is_some() => {
+                let now = self.shell_now.and_then(|id| self.shell_sections.get_mut(&id));
+                if let Some(s) = now {
+                    let why = if c.name == "SECDATA" {
+                        s.secdata(file, c)?
+                    } else {
+                        s.seccontrol(file, c)?
+                    };
+                    refused.extend(why.map(|why| (c.line, why)));
+                }
+            }
+            "SECOFFSET" => {
+                let why = match self.shell_now {
+                    Some(_) => shells::ShellSection::secoffset(c),
+                    None => Some("SECOFFSET of a section other than a shell: not read".into()),
+                };
+                refused.extend(why.map(|why| (c.line, why)));
             }
             // the data of a section not read is not read either (its SECTYPE is refused)
             "SECDATA" | "SECCONTROL" => {
@@ -457,6 +486,7 @@ impl Archive {
         let mut skipped: BTreeMap<String, Vec<usize>> = BTreeMap::new();
         let mut damped = Vec::new();
         let mut rods = BTreeMap::new();
+        let mut shell_props = shells::ShellProperties::new();
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
         for r in &self.elements {
@@ -487,7 +517,11 @@ impl Archive {
                 })
             };
             let reals = self.reals.get(&r.real).map(Vec::as_slice);
-            let slot = match elements::form(t, r, reals, self.sections.get(&r.section)) {
+            let sections = (
+                self.sections.get(&r.section),
+                self.shell_sections.get(&r.section),
+            );
+            let slot = match elements::form(t, r, reals, sections.0, sections.1) {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
                     None
@@ -554,6 +588,27 @@ impl Archive {
                         dofs: DofMask::ALL,
                     });
                     None
+                }
+                Ok(Formed::Shell(shell)) => {
+                    let Some(property) =
+                        shells::shell_property(model, &mut shell_props, &property_of, &shell)
+                    else {
+                        let why = format!("SHELL181 of material {}, which has no MPDATA", shell.material);
+                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                        continue;
+                    };
+                    let nodes = (shell.nodes.iter().map(|&id| node_of(id)))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    model.elements.push(Element {
+                        id: r.id,
+                        kind: crate::model::ElementKind::Quad4,
+                        nodes,
+                        property: Some(property),
+                        orientation: None,
+                    });
+                    model.params.ansys_shell181 = true;
+                    model.element_sources.push((r.id, 0, r.line as u32));
+                    Some(model.elements.len() - 1)
                 }
                 Ok(Formed::Element(kind, ids)) => {
                     let nodes = ids
