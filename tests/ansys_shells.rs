@@ -209,7 +209,7 @@ fn unformed_shell181_options_are_refused_by_line() {
         (first + 2, "degenerate triangle"),
         (first + 3, "layers of different materials"),
         (line_of("SECOFFSET,TOP"), "SECOFFSET,TOP"),
-        (line_of("0.0,  1\n") , "1 integration point(s)"),
+        (line_of("SECDATA,  1.0,  1,  0.0,  1"), "1 integration point(s)"),
         (line_of("SECCONTROL"), "drill stiffness factor 2"),
     ] {
         let want = format!("refused.cdb:{line}: ");

@@ -647,6 +647,25 @@ mod tests {
         }
     }
 
+    /// ANSYS SHELL181's form (shear factor, drilling penalty) keeps the constant-strain and
+    /// constant-curvature patch energies and exactly 6 zero modes, and differs from plain
+    /// MITC4 only in the shear and drilling terms.
+    #[test]
+    fn quad4_shell_ansys_shell181_form_passes_patch_test_and_has_six_zero_modes() {
+        let props = ShellProps {
+            quad4: Quad4Form::AnsysShell181,
+            ..steel_plate(0.02)
+        };
+        let (k, _) = matrices(&DISTORTED, &props, false).unwrap();
+        patch_energy(&k, &DISTORTED, area(&DISTORTED).unwrap(), &props, 1e-10);
+        let mat = faer::Mat::<f64>::from_fn(24, 24, |i, j| k[i * 24 + j]);
+        let ev = mat.self_adjoint_eigenvalues(faer::Side::Lower).unwrap();
+        let top = ev.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        assert_eq!(ev.iter().filter(|v| v.abs() < 1e-10 * top).count(), 6, "{ev:?}");
+        let (plain, _) = matrices(&DISTORTED, &steel_plate(0.02), false).unwrap();
+        assert_ne!(k, plain);
+    }
+
     #[test]
     fn quad4_shell_mass_totals() {
         let props = ShellProps {
