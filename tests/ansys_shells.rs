@@ -165,7 +165,12 @@ fn unformed_shell181_options_are_refused_by_line() {
     s += "SECTYPE,       4,SHELL,,\nSECDATA,  1.0,  1,  0.0,  3\nSECCONTROL,0,0,0,0,1,1,2\n";
     s += "SECTYPE,       5,SHELL,,\nSECDATA,  1.0,  1,  0.0,  3\n";
     s += "NBLOCK,6,SOLID,         4,         4\n(3i9,6e21.13e3)\n";
-    for (id, x) in [(1, [0.0, 0.0]), (2, [1.0, 0.0]), (3, [1.0, 1.0]), (4, [0.0, 1.0])] {
+    for (id, x) in [
+        (1, [0.0, 0.0]),
+        (2, [1.0, 0.0]),
+        (3, [1.0, 1.0]),
+        (4, [0.0, 1.0]),
+    ] {
         s += &format!(
             "{id:>9}{0:>9}{0:>9}{:>21.13E}{:>21.13E}{:>21.13E}\n",
             x[0], x[1], 0.0
@@ -209,7 +214,10 @@ fn unformed_shell181_options_are_refused_by_line() {
         (first + 2, "degenerate triangle"),
         (first + 3, "layers of different materials"),
         (line_of("SECOFFSET,TOP"), "SECOFFSET,TOP"),
-        (line_of("SECDATA,  1.0,  1,  0.0,  1"), "1 integration point(s)"),
+        (
+            line_of("SECDATA,  1.0,  1,  0.0,  1"),
+            "1 integration point(s)",
+        ),
         (line_of("SECCONTROL"), "drill stiffness factor 2"),
     ] {
         let want = format!("refused.cdb:{line}: ");

@@ -661,7 +661,11 @@ mod tests {
         let mat = faer::Mat::<f64>::from_fn(24, 24, |i, j| k[i * 24 + j]);
         let ev = mat.self_adjoint_eigenvalues(faer::Side::Lower).unwrap();
         let top = ev.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        assert_eq!(ev.iter().filter(|v| v.abs() < 1e-10 * top).count(), 6, "{ev:?}");
+        assert_eq!(
+            ev.iter().filter(|v| v.abs() < 1e-10 * top).count(),
+            6,
+            "{ev:?}"
+        );
         let (plain, _) = matrices(&DISTORTED, &steel_plate(0.02), false).unwrap();
         assert_ne!(k, plain);
     }

@@ -566,7 +566,9 @@ mod tests {
         let t = ElementType::new(3, "200");
         assert_eq!(form(&t, &r, None, None, None), Ok(Formed::NoStiffness));
         let t = ElementType::new(3, "181");
-        assert!(form(&t, &r, None, None, None).unwrap_err().contains("SHELL181"));
+        assert!(form(&t, &r, None, None, None)
+            .unwrap_err()
+            .contains("SHELL181"));
     }
 
     #[test]

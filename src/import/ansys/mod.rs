@@ -262,7 +262,9 @@ impl Archive {
                 }
             }
             "SECDATA" | "SECCONTROL" if self.shell_now.is_some() => {
-                let now = self.shell_now.and_then(|id| self.shell_sections.get_mut(&id));
+                let now = self
+                    .shell_now
+                    .and_then(|id| self.shell_sections.get_mut(&id));
                 if let Some(s) = now {
                     let why = if c.name == "SECDATA" {
                         s.secdata(file, c)?
@@ -391,6 +393,15 @@ impl Archive {
              consistent mass with ANSYS's 14-point rule)",
             if self.lumped.is_some_and(|l| l.1) { "lumped" } else { "consistent" }
         ));
+        if model.params.ansys_shell181 {
+            notes.push(
+                "ANSYS archive: SHELL181 (KEYOPT(3)=2) formed with ANSYS's transverse shear factor \
+                 and drilling penalty, shown against ANSYS's element forces on flat rectangles \
+                 with ν = 0.3; its mass is flexbody's consistent shell mass, not shown against \
+                 ANSYS (docs/ansys.md)"
+                    .into(),
+            );
+        }
         for (title, items) in groups {
             notes.push(format!(
                 "ANSYS archive, {title}: not read, no effect on the body (docs/ansys-commands.md \
@@ -593,7 +604,10 @@ impl Archive {
                     let Some(property) =
                         shells::shell_property(model, &mut shell_props, &property_of, &shell)
                     else {
-                        let why = format!("SHELL181 of material {}, which has no MPDATA", shell.material);
+                        let why = format!(
+                            "SHELL181 of material {}, which has no MPDATA",
+                            shell.material
+                        );
                         refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
                         continue;
                     };

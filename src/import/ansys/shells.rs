@@ -127,7 +127,13 @@ impl ShellSection {
     /// over their summed thickness (each layer integrated exactly: the same stiffness and mass);
     /// layers of different materials (a laminate) are refused.
     fn homogeneous(&self, element_mat: i64) -> Result<(f64, i64), Refusal> {
-        let material = |l: &Layer| if l.material > 0 { l.material } else { element_mat };
+        let material = |l: &Layer| {
+            if l.material > 0 {
+                l.material
+            } else {
+                element_mat
+            }
+        };
         let Some(first) = self.layers.first() else {
             return Err(format!(
                 "shell section of SECTYPE line {} has no SECDATA layer",
@@ -141,7 +147,10 @@ impl ShellSection {
                 self.line, first.line, other.line
             ));
         }
-        Ok((self.layers.iter().map(|l| l.thickness).sum(), material(first)))
+        Ok((
+            self.layers.iter().map(|l| l.thickness).sum(),
+            material(first),
+        ))
     }
 }
 
@@ -160,12 +169,18 @@ pub(super) fn shell181(
     match keyopt(3) {
         2 => {}
         0 => {
-            return Err("SHELL181 KEYOPT(3)=0 (the default: uniform reduced integration with \
+            return Err(
+                "SHELL181 KEYOPT(3)=0 (the default: uniform reduced integration with \
                         ANSYS's hourglass control): its hourglass stiffness is not shown against \
                         an ANSYS result here; KEYOPT(3)=2 (full integration) is formed"
-                .into())
+                    .into(),
+            )
         }
-        k => return Err(format!("SHELL181 KEYOPT(3)={k}: not a SHELL181 option formed here")),
+        k => {
+            return Err(format!(
+                "SHELL181 KEYOPT(3)={k}: not a SHELL181 option formed here"
+            ))
+        }
     }
     if keyopt(1) != 0 {
         return Err(format!(
@@ -180,12 +195,17 @@ pub(super) fn shell181(
     }
     let nodes: Vec<u64> = rec.nodes.iter().take(4).copied().collect();
     if nodes.len() != 4 || nodes.contains(&0) {
-        return Err(format!("SHELL181 with {} nodes (I, J, K, L expected)", nodes.len()));
+        return Err(format!(
+            "SHELL181 with {} nodes (I, J, K, L expected)",
+            nodes.len()
+        ));
     }
     if (1..4).any(|i| nodes[..i].contains(&nodes[i])) {
-        return Err("SHELL181 with repeated nodes (the degenerate triangle): ANSYS's triangular \
+        return Err(
+            "SHELL181 with repeated nodes (the degenerate triangle): ANSYS's triangular \
                     form is not shown here"
-            .into());
+                .into(),
+        );
     }
     let (thickness, material, added_mass) = match (section, reals) {
         (Some(s), _) => {
@@ -214,16 +234,17 @@ pub(super) fn shell181(
 fn legacy_thickness(reals: &[f64]) -> Result<f64, Refusal> {
     let tk = reals.first().copied().unwrap_or(0.0);
     if !(tk > 0.0 && tk.is_finite()) {
-        return Err(format!("SHELL181 real constant TK(I) = {tk} (not a positive thickness)"));
+        return Err(format!(
+            "SHELL181 real constant TK(I) = {tk} (not a positive thickness)"
+        ));
     }
     if reals.iter().take(4).any(|&v| v != 0.0 && v != tk) {
-        return Err("SHELL181 real constants TK(I)…TK(L) differ: a tapered shell is not formed here"
-            .into());
+        return Err(
+            "SHELL181 real constants TK(I)…TK(L) differ: a tapered shell is not formed here".into(),
+        );
     }
     if let Some(v) = reals.iter().skip(4).find(|v| **v != 0.0) {
-        return Err(format!(
-            "SHELL181 real constant {v} past TK(L): not read"
-        ));
+        return Err(format!("SHELL181 real constant {v} past TK(L): not read"));
     }
     Ok(tk)
 }
