@@ -124,7 +124,7 @@ pub(super) fn form(
         14 => combin14(t, rec, reals),
         21 => mass21(t, rec, reals),
         180 => link180(t, rec, reals, section),
-        181 => super::shells::shell181(t, rec, reals, shell),
+        181 => super::shells::shell181(&t.keyopts, rec, reals, shell).map(Formed::Shell),
         184 => mpc184(t, rec),
         185 => solid185(t, rec),
         186 => solid186(t, rec),

@@ -30,11 +30,28 @@ use self::elements::{ElementType, Formed, LinkSection};
 use super::error::{parse_err, ImportError, RefusedCard};
 use super::text::IdMap;
 use super::ImportOptions;
-use crate::model::deck::{ConstraintSource, EigenRequest};
-use crate::model::load::{Load, LoadPart};
-use crate::model::{
-    DofMask, Element, Model, Mpc, Node, NodeDof, Property, RigidElement, Section, Spc,
-};
+use crate::model::deck::EigenRequest;
+use crate::model::{DofMask, Element, Model, Node, Property, RigidElement, Section};
+
+/// The archive's materials into `model`, each with a solid property: material number →
+/// property index.
+fn solid_properties(
+    materials: &BTreeMap<i64, crate::model::Material>,
+    model: &mut Model,
+) -> BTreeMap<i64, usize> {
+    let mut property_of = BTreeMap::new();
+    for (mat, m) in materials {
+        model.materials.push(m.clone());
+        model.properties.push(Property {
+            id: (*mat).max(0) as u64,
+            name: format!("MAT{mat}"),
+            material: model.materials.len() - 1,
+            section: Section::Solid,
+        });
+        property_of.insert(*mat, model.properties.len() - 1);
+    }
+    property_of
+}
 
 /// Read an archive with default options.
 pub fn read(path: &Path) -> Result<Model, ImportError> {
@@ -481,17 +498,7 @@ impl Archive {
         materials: &BTreeMap<i64, crate::model::Material>,
         model: &mut Model,
     ) -> Result<BTreeMap<u64, Option<usize>>, ImportError> {
-        let mut property_of: BTreeMap<i64, usize> = BTreeMap::new();
-        for (mat, m) in materials {
-            model.materials.push(m.clone());
-            model.properties.push(Property {
-                id: (*mat).max(0) as u64,
-                name: format!("MAT{mat}"),
-                material: model.materials.len() - 1,
-                section: Section::Solid,
-            });
-            property_of.insert(*mat, model.properties.len() - 1);
-        }
+        let property_of = solid_properties(materials, model);
         let mut refusals: BTreeMap<(i64, String), (usize, usize)> = BTreeMap::new();
         let mut index: BTreeMap<u64, Option<usize>> = BTreeMap::new();
         let mut skipped: BTreeMap<String, Vec<usize>> = BTreeMap::new();
@@ -528,11 +535,8 @@ impl Archive {
                 })
             };
             let reals = self.reals.get(&r.real).map(Vec::as_slice);
-            let sections = (
-                self.sections.get(&r.section),
-                self.shell_sections.get(&r.section),
-            );
-            let slot = match elements::form(t, r, reals, sections.0, sections.1) {
+            let shell = self.shell_sections.get(&r.section);
+            let slot = match elements::form(t, r, reals, self.sections.get(&r.section), shell) {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
                     None
@@ -601,28 +605,23 @@ impl Archive {
                     None
                 }
                 Ok(Formed::Shell(shell)) => {
-                    let Some(property) =
-                        shells::shell_property(model, &mut shell_props, &property_of, &shell)
-                    else {
-                        let why = format!(
-                            "SHELL181 of material {}, which has no MPDATA",
-                            shell.material
-                        );
-                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
-                        continue;
-                    };
                     let nodes = (shell.nodes.iter().map(|&id| node_of(id)))
                         .collect::<Result<Vec<_>, _>>()?;
-                    model.elements.push(Element {
-                        id: r.id,
-                        kind: crate::model::ElementKind::Quad4,
+                    let at = (r.id, r.line);
+                    match shells::push_shell(
+                        model,
+                        &mut shell_props,
+                        &property_of,
+                        at,
+                        &shell,
                         nodes,
-                        property: Some(property),
-                        orientation: None,
-                    });
-                    model.params.ansys_shell181 = true;
-                    model.element_sources.push((r.id, 0, r.line as u32));
-                    Some(model.elements.len() - 1)
+                    ) {
+                        Ok(e) => Some(e),
+                        Err(why) => {
+                            refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                            continue;
+                        }
+                    }
                 }
                 Ok(Formed::Element(kind, ids)) => {
                     let nodes = ids
@@ -683,127 +682,6 @@ impl Archive {
                 .insert(format!("{name} elements (no stiffness or mass)"), lines);
         }
         Ok(index)
-    }
-
-    /// D → SPCs (one constraint source), CE/CP → MPCs, F/ACEL → loads.
-    fn constraints(
-        &mut self,
-        file: &str,
-        node_map: &IdMap,
-        model: &mut Model,
-    ) -> Result<(), ImportError> {
-        let node = |id: u64, line: usize, what: &str| {
-            node_map
-                .get(id)
-                .ok_or_else(|| parse_err(file, line, what, format!("unknown node {id}")))
-        };
-        let first = model.spcs.len();
-        for &(line, id, mask) in &self.raw.held {
-            model.spcs.push(Spc {
-                node: node(id, line, "D")?,
-                dofs: DofMask(mask),
-                set_id: 0,
-            });
-        }
-        if let Some(&(line, ..)) = self.raw.held.first() {
-            model.constraint_sources.push(ConstraintSource {
-                card: "D".into(),
-                id: format!("{} D line(s)", self.raw.held.len()),
-                file: file.to_owned(),
-                line,
-                set: None,
-                spcs: first..model.spcs.len(),
-                permanent: false,
-            });
-        }
-        let mut id = 0u64;
-        let mut zero_first = Vec::new();
-        for (line, terms) in &self.raw.equations {
-            id += 1;
-            let mut t = Vec::with_capacity(terms.len());
-            for &(n, k, c) in terms {
-                t.push((
-                    NodeDof {
-                        node: node(n, *line, "CE")?,
-                        component: k,
-                    },
-                    c,
-                ));
-            }
-            if t.first().is_none_or(|x| x.1 == 0.0) {
-                zero_first.push(*line);
-                continue;
-            }
-            model.mpcs.push(Mpc { id, terms: t });
-        }
-        for line in zero_first {
-            self.refuse(
-                line,
-                "CE",
-                "a constraint equation whose first coefficient is zero",
-            );
-        }
-        for (line, k, nodes) in self.raw.coupled.values() {
-            let Some((&lead, rest)) = nodes.split_first() else {
-                continue;
-            };
-            let lead = node(lead, *line, "CP")?;
-            for &n in rest {
-                id += 1;
-                let dependent = node(n, *line, "CP")?;
-                model.mpcs.push(Mpc {
-                    id,
-                    terms: vec![
-                        (
-                            NodeDof {
-                                node: dependent,
-                                component: *k,
-                            },
-                            1.0,
-                        ),
-                        (
-                            NodeDof {
-                                node: lead,
-                                component: *k,
-                            },
-                            -1.0,
-                        ),
-                    ],
-                });
-            }
-        }
-        if !self.raw.forces.is_empty() {
-            let mut parts = Vec::new();
-            for &(line, n, k, v) in &self.raw.forces {
-                let mut values = [0.0; 6];
-                values[k] = v;
-                parts.push(LoadPart::Nodal {
-                    node: node(n, line, "F")?,
-                    values,
-                });
-            }
-            let lines: Vec<usize> = self.raw.forces.iter().map(|f| f.0).collect();
-            model.loads.push(Load {
-                name: "F".into(),
-                source: format!("F ({file}:{})", list(&lines)),
-                selected: true,
-                parts,
-                problem: None,
-            });
-        }
-        if let Some((line, a)) = self.raw.acel {
-            // ANSYS's ACEL is the acceleration of the frame: the inertia load acts against it
-            model.loads.push(Load {
-                name: "ACEL".into(),
-                source: format!("ACEL ({file}:{line})"),
-                selected: true,
-                parts: vec![LoadPart::Gravity {
-                    accel: a.map(|v| -v),
-                }],
-                problem: None,
-            });
-        }
-        Ok(())
     }
 
     /// CMBLOCK components → node and element sets.

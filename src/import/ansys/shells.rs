@@ -9,9 +9,10 @@
 use std::collections::BTreeMap;
 
 use super::blocks::{Command, ElementRecord};
-use super::elements::{ElementType, Formed, Refusal};
 use crate::import::error::ImportError;
-use crate::model::{Model, Property, Section, ShellSection as ModelShellSection};
+use crate::model::{
+    Element, ElementKind, Model, Property, Section, ShellSection as ModelShellSection,
+};
 
 /// A `SECTYPE,id,SHELL` section: its layers (`SECDATA` lines), offset and added mass.
 #[derive(Debug, Clone, PartialEq)]
@@ -126,7 +127,7 @@ impl ShellSection {
     /// The section as one homogeneous layer: several layers of one material are that material
     /// over their summed thickness (each layer integrated exactly: the same stiffness and mass);
     /// layers of different materials (a laminate) are refused.
-    fn homogeneous(&self, element_mat: i64) -> Result<(f64, i64), Refusal> {
+    fn homogeneous(&self, element_mat: i64) -> Result<(f64, i64), String> {
         let material = |l: &Layer| {
             if l.material > 0 {
                 l.material
@@ -160,12 +161,12 @@ impl ShellSection {
 /// option KEYOPT(1)=1, other KEYOPTs but KEYOPT(8) (what the result file stores), the
 /// degenerate triangle.
 pub(super) fn shell181(
-    t: &ElementType,
+    keyopts: &BTreeMap<u32, i64>,
     rec: &ElementRecord,
     reals: Option<&[f64]>,
     section: Option<&ShellSection>,
-) -> Result<Formed, Refusal> {
-    let keyopt = |k: u32| t.keyopts.get(&k).copied().unwrap_or(0);
+) -> Result<Shell, String> {
+    let keyopt = |k: u32| keyopts.get(&k).copied().unwrap_or(0);
     match keyopt(3) {
         2 => {}
         0 => {
@@ -188,7 +189,7 @@ pub(super) fn shell181(
             keyopt(1)
         ));
     }
-    if let Some((k, v)) = t.keyopts.iter().find(|(k, _)| ![3, 8].contains(*k)) {
+    if let Some((k, v)) = keyopts.iter().find(|(k, _)| ![3, 8].contains(*k)) {
         return Err(format!(
             "SHELL181 KEYOPT({k})={v}: this option's formulation is not formed here"
         ));
@@ -221,17 +222,17 @@ pub(super) fn shell181(
             ))
         }
     };
-    Ok(Formed::Shell(Shell {
+    Ok(Shell {
         nodes,
         thickness,
         material,
         added_mass,
-    }))
+    })
 }
 
 /// The legacy real constants TK(I), TK(J), TK(K), TK(L) (0: as TK(I)) of one thickness; nodal
 /// thicknesses that differ and any further real constant are refused.
-fn legacy_thickness(reals: &[f64]) -> Result<f64, Refusal> {
+fn legacy_thickness(reals: &[f64]) -> Result<f64, String> {
     let tk = reals.first().copied().unwrap_or(0.0);
     if !(tk > 0.0 && tk.is_finite()) {
         return Err(format!(
@@ -255,7 +256,7 @@ pub(super) type ShellProperties = BTreeMap<(i64, u64, u64), usize>;
 /// The property of `shell` (one per material, thickness and added mass): a homogeneous shell
 /// section of the material (membrane, bending, 5/6 transverse shear) with the added mass as
 /// non-structural mass; `None` when the material has no MPDATA.
-pub(super) fn shell_property(
+fn shell_property(
     model: &mut Model,
     made: &mut ShellProperties,
     property_of: &BTreeMap<i64, usize>,
@@ -280,4 +281,32 @@ pub(super) fn shell_property(
     });
     made.insert(key, model.properties.len() - 1);
     Some(model.properties.len() - 1)
+}
+
+/// Adds `shell` (element `id`, on the model's node indices `nodes`) to the model as a 4-node
+/// shell of its property: the element's index, or why not (its material has no MPDATA).
+pub(super) fn push_shell(
+    model: &mut Model,
+    made: &mut ShellProperties,
+    property_of: &BTreeMap<i64, usize>,
+    (id, line): (u64, usize),
+    shell: &Shell,
+    nodes: Vec<usize>,
+) -> Result<usize, String> {
+    let Some(property) = shell_property(model, made, property_of, shell) else {
+        return Err(format!(
+            "SHELL181 of material {}, which has no MPDATA",
+            shell.material
+        ));
+    };
+    model.elements.push(Element {
+        id,
+        kind: ElementKind::Quad4,
+        nodes,
+        property: Some(property),
+        orientation: None,
+    });
+    model.params.ansys_shell181 = true;
+    model.element_sources.push((id, 0, line as u32));
+    Ok(model.elements.len() - 1)
 }
