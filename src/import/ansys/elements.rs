@@ -581,18 +581,18 @@ mod tests {
         let t = ElementType::new(3, "185");
         let brick: Vec<u64> = (1..=8).collect();
         assert_eq!(
-            form(&t, &record(brick.clone()), None, None),
+            form(&t, &record(brick.clone()), None, None, None),
             Ok(Formed::Element(ElementKind::Hex8Bbar, brick))
         );
         // ANSYS's wedge: K = L, O = P, written as the 8 nodes
         let wedge = vec![1, 2, 3, 3, 5, 6, 7, 7];
         assert_eq!(
-            form(&t, &record(wedge.clone()), None, None),
+            form(&t, &record(wedge.clone()), None, None, None),
             Ok(Formed::Element(ElementKind::Hex8Bbar, wedge))
         );
         // a pyramid (M…P one node) and a tetrahedron are refused
         for n in [vec![1, 2, 3, 4, 5, 5, 5, 5], vec![1, 2, 3, 3, 5, 5, 5, 5]] {
-            let why = form(&t, &record(n), None, None).unwrap_err();
+            let why = form(&t, &record(n), None, None, None).unwrap_err();
             assert!(
                 why.contains("SOLID185 KEYOPT(2)=0 with repeated nodes"),
                 "{why}"
