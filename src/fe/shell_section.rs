@@ -22,7 +22,7 @@
 
 use super::elements::element::{BeamLumping, ElementInput, MatricesError};
 use super::elements::shell::{
-    plane_stress, rotate_plane, rotate_shear, GeneralSection, ShellProps, M2, M3,
+    plane_stress, rotate_plane, rotate_shear, GeneralSection, Quad4Form, ShellProps, M2, M3,
 };
 use super::elements::Isotropic;
 use crate::model::{Material, Model, Property, Section, ShellSection};
@@ -204,7 +204,13 @@ pub fn shell_props(
         drill_factor,
         lumped_rotary: true,
         general: general.map(|g| GeneralSection { axis, ..g }),
-        residual_bending: model.params.nastran_deck,
+        quad4: if model.params.nastran_deck {
+            Quad4Form::NastranQuad4
+        } else if model.params.ansys_shell181 {
+            Quad4Form::AnsysShell181
+        } else {
+            Quad4Form::Mitc4
+        },
     })
 }
 

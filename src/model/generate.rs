@@ -79,6 +79,7 @@ pub fn block(spec: &BlockSpec) -> Model {
             solid_bubbles: false,
             ccx_solid_rules: false,
             ansys_solid_rules: false,
+            ansys_shell181: false,
             k6rot: None,
             nastran_deck: false,
         },

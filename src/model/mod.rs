@@ -582,6 +582,10 @@ pub struct ModelParams {
     /// consistent mass with Irons' 14-point rule (`quadrature::cube_irons14`). Set by the ANSYS
     /// importer.
     pub ansys_solid_rules: bool,
+    /// The 4-node shells are ANSYS's SHELL181 with KEYOPT(3)=2: MITC4 + QM6 with ANSYS's
+    /// transverse shear factor and drilling penalty (`fe::elements::shell::Quad4Form`). Set by
+    /// the ANSYS importer when it forms a SHELL181.
+    pub ansys_shell181: bool,
     /// Nastran `PARAM,K6ROT`: the drilling stiffness of CQUAD4/CTRIA3 shells is the penalty
     /// γ_d = K6ROT·10⁻⁶·G t (`fe::elements::shell`); `None` = MSC's default 100.
     pub k6rot: Option<f64>,

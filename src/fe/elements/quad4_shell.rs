@@ -18,7 +18,7 @@
 //!   correction (QM6: mode derivatives through J₀ at the centre, scaled by det J₀/det J; Taylor,
 //!   Beresford & Wilson, *IJNME* 10 (1976) 1211), condensed statically; passes the membrane
 //!   patch test on any quadrilateral and is free of in-plane shear locking in bending.
-//! * Residual bending flexibility (a Nastran deck's CQUAD4, `ShellProps::residual_bending`):
+//! * Residual bending flexibility (a Nastran deck's CQUAD4, `Quad4Form::NastranQuad4`):
 //!   MacNeal's QUAD4 (R. H. MacNeal, *Computers & Structures* 8 (1978) 175; *Finite Elements:
 //!   Their Design and Performance* (1994) §6) adds to the transverse shear compliance the
 //!   bending flexibility the element lacks. With its shear constant along a direction (as
@@ -33,6 +33,10 @@
 //!   covariant strains e_k by √(S'_k/S_k): exact for rectangles, the same scaling on skewed
 //!   elements. Rigid motions, constant curvatures (patch test) and converged meshes (ℓ → 0)
 //!   are unchanged; one element over a cantilever's length bends as the beam does.
+//! * ANSYS SHELL181 with KEYOPT(3)=2 (an archive's, `ShellProps::quad4`): the same MITC4 + QM6
+//!   element with ANSYS's two changes, read from ANSYS's own element forces (docs/ansys.md):
+//!   the transverse shear rigidity scaled by s = 1/(1 + A/(160 000 t²)) (A the element's area,
+//!   t its thickness) and the drilling penalty γ_d = s·k G t/200 at the 2×2 points.
 //! * Drilling: γ_d (θz − ω)² at the 2×2 points (shell.rs), ω from the bilinear u, v.
 //! * Warped elements: the flat projected element with rigid links to the real nodes (shell.rs);
 //!   exact for rigid motions, approximate (as every flat-facet shell) for strong warping.
@@ -41,7 +45,7 @@
 use super::element::{
     Element, ElementInput, ElementMatrices, MatricesError, ModePoint, NodalGradients, SolidRules,
 };
-use super::shell::{self, add_btdb, add_outer, Resultants, ShellFrame, ShellProps};
+use super::shell::{self, add_btdb, add_outer, Quad4Form, Resultants, ShellFrame, ShellProps};
 use super::{ElementError, Xyz};
 use crate::fe::shell_section;
 
@@ -210,7 +214,6 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
     let mut k = vec![0.0; ND * ND];
     let p = &f.p;
     let sec = props.resultants(&f.axes, [p[1][0] - p[0][0], p[1][1] - p[0][1]])?;
-    let gd = props.drill();
     // Membrane: compatible (8) + incompatible (4) modes, then condensation.
     let mem_dofs: Vec<usize> = (0..4).flat_map(|a| [6 * a, 6 * a + 1]).collect();
     let points = membrane_points(p)?;
@@ -226,10 +229,16 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
     let ec = covariant_shear(p, -1.0, 0.0, 1);
     let ea = covariant_shear(p, 1.0, 0.0, 1);
     let has_shear = sec.shear[0][0] > 0.0 || sec.shear[1][1] > 0.0;
-    let rbf = if props.residual_bending && has_shear {
-        residual_bending_scales(p, &sec, props.shear_rigid())
-    } else {
-        [1.0, 1.0]
+    let (rbf, gd) = match props.quad4 {
+        Quad4Form::NastranQuad4 if has_shear => (
+            residual_bending_scales(p, &sec, props.shear_rigid()),
+            props.drill(),
+        ),
+        Quad4Form::AnsysShell181 => {
+            let area: f64 = points.iter().map(|pt| pt.w).sum();
+            ansys_shell181_shear_and_drill(area, props.t, &sec)
+        }
+        _ => ([1.0, 1.0], props.drill()),
     };
     for (pt, &[xi, eta]) in points.iter().zip(&GAUSS) {
         let MembranePoint { n, g, inv, .. } = pt;
@@ -311,6 +320,15 @@ fn local_stiffness(f: &ShellFrame<4>, props: &ShellProps) -> Result<Vec<f64>, El
     }
     condense_coupled(&mut k, (&mem_dofs, &plate_dofs), &kcc, &kci, &kii, &kip)?;
     Ok(k)
+}
+
+/// ANSYS SHELL181 KEYOPT(3)=2 (module doc): the scale √s of both covariant shear strains,
+/// s = 1/(1 + A/(160 000 t²)), and the drilling penalty γ_d = s·Ā_s/200, Ā_s the mean of the
+/// transverse shear rigidities (k G t for a homogeneous section).
+fn ansys_shell181_shear_and_drill(area: f64, t: f64, sec: &Resultants) -> ([f64; 2], f64) {
+    let s = 1.0 / (1.0 + area / (160_000.0 * t * t));
+    let shear = 0.5 * (sec.shear[0][0] + sec.shear[1][1]);
+    ([s.sqrt(); 2], s * shear / 200.0)
 }
 
 /// √(S'_k/S_k) for k = ξ, η: MacNeal's residual bending flexibility (module doc),
@@ -627,6 +645,29 @@ mod tests {
             );
             assert!(ev.iter().all(|v| *v > -1e-10 * top), "{ev:?}");
         }
+    }
+
+    /// ANSYS SHELL181's form (shear factor, drilling penalty) keeps the constant-strain and
+    /// constant-curvature patch energies and exactly 6 zero modes, and differs from plain
+    /// MITC4 only in the shear and drilling terms.
+    #[test]
+    fn quad4_shell_ansys_shell181_form_passes_patch_test_and_has_six_zero_modes() {
+        let props = ShellProps {
+            quad4: Quad4Form::AnsysShell181,
+            ..steel_plate(0.02)
+        };
+        let (k, _) = matrices(&DISTORTED, &props, false).unwrap();
+        patch_energy(&k, &DISTORTED, area(&DISTORTED).unwrap(), &props, 1e-10);
+        let mat = faer::Mat::<f64>::from_fn(24, 24, |i, j| k[i * 24 + j]);
+        let ev = mat.self_adjoint_eigenvalues(faer::Side::Lower).unwrap();
+        let top = ev.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        assert_eq!(
+            ev.iter().filter(|v| v.abs() < 1e-10 * top).count(),
+            6,
+            "{ev:?}"
+        );
+        let (plain, _) = matrices(&DISTORTED, &steel_plate(0.02), false).unwrap();
+        assert_ne!(k, plain);
     }
 
     #[test]

@@ -118,11 +118,25 @@ pub struct ShellProps {
     /// A laminate or plane-stress section: its rigidities replace those of the isotropic
     /// materials above (which then only name the section's primary material).
     pub general: Option<GeneralSection>,
-    /// MSC Nastran's QUAD4 (MacNeal 1978): the 4-node element's transverse shear compliance
-    /// carries the residual bending flexibility ℓ²/(12 D) ([`super::quad4_shell`] module doc), as
-    /// a Nastran deck's CQUAD4 is formed; `false`: plain MITC4 (Abaqus S4, Gmsh). The triangle
-    /// and the quadratic shells ignore it.
-    pub residual_bending: bool,
+    /// Which solver's 4-node shell the quadrilateral is ([`Quad4Form`]); the triangle and the
+    /// quadratic shells ignore it.
+    pub quad4: Quad4Form,
+}
+
+/// Which solver's 4-node shell a quadrilateral is formed as: the transverse shear and drilling
+/// of MITC4 + QM6 as each solver modifies them ([`super::quad4_shell`] module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Quad4Form {
+    /// Plain MITC4 with the drilling penalty [`ShellProps::drill`] (Abaqus S4, Gmsh).
+    #[default]
+    Mitc4,
+    /// MSC Nastran's QUAD4 (MacNeal 1978): the transverse shear compliance carries the residual
+    /// bending flexibility ℓ²/(12 D), as a Nastran deck's CQUAD4 is formed.
+    NastranQuad4,
+    /// ANSYS SHELL181 with KEYOPT(3)=2: the transverse shear scaled by 1/(1 + A/(160 000 t²))
+    /// and the drilling penalty 1/200 of the scaled transverse shear rigidity, as ANSYS's
+    /// element forces show (docs/ansys.md).
+    AnsysShell181,
 }
 
 impl ShellProps {
@@ -148,7 +162,7 @@ impl ShellProps {
             drill_factor: DRILL_FACTOR,
             lumped_rotary: true,
             general: None,
-            residual_bending: false,
+            quad4: Quad4Form::Mitc4,
         }
     }
 

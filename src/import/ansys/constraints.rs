@@ -6,7 +6,12 @@
 use std::collections::BTreeMap;
 
 use super::blocks::Command;
-use crate::import::error::ImportError;
+use super::list;
+use crate::import::error::{parse_err, ImportError};
+use crate::import::text::IdMap;
+use crate::model::deck::ConstraintSource;
+use crate::model::load::{Load, LoadPart};
+use crate::model::{DofMask, Model, Mpc, NodeDof, Spc};
 
 /// A dof label's 0-based component (UX…ROTZ), `None` for a label not structural.
 pub(super) fn dof_of(label: &str) -> Option<u8> {
@@ -205,6 +210,129 @@ impl Raw {
     pub fn acel(&mut self, file: &str, c: &Command) -> Result<(), ImportError> {
         let a = [c.real(file, 0)?, c.real(file, 1)?, c.real(file, 2)?];
         self.acel = (a != [0.0; 3]).then_some((c.line, a));
+        Ok(())
+    }
+}
+
+impl super::Archive {
+    /// D → SPCs (one constraint source), CE/CP → MPCs, F/ACEL → loads.
+    pub(super) fn constraints(
+        &mut self,
+        file: &str,
+        node_map: &IdMap,
+        model: &mut Model,
+    ) -> Result<(), ImportError> {
+        let node = |id: u64, line: usize, what: &str| {
+            node_map
+                .get(id)
+                .ok_or_else(|| parse_err(file, line, what, format!("unknown node {id}")))
+        };
+        let first = model.spcs.len();
+        for &(line, id, mask) in &self.raw.held {
+            model.spcs.push(Spc {
+                node: node(id, line, "D")?,
+                dofs: DofMask(mask),
+                set_id: 0,
+            });
+        }
+        if let Some(&(line, ..)) = self.raw.held.first() {
+            model.constraint_sources.push(ConstraintSource {
+                card: "D".into(),
+                id: format!("{} D line(s)", self.raw.held.len()),
+                file: file.to_owned(),
+                line,
+                set: None,
+                spcs: first..model.spcs.len(),
+                permanent: false,
+            });
+        }
+        let mut id = 0u64;
+        let mut zero_first = Vec::new();
+        for (line, terms) in &self.raw.equations {
+            id += 1;
+            let mut t = Vec::with_capacity(terms.len());
+            for &(n, k, c) in terms {
+                t.push((
+                    NodeDof {
+                        node: node(n, *line, "CE")?,
+                        component: k,
+                    },
+                    c,
+                ));
+            }
+            if t.first().is_none_or(|x| x.1 == 0.0) {
+                zero_first.push(*line);
+                continue;
+            }
+            model.mpcs.push(Mpc { id, terms: t });
+        }
+        for line in zero_first {
+            self.refuse(
+                line,
+                "CE",
+                "a constraint equation whose first coefficient is zero",
+            );
+        }
+        for (line, k, nodes) in self.raw.coupled.values() {
+            let Some((&lead, rest)) = nodes.split_first() else {
+                continue;
+            };
+            let lead = node(lead, *line, "CP")?;
+            for &n in rest {
+                id += 1;
+                let dependent = node(n, *line, "CP")?;
+                model.mpcs.push(Mpc {
+                    id,
+                    terms: vec![
+                        (
+                            NodeDof {
+                                node: dependent,
+                                component: *k,
+                            },
+                            1.0,
+                        ),
+                        (
+                            NodeDof {
+                                node: lead,
+                                component: *k,
+                            },
+                            -1.0,
+                        ),
+                    ],
+                });
+            }
+        }
+        if !self.raw.forces.is_empty() {
+            let mut parts = Vec::new();
+            for &(line, n, k, v) in &self.raw.forces {
+                let mut values = [0.0; 6];
+                values[k] = v;
+                parts.push(LoadPart::Nodal {
+                    node: node(n, line, "F")?,
+                    values,
+                });
+            }
+            let lines: Vec<usize> = self.raw.forces.iter().map(|f| f.0).collect();
+            model.loads.push(Load {
+                name: "F".into(),
+                source: format!("F ({file}:{})", list(&lines)),
+                selected: true,
+                parts,
+                problem: None,
+            });
+        }
+        if let Some((line, a)) = self.raw.acel {
+            // ANSYS's ACEL is the acceleration of the frame: the inertia load acts against it
+            model.loads.push(Load {
+                name: "ACEL".into(),
+                source: format!("ACEL ({file}:{line})"),
+                selected: true,
+                parts: vec![LoadPart::Gravity {
+                    accel: a.map(|v| -v),
+                }],
+                problem: None,
+            });
+        }
         Ok(())
     }
 }

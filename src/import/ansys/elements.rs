@@ -60,6 +60,8 @@ pub(super) enum Formed {
     RigidLink(u64, u64),
     /// An MPC184 rigid beam (KEYOPT(1)=1) from node id I to J: J follows I's rigid motion.
     RigidBeam(u64, u64),
+    /// A SHELL181 (KEYOPT(3)=2) on its homogeneous section ([`super::shells`]).
+    Shell(super::shells::Shell),
 }
 
 /// A LINK section (`SECTYPE,id,LINK`): its line, the area (`SECDATA`) and the added mass per
@@ -105,6 +107,7 @@ pub(super) fn form(
     rec: &ElementRecord,
     reals: Option<&[f64]>,
     section: Option<&LinkSection>,
+    shell: Option<&super::shells::ShellSection>,
 ) -> Result<Formed, Refusal> {
     let Some((number, name, disposition)) = t.row else {
         return Err(format!(
@@ -121,6 +124,7 @@ pub(super) fn form(
         14 => combin14(t, rec, reals),
         21 => mass21(t, rec, reals),
         180 => link180(t, rec, reals, section),
+        181 => super::shells::shell181(&t.keyopts, rec, reals, shell).map(Formed::Shell),
         184 => mpc184(t, rec),
         185 => solid185(t, rec),
         186 => solid186(t, rec),
@@ -535,12 +539,12 @@ mod tests {
         let mut t = ElementType::new(3, "186");
         let nodes: Vec<u64> = (1..=20).collect();
         assert_eq!(
-            form(&t, &record(nodes.clone()), None, None),
+            form(&t, &record(nodes.clone()), None, None, None),
             Ok(Formed::Element(ElementKind::Hex20R, nodes.clone()))
         );
         t.keyopts.insert(2, 1);
         assert_eq!(
-            form(&t, &record(nodes.clone()), None, None),
+            form(&t, &record(nodes.clone()), None, None, None),
             Ok(Formed::Element(ElementKind::Hex20, nodes.clone()))
         );
         // the wedge: K = L = S (3), O = P = W (7), A = B (19)
@@ -548,7 +552,7 @@ mod tests {
         (wedge[3], wedge[10], wedge[7], wedge[14], wedge[19]) = (3, 3, 7, 7, 19);
         let want = vec![1, 2, 3, 5, 6, 7, 9, 10, 12, 13, 14, 16, 17, 18, 19];
         assert_eq!(
-            form(&t, &record(wedge.clone()), None, None),
+            form(&t, &record(wedge.clone()), None, None, None),
             Ok(Formed::Element(ElementKind::Prism15, want))
         );
         // the tetrahedron: K = L = S (3), M…P = U…X (5), A = B (19)
@@ -557,7 +561,7 @@ mod tests {
             tet[p] = 5;
         }
         assert_eq!(
-            form(&t, &record(tet.clone()), None, None),
+            form(&t, &record(tet.clone()), None, None, None),
             Ok(Formed::Element(
                 ElementKind::Tet10,
                 vec![1, 2, 3, 5, 9, 10, 12, 17, 18, 19]
@@ -565,10 +569,10 @@ mod tests {
         );
         // another pattern of repeats is refused
         tet[0] = 2;
-        let why = form(&t, &record(tet), None, None).unwrap_err();
+        let why = form(&t, &record(tet), None, None, None).unwrap_err();
         assert!(why.contains("no pattern"), "{why}");
         t.keyopts.insert(2, 2);
-        let why = form(&t, &record(nodes), None, None).unwrap_err();
+        let why = form(&t, &record(nodes), None, None, None).unwrap_err();
         assert!(why.contains("SOLID186 KEYOPT(2)=2"), "{why}");
     }
 
@@ -577,18 +581,18 @@ mod tests {
         let t = ElementType::new(3, "185");
         let brick: Vec<u64> = (1..=8).collect();
         assert_eq!(
-            form(&t, &record(brick.clone()), None, None),
+            form(&t, &record(brick.clone()), None, None, None),
             Ok(Formed::Element(ElementKind::Hex8Bbar, brick))
         );
         // ANSYS's wedge: K = L, O = P, written as the 8 nodes
         let wedge = vec![1, 2, 3, 3, 5, 6, 7, 7];
         assert_eq!(
-            form(&t, &record(wedge.clone()), None, None),
+            form(&t, &record(wedge.clone()), None, None, None),
             Ok(Formed::Element(ElementKind::Hex8Bbar, wedge))
         );
         // a pyramid (M…P one node) and a tetrahedron are refused
         for n in [vec![1, 2, 3, 4, 5, 5, 5, 5], vec![1, 2, 3, 3, 5, 5, 5, 5]] {
-            let why = form(&t, &record(n), None, None).unwrap_err();
+            let why = form(&t, &record(n), None, None, None).unwrap_err();
             assert!(
                 why.contains("SOLID185 KEYOPT(2)=0 with repeated nodes"),
                 "{why}"
@@ -601,15 +605,17 @@ mod tests {
         let t = ElementType::new(3, "SOLID187");
         let r = record(vec![4, 5, 6, 7]);
         assert_eq!(
-            form(&t, &r, None, None),
+            form(&t, &r, None, None, None),
             Ok(Formed::Element(ElementKind::Tet4, vec![4, 5, 6, 7]))
         );
         let r = record(vec![4, 5, 6, 7, 8, 0, 0, 0, 0, 0]);
-        assert!(form(&t, &r, None, None).is_err());
+        assert!(form(&t, &r, None, None, None).is_err());
         let t = ElementType::new(3, "200");
-        assert_eq!(form(&t, &r, None, None), Ok(Formed::NoStiffness));
+        assert_eq!(form(&t, &r, None, None, None), Ok(Formed::NoStiffness));
         let t = ElementType::new(3, "181");
-        assert!(form(&t, &r, None, None).unwrap_err().contains("SHELL181"));
+        assert!(form(&t, &r, None, None, None)
+            .unwrap_err()
+            .contains("SHELL181"));
     }
 
     #[test]
@@ -618,12 +624,12 @@ mod tests {
         let r = record(vec![22]);
         let mass_only = [2.0e-4, 2.0e-4, 2.0e-4, 0.0, 0.0, 0.0];
         assert_eq!(
-            form(&t, &r, Some(&mass_only), None),
+            form(&t, &r, Some(&mass_only), None, None),
             Ok(Formed::PointMass(22, 2.0e-4, [0.0; 3]))
         );
         let with_inertia = [2.0e-4, 2.0e-4, 2.0e-4, 1.0e-7, 0.0, 0.0];
         assert_eq!(
-            form(&t, &r, Some(&with_inertia), None),
+            form(&t, &r, Some(&with_inertia), None, None),
             Ok(Formed::PointMass(22, 2.0e-4, [1.0e-7, 0.0, 0.0]))
         );
     }

@@ -16,6 +16,7 @@ mod constraints;
 mod elements;
 pub mod full;
 mod materials;
+mod shells;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -29,11 +30,28 @@ use self::elements::{ElementType, Formed, LinkSection};
 use super::error::{parse_err, ImportError, RefusedCard};
 use super::text::IdMap;
 use super::ImportOptions;
-use crate::model::deck::{ConstraintSource, EigenRequest};
-use crate::model::load::{Load, LoadPart};
-use crate::model::{
-    DofMask, Element, Model, Mpc, Node, NodeDof, Property, RigidElement, Section, Spc,
-};
+use crate::model::deck::EigenRequest;
+use crate::model::{DofMask, Element, Model, Node, Property, RigidElement, Section};
+
+/// The archive's materials into `model`, each with a solid property: material number →
+/// property index.
+fn solid_properties(
+    materials: &BTreeMap<i64, crate::model::Material>,
+    model: &mut Model,
+) -> BTreeMap<i64, usize> {
+    let mut property_of = BTreeMap::new();
+    for (mat, m) in materials {
+        model.materials.push(m.clone());
+        model.properties.push(Property {
+            id: (*mat).max(0) as u64,
+            name: format!("MAT{mat}"),
+            material: model.materials.len() - 1,
+            section: Section::Solid,
+        });
+        property_of.insert(*mat, model.properties.len() - 1);
+    }
+    property_of
+}
 
 /// Read an archive with default options.
 pub fn read(path: &Path) -> Result<Model, ImportError> {
@@ -75,6 +93,9 @@ struct Archive {
     /// LINK sections by id, and the section the last SECTYPE opened (`None`: not a LINK one).
     sections: BTreeMap<i64, LinkSection>,
     section_now: Option<i64>,
+    /// Shell sections by id, and the one the last SECTYPE opened (`None`: not a shell one).
+    shell_sections: BTreeMap<i64, shells::ShellSection>,
+    shell_now: Option<i64>,
     /// The MPC184 rigid links' MPCs (indices into the model's).
     links: Vec<usize>,
     /// Real constant sets (`R`, `RLBLOCK`).
@@ -231,7 +252,13 @@ impl Archive {
             "SECTYPE" => {
                 let id = c.int(file, 0)?;
                 self.section_now = None;
-                if c.field(1).eq_ignore_ascii_case("LINK") {
+                self.shell_now = None;
+                if c.field(1).eq_ignore_ascii_case("SHELL") {
+                    let (s, refusal) = shells::ShellSection::open(c);
+                    refused.extend(refusal.map(|why| (c.line, why)));
+                    self.shell_sections.insert(id, s);
+                    self.shell_now = Some(id);
+                } else if c.field(1).eq_ignore_ascii_case("LINK") {
                     let s = LinkSection {
                         line: c.line,
                         area: 0.0,
@@ -243,12 +270,33 @@ impl Archive {
                     refused.push((
                         c.line,
                         format!(
-                            "SECTYPE {id},{}: only LINK sections (LINK180's) are read; shell, \
-                             beam and other sections' elements are not formed here",
+                            "SECTYPE {id},{}: only LINK (LINK180's) and SHELL (SHELL181's) \
+                             sections are read; beam and other sections' elements are not formed \
+                             here",
                             c.field(1)
                         ),
                     ));
                 }
+            }
+            "SECDATA" | "SECCONTROL" if self.shell_now.is_some() => {
+                let now = self
+                    .shell_now
+                    .and_then(|id| self.shell_sections.get_mut(&id));
+                if let Some(s) = now {
+                    let why = if c.name == "SECDATA" {
+                        s.secdata(file, c)?
+                    } else {
+                        s.seccontrol(file, c)?
+                    };
+                    refused.extend(why.map(|why| (c.line, why)));
+                }
+            }
+            "SECOFFSET" => {
+                let why = match self.shell_now {
+                    Some(_) => shells::ShellSection::secoffset(c),
+                    None => Some("SECOFFSET of a section other than a shell: not read".into()),
+                };
+                refused.extend(why.map(|why| (c.line, why)));
             }
             // the data of a section not read is not read either (its SECTYPE is refused)
             "SECDATA" | "SECCONTROL" => {
@@ -363,6 +411,15 @@ impl Archive {
              consistent mass with ANSYS's 14-point rule)",
             if self.lumped.is_some_and(|l| l.1) { "lumped" } else { "consistent" }
         ));
+        if model.params.ansys_shell181 {
+            notes.push(
+                "ANSYS archive: SHELL181 (KEYOPT(3)=2) formed with ANSYS's transverse shear factor \
+                 and drilling penalty, shown against ANSYS's element forces on flat rectangles \
+                 with ν = 0.3; its mass is flexbody's consistent shell mass, not shown against \
+                 ANSYS (docs/ansys.md)"
+                    .into(),
+            );
+        }
         for (title, items) in groups {
             notes.push(format!(
                 "ANSYS archive, {title}: not read, no effect on the body (docs/ansys-commands.md \
@@ -442,22 +499,13 @@ impl Archive {
         materials: &BTreeMap<i64, crate::model::Material>,
         model: &mut Model,
     ) -> Result<BTreeMap<u64, Option<usize>>, ImportError> {
-        let mut property_of: BTreeMap<i64, usize> = BTreeMap::new();
-        for (mat, m) in materials {
-            model.materials.push(m.clone());
-            model.properties.push(Property {
-                id: (*mat).max(0) as u64,
-                name: format!("MAT{mat}"),
-                material: model.materials.len() - 1,
-                section: Section::Solid,
-            });
-            property_of.insert(*mat, model.properties.len() - 1);
-        }
+        let property_of = solid_properties(materials, model);
         let mut refusals: BTreeMap<(i64, String), (usize, usize)> = BTreeMap::new();
         let mut index: BTreeMap<u64, Option<usize>> = BTreeMap::new();
         let mut skipped: BTreeMap<String, Vec<usize>> = BTreeMap::new();
         let mut damped = Vec::new();
         let mut rods = BTreeMap::new();
+        let mut shell_props = shells::ShellProperties::new();
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
         for r in &self.elements {
@@ -488,7 +536,8 @@ impl Archive {
                 })
             };
             let reals = self.reals.get(&r.real).map(Vec::as_slice);
-            let slot = match elements::form(t, r, reals, self.sections.get(&r.section)) {
+            let shell = self.shell_sections.get(&r.section);
+            let slot = match elements::form(t, r, reals, self.sections.get(&r.section), shell) {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
                     None
@@ -556,6 +605,25 @@ impl Archive {
                     });
                     None
                 }
+                Ok(Formed::Shell(shell)) => {
+                    let nodes = (shell.nodes.iter().map(|&id| node_of(id)))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    let at = (r.id, r.line);
+                    match shells::push_shell(
+                        model,
+                        &mut shell_props,
+                        &property_of,
+                        at,
+                        &shell,
+                        nodes,
+                    ) {
+                        Ok(e) => Some(e),
+                        Err(why) => {
+                            refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                            continue;
+                        }
+                    }
+                }
                 Ok(Formed::Element(kind, ids)) => {
                     let nodes = ids
                         .into_iter()
@@ -615,127 +683,6 @@ impl Archive {
                 .insert(format!("{name} elements (no stiffness or mass)"), lines);
         }
         Ok(index)
-    }
-
-    /// D → SPCs (one constraint source), CE/CP → MPCs, F/ACEL → loads.
-    fn constraints(
-        &mut self,
-        file: &str,
-        node_map: &IdMap,
-        model: &mut Model,
-    ) -> Result<(), ImportError> {
-        let node = |id: u64, line: usize, what: &str| {
-            node_map
-                .get(id)
-                .ok_or_else(|| parse_err(file, line, what, format!("unknown node {id}")))
-        };
-        let first = model.spcs.len();
-        for &(line, id, mask) in &self.raw.held {
-            model.spcs.push(Spc {
-                node: node(id, line, "D")?,
-                dofs: DofMask(mask),
-                set_id: 0,
-            });
-        }
-        if let Some(&(line, ..)) = self.raw.held.first() {
-            model.constraint_sources.push(ConstraintSource {
-                card: "D".into(),
-                id: format!("{} D line(s)", self.raw.held.len()),
-                file: file.to_owned(),
-                line,
-                set: None,
-                spcs: first..model.spcs.len(),
-                permanent: false,
-            });
-        }
-        let mut id = 0u64;
-        let mut zero_first = Vec::new();
-        for (line, terms) in &self.raw.equations {
-            id += 1;
-            let mut t = Vec::with_capacity(terms.len());
-            for &(n, k, c) in terms {
-                t.push((
-                    NodeDof {
-                        node: node(n, *line, "CE")?,
-                        component: k,
-                    },
-                    c,
-                ));
-            }
-            if t.first().is_none_or(|x| x.1 == 0.0) {
-                zero_first.push(*line);
-                continue;
-            }
-            model.mpcs.push(Mpc { id, terms: t });
-        }
-        for line in zero_first {
-            self.refuse(
-                line,
-                "CE",
-                "a constraint equation whose first coefficient is zero",
-            );
-        }
-        for (line, k, nodes) in self.raw.coupled.values() {
-            let Some((&lead, rest)) = nodes.split_first() else {
-                continue;
-            };
-            let lead = node(lead, *line, "CP")?;
-            for &n in rest {
-                id += 1;
-                let dependent = node(n, *line, "CP")?;
-                model.mpcs.push(Mpc {
-                    id,
-                    terms: vec![
-                        (
-                            NodeDof {
-                                node: dependent,
-                                component: *k,
-                            },
-                            1.0,
-                        ),
-                        (
-                            NodeDof {
-                                node: lead,
-                                component: *k,
-                            },
-                            -1.0,
-                        ),
-                    ],
-                });
-            }
-        }
-        if !self.raw.forces.is_empty() {
-            let mut parts = Vec::new();
-            for &(line, n, k, v) in &self.raw.forces {
-                let mut values = [0.0; 6];
-                values[k] = v;
-                parts.push(LoadPart::Nodal {
-                    node: node(n, line, "F")?,
-                    values,
-                });
-            }
-            let lines: Vec<usize> = self.raw.forces.iter().map(|f| f.0).collect();
-            model.loads.push(Load {
-                name: "F".into(),
-                source: format!("F ({file}:{})", list(&lines)),
-                selected: true,
-                parts,
-                problem: None,
-            });
-        }
-        if let Some((line, a)) = self.raw.acel {
-            // ANSYS's ACEL is the acceleration of the frame: the inertia load acts against it
-            model.loads.push(Load {
-                name: "ACEL".into(),
-                source: format!("ACEL ({file}:{line})"),
-                selected: true,
-                parts: vec![LoadPart::Gravity {
-                    accel: a.map(|v| -v),
-                }],
-                problem: None,
-            });
-        }
-        Ok(())
     }
 
     /// CMBLOCK components → node and element sets.
