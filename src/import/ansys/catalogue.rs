@@ -60,7 +60,7 @@ const SOLUTION: &str = "a solution control of a nonlinear or transient analysis:
                         the body's normal modes";
 const ROTATION: &str = "a rotating reference frame (spin softening, gyroscopic terms): not \
                         formed here (when nonzero)";
-const SECTION: &str = "sections of shells and beams: those elements are not formed here";
+const SECTION: &str = "a section's own mesh (SECTYPE,,BEAM,MESH and other meshed beam sections): beam sections are not read (BEAM188/189 are refused)";
 const SURFACE_LOAD: &str = "surface and body loads on elements are not read (F and ACEL are)";
 
 /// Every command, sorted by name (the name as the archive writes it, upper case).
