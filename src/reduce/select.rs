@@ -96,7 +96,10 @@ pub fn solve_count_with(
                 residuals: vec![0.0; vals.len()],
                 eigenvalues: vals,
                 vectors: vecs,
-                info: Default::default(),
+                info: crate::solve::EigenInfo {
+                    solver: crate::solve::Solver::Dense,
+                    ..Default::default()
+                },
             })
         }
         ModeCount::BelowHz(f) => {
@@ -184,6 +187,12 @@ pub(crate) fn pick(mut set: ModeSet, keep: &[usize], sel: Selection) -> ModeSet 
     let r = &set.diagnostics.residuals;
     if r.len() >= keep.iter().max().map_or(0, |&x| x + 1) {
         set.diagnostics.residuals = keep.iter().map(|&j| r[j]).collect();
+    }
+    // normal modes: each mode is its own eigenvector, kept or not with it
+    if let Some(r) = set.diagnostics.eigenproblem.as_mut() {
+        if set.method == super::Method::NormalModes && r.omega2.len() == set.omega2.len() {
+            *r = r.pick(keep);
+        }
     }
     let s = &set.diagnostics.label_shares;
     if s.len() >= keep.iter().max().map_or(0, |&x| x + 1) {
