@@ -78,6 +78,7 @@ fn model_checks(
     preload_as_built(body, &rebuilt, r);
     frequencies_against_full_solve(body, &rebuilt, r)?;
     identities_against_model(body, &rebuilt, r);
+    eigen_residuals_against_model(body, &rebuilt, r)?;
     geometric_stiffness_against_model(body, &rebuilt, r)?;
     lumped_inertia_against_consistent(&rebuilt, r);
     Ok(())
@@ -386,6 +387,101 @@ fn identities_against_model(body: &file::ReducedBody, rebuilt: &Rebuilt, r: &mut
             n_r,
         );
     }
+}
+
+/// Agreement of a recomputed residual with the stored one: |r − r_stored| ≤ this ×
+/// max(r, r_stored) + [`RESIDUAL_FLOOR`] (measured on the conrod, SPEC §5.17: see
+/// tests/eigen_residuals.rs).
+pub const RESIDUAL_AGREEMENT: f64 = 1e-2;
+
+/// The absolute part of the residual agreement: the rounding of ‖Kφ − λMφ‖ when φ is read back
+/// from the file's shapes (rotated from the basic frame into the dofs' frames).
+pub const RESIDUAL_FLOOR: f64 = 1e-12;
+
+/// The stored residuals of the normal-modes eigenproblem (`eigen_residuals.bin`, SPEC §5.17)
+/// recomputed from the file's modes on the rebuilt model's K and M (the free dofs when the body
+/// has reference conditions), and its scale s; the other problems' vectors (fixed-interface,
+/// free-free) are not in the file: skipped with that reason.
+fn eigen_residuals_against_model(
+    body: &file::ReducedBody,
+    rebuilt: &Rebuilt,
+    r: &mut CheckReport,
+) -> Result<(), CheckError> {
+    use crate::pipeline::BuildError;
+    use crate::solve::{residual::relative_residuals, sparse_ops, trace_ratio};
+    const NAME: &str = "eigen residuals against the model";
+    let Some(e) = &body.eigen_residuals else {
+        return Ok(());
+    };
+    for p in &e.problems {
+        if p.kind != file::EigenProblemKind::NormalModes {
+            r.skipped.push(format!(
+                "{NAME}: the {:?} modes are basis vectors the file does not store (its modes \
+                 are the orthonormalized basis); the stored residuals are the build's",
+                p.kind
+            ));
+            continue;
+        }
+        if p.omega2.len() != body.mode_count() {
+            r.skipped.push(format!(
+                "{NAME}: the file's modes hold residual vectors, not only the {} eigenvectors",
+                p.omega2.len()
+            ));
+            continue;
+        }
+        let Some(phi) = file_modes_on_model(body, rebuilt) else {
+            r.skipped.push(format!(
+                "{NAME}: the file stores {}, not every node's shape",
+                partial_nodes(body).unwrap_or_else(|| "some nodes".into())
+            ));
+            continue;
+        };
+        // the problem of the free dofs (reference conditions held)
+        let red = &rebuilt.reduced;
+        let free = crate::reduce::complement(&rebuilt.fixed, red.k.nrows());
+        let sub = |a: &crate::solve::SparseColMat<usize, f64>| {
+            sparse_ops::submatrix(a.as_ref(), &free, &free)
+        };
+        let (k, m) = (
+            sub(&red.k).map_err(|e| BuildError::from(crate::reduce::ReduceError::from(e)))?,
+            sub(&red.m).map_err(|e| BuildError::from(crate::reduce::ReduceError::from(e)))?,
+        );
+        let phi_free = Mat::from_fn(free.len(), phi.ncols(), |i, j| phi[(free[i], j)]);
+        let scale = trace_ratio(&k, &m);
+        let again = relative_residuals(&k, &m, phi_free.as_ref(), &p.omega2, scale);
+        let (mut worst, mut at) = (0.0f64, 0);
+        for (j, (&a, &b)) in again.iter().zip(&p.residual).enumerate() {
+            let d = (a - b).abs() / (RESIDUAL_AGREEMENT * a.max(b) + RESIDUAL_FLOOR);
+            if d.is_nan() || d > worst {
+                (worst, at) = (d, j);
+            }
+        }
+        r.push(
+            NAME,
+            worst,
+            1.0,
+            format!(
+                "max |r − r_stored| / ({RESIDUAL_AGREEMENT:e}·max(r, r_stored) + \
+                 {RESIDUAL_FLOOR:e}) over {} modes (mode {}: {:.3e} recomputed, {:.3e} stored; \
+                 scale s {:.6e} recomputed, {:.6e} stored; {:?})",
+                again.len(),
+                at + 1,
+                again.get(at).copied().unwrap_or(0.0),
+                p.residual.get(at).copied().unwrap_or(0.0),
+                scale,
+                p.scale,
+                p.solver
+            ),
+        );
+        let largest = p.largest_flexible_residual().map_or(0.0, |(_, v)| v);
+        r.push(
+            "largest stored residual of a flexible mode",
+            largest,
+            f64::INFINITY,
+            format!("{:?} eigenproblem, {:?}", p.kind, p.solver),
+        );
+    }
+    Ok(())
 }
 
 /// The file's modes on the rebuilt model's independent dofs (local frames), or `None` when the
