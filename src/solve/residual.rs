@@ -8,26 +8,23 @@ use faer::{Mat, MatRef};
 use super::trace_ratio;
 use super::{sparse_ops, SparseColMat};
 
-/// Columns multiplied at a time: K·X and M·X for 32 vectors at once (2 × 32 × 8 bytes per
-/// dof: 0.5 GB at a million dofs) whatever the mode count.
-const COLUMNS: usize = 32;
+/// Columns multiplied at a time: K·X and M·X for 16 vectors at once (2 × 16 × 8 bytes per
+/// dof: 256 MB at a million dofs) whatever the mode count.
+const COLUMNS: usize = 16;
 
 /// Rigid modes are measured against this fraction of the stiffness-over-mass scale s: the
 /// rigid threshold of [`super::is_flexible`].
 pub const RIGID_FRACTION: f64 = 1e-8;
 
-/// r_j = ‖Kφ_j − λ_j Mφ_j‖₂ / max(‖Kφ_j‖₂, 10⁻⁸ s ‖Mφ_j‖₂) per column φ_j of `x` (SPEC §5.17),
-/// s = `scale`, the median of K_ii/M_ii ([`trace_ratio`]): the plain ‖Kφ − λMφ‖/‖Kφ‖ of every flexible
-/// mode, and for a rigid mode (‖Kφ‖ rounding noise) its residual against the rigid threshold's
-/// scale. One sparse K·φ and M·φ per mode.
-pub fn relative_residuals(
+/// Per column φ_j of `x` with eigenvalue `values[j]`: (‖Kφ_j − λ_j Mφ_j‖₂, the denominator
+/// max(‖Kφ_j‖₂, 10⁻⁸ s ‖Mφ_j‖₂)), s = `scale`.
+fn residual_parts(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
     x: MatRef<'_, f64>,
     values: &[f64],
     scale: f64,
-) -> Vec<f64> {
-    let s = scale;
+) -> Vec<(f64, f64)> {
     let mut out = Vec::with_capacity(x.ncols());
     let mut start = 0;
     while start < x.ncols() {
@@ -45,10 +42,51 @@ pub fn relative_residuals(
                 kn += a * a;
                 mn += b * b;
             }
-            let scale = kn.sqrt().max(RIGID_FRACTION * s * mn.sqrt());
-            out.push(if scale > 0.0 { rn.sqrt() / scale } else { 0.0 });
+            out.push((rn.sqrt(), kn.sqrt().max(RIGID_FRACTION * scale * mn.sqrt())));
         }
         start += c;
     }
     out
+}
+
+/// r_j = ‖Kφ_j − λ_j Mφ_j‖₂ / max(‖Kφ_j‖₂, 10⁻⁸ s ‖Mφ_j‖₂) per column φ_j of `x` (SPEC §5.17),
+/// s = `scale`, the median of K_ii/M_ii ([`trace_ratio`]): the plain ‖Kφ − λMφ‖/‖Kφ‖ of every
+/// flexible mode, and for a rigid mode (‖Kφ‖ rounding noise) its residual against the rigid
+/// threshold's scale. One sparse K·φ and M·φ per mode.
+pub fn relative_residuals(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    x: MatRef<'_, f64>,
+    values: &[f64],
+    scale: f64,
+) -> Vec<f64> {
+    residual_parts(k, m, x, values, scale)
+        .into_iter()
+        .map(|(r, d)| if d > 0.0 { r / d } else { 0.0 })
+        .collect()
+}
+
+/// What rounding alone may leave in [`relative_residuals`]: ROUNDING_FACTOR · ε · ‖|K||φ_j|‖₂
+/// over the same denominator (the floating-point bound of K·φ, as the solvers' own checks
+/// take it, [`sparse_ops::ROUNDING_FACTOR`]).
+pub fn rounding_floors(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    x: MatRef<'_, f64>,
+    scale: f64,
+) -> Vec<f64> {
+    let (_, abs_norm) = sparse_ops::abs_products(k.as_ref(), x);
+    let zeros = vec![0.0; x.ncols()];
+    residual_parts(k, m, x, &zeros, scale)
+        .into_iter()
+        .zip(abs_norm)
+        .map(|((_, d), a)| {
+            let floor = sparse_ops::ROUNDING_FACTOR * f64::EPSILON * a;
+            if d > 0.0 {
+                floor / d
+            } else {
+                floor
+            }
+        })
+        .collect()
 }
