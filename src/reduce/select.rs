@@ -180,6 +180,12 @@ pub fn by_count(set: ModeSet, count: usize) -> ModeSet {
 }
 
 pub(crate) fn pick(mut set: ModeSet, keep: &[usize], sel: Selection) -> ModeSet {
+    // normal modes: each mode is its own eigenvector, kept or not with it
+    if let Some(r) = set.diagnostics.eigenproblem.as_mut() {
+        if set.method == super::Method::NormalModes && r.omega2.len() == set.omega2.len() {
+            *r = r.pick(keep);
+        }
+    }
     let phi = faer::Mat::from_fn(set.phi.nrows(), keep.len(), |i, j| set.phi[(i, keep[j])]);
     set.phi = phi;
     set.omega2 = keep.iter().map(|&j| set.omega2[j]).collect();
@@ -187,12 +193,6 @@ pub(crate) fn pick(mut set: ModeSet, keep: &[usize], sel: Selection) -> ModeSet 
     let r = &set.diagnostics.residuals;
     if r.len() >= keep.iter().max().map_or(0, |&x| x + 1) {
         set.diagnostics.residuals = keep.iter().map(|&j| r[j]).collect();
-    }
-    // normal modes: each mode is its own eigenvector, kept or not with it
-    if let Some(r) = set.diagnostics.eigenproblem.as_mut() {
-        if set.method == super::Method::NormalModes && r.omega2.len() == set.omega2.len() {
-            *r = r.pick(keep);
-        }
     }
     let s = &set.diagnostics.label_shares;
     if s.len() >= keep.iter().max().map_or(0, |&x| x + 1) {
