@@ -128,6 +128,9 @@ fn stored_residuals_are_numpys_and_a_low_amls_cutoff_shows_in_them() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A hand damage to an eigenproblem record.
+type Damage = dyn Fn(&mut file::EigenProblem);
+
 /// A built file whose `eigen_residuals.bin` is damaged by hand (a NaN residual, a residual
 /// list one short) with a manifest that matches: the Rust reader, the reference reader and the
 /// numpy reader refuse it under one error name.
@@ -149,7 +152,7 @@ fn a_hand_damaged_entry_is_refused_by_every_reader() {
         problem(&body).omega2.len() as u64,
         body.method.counts.fixed_interface
     );
-    let cases: [(&str, &dyn Fn(&mut file::EigenProblem), &str); 3] = [
+    let cases: [(&str, &Damage, &str); 3] = [
         ("nan", &|p| p.residual[3] = f64::NAN, "NonFinite"),
         (
             "short",
