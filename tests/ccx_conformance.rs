@@ -510,8 +510,11 @@ const ANSYS_SECTION: &str = "\n## ANSYS: ansys-mapdl-reader's example files\n\n\
     sqrt(a_ii a_jj); 20 clamped modes from the archive 1.4e-12, from the full file 4.7e-11 of \
     the package's frequencies (the mesh with file.rst's material) |\n\
     | TetBeam.cdb | equal | 3913 SOLID187 on corner nodes = the same mesh as CTETRA 4: 0 |\n\
-    | sector.cdb | refused | SOLID185 KEYOPT(2)=0, B-bar (not shown against an ANSYS result \
-    here; KEYOPT(2)=3 is formed) |\n\
+    | sector.cdb | builds | 105 SOLID185 KEYOPT(2)=0 (B-bar; bricks and collapsed wedges), \
+    `--material`: six rigid modes, 7th/6th frequency 3.3e6 |\n\
+    | cyclic_v182.rst (the repository's tests/testfiles/cyclic_reader, as an archive + element \
+    forces) | equal | SOLID185 KEYOPT(2)=0: K u − ω² M r + Σ ENF is 4.2e-8 of max \\|Σ ENF\\| \
+    over 65 elements (`tests/ansys_solids.rs`) |\n\
     | cyc_stress.rst (the repository's tests/testfiles, as an archive + solution) | equal | \
     SOLID185 KEYOPT(2)=3: K u − F_reaction − ω² M r is 1.1e-8 of max \\|K u\\| \
     (`tests/ansys_solids.rs`) |\n";

@@ -1,6 +1,7 @@
 //! One harness over every element formulation (issue 48): each kind is read from a one-element
 //! deck of the importer that makes it (Nastran for the Nastran cards, CalculiX for its own
-//! variants C3D4/C3D10/C3D8/C3D8I/C3D8R/C3D20/C3D20R/C3D6/C3D15), and its matrices are checked
+//! variants C3D4/C3D10/C3D8/C3D8I/C3D8R/C3D20/C3D20R/C3D6/C3D15, an ANSYS archive for SOLID185's
+//! B-bar brick), and its matrices are checked
 //! against what any sound element must satisfy:
 //!
 //! * K symmetric; positive semi-definite with exactly the null space of its rigid motions
@@ -38,6 +39,8 @@ enum Deck {
     Nastran(&'static str),
     /// A CalculiX element type (C3D8I, …).
     Ccx(&'static str),
+    /// An ANSYS element type (`ET,1,185`) with its KEYOPT(2).
+    Ansys(&'static str, u32),
 }
 
 /// One element case of the harness.
@@ -142,7 +145,7 @@ const QUAD: [X; 4] = [
 const TRI: [X; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 
 fn cases() -> Vec<Case> {
-    use Deck::{Ccx, Nastran};
+    use Deck::{Ansys, Ccx, Nastran};
     use ElementKind::*;
     let case = |deck, kind, nodes: Vec<X>, null_space| Case {
         deck,
@@ -200,6 +203,7 @@ fn cases() -> Vec<Case> {
         // flexbody's equal)
         case(Ccx("C3D6"), Prism6, WEDGE.to_vec(), 7),
         case(Ccx("C3D15"), Prism15, wedge15, 6),
+        case(Ansys("185", 0), Hex8Bbar, HEX.to_vec(), 6),
     ]
 }
 
@@ -316,6 +320,36 @@ fn deck(case: &Case, x: &[X], orientation: X) -> (String, String) {
             );
             (text, "element.inp".into())
         }
+        Deck::Ansys(ty, keyopt2) => {
+            let n = x.len();
+            let nodes: String = (x.iter().enumerate())
+                .map(|(i, p)| {
+                    format!(
+                        "{:>9}{:>9}{:>9}{:>21.13E}{:>21.13E}{:>21.13E}\n",
+                        i + 1,
+                        0,
+                        0,
+                        p[0],
+                        p[1],
+                        p[2]
+                    )
+                })
+                .collect();
+            let head = [1, 1, 1, 1, 0, 0, 0, 0, n, 0, 1];
+            let record: String = (head.iter().chain(&ids))
+                .map(|v| format!("{v:>9}"))
+                .collect();
+            let text = format!(
+                "ET,        1,{ty}\nKEYOP,        1, 2,{keyopt2:>9}\n\
+                 NBLOCK,6,SOLID,{n:>10},{n:>10}\n(3i9,6e21.13e3)\n{nodes}N,R5.3,LOC,       -1,\n\
+                 EBLOCK,19,SOLID,         1,         1\n(19i9)\n{record}\n       -1\n\
+                 MPTEMP,R5.0, 1, 1,  0.00000000    ,\n\
+                 MPDATA,R5.0, 1,EX  ,       1, 1, {E:e},\n\
+                 MPDATA,R5.0, 1,NUXY,       1, 1, {NU:e},\n\
+                 MPDATA,R5.0, 1,DENS,       1, 1, {RHO:e},\n"
+            );
+            (text, "element.cdb".into())
+        }
     }
 }
 
@@ -402,7 +436,7 @@ fn measure(case: &Case, x: &[X]) -> f64 {
     match case.kind {
         Tet4 | Tet10 => tet(x[0], x[1], x[2], x[3]),
         // affine images of the unit cube, wedge and pyramid: |det A| × the reference volume
-        Hex8 | Hex8R | Hex20 | Hex20R => 6.0 * tet(x[0], x[1], x[3], x[4]),
+        Hex8 | Hex8R | Hex8Bbar | Hex20 | Hex20R => 6.0 * tet(x[0], x[1], x[3], x[4]),
         Prism6 | Prism15 => 3.0 * tet(x[0], x[1], x[2], x[3]),
         Pyram5 | Pyram13 => 2.0 * tet(x[0], x[1], x[3], x[4]),
         Bar2 | Beam2 | Rod2 => BAR_A * dot(sub(x[1], x[0]), sub(x[1], x[0])).sqrt(),
@@ -416,6 +450,7 @@ fn name(case: &Case) -> String {
     match case.deck {
         Deck::Nastran(c) => format!("{c}-{:?}", case.kind),
         Deck::Ccx(t) => t.to_string(),
+        Deck::Ansys(t, k) => format!("ANSYS{t}-KEYOPT2={k}"),
     }
 }
 
@@ -611,13 +646,13 @@ fn the_harness_covers_every_element_kind() {
     use ElementKind::*;
     let harnessed: Vec<ElementKind> = cases().iter().map(|c| c.kind).collect();
     let all = [
-        Tet4, Tet10, Hex8, Hex8R, Hex20, Hex20R, Prism6, Prism15, Pyram5, Pyram13, Beam2, Bar2,
-        Rod2, Tri3, Quad4, Tri6, Quad8, Beam3,
+        Tet4, Tet10, Hex8, Hex8R, Hex8Bbar, Hex20, Hex20R, Prism6, Prism15, Pyram5, Pyram13, Beam2,
+        Bar2, Rod2, Tri3, Quad4, Tri6, Quad8, Beam3,
     ];
     for kind in all {
         let formed = match kind {
-            Tet4 | Tet10 | Hex8 | Hex8R | Hex20 | Hex20R | Prism6 | Prism15 | Pyram5 | Pyram13
-            | Beam2 | Bar2 | Rod2 | Tri3 | Quad4 | Tri6 | Quad8 => true,
+            Tet4 | Tet10 | Hex8 | Hex8R | Hex8Bbar | Hex20 | Hex20R | Prism6 | Prism15 | Pyram5
+            | Pyram13 | Beam2 | Bar2 | Rod2 | Tri3 | Quad4 | Tri6 | Quad8 => true,
             // expanded into bricks on import
             Beam3 => false,
         };

@@ -388,3 +388,63 @@ fn slender_lumped_cbar_line_on_the_sparse_path_builds_with_every_method() {
         );
     }
 }
+
+/// The free CBAR line moved 1e4 m and 1e5 m along (1, 1, 1) (a mm model 10–100 m from its
+/// origin is common): every method builds, keeps its 5 rigid modes and passes `check --model`.
+/// Before, the centre of mass of a line (zero extent across it) fell 1.8e-12 outside its
+/// bounding box at 1e4, and at 1e5 the inertia about the line, J_cm = I7 − m(|c|²E − ccᵀ),
+/// carried rounding of the origin terms (measured −9.2e-5 kg·m² against the other principal
+/// values 0.69) and three rotations were taken as massless ("expected 3"). Flexible
+/// frequencies equal the unmoved line's (measured 4.0e-12 relative at 1e4, 3.7e-11 at 1e5).
+#[test]
+fn a_line_of_masses_far_from_the_origin_builds_and_checks() {
+    let near = build(
+        &spec(fixture("free_cbar_line.bdf"), BuildMethod::Normal),
+        &mut |_| {},
+    )
+    .unwrap();
+    let f_near = flexible_hz(&near.body);
+    let text = std::fs::read_to_string(fixture("free_cbar_line.bdf")).unwrap();
+    let dir = std::env::temp_dir().join(format!("flexbody-far-line-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for offset in [1e4, 1e5] {
+        // GRID id cp x y z in 8-column fields: the coordinates moved by `offset` each
+        let moved: String = text
+            .lines()
+            .map(|l| {
+                if !l.starts_with("GRID") {
+                    return format!("{l}\n");
+                }
+                let field = |k: usize| l.get(8 * k..(8 * k + 8).min(l.len())).unwrap_or("");
+                let coord = |k: usize| {
+                    let v = field(k).trim().parse::<f64>().unwrap() + offset;
+                    format!("{:<8}", format!("{v:.1}"))
+                };
+                let rest = l.get(48..).unwrap_or("");
+                format!(
+                    "{}{}{}{}{}{}{rest}\n",
+                    field(0),
+                    field(1),
+                    field(2),
+                    coord(3),
+                    coord(4),
+                    coord(5)
+                )
+            })
+            .collect();
+        let path = dir.join(format!("far_{offset:e}.bdf"));
+        std::fs::write(&path, moved).unwrap();
+        for method in METHODS {
+            let out = build(&spec(path.clone(), method), &mut |_| {})
+                .unwrap_or_else(|e| panic!("{offset:e} {method:?}: {e}"));
+            assert_eq!(rigid_count(&out.body), 5, "{offset:e} {method:?}");
+            assert_check_passes(&out.body, &path, method);
+            if method == BuildMethod::Normal {
+                for (q, (f, g)) in flexible_hz(&out.body).iter().zip(&f_near).enumerate() {
+                    assert!((f - g).abs() / g < 4e-10, "{offset:e} mode {q}: {f} vs {g}");
+                }
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -83,6 +83,7 @@ pub fn graphics_faces(model: &Model) -> Vec<GraphicsFace> {
             | ElementKind::Tet10
             | ElementKind::Hex8
             | ElementKind::Hex8R
+            | ElementKind::Hex8Bbar
             | ElementKind::Hex20
             | ElementKind::Hex20R
             | ElementKind::Prism6

@@ -86,6 +86,7 @@ impl DofMap {
                 | ElementKind::Tet10
                 | ElementKind::Hex8
                 | ElementKind::Hex8R
+                | ElementKind::Hex8Bbar
                 | ElementKind::Hex20
                 | ElementKind::Hex20R
                 | ElementKind::Prism6

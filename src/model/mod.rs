@@ -90,6 +90,10 @@ pub enum ElementKind {
     /// 8-node hexahedron with one-point integration and hourglass control, as CalculiX forms
     /// its C3D8R (`fe::elements::hex8r`).
     Hex8R,
+    /// 8-node hexahedron with the B-bar (mean dilatation) volumetric strain on 2×2×2 points, as
+    /// ANSYS forms SOLID185's default (KEYOPT(2)=0); collapsed into ANSYS's wedge (nodes 3 = 4,
+    /// 7 = 8) the fully integrated brick, as ANSYS forms that shape (`fe::elements::hex8_bbar`).
+    Hex8Bbar,
     /// 20-node hexahedron, full 3×3×3 integration (C3D20, CHEXA 20).
     Hex20,
     /// 20-node hexahedron, reduced 2×2×2 integration (C3D20R).
@@ -130,7 +134,7 @@ impl ElementKind {
         match self {
             ElementKind::Tet4 => 4,
             ElementKind::Tet10 => 10,
-            ElementKind::Hex8 | ElementKind::Hex8R => 8,
+            ElementKind::Hex8 | ElementKind::Hex8R | ElementKind::Hex8Bbar => 8,
             ElementKind::Hex20 | ElementKind::Hex20R => 20,
             ElementKind::Prism6 => 6,
             ElementKind::Prism15 => 15,
@@ -152,6 +156,7 @@ impl ElementKind {
                 | ElementKind::Tet10
                 | ElementKind::Hex8
                 | ElementKind::Hex8R
+                | ElementKind::Hex8Bbar
                 | ElementKind::Hex20
                 | ElementKind::Hex20R
                 | ElementKind::Prism6

@@ -48,6 +48,7 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
         | ElementKind::Tet10
         | ElementKind::Hex8
         | ElementKind::Hex8R
+        | ElementKind::Hex8Bbar
         | ElementKind::Hex20
         | ElementKind::Hex20R
         | ElementKind::Prism6

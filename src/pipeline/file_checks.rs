@@ -187,7 +187,11 @@ fn rigid_body_properties(body: &file::ReducedBody, r: &mut CheckReport) {
                     .iter()
                     .map(|p| p.xyz[k])
                     .fold(f64::NEG_INFINITY, f64::max);
-                let tol = 1e-9 * (hi - lo).abs().max(1e-300);
+                // the mass-weighted mean of coordinates of size |x| carries rounding of order
+                // ε·|x|: a line or a flat plate far from the origin has zero extent across it
+                let tol = (1e-9 * (hi - lo).abs())
+                    .max(1e-12 * lo.abs().max(hi.abs()))
+                    .max(1e-300);
                 ((lo - tol) - cm[k]).max(cm[k] - (hi + tol)).max(0.0)
             })
             .fold(0.0, f64::max);
@@ -435,6 +439,14 @@ fn stored_invariants(body: &file::ReducedBody, r: &mut CheckReport) {
 /// Principal inertia ≤ ZERO_INERTIA · the largest one counts as zero (rounding of Σ m·0).
 pub const ZERO_INERTIA: f64 = 1e-10;
 
+/// The relative rounding of the invariants' sums over the nodes (about √n·ε for n nodes up to a
+/// million, ε = 2.2e-16): a principal inertia through the centre of mass within this fraction of
+/// I7's terms about the origin (m|c|², |I7|) counts as zero. The free CBAR line of
+/// tests/massless_frames.rs moved 1e5 m from the origin (origin terms 2.8e11 kg·m², limit 6e-2)
+/// leaves −9.2e-5 kg·m² of rounding in its zero inertia about the line; its other principal
+/// inertias are 0.69.
+const INVARIANT_ROUNDING: f64 = 1e3 * f64::EPSILON;
+
 /// `Some("only the … nodes (k of the model's)")` when the file does not store every node.
 pub fn partial_nodes(body: &file::ReducedBody) -> Option<String> {
     let what = match &body.header.request.keep_nodes {
@@ -449,27 +461,37 @@ pub fn partial_nodes(body: &file::ReducedBody) -> Option<String> {
 /// Principal axes through the centre of mass without inertia (from I1, I2, I7): 1 when every
 /// mass lies on a line and carries no rotary inertia about it, 0 for a body with volume.
 pub fn zero_inertia_axes(body: &file::ReducedBody) -> usize {
+    zero_inertia_rotations(body).map_or(0, |(_, axes)| axes.len())
+}
+
+/// The centre of mass and the unit principal axes through it without inertia (J_cm eigenvalue
+/// ≤ [`ZERO_INERTIA`] · the largest); `None` without mass or invariants.
+fn zero_inertia_rotations(body: &file::ReducedBody) -> Option<([f64; 3], Vec<[f64; 3]>)> {
     let inv = &body.invariants;
     let i1 = inv.i1.first().copied().unwrap_or(0.0);
     if i1.is_nan() || i1 <= 0.0 || inv.i2.len() != 3 || inv.i7.len() != 9 {
-        return 0;
+        return None;
     }
-    let c: Vec<f64> = inv.i2.iter().map(|v| v / i1).collect();
+    let c: [f64; 3] = std::array::from_fn(|k| inv.i2[k] / i1);
     let cc = c.iter().map(|v| v * v).sum::<f64>();
     // J_cm = I7 − m (|c|² E − c cᵀ)
     let j = Mat::from_fn(3, 3, |a, b| {
         inv.i7[3 * a + b] - i1 * (if a == b { cc } else { 0.0 } - c[a] * c[b])
     });
-    let ev = j
-        .self_adjoint_eigenvalues(faer::Side::Lower)
-        .unwrap_or_default();
+    let (ev, vecs) = crate::solve::dense::eigh(j.as_ref()).ok()?;
     let top = ev.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
     if top <= 0.0 {
-        return 0;
+        return None;
     }
-    ev.iter()
-        .filter(|&&v| v.abs() <= ZERO_INERTIA * top)
-        .count()
+    // J_cm is I7 less m(|c|² E − c cᵀ): far from the origin both are large and their rounding
+    // (of the sums over the nodes) is left in J_cm
+    let origin_terms = i1 * cc + inv.i7.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
+    let zero = (ZERO_INERTIA * top).max(INVARIANT_ROUNDING * origin_terms);
+    let axes = (0..3)
+        .filter(|&k| ev[k].abs() <= zero)
+        .map(|k| std::array::from_fn(|i| vecs[(i, k)]))
+        .collect();
+    Some((c, axes))
 }
 
 /// Rigid-body motions the reference conditions leave free: an orthonormal basis (6 − rank(R_c)
@@ -524,45 +546,51 @@ fn free_rigid_motions(body: &file::ReducedBody) -> Vec<[f64; 6]> {
         .collect()
 }
 
-/// How many of the `free` rigid motions (from [`free_rigid_motions`]) carry inertia: the rank
-/// of Fᵀ G F, G the rigid-body mass matrix of the invariants, [[I1·E, −[I2]×], [[I2]×, I7]]
-/// (u = t + θ × x: Σ m uᵀu = m tᵀt − 2 tᵀ[I2]× θ + θᵀ I7 θ), rotations scaled as in `free`. A
-/// motion without inertia (the rotation about the line of translation-only nodes) is no mode.
+/// How many of the `free` rigid motions (from [`free_rigid_motions`]) carry inertia: their
+/// number less the dimension of their intersection with the rotations about the principal axes
+/// without inertia through the centre of mass c (u = a × (x − c): t = c × a, θ = a). A motion
+/// without inertia (the rotation about the line of translation-only masses) is no mode.
 fn free_rigid_motions_with_inertia(body: &file::ReducedBody, free: &[[f64; 6]]) -> usize {
-    let inv = &body.invariants;
-    let i1 = inv.i1.first().copied().unwrap_or(0.0);
-    if i1.is_nan() || i1 <= 0.0 || inv.i2.len() != 3 || inv.i7.len() != 9 || free.is_empty() {
+    let Some((c, axes)) = zero_inertia_rotations(body) else {
         return free.len();
-    }
+    };
     let size = rigid_scale(body);
-    let s = &inv.i2;
-    // [I2]× / size
-    let cx = [[0.0, -s[2], s[1]], [s[2], 0.0, -s[0]], [-s[1], s[0], 0.0]];
-    let g = Mat::from_fn(6, 6, |a, b| match (a < 3, b < 3) {
-        (true, true) => i1 * f64::from(u8::from(a == b)),
-        (true, false) => -cx[a][b - 3] / size,
-        (false, true) => cx[a - 3][b] / size,
-        (false, false) => inv.i7[3 * (a - 3) + (b - 3)] / (size * size),
-    });
-    let top = g
-        .self_adjoint_eigenvalues(faer::Side::Lower)
-        .unwrap_or_default()
-        .iter()
-        .fold(0.0f64, |a, &b| a.max(b.abs()));
-    let h = Mat::from_fn(free.len(), free.len(), |p, q| {
-        (0..6)
-            .map(|a| {
-                (0..6)
-                    .map(|b| free[p][a] * g[(a, b)] * free[q][b])
-                    .sum::<f64>()
+    // the rotations in the coordinates of `free` (t, θ·size), orthonormalized
+    let mut z: Vec<[f64; 6]> = Vec::new();
+    for a in &axes {
+        let mut v = [
+            c[1] * a[2] - c[2] * a[1],
+            c[2] * a[0] - c[0] * a[2],
+            c[0] * a[1] - c[1] * a[0],
+            a[0] * size,
+            a[1] * size,
+            a[2] * size,
+        ];
+        for b in &z {
+            let d: f64 = (0..6).map(|i| v[i] * b[i]).sum();
+            (0..6).for_each(|i| v[i] -= d * b[i]);
+        }
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm > 0.0 {
+            z.push(v.map(|x| x / norm));
+        }
+    }
+    // Zᵀ F Fᵀ Z: eigenvalue 1 for a rotation inside the free space, 0 for one held
+    let s = Mat::from_fn(z.len(), z.len(), |p, q| {
+        (free.iter())
+            .map(|f| {
+                let dp: f64 = (0..6).map(|i| f[i] * z[p][i]).sum();
+                let dq: f64 = (0..6).map(|i| f[i] * z[q][i]).sum();
+                dp * dq
             })
             .sum::<f64>()
     });
     // an eigen failure (non-finite terms) counts every free motion, as without invariants
-    let Ok(ev) = h.self_adjoint_eigenvalues(faer::Side::Lower) else {
+    let Ok(ev) = s.self_adjoint_eigenvalues(faer::Side::Lower) else {
         return free.len();
     };
-    ev.iter().filter(|&&v| v > ZERO_INERTIA * top).count()
+    let inside = ev.iter().filter(|&&v| v > 0.5).count();
+    free.len() - inside.min(free.len())
 }
 
 /// The body size rotations are scaled by in [`free_rigid_motions`]: the stored nodes' largest

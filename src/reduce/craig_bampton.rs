@@ -4,8 +4,9 @@
 
 use super::orthonormalize::orthonormalize;
 use super::select::{solve_count_with, ModeCount};
-use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
+use super::{check_dofs, Method, ModeLabel, ModeSet, ReduceError};
 use crate::solve::cholesky::{self, Analysis, REFINE_F64, SINGULAR_PIVOT};
+use crate::solve::sparse_ops::complement;
 use crate::solve::{
     lowest_modes, lowest_modes_factored, sparse_ops, EigenSolution, EigenSpec, Precision,
     SolveError, SparseColMat, SparseLlt, DENSE_MAX,

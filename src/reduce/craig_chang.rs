@@ -8,9 +8,9 @@
 
 use super::orthonormalize::{orthonormalize, rigid_flags};
 use super::select::{solve_count, ModeCount};
-use super::{complement, Method, ModeLabel, ModeSet, ReduceError};
-use crate::solve::dense::{determinate_support, NO_DETERMINATE_SUPPORT};
-use crate::solve::{sparse_ops, trace_ratio, EigenSolution, EigenSpec, SparseColMat, SparseLlt};
+use super::{Method, ModeLabel, ModeSet, ReduceError};
+use crate::solve::inertia_relief::InertiaRelief;
+use crate::solve::{trace_ratio, EigenSolution, EigenSpec, SparseColMat};
 use faer::Mat;
 
 /// Unit loads: column j has 1 at `dofs[j]` (duplicates allowed: they give dependent vectors).
@@ -75,77 +75,6 @@ pub(crate) fn free_free(
         )));
     }
     Ok((s, nr))
-}
-
-/// Inertia-relief static solver: y with K y = P f, Xrᵀ M y = 0 (f → P f → support solve → purify).
-pub(crate) struct InertiaRelief<'a> {
-    m: &'a SparseColMat<usize, f64>,
-    xr: Mat<f64>,
-    free: Vec<usize>,
-    llt: SparseLlt,
-    /// The support dofs.
-    pub support: Vec<usize>,
-}
-
-impl<'a> InertiaRelief<'a> {
-    pub(crate) fn new(
-        k: &SparseColMat<usize, f64>,
-        m: &'a SparseColMat<usize, f64>,
-        xr: Mat<f64>,
-        eig: &EigenSpec,
-    ) -> Result<Self, ReduceError> {
-        let n = k.nrows();
-        let support = if xr.ncols() > 0 {
-            determinate_support(&xr)
-                .ok_or_else(|| ReduceError::Rigid(NO_DETERMINATE_SUPPORT.into()))?
-        } else {
-            vec![]
-        };
-        let free = complement(&support, n);
-        let kff = sparse_ops::submatrix(k.as_ref(), &free, &free)?;
-        let llt = SparseLlt::factor(kff.as_ref(), None, eig.par)?;
-        Ok(Self {
-            m,
-            xr,
-            free,
-            llt,
-            support,
-        })
-    }
-
-    /// P f = f − M Xr Xrᵀ f.
-    pub(crate) fn equilibrate(&self, f: &Mat<f64>) -> Mat<f64> {
-        if self.xr.ncols() == 0 {
-            return f.clone();
-        }
-        let c = self.xr.transpose() * f;
-        let mxr = sparse_ops::spmm(self.m.as_ref(), self.xr.as_ref());
-        f - &mxr * &c
-    }
-
-    /// y = purify(K_ff⁻¹ f_f) for an already equilibrated f.
-    pub(crate) fn solve_equilibrated(&self, f: &Mat<f64>) -> Mat<f64> {
-        let n = f.nrows();
-        let mut rhs = Mat::from_fn(self.free.len(), f.ncols(), |r, j| f[(self.free[r], j)]);
-        self.llt.solve_in_place(rhs.as_mut());
-        let mut y = Mat::<f64>::zeros(n, f.ncols());
-        for j in 0..f.ncols() {
-            for (r, &i) in self.free.iter().enumerate() {
-                y[(i, j)] = rhs[(r, j)];
-            }
-        }
-        self.purify(y)
-    }
-
-    /// y − Xr Xrᵀ M y.
-    pub(crate) fn purify(&self, y: Mat<f64>) -> Mat<f64> {
-        if self.xr.ncols() == 0 {
-            return y;
-        }
-        let my = sparse_ops::spmm(self.m.as_ref(), y.as_ref());
-        let c = self.xr.transpose() * &my;
-        &y - &self.xr * &c
-    }
 }
 
 /// X = [Xn Xl] (free-free modes, the first `nr` rigid, then one load response per column of

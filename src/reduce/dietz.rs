@@ -10,9 +10,10 @@
 //! solves K y = Fe + ℓ M y by the inertia-relief fixed point y ← G(Fe + ℓMy), which contracts
 //! with rate ℓ/λ₁ (1/4 by default).
 
-use super::craig_chang::{free_free, load_dof, stacked_basis, InertiaRelief};
+use super::craig_chang::{free_free, load_dof, stacked_basis};
 use super::select::ModeCount;
 use super::{Method, ModeLabel, ModeSet, ReduceError};
+use crate::solve::inertia_relief::InertiaRelief;
 use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
 use faer::Mat;
 

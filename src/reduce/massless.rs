@@ -205,7 +205,7 @@ fn unprotected_dof_of_motion(
     is_protected: &[bool],
     par: Par,
 ) -> Result<Option<usize>, ReduceError> {
-    let rest = super::complement(&[zero], kss.nrows());
+    let rest = crate::solve::sparse_ops::complement(&[zero], kss.nrows());
     let krr = sparse_ops::submatrix(kss.as_ref(), &rest, &rest)?;
     let l = match SparseLlt::factor(krr.as_ref(), None, par) {
         Ok(l) if l.min_pivot().0 > SINGULAR_PIVOT => l,
@@ -248,7 +248,7 @@ where
         let identity: Vec<usize> = (0..n).collect();
         method(k, m, &identity)?
     } else {
-        let kept = super::complement(&dofs.held, n);
+        let kept = crate::solve::sparse_ops::complement(&dofs.held, n);
         let mut map = vec![usize::MAX; n];
         for (r, &d) in kept.iter().enumerate() {
             map[d] = r;

@@ -295,12 +295,3 @@ pub(crate) fn check_dofs(what: &'static str, dofs: &[usize], n: usize) -> Result
     }
     Ok(())
 }
-
-/// The dofs of 0..n not in `dofs`.
-pub(crate) fn complement(dofs: &[usize], n: usize) -> Vec<usize> {
-    let mut mark = vec![false; n];
-    for &d in dofs {
-        mark[d] = true;
-    }
-    (0..n).filter(|&i| !mark[i]).collect()
-}

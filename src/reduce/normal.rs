@@ -3,7 +3,8 @@
 
 use super::orthonormalize::{diagnose, rigid_flags};
 use super::select::{solve_count, ModeCount};
-use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
+use super::{check_dofs, Method, ModeLabel, ModeSet, ReduceError};
+use crate::solve::sparse_ops::complement;
 use crate::solve::{sparse_ops, trace_ratio, EigenSpec, SparseColMat};
 use faer::Mat;
 

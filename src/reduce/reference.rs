@@ -13,7 +13,8 @@
 use super::craig_bampton::{craig_bampton, craig_bampton_basis};
 use super::orthonormalize::orthonormalize_held;
 use super::select::ModeCount;
-use super::{check_dofs, complement, Method, ModeLabel, ModeSet, ReduceError};
+use super::{check_dofs, Method, ModeLabel, ModeSet, ReduceError};
+use crate::solve::sparse_ops::complement;
 use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
 use faer::Mat;
 

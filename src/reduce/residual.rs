@@ -11,11 +11,12 @@
 //! eigenproblem of [`orthonormalize_held`]; dependent residual vectors (already in the span) are
 //! removed and reported.
 
-use super::craig_chang::InertiaRelief;
 use super::orthonormalize::{diagnose, origin_labels, orthonormalize_held, Orthonormalized};
 use super::OriginWeights;
-use super::{complement, ModeLabel, ModeSet, ReduceError};
-use crate::solve::{sparse_ops, EigenSpec, SparseColMat};
+use super::{ModeLabel, ModeSet, ReduceError};
+use crate::solve::inertia_relief::InertiaRelief;
+use crate::solve::sparse_ops::complement;
+use crate::solve::{sparse_ops, EigenSpec, SolveError, SparseColMat};
 use faer::Mat;
 
 /// A load whose inertia-relief part ‖P f‖ is below this fraction of ‖f‖ is a rigid-body load
@@ -84,11 +85,11 @@ pub fn static_responses(
         (&ks, &ms)
     };
     let ir = InertiaRelief::new(kr, mr, xr, eig).map_err(|e| match e {
-        ReduceError::Solve(s) => ReduceError::Rigid(format!(
+        SolveError::NoDeterminateSupport => ReduceError::Solve(e),
+        s => ReduceError::Rigid(format!(
             "residual vectors: the static solve failed ({s}); the set's {} rigid-body mode(s) do not cover every zero-stiffness motion of the model",
             rigid.len()
         )),
-        other => other,
     })?;
     let pf = ir.equilibrate(&fs);
     // A load the rigid-body inertia balances entirely (gravity on a free body) deforms nothing:

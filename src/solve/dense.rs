@@ -129,12 +129,9 @@ pub fn projected(
     Ok((vals, u))
 }
 
-/// Why [`determinate_support`] found none, as the reductions and the preload say it.
-pub const NO_DETERMINATE_SUPPORT: &str = "rigid modes are not independent at any dof set";
-
 /// `r` dofs at which the rigid modes Xr (n × r) are independent (greedy pivoted QR on the rows of
 /// Xr): holding them at zero is a statically determinate support; `None` when the modes are
-/// not independent at any dof set ([`NO_DETERMINATE_SUPPORT`]).
+/// not independent at any dof set ([`super::SolveError::NoDeterminateSupport`]).
 pub fn determinate_support(xr: &Mat<f64>) -> Option<Vec<usize>> {
     let (n, r) = (xr.nrows(), xr.ncols());
     let mut res = xr.clone();

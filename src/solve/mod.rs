@@ -12,6 +12,7 @@ pub mod cholesky;
 pub mod dense;
 pub mod eigen;
 pub mod inertia;
+pub mod inertia_relief;
 pub mod memory;
 pub mod ordering;
 pub mod progress;
@@ -105,6 +106,10 @@ pub enum SolveError {
     /// Bad input.
     #[error("invalid input: {0}")]
     Invalid(String),
+    /// The rigid modes are independent at no dof set: no statically determinate support
+    /// ([`dense::determinate_support`]) for an inertia-relief solve.
+    #[error("rigid-body modes: rigid modes are not independent at any dof set")]
+    NoDeterminateSupport,
     /// The factor of an n × n matrix would not fit in memory (estimated before factoring).
     #[error(
         "factoring a {n} x {n} matrix needs about {} but only {} are available ({from}): \

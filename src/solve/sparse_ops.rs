@@ -530,6 +530,15 @@ pub fn abs_products(
     (energy, norm)
 }
 
+/// The indices of 0..n not in `dofs`, in order.
+pub fn complement(dofs: &[usize], n: usize) -> Vec<usize> {
+    let mut mark = vec![false; n];
+    for &d in dofs {
+        mark[d] = true;
+    }
+    (0..n).filter(|&i| !mark[i]).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,6 +11,7 @@ pub fn element(kind: ElementKind) -> &'static dyn Element {
         ElementKind::Tet10 => &super::tet10::Tet10Element,
         ElementKind::Hex8 => &super::solid_incompatible::Hex8Element,
         ElementKind::Hex8R => &super::hex8r::Hex8rElement,
+        ElementKind::Hex8Bbar => &super::hex8_bbar::Hex8BbarElement,
         ElementKind::Hex20 => &super::hex20_beam::Hex20Element { reduced: false },
         ElementKind::Hex20R => &super::hex20_beam::Hex20Element { reduced: true },
         ElementKind::Prism6 => &super::solid_incompatible::Prism6Element,

@@ -20,6 +20,7 @@ pub mod element;
 pub mod hex20;
 pub mod hex20_beam;
 pub mod hex8;
+pub mod hex8_bbar;
 pub mod hex8r;
 pub mod kinds;
 pub mod planar_frame;

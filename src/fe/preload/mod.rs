@@ -53,7 +53,6 @@ use super::constraints::Reduced;
 use super::geometric::{self, Thermal};
 use super::FeError;
 use crate::model::{Load, LoadPart, Model};
-use crate::reduce::ReduceError;
 use crate::solve::{buckling, sparse_ops, EigenSpec, SolveError, SparseLlt};
 
 pub use inertia::{spin_softening, unit_inertia_fields, InertiaField, InertiaLoad, Spin};
@@ -64,9 +63,6 @@ pub enum PreloadError {
     /// Assembly of K_G or of a load failed (names the element).
     #[error(transparent)]
     Fe(#[from] FeError),
-    /// The inertia-relief static solve failed.
-    #[error("preload static solve: {0}")]
-    Reduce(#[from] ReduceError),
     /// A factorization or a small eigenproblem failed.
     #[error("preload: {0}")]
     Solve(#[from] SolveError),
@@ -383,7 +379,7 @@ pub fn check_stability(
     par: Par,
 ) -> Result<(), PreloadError> {
     let red = sys.reduced;
-    let free = crate::reduce::complement(support, k_t.nrows());
+    let free = sparse_ops::complement(support, k_t.nrows());
     let k_t_ff = free_part(k_t, support, &free)?;
     match SparseLlt::factor(k_t_ff.as_ref(), None, par) {
         Ok(_) => Ok(()),
@@ -417,7 +413,7 @@ pub fn buckling_factor(
     par: Par,
 ) -> Result<Option<f64>, PreloadError> {
     let support = &preload.support;
-    let free = crate::reduce::complement(support, preload.k_t.nrows());
+    let free = sparse_ops::complement(support, preload.k_t.nrows());
     let k = free_part(&sys.reduced.k, support, &free)?;
     let kg = free_part(&preload.kg, support, &free)?;
     Ok(buckling::lowest_buckling_factor(&k, &kg, par)?)

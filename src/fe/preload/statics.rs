@@ -1,8 +1,8 @@
 //! The preload's linear static solve on the constrained system K_r u_r = f_r (f_r = Tᵀ f):
 //! directly for a body its constraints hold, with inertia relief for a free (or partly free)
 //! one — K_r u_r = P f_r, P = I − M_r X_r X_rᵀ, on a statically determinate support, purified
-//! of rigid motion (the solver of the Craig–Chang attachment modes and the residual vectors,
-//! `reduce::craig_chang`).
+//! of rigid motion (`solve::inertia_relief`, the solver of the Craig–Chang attachment modes and
+//! the residual vectors).
 //!
 //! The rigid-body motions the constraints leave free are found from geometry, not from an
 //! eigensolve: the six rigid motions of the nodes (translations t + θ × (x − x̄) and rotations
@@ -19,9 +19,8 @@ use super::PreloadError;
 use crate::fe::constraints::Reduced;
 use crate::fe::dofs::DofMap;
 use crate::model::Model;
-use crate::reduce::craig_chang::InertiaRelief;
-use crate::reduce::{complement, ReduceError};
-use crate::solve::dense::{determinate_support, NO_DETERMINATE_SUPPORT};
+use crate::solve::inertia_relief::{support_of, InertiaRelief};
+use crate::solve::sparse_ops::complement;
 use crate::solve::{trace_ratio, EigenSpec, SolveError};
 
 /// A geometric rigid motion with ω² below this fraction of the model's K/M scale (the median
@@ -134,14 +133,10 @@ pub fn solve(
 ) -> Result<(Mat<f64>, Vec<usize>), PreloadError> {
     let n = red.k.nrows();
     // the support the inertia relief will choose, to name a singular pivot's dof
-    let support = if xr.ncols() > 0 {
-        determinate_support(&xr).ok_or_else(|| ReduceError::Rigid(NO_DETERMINATE_SUPPORT.into()))?
-    } else {
-        Vec::new()
-    };
+    let support = support_of(&xr)?;
     let free = complement(&support, n);
-    let ir = InertiaRelief::new(&red.k, &red.m, xr, eig).map_err(|e| match e {
-        ReduceError::Solve(SolveError::NonPositivePivot { dof }) => {
+    let ir = InertiaRelief::on_support(&red.k, &red.m, xr, support, eig).map_err(|e| match e {
+        SolveError::NonPositivePivot { dof } => {
             let (node, comp) = free
                 .get(dof)
                 .and_then(|&r| dofs.node_of(red.retained[r]))
@@ -152,8 +147,8 @@ pub fn solve(
                 dof: comp,
             }
         }
-        other => PreloadError::Reduce(other),
+        other => PreloadError::Solve(other),
     })?;
     let u = ir.solve_equilibrated(&ir.equilibrate(f_r));
-    Ok((u, support))
+    Ok((u, ir.support))
 }

@@ -93,9 +93,25 @@ impl Parser {
         }
     }
 
-    /// Whether a surface named by a `*TIE` or `*COUPLING` holds faces of shell elements (then
-    /// the expanded shells' bricks must exist before the ties are searched).
+    /// Whether a surface named by a `*TIE` or `*COUPLING` holds faces of shell elements, or a
+    /// face pressure `Pn` (`*DLOAD`, or `*DSLOAD` on `SNEG`/`SPOS`) acts on a shell: then the
+    /// expanded shells' bricks must exist before the ties are searched and the loads resolved
+    /// (a shell's `P1`/`P2` are its brick's bottom and top faces, as ccx applies them).
     pub(super) fn shell_faces_in_use(&self, sets: &Sets) -> bool {
+        let is_shell = |e: usize| SHELL_TYPES.contains(&self.b.elem_card[e]);
+        let face_pressure_on_shell = (self.loads.iter())
+            .filter(|l| l.keyword == super::loads::LoadKeyword::Dload)
+            .filter(|l| l.fields.get(1).is_some_and(|t| is_face_pressure(t)))
+            .filter_map(|l| l.fields.first())
+            .filter_map(|t| {
+                let t = t.trim().to_ascii_uppercase();
+                self.face_elements("", &t, sets, Loc::default(), "").ok()
+            })
+            .flatten()
+            .any(is_shell);
+        if face_pressure_on_shell {
+            return true;
+        }
         let mut names: BTreeSet<&str> = BTreeSet::new();
         for t in &self.ties {
             if let Some((s, m)) = &t.surfaces {
@@ -107,7 +123,7 @@ impl Parser {
             .flatten()
             .filter_map(|(target, _, at)| self.face_elements("", target, sets, *at, "").ok())
             .flatten()
-            .any(|e| SHELL_TYPES.contains(&self.b.elem_card[e]))
+            .any(is_shell)
     }
 
     /// The faces of an element-face surface (`None`: no such surface), module doc.
@@ -239,4 +255,11 @@ impl Parser {
             ),
         ))
     }
+}
+
+/// `Pn` (n = 1 … 9): a face pressure, as against a shell's `P`.
+fn is_face_pressure(load_type: &str) -> bool {
+    let t = load_type.trim().to_ascii_uppercase();
+    t.strip_prefix('P')
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }

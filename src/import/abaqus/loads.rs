@@ -42,6 +42,9 @@ pub(super) struct Resolve<'a> {
     pub elems: &'a IdMap,
     pub node_sets: &'a BTreeMap<String, Vec<usize>>,
     pub element_sets: &'a BTreeMap<String, Vec<usize>>,
+    /// Whether element `e` (index) was written as a shell (S3, S4, …): after ccx's expansion its
+    /// kind is the brick's, and a `P` on it is the brick's `P1`.
+    pub written_as_shell: &'a dyn Fn(usize) -> bool,
     pub err: &'a dyn Fn(Loc, String, String) -> ImportError,
     pub at: &'a dyn Fn(Loc) -> String,
 }
@@ -185,8 +188,20 @@ pub(super) fn resolve(raws: &[RawLoad], r: &Resolve) -> Result<Vec<Load>, Import
                         let p = num(r, raw, 2, &ent, "pressure")?;
                         for e in elements {
                             let el = &r.model.elements[e];
+                            // ccx applies a shell's P to its expanded brick's bottom face
+                            let face = match face.is_empty()
+                                && el.kind.is_solid()
+                                && (r.written_as_shell)(e)
+                            {
+                                true => "1",
+                                false => face,
+                            };
                             let (nodes, traction) = match (el.kind, face) {
                             (ElementKind::Quad4 | ElementKind::Tri3, "") => (el.nodes.clone(), -p),
+                            // flexbody's own shells (--inp-shells native): a pressure on SNEG
+                            // (P1) pushes along the normal, on SPOS (P2) against it (ccx 2.20)
+                            (ElementKind::Quad4 | ElementKind::Tri3, "1") => (el.nodes.clone(), p),
+                            (ElementKind::Quad4 | ElementKind::Tri3, "2") => (el.nodes.clone(), -p),
                             (k, n) if k.is_solid() && !n.is_empty() => {
                                 let (faces, edges) = solid_faces(k).ok_or_else(|| {
                                     (r.err)(raw.loc, ent.clone(), format!("element {}: no faces", el.id))
@@ -204,7 +219,7 @@ pub(super) fn resolve(raws: &[RawLoad], r: &Resolve) -> Result<Vec<Load>, Import
                                 (nodes, -p)
                             }
                             (k, _) => {
-                                return Err((r.err)(raw.loc, ent.clone(), format!("load type {ty} on element {} ({k:?}): Pn needs a solid, P a shell (S3/S4)", el.id)))
+                                return Err((r.err)(raw.loc, ent.clone(), format!("load type {ty} on element {} ({k:?}): a solid takes its faces P1 … Pn, a 3- or 4-node shell P, P1 (SNEG) or P2 (SPOS)", el.id)))
                             }
                         };
                             parts.push(LoadPart::Surface {

@@ -748,6 +748,8 @@ impl Parser {
         let loads = {
             let err = |loc: Loc, ent: String, msg: String| self.err(loc, ent, msg);
             let at = |loc: Loc| format!("{}:{}", self.b.file_name(loc), loc.line);
+            let written_as_shell =
+                |e: usize| super::shell_expansion::SHELL_TYPES.contains(&self.b.elem_card[e]);
             super::loads::resolve(
                 &self.loads,
                 &super::loads::Resolve {
@@ -756,6 +758,7 @@ impl Parser {
                     elems: &sets.elems,
                     node_sets: &sets.node_sets,
                     element_sets: &sets.element_sets,
+                    written_as_shell: &written_as_shell,
                     err: &err,
                     at: &at,
                 },

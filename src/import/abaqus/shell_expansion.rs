@@ -108,6 +108,7 @@ fn corners(brick: ElementKind) -> usize {
         // no shell is expanded into these
         ElementKind::Tet4
         | ElementKind::Tet10
+        | ElementKind::Hex8Bbar
         | ElementKind::Pyram5
         | ElementKind::Pyram13
         | ElementKind::Beam2
@@ -162,6 +163,7 @@ pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
         | ElementKind::Tet10
         | ElementKind::Hex8
         | ElementKind::Hex8R
+        | ElementKind::Hex8Bbar
         | ElementKind::Hex20
         | ElementKind::Hex20R
         | ElementKind::Prism6

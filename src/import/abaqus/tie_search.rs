@@ -35,9 +35,11 @@ pub(super) fn ccx_face_nodes(
     // ccx's first corner of each face (0-based element-local index): hex `ifaceq`, tet
     // `ifacet`, wedge `ifacew1`; pyramids have no ccx face order (kept as they are)
     let first = match kind {
-        ElementKind::Hex8 | ElementKind::Hex8R | ElementKind::Hex20 | ElementKind::Hex20R => {
-            [3, 4, 0, 1, 2, 3][face - 1]
-        }
+        ElementKind::Hex8
+        | ElementKind::Hex8R
+        | ElementKind::Hex8Bbar
+        | ElementKind::Hex20
+        | ElementKind::Hex20R => [3, 4, 0, 1, 2, 3][face - 1],
         ElementKind::Tet4 | ElementKind::Tet10 => [0, 0, 1, 0][face - 1],
         ElementKind::Prism6 | ElementKind::Prism15 => [0, 3, 0, 1, 2][face - 1],
         ElementKind::Pyram5 | ElementKind::Pyram13 => faces[face - 1][0],

@@ -444,25 +444,42 @@ fn mass21(t: &ElementType, rec: &ElementRecord, reals: Option<&[f64]>) -> Result
     }
 }
 
-/// SOLID185 (MAPDL Theory Reference §13.185): KEYOPT(2)=3, simplified enhanced strain — the
-/// 8-node brick with Wilson's incompatible modes and Taylor's correction on 2×2×2 points, its
-/// mass the compatible brick's on 2×2×2 ([`ElementKind::Hex8`] with
-/// `ModelParams::solid_bubbles`; shown against an ANSYS result, docs/ansys.md). The other
-/// formulations are refused naming KEYOPT(2): B-bar (0, the default), uniform reduced with
-/// ANSYS's hourglass control (1), enhanced strain (2); and the degenerate shapes (repeated
-/// nodes), the layered and mixed u-P forms (KEYOPT(3), KEYOPT(6)).
+/// SOLID185 (MAPDL Theory Reference §13.185): KEYOPT(2)=0, the default, the B-bar brick
+/// (mean dilatation on 2×2×2 points, [`ElementKind::Hex8Bbar`]), also written as ANSYS's
+/// collapsed wedge (K = L, O = P: the brick as written, fully integrated — what ANSYS's element
+/// forces show); KEYOPT(2)=3, simplified enhanced strain — the 8-node brick with Wilson's
+/// incompatible modes and Taylor's correction on 2×2×2 points, its mass the compatible brick's
+/// on 2×2×2 ([`ElementKind::Hex8`] with `ModelParams::solid_bubbles`). Both shown against ANSYS
+/// results (docs/ansys.md). Refused naming KEYOPT(2): uniform reduced with ANSYS's hourglass
+/// control (1), enhanced strain (2); the collapsed pyramid and tetrahedron, a collapsed
+/// KEYOPT(2)=3 brick, and the layered and mixed u-P forms (KEYOPT(3), KEYOPT(6)).
 fn solid185(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     let k2 = t.keyopts.get(&2).copied().unwrap_or(0);
     let what = match k2 {
         0 => {
-            "B-bar selective reduced integration, the default: its volumetric average is not \
-              shown against an ANSYS result here"
+            unsupported_keyopts(t, &[2])?;
+            let n = &rec.nodes;
+            if n.len() != 8 || n.contains(&0) {
+                return Err("SOLID185 without its 8 nodes".into());
+            }
+            if distinct(n) || collapsed_wedge185(n) {
+                return Ok(Formed::Element(ElementKind::Hex8Bbar, n.clone()));
+            }
+            return Err(
+                "SOLID185 KEYOPT(2)=0 with repeated nodes other than ANSYS's wedge (K = L, \
+                 O = P): the collapsed pyramid and tetrahedron — no ANSYS result of them was \
+                 at hand to show their form: not formed here"
+                    .into(),
+            );
         }
         1 => {
             "uniform reduced integration with ANSYS's hourglass control: its hourglass \
               stiffness is not shown here"
         }
-        2 => "enhanced strain (Simo–Rifai, with ANSYS's volumetric modes): not shown here",
+        2 => {
+            "enhanced strain (Simo–Rifai: 9 shear and 4 volumetric internal modes, ANSYS's \
+              own): not shown here"
+        }
         3 => {
             unsupported_keyopts(t, &[2])?;
             let n = &rec.nodes;
@@ -481,6 +498,12 @@ fn solid185(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     Err(format!(
         "SOLID185 KEYOPT(2)={k2} ({what}): formulation not formed here"
     ))
+}
+
+/// SOLID185 collapsed into ANSYS's wedge: K = L and O = P (0-based 2 = 3, 6 = 7), the six
+/// nodes kept distinct (MAPDL Element Reference, SOLID185's geometry figure).
+fn collapsed_wedge185(n: &[u64]) -> bool {
+    n[2] == n[3] && n[6] == n[7] && distinct(&pick(n, &[0, 1, 2, 4, 5, 6]))
 }
 
 /// No id repeats.
@@ -547,6 +570,30 @@ mod tests {
         t.keyopts.insert(2, 2);
         let why = form(&t, &record(nodes), None, None).unwrap_err();
         assert!(why.contains("SOLID186 KEYOPT(2)=2"), "{why}");
+    }
+
+    #[test]
+    fn solid185_default_is_the_b_bar_brick_also_as_ansys_wedge() {
+        let t = ElementType::new(3, "185");
+        let brick: Vec<u64> = (1..=8).collect();
+        assert_eq!(
+            form(&t, &record(brick.clone()), None, None),
+            Ok(Formed::Element(ElementKind::Hex8Bbar, brick))
+        );
+        // ANSYS's wedge: K = L, O = P, written as the 8 nodes
+        let wedge = vec![1, 2, 3, 3, 5, 6, 7, 7];
+        assert_eq!(
+            form(&t, &record(wedge.clone()), None, None),
+            Ok(Formed::Element(ElementKind::Hex8Bbar, wedge))
+        );
+        // a pyramid (M…P one node) and a tetrahedron are refused
+        for n in [vec![1, 2, 3, 4, 5, 5, 5, 5], vec![1, 2, 3, 3, 5, 5, 5, 5]] {
+            let why = form(&t, &record(n), None, None).unwrap_err();
+            assert!(
+                why.contains("SOLID185 KEYOPT(2)=0 with repeated nodes"),
+                "{why}"
+            );
+        }
     }
 
     #[test]

@@ -325,7 +325,8 @@ impl Archive {
         model.params.ansys_solid_rules = true;
         let node_map = self.place_nodes(file, &mut model)?;
         let elements = self.form_elements(file, ignored, &node_map, &materials, &mut model)?;
-        // the only 8-node brick an archive forms is SOLID185 KEYOPT(2)=3: incompatible modes
+        // the only Hex8 an archive forms is SOLID185 KEYOPT(2)=3: incompatible modes (its
+        // default, KEYOPT(2)=0, is Hex8Bbar)
         model.params.solid_bubbles =
             (model.elements.iter()).any(|e| e.kind == crate::model::ElementKind::Hex8);
         self.constraints(file, &node_map, &mut model)?;

@@ -174,6 +174,7 @@ fn card_parts(
                         | ElementKind::Tet10
                         | ElementKind::Hex8
                         | ElementKind::Hex8R
+                        | ElementKind::Hex8Bbar
                         | ElementKind::Hex20
                         | ElementKind::Hex20R
                         | ElementKind::Prism6
