@@ -445,7 +445,7 @@ fn eigen_residuals_against_model(
         };
         // the problem of the free dofs (reference conditions held)
         let red = &rebuilt.reduced;
-        let free = crate::reduce::complement(&rebuilt.fixed, red.k.nrows());
+        let free = sparse_ops::complement(&rebuilt.fixed, red.k.nrows());
         let sub = |a: &crate::solve::SparseColMat<usize, f64>| {
             sparse_ops::submatrix(a.as_ref(), &free, &free)
         };
