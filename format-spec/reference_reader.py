@@ -28,7 +28,7 @@ ENTRIES = [  # SPEC §2: name, required, the minor version that introduced it
     ("lines.bin", False, 1), ("recipe.json", False, 2), ("label_shares.bin", False, 2),
     ("interfaces.bin", False, 3), ("modal_loads.bin", False, 4),
     ("stress_shapes_bottom.bin", False, 5), ("strain_shapes_bottom.bin", False, 5),
-    ("geometric_stiffness.bin", False, 7),
+    ("geometric_stiffness.bin", False, 7), ("eigen_residuals.bin", False, 9),
 ]
 KNOWN = {name: (req, minor) for name, req, minor in ENTRIES}
 LIMITS = dict(max_entry_bytes=2 << 30, max_total_bytes=8 << 30, max_manifest_bytes=1 << 20,
@@ -50,6 +50,9 @@ FIT_TOL = 1e-9
 LABELS = ["Rigid", "Normal", "Constraint", "FixedInterface", "Attachment", "FrequencyResponse"]
 STATIC_SUPPORT = ["Held", "InertiaRelief"]
 UNIT_LOAD = ["Acceleration", "AngularVelocity", "AngularAcceleration"]
+EIGEN_PROBLEM = ["NormalModes", "FixedInterface", "FreeFree"]
+EIGEN_SOLVER = ["Lanczos", "Amls", "Dense", "Slepc"]
+RIGID_FRACTION = 1e-8
 
 
 class ReadError(Exception):
@@ -230,6 +233,19 @@ def decode_geometric_stiffness(d):
     return dict(support=support, fields=d.vec(field, 13))
 
 
+def decode_eigen_residuals(d):
+    """SPEC §5.17: EigenResiduals { problems: Vec<EigenProblem { kind, solver, scale, omega2,
+    residual, inertia: Option<InertiaCount { shift, below }> }> }."""
+    def problem():
+        kind = EIGEN_PROBLEM[d.tag(EIGEN_PROBLEM)]
+        solver = EIGEN_SOLVER[d.tag(EIGEN_SOLVER)]
+        scale, omega2, residual = d.f64(), d.f64s(), d.f64s()
+        inertia = d.option(lambda: dict(shift=d.f64(), below=d.u64()))
+        return dict(kind=kind, solver=solver, scale=scale, omega2=omega2, residual=residual,
+                    inertia=inertia)
+    return dict(problems=d.vec(problem, 33))
+
+
 def unit_load_name(load):
     """SPEC §5.16's name of a load: a_x, omega_x*omega_y, alpha_z."""
     kind, axes = load
@@ -249,7 +265,8 @@ DECODERS = {"header.bin": decode_header, "nodes.bin": decode_nodes, "faces.bin":
             "label_shares.bin": lambda d: d.f64s(), "interfaces.bin": decode_interfaces,
             "modal_loads.bin": decode_modal_loads,
             "stress_shapes_bottom.bin": decode_field, "strain_shapes_bottom.bin": decode_field,
-            "geometric_stiffness.bin": decode_geometric_stiffness}
+            "geometric_stiffness.bin": decode_geometric_stiffness,
+            "eigen_residuals.bin": decode_eigen_residuals}
 
 
 # SPEC §5.11: recipe.json member types. ("opt", T) may be null or absent; ("omit", T) may be
@@ -805,6 +822,54 @@ def validate(b, m):
     gs = b.get("geometric_stiffness.bin")
     if gs is not None:
         validate_geometric_stiffness(gs, nm, b, m["version"], err, count, finite, symmetric)
+    er = b.get("eigen_residuals.bin")
+    if er is not None:
+        validate_eigen_residuals(er, nm, b, err, count, finite)
+
+
+def validate_eigen_residuals(er, nm, b, err, count, finite):
+    """SPEC §6 rule 16: each problem the method's own, once; scale finite and > 0; residual as
+    long as omega2; the length against method.bin's counts; finite; residuals >= 0; an inertia
+    count's shift finite and its count at least the stored eigenvalues below it."""
+    E = "eigen_residuals.bin"
+    me = b["method.bin"]
+    rigid, normal, _, fixed, _, _ = me["counts"]
+    ml = b.get("modal_loads.bin")
+    residual_vectors = ml is not None and len(ml["residual"]) > 0
+    own, bound = {"NormalModes": ("NormalModes", nm), "CraigBampton": ("FixedInterface", fixed),
+                  "CraigChang": ("FreeFree", rigid + normal), "Dietz": ("FreeFree", rigid + normal)}[me["method"]]
+    seen = []
+    for q, p in enumerate(er["problems"]):
+        if p["kind"] != own:
+            err("Inconsistent", E, f"problems[{q}] is {p['kind']}, not the {own} problem of {me['method']}")
+        if p["kind"] in seen:
+            err("Inconsistent", E, f"problems[{q}]: {p['kind']} appears twice")
+        seen.append(p["kind"])
+        finite(E, f"problems[{q}].scale", [p["scale"]])
+        if p["scale"] <= 0:
+            err("Inconsistent", E, f"problems[{q}].scale is not > 0")
+        n = len(p["omega2"])
+        count(E, f"problems[{q}].residual", len(p["residual"]), n)
+        if own == "FreeFree":
+            fits = n >= bound
+        elif residual_vectors:
+            fits = n <= bound
+        else:
+            fits = n == bound
+        if not fits:
+            err("CountMismatch", E, f"problems[{q}].omega2 has length {n}, against {bound} from method.bin's counts")
+        finite(E, f"problems[{q}].omega2", p["omega2"])
+        finite(E, f"problems[{q}].residual", p["residual"])
+        for j, r in enumerate(p["residual"]):
+            if r < 0:
+                err("Inconsistent", E, f"problems[{q}].residual[{j}] is negative")
+        i = p["inertia"]
+        if i is not None:
+            finite(E, f"problems[{q}].inertia.shift", [i["shift"]])
+            below = sum(1 for lam in p["omega2"] if lam < i["shift"])
+            if i["below"] < below:
+                err("Inconsistent", E, f"problems[{q}]: {below} stored eigenvalues lie below the shift, "
+                    f"but the inertia count says {i['below']}")
 
 
 def validate_geometric_stiffness(gs, nm, b, version, err, count, finite, symmetric):
@@ -1058,7 +1123,15 @@ def summarize(b, m):
         **({"modal_loads": b["modal_loads.bin"]} if "modal_loads.bin" in b else {}),
         **({"geometric_stiffness": geometric_summary(b["geometric_stiffness.bin"])}
            if "geometric_stiffness.bin" in b else {}),
+        **({"eigen_residuals": [eigen_summary(p) for p in b["eigen_residuals.bin"]["problems"]]}
+           if "eigen_residuals.bin" in b else {}),
     }
+
+
+def eigen_summary(p):
+    """SPEC §9: a problem as decoded, with its largest residual of a flexible mode."""
+    flexible = [r for lam, r in zip(p["omega2"], p["residual"]) if lam > RIGID_FRACTION * p["scale"]]
+    return {**p, "largest_flexible_residual": max(flexible) if flexible else None}
 
 
 def geometric_summary(gs):

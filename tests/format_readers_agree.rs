@@ -32,6 +32,7 @@ fn seeds() -> Vec<Vec<u8>> {
         "golden/v1.4",
         "golden/v1.6",
         "golden/v1.8",
+        "golden/v1.9",
         "compat",
     ] {
         let mut names: Vec<_> = std::fs::read_dir(root.join(dir))
@@ -249,7 +250,7 @@ fn rust_and_reference_readers_give_the_same_outcome_on_mutants() {
     let mut state = 0x2545f4914f6cdd1du64;
     let (mut refused, mut accepted) = (0, 0);
     // The golden files in Zip64 form (read as they are), then the mutants.
-    let golden = 6; // golden/v1.0 (2 files), v1.2, v1.4, v1.6, v1.8
+    let golden = 7; // golden/v1.0 (2 files), v1.2, v1.4, v1.6, v1.8, v1.9
     for k in 0..golden + 600 {
         let bytes = if k < golden {
             zip64_form(&seeds[k])
@@ -359,4 +360,58 @@ fn round_3_fixtures_are_read_alike_by_both_readers() {
         );
     }
     assert!(out.status.success(), "the readers differ:\n{text}");
+}
+
+/// The fixtures of format 1.9 (issue 46: `eigen_residuals.bin`, SPEC §5.17 and §6 rule 16):
+/// the golden file reads in both readers, each broken file is refused by the Rust reader with
+/// its `.expect` variant and message and by the reference reader with the same variant.
+#[test]
+fn eigen_residual_fixtures_are_read_alike_by_both_readers() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
+    let broken = [
+        "eigen_residuals_wrong_kind",
+        "eigen_residuals_scale_zero",
+        "eigen_residuals_residual_wrong_length",
+        "eigen_residuals_fewer_than_modes",
+        "eigen_residuals_residual_nan",
+        "eigen_residuals_residual_negative",
+        "eigen_residuals_inertia_below_stored",
+        "eigen_residuals_truncated",
+        "eigen_residuals_unknown_solver",
+        "eigen_residuals_in_1_8_file",
+    ];
+    for stem in broken {
+        let bytes = std::fs::read(root.join(format!("broken/{stem}.flexbody"))).expect(stem);
+        let expect: serde_json::Value = serde_json::from_slice(
+            &std::fs::read(root.join(format!("broken/{stem}.expect"))).expect(stem),
+        )
+        .expect("expect json");
+        let err = flexbody_reader::from_bytes(&bytes).expect_err(stem);
+        assert_eq!(err.variant(), expect["variant"], "{stem}: {err}");
+        let fragment = expect["message"].as_str().expect("message");
+        assert!(err.to_string().contains(fragment), "{stem}: {err}");
+    }
+    let golden = "golden/v1.9/three_node_chain_eigen_residuals";
+    let bytes = std::fs::read(root.join(format!("{golden}.flexbody"))).expect(golden);
+    let body = flexbody_reader::from_bytes(&bytes).unwrap_or_else(|e| panic!("{golden}: {e}"));
+    assert_eq!((body.version.major, body.version.minor), (1, 9));
+    let out = std::process::Command::new("python3")
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("format-spec/reference_reader.py"))
+        .arg("--check-fixtures")
+        .arg(&root)
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    for stem in broken {
+        assert!(
+            text.lines()
+                .any(|l| l.starts_with("ok") && l.contains(&format!("broken/{stem}.flexbody"))),
+            "the reference reader does not refuse {stem} alike:\n{text}"
+        );
+    }
+    assert!(
+        text.lines()
+            .any(|l| l.starts_with("ok") && l.contains(&format!("{golden}.flexbody"))),
+        "the reference reader does not read {golden} alike:\n{text}"
+    );
 }

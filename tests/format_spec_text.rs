@@ -60,6 +60,7 @@ fn the_string_records_and_smallest_encodings_are_in_section_7_2() {
         "`InterfaceInfo` 25",
         "`ModalLoad` 24",
         "`GeometricField` 13",
+        "`EigenProblem` 33",
         "`Node` 33",
         "`Face` 16",
     ] {

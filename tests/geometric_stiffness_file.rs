@@ -112,7 +112,10 @@ fn spinning_cantilever_from_the_files_terms_equals_the_preloaded_build_and_wrigh
         String::from_utf8_lossy(&o.stderr)
     );
     let body = flexbody_reader::read(&out).expect("the file reads back");
-    assert_eq!(body.version.minor, 8);
+    assert_eq!(body.version.minor, 9);
+    let mut bare = body.clone();
+    bare.eigen_residuals = None; // 1.9, in every build: the geometric terms alone are 1.8
+    assert_eq!(flexbody_reader::version_for(&bare).minor, 8);
     let recipe = body.recipe.as_ref().expect("recipe");
     assert_eq!(
         recipe.options.geometric_stiffness.as_deref(),

@@ -838,8 +838,10 @@ fn normal_modes_count_removed_residual_vectors_as_basis_vectors() {
     assert_eq!(c.rigid, 6, "{report}");
     assert_eq!(c.removed_dependent, 1, "SIDE2 dependent on SIDE: {report}");
     assert_eq!(c.rigid + c.normal - c.removed_dependent, m, "{c:?}");
+    let mut bare = body.clone();
+    bare.eigen_residuals = None; // 1.9, in every build
     assert_eq!(
-        file::version_for(&body).minor,
+        file::version_for(&bare).minor,
         6,
         "a removed count in a normal-modes file is 1.6"
     );

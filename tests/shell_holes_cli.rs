@@ -183,7 +183,11 @@ fn shell_plate_with_two_holes_cb_on_hole_spiders_passes_check() {
     assert!(stress.status.success(), "{report}");
     assert!(!report.contains("shell elements have none"), "{report}");
     let body = flexbody_reader::read(dir.join("stress.flexbody")).unwrap();
-    assert_eq!((body.version.major, body.version.minor), (1, 5));
+    assert_eq!((body.version.major, body.version.minor), (1, 9));
+    let mut bare = body.clone();
+    bare.eigen_residuals = None; // 1.9, in every build: the bottom fibre alone is 1.5
+    let v = flexbody_reader::version_for(&bare);
+    assert_eq!((v.major, v.minor), (1, 5));
     let (top, bottom) = (
         body.stress_shapes.as_ref().unwrap(),
         body.stress_shapes_bottom.as_ref().unwrap(),

@@ -41,7 +41,9 @@ class Body:
     mesh nodes it depends on, ``fit``) or None, ``modal_loads`` (dict with
     ``loads`` [{name, source, values}] and ``residual``) or None, ``geometric_stiffness``
     (dict: ``support`` and ``fields`` {load name: (M, M) K̂_G per unit load, SPEC §5.16}) or
-    None, ``entries`` (manifest).
+    None, ``eigen_residuals`` (list, one dict per eigenproblem behind the basis: ``kind``,
+    ``solver``, ``scale``, ``omega2`` (L,), ``residual`` (L,) relative residuals, ``inertia``
+    {shift, below} or None; SPEC §5.17, format 1.9) or None, ``entries`` (manifest).
     """
 
     def __init__(self, b, m):
@@ -96,6 +98,10 @@ class Body:
             support=gs["support"],
             fields={_spec.unit_load_name(f["load"]): np.asarray(f["matrix"], dtype=float).reshape(nm, nm)
                     for f in gs["fields"]})
+        er = b.get("eigen_residuals.bin")
+        self.eigen_residuals = None if er is None else [
+            dict(p, omega2=np.asarray(p["omega2"], dtype=float), residual=np.asarray(p["residual"], dtype=float))
+            for p in er["problems"]]
 
     @property
     def node_count(self):
@@ -157,6 +163,8 @@ class Body:
             **({"modal_loads": self.modal_loads} if self.modal_loads is not None else {}),
             **({"geometric_stiffness": _spec.geometric_summary(self._b["geometric_stiffness.bin"])}
                if self.geometric_stiffness is not None else {}),
+            **({"eigen_residuals": [_spec.eigen_summary(p) for p in self._b["eigen_residuals.bin"]["problems"]]}
+               if self.eigen_residuals is not None else {}),
         }
 
 

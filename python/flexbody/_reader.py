@@ -449,6 +449,9 @@ def validate(b, m):
     if gs is not None:
         _spec.validate_geometric_stiffness(gs, nm, {"modes.bin": {"labels": label_names}}, m["version"],
                                            _err, _count, _finite, _symmetric)
+    er = b.get("eigen_residuals.bin")
+    if er is not None:
+        _spec.validate_eigen_residuals(er, nm, b, _err, _count, _finite_list)
 
 
 def _finite_list(entry, field, values):

@@ -16,7 +16,7 @@ pub const MANIFEST: &str = "manifest.json";
 
 /// Payload entries known to v1, in the fixed container order: name, required flag, and the
 /// minor version that introduced the entry (a file stamped older must not hold it, SPEC §7.1).
-pub const ENTRIES: [(&str, bool, u32); 18] = [
+pub const ENTRIES: [(&str, bool, u32); 19] = [
     (HEADER, true, 0),
     (NODES, true, 0),
     (FACES, true, 0),
@@ -35,6 +35,7 @@ pub const ENTRIES: [(&str, bool, u32); 18] = [
     (STRESS_SHAPES_BOTTOM, false, 5),
     (STRAIN_SHAPES_BOTTOM, false, 5),
     (GEOMETRIC_STIFFNESS, false, 7),
+    (EIGEN_RESIDUALS, false, 9),
 ];
 /// The `.bin` records that hold strings: each, as a whole, at most [`STRING_RECORD_LIMIT`]
 /// bytes (SPEC §7.2), so a string's length prefix can never claim more.
@@ -76,6 +77,8 @@ pub const STRESS_SHAPES_BOTTOM: &str = "stress_shapes_bottom.bin";
 pub const STRAIN_SHAPES_BOTTOM: &str = "strain_shapes_bottom.bin";
 /// `geometric_stiffness.bin` (format 1.7): modal geometric stiffness per unit inertia load.
 pub const GEOMETRIC_STIFFNESS: &str = "geometric_stiffness.bin";
+/// `eigen_residuals.bin` (format 1.9): per eigenproblem, each mode's eigenvalue and residual.
+pub const EIGEN_RESIDUALS: &str = "eigen_residuals.bin";
 
 /// `manifest.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -44,7 +44,7 @@ pub use validate::{validate, FRAME_TOL, REL_TOL};
 
 /// The newest format version this crate writes and fully understands. A writer stamps the
 /// oldest version that has everything the file holds ([`version_for`]).
-pub const FORMAT_VERSION: Version = Version { major: 1, minor: 8 };
+pub const FORMAT_VERSION: Version = Version { major: 1, minor: 9 };
 
 /// The oldest format version that has everything `body` holds (SPEC §7.3): 1.1 added
 /// `lines.bin`, 1.2 `recipe.json` and `label_shares.bin`, 1.3 `interfaces.bin`, 1.4
@@ -53,7 +53,7 @@ pub const FORMAT_VERSION: Version = Version { major: 1, minor: 8 };
 /// `geometric_stiffness.bin`, 1.8 its beam-column form with the axial and torsional terms and
 /// exact zeros for the acceleration fields under inertia relief (every file with the entry,
 /// except a body whose `version` says 1.7: a 1.7 file read and written again keeps its stamp,
-/// its terms being 1.7's).
+/// its terms being 1.7's), 1.9 `eigen_residuals.bin`.
 pub fn version_for(body: &ReducedBody) -> Version {
     let normal_removed =
         body.method.method == Method::NormalModes && body.method.counts.removed_dependent > 0;
@@ -100,6 +100,7 @@ fn encoded_names(body: &ReducedBody) -> impl Iterator<Item = &'static str> {
         (STRESS_SHAPES_BOTTOM, body.stress_shapes_bottom.is_some()),
         (STRAIN_SHAPES_BOTTOM, body.strain_shapes_bottom.is_some()),
         (GEOMETRIC_STIFFNESS, body.geometric_stiffness.is_some()),
+        (EIGEN_RESIDUALS, body.eigen_residuals.is_some()),
     ];
     ENTRIES[..7]
         .iter()
@@ -179,6 +180,7 @@ pub fn from_bytes_with_manifest(
     let stress_shapes_bottom = optional(&c, STRESS_SHAPES_BOTTOM)?;
     let strain_shapes_bottom = optional(&c, STRAIN_SHAPES_BOTTOM)?;
     let geometric_stiffness = optional(&c, GEOMETRIC_STIFFNESS)?;
+    let eigen_residuals = optional(&c, EIGEN_RESIDUALS)?;
     let body = ReducedBody {
         version: c.manifest.version,
         generator: c.manifest.generator.clone(),
@@ -201,6 +203,7 @@ pub fn from_bytes_with_manifest(
         strain_shapes_bottom,
         modal_loads,
         geometric_stiffness,
+        eigen_residuals,
     };
     validate(&body, limits)?;
     Ok((body, c.manifest))
@@ -251,6 +254,9 @@ pub fn encode_entries(body: &ReducedBody) -> Vec<(&'static str, bool, Vec<u8>)> 
     }
     if let Some(g) = &body.geometric_stiffness {
         out.push((GEOMETRIC_STIFFNESS, false, encode(g)));
+    }
+    if let Some(e) = &body.eigen_residuals {
+        out.push((EIGEN_RESIDUALS, false, encode(e)));
     }
     out
 }

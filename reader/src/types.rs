@@ -427,6 +427,78 @@ impl UnitLoad {
     }
 }
 
+/// Entry `eigen_residuals.bin` (format 1.9, SPEC §5.17): for each eigenproblem the build
+/// solved whose vectors reach the basis, which problem and solver it was, each mode's
+/// eigenvalue and relative residual, and the Sylvester inertia count when one was made.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EigenResiduals {
+    /// One per eigenproblem, each kind at most once.
+    pub problems: Vec<EigenProblem>,
+}
+
+/// One eigenproblem K φ = λ M φ of [`EigenResiduals`] and the quality of its solution.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EigenProblem {
+    /// Which problem (the method's own).
+    pub kind: EigenProblemKind,
+    /// Which solver produced its eigenpairs.
+    pub solver: EigenSolverKind,
+    /// s, the median of K_ii/M_ii over the problem's dofs (SPEC §5.17): the rigid threshold is
+    /// 10⁻⁸ s.
+    pub scale: f64,
+    /// λ_j = ω_j² per mode as the solver returned it, ascending.
+    pub omega2: Vec<f64>,
+    /// r_j = ‖Kφ_j − λ_j Mφ_j‖₂ / max(‖Kφ_j‖₂, 10⁻⁸ s ‖Mφ_j‖₂) per mode (SPEC §5.17), ≥ 0.
+    pub residual: Vec<f64>,
+    /// Sylvester's inertia count of K − σM, when the band was verified.
+    pub inertia: Option<InertiaCount>,
+}
+
+impl EigenProblem {
+    /// The largest residual of a flexible mode (ω² > 10⁻⁸ · `scale`) and its index.
+    pub fn largest_flexible_residual(&self) -> Option<(usize, f64)> {
+        (self.omega2.iter().zip(&self.residual).enumerate())
+            .filter(|(_, (&l, _))| l > 1e-8 * self.scale)
+            .fold(None, |w, (j, (_, &r))| match w {
+                Some((_, wr)) if wr >= r => w,
+                _ => Some((j, r)),
+            })
+    }
+}
+
+/// Which eigenproblem (SPEC §5.17).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum EigenProblemKind {
+    /// Normal modes of the constrained model: the file's modes (tag 0).
+    NormalModes,
+    /// Craig–Bampton's fixed-interface modes: the interior problem K_ii, M_ii (tag 1).
+    FixedInterface,
+    /// Craig–Chang's and Dietz's free-free modes of the constrained model (tag 2).
+    FreeFree,
+}
+
+/// Which eigensolver (SPEC §5.17).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum EigenSolverKind {
+    /// Block shift-invert Lanczos (tag 0).
+    Lanczos,
+    /// Automated multilevel substructuring with Rayleigh–Ritz on the full K, M (tag 1).
+    Amls,
+    /// A dense eigen-decomposition (tag 2).
+    Dense,
+    /// PETSc/SLEPc under MPI, `--engine slepc` (tag 3).
+    Slepc,
+}
+
+/// Sylvester's count of K − σM: `below` eigenvalues lie below `shift` (SPEC §5.17).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct InertiaCount {
+    /// σ (ω², rad²/time²).
+    pub shift: f64,
+    /// The number of negative pivots of an LDLᵀ of K − σM.
+    pub below: u64,
+}
+
 /// A whole reduced body: everything a file holds, validated when read. (Serde derives are
 /// for tools, e.g. a JSON dump; the file itself stores the parts as separate entries.)
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -480,6 +552,10 @@ pub struct ReducedBody {
     /// unit inertia load.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub geometric_stiffness: Option<GeometricStiffness>,
+    /// Optional `eigen_residuals.bin` (format 1.9): per eigenproblem, each mode's eigenvalue
+    /// and relative residual.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub eigen_residuals: Option<EigenResiduals>,
 }
 
 impl ReducedBody {

@@ -1,9 +1,9 @@
 //! Consistency rules of a decoded body (SPEC.md §6): counts, finiteness, index ranges,
 //! symmetry, cross-entry agreement. The writer runs the same function before writing.
 use crate::codec::{
-    DAMPING, FACES, GEOMETRIC_STIFFNESS, HEADER, INVARIANTS, LABEL_SHARES, LINES, MANIFEST, METHOD,
-    MODAL_LOADS, MODES, NODAL_MASS, NODES, RECIPE, STRAIN_SHAPES, STRAIN_SHAPES_BOTTOM,
-    STRESS_SHAPES, STRESS_SHAPES_BOTTOM,
+    DAMPING, EIGEN_RESIDUALS, FACES, GEOMETRIC_STIFFNESS, HEADER, INVARIANTS, LABEL_SHARES, LINES,
+    MANIFEST, METHOD, MODAL_LOADS, MODES, NODAL_MASS, NODES, RECIPE, STRAIN_SHAPES,
+    STRAIN_SHAPES_BOTTOM, STRESS_SHAPES, STRESS_SHAPES_BOTTOM,
 };
 use crate::error::ReadError;
 use crate::limits::ReadLimits;
@@ -453,6 +453,110 @@ pub fn validate(body: &ReducedBody, limits: &ReadLimits) -> Result<(), ReadError
     }
     if let Some(g) = &body.geometric_stiffness {
         geometric_stiffness(g, body)?;
+    }
+    if let Some(e) = &body.eigen_residuals {
+        eigen_residuals(e, body)?;
+    }
+    Ok(())
+}
+
+/// Rule 16 (SPEC §5.17): each problem the method's own and at most once; as many eigenvalues
+/// as residuals, as many as the counts of `method.bin` say (exactly, without residual
+/// vectors); finite; residuals ≥ 0; an inertia count's shift finite and its count at least the
+/// stored eigenvalues below it.
+fn eigen_residuals(e: &crate::types::EigenResiduals, body: &ReducedBody) -> Result<(), ReadError> {
+    use crate::types::{EigenProblemKind, Method};
+    let c = &body.method.counts;
+    let m = body.modes.omega2.len() as u64;
+    // with residual vectors in the basis (their flags), they share the method's count
+    let residual_vectors = body
+        .modal_loads
+        .as_ref()
+        .is_some_and(|ml| !ml.residual.is_empty());
+    for (q, p) in e.problems.iter().enumerate() {
+        // the problem's vectors are basis vectors: as many as the counts say — fewer only when
+        // residual vectors share the count (§5.7), more only for an extended free-free set
+        let (own, bound, what) = match body.method.method {
+            Method::NormalModes => (EigenProblemKind::NormalModes, m, "the modes M"),
+            Method::CraigBampton => (
+                EigenProblemKind::FixedInterface,
+                c.fixed_interface,
+                "counts.fixed_interface",
+            ),
+            Method::CraigChang | Method::Dietz => (
+                EigenProblemKind::FreeFree,
+                c.rigid.saturating_add(c.normal),
+                "counts.rigid + counts.normal",
+            ),
+        };
+        if p.kind != own {
+            return Err(inconsistent(
+                EIGEN_RESIDUALS,
+                format!(
+                    "problems[{q}] is {:?}, not the {:?} problem of {:?}",
+                    p.kind, own, body.method.method
+                ),
+            ));
+        }
+        if e.problems[..q].iter().any(|o| o.kind == p.kind) {
+            return Err(inconsistent(
+                EIGEN_RESIDUALS,
+                format!("problems[{q}]: {:?} appears twice", p.kind),
+            ));
+        }
+        finite(EIGEN_RESIDUALS, &format!("problems[{q}].scale"), [&p.scale])?;
+        if p.scale <= 0.0 {
+            return Err(inconsistent(
+                EIGEN_RESIDUALS,
+                format!("problems[{q}].scale = {} is not > 0", p.scale),
+            ));
+        }
+        let n = p.omega2.len();
+        let field = format!("problems[{q}].residual");
+        count(
+            EIGEN_RESIDUALS,
+            &field,
+            p.residual.len(),
+            n,
+            "one per eigenvalue",
+        )?;
+        let (fits, relation) = match own {
+            EigenProblemKind::FreeFree => (n as u64 >= bound, " at least"),
+            _ if residual_vectors => (n as u64 <= bound, " at most"),
+            _ => (n as u64 == bound, ""),
+        };
+        if !fits {
+            return Err(ReadError::CountMismatch {
+                entry: EIGEN_RESIDUALS.into(),
+                field: format!("problems[{q}].omega2"),
+                expected: bound,
+                found: n as u64,
+                rule: format!("{what}{relation}"),
+            });
+        }
+        finite(EIGEN_RESIDUALS, &format!("problems[{q}].omega2"), &p.omega2)?;
+        finite(EIGEN_RESIDUALS, &field, &p.residual)?;
+        if let Some((j, r)) = p.residual.iter().enumerate().find(|(_, r)| **r < 0.0) {
+            return Err(inconsistent(
+                EIGEN_RESIDUALS,
+                format!("{field}[{j}] is negative ({r})"),
+            ));
+        }
+        if let Some(i) = &p.inertia {
+            let field = format!("problems[{q}].inertia.shift");
+            finite(EIGEN_RESIDUALS, &field, [&i.shift])?;
+            let below = p.omega2.iter().filter(|&&l| l < i.shift).count() as u64;
+            if i.below < below {
+                return Err(inconsistent(
+                    EIGEN_RESIDUALS,
+                    format!(
+                        "problems[{q}]: {below} stored eigenvalues lie below the shift {:e}, but \
+                         the inertia count says {}",
+                        i.shift, i.below
+                    ),
+                ));
+            }
+        }
     }
     Ok(())
 }

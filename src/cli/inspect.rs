@@ -109,6 +109,42 @@ pub struct Summary {
     /// 1.7); absent when the file has none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub geometric_stiffness: Option<GeometricSummary>,
+    /// The eigenproblems behind the basis with each mode's residual (`eigen_residuals.bin`,
+    /// format 1.9); absent when the file has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub eigen_residuals: Option<Vec<EigenSummary>>,
+}
+
+/// One problem of `eigen_residuals.bin` in the summary (SPEC §9): as decoded, with its largest
+/// residual of a flexible mode.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EigenSummary {
+    /// Which problem.
+    pub kind: flexbody_reader::EigenProblemKind,
+    /// Which solver.
+    pub solver: flexbody_reader::EigenSolverKind,
+    /// s (the rigid threshold is 10⁻⁸ s).
+    pub scale: f64,
+    /// ω² per mode.
+    pub omega2: Vec<f64>,
+    /// Relative residual per mode (SPEC §5.17).
+    pub residual: Vec<f64>,
+    /// Sylvester's count, when the band was verified.
+    pub inertia: Option<flexbody_reader::InertiaCount>,
+    /// The largest residual of a mode with ω² > 10⁻⁸ s; `null` when there is none.
+    pub largest_flexible_residual: Option<f64>,
+}
+
+fn eigen_summary(p: &flexbody_reader::EigenProblem) -> EigenSummary {
+    EigenSummary {
+        kind: p.kind,
+        solver: p.solver,
+        scale: p.scale,
+        omega2: p.omega2.clone(),
+        residual: p.residual.clone(),
+        inertia: p.inertia,
+        largest_flexible_residual: p.largest_flexible_residual().map(|(_, r)| r),
+    }
 }
 
 /// `geometric_stiffness.bin` in the summary (SPEC §9): the support and each load by name.
@@ -247,6 +283,8 @@ pub fn summarize(body: &ReducedBody, manifest: &Manifest) -> Summary {
         interfaces: body.interfaces.clone(),
         modal_loads: body.modal_loads.clone(),
         geometric_stiffness: body.geometric_stiffness.as_ref().map(geometric_summary),
+        eigen_residuals: (body.eigen_residuals.as_ref())
+            .map(|e| e.problems.iter().map(eigen_summary).collect()),
     }
 }
 
@@ -359,7 +397,41 @@ pub fn render_text(s: &Summary) -> String {
     if let Some(g) = &s.geometric_stiffness {
         render_geometric(&mut o, g, s.counts.modes);
     }
+    for p in s.eigen_residuals.iter().flatten() {
+        render_eigen(&mut o, p);
+    }
     o
+}
+
+/// One eigenproblem of the text summary: its solver, mode count, largest residual of a
+/// flexible mode and of a rigid one, and the inertia count.
+fn render_eigen(o: &mut String, p: &EigenSummary) {
+    use std::fmt::Write;
+    let rigid = (p.omega2.iter().zip(&p.residual))
+        .filter(|(&l, _)| l <= 1e-8 * p.scale)
+        .map(|(_, &r)| r)
+        .fold(None, |a: Option<f64>, r| Some(a.map_or(r, |a| a.max(r))));
+    let _ = writeln!(
+        o,
+        "eigenproblem {:?} ({:?}): {} modes, largest relative residual |K phi - w2 M phi| / |K \
+         phi| {}{}",
+        p.kind,
+        p.solver,
+        p.omega2.len(),
+        p.largest_flexible_residual
+            .map_or("(no flexible mode)".into(), |r| format!("{r:.3e}")),
+        rigid.map_or(String::new(), |r| format!(
+            "; rigid modes {r:.3e} (against 1e-8 s |M phi|)"
+        ))
+    );
+    if let Some(i) = &p.inertia {
+        let _ = writeln!(
+            o,
+            "             Sylvester inertia count: {} eigenvalues below {:.6e} Hz",
+            i.below,
+            crate::solve::hz(i.shift)
+        );
+    }
 }
 
 /// The geometric-stiffness block of the text summary: per load its largest diagonal term

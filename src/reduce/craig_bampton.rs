@@ -36,6 +36,8 @@ pub struct CbBasis {
     pub timings: Vec<(&'static str, f64)>,
     /// How the fixed-interface eigenproblem was solved (vectors, steps, factor size, times).
     pub eigen: crate::solve::EigenInfo,
+    /// Its eigenpairs' residuals on K_ii, M_ii (`None`: no fixed-interface mode was asked).
+    pub record: Option<super::EigenRecord>,
     /// Choices made on the way (e.g. the precision of the factorization), for the report.
     pub notes: Vec<String>,
 }
@@ -170,6 +172,8 @@ fn basis_of_blocks(
     }
     drop(llt);
     let eigen = fixed.info.clone();
+    let record = (modes != ModeCount::Count(0))
+        .then(|| super::EigenRecord::of(super::EigenProblem::FixedInterface, kii, &mii, &fixed));
     let (t, labels) = basis_matrix(n, interface, inner, &psi, &fixed.vectors);
     let basis = CbBasis {
         t,
@@ -181,6 +185,7 @@ fn basis_of_blocks(
             ("eigen", t_eigen),
         ],
         eigen,
+        record,
         notes,
     };
     Ok((basis, mii))
@@ -480,6 +485,13 @@ pub fn craig_bampton_slepc(
         sol.eigenvalues.truncate(keep);
         sol.vectors = sol.vectors.as_ref().subcols(0, keep).to_owned();
     }
+    let record = super::EigenRecord::from_pairs(
+        super::EigenProblem::FixedInterface,
+        crate::solve::Solver::Slepc,
+        (&kii, &mii),
+        (sol.vectors.as_ref(), &sol.eigenvalues),
+        eigen.band_proof,
+    );
     let (t, labels) = basis_matrix(n, interface, &inner, &sol.x, &sol.vectors);
     let basis = CbBasis {
         t,
@@ -487,6 +499,7 @@ pub fn craig_bampton_slepc(
         fixed_omega2: sol.eigenvalues,
         timings: vec![("slepc engine (write, MPI run, read back)", sol.seconds)],
         eigen,
+        record: Some(record),
         notes: vec![],
     };
     let mut set = craig_bampton_from_basis(k, m, interface, modes, basis)?;
@@ -517,6 +530,7 @@ fn craig_bampton_from_basis(
     let mut diagnostics = o.diagnostics;
     diagnostics.basis_top_omega2 = basis.fixed_omega2.last().copied();
     diagnostics.fixed_interface_omega2 = basis.fixed_omega2.clone();
+    diagnostics.eigenproblem = basis.record.clone();
     for (name, s) in &basis.timings {
         diagnostics.notes.push(format!("time {name}: {s:.3} s"));
     }

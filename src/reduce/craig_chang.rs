@@ -137,6 +137,12 @@ pub fn craig_chang(
     diagnostics
         .notes
         .extend(super::band_note(&xn.info, "free-free"));
+    diagnostics.eigenproblem = Some(super::EigenRecord::of(
+        super::EigenProblem::FreeFree,
+        k,
+        m,
+        &xn,
+    ));
     diagnostics.notes.push(format!(
         "statically determinate support (automatic): dofs {:?}",
         ir.support

@@ -59,8 +59,10 @@ fn finish_with_top(
     method: Method,
     note: String,
     (top, basis_normal): (Option<f64>, usize),
+    eigenproblem: super::EigenRecord,
 ) -> ModeSet {
     let mut diagnostics = o.diagnostics;
+    diagnostics.eigenproblem = Some(eigenproblem);
     diagnostics.notes.push(note);
     diagnostics.basis_top_omega2 = top;
     diagnostics.basis_normal_modes = Some(basis_normal);
@@ -140,6 +142,7 @@ pub fn dietz(
     let attachment = (0..fa.ncols()).map(|j| load_dof(fa, j)).collect();
     let top = xn.eigenvalues.last().copied();
     let basis_normal = xn.eigenvalues.len() - nr;
+    let record = super::EigenRecord::of(super::EigenProblem::FreeFree, k, m, &xn);
     Ok(finish_with_top(
         o,
         Method::Dietz {
@@ -148,6 +151,7 @@ pub fn dietz(
         },
         note,
         (top, basis_normal),
+        record,
     ))
 }
 
@@ -193,6 +197,8 @@ pub fn dietz_modified(
         .last()
         .copied();
     let basis_normal = modes.min(xe.eigenvalues.len()).saturating_sub(nr);
+    // every extended mode reaches the basis (through Xf)
+    let record = super::EigenRecord::of(super::EigenProblem::FreeFree, k, m, &xe);
     Ok(finish_with_top(
         o,
         Method::DietzModified {
@@ -202,5 +208,6 @@ pub fn dietz_modified(
         },
         note,
         (top, basis_normal),
+        record,
     ))
 }

@@ -8,6 +8,7 @@
 pub mod craig_bampton;
 pub mod craig_chang;
 pub mod dietz;
+pub mod eigen_record;
 pub mod massless;
 pub mod normal;
 pub mod orthonormalize;
@@ -20,6 +21,7 @@ use crate::solve::SolveError;
 use faer::Mat;
 use thiserror::Error;
 
+pub use eigen_record::{EigenProblem, EigenRecord};
 pub use orthonormalize::{orthonormalize, Orthonormalized, DEPENDENCY_TOL};
 
 /// The build-report lines of an eigensolution: the solver's own line (`--engine slepc` with
@@ -187,6 +189,9 @@ pub struct Diagnostics {
     /// Residual vectors (static load responses) added to the basis, dependent ones included
     /// (they are also in `removed`), see [`residual`].
     pub residual_vectors: usize,
+    /// The method's eigenproblem as its basis took it: eigenvalues, residuals, solver
+    /// ([`EigenRecord`]); `None` when no eigenproblem was solved.
+    pub eigenproblem: Option<EigenRecord>,
 }
 
 /// w_cj = N_cj·√(T_cᵀMT_c): mode j's weight on basis vector T_c (SPEC.md §5.5), one row per

@@ -70,6 +70,12 @@ pub fn normal_modes(
     diagnostics
         .notes
         .extend(super::band_note(&s.info, "normal"));
+    diagnostics.eigenproblem = Some(super::EigenRecord::of(
+        super::EigenProblem::NormalModes,
+        kr,
+        mr,
+        &s,
+    ));
     let set = ModeSet {
         phi,
         omega2: s.eigenvalues,

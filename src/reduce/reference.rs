@@ -52,6 +52,7 @@ pub fn improved_cb_method1(
     let labels: Vec<ModeLabel> = keep.iter().map(|&c| basis.labels[c].clone()).collect();
     let mut o = orthonormalize_held(k, m, &t, &labels, reference)?;
     o.diagnostics.basis_top_omega2 = basis.fixed_omega2.last().copied();
+    o.diagnostics.eigenproblem = basis.record.clone();
     let set = ModeSet {
         phi: o.phi,
         omega2: o.omega2,
@@ -122,6 +123,7 @@ pub fn improved_cb_method2(
     diagnostics.basis_top_omega2 = set.diagnostics.basis_top_omega2;
     diagnostics.label_shares = set.diagnostics.label_shares;
     diagnostics.origin = set.diagnostics.origin;
+    diagnostics.eigenproblem = set.diagnostics.eigenproblem;
     let out = ModeSet {
         phi,
         omega2: set.omega2,

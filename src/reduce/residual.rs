@@ -254,6 +254,7 @@ pub fn add_residual_vectors(
     diagnostics.held_massless = old.held_massless;
     diagnostics.basis_top_omega2 = old.basis_top_omega2;
     diagnostics.basis_normal_modes = old.basis_normal_modes;
+    diagnostics.eigenproblem = old.eigenproblem;
     diagnostics.notes = old.notes;
     diagnostics.residual_vectors = old.residual_vectors + nonzero.len();
     let mut note = format!(

@@ -96,7 +96,10 @@ pub fn solve_count_with(
                 residuals: vec![0.0; vals.len()],
                 eigenvalues: vals,
                 vectors: vecs,
-                info: Default::default(),
+                info: crate::solve::EigenInfo {
+                    solver: crate::solve::Solver::Dense,
+                    ..Default::default()
+                },
             })
         }
         ModeCount::BelowHz(f) => {
@@ -177,6 +180,12 @@ pub fn by_count(set: ModeSet, count: usize) -> ModeSet {
 }
 
 pub(crate) fn pick(mut set: ModeSet, keep: &[usize], sel: Selection) -> ModeSet {
+    // normal modes: each mode is its own eigenvector, kept or not with it
+    if let Some(r) = set.diagnostics.eigenproblem.as_mut() {
+        if set.method == super::Method::NormalModes && r.omega2.len() == set.omega2.len() {
+            *r = r.pick(keep);
+        }
+    }
     let phi = faer::Mat::from_fn(set.phi.nrows(), keep.len(), |i, j| set.phi[(i, keep[j])]);
     set.phi = phi;
     set.omega2 = keep.iter().map(|&j| set.omega2[j]).collect();

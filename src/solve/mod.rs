@@ -16,6 +16,7 @@ pub mod inertia_relief;
 pub mod memory;
 pub mod ordering;
 pub mod progress;
+pub mod residual;
 mod rows;
 pub mod slepc;
 pub mod sparse_ops;
@@ -276,9 +277,25 @@ impl Default for EigenSpec {
     }
 }
 
+/// Which eigensolver produced a solution (recorded per eigenproblem in the file, format 1.9).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Solver {
+    /// The block shift-invert iteration ([`eigen`]).
+    #[default]
+    Lanczos,
+    /// AMLS ([`amls`]).
+    Amls,
+    /// A dense eigen-decomposition ([`dense`]).
+    Dense,
+    /// PETSc/SLEPc under MPI ([`slepc`]).
+    Slepc,
+}
+
 /// How a solution was obtained and how good it is.
 #[derive(Clone, Debug, Default)]
 pub struct EigenInfo {
+    /// Which solver produced the eigenpairs.
+    pub solver: Solver,
     /// The shift σ of the factorization.
     pub shift: f64,
     /// Whether the dense path was used.
@@ -505,6 +522,7 @@ pub fn lowest_modes(
         let md = sparse_ops::to_dense(m.as_ref());
         let (_, mut vecs) = dense::lowest(kd.as_ref(), md.as_ref(), count, spec.shift)?;
         let info = EigenInfo {
+            solver: Solver::Dense,
             dense: true,
             seconds_eigen: t.elapsed().as_secs_f64(),
             ..Default::default()

@@ -289,6 +289,7 @@ pub fn lowest_modes(
     };
     let sol = eigenpairs(k.as_ref(), m.as_ref(), request, engine)?;
     let info = EigenInfo {
+        solver: super::Solver::Slepc,
         shift: request.shift,
         seconds_eigen: sol.seconds,
         engine_report: Some(format!(

@@ -2,6 +2,7 @@
 //! error a reader must give. Entries are re-encoded after the mutation, and the manifest is
 //! rebuilt from the mutated bytes unless the point is a stale manifest.
 mod container;
+mod eigen;
 mod geometric;
 mod json;
 mod round3;
@@ -593,6 +594,8 @@ pub fn cases(base: &ReducedBody) -> Vec<Case> {
     json::cases(base, &mut add);
     rules::cases(base, &mut add);
     geometric::cases(&mut add);
+    // Issue 46: format 1.9.
+    eigen::cases(&mut add);
     // Issue 49, round 3.
     round3::cases(base, &mut add);
     out

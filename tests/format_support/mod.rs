@@ -5,9 +5,11 @@
 #![allow(dead_code)]
 
 pub mod broken;
+mod eigen;
 mod geometric;
 mod residual;
 
+pub use eigen::body_3node_eigen_residuals;
 pub use geometric::{body_3node_geometric_stiffness, body_3node_geometric_stiffness_1_7};
 pub use residual::body_3node_residual_vectors;
 
@@ -348,6 +350,7 @@ pub fn body_3node() -> ReducedBody {
         interfaces: None,
         modal_loads: None,
         geometric_stiffness: None,
+        eigen_residuals: None,
     }
 }
 
@@ -542,6 +545,7 @@ pub fn body_20node() -> ReducedBody {
         interfaces: None,
         modal_loads: None,
         geometric_stiffness: None,
+        eigen_residuals: None,
     }
 }
 
@@ -763,6 +767,10 @@ pub fn golden() -> Vec<(&'static str, ReducedBody)> {
         (
             "three_node_chain_geometric_stiffness",
             body_3node_geometric_stiffness(),
+        ),
+        (
+            "three_node_chain_eigen_residuals",
+            body_3node_eigen_residuals(),
         ),
     ]
 }

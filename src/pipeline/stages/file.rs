@@ -106,6 +106,7 @@ pub fn assemble_file(
         }),
         modal_loads: None,
         geometric_stiffness: None,
+        eigen_residuals: eigen_residuals(set),
     };
     body.modal_loads = modal_loads(&basis.scene, set);
     body.geometric_stiffness = basis.geometric_stiffness.clone();
@@ -131,6 +132,36 @@ pub fn assemble_file(
     }
     body.version = file::version_for(&body);
     Ok(body)
+}
+
+/// `eigen_residuals.bin` (format 1.9, SPEC §5.17): the method's eigenproblem as its basis took
+/// it; `None` when none was solved (a Craig–Bampton set of constraint modes only).
+fn eigen_residuals(set: &ModeSet) -> Option<file::EigenResiduals> {
+    use crate::reduce::EigenProblem;
+    use crate::solve::Solver;
+    let r = set.diagnostics.eigenproblem.as_ref()?;
+    Some(file::EigenResiduals {
+        problems: vec![file::EigenProblem {
+            kind: match r.problem {
+                EigenProblem::NormalModes => file::EigenProblemKind::NormalModes,
+                EigenProblem::FixedInterface => file::EigenProblemKind::FixedInterface,
+                EigenProblem::FreeFree => file::EigenProblemKind::FreeFree,
+            },
+            solver: match r.solver {
+                Solver::Lanczos => file::EigenSolverKind::Lanczos,
+                Solver::Amls => file::EigenSolverKind::Amls,
+                Solver::Dense => file::EigenSolverKind::Dense,
+                Solver::Slepc => file::EigenSolverKind::Slepc,
+            },
+            scale: r.scale,
+            omega2: r.omega2.clone(),
+            residual: r.residuals.clone(),
+            inertia: r.inertia.map(|(below, shift)| file::InertiaCount {
+                shift,
+                below: below as u64,
+            }),
+        }],
+    })
 }
 
 /// Node index → its position among the stored nodes (`u32::MAX`: not stored).

@@ -246,6 +246,7 @@ pub fn amls(
         ))
     );
     let info = EigenInfo {
+        solver: super::Solver::Amls,
         shift: sigma,
         orthonormality: ritz.orthonormality,
         stiffness_diag: ritz.stiffness_diag,
