@@ -522,8 +522,14 @@ fn eigen_residuals(e: &crate::types::EigenResiduals, body: &ReducedBody) -> Resu
         )?;
         let (fits, relation) = match own {
             EigenProblemKind::FreeFree => (n as u64 >= bound, " at least"),
-            _ if residual_vectors => (n as u64 <= bound, " at most"),
-            _ => (n as u64 == bound, ""),
+            EigenProblemKind::NormalModes | EigenProblemKind::FixedInterface
+                if residual_vectors =>
+            {
+                (n as u64 <= bound, " at most")
+            }
+            EigenProblemKind::NormalModes | EigenProblemKind::FixedInterface => {
+                (n as u64 == bound, "")
+            }
         };
         if !fits {
             return Err(ReadError::CountMismatch {
