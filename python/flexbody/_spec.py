@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.7), written from SPEC.md alone.
+"""Reference reader for flexbody reduced-body files, format v1 (1.0 … 1.9), written from SPEC.md alone.
 
 Standard library only (zlib, json, hashlib, struct; the zip container is read by SPEC §7.1's
 procedure here, not by zipfile). Usage:
