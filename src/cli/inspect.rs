@@ -408,7 +408,7 @@ pub fn render_text(s: &Summary) -> String {
 fn render_eigen(o: &mut String, p: &EigenSummary) {
     use std::fmt::Write;
     let rigid = (p.omega2.iter().zip(&p.residual))
-        .filter(|(&l, _)| l <= 1e-8 * p.scale)
+        .filter(|(&l, _)| !crate::solve::is_flexible(l, p.scale))
         .map(|(_, &r)| r)
         .fold(None, |a: Option<f64>, r| Some(a.map_or(r, |a| a.max(r))));
     let _ = writeln!(

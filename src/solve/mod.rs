@@ -403,10 +403,10 @@ pub(crate) fn count_shift_above(top: f64, scale: f64) -> f64 {
     }
 }
 
-/// Whether eigenvalue `lambda` is a flexible mode's: above 1e-8 of the model's
-/// stiffness-over-mass `scale` ([`trace_ratio`]); at or below it the mode is rigid.
+/// Whether eigenvalue `lambda` is a flexible mode's: above [`residual::RIGID_FRACTION`] (1e-8)
+/// of the model's stiffness-over-mass `scale` ([`trace_ratio`]); at or below it the mode is rigid.
 pub fn is_flexible(lambda: f64, scale: f64) -> bool {
-    lambda > 1e-8 * scale
+    lambda > residual::RIGID_FRACTION * scale
 }
 
 /// positive K_ii and M_ii (tr K / tr M when there are none). Used for the automatic shift and
