@@ -8,66 +8,19 @@
 //! - one SHELL181 on a `SECTYPE,SHELL` section, clamped, a force at its free edge: K u = F + R;
 //! - layers of one material are one homogeneous shell;
 //! - what is not formed is refused by its line naming the KEYOPT, shape or section line.
+mod ansys_support;
 mod common;
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use common::{exe, scratch};
-use flexbody::import::matrix_market::read_matrix;
-
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/ansys")
-        .join(name)
-}
-
-/// `flexbody build PATH --units mm-t-s --method normal --modes N EXTRA… -o …`: the output.
-fn build(path: &Path, modes: usize, extra: &[&str]) -> std::process::Output {
-    exe()
-        .arg("build")
-        .arg(path)
-        .args(["--units", "mm-t-s", "--method", "normal", "--modes"])
-        .arg(modes.to_string())
-        .args(extra)
-        .arg("-o")
-        .arg(path.with_extension("flexbody"))
-        .output()
-        .unwrap()
-}
-
-/// `(node id, component 0…5)` of each equation of `dofs.txt`.
-fn read_dofs(path: &Path) -> Vec<(u64, usize)> {
-    let text = std::fs::read_to_string(path).unwrap();
-    (text.lines())
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| {
-            let f: Vec<u64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
-            (f[1], f[2] as usize - 1)
-        })
-        .collect()
-}
-
-/// y = A x for the symmetric matrix of a Matrix Market file.
-fn multiply(path: &Path, x: &[f64]) -> Vec<f64> {
-    let a = read_matrix(path).unwrap();
-    let mut y = vec![0.0; a.n];
-    for (r, c, v) in a.full() {
-        y[r] += v * x[c];
-    }
-    y
-}
+use ansys_support::{build, data, multiply, node_table, read_dofs};
+use common::scratch;
 
 /// A solution csv of make_shell181.py: node id → [x y z, u (6), ANSYS's K u (6), force and
 /// moment scale].
 fn read_solution(name: &str) -> HashMap<u64, [f64; 17]> {
-    let text = std::fs::read_to_string(data(name)).unwrap();
-    (text.lines().skip(1))
-        .map(|l| {
-            let f: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
-            (f[0] as u64, std::array::from_fn(|i| f[i + 1]))
-        })
-        .collect()
+    node_table(&std::fs::read_to_string(data(name)).unwrap(), 1)
 }
 
 /// Builds the archive `name` with `--write-matrices` and returns max over the free dofs of
@@ -77,7 +30,12 @@ fn residual_against_ansys(name: &str, solution: &str, modes: usize) -> (f64, usi
     let cdb = dir.join(name);
     std::fs::copy(data(name), &cdb).unwrap();
     let mats = dir.join("mats");
-    let o = build(&cdb, modes, &["--write-matrices", mats.to_str().unwrap()]);
+    let o = build(
+        &cdb,
+        "mm-t-s",
+        modes,
+        &["--write-matrices", mats.to_str().unwrap()],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let dofs = read_dofs(&mats.join("dofs.txt"));
     let solution = read_solution(solution);
@@ -125,7 +83,7 @@ fn shell181_on_a_shell_section_equals_ansys_cantilever() {
 fn frequencies(dir: &Path, name: &str, text: &str) -> Vec<f64> {
     let cdb = dir.join(name);
     std::fs::write(&cdb, text).unwrap();
-    let o = build(&cdb, 4, &[]);
+    let o = build(&cdb, "mm-t-s", 4, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     flexbody_reader::read(cdb.with_extension("flexbody"))
         .unwrap()
@@ -203,7 +161,7 @@ fn unformed_shell181_options_are_refused_by_line() {
     let dir = scratch("ansys-shell-refusals");
     let cdb = dir.join("refused.cdb");
     std::fs::write(&cdb, &s).unwrap();
-    let o = build(&cdb, 4, &[]);
+    let o = build(&cdb, "mm-t-s", 4, &[]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     let line_of = |needle: &str| s.lines().position(|l| l.contains(needle)).unwrap() + 1;

@@ -14,62 +14,21 @@
 //!   ANSYS's own element forces (ansys-mapdl-reader's `cyclic_v182.rst`, converted by
 //!   `tests/data/ansys/make_cyclic_bbar.py`): K_e u_e − ω² M_e r_e + ENF_e = 0 element by element;
 //! - the pyramid and SOLID185's other KEYOPT(2) refused by line.
+mod ansys_support;
 mod common;
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use common::{assert_frequencies, ccx_frequencies, exe, scratch};
-use flexbody::import::matrix_market::read_matrix;
-
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/ansys")
-        .join(name)
-}
-
-/// `flexbody build PATH --units si --method normal --modes N EXTRA… -o …`: the output.
-fn build(path: &Path, modes: usize, extra: &[&str]) -> std::process::Output {
-    exe()
-        .arg("build")
-        .arg(path)
-        .args(["--units", "si", "--method", "normal", "--modes"])
-        .arg(modes.to_string())
-        .args(extra)
-        .arg("-o")
-        .arg(path.with_extension("flexbody"))
-        .output()
-        .unwrap()
-}
+use ansys_support::{build, data, multiply, node_table, read_dofs};
+use common::{assert_frequencies, ccx_frequencies, scratch};
 
 /// The frequencies of a normal-modes build of `path` (it must succeed).
 fn frequencies(path: &Path, modes: usize) -> Vec<f64> {
-    let o = build(path, modes, &[]);
+    let o = build(path, "si", modes, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let body = flexbody_reader::read(path.with_extension("flexbody")).unwrap();
     body.modes.frequency_hz
-}
-
-/// `(node id, [dof …])` of `dofs.txt` (equation k → node id, component 1…6).
-fn read_dofs(path: &Path) -> Vec<(u64, usize)> {
-    let text = std::fs::read_to_string(path).unwrap();
-    (text.lines())
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| {
-            let f: Vec<u64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
-            (f[1], f[2] as usize - 1)
-        })
-        .collect()
-}
-
-/// y = A x for the symmetric matrix of a Matrix Market file.
-fn multiply(path: &Path, x: &[f64]) -> Vec<f64> {
-    let a = read_matrix(path).unwrap();
-    let mut y = vec![0.0; a.n];
-    for (r, c, v) in a.full() {
-        y[r] += v * x[c];
-    }
-    y
 }
 
 /// SOLID185 KEYOPT(2)=3 against ANSYS's static solution of a spinning ring sector: with K and M
@@ -86,18 +45,13 @@ fn solid185_keyopt3_equals_ansys_static_solution() {
     let cdb = dir.join("sector.cdb");
     std::fs::copy(data("cyc_stress185.cdb"), &cdb).unwrap();
     let mats = dir.join("mats");
-    let o = build(&cdb, 8, &["--write-matrices", mats.to_str().unwrap()]);
+    let o = build(&cdb, "si", 8, &["--write-matrices", mats.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let dofs = read_dofs(&mats.join("dofs.txt"));
     assert_eq!(dofs.len(), 150 * 3, "every node's three translations");
     // node id → (x, u, F_reaction), global
     let text = std::fs::read_to_string(data("cyc_stress185_solution.csv")).unwrap();
-    let solution: HashMap<u64, [f64; 9]> = (text.lines().skip(1))
-        .map(|l| {
-            let f: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
-            (f[0] as u64, std::array::from_fn(|i| f[i + 1]))
-        })
-        .collect();
+    let solution: HashMap<u64, [f64; 9]> = node_table(&text, 1);
     assert_eq!(solution.len(), 150);
     let u: Vec<f64> = dofs.iter().map(|&(n, c)| solution[&n][3 + c]).collect();
     let r: Vec<f64> = (dofs.iter())
@@ -134,7 +88,12 @@ fn solid185_bbar_equals_ansys_element_forces() {
     let cdb = dir.join("cyclic.cdb");
     std::fs::copy(data("cyclic_bbar185.cdb"), &cdb).unwrap();
     let mats = dir.join("mats");
-    let o = build(&cdb, 10, &["--write-matrices", mats.to_str().unwrap()]);
+    let o = build(
+        &cdb,
+        "si",
+        10,
+        &["--write-matrices", mats.to_str().unwrap()],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let dofs = read_dofs(&mats.join("dofs.txt"));
     assert_eq!(dofs.len(), 162 * 3, "every node's three translations");
@@ -144,12 +103,7 @@ fn solid185_bbar_equals_ansys_element_forces() {
         .parse()
         .unwrap();
     // node id → (x, u, Σ_e ENF_e), global
-    let solution: HashMap<u64, [f64; 9]> = (text.lines().skip(2))
-        .map(|l| {
-            let f: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
-            (f[0] as u64, std::array::from_fn(|i| f[i + 1]))
-        })
-        .collect();
+    let solution: HashMap<u64, [f64; 9]> = node_table(&text, 2);
     assert_eq!(solution.len(), 162);
     let u: Vec<f64> = dofs.iter().map(|&(n, c)| solution[&n][3 + c]).collect();
     let r: Vec<f64> = (dofs.iter())
@@ -391,7 +345,7 @@ fn pyramids_and_other_solid185_forms_are_refused_by_line() {
     let dir = scratch("ansys-solid-refusals");
     let cdb = dir.join("refused.cdb");
     std::fs::write(&cdb, &s).unwrap();
-    let o = build(&cdb, 4, &[]);
+    let o = build(&cdb, "si", 4, &[]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     let line_of = |needle: &str| s.lines().position(|l| l.contains(needle)).unwrap() + 1;

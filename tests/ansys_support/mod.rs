@@ -4,11 +4,13 @@
 //! modes build through the CLI.
 #![allow(dead_code)]
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 
 use crate::common::{exe, skipped_install};
 use flexbody::import::ansys::full;
+use flexbody::import::matrix_market::read_matrix;
 
 pub const INSTALL: &str = "pip install ansys-mapdl-reader";
 
@@ -118,23 +120,64 @@ pub fn against_package(ours: &[f64]) -> f64 {
 
 /// `flexbody build FILE --units si --method normal --modes N EXTRA… -o OUT` → frequencies.
 pub fn build_modes(path: &Path, modes: usize, extra: &[&str]) -> Vec<f64> {
-    let out = path.with_extension("flexbody");
-    let o = exe()
+    let o = build(path, "si", modes, extra);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    flexbody_reader::read(path.with_extension("flexbody"))
+        .unwrap()
+        .modes
+        .frequency_hz
+}
+
+/// `flexbody build FILE --units UNITS --method normal --modes N EXTRA… -o FILE.flexbody`: the
+/// process output.
+pub fn build(path: &Path, units: &str, modes: usize, extra: &[&str]) -> Output {
+    exe()
         .arg("build")
         .arg(path)
-        .args([
-            "--units",
-            "si",
-            "--method",
-            "normal",
-            "--modes",
-            &modes.to_string(),
-        ])
+        .args(["--units", units, "--method", "normal", "--modes"])
+        .arg(modes.to_string())
         .args(extra)
         .arg("-o")
-        .arg(&out)
+        .arg(path.with_extension("flexbody"))
         .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    flexbody_reader::read(&out).unwrap().modes.frequency_hz
+        .unwrap()
+}
+
+/// A file of the committed ANSYS data (`tests/data/ansys/`, MIT, its LICENSE beside it).
+pub fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/ansys")
+        .join(name)
+}
+
+/// `(node id, component 0…5)` of each equation of `build --write-matrices`'s `dofs.txt`.
+pub fn read_dofs(path: &Path) -> Vec<(u64, usize)> {
+    let text = std::fs::read_to_string(path).unwrap();
+    (text.lines())
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            let f: Vec<u64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+            (f[1], f[2] as usize - 1)
+        })
+        .collect()
+}
+
+/// y = A x for the symmetric matrix of a Matrix Market file.
+pub fn multiply(path: &Path, x: &[f64]) -> Vec<f64> {
+    let a = read_matrix(path).unwrap();
+    let mut y = vec![0.0; a.n];
+    for (r, c, v) in a.full() {
+        y[r] += v * x[c];
+    }
+    y
+}
+
+/// The rows of a solution csv after its `skip` header lines: node id → its N numbers.
+pub fn node_table<const N: usize>(text: &str, skip: usize) -> HashMap<u64, [f64; N]> {
+    (text.lines().skip(skip))
+        .map(|l| {
+            let f: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
+            (f[0] as u64, std::array::from_fn(|i| f[i + 1]))
+        })
+        .collect()
 }
