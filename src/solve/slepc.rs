@@ -267,7 +267,7 @@ pub fn eigenpairs(
 }
 
 /// [`crate::solve::lowest_modes`] on the engine: the eigenpairs of `spec` (count, band, shift —
-/// automatic: σ = −10⁻⁶·tr K/tr M as ours, so that free bodies factor) from SLEPc, then our
+/// automatic: [`super::automatic_shift`], as ours, so that free bodies factor) from SLEPc, then our
 /// Rayleigh–Ritz step and checks ([`super::finish`]); a band (`spec.upper`) is always proven
 /// complete by Sylvester's inertia count ([`super::verify_band`]): a missed mode is an error.
 pub fn lowest_modes(
