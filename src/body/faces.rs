@@ -62,7 +62,10 @@ pub fn graphics_faces(model: &Model) -> Vec<GraphicsFace> {
     let mut out = Vec::new();
     for e in &model.elements {
         match e.kind {
-            ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2 => out.push(GraphicsFace {
+            ElementKind::Beam2
+            | ElementKind::Bar2
+            | ElementKind::Beam2Linear
+            | ElementKind::Rod2 => out.push(GraphicsFace {
                 nodes: e.nodes.clone(),
             }),
             ElementKind::Tri3 | ElementKind::Tri6 | ElementKind::Quad4 | ElementKind::Quad8 => {

@@ -60,7 +60,7 @@ const SOLUTION: &str = "a solution control of a nonlinear or transient analysis:
                         the body's normal modes";
 const ROTATION: &str = "a rotating reference frame (spin softening, gyroscopic terms): not \
                         formed here (when nonzero)";
-const SECTION: &str = "a section's own mesh (SECTYPE,,BEAM,MESH and other meshed beam sections): beam sections are not read (BEAM188/189 are refused)";
+const SECTION: &str = "a section's own mesh (SECTYPE,,BEAM,MESH and other meshed beam sections): not read (ANSYS integrates over it; ASEC, RECT, CSOLID and CTUBE beam sections are read)";
 const SURFACE_LOAD: &str = "surface and body loads on elements are not read (F and ACEL are)";
 
 /// Every command, sorted by name (the name as the archive writes it, upper case).
@@ -127,11 +127,11 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
     ("REAL", C::Mesh, N(ATTRIBUTE)),
     ("RLBLOCK", C::Material, H("real constant sets (MASS21's masses, COMBIN14's stiffness, SHELL181's legacy thickness)")),
     ("SECBLOCK", C::Material, R(SECTION)),
-    ("SECCONTROL", C::Material, H("a LINK section's added mass per length (LINK180); a SHELL section's added mass per area (user transverse shear stiffnesses and a drill stiffness factor other than 1 refused)")),
-    ("SECDATA", C::Material, H("a LINK section's area (LINK180); a SHELL section's layer (thickness, material; 3, 5, 7 or 9 points; layers of one material are one homogeneous shell, of several materials refused); the data of other sections is not read (their SECTYPE is refused)")),
+    ("SECCONTROL", C::Material, H("a LINK section's added mass per length (LINK180); a SHELL section's added mass per area (user transverse shear stiffnesses and a drill stiffness factor other than 1 refused); a BEAM section's added mass per length (user transverse shear stiffnesses TXZ, TXY refused)")),
+    ("SECDATA", C::Material, H("a LINK section's area (LINK180); a SHELL section's layer (thickness, material; 3, 5, 7 or 9 points; layers of one material are one homogeneous shell, of several materials refused); a BEAM section's data (ASEC: A, Iyy, Iyz, Izz, Iw, J, CGy, CGz, SHy, SHz — Iyz and the centroid and shear centre off the node refused; RECT: B, H; CSOLID: R; CTUBE: Ri, Ro); the data of other sections is not read (their SECTYPE is refused)")),
     ("SECNUM", C::Mesh, N(ATTRIBUTE)),
-    ("SECOFFSET", C::Material, H("a SHELL section's offset: MID (the default) read; TOP, BOT and USER refused (the offset shell not formed here)")),
-    ("SECTYPE", C::Material, H("LINK sections (LINK180's area and added mass), SHELL sections (SHELL181's thickness, material and added mass); beam and other sections refused by line (those elements are not formed here)")),
+    ("SECOFFSET", C::Material, H("a SHELL section's offset: MID (the default) read; TOP, BOT and USER refused (the offset shell not formed here); a BEAM section's: CENT (the default) read, SHRC and ORIGIN for CSOLID and CTUBE (the same point), others refused")),
+    ("SECTYPE", C::Material, H("LINK sections (LINK180's area and added mass), SHELL sections (SHELL181's thickness, material and added mass), BEAM sections of subtype ASEC, RECT, CSOLID, CTUBE (BEAM188's); other beam subtypes, tapered (TAPER) and other sections refused by line")),
     ("SF", C::Load, R(SURFACE_LOAD)),
     ("SFE", C::Load, R(SURFACE_LOAD)),
     ("TIME", C::Analysis, N(SOLUTION)),
@@ -164,7 +164,7 @@ pub(crate) const ELEMENT_TYPES: &[(u32, &str, Disposition)] = &[
     (185, "SOLID185", H("8-node brick: KEYOPT(2)=0 (the default) the B-bar method — each of the 2×2×2 points' volumetric strain replaced by the element's mean dilatation (Hughes 1980) — and, collapsed into ANSYS's wedge (K = L, O = P), the brick as written fully integrated, as ANSYS's element forces show; KEYOPT(2)=3 (simplified enhanced strain) Wilson's incompatible modes with Taylor's correction on 2×2×2 points, as Abaqus C3D8I condensed; mass of the compatible brick on 2×2×2; refused by line naming KEYOPT(2): uniform reduced with hourglass control (1), enhanced strain (2); the collapsed pyramid and tetrahedron, and any collapsed KEYOPT(2)=3 brick, refused")),
     (186, "SOLID186", H("20-node brick: KEYOPT(2)=0 (the default) uniform reduced 2×2×2 integration as Abaqus C3D20R, KEYOPT(2)=1 full integration on Irons' 14 points, mass on the 14 points; degenerate wedge as the 15-node wedge (3 × 3 points), tetrahedron as the 10-node tetrahedron (4 points); the degenerate pyramid and dropped mid-side nodes are refused by line")),
     (187, "SOLID187", H("10-node tetrahedron as Abaqus C3D10; written with its 4 corner nodes only (mid-side nodes dropped: straight edges, linear displacement) it is exactly the 4-node tetrahedron C3D4")),
-    (188, "BEAM188", R("2-node beam: not formed here — ANSYS's form (linear, KEYOPT(3)=0: linear functions for displacements and rotations, 1 point along the length for K, 2 for the mass with rotary inertia; quadratic and cubic with internal nodes) over section constants ANSYS computes by its own section mesh (torsion constant, shear correction, warping) was not shown against an ANSYS beam result: flexbody's beam is the exact two-node Timoshenko element (Przemieniecki), another form (docs/ansys.md)")),
+    (188, "BEAM188", H("2-node beam, KEYOPT(3)=0 (linear, the default) with six dofs per node: linear functions for displacements and rotations, stiffness on 1 point along the length (one-point shear), consistent mass on 2 points with the section's rotary inertia, lumped mass (LUMPM) on the translations only (MAPDL Theory Reference §13.188); orientation node K (the element z axis toward K); sections SECTYPE BEAM ASEC (the user's A, Iyy, Izz, J; shear factor 1), RECT, CSOLID, CTUBE (closed-form constants, docs/ansys.md); refused by line: the warping dof KEYOPT(1)=1, quadratic and cubic KEYOPT(3)=2, 3, no K on a section whose orientation matters, other section subtypes, offsets off the centroid")),
     (189, "BEAM189", R("3-node beam: not formed here — quadratic functions for displacements and rotations on 2 points along the length over ANSYS's own section constants; not shown against an ANSYS beam result, and no 3-node beam is formed by flexbody (docs/ansys.md)")),
     (190, "SOLSH190", R("solid shell: formulation not formed here")),
     (200, "MESH200", N("a meshing-only element: it carries no stiffness or mass")),

@@ -9,6 +9,7 @@
 //! ([`materials`]), `D`/`CE`/`CP`/`F`/`ACEL` in [`constraints`], node and element components
 //! (`CMBLOCK`) become the model's named sets.
 
+mod beams;
 mod blocks;
 pub mod catalogue;
 mod connections;
@@ -96,6 +97,9 @@ struct Archive {
     /// Shell sections by id, and the one the last SECTYPE opened (`None`: not a shell one).
     shell_sections: BTreeMap<i64, shells::ShellSection>,
     shell_now: Option<i64>,
+    /// Beam sections by id, and the one the last SECTYPE opened (`None`: not a beam one).
+    beam_sections: BTreeMap<i64, beams::BeamSection>,
+    beam_now: Option<i64>,
     /// The MPC184 rigid links' MPCs (indices into the model's).
     links: Vec<usize>,
     /// Real constant sets (`R`, `RLBLOCK`).
@@ -253,7 +257,16 @@ impl Archive {
                 let id = c.int(file, 0)?;
                 self.section_now = None;
                 self.shell_now = None;
-                if c.field(1).eq_ignore_ascii_case("SHELL") {
+                self.beam_now = None;
+                if c.field(1).eq_ignore_ascii_case("BEAM") {
+                    match beams::BeamSection::open(c) {
+                        Ok(s) => {
+                            self.beam_sections.insert(id, s);
+                            self.beam_now = Some(id);
+                        }
+                        Err(why) => refused.push((c.line, why)),
+                    }
+                } else if c.field(1).eq_ignore_ascii_case("SHELL") {
                     let (s, refusal) = shells::ShellSection::open(c);
                     refused.extend(refusal.map(|why| (c.line, why)));
                     self.shell_sections.insert(id, s);
@@ -270,9 +283,9 @@ impl Archive {
                     refused.push((
                         c.line,
                         format!(
-                            "SECTYPE {id},{}: only LINK (LINK180's) and SHELL (SHELL181's) \
-                             sections are read; beam and other sections' elements are not formed \
-                             here",
+                            "SECTYPE {id},{}: only LINK (LINK180's), SHELL (SHELL181's) and \
+                             BEAM (BEAM188's) sections are read; tapered and other sections' \
+                             elements are not formed here",
                             c.field(1)
                         ),
                     ));
@@ -291,10 +304,25 @@ impl Archive {
                     refused.extend(why.map(|why| (c.line, why)));
                 }
             }
+            "SECDATA" | "SECCONTROL" if self.beam_now.is_some() => {
+                let now = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
+                if let Some(s) = now {
+                    let why = if c.name == "SECDATA" {
+                        s.secdata(file, c)?
+                    } else {
+                        s.seccontrol(file, c)?
+                    };
+                    refused.extend(why.map(|why| (c.line, why)));
+                }
+            }
             "SECOFFSET" => {
-                let why = match self.shell_now {
-                    Some(_) => shells::ShellSection::secoffset(c),
-                    None => Some("SECOFFSET of a section other than a shell: not read".into()),
+                let beam = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
+                let why = match (self.shell_now, beam) {
+                    (Some(_), _) => shells::ShellSection::secoffset(c),
+                    (None, Some(b)) => b.secoffset(c),
+                    (None, None) => {
+                        Some("SECOFFSET of a section other than a shell or beam: not read".into())
+                    }
                 };
                 refused.extend(why.map(|why| (c.line, why)));
             }
@@ -420,6 +448,18 @@ impl Archive {
                     .into(),
             );
         }
+        if (model.elements.iter()).any(|e| e.kind == crate::model::ElementKind::Beam2Linear) {
+            notes.push(
+                "ANSYS archive: BEAM188 (KEYOPT(3)=0) formed as the Theory Reference states it \
+                 (linear functions, one-point stiffness, consistent mass with rotary inertia, \
+                 lumped mass on the translations only); RECT, CSOLID and CTUBE constants in \
+                 closed form (A and I exact, J exact for circles and by Saint-Venant's series \
+                 for rectangles, Cowper's shear factors) where ANSYS computes J and the shear \
+                 factors on its own section mesh: they may differ from ANSYS's by a few per \
+                 cent (docs/ansys.md)"
+                    .into(),
+            );
+        }
         for (title, items) in groups {
             notes.push(format!(
                 "ANSYS archive, {title}: not read, no effect on the body (docs/ansys-commands.md \
@@ -506,6 +546,7 @@ impl Archive {
         let mut damped = Vec::new();
         let mut rods = BTreeMap::new();
         let mut shell_props = shells::ShellProperties::new();
+        let mut beam_props = beams::BeamProperties::new();
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
         for r in &self.elements {
@@ -617,6 +658,22 @@ impl Archive {
                         &shell,
                         nodes,
                     ) {
+                        Ok(e) => Some(e),
+                        Err(why) => {
+                            refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                            continue;
+                        }
+                    }
+                }
+                Ok(Formed::Beam(beam)) => {
+                    let ends = [node_of(beam.ends[0])?, node_of(beam.ends[1])?];
+                    let k = beam.orientation.map(node_of).transpose()?;
+                    let mut ctx = beams::BeamContext {
+                        sections: &self.beam_sections,
+                        property_of: &property_of,
+                        made: &mut beam_props,
+                    };
+                    match beams::push_beam(model, &mut ctx, r, ends, k) {
                         Ok(e) => Some(e),
                         Err(why) => {
                             refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
