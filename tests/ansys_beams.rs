@@ -1,5 +1,5 @@
-//! ANSYS BEAM188 (KEYOPT(3)=0, linear) from archives written here, through the CLI, against
-//! independent references:
+//! ANSYS BEAM188 (KEYOPT(3)=0, linear) and BEAM189 (quadratic) from archives written here,
+//! through the CLI, against independent references:
 //! - the element matrices of a skewed three-element frame (RECT with an added mass, CTUBE, ASEC;
 //!   each element its orientation node) against a numpy implementation written from the MAPDL
 //!   Theory Reference §13.188 (`tests/data/ansys/beam188.py`), consistent and lumped mass;
@@ -8,7 +8,9 @@
 //! - a simply supported deep beam (NAFEMS FV5's geometry) converged with the mesh against the
 //!   Timoshenko beam's closed-form frequencies (bending, torsion, extension);
 //! - ANSYS's own numbers: VM61 (a free-free rod of 11 BEAM188 on an ASEC section: 127.13 and
-//!   256.86 Hz, MAPDL Verification Manual);
+//!   256.86 Hz, MAPDL Verification Manual), VM50 (a simply supported beam of 4 BEAM189 on an
+//!   ASEC section: 28.761 Hz);
+//! - the same frame as BEAM189 against the numpy reference;
 //! - a MASS21 rotary inertia on a BEAM188 node (VM48's motor-generator) against its closed form;
 //! - what is not formed, refused by line.
 mod ansys_support;
@@ -350,7 +352,7 @@ fn beam188_with_mass21_rotary_inertia_equals_the_torsional_closed_form() {
     assert!(d < 1e-12, "{d:e}");
 }
 
-/// What is not formed is refused at its line, naming it.
+/// What is not formed is refused at its line, naming it (BEAM188's and BEAM189's).
 #[test]
 fn beam188_forms_not_formed_are_refused_by_line() {
     let nodes = [
@@ -391,6 +393,33 @@ fn beam188_forms_not_formed_are_refused_by_line() {
         ),
         (body("", rect, 0), "orientation node K"),
     ];
+    // BEAM189: the warping dof, a mid node off the middle, LUMPM,ON
+    let beam189 = |head: &str, mid: [f64; 3], tail: &str| {
+        let nodes = [
+            (1, [0.0, 0.0, 0.0]),
+            (2, [1.0, 0.0, 0.0]),
+            (3, mid),
+            (4, [0.0, 1.0, 0.0]),
+        ];
+        let record: String = [1, 1, 1, 1, 0, 0, 0, 0, 4, 0, 1, 1, 2, 3, 4]
+            .iter()
+            .map(|v| format!("{v:>10}"))
+            .collect();
+        format!(
+            "/PREP7\nET,1,BEAM189\n{head}{}{rect}{}EBLOCK,19,SOLID,1,1\n(19i10)\n{record}\n        -1\n{tail}",
+            material(2e11, 0.3, 7800.0),
+            nblock(&nodes)
+        )
+    };
+    let middle = [0.5, 0.0, 0.0];
+    let cases: Vec<(String, &str)> = cases
+        .into_iter()
+        .chain([
+            (beam189("KEYOPT,1,1,1\n", middle, ""), "BEAM189 KEYOPT(1)=1"),
+            (beam189("", [0.5, 0.1, 0.0], ""), "mid node off the middle"),
+            (beam189("", middle, "LUMPM,ON\n"), "LUMPM,ON with BEAM189"),
+        ])
+        .collect();
     let work = scratch("ansys-beam188-refused");
     for (n, (text, want)) in cases.iter().enumerate() {
         let path = work.join(format!("case{n}.cdb"));
@@ -404,4 +433,88 @@ fn beam188_forms_not_formed_are_refused_by_line() {
             "case {n} names the file and line: {err}"
         );
     }
+}
+
+/// The frame of `beam188.py` with BEAM189 (a mid node at each element's middle): K and the
+/// consistent M equal the numpy reference entry by entry.
+#[test]
+fn beam189_frame_matrices_equal_the_numpy_reference() {
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(data("beam189_frame.json")).unwrap())
+            .unwrap();
+    let dofs: Vec<(u64, usize)> = (reference["dofs"].as_array().unwrap().iter())
+        .map(|d| (d[0].as_u64().unwrap(), d[1].as_u64().unwrap() as usize))
+        .collect();
+    let path = scratch("ansys-beam189-frame").join("frame.cdb");
+    std::fs::copy(data("beam189_frame.cdb"), &path).unwrap();
+    let dir = write_matrices(&path, 6, &[]);
+    let mut worst = [0.0f64; 2];
+    for (slot, key) in ["K", "M"].into_iter().enumerate() {
+        let ours = matrix(&dir, &format!("{key}.mtx"));
+        let want: Vec<Vec<f64>> = (reference[key].as_array().unwrap().iter())
+            .map(|r| {
+                r.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_f64().unwrap())
+                    .collect()
+            })
+            .collect();
+        let scale = want.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+        for (r, dr) in dofs.iter().enumerate() {
+            for (c, dc) in dofs.iter().enumerate() {
+                let got = ours.get(&(*dr, *dc)).copied().unwrap_or(0.0);
+                worst[slot] = worst[slot].max((got - want[r][c]).abs() / scale);
+            }
+        }
+        assert!(ours
+            .keys()
+            .all(|(a, b)| dofs.contains(a) && dofs.contains(b)));
+    }
+    println!("BEAM189 frame: K {:.1e}, M {:.1e}", worst[0], worst[1]);
+    // measured: K 5.0e-14, M 2.1e-16 (of the largest entry)
+    assert!(worst.iter().all(|w| *w < 1e-12), "{worst:?}");
+}
+
+/// MAPDL Verification Manual VM50: a simply supported beam, L = 80 in, 4 BEAM189 on an ASEC
+/// section (A = 4, I = 4/3, J = 10⁻⁶), E = 30·10⁶ psi, G = E/2.6, ρ = 728·10⁻⁶, UZ, ROTX, ROTY
+/// held everywhere; ANSYS's own fundamental frequency 28.761 Hz (the manual's "Mechanical APDL"
+/// column). VM50 writes Iyz = 10⁻⁶, which is refused here (its sign convention not
+/// established): Iyz = 0 moves the principal inertias by 10⁻⁶ of I, far below the 5 digits.
+#[test]
+fn beam189_vm50_equals_ansys_frequency() {
+    let (l, n) = (80.0, 4u64);
+    // corners 1…5, mid nodes 11…14
+    let mut nodes: Vec<(u64, [f64; 3])> = (0..=n)
+        .map(|q| (q + 1, [l * q as f64 / n as f64, 0.0, 0.0]))
+        .collect();
+    nodes.extend((0..n).map(|q| (11 + q, [l * (q as f64 + 0.5) / n as f64, 0.0, 0.0])));
+    let mut records = format!("EBLOCK,19,SOLID,{n},{n}\n(19i10)\n");
+    for q in 1..=n {
+        for v in [1, 1, 1, 1, 0, 0, 0, 0, 3, 0, q, q, q + 1, 10 + q] {
+            records.push_str(&format!("{v:>10}"));
+        }
+        records.push('\n');
+    }
+    records.push_str("        -1\n");
+    let mut held: String = (nodes.iter())
+        .flat_map(|(q, _)| ["UZ", "ROTX", "ROTY"].map(move |d| format!("D,{q},{d},0\n")))
+        .collect();
+    for q in [1, n + 1] {
+        held.push_str(&format!("D,{q},UX,0\nD,{q},UY,0\n"));
+    }
+    let archive = format!(
+        "/PREP7\nET,1,BEAM189\n{}SECTYPE,1,BEAM,ASEC\nSECDATA,4,{},0,{},0,1e-6\n{}{records}{held}",
+        material(30e6, 0.3, 728e-6),
+        4.0 / 3.0,
+        4.0 / 3.0,
+        nblock(&nodes)
+    );
+    let path = scratch("ansys-beam189-vm50").join("vm50.cdb");
+    std::fs::write(&path, archive).unwrap();
+    let ours = ansys_support::build_modes(&path, 1, &[]);
+    let d = (ours[0] / 28.761 - 1.0).abs();
+    println!("VM50: {ours:?} vs ANSYS 28.761: {d:.1e}");
+    // measured 5.4e-6 (ANSYS's 5 digits: half a unit is 1.7e-5)
+    assert!(d < 1.7e-5, "{d:e}");
 }

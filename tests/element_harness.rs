@@ -210,6 +210,16 @@ fn cases() -> Vec<Case> {
             vec![[0.0; 3], [1.0, 0.0, 0.0]],
             6,
         ),
+        // straight, its mid node at the middle (a bent one is refused as curved)
+        Case {
+            warped: false,
+            ..case(
+                Ansys("189", 0),
+                Beam3Quadratic,
+                vec![[0.0; 3], [1.0, 0.0, 0.0], [0.5, 0.0, 0.0]],
+                6,
+            )
+        },
     ]
 }
 
@@ -328,7 +338,7 @@ fn deck(case: &Case, x: &[X], orientation: X) -> (String, String) {
         }
         Deck::Ansys(ty, keyopt2) => {
             // BEAM188: an ASEC section and the orientation node K = I + the orientation
-            let beam = ty == "188";
+            let beam = ty == "188" || ty == "189";
             let k_node = beam.then(|| std::array::from_fn(|c| x[0][c] + orientation[c]));
             let x: Vec<X> = x.iter().copied().chain(k_node).collect();
             ids.extend(beam.then_some(x.len()));
@@ -455,7 +465,9 @@ fn measure(case: &Case, x: &[X]) -> f64 {
         Hex8 | Hex8R | Hex8Bbar | Hex20 | Hex20R => 6.0 * tet(x[0], x[1], x[3], x[4]),
         Prism6 | Prism15 => 3.0 * tet(x[0], x[1], x[2], x[3]),
         Pyram5 | Pyram13 => 2.0 * tet(x[0], x[1], x[3], x[4]),
-        Bar2 | Beam2 | Beam2Linear | Rod2 => BAR_A * dot(sub(x[1], x[0]), sub(x[1], x[0])).sqrt(),
+        Bar2 | Beam2 | Beam2Linear | Beam3Quadratic | Rod2 => {
+            BAR_A * dot(sub(x[1], x[0]), sub(x[1], x[0])).sqrt()
+        }
         Tri3 | Tri6 => SHELL_T * tri(x[0], x[1], x[2]),
         Quad4 | Quad8 => SHELL_T * 2.0 * tri(x[0], x[1], x[3]),
         Beam3 => unreachable!("not in the harness"),
@@ -569,7 +581,10 @@ fn every_element_passes_the_constant_strain_patch_test() {
         use ElementKind::*;
         let tag = name(&case);
         let shell = is_shell(case.kind);
-        if matches!(case.kind, Bar2 | Beam2 | Beam2Linear | Rod2) {
+        if matches!(
+            case.kind,
+            Bar2 | Beam2 | Beam2Linear | Beam3Quadratic | Rod2
+        ) {
             continue; // line elements: no strain field to patch
         }
         let x: Vec<X> = case.nodes.iter().map(|&p| place(p, false, shell)).collect();
@@ -676,6 +691,7 @@ fn the_harness_covers_every_element_kind() {
         Beam2,
         Bar2,
         Beam2Linear,
+        Beam3Quadratic,
         Rod2,
         Tri3,
         Quad4,
@@ -686,7 +702,8 @@ fn the_harness_covers_every_element_kind() {
     for kind in all {
         let formed = match kind {
             Tet4 | Tet10 | Hex8 | Hex8R | Hex8Bbar | Hex20 | Hex20R | Prism6 | Prism15 | Pyram5
-            | Pyram13 | Beam2 | Bar2 | Beam2Linear | Rod2 | Tri3 | Quad4 | Tri6 | Quad8 => true,
+            | Pyram13 | Beam2 | Bar2 | Beam2Linear | Beam3Quadratic | Rod2 | Tri3 | Quad4
+            | Tri6 | Quad8 => true,
             // expanded into bricks on import
             Beam3 => false,
         };

@@ -96,6 +96,7 @@ impl DofMap {
                 ElementKind::Beam2
                 | ElementKind::Bar2
                 | ElementKind::Beam2Linear
+                | ElementKind::Beam3Quadratic
                 | ElementKind::Rod2
                 | ElementKind::Quad4
                 | ElementKind::Tri3

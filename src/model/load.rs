@@ -180,6 +180,7 @@ pub fn solid_faces(kind: ElementKind) -> Option<(FaceTable, EdgeTable)> {
         ElementKind::Beam2
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3
         | ElementKind::Tri3

@@ -114,6 +114,7 @@ fn corners(brick: ElementKind) -> usize {
         | ElementKind::Beam2
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3
         | ElementKind::Tri3
@@ -174,6 +175,7 @@ pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
         | ElementKind::Beam2
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3 => return [0.0; 3],
         ElementKind::Tri6 => {

@@ -46,6 +46,7 @@ pub(super) fn ccx_face_nodes(
         ElementKind::Beam2
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Tri3
         | ElementKind::Quad4

@@ -258,6 +258,8 @@ pub(super) fn rectangle_torsion(b: f64, h: f64) -> f64 {
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Beam {
     pub ends: [u64; 2],
+    /// BEAM189's mid node.
+    pub mid: Option<u64>,
     pub orientation: Option<u64>,
 }
 
@@ -323,7 +325,48 @@ pub(super) fn beam188(keyopts: &BTreeMap<u32, i64>, rec: &ElementRecord) -> Resu
     let k = n.get(2).copied().filter(|&k| k != 0);
     Ok(Beam {
         ends: [i, j],
+        mid: None,
         orientation: k,
+    })
+}
+
+/// BEAM189 (MAPDL Element Reference "BEAM189"; Theory Reference §13.189): nodes I, J, the mid
+/// node K and the orientation node L, six dofs per node (KEYOPT(1)=0) formed; the warping dof
+/// and options that change the element are refused naming the KEYOPT; KEYOPT(2), KEYOPT(11)
+/// and the output controls (4, 6, 7, 9, 15) have no effect on a linear body.
+pub(super) fn beam189(keyopts: &BTreeMap<u32, i64>, rec: &ElementRecord) -> Result<Beam, String> {
+    let keyopt = |k: u32| keyopts.get(&k).copied().unwrap_or(0);
+    if keyopt(1) != 0 {
+        return Err(format!(
+            "BEAM189 KEYOPT(1)={}: the warping dof (restrained warping) is not formed here",
+            keyopt(1)
+        ));
+    }
+    let no_effect = [1, 2, 4, 6, 7, 9, 11, 15];
+    if let Some((k, v)) = keyopts.iter().find(|(k, _)| !no_effect.contains(*k)) {
+        return Err(format!(
+            "BEAM189 KEYOPT({k})={v}: this option's formulation is not formed here"
+        ));
+    }
+    if keyopt(2) > 1 || keyopt(11) > 1 {
+        return Err(format!(
+            "BEAM189 KEYOPT(2)={}, KEYOPT(11)={}: not options of BEAM189",
+            keyopt(2),
+            keyopt(11)
+        ));
+    }
+    let n = |k: usize| rec.nodes.get(k).copied().unwrap_or(0);
+    let (i, j, mid) = (n(0), n(1), n(2));
+    if i == 0 || j == 0 || mid == 0 || i == j || mid == i || mid == j {
+        return Err("BEAM189 without three distinct nodes I, J and the mid node K".into());
+    }
+    if rec.nodes.iter().skip(4).any(|&m| m != 0) {
+        return Err("BEAM189 with more than four nodes (I, J, K, L)".into());
+    }
+    Ok(Beam {
+        ends: [i, j],
+        mid: Some(mid),
+        orientation: Some(n(3)).filter(|&l| l != 0),
     })
 }
 
@@ -337,18 +380,25 @@ pub(super) struct BeamContext<'a> {
     pub made: &'a mut BeamProperties,
 }
 
-/// Adds `beam` (record `rec`; its nodes as model indices: I, J and K) to the model as a
-/// [`ElementKind::Beam2Linear`] of its section and material: the element's index, or why not.
+/// Adds a beam (record `rec`; its nodes as model indices: I, J and BEAM189's mid node; `k` the
+/// orientation node) to the model as a [`ElementKind::Beam2Linear`] (BEAM188) or
+/// [`ElementKind::Beam3Quadratic`] (BEAM189) of its section and material: the element's index,
+/// or why not.
 pub(super) fn push_beam(
     model: &mut Model,
     ctx: &mut BeamContext,
     rec: &ElementRecord,
-    ends: [usize; 2],
+    nodes: &[usize],
     k: Option<usize>,
 ) -> Result<usize, String> {
+    let ends = [nodes[0], nodes[1]];
+    let (kind, name) = match nodes.len() {
+        2 => (ElementKind::Beam2Linear, "BEAM188"),
+        _ => (ElementKind::Beam3Quadratic, "BEAM189"),
+    };
     let Some(section) = ctx.sections.get(&rec.section) else {
         return Err(format!(
-            "BEAM188 of section {}, which is no beam section (SECTYPE,{},BEAM)",
+            "{name} of section {}, which is no beam section (SECTYPE,{},BEAM)",
             rec.section, rec.section
         ));
     };
@@ -364,8 +414,17 @@ pub(super) fn push_beam(
     let x = [model.nodes[ends[0]].x, model.nodes[ends[1]].x];
     let along = sub(x[1], x[0]);
     let length = norm(along);
-    if !(length > 0.0) {
-        return Err("BEAM188 of zero length (I and J coincide)".into());
+    if length.is_nan() || length <= 0.0 {
+        return Err(format!("{name} of zero length (I and J coincide)"));
+    }
+    if let Some(&m) = nodes.get(2) {
+        let middle: [f64; 3] = std::array::from_fn(|c| (x[0][c] + x[1][c]) / 2.0);
+        if norm(sub(model.nodes[m].x, middle)) > 1e-6 * length {
+            return Err(format!(
+                "{name} with its mid node off the middle of IJ (a curved or uneven element): not \
+                 formed here"
+            ));
+        }
     }
     let ex = scale(along, 1.0 / length);
     let orientation = match k {
@@ -374,18 +433,17 @@ pub(super) fn push_beam(
             let toward = sub(model.nodes[k].x, x[0]);
             let z = sub(toward, scale(ex, dot(toward, ex)));
             if norm(z) <= 1e-9 * norm(toward).max(length) {
-                return Err("BEAM188 orientation node K on the line IJ".into());
+                return Err(format!("{name} orientation node on the line IJ"));
             }
             cross(scale(z, 1.0 / norm(z)), ex)
         }
         None => {
             let symmetric = c.iyy == c.izz && c.shear[0] == c.shear[1];
             if !symmetric {
-                return Err(
-                    "BEAM188 without an orientation node K on a section whose orientation \
+                return Err(format!(
+                    "{name} without an orientation node K on a section whose orientation \
                      matters (Iyy ≠ Izz): ANSYS's default orientation is not established here"
-                        .into(),
-                );
+                ));
             }
             // any direction across the axis: the section is the same in every one
             let least = (0..3)
@@ -402,7 +460,7 @@ pub(super) fn push_beam(
         None => {
             model.properties.push(Property {
                 id: (model.properties.len() + 1) as u64,
-                name: format!("BEAM188 SECNUM {} MAT{}", rec.section, rec.mat),
+                name: format!("{name} SECNUM {} MAT{}", rec.section, rec.mat),
                 material,
                 section: Section::Beam(ModelBeamSection {
                     area: c.area,
@@ -422,8 +480,8 @@ pub(super) fn push_beam(
     };
     model.elements.push(Element {
         id: rec.id,
-        kind: ElementKind::Beam2Linear,
-        nodes: ends.to_vec(),
+        kind,
+        nodes: nodes.to_vec(),
         property: Some(property),
         orientation: Some(orientation),
     });

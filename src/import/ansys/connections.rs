@@ -57,7 +57,10 @@ pub(super) fn rotary_without_rotations(
     }
     // a BEAM188 gives its nodes' rotations stiffness (and consistent rotary inertia)
     for e in &model.elements {
-        if e.kind == crate::model::ElementKind::Beam2Linear {
+        if matches!(
+            e.kind,
+            crate::model::ElementKind::Beam2Linear | crate::model::ElementKind::Beam3Quadratic
+        ) {
             rotating.extend(e.nodes.iter().copied());
         }
     }

@@ -409,6 +409,18 @@ impl Archive {
         free_dependents(&mut model, &self.links);
         self.components(file, &node_map, &elements, &mut model)?;
         self.refusals(file)?;
+        if let Some((line, true)) = self.lumped {
+            let quadratic = crate::model::ElementKind::Beam3Quadratic;
+            if model.elements.iter().any(|e| e.kind == quadratic) {
+                self.refuse(
+                    line,
+                    "LUMPM",
+                    "LUMPM,ON with BEAM189: ANSYS's lumped mass of the quadratic beam is not \
+                     established here (its consistent mass is formed)",
+                );
+                self.refusals(file)?;
+            }
+        }
         model.params.coupled_mass = Some(match self.lumped {
             Some((line, true)) => crate::model::DeckMass {
                 consistent: false,
@@ -448,11 +460,16 @@ impl Archive {
                     .into(),
             );
         }
-        if (model.elements.iter()).any(|e| e.kind == crate::model::ElementKind::Beam2Linear) {
+        let beams = [
+            crate::model::ElementKind::Beam2Linear,
+            crate::model::ElementKind::Beam3Quadratic,
+        ];
+        if (model.elements.iter()).any(|e| beams.contains(&e.kind)) {
             notes.push(
-                "ANSYS archive: BEAM188 (KEYOPT(3)=0) formed as the Theory Reference states it \
-                 (linear functions, one-point stiffness, consistent mass with rotary inertia, \
-                 lumped mass on the translations only); RECT, CSOLID and CTUBE constants in \
+                "ANSYS archive: BEAM188 (KEYOPT(3)=0) and BEAM189 formed as the Theory Reference \
+                 states them (linear functions and one-point stiffness, or quadratic functions \
+                 and two-point stiffness; consistent mass with rotary inertia; BEAM188's lumped \
+                 mass on the translations only); RECT, CSOLID and CTUBE constants in \
                  closed form (A and I exact, J exact for circles and by Saint-Venant's series \
                  for rectangles, Cowper's shear factors) where ANSYS computes J and the shear \
                  factors on its own section mesh: they may differ from ANSYS's by a few per \
@@ -666,14 +683,17 @@ impl Archive {
                     }
                 }
                 Ok(Formed::Beam(beam)) => {
-                    let ends = [node_of(beam.ends[0])?, node_of(beam.ends[1])?];
+                    let mut nodes = vec![node_of(beam.ends[0])?, node_of(beam.ends[1])?];
+                    if let Some(mid) = beam.mid {
+                        nodes.push(node_of(mid)?);
+                    }
                     let k = beam.orientation.map(node_of).transpose()?;
                     let mut ctx = beams::BeamContext {
                         sections: &self.beam_sections,
                         property_of: &property_of,
                         made: &mut beam_props,
                     };
-                    match beams::push_beam(model, &mut ctx, r, ends, k) {
+                    match beams::push_beam(model, &mut ctx, r, &nodes, k) {
                         Ok(e) => Some(e),
                         Err(why) => {
                             refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
