@@ -65,7 +65,10 @@ fn material(e: f64, nu: f64, rho: f64) -> String {
 
 /// K (or M) of `build --write-matrices` as a map (row dof, column dof) → value, dofs as
 /// (node id, component).
-fn matrix(dir: &Path, name: &str) -> HashMap<((u64, usize), (u64, usize)), f64> {
+/// A matrix entry's (row dof, column dof), each (node id, component).
+type Entry = ((u64, usize), (u64, usize));
+
+fn matrix(dir: &Path, name: &str) -> HashMap<Entry, f64> {
     let dofs = read_dofs(&dir.join("dofs.txt"));
     let a = read_matrix(&dir.join(name)).unwrap();
     a.full()
@@ -148,8 +151,9 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
     for k in 0..n {
         for i in k + 1..n {
             let f = a[i][k] / a[k][k];
-            for j in k..n {
-                a[i][j] -= f * a[k][j];
+            let (top, rest) = a.split_at_mut(i);
+            for (x, y) in rest[0][k..].iter_mut().zip(&top[k][k..]) {
+                *x -= f * y;
             }
             b[i] -= f * b[k];
         }
@@ -223,7 +227,7 @@ fn beam188_cantilever_tip_deflection_per_element_count() {
 /// The Timoshenko beam's closed-form frequency of a simply supported span (Hz), mode m: the
 /// lower root of (ρ²I/(kG)) ω⁴ − (ρA + ρIα² + EIρα²/(kG)) ω² + EIα⁴ = 0, α = mπ/L
 /// (Timoshenko, *Vibration Problems in Engineering*, §5.12).
-fn timoshenko_ss(m: usize, l: f64, e: f64, g: f64, rho: f64, a: f64, i: f64, k: f64) -> f64 {
+fn timoshenko_ss(m: usize, l: f64, [e, g, rho]: [f64; 3], [a, i, k]: [f64; 3]) -> f64 {
     let al = m as f64 * PI / l;
     let qa = rho * rho * i / (k * g);
     let qb = rho * a + rho * i * al * al + e * i * rho * al * al / (k * g);
@@ -247,7 +251,7 @@ fn beam188_deep_beam_converges_to_the_timoshenko_frequencies() {
     let j = 0.140_577 * side.powi(4);
     let mut want = vec![];
     for m in 1..=3 {
-        let f = timoshenko_ss(m, l, e, g, rho, a, i, k);
+        let f = timoshenko_ss(m, l, [e, g, rho], [a, i, k]);
         want.extend([f, f]);
     }
     for m in 1..=2 {
