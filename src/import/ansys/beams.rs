@@ -377,7 +377,48 @@ pub(super) type BeamProperties = BTreeMap<(i64, i64), usize>;
 pub(super) struct BeamContext<'a> {
     pub sections: &'a BTreeMap<i64, BeamSection>,
     pub property_of: &'a BTreeMap<i64, usize>,
-    pub made: &'a mut BeamProperties,
+    pub made: BeamProperties,
+}
+
+/// The refusals of the archive's elements: (element type, reason) → (first line, count).
+pub(super) type Refusals = BTreeMap<(i64, String), (usize, usize)>;
+
+impl<'a> BeamContext<'a> {
+    /// No beam property made yet.
+    pub fn new(
+        sections: &'a BTreeMap<i64, BeamSection>,
+        property_of: &'a BTreeMap<i64, usize>,
+    ) -> BeamContext<'a> {
+        BeamContext {
+            sections,
+            property_of,
+            made: BeamProperties::new(),
+        }
+    }
+
+    /// `beam` (record `rec`) into the model ([`push_beam`]), its node ids mapped by `node_of`:
+    /// the element's index, or `None` with its refusal counted in `refusals`.
+    pub fn push(
+        &mut self,
+        model: &mut Model,
+        rec: &ElementRecord,
+        beam: &Beam,
+        node_of: impl Fn(u64) -> Result<usize, ImportError>,
+        refusals: &mut Refusals,
+    ) -> Result<Option<usize>, ImportError> {
+        let mut nodes = vec![node_of(beam.ends[0])?, node_of(beam.ends[1])?];
+        if let Some(mid) = beam.mid {
+            nodes.push(node_of(mid)?);
+        }
+        let k = beam.orientation.map(&node_of).transpose()?;
+        Ok(match push_beam(model, self, rec, &nodes, k) {
+            Ok(e) => Some(e),
+            Err(why) => {
+                refusals.entry((rec.etype, why)).or_insert((rec.line, 0)).1 += 1;
+                None
+            }
+        })
+    }
 }
 
 /// Adds a beam (record `rec`; its nodes as model indices: I, J and BEAM189's mid node; `k` the
@@ -392,9 +433,10 @@ pub(super) fn push_beam(
     k: Option<usize>,
 ) -> Result<usize, String> {
     let ends = [nodes[0], nodes[1]];
-    let (kind, name) = match nodes.len() {
-        2 => (ElementKind::Beam2Linear, "BEAM188"),
-        _ => (ElementKind::Beam3Quadratic, "BEAM189"),
+    let (kind, name) = if nodes.len() == 2 {
+        (ElementKind::Beam2Linear, "BEAM188")
+    } else {
+        (ElementKind::Beam3Quadratic, "BEAM189")
     };
     let Some(section) = ctx.sections.get(&rec.section) else {
         return Err(format!(
@@ -487,6 +529,36 @@ pub(super) fn push_beam(
     });
     model.element_sources.push((rec.id, 0, rec.line as u32));
     Ok(model.elements.len() - 1)
+}
+
+/// The build's note when the model has ANSYS beams: how they are formed and where their
+/// section constants come from.
+pub(super) fn note(model: &Model) -> Option<String> {
+    let beams = [ElementKind::Beam2Linear, ElementKind::Beam3Quadratic];
+    (model.elements.iter())
+        .any(|e| beams.contains(&e.kind))
+        .then(|| {
+            "ANSYS archive: BEAM188 (KEYOPT(3)=0) and BEAM189 formed as the Theory Reference \
+         states them (linear functions and one-point stiffness, or quadratic functions \
+         and two-point stiffness; consistent mass with rotary inertia; BEAM188's lumped \
+         mass on the translations only); RECT, CSOLID and CTUBE constants in \
+         closed form (A and I exact, J exact for circles and by Saint-Venant's series \
+         for rectangles, Cowper's shear factors) where ANSYS computes J and the shear \
+         factors on its own section mesh: they may differ from ANSYS's by a few per \
+         cent (docs/ansys.md)"
+                .into()
+        })
+}
+
+/// Why `LUMPM,ON` is refused: a BEAM189 in the model, whose lumped mass ANSYS's documents do not
+/// establish.
+pub(super) fn lumped_refusal(model: &Model) -> Option<&'static str> {
+    (model.elements.iter())
+        .any(|e| e.kind == ElementKind::Beam3Quadratic)
+        .then_some(
+            "LUMPM,ON with BEAM189: ANSYS's lumped mass of the quadratic beam is not established \
+             here (its consistent mass is formed)",
+        )
 }
 
 #[cfg(test)]

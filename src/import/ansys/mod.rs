@@ -410,14 +410,8 @@ impl Archive {
         self.components(file, &node_map, &elements, &mut model)?;
         self.refusals(file)?;
         if let Some((line, true)) = self.lumped {
-            let quadratic = crate::model::ElementKind::Beam3Quadratic;
-            if model.elements.iter().any(|e| e.kind == quadratic) {
-                self.refuse(
-                    line,
-                    "LUMPM",
-                    "LUMPM,ON with BEAM189: ANSYS's lumped mass of the quadratic beam is not \
-                     established here (its consistent mass is formed)",
-                );
+            if let Some(why) = beams::lumped_refusal(&model) {
+                self.refuse(line, "LUMPM", why);
                 self.refusals(file)?;
             }
         }
@@ -445,6 +439,7 @@ impl Archive {
                 list(lines)
             ));
         }
+        let beam_note = beams::note(&model);
         let notes = &mut model.deck.notes;
         notes.push(format!(
             "ANSYS archive: {} mass (ANSYS's default is consistent mass, LUMPM,ON lumped; SOLID186's \
@@ -460,23 +455,7 @@ impl Archive {
                     .into(),
             );
         }
-        let beams = [
-            crate::model::ElementKind::Beam2Linear,
-            crate::model::ElementKind::Beam3Quadratic,
-        ];
-        if (model.elements.iter()).any(|e| beams.contains(&e.kind)) {
-            notes.push(
-                "ANSYS archive: BEAM188 (KEYOPT(3)=0) and BEAM189 formed as the Theory Reference \
-                 states them (linear functions and one-point stiffness, or quadratic functions \
-                 and two-point stiffness; consistent mass with rotary inertia; BEAM188's lumped \
-                 mass on the translations only); RECT, CSOLID and CTUBE constants in \
-                 closed form (A and I exact, J exact for circles and by Saint-Venant's series \
-                 for rectangles, Cowper's shear factors) where ANSYS computes J and the shear \
-                 factors on its own section mesh: they may differ from ANSYS's by a few per \
-                 cent (docs/ansys.md)"
-                    .into(),
-            );
-        }
+        notes.extend(beam_note);
         for (title, items) in groups {
             notes.push(format!(
                 "ANSYS archive, {title}: not read, no effect on the body (docs/ansys-commands.md \
@@ -563,7 +542,7 @@ impl Archive {
         let mut damped = Vec::new();
         let mut rods = BTreeMap::new();
         let mut shell_props = shells::ShellProperties::new();
-        let mut beam_props = beams::BeamProperties::new();
+        let mut beam_ctx = beams::BeamContext::new(&self.beam_sections, &property_of);
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
         for r in &self.elements {
@@ -683,23 +662,7 @@ impl Archive {
                     }
                 }
                 Ok(Formed::Beam(beam)) => {
-                    let mut nodes = vec![node_of(beam.ends[0])?, node_of(beam.ends[1])?];
-                    if let Some(mid) = beam.mid {
-                        nodes.push(node_of(mid)?);
-                    }
-                    let k = beam.orientation.map(node_of).transpose()?;
-                    let mut ctx = beams::BeamContext {
-                        sections: &self.beam_sections,
-                        property_of: &property_of,
-                        made: &mut beam_props,
-                    };
-                    match beams::push_beam(model, &mut ctx, r, &nodes, k) {
-                        Ok(e) => Some(e),
-                        Err(why) => {
-                            refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
-                            continue;
-                        }
-                    }
+                    beam_ctx.push(model, r, &beam, &node_of, &mut refusals)?
                 }
                 Ok(Formed::Element(kind, ids)) => {
                     let nodes = ids
