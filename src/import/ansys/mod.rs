@@ -661,9 +661,7 @@ impl Archive {
                         }
                     }
                 }
-                Ok(Formed::Beam(beam)) => {
-                    beam_ctx.push(model, r, &beam, &node_of, &mut refusals)?
-                }
+                Ok(Formed::Beam(beam)) => beam_ctx.push(model, r, &beam, node_of, &mut refusals)?,
                 Ok(Formed::Element(kind, ids)) => {
                     let nodes = ids
                         .into_iter()
