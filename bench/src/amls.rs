@@ -12,19 +12,20 @@ use serde_json::{json, Value};
 use crate::suites::{eigen_system, eigenvalues, read_full_mtx, threads, EigenSystem};
 use crate::{loadavg, max_rel_diff, num, peak_rss_mb, run_self, write_result, Res};
 
-/// `ours-amls K.mtx M.mtx MODES CUTOFF [REFINE]`: AMLS on the files (one JSON line).
+/// `ours-amls K.mtx M.mtx MODES CUTOFF [REFINE [LEAF]]`: AMLS on the files (one JSON line).
 pub fn ours_amls(
     kp: &str,
     mp: &str,
     modes: usize,
     cutoff: f64,
     refine: Option<usize>,
+    leaf: Option<usize>,
 ) -> Res<Value> {
     let (k, m) = (read_full_mtx(kp)?, read_full_mtx(mp)?);
     let params = AmlsParams {
         cutoff_factor: cutoff,
         refine: refine.unwrap_or(flexbody::solve::amls::DEFAULT_REFINE),
-        ..Default::default()
+        leaf_dofs: leaf.unwrap_or(flexbody::solve::amls::DEFAULT_LEAF_DOFS),
     };
     let spec = EigenSpec {
         count: modes,
@@ -38,6 +39,19 @@ pub fn ours_amls(
     let s = amls(&k, &m, &spec, &params).map_err(|e| e.to_string())?;
     let total = t.elapsed().as_secs_f64();
     let r = &s.report;
+    let p = &r.profile;
+    let profile = json!({
+        "leaf_pencils": p.leaf_pencils.get(), "leaf_s": p.leaf_seconds.get(),
+        "factorizations": p.factorizations.get(), "factor_gflop": p.factor_flops.get() / 1e9,
+        "factor_s": p.factor_seconds.get(),
+        "solved_columns": p.solved_columns.get(), "solve_s": p.solve_seconds.get(),
+        "basis_gflop": p.basis_flops.get() / 1e9, "basis_s": p.basis_seconds.get(),
+        "split_pencils": p.split_pencils.get(), "largest_pencil": p.largest_pencil.get(),
+        "pencil_cubes_g": p.pencil_cubes.get() / 1e9, "pencil_s": p.pencil_seconds.get(),
+        "refine_factor_s": p.refine_factor_seconds.get(),
+        "refine_columns": p.refine_columns.get(), "refine_solve_s": p.refine_solve_seconds.get(),
+        "ritz_s": p.ritz_seconds.get(),
+    });
     Ok(json!({
         "n": k.nrows(),
         "cutoff_factor": cutoff,
@@ -46,6 +60,7 @@ pub fn ours_amls(
         "seconds": total,
         "phases_s": {"substructures": r.seconds_reduce, "refine_and_ritz": r.seconds_ritz,
                      "inertia": r.seconds_inertia},
+        "profile": profile,
         "leaves": r.leaves, "largest_leaf": r.largest_leaf, "separator_dofs": r.separator_dofs,
         "depth": r.depth, "root_modes": r.root_modes, "cutoff_omega2": num(r.cutoff),
         "band_top": num(r.band_top), "count_below_top": r.below_top,

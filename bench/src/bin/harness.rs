@@ -130,10 +130,12 @@ fn run(args: &[String]) -> Res<()> {
                 .ok_or_else(|| "--cutoffs F,F,... (each >= 1)".to_string())?;
             amls::run(dims(a)?, modes(a)?, &cutoffs, !has("--no-lanczos"))?
         }
-        "ours-amls" if (4..=5).contains(&a.len()) => {
+        "ours-amls" if (4..=6).contains(&a.len()) => {
             let m = a[2].parse().map_err(|_| "MODES".to_string())?;
             let c = a[3].parse().map_err(|_| "CUTOFF".to_string())?;
-            amls::ours_amls(&a[0], &a[1], m, c, a.get(4).and_then(|s| s.parse().ok()))?
+            let refine = a.get(4).and_then(|s| s.parse().ok());
+            let leaf = a.get(5).and_then(|s| s.parse().ok());
+            amls::ours_amls(&a[0], &a[1], m, c, refine, leaf)?
         }
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
         "scene" => scene_accuracy::run()?,
