@@ -438,6 +438,8 @@ impl SparseLlt {
         self.half_solve(rhs, true)
     }
 
+    /// faer's column-wise kernels: AMLS solves 128 columns at a time, where they beat our
+    /// row-wise ones (16 lanes a pass; measured 41 s against 27 s for the 69k-dof AMLS's solves).
     fn half_solve(&self, rhs: MatMut<'_, f64>, transpose: bool) -> Result<(), SolveError> {
         use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
         let (SymbolicCholeskyRaw::Supernodal(s), Values::F64(v), None) =

@@ -208,8 +208,12 @@ pub fn amls(
             ),
         };
         drop(a);
-        for _ in 0..params.refine {
-            Profile::time(&profile.ritz_seconds, || super::ritz_in_place(k, m, &mut x))?;
+        for step in 0..params.refine {
+            // the root's vectors are already Ritz vectors of its pencil: no Ritz step before the
+            // first solve
+            if step > 0 {
+                Profile::time(&profile.ritz_seconds, || super::ritz_in_place(k, m, &mut x))?;
+            }
             let mut y = sparse_ops::spmm(m.as_ref(), x.as_ref());
             Profile::count(&profile.refine_columns, y.ncols());
             Profile::time(&profile.refine_solve_seconds, || {
