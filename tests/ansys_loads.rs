@@ -9,7 +9,9 @@
 //!   frequency and static response to a nodal-X force against closed form (the documented
 //!   rotation order);
 //! - SOLID185 with rotated nodes, `D`, `F`, `CP` and `CE` on them against Nastran CHEXA with
-//!   CORD2R, GRID CD, SPC1, FORCE (CID) and MPC.
+//!   CORD2R, GRID CD, SPC1, FORCE (CID) and MPC; SOLID186 with rotated nodes against C3D20R
+//!   with `*TRANSFORM`;
+//! - `SFE` on SOLID187's faces 1…4 against C3D10 with `*DLOAD` Pn.
 //!
 //! Static responses come from the file alone (residual vectors of the scene loads: u = Σ φ_j
 //! φ_jᵀ f / ω_j², exact for the load), compared node by node.
@@ -140,8 +142,10 @@ fn root(m: &Block) -> Vec<u64> {
         .collect()
 }
 
-/// `flexbody build PATH --units si --method normal --modes N --residual-vectors loads EXTRA…`:
-/// the file read back.
+/// `--residual-vectors loads`: the scene loads' static responses are in the file.
+const RESIDUALS: [&str; 2] = ["--residual-vectors", "loads"];
+
+/// `flexbody build PATH --units si --method normal --modes N EXTRA…`: the file read back.
 fn build(path: &Path, modes: usize, extra: &[&str]) -> file::ReducedBody {
     let out = path.with_extension("flexbody");
     let o = exe()
@@ -149,7 +153,6 @@ fn build(path: &Path, modes: usize, extra: &[&str]) -> file::ReducedBody {
         .arg(path)
         .args(["--units", "si", "--method", "normal", "--modes"])
         .arg(modes.to_string())
-        .args(["--residual-vectors", "loads"])
         .args(extra)
         .arg("-o")
         .arg(&out)
@@ -272,8 +275,8 @@ fn sfe_on_solid186_equals_the_ccx_dload_and_beam_theory() {
     .unwrap();
     let inp = work.join("faces.inp");
     std::fs::write(&inp, ccx_deck(&m, &format!("*DLOAD\n{dload}"))).unwrap();
-    let ours = build(&cdb, 6, &["--mass", "lumped"]);
-    let ccx = build(&inp, 6, &["--mass", "lumped"]);
+    let ours = build(&cdb, 6, &["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]]);
+    let ccx = build(&inp, 6, &["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]]);
     let modes = frequency_difference(&ours, &ccx, 6);
     let worst = response_difference(&static_response(&ours, 0), &static_response(&ccx, 0));
     println!("SFE faces 1…6 against *DLOAD: static response {worst:.2e}, frequencies {modes:.2e}");
@@ -295,7 +298,7 @@ fn sfe_on_solid186_equals_the_ccx_dload_and_beam_theory() {
         block_archive(&m, et, &BTreeMap::new(), &format!("{clamp}{top}")),
     )
     .unwrap();
-    let body = build(&cdb, 6, &[]);
+    let body = build(&cdb, 6, &RESIDUALS);
     let u = static_response(&body, 0);
     let tip: Vec<f64> = (m.nodes.iter())
         .filter(|(_, x)| x[0] == l)
@@ -379,8 +382,8 @@ fn sfe_on_shell181_equals_the_consistent_nodal_forces() {
     std::fs::write(&by_sfe, text).unwrap();
     let by_f = work.join("f.cdb");
     std::fs::write(&by_f, plate_archive(&forces).0).unwrap();
-    let a = build(&by_sfe, 6, &[]);
-    let b = build(&by_f, 6, &[]);
+    let a = build(&by_sfe, 6, &RESIDUALS);
+    let b = build(&by_f, 6, &RESIDUALS);
     let worst = response_difference(&static_response(&a, 0), &static_response(&b, 0));
     println!("SHELL181 SFE faces 1, 2 against p A / 4 as F: {worst:.2e}");
     // measured 2.0e-12 (two eigensolves' rounding)
@@ -481,7 +484,7 @@ fn a_bar_on_a_rotated_roller_equals_the_closed_form() {
     let work = scratch("ansys-rotated-roller");
     let cdb = work.join("roller.cdb");
     std::fs::write(&cdb, text).unwrap();
-    let body = build(&cdb, 1, &[]);
+    let body = build(&cdb, 1, &RESIDUALS);
     let x = nodal_x(angles);
     let k = e * area / l * x[0] * x[0];
     let w2 = k / (m + rho * area * l / 2.0);
@@ -579,14 +582,18 @@ fn rotated_nodes_equal_nastran_cd_frames() {
     d += &format!("MPC,1,{c},3,1.,{b},3,-1.\nMPC,1,{dd},1,1.,{a},2,-2.\nENDDATA\n");
     let bdf = work.join("rotated.bdf");
     std::fs::write(&bdf, d).unwrap();
-    let ours = build(&cdb, 8, &["--mass", "lumped"]);
-    let nastran = build(&bdf, 8, &["--mass", "lumped"]);
+    let ours = build(&cdb, 8, &["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]]);
+    let nastran = build(&bdf, 8, &["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]]);
     let modes = frequency_difference(&ours, &nastran, 8);
     let worst = response_difference(&static_response(&ours, 0), &static_response(&nastran, 0));
     // the same archive without the angles is another body
     let plain = work.join("plain.cdb");
     std::fs::write(&plain, block_archive(&m, et, &BTreeMap::new(), &extra)).unwrap();
-    let unrotated = frequency_difference(&build(&plain, 8, &["--mass", "lumped"]), &nastran, 8);
+    let unrotated = frequency_difference(
+        &build(&plain, 8, &["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]]),
+        &nastran,
+        8,
+    );
     println!("rotated nodes against Nastran CD: frequencies {modes:.2e}, static {worst:.2e} (without the angles {unrotated:.2e})");
     // measured 2.1e-15 and 7.7e-15
     assert!(modes < 3e-14 && worst < 8e-14, "{modes} {worst}");
@@ -621,4 +628,170 @@ fn esys_elements_are_refused_naming_their_local() {
         err.contains("element coordinate system 11 (LOCAL at line 4)"),
         "{err}"
     );
+}
+
+/// The nodal Y axis of the angles (A e_y = R_z R_x e_y, written out).
+fn nodal_y([a, b, _]: [f64; 3]) -> [f64; 3] {
+    let [a, b] = [a, b].map(f64::to_radians);
+    [-a.sin() * b.cos(), a.cos() * b.cos(), b.sin()]
+}
+
+/// SOLID186 with its end face's nodes rotated (two angle triples), `D` (nodal UY), `CP` (nodal
+/// UZ) and `CE` on them, against the same mesh as C3D20R with a `*TRANSFORM` (TYPE=R, the
+/// nodal X and Y axes) per rotated node, `*BOUNDARY` and `*EQUATION` in the transformed
+/// system (lumped mass: the same element matrices through both importers): frequencies equal.
+#[test]
+fn rotated_nodes_equal_abaqus_transform() {
+    // two elements across (one C3D20R layer has zero-energy modes of its own)
+    let m = block([4, 2, 2], [0.8, 0.2, 0.2], true);
+    let end: Vec<u64> = (m.nodes.iter())
+        .filter(|(_, x)| x[0] == 0.8)
+        .map(|(&id, _)| id)
+        .collect();
+    assert_eq!(end.len(), 21);
+    let rotations = [[30.0, 20.0, 10.0], [-15.0, 40.0, 5.0]];
+    let angles: BTreeMap<u64, [f64; 3]> = (end.iter().enumerate())
+        .map(|(k, &n)| (n, rotations[k % 2]))
+        .collect();
+    let clamp: String = root(&m).iter().map(|n| format!("D,{n},ALL,0\n")).collect();
+    let (a, b, c, d) = (end[0], end[1], end[2], end[3]);
+    let extra = format!(
+        "{clamp}D,{a},UY,0\nCP,1,UZ,{b},{c}\n\
+         CE,R5.0,DEFI,       2,       1,  0.00000000    \n\
+         CE,R5.0,NODE,{d:>9},UX  ,  1.00000000    ,{a:>9},UY  , -2.00000000    \nLUMPM,ON\n"
+    );
+    let work = scratch("ansys-rotated-abaqus");
+    let cdb = work.join("rotated.cdb");
+    std::fs::write(&cdb, block_archive(&m, "ET,1,186\n", &angles, &extra)).unwrap();
+    let mut keywords = String::new();
+    for (n, r) in &angles {
+        let (x, y) = (nodal_x(*r), nodal_y(*r));
+        keywords.push_str(&format!(
+            "*NSET, NSET=R{n}\n{n}\n*TRANSFORM, NSET=R{n}, TYPE=R\n{:.17e}, {:.17e}, {:.17e}, \
+             {:.17e}, {:.17e}, {:.17e}\n",
+            x[0], x[1], x[2], y[0], y[1], y[2]
+        ));
+    }
+    keywords.push_str(&format!(
+        "*BOUNDARY\n{a}, 2, 2\n*EQUATION\n2\n{c}, 3, 1.0, {b}, 3, -1.0\n2\n{d}, 1, 1.0, {a}, 2, -2.0\n"
+    ));
+    let inp = work.join("rotated.inp");
+    let deck = ccx_deck(&m, "").replace("*STEP\n*STATIC\n*END STEP\n", "");
+    let deck = deck.replace("*STEP\n*FREQUENCY", &format!("{keywords}*STEP\n*FREQUENCY"));
+    std::fs::write(&inp, deck).unwrap();
+    let ours = build(&cdb, 8, &[]);
+    let abaqus = build(&inp, 8, &["--mass", "lumped"]);
+    let modes = frequency_difference(&ours, &abaqus, 8);
+    println!("rotated nodes against Abaqus *TRANSFORM: frequencies {modes:.2e}");
+    // measured 3.8e-14
+    assert!(modes < 3e-13, "{modes}");
+}
+
+/// A bar of 3 cubes, each split into 6 SOLID187 (10-node) tetrahedra, clamped at x = 0, with
+/// `SFE` on faces 1…4 across the elements, against the same mesh as C3D10 with `*DLOAD` Pn
+/// (ANSYS's face 1 J-I-K is ccx's S1 1-2-3, 2 I-J-L S2, 3 J-K-L S3, 4 K-I-L S4).
+#[test]
+fn sfe_on_solid187_equals_the_ccx_dload() {
+    let cube = |i: usize| -> [[f64; 3]; 8] {
+        std::array::from_fn(|k| {
+            let (dx, dy, dz) = (k & 1, (k >> 1) & 1, (k >> 2) & 1);
+            [0.1 * (i + dx) as f64, 0.1 * dy as f64, 0.1 * dz as f64]
+        })
+    };
+    // Kuhn's six tetrahedra around the diagonal 0-7 (corner k = dx + 2 dy + 4 dz)
+    let kuhn = [
+        [0, 1, 3, 7],
+        [0, 1, 5, 7],
+        [0, 2, 3, 7],
+        [0, 2, 6, 7],
+        [0, 4, 5, 7],
+        [0, 4, 6, 7],
+    ];
+    let mut ids: BTreeMap<[i64; 3], u64> = BTreeMap::new();
+    let mut id_of = |p: [f64; 3]| {
+        let key = p.map(|v| (v * 1e6).round() as i64);
+        let next = ids.len() as u64 + 1;
+        *ids.entry(key).or_insert(next)
+    };
+    let mut elements: Vec<Vec<u64>> = Vec::new();
+    let mut coords: BTreeMap<u64, [f64; 3]> = BTreeMap::new();
+    for i in 0..3 {
+        let c = cube(i);
+        for t in kuhn {
+            let mut v: Vec<[f64; 3]> = t.iter().map(|&k| c[k]).collect();
+            let d = |a: [f64; 3], b: [f64; 3]| [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let (e1, e2, e3) = (d(v[0], v[1]), d(v[0], v[2]), d(v[0], v[3]));
+            let det = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1])
+                - e1[1] * (e2[0] * e3[2] - e2[2] * e3[0])
+                + e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
+            if det < 0.0 {
+                v.swap(1, 2);
+            }
+            let mid = |a: [f64; 3], b: [f64; 3]| std::array::from_fn(|k| 0.5 * (a[k] + b[k]));
+            let mut all = v.clone();
+            for (a, b) in [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)] {
+                all.push(mid(v[a], v[b]));
+            }
+            let el: Vec<u64> = all.iter().map(|&p| id_of(p)).collect();
+            for (n, p) in el.iter().zip(&all) {
+                coords.insert(*n, *p);
+            }
+            elements.push(el);
+        }
+    }
+    let loads: Vec<(usize, usize, f64)> = (1..=elements.len())
+        .map(|e| (e, (e - 1) % 4 + 1, 2.0e5 * (1.0 + 0.05 * e as f64)))
+        .collect();
+    let root: Vec<u64> = (coords.iter())
+        .filter(|(_, x)| x[0] == 0.0)
+        .map(|(&id, _)| id)
+        .collect();
+    let nodes: Vec<(u64, [f64; 3], [f64; 3])> =
+        coords.iter().map(|(&k, &x)| (k, x, [0.0; 3])).collect();
+    let records: Vec<(usize, usize, Vec<u64>)> =
+        elements.iter().map(|e| (1, 1, e.clone())).collect();
+    let mut cdb_text = format!(
+        "/PREP7\nET,1,187\n{}{}{}",
+        nblock(&nodes),
+        eblock(&records),
+        material(STEEL)
+    );
+    let [e, nu, rho] = STEEL;
+    let mut inp_text = String::from("*NODE\n");
+    for (id, x) in &coords {
+        inp_text.push_str(&format!("{id}, {:?}, {:?}, {:?}\n", x[0], x[1], x[2]));
+    }
+    inp_text.push_str("*ELEMENT, TYPE=C3D10, ELSET=EALL\n");
+    for (k, el) in elements.iter().enumerate() {
+        let ids: Vec<String> = el.iter().map(u64::to_string).collect();
+        inp_text.push_str(&format!("{}, {}\n", k + 1, ids.join(", ")));
+    }
+    inp_text.push_str(&format!(
+        "*MATERIAL, NAME=STEEL\n*ELASTIC\n{e:?}, {nu:?}\n*DENSITY\n{rho:?}\n\
+         *SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n*BOUNDARY\n"
+    ));
+    for n in &root {
+        cdb_text.push_str(&format!("D,{n},ALL,0\n"));
+        inp_text.push_str(&format!("{n}, 1, 3\n"));
+    }
+    inp_text.push_str("*STEP\n*STATIC\n*DLOAD\n");
+    for (el, f, p) in &loads {
+        cdb_text.push_str(&format!("SFE,{el},{f},PRES,0,{p:e}\n"));
+        inp_text.push_str(&format!("{el}, P{f}, {p:e}\n"));
+    }
+    cdb_text.push_str("FINISH\n");
+    inp_text.push_str("*END STEP\n*STEP\n*FREQUENCY\n6\n*END STEP\n");
+    let work = scratch("ansys-sfe-solid187");
+    let cdb = work.join("tets.cdb");
+    std::fs::write(&cdb, cdb_text).unwrap();
+    let inp = work.join("tets.inp");
+    std::fs::write(&inp, inp_text).unwrap();
+    let args = ["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]];
+    let ours = build(&cdb, 6, &args);
+    let ccx = build(&inp, 6, &args);
+    let modes = frequency_difference(&ours, &ccx, 6);
+    let worst = response_difference(&static_response(&ours, 0), &static_response(&ccx, 0));
+    println!("SOLID187 SFE faces 1…4 against *DLOAD: static response {worst:.2e}, frequencies {modes:.2e}");
+    // measured 1.4e-14 and 1.6e-14
+    assert!(modes < 1.5e-13 && worst < 1.5e-13, "{modes} {worst}");
 }
