@@ -855,3 +855,40 @@ fn sfe_on_a_collapsed_solid186_keeps_the_brick_faces() {
         "{err}"
     );
 }
+
+/// A full file whose archive rotates a node stays refused, naming the node's NBLOCK line and
+/// why (ANSYS's K and M of a rotated node are in its nodal system; no full file of rotated
+/// nodes was at hand to show that the displacement frame holds them).
+#[test]
+fn a_full_file_over_rotated_nodes_is_refused_by_line() {
+    let Some(dir) = ansys_support::examples("a full file over rotated nodes") else {
+        return;
+    };
+    let work = scratch("ansys-full-rotated");
+    std::fs::copy(dir.join("file.full"), work.join("beam.full")).unwrap();
+    let text = std::fs::read_to_string(dir.join("HexBeam.cdb")).unwrap();
+    let node1 = "        1        0        0 0.0000000000000E+000\n";
+    assert!(text.contains(node1));
+    let rotated = format!(
+        "        1        0        0{}\n",
+        [0.0, 0.0, 0.0, 30.0, 0.0, 0.0]
+            .map(|v: f64| format!("{v:>21.13E}"))
+            .concat()
+    );
+    let line = text[..text.find(node1).unwrap()].lines().count() + 1;
+    std::fs::write(work.join("beam.cdb"), text.replacen(node1, &rotated, 1)).unwrap();
+    let o = exe()
+        .arg("build")
+        .arg(work.join("beam.full"))
+        .args(["--units", "si", "--method", "normal", "--modes", "4", "-o"])
+        .arg(work.join("beam.flexbody"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(&format!("beam.cdb:{line}: NBLOCK node 1"))
+            && err.contains("a nodal coordinate system (NBLOCK rotation angles) under a full file"),
+        "{err}"
+    );
+}
