@@ -617,21 +617,12 @@ impl Archive {
                     Some(model.elements.len() - 1)
                 }
                 Ok(Formed::RigidLink(a, b)) => {
-                    let (a, b) = (node_of(a)?, node_of(b)?);
-                    if [a, b]
-                        .iter()
-                        .any(|&n| model.nodes[n].displacement_frame.is_some())
-                    {
-                        let why = "MPC184 rigid link on a node with a nodal coordinate system \
-                                   (NBLOCK angles): its equation is formed on global components"
-                            .into();
-                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
-                        continue;
-                    }
-                    let Some(mpc) = rigid_link(r.id, a, b, model) else {
-                        let why = "MPC184 rigid link on coincident nodes: no direction".into();
-                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
-                        continue;
+                    let mpc = match rigid_link(r.id, node_of(a)?, node_of(b)?, model) {
+                        Ok(mpc) => mpc,
+                        Err(why) => {
+                            refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                            continue;
+                        }
                     };
                     self.links.push(model.mpcs.len());
                     model.mpcs.push(mpc);

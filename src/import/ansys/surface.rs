@@ -29,7 +29,7 @@ use super::list;
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::IdMap;
 use crate::model::load::{face_nodes, solid_faces, Load, LoadPart};
-use crate::model::{ElementKind, Model};
+use crate::model::Model;
 
 /// One `SFE` pressure as read (external ids).
 #[derive(Debug, Clone)]
@@ -153,13 +153,17 @@ impl super::Archive {
         let mut problem = None;
         let mut refused = Vec::new();
         for p in &self.pressures {
-            let (Some(&r), Some(slot)) = (records.get(&p.element), elements.get(&p.element)) else {
+            let Some(&r) = records.get(&p.element) else {
                 return Err(parse_err(
                     file,
                     p.line,
                     "SFE",
                     format!("unknown element {}", p.element),
                 ));
+            };
+            // an element not formed (refused or dropped) is reported by its own line
+            let Some(slot) = elements.get(&p.element) else {
+                continue;
             };
             let placed = match slot {
                 None => Err(format!(
@@ -275,8 +279,7 @@ impl super::Archive {
 /// (a positive pressure acts into the element, against the outward normal).
 fn placed_on_solid(model: &Model, e: usize, corners: &BTreeSet<usize>) -> Option<Placed> {
     let el = &model.elements[e];
-    let kind: ElementKind = el.kind;
-    let (faces, edges) = solid_faces(kind)?;
+    let (faces, edges) = solid_faces(el.kind)?;
     let face = faces.iter().find(|f| {
         let set: BTreeSet<usize> = f.iter().map(|&c| el.nodes[c]).collect();
         set == *corners
