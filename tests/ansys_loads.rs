@@ -602,7 +602,8 @@ fn rotated_nodes_equal_nastran_cd_frames() {
     assert!(unrotated > 1e-4, "{unrotated}");
 }
 
-/// An element with an element coordinate system (ESYS) is refused naming its LOCAL.
+/// An element with an element coordinate system (ESYS) is refused naming its LOCAL; an MPC184
+/// rigid link on a rotated node is refused (its equation is formed on global components).
 #[test]
 fn esys_elements_are_refused_naming_their_local() {
     let m = block([2, 1, 1], [0.4, 0.2, 0.2], false);
@@ -628,6 +629,29 @@ fn esys_elements_are_refused_naming_their_local() {
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
         err.contains("element coordinate system 11 (LOCAL at line 4)"),
+        "{err}"
+    );
+    let link = work.join("link.cdb");
+    let text = format!(
+        "/PREP7\nET,1,184\nET,2,21\nKEYOPT,2,3,2\nR,2,1.0\n{}{}D,1,ALL,0\nFINISH\n",
+        nblock(&[
+            (1, [0.0; 3], [30.0, 0.0, 0.0]),
+            (2, [1.0, 0.0, 0.0], [0.0; 3])
+        ]),
+        eblock(&[(1, 1, vec![1, 2]), (2, 2, vec![2])])
+    );
+    std::fs::write(&link, text).unwrap();
+    let o = exe()
+        .arg("build")
+        .arg(&link)
+        .args(["--units", "si", "--method", "normal", "--modes", "1", "-o"])
+        .arg(work.join("link.flexbody"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("MPC184 rigid link on a node with a nodal coordinate system"),
         "{err}"
     );
 }
