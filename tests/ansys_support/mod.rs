@@ -9,6 +9,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use crate::common::{exe, skipped_install};
+
+pub mod writers;
 use flexbody::import::ansys::full;
 use flexbody::import::matrix_market::read_matrix;
 
