@@ -3,8 +3,11 @@
 //! point of the axis, its direction) on the whole model, and
 //! `Pn` / `P` (uniform pressure on face n of a solid, on a shell element), grouped per `*STEP`:
 //! one load named after the step (`NAME=`, else `STEP_<k>`), every step with loads selected
-//! (each is a load case of the scene). Signs (Abaqus Analysis User's Guide, "Distributed
-//! loads"): positive pressure acts into a solid's face and against a shell's positive normal.
+//! (each is a load case of the scene). Signs (ccx manual, "*DLOAD": "for shell elements …
+//! pressure in the direction of the normal on the shell"; Abaqus Analysis User's Guide,
+//! "Distributed loads": for conventional shells the force points along the SPOS normal, for a
+//! solid's facet against its outward normal): positive pressure acts into a solid's face and
+//! along a shell's right-hand normal (`P` = `P1`, on the SNEG face; `P2` on SPOS against it).
 //! Face numbering: C3D8/C3D20 S1 = 1-2-3-4, S2 = 5-8-7-6, S3 = 1-5-6-2, S4 = 2-6-7-3,
 //! S5 = 3-7-8-4, S6 = 4-8-5-1; C3D4/C3D10 S1 = 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1;
 //! C3D6/C3D15 S1 = 1-2-3, S2 = 4-6-5, S3 = 1-4-5-2, S4 = 2-5-6-3, S5 = 3-6-4-1 (the tables of
@@ -197,10 +200,9 @@ pub(super) fn resolve(raws: &[RawLoad], r: &Resolve) -> Result<Vec<Load>, Import
                                 false => face,
                             };
                             let (nodes, traction) = match (el.kind, face) {
-                            (ElementKind::Quad4 | ElementKind::Tri3, "") => (el.nodes.clone(), -p),
-                            // flexbody's own shells (--inp-shells native): a pressure on SNEG
-                            // (P1) pushes along the normal, on SPOS (P2) against it (ccx 2.20)
-                            (ElementKind::Quad4 | ElementKind::Tri3, "1") => (el.nodes.clone(), p),
+                            // flexbody's own shells (--inp-shells native): `P` and a pressure
+                            // on SNEG (P1) push along the normal, on SPOS (P2) against it (ccx 2.20)
+                            (ElementKind::Quad4 | ElementKind::Tri3, "" | "1") => (el.nodes.clone(), p),
                             (ElementKind::Quad4 | ElementKind::Tri3, "2") => (el.nodes.clone(), -p),
                             (k, n) if k.is_solid() && !n.is_empty() => {
                                 let (faces, edges) = solid_faces(k).ok_or_else(|| {

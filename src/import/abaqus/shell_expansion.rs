@@ -554,10 +554,10 @@ fn replace_elements(
 }
 
 /// A pressure `P` on a shell acts, as ccx applies it, on the brick's bottom face (ccx's `P1`),
-/// pushing into the brick: along +n. The reader made it a traction −p on the shell's face (against
-/// the normal, flexbody's shells); here it becomes +p on the bottom nodes, in the shell's order
-/// (whose right-hand normal is n). Measured: a positive `P` on an S4R plate moves it along +n in
-/// ccx 2.20.
+/// pushing into the brick: along +n. The reader made it a traction +p on the shell's face (along
+/// the normal, as flexbody's own shells take it); here it moves to the bottom nodes, in the
+/// shell's order (whose right-hand normal is n), with the same traction. Measured: a positive `P`
+/// on an S4R plate moves it along +n in ccx 2.20.
 fn move_pressures(
     model: &mut Model,
     expanded: &BTreeMap<NodeIndex, Expanded>,
@@ -565,18 +565,12 @@ fn move_pressures(
 ) {
     for load in &mut model.loads {
         for part in &mut load.parts {
-            if let crate::model::LoadPart::Surface {
-                nodes,
-                traction,
-                element,
-            } = part
-            {
+            if let crate::model::LoadPart::Surface { nodes, element, .. } = part {
                 let all = nodes.iter().all(|n| expanded.contains_key(n));
                 if shells.contains_key(element) && all {
                     for n in nodes.iter_mut() {
                         *n = expanded[n].bottom;
                     }
-                    *traction = -*traction;
                 }
             }
         }
