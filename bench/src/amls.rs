@@ -12,19 +12,20 @@ use serde_json::{json, Value};
 use crate::suites::{eigen_system, eigenvalues, read_full_mtx, threads, EigenSystem};
 use crate::{loadavg, max_rel_diff, num, peak_rss_mb, run_self, write_result, Res};
 
-/// `ours-amls K.mtx M.mtx MODES CUTOFF [REFINE]`: AMLS on the files (one JSON line).
+/// `ours-amls K.mtx M.mtx MODES CUTOFF [REFINE [LEAF]]`: AMLS on the files (one JSON line).
 pub fn ours_amls(
     kp: &str,
     mp: &str,
     modes: usize,
     cutoff: f64,
     refine: Option<usize>,
+    leaf: Option<usize>,
 ) -> Res<Value> {
     let (k, m) = (read_full_mtx(kp)?, read_full_mtx(mp)?);
     let params = AmlsParams {
         cutoff_factor: cutoff,
         refine: refine.unwrap_or(flexbody::solve::amls::DEFAULT_REFINE),
-        ..Default::default()
+        leaf_dofs: leaf.unwrap_or(flexbody::solve::amls::DEFAULT_LEAF_DOFS),
     };
     let spec = EigenSpec {
         count: modes,
@@ -38,6 +39,19 @@ pub fn ours_amls(
     let s = amls(&k, &m, &spec, &params).map_err(|e| e.to_string())?;
     let total = t.elapsed().as_secs_f64();
     let r = &s.report;
+    let p = &r.profile;
+    let profile = json!({
+        "leaf_pencils": p.leaf_pencils.get(), "leaf_s": p.leaf_seconds.get(),
+        "factorizations": p.factorizations.get(), "factor_gflop": p.factor_flops.get() / 1e9,
+        "factor_s": p.factor_seconds.get(),
+        "solved_columns": p.solved_columns.get(), "solve_s": p.solve_seconds.get(),
+        "basis_gflop": p.basis_flops.get() / 1e9, "basis_s": p.basis_seconds.get(),
+        "split_pencils": p.split_pencils.get(), "largest_pencil": p.largest_pencil.get(),
+        "pencil_cubes_g": p.pencil_cubes.get() / 1e9, "pencil_s": p.pencil_seconds.get(),
+        "refine_factor_s": p.refine_factor_seconds.get(),
+        "refine_columns": p.refine_columns.get(), "refine_solve_s": p.refine_solve_seconds.get(),
+        "ritz_s": p.ritz_seconds.get(),
+    });
     Ok(json!({
         "n": k.nrows(),
         "cutoff_factor": cutoff,
@@ -46,6 +60,7 @@ pub fn ours_amls(
         "seconds": total,
         "phases_s": {"substructures": r.seconds_reduce, "refine_and_ritz": r.seconds_ritz,
                      "inertia": r.seconds_inertia},
+        "profile": profile,
         "leaves": r.leaves, "largest_leaf": r.largest_leaf, "separator_dofs": r.separator_dofs,
         "depth": r.depth, "root_modes": r.root_modes, "cutoff_omega2": num(r.cutoff),
         "band_top": num(r.band_top), "count_below_top": r.below_top,
@@ -61,21 +76,27 @@ pub fn ours_amls(
     }))
 }
 
-/// The suite: Lanczos (unless `with_lanczos` is false) then AMLS for each cutoff factor.
-pub fn run(n: [usize; 3], modes: usize, cutoffs: &[f64], with_lanczos: bool) -> Res<Value> {
+/// The suite: Lanczos for `lanczos_modes` modes (none: not run) then AMLS for each cutoff
+/// factor; the errors are over the modes both computed.
+pub fn run(
+    n: [usize; 3],
+    modes: usize,
+    cutoffs: &[f64],
+    lanczos_modes: Option<usize>,
+) -> Res<Value> {
     let EigenSystem { dofs, kp, mp, .. } = eigen_system(n)?;
     let (kp, mp) = (kp.display().to_string(), mp.display().to_string());
     let load_before = loadavg();
-    let lanczos = if with_lanczos {
-        Some(run_self(&[
+    let lanczos = match lanczos_modes {
+        Some(lm) => Some(run_self(&[
             "ours-eigen".into(),
             kp.clone(),
             mp.clone(),
-            modes.to_string(),
-        ])?)
-    } else {
-        None
+            lm.to_string(),
+        ])?),
+        None => None,
     };
+    let compared = lanczos_modes.unwrap_or(modes).min(modes);
     let exact = lanczos.as_ref().map(eigenvalues);
     let lanczos_s = lanczos.as_ref().and_then(|l| {
         Some(l["phases_s"]["analyse_factor"].as_f64()? + l["phases_s"]["eigen"].as_f64()?)
@@ -94,7 +115,7 @@ pub fn run(n: [usize; 3], modes: usize, cutoffs: &[f64], with_lanczos: bool) -> 
         let err = |count: usize| {
             exact
                 .as_ref()
-                .and_then(|e| max_rel_diff(&vals, e, count.min(modes)))
+                .and_then(|e| max_rel_diff(&vals, e, count.min(compared)))
                 .map(num)
         };
         let secs = r["seconds"].as_f64().unwrap_or(f64::NAN);
@@ -115,9 +136,12 @@ pub fn run(n: [usize; 3], modes: usize, cutoffs: &[f64], with_lanczos: bool) -> 
     }
     let json = json!({
         "suite": "amls",
+        "version": 2,
+        "construction": "one factorization per split in the tree's order, half solves (docs/amls.md)",
         "model": format!("tet10 block {}x{}x{} bricks, x=0 clamped, consistent mass (the eigen suite's K, M)", n[0], n[1], n[2]),
         "dofs": dofs,
         "modes": modes,
+        "lanczos_modes": lanczos_modes,
         "lanczos_seconds": lanczos_s.map(num),
         "lanczos_peak_rss_mb": lanczos.as_ref().map(|l| l["peak_rss_mb"].clone()),
         "loadavg_before": load_before,
@@ -126,6 +150,57 @@ pub fn run(n: [usize; 3], modes: usize, cutoffs: &[f64], with_lanczos: bool) -> 
         "lanczos": lanczos,
         "amls": runs,
     });
-    write_result(&format!("amls_{dofs}_{modes}modes.json"), &json)?;
+    write_result(&format!("amls_{dofs}_{modes}modes_v2.json"), &json)?;
     Ok(json)
+}
+
+/// `docs/amls_error_vs_time.svg`: per mode count a panel of the largest relative eigenvalue
+/// error against Lanczos (all N modes) over wall time, one AMLS series per model size (points
+/// labelled by the cutoff factor F) and Lanczos's time drawn at its 1e-10 tolerance.
+pub fn chart(runs: &[Value], path: &std::path::Path) -> Res<()> {
+    use crate::chart::{err, panel, Series};
+    use plotters::prelude::*;
+    let mut counts: Vec<u64> = runs.iter().filter_map(|v| v["modes"].as_u64()).collect();
+    counts.sort_unstable();
+    counts.dedup();
+    let root = SVGBackend::new(path, (700 * counts.len().max(1) as u32, 620)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let areas = root.split_evenly((1, counts.len().max(1)));
+    for (area, &modes) in areas.iter().zip(&counts) {
+        let mut series: Vec<Series> = Vec::new();
+        let mut loads = Vec::new();
+        for v in runs.iter().filter(|v| v["modes"].as_u64() == Some(modes)) {
+            let dofs = v["dofs"].as_u64().unwrap_or(0);
+            loads.push(format!("{}", v["loadavg_before"][0]));
+            let pts = (v["rows"].as_array().into_iter().flatten())
+                .filter_map(|r| {
+                    Some((
+                        r["seconds"].as_f64()?,
+                        r["max_rel_error_all"].as_f64()?.max(1e-15),
+                        format!("F={}", r["cutoff_factor"].as_f64()?),
+                    ))
+                })
+                .collect();
+            series.push((format!("AMLS {}k dofs", dofs / 1000), pts));
+            if let Some(t) = v["lanczos_seconds"].as_f64() {
+                series.push((
+                    format!("Lanczos {}k dofs", dofs / 1000),
+                    vec![(t, 1e-10, "Lanczos".into())],
+                ));
+            }
+        }
+        panel(
+            area,
+            &format!(
+                "AMLS vs Lanczos, {modes} modes (1 thread, load {})",
+                loads.join("/")
+            ),
+            "wall time (s)",
+            "max rel. eigenvalue error",
+            &series,
+            SeriesLabelPosition::UpperRight,
+        )?;
+    }
+    root.present().map_err(err)?;
+    Ok(())
 }

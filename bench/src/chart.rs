@@ -44,7 +44,7 @@ fn load(prefix: &str) -> Res<Vec<Value>> {
     Ok(out)
 }
 
-fn err<E: std::fmt::Debug>(e: E) -> String {
+pub(crate) fn err<E: std::fmt::Debug>(e: E) -> String {
     format!("chart: {e:?}")
 }
 
@@ -61,7 +61,7 @@ fn color(i: usize) -> RGBColor {
     C[i % C.len()]
 }
 
-type Series = (String, Vec<(f64, f64, String)>);
+pub(crate) type Series = (String, Vec<(f64, f64, String)>);
 
 fn bounds(series: &[Series]) -> ((f64, f64), (f64, f64)) {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
@@ -106,7 +106,7 @@ fn short(v: f64) -> String {
     }
 }
 
-fn panel(
+pub(crate) fn panel(
     area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
     title: &str,
     xdesc: &str,
@@ -720,6 +720,13 @@ pub fn run() -> Res<Value> {
         }
         None => String::new(),
     };
+    let amls_runs: Vec<Value> = load("amls_")?
+        .into_iter()
+        .filter(|v| v["version"].as_u64() == Some(2))
+        .collect();
+    if !amls_runs.is_empty() {
+        crate::amls::chart(&amls_runs, &docs.join("amls_error_vs_time.svg"))?;
+    }
     let scene = load("scene_")?;
     let scene_md = match scene.first() {
         Some(v) => {
@@ -752,6 +759,7 @@ pub fn run() -> Res<Value> {
         docs.join("scaling.svg"),
         docs.join("scene_accuracy.svg"),
         docs.join("many_modes.svg"),
+        docs.join("amls_error_vs_time.svg"),
         path,
     ]
     .iter()

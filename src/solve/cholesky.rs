@@ -211,6 +211,33 @@ pub fn analyze(
     Ok((symbolic, stats))
 }
 
+/// Symbolic analysis of `a` in its own order (no fill-reducing permutation: the caller ordered
+/// it, e.g. AMLS's substructure tree), always supernodal, so that L's rows are `a`'s and the
+/// half solves [`SparseLlt::l_solve_in_place`] and [`SparseLlt::lt_solve_in_place`] apply.
+pub fn analyze_in_order(a: SparseColMatRef<'_, usize, f64>) -> Result<Analysis, SolveError> {
+    if a.ncols() != a.nrows() {
+        return Err(SolveError::Dimension(format!(
+            "matrix to factor is {}x{}",
+            a.nrows(),
+            a.ncols()
+        )));
+    }
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold:
+            faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    };
+    let symbolic = factorize_symbolic_cholesky(
+        a.symbolic(),
+        Side::Lower,
+        SymmetricOrdering::Identity,
+        params,
+    )
+    .map_err(|e| SolveError::Factor(format!("symbolic Cholesky: {e:?}")))?;
+    let stats = stats_of(&symbolic);
+    Ok((symbolic, stats))
+}
+
 fn stats_of(symbolic: &SymbolicCholesky<usize>) -> FactorStats {
     let n = symbolic.nrows();
     let mut nnz_l = 0usize;
@@ -397,6 +424,41 @@ impl SparseLlt {
             min_pivot,
             schedule: Default::default(),
         })
+    }
+
+    /// X ← L⁻¹ X (the forward half of a solve), rows in the factor's own order: for an f64
+    /// supernodal factor without permutation ([`analyze_in_order`]); others are
+    /// [`SolveError::Factor`].
+    pub fn l_solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), SolveError> {
+        self.half_solve(rhs, false)
+    }
+
+    /// X ← L⁻ᵀ X (the backward half of a solve), as [`SparseLlt::l_solve_in_place`].
+    pub fn lt_solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), SolveError> {
+        self.half_solve(rhs, true)
+    }
+
+    /// faer's column-wise kernels: AMLS solves 128 columns at a time, where they beat our
+    /// row-wise ones (16 lanes a pass; measured 41 s against 27 s for the 69k-dof AMLS's solves).
+    fn half_solve(&self, rhs: MatMut<'_, f64>, transpose: bool) -> Result<(), SolveError> {
+        use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
+        let (SymbolicCholeskyRaw::Supernodal(s), Values::F64(v), None) =
+            (self.symbolic.raw(), &self.values, self.symbolic.perm())
+        else {
+            return Err(SolveError::Factor(
+                "half solves need an f64 supernodal factor in its own order".into(),
+            ));
+        };
+        let llt = SupernodalLltRef::new(s, v);
+        let req = s.solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq);
+        let mut buf = MemBuffer::new(req);
+        let stack = MemStack::new(&mut buf);
+        if transpose {
+            llt.l_transpose_solve_with_conj(Conj::No, rhs, Par::Seq, stack);
+        } else {
+            llt.l_solve_with_conj(Conj::No, rhs, Par::Seq, stack);
+        }
+        Ok(())
     }
 
     /// Whether L is stored in f32 ([`SparseLlt::factor_mixed_with`]).

@@ -9,6 +9,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use crate::common::{exe, skipped_install};
+
+pub mod writers;
 use flexbody::import::ansys::full;
 use flexbody::import::matrix_market::read_matrix;
 
@@ -180,4 +182,89 @@ pub fn node_table<const N: usize>(text: &str, skip: usize) -> HashMap<u64, [f64;
             (f[0] as u64, std::array::from_fn(|i| f[i + 1]))
         })
         .collect()
+}
+
+/// Nodes of a mesh: (id, xyz).
+pub type Nodes = Vec<(u64, [f64; 3])>;
+
+/// Nodes and elements (node ids) of one of our own small ccx decks.
+pub fn read_inp(path: &Path) -> (Nodes, Vec<Vec<u64>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let (mut nodes, mut elements, mut section) = (Vec::new(), Vec::new(), "");
+    for line in text.lines() {
+        if line.starts_with('*') {
+            section = if line.starts_with("*NODE") {
+                "node"
+            } else if line.starts_with("*ELEMENT") {
+                "element"
+            } else {
+                ""
+            };
+            continue;
+        }
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        match section {
+            "node" => nodes.push((
+                f[0].parse().unwrap(),
+                std::array::from_fn(|i| f[i + 1].parse().unwrap()),
+            )),
+            "element" => elements.push(f[1..].iter().map(|t| t.parse().unwrap()).collect()),
+            _ => {}
+        }
+    }
+    (nodes, elements)
+}
+
+/// A C3D15 wedge as ANSYS writes a degenerate SOLID186 (I J K K M N O O, Q R K T, U V O X,
+/// Y Z A A): corners 1–6, edges 12, 23, 31, 45, 56, 64, 14, 25, 36.
+pub fn wedge_as_brick(n: &[u64]) -> Vec<u64> {
+    vec![
+        n[0], n[1], n[2], n[2], n[3], n[4], n[5], n[5], n[6], n[7], n[2], n[8], n[9], n[10], n[5],
+        n[11], n[12], n[13], n[14], n[14],
+    ]
+}
+
+/// A C3D10 tetrahedron as ANSYS writes a degenerate SOLID186 (I J K K M M M M, Q R K T,
+/// M M M M, Y Z A A): corners 1–4, edges 12, 23, 31, 14, 24, 34.
+pub fn tet_as_brick(n: &[u64]) -> Vec<u64> {
+    vec![
+        n[0], n[1], n[2], n[2], n[3], n[3], n[3], n[3], n[4], n[5], n[2], n[6], n[3], n[3], n[3],
+        n[3], n[7], n[8], n[9], n[9],
+    ]
+}
+
+/// An archive of SOLID186 (KEYOPT(2)=`keyopt2`) records on `nodes`, steel as the ccx decks,
+/// clamped at x = 0.
+pub fn solid186_archive(nodes: &[(u64, [f64; 3])], bricks: &[Vec<u64>], keyopt2: u32) -> String {
+    let mut s = format!("ET,        1,186\nKEYOP,        1, 2,        {keyopt2}\n");
+    s += &format!(
+        "NBLOCK,6,SOLID,{0:>10},{0:>10}\n(3i9,6e21.13e3)\n",
+        nodes.len()
+    );
+    for (id, p) in nodes {
+        s += &format!(
+            "{id:>9}{:>9}{:>9}{:>21.13E}{:>21.13E}{:>21.13E}\n",
+            0, 0, p[0], p[1], p[2]
+        );
+    }
+    s += "N,R5.3,LOC,       -1,\n";
+    s += &format!("EBLOCK,19,SOLID,{0:>10},{0:>10}\n(19i10)\n", bricks.len());
+    for (e, b) in bricks.iter().enumerate() {
+        let head = [1, 1, 1, 1, 0, 0, 0, 0, 20, 0, e as u64 + 1];
+        let record: Vec<u64> = head.iter().chain(b).copied().collect();
+        for line in [&record[..19], &record[19..]] {
+            s += &line.iter().map(|v| format!("{v:>10}")).collect::<String>();
+            s.push('\n');
+        }
+    }
+    s += "        -1\nMPTEMP,R5.0, 1, 1,  0.00000000    ,\n";
+    for (label, v) in [("EX", 2.1e11), ("NUXY", 0.3), ("DENS", 7850.0)] {
+        s += &format!("MPDATA,R5.0, 1,{label:<4},       1, 1, {v:e},\n");
+    }
+    for (id, p) in nodes {
+        if p[0] == 0.0 {
+            s += &format!("D,{id},ALL,0\n");
+        }
+    }
+    s
 }

@@ -128,12 +128,21 @@ fn run(args: &[String]) -> Res<()> {
                 .map(|c| c.trim().parse().ok().filter(|&v: &f64| v >= 1.0))
                 .collect::<Option<_>>()
                 .ok_or_else(|| "--cutoffs F,F,... (each >= 1)".to_string())?;
-            amls::run(dims(a)?, modes(a)?, &cutoffs, !has("--no-lanczos"))?
+            let modes = modes(a)?;
+            // Lanczos on fewer modes where the requested count would not fit (1M dofs, 500)
+            let lanczos = match (has("--no-lanczos"), flag_value(a, "--lanczos-modes")) {
+                (true, _) => None,
+                (false, Some(m)) => Some(m.parse().map_err(|_| "--lanczos-modes N".to_string())?),
+                (false, None) => Some(modes),
+            };
+            amls::run(dims(a)?, modes, &cutoffs, lanczos)?
         }
-        "ours-amls" if (4..=5).contains(&a.len()) => {
+        "ours-amls" if (4..=6).contains(&a.len()) => {
             let m = a[2].parse().map_err(|_| "MODES".to_string())?;
             let c = a[3].parse().map_err(|_| "CUTOFF".to_string())?;
-            amls::ours_amls(&a[0], &a[1], m, c, a.get(4).and_then(|s| s.parse().ok()))?
+            let refine = a.get(4).and_then(|s| s.parse().ok());
+            let leaf = a.get(5).and_then(|s| s.parse().ok());
+            amls::ours_amls(&a[0], &a[1], m, c, refine, leaf)?
         }
         "accuracy" => accuracy::run(a.first().map(String::as_str))?,
         "scene" => scene_accuracy::run()?,

@@ -245,6 +245,33 @@ impl<'a> Lines<'a> {
         Some((self.next, l))
     }
 
+    /// Skip the lines after a command that are data, not commands (a format line `(…)` or
+    /// numbers): the records of a command not read.
+    pub fn skip_data_lines(&mut self) {
+        while let Some(l) = self.lines.get(self.next) {
+            let t = l.trim_start();
+            let data = t.starts_with('(')
+                || t.starts_with(|c: char| c.is_ascii_digit() || "+-.".contains(c));
+            if !data {
+                return;
+            }
+            self.next += 1;
+        }
+    }
+
+    /// Skip an `SFEBLOCK`'s format line and records, and its end line `SFE,…,-1` when it
+    /// follows them.
+    pub fn skip_sfeblock(&mut self) {
+        self.skip_data_lines();
+        let end = self
+            .lines
+            .get(self.next)
+            .and_then(|l| command(l, self.next + 1));
+        if end.is_some_and(|c| c.name == "SFE" && c.fields.contains(&"-1")) {
+            self.next += 1;
+        }
+    }
+
     /// The next line, or an error: the block started at `start` ended early.
     fn required(&mut self, start: usize, block: &str) -> Result<(usize, &'a str), ImportError> {
         let file = self.file.clone();

@@ -61,7 +61,12 @@ const SOLUTION: &str = "a solution control of a nonlinear or transient analysis:
 const ROTATION: &str = "a rotating reference frame (spin softening, gyroscopic terms): not \
                         formed here (when nonzero)";
 const SECTION: &str = "a section's own mesh (SECTYPE,,BEAM,MESH and other meshed beam sections): not read (ANSYS integrates over it; ASEC, RECT, CSOLID and CTUBE beam sections are read)";
-const SURFACE_LOAD: &str = "surface and body loads on elements are not read (F and ACEL are)";
+const BODY_LOAD: &str = "a body load (nodal or element temperatures, heat generation…): ANSYS \
+                         evaluates temperature-dependent materials and forms thermal strains at \
+                         it; not read";
+const NODAL_ROTATION: &str = "rotates nodal coordinate systems after the NBLOCK (CDWRITE writes \
+                              the angles in the NBLOCK, which are read): not read";
+const WORKING_PLANE: &str = "the working plane of a session: the archive's coordinates are global";
 
 /// Every command, sorted by name (the name as the archive writes it, upper case).
 pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
@@ -80,17 +85,18 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
     ("ALPHAD", C::Analysis, N(DAMPING)),
     ("ANTYPE", C::Analysis, N("the analysis type: the body is the structure's normal modes whatever the archive's analysis")),
     ("BETAD", C::Analysis, N(DAMPING)),
-    ("BF", C::Load, R(SURFACE_LOAD)),
-    ("BFE", C::Load, R(SURFACE_LOAD)),
+    ("BF", C::Load, R(BODY_LOAD)),
+    ("BFE", C::Load, R(BODY_LOAD)),
     ("BFUNIF", C::Load, N("a uniform temperature: no effect on a linear body whose material tables are read at the reference temperature")),
-    ("CE", C::Constraint, H("a constraint equation: an MPC Σ cᵢ uᵢ = 0 (a nonzero constant is refused)")),
+    ("CE", C::Constraint, H("a constraint equation: an MPC Σ cᵢ uᵢ = 0 on the nodes' dofs in their nodal coordinate systems (a nonzero constant is refused)")),
     ("CGLOC", C::Analysis, R(ROTATION)),
     ("CGOMEGA", C::Analysis, R(ROTATION)),
+    ("CLOCAL", C::Mesh, H("a local coordinate system (as LOCAL): no effect on the body, the archive's coordinates and nodal angles are written global; an element whose ESYS names a system is refused")),
     ("CMBLOCK", C::Mesh, H("a node component becomes a node set (usable as an --interface name); an element component an element set")),
-    ("CP", C::Constraint, H("a coupled set: MPCs making the listed nodes' dof equal to the first node's")),
+    ("CP", C::Constraint, H("a coupled set: MPCs making the listed nodes' dof (in their nodal coordinate systems) equal to the first node's")),
     ("CRPLIM", C::Analysis, N(SOLUTION)),
     ("CSYS", C::Mesh, N("the active coordinate system of a session: the archive's coordinates are global")),
-    ("D", C::Constraint, H("a zero displacement (UX…ROTZ, ALL) held as a reference condition, as the other formats' SPCs; a nonzero value is refused")),
+    ("D", C::Constraint, H("a zero displacement (UX…ROTZ, ALL; in the node's nodal coordinate system) held as a reference condition, as the other formats' SPCs; a nonzero value is refused")),
     ("DCGOMG", C::Analysis, R(ROTATION)),
     ("DMPRAT", C::Analysis, N(DAMPING)),
     ("DMPSTR", C::Analysis, N(DAMPING)),
@@ -102,13 +108,13 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
     ("ESYS", C::Mesh, N(ATTRIBUTE)),
     ("ET", C::Mesh, H("an element type (table below)")),
     ("EXTOPT", C::Session, N("an extrusion option of the solid modeller: no effect on the mesh")),
-    ("F", C::Load, H("a nodal force or moment (FX…MZ): a scene load named F")),
+    ("F", C::Load, H("a nodal force or moment (FX…MZ, in the node's nodal coordinate system): a scene load named F")),
     ("FINISH", C::Session, N(SESSION)),
     ("IRLF", C::Analysis, N("inertia relief of a static analysis: the body's reference conditions are chosen with --reference")),
     ("KEYOP", C::Mesh, H("an element type's KEYOPT (as CDWRITE writes KEYOPT)")),
     ("KEYOPT", C::Mesh, H("an element type's KEYOPT")),
     ("KUSE", C::Analysis, N(SOLUTION)),
-    ("LOCAL", C::Mesh, R("a local coordinate system: nodal coordinate systems are not read")),
+    ("LOCAL", C::Mesh, H("a local coordinate system: no effect on the body, the archive's coordinates and nodal angles are written global; an element whose ESYS names a system (its material orientation) is refused")),
     ("LUMPM", C::Analysis, H("LUMPM,ON: lumped mass (the default is ANSYS's consistent mass); --mass overrides")),
     ("MAT", C::Mesh, N(ATTRIBUTE)),
     ("MODCONTROL", C::Analysis, N("a modal output control: no effect on the body")),
@@ -117,9 +123,13 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
     ("MPDATA", C::Material, H("EX, EY, EZ, PRXY/NUXY…, GXY…, DENS of an isotropic material (orthotropic values refused); thermal, damping and friction labels are noted; a temperature table is read at TREF or refused")),
     ("MPTEMP", C::Material, H("the temperatures of the following MPDATA")),
     ("N", C::Mesh, H("the end line of an NBLOCK (N,R5.3,LOC,-1)")),
-    ("NBLOCK", C::Mesh, H("nodes; nonzero nodal rotation angles are refused")),
+    ("NANG", C::Mesh, R(NODAL_ROTATION)),
+    ("NBLOCK", C::Mesh, H("nodes; the rotation angles THXY, THYZ, THZX (first about nodal Z, then the new X, then the new Y) give the node's nodal coordinate system, in which D, F, CE and CP on it are read")),
     ("NCNV", C::Analysis, N(SOLUTION)),
     ("NEQIT", C::Analysis, N(SOLUTION)),
+    ("NMODIF", C::Mesh, R("modifies a node's coordinates or rotation angles after the NBLOCK: not read")),
+    ("NORA", C::Mesh, R(NODAL_ROTATION)),
+    ("NROTAT", C::Mesh, R(NODAL_ROTATION)),
     ("NUMOFF", C::Session, N("an id offset for a later archive: no effect on one archive")),
     ("OMEGA", C::Analysis, R(ROTATION)),
     ("QRDOPT", C::Analysis, N("an option of the QR-damped eigensolver: no effect on the body")),
@@ -132,11 +142,17 @@ pub(crate) const COMMANDS: &[(&str, Category, Disposition)] = &[
     ("SECNUM", C::Mesh, N(ATTRIBUTE)),
     ("SECOFFSET", C::Material, H("a SHELL section's offset: MID (the default) read; TOP, BOT and USER refused (the offset shell not formed here); a BEAM section's: CENT (the default) read, SHRC and ORIGIN for CSOLID and CTUBE (the same point), others refused")),
     ("SECTYPE", C::Material, H("LINK sections (LINK180's area and added mass), SHELL sections (SHELL181's thickness, material and added mass), BEAM sections of subtype ASEC, RECT, CSOLID, CTUBE (BEAM188's); other beam subtypes, tapered (TAPER) and other sections refused by line")),
-    ("SF", C::Load, R(SURFACE_LOAD)),
-    ("SFE", C::Load, R(SURFACE_LOAD)),
+    ("SF", C::Load, R("a surface load on nodes (the faces of the selected elements they span): not read; CDWRITE writes element surface loads as SFE")),
+    ("SFE", C::Load, H("a pressure on an element face (SOLID185/186 faces 1…6, SOLID187 1…4, SHELL181 1 and 2): the scene load named SFE, a uniform traction per face; a varying pressure keeps the load with a problem (not applied); other labels, imaginary values, shell edges, element lists and the archive's R5.0 form refused")),
+    ("SFEBLOCK", C::Load, R("a block of element surface loads: its record layout is not described in the documentation at hand (SFE commands are read)")),
     ("TIME", C::Analysis, N(SOLUTION)),
     ("TREF", C::Material, H("the reference temperature at which temperature tables are read")),
     ("TYPE", C::Mesh, N(ATTRIBUTE)),
+    ("WPCSYS", C::Session, N(WORKING_PLANE)),
+    ("WPLANE", C::Session, N(WORKING_PLANE)),
+    ("WPOFFS", C::Session, N(WORKING_PLANE)),
+    ("WPROTA", C::Session, N(WORKING_PLANE)),
+    ("WPSTYL", C::Session, N(WORKING_PLANE)),
 ];
 
 /// Element types by number: name and disposition (KEYOPTs in the text).

@@ -138,9 +138,25 @@ pub(super) fn free_dependents(model: &mut Model, links: &[usize]) {
     }
 }
 
-/// An MPC184 rigid link from a to b (`None` when they coincide): the linearized constant length e·(u_b − u_a) = 0, e the unit
-/// vector a→b; b's component along which e is largest is the dependent (first) term.
-pub(super) fn rigid_link(id: u64, a: NodeIndex, b: NodeIndex, model: &Model) -> Option<Mpc> {
+/// An MPC184 rigid link from a to b: the linearized constant length e·(u_b − u_a) = 0, e the
+/// unit vector a→b; b's component along which e is largest is the dependent (first) term. Refused
+/// (the reason) when a and b coincide or either has a nodal coordinate system.
+pub(super) fn rigid_link(
+    id: u64,
+    a: NodeIndex,
+    b: NodeIndex,
+    model: &Model,
+) -> Result<Mpc, String> {
+    if [a, b]
+        .iter()
+        .any(|&n| model.nodes[n].displacement_frame.is_some())
+    {
+        return Err(
+            "MPC184 rigid link on a node with a nodal coordinate system (NBLOCK \
+                    angles): its equation is formed on global components"
+                .into(),
+        );
+    }
     let (xa, xb) = (model.nodes[a].x, model.nodes[b].x);
     let d = [xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]];
     let first = (0..3)
@@ -160,5 +176,8 @@ pub(super) fn rigid_link(id: u64, a: NodeIndex, b: NodeIndex, model: &Model) -> 
             }
         }
     }
-    (!terms.is_empty()).then_some(Mpc { id, terms })
+    if terms.is_empty() {
+        return Err("MPC184 rigid link on coincident nodes: no direction".into());
+    }
+    Ok(Mpc { id, terms })
 }

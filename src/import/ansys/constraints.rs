@@ -1,7 +1,10 @@
 //! `D`, `CE`, `CP` (constraints) and `F`, `ACEL` (scene loads) → the model's SPCs, MPCs and
 //! loads. `D` holds a dof at zero (as the other formats' SPCs: a reference condition of the
 //! body); `CE` is the MPC Σ cᵢ uᵢ = 0 it states; `CP` makes the listed nodes' dof equal to the
-//! first node's (one two-term MPC per further node: the MPC the coupled set stands for).
+//! first node's (one two-term MPC per further node: the MPC the coupled set stands for). On a
+//! rotated node (NBLOCK angles) ANSYS reads all four in the nodal coordinate system: `D`, `CE`
+//! and `CP` name the node's dofs, which are in its displacement frame ([`super::nodal`]), and
+//! `F` is turned to global components for the scene load.
 
 use std::collections::BTreeMap;
 
@@ -305,12 +308,14 @@ impl super::Archive {
         if !self.raw.forces.is_empty() {
             let mut parts = Vec::new();
             for &(line, n, k, v) in &self.raw.forces {
+                // ANSYS's F is in the node's nodal system; a scene load's parts are global
+                let at = node(n, line, "F")?;
+                let mut nodal = [0.0; 3];
+                nodal[k % 3] = v;
+                let global = super::nodal::to_global(model, at, nodal);
                 let mut values = [0.0; 6];
-                values[k] = v;
-                parts.push(LoadPart::Nodal {
-                    node: node(n, line, "F")?,
-                    values,
-                });
+                values[3 * (k / 3)..3 * (k / 3) + 3].copy_from_slice(&global);
+                parts.push(LoadPart::Nodal { node: at, values });
             }
             let lines: Vec<usize> = self.raw.forces.iter().map(|f| f.0).collect();
             model.loads.push(Load {

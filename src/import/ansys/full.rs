@@ -409,6 +409,12 @@ pub fn read_model(path: &Path) -> Result<Model, ImportError> {
     Ok(model)
 }
 
+/// Why a full file over rotated nodes is refused (its archive's NBLOCK angles).
+const ROTATED_NODE: &str = "a nodal coordinate system (NBLOCK rotation angles) under a full \
+    file: ANSYS writes a rotated node's rows of K and M in its nodal system, which the node's \
+    displacement frame would hold, but no full file of rotated nodes was at hand to show it \
+    (docs/ansys.md): refused";
+
 /// The nodes and node components of an archive, nothing else: the mesh a full file's matrices
 /// were assembled on ([`read_model`]). The archive's elements, materials, constraints and
 /// loads are not read (the full file's K, M and constraint table are the body), so a command or
@@ -425,7 +431,7 @@ fn read_mesh(path: &Path) -> Result<(Model, Vec<String>), ImportError> {
         source: file.clone(),
         ..Default::default()
     };
-    let node_map = archive.place_nodes(&file, &mut model)?;
+    let node_map = archive.place_nodes(&file, &mut model, Some(ROTATED_NODE))?;
     archive.refusals(&file)?;
     let element_components = (archive.components.iter())
         .filter(|c| !c.2)

@@ -17,7 +17,9 @@ mod constraints;
 mod elements;
 pub mod full;
 mod materials;
+mod nodal;
 mod shells;
+mod surface;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -90,6 +92,10 @@ struct Archive {
     tref: f64,
     components: Vec<(usize, String, bool, Vec<u64>)>,
     raw: constraints::Raw,
+    /// `SFE` pressures.
+    pressures: Vec<surface::Pressure>,
+    /// `LOCAL`/`CLOCAL` systems: (line, system number).
+    locals: Vec<(usize, i64)>,
     lumped: Option<(usize, bool)>,
     /// LINK sections by id, and the section the last SECTYPE opened (`None`: not a LINK one).
     sections: BTreeMap<i64, LinkSection>,
@@ -183,6 +189,8 @@ impl Archive {
             "EBLOCK" => drop(lines.eblock(c.line, c.field(1).eq_ignore_ascii_case("SOLID"))?),
             "CMBLOCK" => drop(lines.cmblock(c.line, c.int(&lines.file, 2)?.max(0) as usize)?),
             "RLBLOCK" => drop(lines.rlblock(c.line, c.int(&lines.file, 0)?.max(0) as usize)?),
+            "SFEBLOCK" => lines.skip_sfeblock(),
+            "SFE" => lines.skip_data_lines(),
             _ => {}
         }
         Ok(())
@@ -353,6 +361,15 @@ impl Archive {
             }
             "CP" => self.raw.cp(file, c, &mut refused)?,
             "F" => self.raw.f(file, c, &mut refused)?,
+            "SFE" => {
+                let before = refused.len();
+                surface::sfe(file, c, &mut self.pressures, &mut refused)?;
+                if refused.len() > before {
+                    // a refused SFE's value lines (the R5.0 form) are not commands
+                    lines.skip_data_lines();
+                }
+            }
+            "LOCAL" | "CLOCAL" => self.locals.push((c.line, c.int(file, 0)?)),
             "ACEL" => self.raw.acel(file, c)?,
             "LUMPM" => {
                 let on = c.field(0).eq_ignore_ascii_case("ON") || c.field(0) == "1";
@@ -399,13 +416,15 @@ impl Archive {
             ..Default::default()
         };
         model.params.ansys_solid_rules = true;
-        let node_map = self.place_nodes(file, &mut model)?;
+        let node_map = self.place_nodes(file, &mut model, None)?;
         let elements = self.form_elements(file, ignored, &node_map, &materials, &mut model)?;
         // the only Hex8 an archive forms is SOLID185 KEYOPT(2)=3: incompatible modes (its
         // default, KEYOPT(2)=0, is Hex8Bbar)
         model.params.solid_bubbles =
             (model.elements.iter()).any(|e| e.kind == crate::model::ElementKind::Hex8);
         self.constraints(file, &node_map, &mut model)?;
+        self.surface_loads(file, &node_map, &elements, &mut model)?;
+        self.element_systems();
         free_dependents(&mut model, &self.links);
         self.components(file, &node_map, &elements, &mut model)?;
         self.refusals(file)?;
@@ -473,23 +492,34 @@ impl Archive {
         Ok(model)
     }
 
-    /// The archive's nodes into `model` (its source and files too); a nodal rotation is refused.
-    fn place_nodes(&mut self, file: &str, model: &mut Model) -> Result<IdMap, ImportError> {
+    /// The archive's nodes into `model` (its source and files too); a node's rotation angles
+    /// become its displacement frame ([`nodal`]), or with `refuse_rotations` (the full file's
+    /// mesh) a refusal naming `why`.
+    fn place_nodes(
+        &mut self,
+        file: &str,
+        model: &mut Model,
+        refuse_rotations: Option<&str>,
+    ) -> Result<IdMap, ImportError> {
         model.params.wtmass = 1.0;
         model.files.push(file.to_owned());
+        let mut frames = nodal::NodalFrames::default();
         for r in &self.nodes {
-            if r.angles != [0.0; 3] {
+            let mut displacement_frame = None;
+            if let (Some(why), true) = (refuse_rotations, r.angles != [0.0; 3]) {
                 self.refused.push((
                     r.line,
                     format!("NBLOCK node {}", r.id),
                     "NBLOCK".into(),
-                    "a nodal coordinate system (rotation angles): not read".into(),
+                    why.to_owned(),
                 ));
+            } else {
+                displacement_frame = frames.frame(r.angles, model);
             }
             model.nodes.push(Node {
                 id: r.id,
                 x: r.x,
-                displacement_frame: None,
+                displacement_frame,
             });
         }
         IdMap::build(model.nodes.iter().map(|n| n.id)).map_err(|(_, b)| {
@@ -624,10 +654,12 @@ impl Archive {
                     Some(model.elements.len() - 1)
                 }
                 Ok(Formed::RigidLink(a, b)) => {
-                    let Some(mpc) = rigid_link(r.id, node_of(a)?, node_of(b)?, model) else {
-                        let why = "MPC184 rigid link on coincident nodes: no direction".into();
-                        refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
-                        continue;
+                    let mpc = match rigid_link(r.id, node_of(a)?, node_of(b)?, model) {
+                        Ok(mpc) => mpc,
+                        Err(why) => {
+                            refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                            continue;
+                        }
                     };
                     self.links.push(model.mpcs.len());
                     model.mpcs.push(mpc);

@@ -28,8 +28,11 @@
 //! bases, the reduced pencil, then n × count three times in the Rayleigh–Ritz step (Φ, KΦ,
 //! MΦ), then the LDLᵀ of the inertia count (one factor of the full size).
 
+mod profile;
 mod reduce;
 mod tree;
+
+pub use profile::Profile;
 
 use super::{
     hz, inertia, is_flexible, sparse_ops, trace_ratio, EigenInfo, EigenSolution, EigenSpec,
@@ -97,6 +100,8 @@ pub struct AmlsReport {
     pub seconds_ritz: f64,
     /// Seconds of the inertia count.
     pub seconds_inertia: f64,
+    /// Counts and seconds per phase.
+    pub profile: Profile,
 }
 
 /// Eigenpairs from AMLS and how complete they are.
@@ -140,21 +145,24 @@ pub fn amls(
     let scale = trace_ratio(k, m);
     let sigma = spec.shift.unwrap_or(super::automatic_shift(scale));
     let a = sparse_ops::add_scaled(k.as_ref(), m.as_ref(), -sigma)?;
-    let root = tree::build(a.symbolic(), spec.dofs_per_node, params.leaf_dofs)?;
+    let root = tree::build(&a, spec.dofs_per_node, params.leaf_dofs)?;
     let (leaves, largest_leaf, separator_dofs, depth) = root.shape();
+    let profile = Profile::default();
     let mut ctx = reduce::Context {
         a: &a,
         m,
         mu_cut: f64::INFINITY,
         block: spec.dofs_per_node,
         par: spec.par,
+        profile: &profile,
+        leaf_modes: Default::default(),
     };
     let band_top_guess = match spec.upper {
         Some(u) => u - sigma,
-        None => count_bound(&ctx, &root, spec.count)?,
+        None => count_bound(&ctx, &root, spec.count, params.cutoff_factor)?,
     };
     ctx.mu_cut = params.cutoff_factor * band_top_guess.max(f64::MIN_POSITIVE);
-    let basis = reduce::basis(&ctx, &root, spec.count)?;
+    let (basis, root_factor) = reduce::basis(&ctx, &root, spec.count, params.refine > 0)?;
     let mu_cut = ctx.mu_cut;
     drop((root, ctx));
     let root_modes = basis.mu.len();
@@ -184,22 +192,49 @@ pub fn amls(
             x[(d, c)] = basis.phi[(r, c)];
         }
     }
-    drop(basis);
+    let order = basis.dofs;
+    drop((basis.phi, basis.mu));
     let seconds_reduce = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
     if params.refine > 0 {
-        let llt = super::SparseLlt::factor(a.as_ref(), spec.dofs_per_node, spec.par)?;
+        // the root split's factor of A in the basis's row order, else (a leaf root) A's own
+        let (llt, in_basis_order) = match root_factor {
+            Some(f) => (f, true),
+            None => (
+                Profile::time(&profile.refine_factor_seconds, || {
+                    super::SparseLlt::factor(a.as_ref(), spec.dofs_per_node, spec.par)
+                })?,
+                false,
+            ),
+        };
         drop(a);
-        for _ in 0..params.refine {
-            super::ritz_in_place(k, m, &mut x)?;
+        for step in 0..params.refine {
+            // the root's vectors are already Ritz vectors of its pencil: no Ritz step before the
+            // first solve
+            if step > 0 {
+                Profile::time(&profile.ritz_seconds, || super::ritz_in_place(k, m, &mut x))?;
+            }
             let mut y = sparse_ops::spmm(m.as_ref(), x.as_ref());
-            llt.solve_in_place(y.as_mut());
+            Profile::count(&profile.refine_columns, y.ncols());
+            Profile::time(&profile.refine_solve_seconds, || {
+                if in_basis_order {
+                    let mut yb = Mat::from_fn(n, y.ncols(), |r, c| y[(order[r], c)]);
+                    llt.solve_in_place(yb.as_mut());
+                    for (r, &d) in order.iter().enumerate() {
+                        for c in 0..yb.ncols() {
+                            y[(d, c)] = yb[(r, c)];
+                        }
+                    }
+                } else {
+                    llt.solve_in_place(y.as_mut());
+                }
+            });
             x = y;
         }
     } else {
         drop(a);
     }
-    let mut ritz = super::ritz_in_place(k, m, &mut x)?;
+    let mut ritz = Profile::time(&profile.ritz_seconds, || super::ritz_in_place(k, m, &mut x))?;
     let keep = match spec.upper {
         Some(u) => (ritz.values.iter().filter(|&&l| l <= u).count() + 1)
             .max(spec.count)
@@ -275,25 +310,42 @@ pub fn amls(
             seconds_reduce,
             seconds_ritz,
             seconds_inertia,
+            profile,
         },
     })
 }
 
 /// An upper bound of μ_count: the count-th lowest eigenvalue over all leaves (their union is a
 /// principal sub-pencil of (A, M); Cauchy interlacing), or the largest one when the leaves have
-/// fewer.
+/// fewer. Each leaf is solved once: its vectors up to `factor` × the bound known so far (a
+/// running upper bound of the final one, so the final cutoff never needs more) are kept in
+/// `ctx.leaf_modes` for the leaf's basis (all `count` lowest when the root is a leaf).
 fn count_bound(
     ctx: &reduce::Context<'_>,
     root: &tree::Substructure,
     count: usize,
+    factor: f64,
 ) -> Result<f64, SolveError> {
-    let mut all = Vec::new();
+    let root_is_leaf = matches!(root, tree::Substructure::Leaf(_));
+    let at_least = if root_is_leaf { count } else { 0 };
+    let mut all: Vec<f64> = Vec::new();
+    let mut bound = f64::INFINITY;
     let mut stack = vec![root];
     while let Some(node) = stack.pop() {
         match node {
             tree::Substructure::Leaf(dofs) => {
                 if dofs.len() <= reduce::DENSE_LEAF {
-                    all.extend(reduce::leaf_eigenvalues(ctx, dofs)?);
+                    let modes = reduce::leaf_eigenpairs(ctx, dofs, factor * bound, at_least)?;
+                    all.extend_from_slice(&modes.mu);
+                    if let Some(&first) = dofs.first() {
+                        ctx.leaf_modes.borrow_mut().insert(first, modes);
+                    }
+                    if all.len() >= count.max(1) {
+                        let c = count.max(1) - 1;
+                        all.select_nth_unstable_by(c, f64::total_cmp);
+                        bound = all[c];
+                        all.truncate(count.max(1));
+                    }
                 }
             }
             tree::Substructure::Split { children, .. } => {

@@ -3,26 +3,35 @@
 //! [Φ_1, Φ_2, Ψ] (Ψ = [−A_11⁻¹A_1S; −A_22⁻¹A_2S; I], the separator's static extension), whose
 //! projected pencil is reduced again to its eigenvectors below the cutoff.
 //!
-//! A = K − σM (σ < 0, positive definite). With Φ_cᵀA_ccΦ_c = diag(μ_c), Φ_cᵀM_ccΦ_c = I and
-//! A_cc Ψ_c = −A_cS, the projected pencil is (Bennighof & Lehoucq 2004, eq. 3.3–3.5)
+//! A = K − σM (σ < 0, positive definite). With Φ_cᵀA_ccΦ_c = diag(μ_c), Φ_cᵀM_ccΦ_c = I, the
+//! subtree T = [c_1, c_2, S] factored once in that order, A_TT = LLᵀ (so L's leading blocks are
+//! the children's factors), and Ψ̂ = L⁻ᵀE_S = Ψ L_SS⁻ᵀ (the static extension in another basis of
+//! its span: A_TTΨ̂ = L E_S is zero outside S), the projected pencil on [Φ̂_1, Φ̂_2, Ψ̂] is
+//! (Bennighof & Lehoucq 2004, eq. 3.3–3.5, in the transformed coordinates of their §4)
 //!
 //! ```text
-//! K_r = diag(μ_1, μ_2, A_SS + Σ_c A_Sc Ψ_c)
-//! M_r = [ I  0  Φ_1ᵀW_1 ; 0  I  Φ_2ᵀW_2 ; ·  ·  M_SS + Σ_c (M_Sc Ψ_c + Ψ_cᵀW_c) ],  W_c = M_cc Ψ_c + M_cS
+//! K_r = diag(μ_1, μ_2, I_s)
+//! M_r = [ I  0  Φ_1ᵀ(MΨ̂)_1 ; 0  I  Φ_2ᵀ(MΨ̂)_2 ; ·  ·  E_SᵀL⁻¹(MΨ̂) ]
 //! ```
 //!
-//! computed in column chunks of the separator (Ψ_c is never held whole: Ψ_cᵀW = −A_Sc A_cc⁻¹W
-//! costs a second solve instead), so a level holds the two children's sparse factors, their
-//! bases (n_c × k_c), the dense s × s separator blocks and one n_T × chunk block.
+//! computed in column chunks of the separator: per column one backward half solve (L⁻ᵀ) and one
+//! forward half solve (L⁻¹), where the former construction took two full solves with each
+//! child's own factor; the separator's condensed stiffness needs no solve (it is L_SSL_SSᵀ, the
+//! identity in these coordinates). A level holds the subtree's factor, the children's bases
+//! (n_c × k_c), the dense r × r pencil (r = k_1 + k_2 + s) and two n_T × chunk blocks.
 
-use super::super::{cholesky::SparseLlt, dense, sparse_ops, SolveError, SparseColMat};
+use super::super::{
+    cholesky::{self, SparseLlt},
+    dense, sparse_ops, SolveError, SparseColMat,
+};
+use super::profile::Profile;
 use super::tree::Substructure;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::{Mat, MatRef, Par};
 
-/// Separator columns per chunk of the static extension.
+/// Separator columns per chunk of the static extension (at most).
 const CHUNK: usize = 128;
 
 /// Leaves up to this many dofs are solved densely; larger ones (METIS found no split) by the
@@ -51,6 +60,10 @@ pub struct Context<'a> {
     pub block: Option<usize>,
     /// Parallelism of the factorizations and dense kernels.
     pub par: Par,
+    /// Counts and seconds per phase.
+    pub profile: &'a Profile,
+    /// Leaves solved ahead (by the count mode's cutoff estimate), by their first dof.
+    pub leaf_modes: std::cell::RefCell<std::collections::HashMap<usize, LeafModes>>,
 }
 
 /// Eigenpairs of the dense positive definite pencil (A, M) with μ ≤ `mu_cut`, at least
@@ -62,15 +75,51 @@ pub fn pencil_below(
     mu_cut: f64,
     at_least: usize,
 ) -> Result<(Vec<f64>, Mat<f64>), SolveError> {
-    let n = a.nrows();
     let l = dense::cholesky(a).ok_or(SolveError::NotPositiveDefinite { shift: 0.0 })?;
     let mut s = dense::sym(m);
     solve_lower_triangular_in_place(l.as_ref(), s.as_mut(), Par::Seq);
     let mut st = s.transpose().to_owned();
     solve_lower_triangular_in_place(l.as_ref(), st.as_mut(), Par::Seq);
-    let (theta, u) = dense::eigh(st.as_ref())?;
+    let (mu, mut y) = lowest_of_standard(st.as_ref(), mu_cut, at_least)?;
+    solve_upper_triangular_in_place(l.transpose(), y.as_mut(), Par::Seq);
+    Ok((mu, y))
+}
+
+/// [`pencil_below`] for a diagonal A = diag(`a`) (a separator's projected pencil): L⁻¹ M L⁻ᵀ is
+/// M scaled by 1/√(a_i a_j), no triangular solves.
+pub fn pencil_below_diagonal(
+    a: &[f64],
+    m: MatRef<'_, f64>,
+    mu_cut: f64,
+    at_least: usize,
+) -> Result<(Vec<f64>, Mat<f64>), SolveError> {
+    if a.iter().any(|&d| d.is_nan() || d <= 0.0) {
+        return Err(SolveError::NotPositiveDefinite { shift: 0.0 });
+    }
+    let inv: Vec<f64> = a.iter().map(|&d| 1.0 / d.sqrt()).collect();
+    let st = Mat::from_fn(a.len(), a.len(), |i, j| {
+        0.5 * (m[(i, j)] + m[(j, i)]) * inv[i] * inv[j]
+    });
+    let (mu, mut y) = lowest_of_standard(st.as_ref(), mu_cut, at_least)?;
+    for c in 0..y.ncols() {
+        for (r, &f) in inv.iter().enumerate() {
+            y[(r, c)] *= f;
+        }
+    }
+    Ok((mu, y))
+}
+
+/// The eigenvectors U θ^(-1/2) of the symmetric S = L⁻¹ M L⁻ᵀ with μ = 1/θ ≤ `mu_cut` (at least
+/// `at_least`), ascending μ; θ ≤ 1e-13·θ_max are infinite eigenvalues.
+fn lowest_of_standard(
+    st: MatRef<'_, f64>,
+    mu_cut: f64,
+    at_least: usize,
+) -> Result<(Vec<f64>, Mat<f64>), SolveError> {
+    let n = st.nrows();
+    let (theta, u) = dense::eigh(st)?;
     let theta_max = theta.iter().fold(0.0f64, |x, &t| x.max(t.abs()));
-    // descending θ = ascending μ; θ ≤ 1e-13·θ_max are infinite eigenvalues
+    // descending θ = ascending μ
     let order: Vec<usize> = (0..n)
         .rev()
         .filter(|&i| theta[i] > 1e-13 * theta_max)
@@ -85,17 +134,41 @@ pub fn pencil_below(
             y[(r, c)] = u[(r, i)] * scale;
         }
     }
-    solve_upper_triangular_in_place(l.transpose(), y.as_mut(), Par::Seq);
     Ok((order.iter().map(|&i| 1.0 / theta[i]).collect(), y))
 }
 
-/// Eigenvalues μ of a leaf's dense pencil (A_ll, M_ll), all finite ones, ascending: the count
-/// mode's cutoff estimate (Cauchy interlacing: the c-th lowest over all leaves bounds λ_c from
-/// above).
-pub fn leaf_eigenvalues(ctx: &Context<'_>, dofs: &[usize]) -> Result<Vec<f64>, SolveError> {
+/// A leaf's eigenpairs computed once: every finite eigenvalue μ (ascending) and the vectors of
+/// the lowest ones, as many as the leaf's basis can need (see [`leaf_eigenpairs`]).
+pub struct LeafModes {
+    /// All finite eigenvalues μ of (A_ll, M_ll), ascending.
+    pub mu: Vec<f64>,
+    /// The vectors of the lowest `phi.ncols()` of them (YᵀM_llY = I).
+    pub phi: Mat<f64>,
+}
+
+/// A leaf's dense pencil (A_ll, M_ll) solved once, keeping the vectors with μ ≤ `keep_below`
+/// (or the lowest `at_least`): the count mode's cutoff estimate reads every eigenvalue (Cauchy
+/// interlacing: the c-th lowest over all leaves bounds λ_c from above), and the leaf's basis
+/// later takes its vectors from here instead of solving the pencil again.
+pub fn leaf_eigenpairs(
+    ctx: &Context<'_>,
+    dofs: &[usize],
+    keep_below: f64,
+    at_least: usize,
+) -> Result<LeafModes, SolveError> {
     let (a, m) = blocks(ctx, dofs)?;
-    let (mu, _) = pencil_below(a.as_ref(), m.as_ref(), f64::INFINITY, 0)?;
-    Ok(mu)
+    let p = ctx.profile;
+    Profile::count(&p.leaf_pencils, 1);
+    let (mu, phi) = Profile::time(&p.leaf_seconds, || {
+        pencil_below(a.as_ref(), m.as_ref(), f64::INFINITY, 0)
+    })?;
+    let kept = mu
+        .iter()
+        .enumerate()
+        .take_while(|&(i, &x)| i < at_least || x <= keep_below)
+        .count();
+    let phi = phi.as_ref().subcols(0, kept).to_owned();
+    Ok(LeafModes { mu, phi })
 }
 
 fn blocks(ctx: &Context<'_>, dofs: &[usize]) -> Result<(Mat<f64>, Mat<f64>), SolveError> {
@@ -108,24 +181,50 @@ fn blocks(ctx: &Context<'_>, dofs: &[usize]) -> Result<(Mat<f64>, Mat<f64>), Sol
 }
 
 /// The basis of `node`'s subtree; `at_least` modes are kept at this level even above the cutoff.
-pub fn basis(ctx: &Context<'_>, node: &Substructure, at_least: usize) -> Result<Basis, SolveError> {
+/// With `keep_factor`, a split's factorization of its subtree's A (rows in the basis's order)
+/// comes back too.
+pub fn basis(
+    ctx: &Context<'_>,
+    node: &Substructure,
+    at_least: usize,
+    keep_factor: bool,
+) -> Result<(Basis, Option<SparseLlt>), SolveError> {
     match node {
-        Substructure::Leaf(dofs) => leaf_basis(ctx, dofs, at_least),
+        Substructure::Leaf(dofs) => Ok((leaf_basis(ctx, dofs, at_least)?, None)),
         Substructure::Split {
             separator,
             children,
         } => {
-            let b1 = basis(ctx, &children[0], 0)?;
-            let b2 = basis(ctx, &children[1], 0)?;
-            split_basis(ctx, [b1, b2], separator, at_least)
+            let (b1, _) = basis(ctx, &children[0], 0, false)?;
+            let (b2, _) = basis(ctx, &children[1], 0, false)?;
+            split_basis(ctx, [b1, b2], separator, at_least, keep_factor)
         }
     }
 }
 
 fn leaf_basis(ctx: &Context<'_>, dofs: &[usize], at_least: usize) -> Result<Basis, SolveError> {
+    let solved = dofs
+        .first()
+        .and_then(|d| ctx.leaf_modes.borrow_mut().remove(d));
+    if let Some(LeafModes { mu, phi }) = solved {
+        let keep = (mu.iter().enumerate())
+            .take_while(|&(i, &x)| i < at_least || x <= ctx.mu_cut)
+            .count();
+        if keep <= phi.ncols() {
+            return Ok(Basis {
+                dofs: dofs.to_vec(),
+                phi: phi.as_ref().subcols(0, keep).to_owned(),
+                mu: mu[..keep].to_vec(),
+            });
+        }
+    }
     if dofs.len() <= DENSE_LEAF {
         let (a, m) = blocks(ctx, dofs)?;
-        let (mu, phi) = pencil_below(a.as_ref(), m.as_ref(), ctx.mu_cut, at_least)?;
+        let p = ctx.profile;
+        Profile::count(&p.leaf_pencils, 1);
+        let (mu, phi) = Profile::time(&p.leaf_seconds, || {
+            pencil_below(a.as_ref(), m.as_ref(), ctx.mu_cut, at_least)
+        })?;
         return Ok(Basis {
             dofs: dofs.to_vec(),
             phi,
@@ -157,175 +256,137 @@ fn leaf_basis(ctx: &Context<'_>, dofs: &[usize], at_least: usize) -> Result<Basi
     })
 }
 
-/// One child's factor and its couplings to the separator.
-struct Child {
-    basis: Basis,
-    llt: SparseLlt,
-    a_cs: SparseColMat<usize, f64>,
-    a_sc: SparseColMat<usize, f64>,
-    m_cc: SparseColMat<usize, f64>,
-    m_cs: SparseColMat<usize, f64>,
-    m_sc: SparseColMat<usize, f64>,
+/// The columns of the static-extension chunk: 128 (wide products in the half solves), fewer on
+/// large subtrees so that the two n_T × chunk blocks stay near 256 MB each.
+fn chunk_width(n_t: usize) -> usize {
+    (CHUNK_BYTES / (8 * n_t.max(1))).clamp(32, CHUNK)
 }
 
-fn child(ctx: &Context<'_>, basis: Basis, sep: &[usize]) -> Result<Child, SolveError> {
-    let d = &basis.dofs;
-    let a_cc = sparse_ops::submatrix(ctx.a.as_ref(), d, d)?;
-    let llt = SparseLlt::factor(a_cc.as_ref(), ctx.block, ctx.par)?;
-    drop(a_cc);
-    Ok(Child {
-        llt,
-        a_cs: sparse_ops::submatrix(ctx.a.as_ref(), d, sep)?,
-        a_sc: sparse_ops::submatrix(ctx.a.as_ref(), sep, d)?,
-        m_cc: sparse_ops::submatrix(ctx.m.as_ref(), d, d)?,
-        m_cs: sparse_ops::submatrix(ctx.m.as_ref(), d, sep)?,
-        m_sc: sparse_ops::submatrix(ctx.m.as_ref(), sep, d)?,
-        basis,
-    })
-}
+/// Bytes of one n_T × chunk block at most (above 32 columns).
+const CHUNK_BYTES: usize = 256 << 20;
 
-/// Y = B X for a rectangular sparse B.
-fn mul(b: &SparseColMat<usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
-    let mut y = Mat::<f64>::zeros(b.nrows(), x.ncols());
-    faer::sparse::linalg::matmul::sparse_dense_matmul(
-        y.as_mut(),
-        faer::Accum::Replace,
-        b.as_ref(),
-        x,
-        1.0,
-        Par::Seq,
-    );
-    y
-}
-
-/// The projected pencil at a separator (module doc), then its eigenvectors below the cutoff
-/// expanded to the subtree's dofs (children's rows, then the separator's).
-fn split_basis(
+/// The projected pencil at a separator (module doc) from one factorization A_TT = LLᵀ of the
+/// subtree in the order [child 1, child 2, separator]: with Ψ̂ = L⁻ᵀE_S (the separator's static
+/// extension Ψ times L_SS⁻ᵀ, the same span), Ψ̂ᵀAΨ̂ = I, Φ̂_cᵀAΨ̂ = 0, Φ̂_cᵀMΨ̂ = Φ_cᵀ(MΨ̂)_c and
+/// Ψ̂ᵀMΨ̂ = E_SᵀL⁻¹(MΨ̂): one backward and one forward half solve per separator column. Then its
+/// eigenvectors below the cutoff expanded to the subtree's dofs (children's rows, then the
+/// separator's). Returns the factor too when `keep_factor` (the root's: the refinement solves
+/// with it, rows in the basis's order).
+pub fn split_basis(
     ctx: &Context<'_>,
     bases: [Basis; 2],
     sep: &[usize],
     at_least: usize,
-) -> Result<Basis, SolveError> {
+    keep_factor: bool,
+) -> Result<(Basis, Option<SparseLlt>), SolveError> {
     let [b1, b2] = bases;
-    let children = [child(ctx, b1, sep)?, child(ctx, b2, sep)?];
-    let s = sep.len();
-    let a_ss = sparse_ops::to_dense(sparse_ops::submatrix(ctx.a.as_ref(), sep, sep)?.as_ref());
-    let mut kr_ss = a_ss;
-    let mut mr_ss = sparse_ops::to_dense(sparse_ops::submatrix(ctx.m.as_ref(), sep, sep)?.as_ref());
-    let mut coupling: Vec<Mat<f64>> = children
-        .iter()
-        .map(|c| Mat::zeros(c.basis.mu.len(), s))
-        .collect();
-    let mut start = 0;
-    while start < s {
-        let w = CHUNK.min(s - start);
-        for (c, cp) in children.iter().zip(coupling.iter_mut()) {
-            // Ψ_C = −A_cc⁻¹ A_cS[:, C]
-            let mut psi = sparse_ops::to_dense(
-                sparse_ops::submatrix(
-                    c.a_cs.as_ref(),
-                    &(0..c.a_cs.nrows()).collect::<Vec<_>>(),
-                    &(start..start + w).collect::<Vec<_>>(),
-                )?
-                .as_ref(),
-            );
-            c.llt.solve_in_place(psi.as_mut());
-            psi *= faer::Scale(-1.0);
-            // S[:, C] += A_Sc Ψ_C
-            let t = mul(&c.a_sc, psi.as_ref());
-            let sum = kr_ss.as_ref().subcols(start, w) + &t;
-            kr_ss.as_mut().subcols_mut(start, w).copy_from(&sum);
-            // W = M_cc Ψ_C + M_cS[:, C]
-            let mut wmat = sparse_ops::spmm(c.m_cc.as_ref(), psi.as_ref());
-            let m_cs_c = sparse_ops::to_dense(
-                sparse_ops::submatrix(
-                    c.m_cs.as_ref(),
-                    &(0..c.m_cs.nrows()).collect::<Vec<_>>(),
-                    &(start..start + w).collect::<Vec<_>>(),
-                )?
-                .as_ref(),
-            );
-            wmat += &m_cs_c;
-            cp.as_mut()
-                .subcols_mut(start, w)
-                .copy_from(c.basis.phi.transpose() * &wmat);
-            // M̃[:, C] += M_Sc Ψ_C + Ψ_cᵀ W, Ψ_cᵀ W = −A_Sc A_cc⁻¹ W
-            let m_sc_psi = mul(&c.m_sc, psi.as_ref());
-            drop(psi);
-            c.llt.solve_in_place(wmat.as_mut());
-            let psi_t_w = mul(&c.a_sc, wmat.as_ref());
-            let upd = &m_sc_psi - &psi_t_w;
-            let sum = mr_ss.as_ref().subcols(start, w) + &upd;
-            mr_ss.as_mut().subcols_mut(start, w).copy_from(&sum);
-        }
-        start += w;
-    }
-    let (k1, k2) = (children[0].basis.mu.len(), children[1].basis.mu.len());
-    let r = k1 + k2 + s;
-    let mut kr = Mat::<f64>::zeros(r, r);
+    let (n1, n2, s) = (b1.dofs.len(), b2.dofs.len(), sep.len());
+    let (k1, k2) = (b1.mu.len(), b2.mu.len());
+    let mut dofs = Vec::with_capacity(n1 + n2 + s);
+    dofs.extend_from_slice(&b1.dofs);
+    dofs.extend_from_slice(&b2.dofs);
+    dofs.extend_from_slice(sep);
+    let n_t = dofs.len();
+    let p = ctx.profile;
+    let llt = Profile::time(&p.factor_seconds, || -> Result<SparseLlt, SolveError> {
+        let a_tt = sparse_ops::submatrix(ctx.a.as_ref(), &dofs, &dofs)?;
+        let (symbolic, stats) = cholesky::analyze_in_order(a_tt.as_ref())?;
+        SparseLlt::factor_with(symbolic, stats, a_tt.as_ref(), ctx.par)
+    })?;
+    Profile::count(&p.factorizations, 1);
+    Profile::add(&p.factor_flops, llt.stats.flops);
+    let m_tt = sparse_ops::submatrix(ctx.m.as_ref(), &dofs, &dofs)?;
+    let o = k1 + k2;
+    let r = o + s;
     let mut mr = Mat::<f64>::zeros(r, r);
-    for (i, &mu) in children[0]
-        .basis
-        .mu
-        .iter()
-        .chain(&children[1].basis.mu)
-        .enumerate()
-    {
-        kr[(i, i)] = mu;
+    for i in 0..o {
         mr[(i, i)] = 1.0;
     }
-    let o = k1 + k2;
-    kr.as_mut()
-        .submatrix_mut(o, o, s, s)
-        .copy_from(dense::sym(kr_ss.as_ref()));
-    mr.as_mut()
-        .submatrix_mut(o, o, s, s)
-        .copy_from(dense::sym(mr_ss.as_ref()));
-    for (off, cp) in [(0, &coupling[0]), (k1, &coupling[1])] {
+    let width = chunk_width(n_t);
+    let mut start = 0;
+    while start < s {
+        let w = width.min(s - start);
+        // X = L⁻ᵀ E_S[:, C]
+        let mut x = Mat::<f64>::zeros(n_t, w);
+        for j in 0..w {
+            x[(n1 + n2 + start + j, j)] = 1.0;
+        }
+        half_solve_counted(p, &llt, x.as_mut(), true)?;
+        let mut y = sparse_ops::spmm(m_tt.as_ref(), x.as_ref());
+        drop(x);
+        // Φ_cᵀ (M X)_c
+        Profile::time(&p.basis_seconds, || {
+            for (phi, row, off) in [(&b1.phi, 0, 0), (&b2.phi, n1, k1)] {
+                let c = phi.transpose() * y.as_ref().subrows(row, phi.nrows());
+                mr.as_mut()
+                    .submatrix_mut(off, o + start, phi.ncols(), w)
+                    .copy_from(&c);
+            }
+        });
+        Profile::add(&p.basis_flops, 2.0 * ((n1 * k1 + n2 * k2) * w) as f64);
+        // E_Sᵀ L⁻¹ (M X)
+        half_solve_counted(p, &llt, y.as_mut(), false)?;
         mr.as_mut()
-            .submatrix_mut(off, o, cp.nrows(), s)
-            .copy_from(cp);
-        mr.as_mut()
-            .submatrix_mut(o, off, s, cp.nrows())
-            .copy_from(cp.transpose());
+            .submatrix_mut(o, o + start, s, w)
+            .copy_from(y.as_ref().subrows(n1 + n2, s));
+        start += w;
     }
-    drop((kr_ss, mr_ss, coupling));
-    let (mu, y) = pencil_below(kr.as_ref(), mr.as_ref(), ctx.mu_cut, at_least)?;
-    drop((kr, mr));
-    expand(children, sep, &mu, y)
-}
-
-/// The subtree's basis from the reduced eigenvectors Y = [Y_1; Y_2; Y_S]: rows of child c are
-/// Φ_c Y_c − A_cc⁻¹ (A_cS Y_S), the separator's rows Y_S.
-fn expand(
-    children: [Child; 2],
-    sep: &[usize],
-    mu: &[f64],
-    y: Mat<f64>,
-) -> Result<Basis, SolveError> {
+    // the lower triangle from the upper: couplings and the separator block (symmetrized)
+    for j in o..r {
+        for i in 0..o {
+            mr[(j, i)] = mr[(i, j)];
+        }
+    }
+    let mss = dense::sym(mr.as_ref().submatrix(o, o, s, s));
+    mr.as_mut().submatrix_mut(o, o, s, s).copy_from(&mss);
+    drop(mss);
+    let kd: Vec<f64> = (b1.mu.iter().chain(&b2.mu).copied())
+        .chain(std::iter::repeat_n(1.0, s))
+        .collect();
+    Profile::count(&p.split_pencils, 1);
+    p.largest_pencil.set(p.largest_pencil.get().max(r));
+    Profile::add(&p.pencil_cubes, (r as f64).powi(3));
+    let (mu, yr) = Profile::time(&p.pencil_seconds, || {
+        pencil_below_diagonal(&kd, mr.as_ref(), ctx.mu_cut, at_least)
+    })?;
+    drop(mr);
+    // Φ_T = [Φ_1 Y_1; Φ_2 Y_2; 0] + L⁻ᵀ E_S Y_S
     let k = mu.len();
-    let s = sep.len();
-    let n1 = children[0].basis.dofs.len();
-    let n2 = children[1].basis.dofs.len();
-    let (k1, k2) = (children[0].basis.mu.len(), children[1].basis.mu.len());
-    let y_s = y.as_ref().subrows(k1 + k2, s);
-    let mut phi = Mat::<f64>::zeros(n1 + n2 + s, k);
-    let mut dofs = Vec::with_capacity(n1 + n2 + s);
-    let mut row = 0;
-    for (c, (off, kc)) in children.iter().zip([(0, k1), (k1, k2)]) {
-        let mut ext = mul(&c.a_cs, y_s);
-        c.llt.solve_in_place(ext.as_mut());
-        let part = &c.basis.phi * y.as_ref().subrows(off, kc) - &ext;
-        let nc = c.basis.dofs.len();
-        phi.as_mut().subrows_mut(row, nc).copy_from(&part);
-        dofs.extend_from_slice(&c.basis.dofs);
-        row += nc;
-    }
-    phi.as_mut().subrows_mut(row, s).copy_from(y_s);
-    dofs.extend_from_slice(sep);
-    Ok(Basis {
+    let mut phi = Mat::<f64>::zeros(n_t, k);
+    phi.as_mut()
+        .subrows_mut(n1 + n2, s)
+        .copy_from(yr.as_ref().subrows(o, s));
+    half_solve_counted(p, &llt, phi.as_mut(), true)?;
+    Profile::time(&p.basis_seconds, || {
+        for (b, row, off) in [(&b1, 0, 0), (&b2, n1, k1)] {
+            let part = &b.phi * yr.as_ref().subrows(off, b.mu.len());
+            let sum = phi.as_ref().subrows(row, b.phi.nrows()) + &part;
+            phi.as_mut().subrows_mut(row, b.phi.nrows()).copy_from(&sum);
+        }
+    });
+    Profile::add(&p.basis_flops, 2.0 * ((n1 * k1 + n2 * k2) * k) as f64);
+    let basis = Basis {
         dofs,
         phi,
         mu: mu.to_vec(),
+    };
+    Ok((basis, keep_factor.then_some(llt)))
+}
+
+/// X ← L⁻ᵀX (`transpose`) or L⁻¹X with the subtree's factor, counted (a half solve counts half
+/// a column).
+fn half_solve_counted(
+    profile: &Profile,
+    llt: &SparseLlt,
+    x: faer::MatMut<'_, f64>,
+    transpose: bool,
+) -> Result<(), SolveError> {
+    Profile::add(&profile.solved_columns, x.ncols() as f64 / 2.0);
+    Profile::time(&profile.solve_seconds, || {
+        if transpose {
+            llt.lt_solve_in_place(x)
+        } else {
+            llt.l_solve_in_place(x)
+        }
     })
 }

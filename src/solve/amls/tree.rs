@@ -2,13 +2,13 @@
 //! (`METIS_ComputeVertexSeparator`, the bisection step of its own nested dissection), down to
 //! leaves of at most a given number of dofs.
 
-use super::super::SolveError;
-use faer::sparse::SymbolicSparseColMatRef;
+use super::super::{ordering, sparse_ops, SolveError, SparseColMat};
 
 /// A subtree: a leaf substructure, or two subtrees that only its separator couples.
 #[derive(Debug)]
 pub enum Substructure {
-    /// Dofs of a leaf, ascending.
+    /// Dofs of a leaf in METIS's nested-dissection order of the leaf (so that the tree's order,
+    /// each subtree's dofs before its separator, is a fill-reducing order of every subtree).
     Leaf(Vec<usize>),
     /// A separator's dofs (ascending) and the two subtrees it separates.
     Split {
@@ -39,14 +39,15 @@ impl Substructure {
     }
 }
 
-/// The tree of the symmetric pattern `a` (n × n): groups of `block` consecutive dofs (one node)
+/// The tree of the symmetric matrix `a` (n × n): groups of `block` consecutive dofs (one node)
 /// stay together when `block` divides n; subsets of more than `leaf_dofs` dofs are split while
 /// METIS finds a separator that leaves both parts non-empty.
 pub fn build(
-    a: SymbolicSparseColMatRef<'_, usize>,
+    matrix: &SparseColMat<usize, f64>,
     block: Option<usize>,
     leaf_dofs: usize,
 ) -> Result<Substructure, SolveError> {
+    let a = matrix.symbolic();
     let n = a.nrows();
     let b = match block {
         Some(b) if b > 1 && n % b == 0 => b,
@@ -69,7 +70,32 @@ pub fn build(
         }
     }
     let graph = Graph { adj, b };
-    graph.split((0..nv).collect(), leaf_dofs.max(b))
+    let mut root = graph.split((0..nv).collect(), leaf_dofs.max(b))?;
+    order_leaves(&mut root, matrix, block)?;
+    Ok(root)
+}
+
+/// Puts every leaf's dofs into METIS's nested-dissection order of the leaf's own matrix.
+fn order_leaves(
+    node: &mut Substructure,
+    a: &SparseColMat<usize, f64>,
+    block: Option<usize>,
+) -> Result<(), SolveError> {
+    match node {
+        Substructure::Leaf(dofs) => {
+            if dofs.len() > 1 {
+                let sub = sparse_ops::submatrix(a.as_ref(), dofs, dofs)?;
+                let fwd = ordering::nested_dissection(sub.symbolic(), block)?;
+                *dofs = fwd.iter().map(|&i| dofs[i]).collect();
+            }
+            Ok(())
+        }
+        Substructure::Split { children, .. } => {
+            let [c1, c2] = &mut **children;
+            order_leaves(c1, a, block)?;
+            order_leaves(c2, a, block)
+        }
+    }
 }
 
 struct Graph {
