@@ -95,6 +95,15 @@ impl BeamSection {
         })
     }
 
+    /// A `SECDATA` or `SECCONTROL` line of this section: the refusal's reason, if any.
+    pub fn read(&mut self, file: &str, c: &Command) -> Result<Option<String>, ImportError> {
+        if c.name == "SECDATA" {
+            self.secdata(file, c)
+        } else {
+            self.seccontrol(file, c)
+        }
+    }
+
     /// `SECDATA,…`: the section's dimensions or constants (one line).
     pub fn secdata(&mut self, file: &str, c: &Command) -> Result<Option<String>, ImportError> {
         let values = (0..c.fields.len().max(1))

@@ -314,13 +314,8 @@ impl Archive {
             }
             "SECDATA" | "SECCONTROL" if self.beam_now.is_some() => {
                 let now = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
-                if let Some(s) = now {
-                    let why = if c.name == "SECDATA" {
-                        s.secdata(file, c)?
-                    } else {
-                        s.seccontrol(file, c)?
-                    };
-                    refused.extend(why.map(|why| (c.line, why)));
+                if let Some(why) = now.map(|s| s.read(file, c)).transpose()?.flatten() {
+                    refused.push((c.line, why));
                 }
             }
             "SECOFFSET" => {
