@@ -204,6 +204,22 @@ fn cases() -> Vec<Case> {
         case(Ccx("C3D6"), Prism6, WEDGE.to_vec(), 7),
         case(Ccx("C3D15"), Prism15, wedge15, 6),
         case(Ansys("185", 0), Hex8Bbar, HEX.to_vec(), 6),
+        case(
+            Ansys("188", 0),
+            Beam2Linear,
+            vec![[0.0; 3], [1.0, 0.0, 0.0]],
+            6,
+        ),
+        // straight, its mid node at the middle (a bent one is refused as curved)
+        Case {
+            warped: false,
+            ..case(
+                Ansys("189", 0),
+                Beam3Quadratic,
+                vec![[0.0; 3], [1.0, 0.0, 0.0], [0.5, 0.0, 0.0]],
+                6,
+            )
+        },
     ]
 }
 
@@ -321,6 +337,16 @@ fn deck(case: &Case, x: &[X], orientation: X) -> (String, String) {
             (text, "element.inp".into())
         }
         Deck::Ansys(ty, keyopt2) => {
+            // BEAM188: an ASEC section and the orientation node K = I + the orientation
+            let beam = ty == "188" || ty == "189";
+            let k_node = beam.then(|| std::array::from_fn(|c| x[0][c] + orientation[c]));
+            let x: Vec<X> = x.iter().copied().chain(k_node).collect();
+            ids.extend(beam.then_some(x.len()));
+            let section = if beam {
+                format!("SECTYPE,1,BEAM,ASEC\nSECDATA,{BAR_A},3.e-8,0,2.e-8,0,4.e-8\n")
+            } else {
+                String::new()
+            };
             let n = x.len();
             let nodes: String = (x.iter().enumerate())
                 .map(|(i, p)| {
@@ -335,12 +361,12 @@ fn deck(case: &Case, x: &[X], orientation: X) -> (String, String) {
                     )
                 })
                 .collect();
-            let head = [1, 1, 1, 1, 0, 0, 0, 0, n, 0, 1];
+            let head = [1, 1, 1, 1, 0, 0, 0, 0, ids.len(), 0, 1];
             let record: String = (head.iter().chain(&ids))
                 .map(|v| format!("{v:>9}"))
                 .collect();
             let text = format!(
-                "ET,        1,{ty}\nKEYOP,        1, 2,{keyopt2:>9}\n\
+                "ET,        1,{ty}\nKEYOP,        1, 2,{keyopt2:>9}\n{section}\
                  NBLOCK,6,SOLID,{n:>10},{n:>10}\n(3i9,6e21.13e3)\n{nodes}N,R5.3,LOC,       -1,\n\
                  EBLOCK,19,SOLID,         1,         1\n(19i9)\n{record}\n       -1\n\
                  MPTEMP,R5.0, 1, 1,  0.00000000    ,\n\
@@ -439,7 +465,9 @@ fn measure(case: &Case, x: &[X]) -> f64 {
         Hex8 | Hex8R | Hex8Bbar | Hex20 | Hex20R => 6.0 * tet(x[0], x[1], x[3], x[4]),
         Prism6 | Prism15 => 3.0 * tet(x[0], x[1], x[2], x[3]),
         Pyram5 | Pyram13 => 2.0 * tet(x[0], x[1], x[3], x[4]),
-        Bar2 | Beam2 | Rod2 => BAR_A * dot(sub(x[1], x[0]), sub(x[1], x[0])).sqrt(),
+        Bar2 | Beam2 | Beam2Linear | Beam3Quadratic | Rod2 => {
+            BAR_A * dot(sub(x[1], x[0]), sub(x[1], x[0])).sqrt()
+        }
         Tri3 | Tri6 => SHELL_T * tri(x[0], x[1], x[2]),
         Quad4 | Quad8 => SHELL_T * 2.0 * tri(x[0], x[1], x[3]),
         Beam3 => unreachable!("not in the harness"),
@@ -553,7 +581,10 @@ fn every_element_passes_the_constant_strain_patch_test() {
         use ElementKind::*;
         let tag = name(&case);
         let shell = is_shell(case.kind);
-        if matches!(case.kind, Bar2 | Beam2 | Rod2) {
+        if matches!(
+            case.kind,
+            Bar2 | Beam2 | Beam2Linear | Beam3Quadratic | Rod2
+        ) {
             continue; // line elements: no strain field to patch
         }
         let x: Vec<X> = case.nodes.iter().map(|&p| place(p, false, shell)).collect();
@@ -646,13 +677,33 @@ fn the_harness_covers_every_element_kind() {
     use ElementKind::*;
     let harnessed: Vec<ElementKind> = cases().iter().map(|c| c.kind).collect();
     let all = [
-        Tet4, Tet10, Hex8, Hex8R, Hex8Bbar, Hex20, Hex20R, Prism6, Prism15, Pyram5, Pyram13, Beam2,
-        Bar2, Rod2, Tri3, Quad4, Tri6, Quad8, Beam3,
+        Tet4,
+        Tet10,
+        Hex8,
+        Hex8R,
+        Hex8Bbar,
+        Hex20,
+        Hex20R,
+        Prism6,
+        Prism15,
+        Pyram5,
+        Pyram13,
+        Beam2,
+        Bar2,
+        Beam2Linear,
+        Beam3Quadratic,
+        Rod2,
+        Tri3,
+        Quad4,
+        Tri6,
+        Quad8,
+        Beam3,
     ];
     for kind in all {
         let formed = match kind {
             Tet4 | Tet10 | Hex8 | Hex8R | Hex8Bbar | Hex20 | Hex20R | Prism6 | Prism15 | Pyram5
-            | Pyram13 | Beam2 | Bar2 | Rod2 | Tri3 | Quad4 | Tri6 | Quad8 => true,
+            | Pyram13 | Beam2 | Bar2 | Beam2Linear | Beam3Quadratic | Rod2 | Tri3 | Quad4
+            | Tri6 | Quad8 => true,
             // expanded into bricks on import
             Beam3 => false,
         };

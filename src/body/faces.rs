@@ -62,9 +62,20 @@ pub fn graphics_faces(model: &Model) -> Vec<GraphicsFace> {
     let mut out = Vec::new();
     for e in &model.elements {
         match e.kind {
-            ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2 => out.push(GraphicsFace {
+            ElementKind::Beam2
+            | ElementKind::Bar2
+            | ElementKind::Beam2Linear
+            | ElementKind::Rod2 => out.push(GraphicsFace {
                 nodes: e.nodes.clone(),
             }),
+            // nodes I, J, mid: two segments through the mid node
+            ElementKind::Beam3Quadratic => {
+                for pair in [[e.nodes[0], e.nodes[2]], [e.nodes[2], e.nodes[1]]] {
+                    out.push(GraphicsFace {
+                        nodes: pair.to_vec(),
+                    });
+                }
+            }
             ElementKind::Tri3 | ElementKind::Tri6 | ElementKind::Quad4 | ElementKind::Quad8 => {
                 if e.property.is_some() {
                     let corners = if matches!(e.kind, ElementKind::Tri3 | ElementKind::Tri6) {

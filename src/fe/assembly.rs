@@ -37,7 +37,11 @@ pub fn is_structural(kind: ElementKind) -> bool {
     kind.is_solid()
         || matches!(
             kind,
-            ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2
+            ElementKind::Beam2
+                | ElementKind::Bar2
+                | ElementKind::Beam2Linear
+                | ElementKind::Beam3Quadratic
+                | ElementKind::Rod2
         )
 }
 

@@ -95,6 +95,8 @@ impl DofMap {
                 | ElementKind::Pyram13 => 3,
                 ElementKind::Beam2
                 | ElementKind::Bar2
+                | ElementKind::Beam2Linear
+                | ElementKind::Beam3Quadratic
                 | ElementKind::Rod2
                 | ElementKind::Quad4
                 | ElementKind::Tri3

@@ -179,6 +179,8 @@ pub fn solid_faces(kind: ElementKind) -> Option<(FaceTable, EdgeTable)> {
         ElementKind::Hex20 | ElementKind::Hex20R => (HEX_FACES, HEX20_EDGES),
         ElementKind::Beam2
         | ElementKind::Bar2
+        | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3
         | ElementKind::Tri3

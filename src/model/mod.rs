@@ -111,6 +111,12 @@ pub enum ElementKind {
     /// 2-node 3D bar (Nastran CBAR): the beam formulation of [`ElementKind::Beam2`]; kept apart
     /// because Nastran lumps no rotary inertia on a CBAR but torsional inertia on a CBEAM.
     Bar2,
+    /// 2-node 3D beam with linear functions and one-point shear, as ANSYS forms BEAM188 with
+    /// KEYOPT(3)=0 (`fe::elements::beam188`): 6 dofs per node.
+    Beam2Linear,
+    /// 3-node 3D beam (nodes I, J, mid) with quadratic functions, stiffness on two points, as
+    /// ANSYS forms BEAM189 (`fe::elements::beam189`): 6 dofs per node.
+    Beam3Quadratic,
     /// 2-node rod: axial + torsion (CROD, T3D2).
     Rod2,
     /// 3-node shell triangle (S3, CTRIA3): DKT/DKMT bending + CST membrane, 6 dofs per node; without
@@ -140,8 +146,11 @@ impl ElementKind {
             ElementKind::Prism15 => 15,
             ElementKind::Pyram5 => 5,
             ElementKind::Pyram13 => 13,
-            ElementKind::Beam2 | ElementKind::Bar2 | ElementKind::Rod2 => 2,
-            ElementKind::Tri3 | ElementKind::Beam3 => 3,
+            ElementKind::Beam2
+            | ElementKind::Bar2
+            | ElementKind::Beam2Linear
+            | ElementKind::Rod2 => 2,
+            ElementKind::Tri3 | ElementKind::Beam3 | ElementKind::Beam3Quadratic => 3,
             ElementKind::Quad4 => 4,
             ElementKind::Tri6 => 6,
             ElementKind::Quad8 => 8,

@@ -57,6 +57,8 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
         | ElementKind::Pyram13
         | ElementKind::Beam2
         | ElementKind::Bar2
+        | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3
         | ElementKind::Tri6

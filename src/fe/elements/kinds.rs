@@ -19,6 +19,8 @@ pub fn element(kind: ElementKind) -> &'static dyn Element {
         ElementKind::Pyram5 => &super::pyram5::Pyram5Element,
         ElementKind::Pyram13 => &super::pyram13::Pyram13Element,
         ElementKind::Beam2 | ElementKind::Bar2 => &super::beam_element::BeamElement,
+        ElementKind::Beam2Linear => &super::beam188::Beam188Element,
+        ElementKind::Beam3Quadratic => &super::beam189::Beam189Element,
         ElementKind::Rod2 => &super::rod::RodElement,
         ElementKind::Tri3 => &super::tri3_shell::Tri3Element,
         ElementKind::Quad4 => &super::quad4_shell::Quad4Element,

@@ -12,6 +12,8 @@
 
 pub mod anisotropic;
 pub mod beam;
+pub mod beam188;
+pub mod beam189;
 pub mod beam_element;
 pub mod curved_shell;
 pub mod dense;

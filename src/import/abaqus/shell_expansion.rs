@@ -113,6 +113,8 @@ fn corners(brick: ElementKind) -> usize {
         | ElementKind::Pyram13
         | ElementKind::Beam2
         | ElementKind::Bar2
+        | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3
         | ElementKind::Tri3
@@ -172,6 +174,8 @@ pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
         | ElementKind::Pyram13
         | ElementKind::Beam2
         | ElementKind::Bar2
+        | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3 => return [0.0; 3],
         ElementKind::Tri6 => {

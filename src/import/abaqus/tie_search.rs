@@ -45,6 +45,8 @@ pub(super) fn ccx_face_nodes(
         ElementKind::Pyram5 | ElementKind::Pyram13 => faces[face - 1][0],
         ElementKind::Beam2
         | ElementKind::Bar2
+        | ElementKind::Beam2Linear
+        | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Tri3
         | ElementKind::Quad4

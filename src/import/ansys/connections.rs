@@ -1,7 +1,7 @@
 //! The connection elements of an archive into the model's connectors: COMBIN14 springs
 //! (bushes along I→J, scalar springs), LINK180 rod properties, MPC184 rigid links (linear MPCs,
 //! their dependent dof a free one) and the check that a MASS21 rotary inertia sits on a node an
-//! MPC184 rigid beam joins.
+//! MPC184 rigid beam or a BEAM188 joins.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -55,6 +55,15 @@ pub(super) fn rotary_without_rotations(
             rotating.extend(dependent.iter().copied());
         }
     }
+    // a BEAM188 gives its nodes' rotations stiffness (and consistent rotary inertia)
+    for e in &model.elements {
+        if matches!(
+            e.kind,
+            crate::model::ElementKind::Beam2Linear | crate::model::ElementKind::Beam3Quadratic
+        ) {
+            rotating.extend(e.nodes.iter().copied());
+        }
+    }
     let mut out = Vec::new();
     for &(line, etype, k) in rotary {
         let p = &model.point_masses[k];
@@ -66,9 +75,9 @@ pub(super) fn rotary_without_rotations(
                     etype,
                     format!(
                         "MASS21 on node {} with rotary inertia IXX={}, IYY={}, IZZ={}: no MPC184 \
-                         rigid beam joins the node, and no other element read from an archive \
-                         gives its rotations stiffness, so they would be free (set KEYOPT(3)=2 \
-                         or zero inertias)",
+                         rigid beam or BEAM188 joins the node, and no other element read from an \
+                         archive gives its rotations stiffness, so they would be free (set \
+                         KEYOPT(3)=2 or zero inertias)",
                         model.nodes[p.node].id, i[0], i[1], i[2]
                     ),
                 ),

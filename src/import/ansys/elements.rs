@@ -62,6 +62,8 @@ pub(super) enum Formed {
     RigidBeam(u64, u64),
     /// A SHELL181 (KEYOPT(3)=2) on its homogeneous section ([`super::shells`]).
     Shell(super::shells::Shell),
+    /// A BEAM188 (KEYOPT(3)=0) or BEAM189 on its nodes and orientation node ([`super::beams`]).
+    Beam(super::beams::Beam),
 }
 
 /// A LINK section (`SECTYPE,id,LINK`): its line, the area (`SECDATA`) and the added mass per
@@ -126,6 +128,8 @@ pub(super) fn form(
         180 => link180(t, rec, reals, section),
         181 => super::shells::shell181(&t.keyopts, rec, reals, shell).map(Formed::Shell),
         184 => mpc184(t, rec),
+        188 => super::beams::beam188(&t.keyopts, rec).map(Formed::Beam),
+        189 => super::beams::beam189(&t.keyopts, rec).map(Formed::Beam),
         185 => solid185(t, rec),
         186 => solid186(t, rec),
         187 => solid187(t, rec),

@@ -9,6 +9,7 @@
 //! ([`materials`]), `D`/`CE`/`CP`/`F`/`ACEL` in [`constraints`], node and element components
 //! (`CMBLOCK`) become the model's named sets.
 
+mod beams;
 mod blocks;
 pub mod catalogue;
 mod connections;
@@ -102,6 +103,9 @@ struct Archive {
     /// Shell sections by id, and the one the last SECTYPE opened (`None`: not a shell one).
     shell_sections: BTreeMap<i64, shells::ShellSection>,
     shell_now: Option<i64>,
+    /// Beam sections by id, and the one the last SECTYPE opened (`None`: not a beam one).
+    beam_sections: BTreeMap<i64, beams::BeamSection>,
+    beam_now: Option<i64>,
     /// The MPC184 rigid links' MPCs (indices into the model's).
     links: Vec<usize>,
     /// Real constant sets (`R`, `RLBLOCK`).
@@ -261,7 +265,16 @@ impl Archive {
                 let id = c.int(file, 0)?;
                 self.section_now = None;
                 self.shell_now = None;
-                if c.field(1).eq_ignore_ascii_case("SHELL") {
+                self.beam_now = None;
+                if c.field(1).eq_ignore_ascii_case("BEAM") {
+                    match beams::BeamSection::open(c) {
+                        Ok(s) => {
+                            self.beam_sections.insert(id, s);
+                            self.beam_now = Some(id);
+                        }
+                        Err(why) => refused.push((c.line, why)),
+                    }
+                } else if c.field(1).eq_ignore_ascii_case("SHELL") {
                     let (s, refusal) = shells::ShellSection::open(c);
                     refused.extend(refusal.map(|why| (c.line, why)));
                     self.shell_sections.insert(id, s);
@@ -278,9 +291,9 @@ impl Archive {
                     refused.push((
                         c.line,
                         format!(
-                            "SECTYPE {id},{}: only LINK (LINK180's) and SHELL (SHELL181's) \
-                             sections are read; beam and other sections' elements are not formed \
-                             here",
+                            "SECTYPE {id},{}: only LINK (LINK180's), SHELL (SHELL181's) and \
+                             BEAM (BEAM188's) sections are read; tapered and other sections' \
+                             elements are not formed here",
                             c.field(1)
                         ),
                     ));
@@ -299,10 +312,20 @@ impl Archive {
                     refused.extend(why.map(|why| (c.line, why)));
                 }
             }
+            "SECDATA" | "SECCONTROL" if self.beam_now.is_some() => {
+                let now = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
+                if let Some(why) = now.map(|s| s.read(file, c)).transpose()?.flatten() {
+                    refused.push((c.line, why));
+                }
+            }
             "SECOFFSET" => {
-                let why = match self.shell_now {
-                    Some(_) => shells::ShellSection::secoffset(c),
-                    None => Some("SECOFFSET of a section other than a shell: not read".into()),
+                let beam = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
+                let why = match (self.shell_now, beam) {
+                    (Some(_), _) => shells::ShellSection::secoffset(c),
+                    (None, Some(b)) => b.secoffset(c),
+                    (None, None) => {
+                        Some("SECOFFSET of a section other than a shell or beam: not read".into())
+                    }
                 };
                 refused.extend(why.map(|why| (c.line, why)));
             }
@@ -400,6 +423,12 @@ impl Archive {
         free_dependents(&mut model, &self.links);
         self.components(file, &node_map, &elements, &mut model)?;
         self.refusals(file)?;
+        if let Some((line, true)) = self.lumped {
+            if let Some(why) = beams::lumped_refusal(&model) {
+                self.refuse(line, "LUMPM", why);
+                self.refusals(file)?;
+            }
+        }
         model.params.coupled_mass = Some(match self.lumped {
             Some((line, true)) => crate::model::DeckMass {
                 consistent: false,
@@ -424,6 +453,7 @@ impl Archive {
                 list(lines)
             ));
         }
+        let beam_note = beams::note(&model);
         let notes = &mut model.deck.notes;
         notes.push(format!(
             "ANSYS archive: {} mass (ANSYS's default is consistent mass, LUMPM,ON lumped; SOLID186's \
@@ -439,6 +469,7 @@ impl Archive {
                     .into(),
             );
         }
+        notes.extend(beam_note);
         for (title, items) in groups {
             notes.push(format!(
                 "ANSYS archive, {title}: not read, no effect on the body (docs/ansys-commands.md \
@@ -536,6 +567,7 @@ impl Archive {
         let mut damped = Vec::new();
         let mut rods = BTreeMap::new();
         let mut shell_props = shells::ShellProperties::new();
+        let mut beam_ctx = beams::BeamContext::new(&self.beam_sections, &property_of);
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
         for r in &self.elements {
@@ -656,6 +688,7 @@ impl Archive {
                         }
                     }
                 }
+                Ok(Formed::Beam(beam)) => beam_ctx.push(model, r, &beam, node_of, &mut refusals)?,
                 Ok(Formed::Element(kind, ids)) => {
                     let nodes = ids
                         .into_iter()

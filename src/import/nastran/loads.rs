@@ -206,6 +206,8 @@ fn card_parts(
                         }
                         k @ (ElementKind::Beam2
                         | ElementKind::Bar2
+                        | ElementKind::Beam2Linear
+                        | ElementKind::Beam3Quadratic
                         | ElementKind::Rod2
                         | ElementKind::Beam3
                         | ElementKind::Tri6
