@@ -14,7 +14,7 @@
 //! ```
 //! With one point the shear strain is the centre's, so the element does not lock; a cantilever
 //! of one element under a tip load P deflects PL³/(4EI) + PL/(kGA) (the exact Timoshenko beam
-//! `Beam2`: PL³/(3EI) + PL/(kGA)); n elements give PL³/(3EI)·(1 + 1/(4n²))… (tests).
+//! `Beam2`: PL³/(3EI) + PL/(kGA)); n elements give PL³/(3EI)·(1 − 1/(4n²)) + PL/(kGA) (tests).
 
 use super::beam::{self, BeamProps};
 use super::element::{
