@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use ansys_support::writers::{
-    block, block_archive, build_body as build, ccx_deck, eblock, frequency_difference, material,
+    block, block_archive, build_body as build, ccx_deck, eblock, lumped_load_differences, material,
     nblock, response_difference, root, static_response, RESIDUALS, STEEL,
 };
 use ansys_support::{read_inp, solid186_archive, wedge_as_brick};
@@ -53,10 +53,7 @@ fn sfe_on_solid186_equals_the_ccx_dload_and_beam_theory() {
     .unwrap();
     let inp = work.join("faces.inp");
     std::fs::write(&inp, ccx_deck(&m, &format!("*DLOAD\n{dload}"))).unwrap();
-    let ours = build(&cdb, 6, &["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]]);
-    let ccx = build(&inp, 6, &["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]]);
-    let modes = frequency_difference(&ours, &ccx, 6);
-    let worst = response_difference(&static_response(&ours, 0), &static_response(&ccx, 0));
+    let (modes, worst) = lumped_load_differences(&cdb, &inp, 6);
     println!("SFE faces 1…6 against *DLOAD: static response {worst:.2e}, frequencies {modes:.2e}");
     // measured 1.6e-12 and 1.1e-12 (two eigensolves' rounding)
     assert!(modes < 1e-11, "{modes}");
@@ -329,11 +326,7 @@ fn sfe_on_solid187_equals_the_ccx_dload() {
     std::fs::write(&cdb, cdb_text).unwrap();
     let inp = work.join("tets.inp");
     std::fs::write(&inp, inp_text).unwrap();
-    let args = ["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]];
-    let ours = build(&cdb, 6, &args);
-    let ccx = build(&inp, 6, &args);
-    let modes = frequency_difference(&ours, &ccx, 6);
-    let worst = response_difference(&static_response(&ours, 0), &static_response(&ccx, 0));
+    let (modes, worst) = lumped_load_differences(&cdb, &inp, 6);
     println!("SOLID187 SFE faces 1…4 against *DLOAD: static response {worst:.2e}, frequencies {modes:.2e}");
     // measured 1.4e-14 and 1.6e-14
     assert!(modes < 1.5e-13 && worst < 1.5e-13, "{modes} {worst}");
@@ -371,11 +364,7 @@ fn sfe_on_a_collapsed_solid186_keeps_the_brick_faces() {
     std::fs::write(&cdb, &cdb_text).unwrap();
     let inp = work.join("wedges.inp");
     std::fs::write(&inp, inp_text).unwrap();
-    let args = ["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]];
-    let ours = build(&cdb, 6, &args);
-    let ccx = build(&inp, 6, &args);
-    let modes = frequency_difference(&ours, &ccx, 6);
-    let worst = response_difference(&static_response(&ours, 0), &static_response(&ccx, 0));
+    let (modes, worst) = lumped_load_differences(&cdb, &inp, 6);
     println!("collapsed SOLID186 SFE against C3D15 *DLOAD: static response {worst:.2e}, frequencies {modes:.2e}");
     // measured 8.4e-12 and 1.5e-11 (two eigensolves' rounding; a face taken for another is
     // off by the order of one)

@@ -198,7 +198,7 @@ pub fn chart(runs: &[Value], path: &std::path::Path) -> Res<()> {
             "wall time (s)",
             "max rel. eigenvalue error",
             &series,
-            SeriesLabelPosition::UpperRight,
+            SeriesLabelPosition::LowerRight,
         )?;
     }
     root.present().map_err(err)?;

@@ -200,6 +200,19 @@ pub fn frequency_difference(a: &file::ReducedBody, b: &file::ReducedBody, count:
         .fold(0.0, f64::max)
 }
 
+/// `ours` against the same model and loads written for another importer (`reference`), both
+/// built with `--mass lumped` and the scene loads' residual vectors: (the largest relative
+/// difference of the lowest `modes` frequencies, that of the first load's static response).
+pub fn lumped_load_differences(ours: &Path, reference: &Path, modes: usize) -> (f64, f64) {
+    let args = ["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]];
+    let (a, b) = (
+        build_body(ours, modes, &args),
+        build_body(reference, modes, &args),
+    );
+    let response = response_difference(&static_response(&a, 0), &static_response(&b, 0));
+    (frequency_difference(&a, &b, modes), response)
+}
+
 /// The block as a CalculiX deck (C3D20R, the same ids), clamped at x = 0, `step` in a
 /// `*STATIC` step before a `*FREQUENCY` one.
 pub fn ccx_deck(m: &Block, step: &str) -> String {

@@ -28,32 +28,7 @@ pub struct Beam188Element;
 
 impl Element for Beam188Element {
     fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
-        let unsupported = |m: String| Err(MatricesError::Unsupported(m));
-        let Section::Beam(s) = &input.property.section else {
-            return unsupported(format!(
-                "BEAM188 element with non-beam property {}",
-                input.property.id
-            ));
-        };
-        if s.taper.is_some() || s.i12 != 0.0 {
-            return unsupported(
-                "BEAM188 with a tapered section or a product of inertia: not formed here".into(),
-            );
-        }
-        let Some(shear) = s.shear_factors else {
-            return unsupported(
-                "BEAM188 without shear factors: the one-point element needs its shear stiffness"
-                    .into(),
-            );
-        };
-        let p = BeamProps {
-            area: s.area,
-            iz: s.i1,
-            iy: s.i2,
-            j: s.j,
-            shear: Some(shear),
-            nsm: s.nsm,
-        };
+        let p = ansys_section_props("BEAM188", input)?;
         let x = input.coords::<2>();
         let v = input.model.elements[input.index].orientation;
         let (k, m) = matrices(&x, v, &input.iso, &p, input.lumped())?;
@@ -71,6 +46,45 @@ impl Element for Beam188Element {
     fn nodal_gradients(&self, _: &[Xyz]) -> Result<Option<NodalGradients>, ElementError> {
         Ok(None)
     }
+}
+
+/// The section of an ANSYS beam (BEAM188, BEAM189) as [`BeamProps`]: ANSYS's beams are
+/// Timoshenko beams on principal axes, so a tapered section, a product of inertia I_yz ≠ 0 or
+/// a section without shear factors is not formed (the importer refuses them first; this guards
+/// a model built otherwise). `name` is the element's name in the messages.
+pub(super) fn ansys_section_props(
+    name: &str,
+    input: &ElementInput,
+) -> Result<BeamProps, MatricesError> {
+    let unsupported = |m: String| Err(MatricesError::Unsupported(m));
+    let Section::Beam(s) = &input.property.section else {
+        return unsupported(format!(
+            "{name} element with non-beam property {}",
+            input.property.id
+        ));
+    };
+    if s.taper.is_some() {
+        return unsupported(format!("{name} with a tapered section: not formed here"));
+    }
+    if s.i12 != 0.0 {
+        return unsupported(format!(
+            "{name} with a product of inertia I_yz = {} ≠ 0: not formed here",
+            s.i12
+        ));
+    }
+    let Some(shear) = s.shear_factors else {
+        return unsupported(format!(
+            "{name} without shear factors: its stiffness needs the section's shear stiffness"
+        ));
+    };
+    Ok(BeamProps {
+        area: s.area,
+        iz: s.i1,
+        iy: s.i2,
+        j: s.j,
+        shear: Some(shear),
+        nsm: s.nsm,
+    })
 }
 
 /// Basic-frame stiffness and mass (12×12 each, row-major) of one element; `v` orients the

@@ -13,36 +13,14 @@ use super::beam::{self, BeamProps};
 use super::element::{
     Element, ElementInput, ElementMatrices, MatricesError, ModePoint, NodalGradients, SolidRules,
 };
-use super::{ElementError, Isotropic, Xyz};
-use crate::model::Section;
+use super::{beam188, ElementError, Isotropic, Xyz};
 
 /// BEAM189 (nodes I, J, mid).
 pub struct Beam189Element;
 
 impl Element for Beam189Element {
     fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
-        let unsupported = |m: String| Err(MatricesError::Unsupported(m));
-        let Section::Beam(s) = &input.property.section else {
-            return unsupported(format!(
-                "BEAM189 element with non-beam property {}",
-                input.property.id
-            ));
-        };
-        if s.taper.is_some() || s.i12 != 0.0 || s.shear_factors.is_none() {
-            return unsupported(
-                "BEAM189 with a tapered section, a product of inertia or no shear factors: not \
-                 formed here"
-                    .into(),
-            );
-        }
-        let p = BeamProps {
-            area: s.area,
-            iz: s.i1,
-            iy: s.i2,
-            j: s.j,
-            shear: s.shear_factors,
-            nsm: s.nsm,
-        };
+        let p = beam188::ansys_section_props("BEAM189", input)?;
         let x = input.coords::<3>();
         let v = input.model.elements[input.index].orientation;
         let (k, m) = matrices(&x, v, &input.iso, &p)?;
