@@ -64,11 +64,12 @@ impl BeamSection {
     /// refused (the reason).
     pub fn open(c: &Command) -> Result<BeamSection, String> {
         let sub = c.field(2).trim().to_ascii_uppercase();
+        // CDWRITE writes the subtype's first four letters (SECTYPE,1,BEAM,CSOL)
         let subtype = match sub.as_str() {
             "ASEC" => Subtype::Asec,
             "RECT" => Subtype::Rect,
-            "CSOLID" => Subtype::Csolid,
-            "CTUBE" => Subtype::Ctube,
+            "CSOLID" | "CSOL" => Subtype::Csolid,
+            "CTUBE" | "CTUB" => Subtype::Ctube,
             "MESH" => {
                 return Err(format!(
                     "SECTYPE {},BEAM,MESH: a user section mesh is not read (ANSYS integrates \

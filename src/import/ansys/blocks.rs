@@ -50,6 +50,15 @@ impl Command<'_> {
     }
 }
 
+/// Whether a command's first field marks CDWRITE's own form of the command: `R5.0`, `R5.3`…
+/// in a blocked archive (the default), `UNBL` in an unblocked one (`CDWRITE,…,UNBLOCKED`);
+/// e.g. `MPTEMP,R5.0,…` and `MPTEMP,UNBL,…` are the same record.
+pub(super) fn archive_form(field: &str) -> bool {
+    let f = field.trim();
+    f.eq_ignore_ascii_case("UNBL")
+        || (f.len() > 2 && f[..2].eq_ignore_ascii_case("R5") && f[2..].starts_with('.'))
+}
+
 /// An integer field, also written as a real without fraction.
 fn int_of(s: &str) -> Option<i64> {
     let s = s.trim();
@@ -84,14 +93,19 @@ fn strip_comment(text: &str) -> &str {
     text
 }
 
-/// The field widths of a Fortran format line such as `(3i9,6e21.13e3)` or `(19i10)`: the
-/// integer count and width, the real count and width (0 when absent).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The field widths of a Fortran format line such as `(3i9,6e21.13e3)`, `(19i10)`,
+/// `(1i7,2i9,6e21.13)` (an archive written by Workbench: the node number narrower than the two
+/// columns after it), `(2i9,19a9)` (`ETBLOCK`) or `(i9,a6,2(pg16.9))` (`DBLOCK`: text columns,
+/// a scale factor `p`, a repeated group): every column's width, and how many integer columns
+/// lead and how many real columns there are.
+#[derive(Debug, Clone, PartialEq)]
 pub(super) struct Layout {
+    /// Integer columns before the first column of another kind.
     pub ints: usize,
-    pub int_width: usize,
+    /// Real columns (e, g, f, d).
     pub reals: usize,
-    pub real_width: usize,
+    /// Every column's width, in order.
+    pub widths: Vec<usize>,
 }
 
 /// Read a format line (the line after a block command).
@@ -112,56 +126,74 @@ pub(super) fn layout(file: &str, line: usize, text: &str) -> Result<Layout, Impo
         .strip_prefix('(')
         .and_then(|s| s.strip_suffix(')'))
         .ok_or_else(bad)?;
-    let mut out = Layout {
-        ints: 0,
-        int_width: 0,
-        reals: 0,
-        real_width: 0,
-    };
-    for item in inner.split(',') {
-        let item = item.trim().to_ascii_lowercase();
-        let kind_at = item
-            .find(|c: char| c.is_ascii_alphabetic())
-            .ok_or_else(bad)?;
-        let count: usize = if kind_at == 0 {
+    let mut kinds = Vec::new();
+    format_items(&inner.to_ascii_lowercase(), &mut kinds, 0).ok_or_else(bad)?;
+    if kinds.is_empty() || kinds.len() > 256 {
+        return Err(bad());
+    }
+    Ok(Layout {
+        ints: kinds.iter().take_while(|(k, _)| *k == 'i').count(),
+        reals: kinds.iter().filter(|(k, _)| "egfd".contains(*k)).count(),
+        widths: kinds.iter().map(|&(_, w)| w).collect(),
+    })
+}
+
+/// The columns (kind, width) of a format's items, comma-separated, each `[n]kw[.d[eE]]`, `[n]ak`
+/// or `n(items)`, an item's scale factor `p` skipped; `None` for anything else.
+fn format_items(items: &str, out: &mut Vec<(char, usize)>, depth: usize) -> Option<()> {
+    if depth > 2 {
+        return None;
+    }
+    let mut rest = items.trim();
+    while !rest.is_empty() {
+        let digits = rest
+            .find(|c: char| !c.is_ascii_digit())
+            .unwrap_or(rest.len());
+        let count: usize = if digits == 0 {
             1
         } else {
-            item[..kind_at].parse().map_err(|_| bad())?
+            rest[..digits].parse().ok()?
         };
-        let kind = &item[kind_at..kind_at + 1];
-        let rest = &item[kind_at + 1..];
-        let width: usize = rest
-            .split('.')
-            .next()
-            .and_then(|w| w.parse().ok())
-            .ok_or_else(bad)?;
-        if width == 0 || width > 64 || count > 64 {
-            return Err(bad());
+        if count == 0 || count > 256 {
+            return None;
         }
-        match kind {
-            "i" if out.reals == 0 => {
-                out.ints += count;
-                out.int_width = width;
+        let after = &rest[digits..];
+        let (kinds, next) = if let Some(group) = after.strip_prefix('(') {
+            let close = group.find(')')?;
+            let mut inner = Vec::new();
+            format_items(&group[..close], &mut inner, depth + 1)?;
+            (inner, &group[close + 1..])
+        } else {
+            let end = after.find(',').unwrap_or(after.len());
+            let item = after[..end].trim().trim_start_matches('p');
+            let kind = item.chars().next()?;
+            if !"iegfda".contains(kind) {
+                return None;
             }
-            "e" | "g" | "f" | "d" => {
-                out.reals += count;
-                out.real_width = width;
+            let width: usize = item[1..].split('.').next()?.parse().ok()?;
+            if width == 0 || width > 64 {
+                return None;
             }
-            _ => return Err(bad()),
+            (vec![(kind, width)], &after[end..])
+        };
+        for _ in 0..count {
+            out.extend_from_slice(&kinds);
         }
+        if out.len() > 256 {
+            return None;
+        }
+        rest = next.trim_start().trim_start_matches(',').trim_start();
     }
-    Ok(out)
+    Some(())
 }
 
 /// The fixed-width fields of a record line: `ints` integer columns then `reals` real columns;
 /// columns past the line's end are absent (`None`).
 pub(super) fn columns<'a>(text: &'a str, lay: &Layout) -> Vec<Option<&'a str>> {
     let bytes = text.trim_end_matches(['\r', '\n']);
-    let mut out = Vec::with_capacity(lay.ints + lay.reals);
+    let mut out = Vec::with_capacity(lay.widths.len());
     let mut at = 0;
-    let widths = std::iter::repeat_n(lay.int_width, lay.ints)
-        .chain(std::iter::repeat_n(lay.real_width, lay.reals));
-    for w in widths {
+    for &w in &lay.widths {
         let end = (at + w).min(bytes.len());
         let s = bytes.get(at..end).map(str::trim).filter(|s| !s.is_empty());
         out.push(s);
@@ -272,6 +304,12 @@ impl<'a> Lines<'a> {
         }
     }
 
+    /// A block's next record line (its number and text), or an error naming the block begun
+    /// at `start` when the file ends.
+    pub fn record(&mut self, start: usize, block: &str) -> Result<(usize, &'a str), ImportError> {
+        self.required(start, block)
+    }
+
     /// The next line, or an error: the block started at `start` ended early.
     fn required(&mut self, start: usize, block: &str) -> Result<(usize, &'a str), ImportError> {
         let file = self.file.clone();
@@ -289,6 +327,28 @@ impl<'a> Lines<'a> {
     fn format(&mut self, start: usize, block: &str) -> Result<Layout, ImportError> {
         let (n, text) = self.required(start, block)?;
         layout(&self.file, n, text)
+    }
+
+    /// A block's format line and its records up to the end line `-1`: each record's line and
+    /// columns (`ETBLOCK`, `DBLOCK`).
+    pub fn records(
+        &mut self,
+        start: usize,
+        block: &str,
+    ) -> Result<Vec<(usize, Vec<Option<&'a str>>)>, ImportError> {
+        let lay = self.format(start, block)?;
+        let mut out = Vec::new();
+        loop {
+            let (n, text) = self.required(start, block)?;
+            let t = text.trim();
+            if t.is_empty() {
+                continue;
+            }
+            if t.starts_with("-1") {
+                return Ok(out);
+            }
+            out.push((n, columns(text, &lay)));
+        }
     }
 
     /// `NBLOCK,NUMFIELD,Solkey,…`: node records up to the end line (`-1` or `N,R5.3,LOC,-1`).
@@ -538,9 +598,38 @@ mod tests {
     #[test]
     fn format_lines_give_the_widths() {
         let l = layout("f", 1, "(3i9,6e21.13e3)").unwrap();
-        assert_eq!((l.ints, l.int_width, l.reals, l.real_width), (3, 9, 6, 21));
+        assert_eq!((l.ints, l.reals), (3, 6));
+        assert_eq!(l.widths, [9, 9, 9, 21, 21, 21, 21, 21, 21]);
         let l = layout("f", 1, "(19i10)").unwrap();
-        assert_eq!((l.ints, l.int_width, l.reals), (19, 10, 0));
+        assert_eq!((l.ints, l.reals, l.widths.clone()), (19, 0, vec![10; 19]));
+        // Workbench 2019 R1 (ansys-mapdl-reader's workbench_193.cdb): the node number in 7
+        let l = layout("f", 1, "(1i7,2i9,6e21.13)").unwrap();
+        assert_eq!(l.widths[..4], [7, 9, 9, 21]);
+        let line = " 219712        0        0  9.8936757830530E-02 -8.0709219224048E-04";
+        let c = columns(line, &l);
+        assert_eq!(
+            (c[0], c[3], c[4]),
+            (
+                Some("219712"),
+                Some("9.8936757830530E-02"),
+                Some("-8.0709219224048E-04")
+            )
+        );
+        // ETBLOCK and DBLOCK (CDWRITE of MAPDL 2022 and later)
+        let l = layout("f", 1, "(2i9,19a9)").unwrap();
+        assert_eq!((l.ints, l.reals, l.widths.len()), (2, 0, 21));
+        let l = layout("f", 1, "(i9,a6,2(pg16.9))").unwrap();
+        assert_eq!(
+            (l.ints, l.reals, l.widths.clone()),
+            (1, 2, vec![9, 6, 16, 16])
+        );
+        let c = columns("        1  UZ    0.00000000      0.00000000    ", &l);
+        assert_eq!(
+            (c[0], c[1], c[2]),
+            (Some("1"), Some("UZ"), Some("0.00000000"))
+        );
+        assert!(layout("f", 1, "(2(3(4(i9))))").is_err());
+        assert!(layout("f", 1, "(0i9)").is_err());
         assert!(layout("f", 1, "3i9").is_err());
     }
 

@@ -169,6 +169,8 @@ impl Archive {
                 Err(why) => {
                     let e = refusals.entry((r.etype, why)).or_insert((r.line, 0));
                     e.1 += 1;
+                    // known but refused: a component naming it is not an error of its own
+                    index.insert(r.id, None);
                     continue;
                 }
             };

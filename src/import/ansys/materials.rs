@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 
-use super::blocks::Command;
+use super::blocks::{archive_form, Command};
 use crate::import::error::ImportError;
 use crate::model::Material;
 
@@ -29,7 +29,10 @@ fn label(name: &str) -> Option<Label> {
         "ALPX" | "ALPY" | "ALPZ" | "CTEX" | "CTEY" | "CTEZ" | "THSX" | "THSY" | "THSZ" | "REFT"
         | "KXX" | "KYY" | "KZZ" | "C" | "ENTH" | "HF" | "EMIS" | "QRATE" | "MU" | "DAMP"
         | "DMPR" | "DMPS" | "RSVX" | "RSVY" | "RSVZ" | "PERX" | "PERY" | "PERZ" | "MURX"
-        | "MURY" | "MURZ" | "VISC" | "SONC" => Label::NoEffect,
+        | "MURY" | "MURZ" | "VISC" | "SONC" | "BETX" | "BETY" | "BETZ" | "DXX" | "DYY" | "DZZ"
+        | "CSAT" | "CREF" | "LSST" | "SBKX" | "SBKY" | "SBKZ" => Label::NoEffect,
+        // the material's unique ids of Workbench and ACP (a text value, e.g. a GUID)
+        "UMID" | "UVID" => Label::NoEffect,
         _ => return None,
     })
 }
@@ -54,7 +57,7 @@ pub(super) type Refused = (usize, String);
 impl Tables {
     /// `MPTEMP,R5.0,LENGTH,STLOC,T1,…` or `MPTEMP,STLOC,T1,…` (no fields: clear).
     pub fn mptemp(&mut self, file: &str, c: &Command) -> Result<(), ImportError> {
-        let archive_form = c.field(0).eq_ignore_ascii_case("R5.0");
+        let archive_form = archive_form(c.field(0));
         let first = if archive_form { 2 } else { 0 };
         if c.fields.iter().all(|f| f.is_empty()) {
             self.temps.clear();
@@ -94,36 +97,12 @@ impl Tables {
         c: &Command,
         refused: &mut Vec<Refused>,
     ) -> Result<(), ImportError> {
-        let (lab_at, values): (usize, Vec<f64>) = if c.name == "MP" {
-            if (2..6).any(|k| !c.field(k).is_empty() && c.real(file, k).is_ok_and(|v| v != 0.0)) {
-                refused.push((
-                    c.line,
-                    "MP with temperature coefficients C1…C4: a temperature-dependent property \
-                     is not read"
-                        .into(),
-                ));
-                return Ok(());
-            }
-            (0, vec![c.real(file, 2)?])
-        } else if c.field(0).eq_ignore_ascii_case("R5.0") {
-            let count = c.int(file, 1)?.clamp(0, 100) as usize;
-            (
-                2,
-                (0..count)
-                    .map(|k| c.real(file, 5 + k))
-                    .collect::<Result<_, _>>()?,
-            )
+        let lab_at = if c.name != "MP" && archive_form(c.field(0)) {
+            2
         } else {
-            let count = c.fields.len().saturating_sub(3);
-            (
-                0,
-                (0..count)
-                    .map(|k| c.real(file, 3 + k))
-                    .collect::<Result<_, _>>()?,
-            )
+            0
         };
         let lab = c.field(lab_at).to_ascii_uppercase();
-        let mat = c.int(file, lab_at + 1)?;
         match label(&lab) {
             None => {
                 refused.push((c.line, format!("material property {lab} is not read")));
@@ -135,6 +114,30 @@ impl Tables {
             }
             Some(_) => {}
         }
+        let values: Vec<f64> = if c.name == "MP" {
+            // MP,Lab,MAT,C0,C1…C4: the coefficients are fields 3…6 after the name
+            if (3..7).any(|k| !c.field(k).is_empty() && c.real(file, k).is_ok_and(|v| v != 0.0)) {
+                refused.push((
+                    c.line,
+                    "MP with temperature coefficients C1…C4: a temperature-dependent property \
+                     is not read"
+                        .into(),
+                ));
+                return Ok(());
+            }
+            vec![c.real(file, 2)?]
+        } else if lab_at == 2 {
+            let count = c.int(file, 1)?.clamp(0, 100) as usize;
+            (0..count)
+                .map(|k| c.real(file, 5 + k))
+                .collect::<Result<_, _>>()?
+        } else {
+            let count = c.fields.len().saturating_sub(3);
+            (0..count)
+                .map(|k| c.real(file, 3 + k))
+                .collect::<Result<_, _>>()?
+        };
+        let mat = c.int(file, lab_at + 1)?;
         let start = if c.name == "MP" {
             0
         } else {
@@ -252,5 +255,24 @@ fn isotropic(
             ));
             None
         }
+    }
+}
+
+/// What a `TB` table of this label does to a linear body at its undeformed state: `Ok` when
+/// nothing (failure criteria, friction, plasticity, creep, damage: the elastic constants of
+/// MP/MPDATA stay the stiffness), else why it is refused (it defines or changes the elastic
+/// stiffness, or is not known here).
+pub(super) fn table_effect(label: &str) -> Result<(), String> {
+    const NO_EFFECT: [&str; 14] = [
+        "FCLI", "FRIC", "PLAS", "BISO", "MISO", "BKIN", "MKIN", "KINH", "NLISO", "CHAB", "CREEP",
+        "RATE", "DMGI", "DMGE",
+    ];
+    const ELASTIC: [&str; 6] = ["ELAS", "ANEL", "HYPE", "PRONY", "SHIFT", "MELAS"];
+    if NO_EFFECT.contains(&label) {
+        Ok(())
+    } else if ELASTIC.contains(&label) {
+        Err("the table defines or changes the elastic stiffness; not read".into())
+    } else {
+        Err("a material table not in the catalogue's list (docs/ansys-commands.md)".into())
     }
 }

@@ -137,7 +137,20 @@ impl Archive {
         ignored: &BTreeSet<String>,
     ) -> Result<(), ImportError> {
         let mut lines = Lines::new(file, text);
+        // `CDWRITE,DB,…,IGES` writes the solid model as an IGES file (its S, G, D, P and T
+        // sections, with sequence numbers in columns 73–80) before the label `:CDWRITE`, and
+        // the archive after it: the geometry is not the mesh
+        let iges_end = (text.lines().position(|l| l.starts_with(":CDWRITE"))).map(|k| k + 1);
+        if let Some(end) = iges_end {
+            self.noted
+                .entry("IGES geometry (before :CDWRITE)".into())
+                .or_default()
+                .push(end);
+        }
         while let Some((n, line)) = lines.next_line() {
+            if iges_end.is_some_and(|end| n <= end) {
+                continue;
+            }
             let Some(c) = blocks::command(line, n) else {
                 continue;
             };
@@ -191,7 +204,7 @@ impl Archive {
             "CMBLOCK" => drop(lines.cmblock(c.line, c.int(&lines.file, 2)?.max(0) as usize)?),
             "RLBLOCK" => drop(lines.rlblock(c.line, c.int(&lines.file, 0)?.max(0) as usize)?),
             "SFEBLOCK" => lines.skip_sfeblock(),
-            "SFE" => lines.skip_data_lines(),
+            "SFE" | "SECBLOCK" => lines.skip_data_lines(),
             _ => {}
         }
         Ok(())
@@ -214,6 +227,95 @@ impl Archive {
             "ET" => {
                 let t = c.int(file, 0)?;
                 self.types.insert(t, ElementType::new(c.line, c.field(1)));
+            }
+            "ETBLOCK" => {
+                // (2i9,19a9): type number, element number, KEYOPT(1)…KEYOPT(18) and a 19th
+                // column (Workbench's SOLID186 records carry its KEYOPT(2)=1 in the fourth
+                // column, the full integration its ds.dat sets with keyo,…,2,1)
+                for (n, cols) in lines.records(c.line, "ETBLOCK")? {
+                    let t = blocks::int_col(file, n, "ETBLOCK", cols[0])?;
+                    let name = cols.get(1).copied().flatten().unwrap_or("");
+                    let mut et = ElementType::new(n, name);
+                    for (k, col) in cols.iter().enumerate().skip(2) {
+                        let v = blocks::int_col(file, n, "ETBLOCK", *col)?;
+                        match k - 1 {
+                            _ if v == 0 => {}
+                            key @ 1..=18 => drop(et.keyopts.insert(key as u32, v)),
+                            _ => refused.push((
+                                n,
+                                format!(
+                                    "ETBLOCK record of type {t}: column {} = {v} (past KEYOPT(18)) \
+                                     is not described in the documentation at hand",
+                                    k + 1
+                                ),
+                            )),
+                        }
+                    }
+                    self.types.insert(t, et);
+                }
+            }
+            "DBLOCK" => {
+                // (i9,a6,2(pg16.9)): node, dof label, value, imaginary value — each a D command
+                for (n, cols) in lines.records(c.line, "DBLOCK")? {
+                    let fields = (0..4).map(|k| cols.get(k).copied().flatten().unwrap_or(""));
+                    let d = Command {
+                        line: n,
+                        name: "D".into(),
+                        fields: fields.collect(),
+                    };
+                    self.raw.d(file, &d, &mut refused)?;
+                }
+            }
+            "CMDEL" => {
+                let name = c.field(0);
+                self.components
+                    .retain(|comp| !comp.1.eq_ignore_ascii_case(name));
+            }
+            "PSTRES" => {
+                let on =
+                    c.field(0).eq_ignore_ascii_case("ON") || c.int(file, 0).is_ok_and(|v| v == 1);
+                if on {
+                    refused.push((
+                        c.line,
+                        "PSTRES,ON: prestress effects of the archive's own static solution; an \
+                         ANSYS archive's preload is not formed here (the body would be built \
+                         without it)"
+                            .into(),
+                    ));
+                } else {
+                    self.noted.entry(c.name.clone()).or_default().push(c.line);
+                }
+            }
+            "TB" => {
+                let lab = c.field(0).to_ascii_uppercase();
+                match materials::table_effect(&lab) {
+                    Ok(()) => self
+                        .noted
+                        .entry(format!("TB,{lab}"))
+                        .or_default()
+                        .push(c.line),
+                    Err(why) => refused.push((c.line, format!("TB,{lab}: {why}"))),
+                }
+            }
+            "SFEBLOCK" => {
+                let label = (c.fields.iter())
+                    .find(|f| f.parse::<f64>().is_err() && !f.is_empty())
+                    .map_or(String::new(), |f| f.to_ascii_uppercase());
+                if surface::NON_STRUCTURAL_LABELS.contains(&label.as_str()) {
+                    self.noted
+                        .entry(format!("SFEBLOCK {label}"))
+                        .or_default()
+                        .push(c.line);
+                } else {
+                    refused.push((
+                        c.line,
+                        format!(
+                            "SFEBLOCK of {label}: the block's records are not described in the \
+                             documentation at hand (SFE commands are read)"
+                        ),
+                    ));
+                }
+                lines.skip_sfeblock();
             }
             "KEYOPT" | "KEYOP" => {
                 let (t, k, v) = (c.int(file, 0)?, c.int(file, 1)?, c.int(file, 2)?);
@@ -313,6 +415,37 @@ impl Archive {
                     refused.extend(why.map(|why| (c.line, why)));
                 }
             }
+            "SECBLOCK" => {
+                // CDWRITE writes a shell section's layers as SECBLOCK,NLAYERS and one record
+                // per layer, "thickness, material, angle, integration points", as SECDATA
+                let count = c.int(file, 0)?.clamp(0, 10_000) as usize;
+                match self
+                    .shell_now
+                    .and_then(|id| self.shell_sections.get_mut(&id))
+                {
+                    Some(s) => {
+                        for _ in 0..count {
+                            let (n, text) = lines.record(c.line, "SECBLOCK")?;
+                            let layer = Command {
+                                line: n,
+                                name: "SECBLOCK".into(),
+                                fields: text.split(',').map(str::trim).collect(),
+                            };
+                            refused.extend(s.secdata(file, &layer)?.map(|why| (n, why)));
+                        }
+                    }
+                    None => {
+                        refused.push((
+                            c.line,
+                            "SECBLOCK of a section other than a shell (a beam section's own \
+                             mesh): not read (ANSYS integrates over it; ASEC, RECT, CSOLID and \
+                             CTUBE beam sections are read)"
+                                .into(),
+                        ));
+                        lines.skip_data_lines();
+                    }
+                }
+            }
             "SECDATA" | "SECCONTROL" if self.beam_now.is_some() => {
                 let now = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
                 if let Some(why) = now.map(|s| s.read(file, c)).transpose()?.flatten() {
@@ -358,14 +491,30 @@ impl Archive {
             "CP" => self.raw.cp(file, c, &mut refused)?,
             "F" => self.raw.f(file, c, &mut refused)?,
             "SFE" => {
-                let before = refused.len();
-                surface::sfe(file, c, &mut self.pressures, &mut refused)?;
-                if refused.len() > before {
-                    // a refused SFE's value lines (the R5.0 form) are not commands
-                    lines.skip_data_lines();
-                }
+                // the archive's form SFE,Elem,LKEY,Lab,KVAL,R5.0 has its values on the next line
+                let record = if blocks::archive_form(c.field(4)) {
+                    let (n, text) = lines.record(c.line, "SFE")?;
+                    // MAPDL 2022 writes the values alone; a format line before them is skipped
+                    if text.trim_start().starts_with('(') {
+                        Some(lines.record(c.line, "SFE")?)
+                    } else {
+                        Some((n, text))
+                    }
+                } else {
+                    None
+                };
+                let (pressures, noted) = (&mut self.pressures, &mut self.noted);
+                surface::sfe(file, c, record, pressures, noted, &mut refused)?;
             }
-            "LOCAL" | "CLOCAL" => self.locals.push((c.line, c.int(file, 0)?)),
+            "LOCAL" | "CLOCAL" => {
+                // LOCAL,KCN,… or the archive's LOCAL,R5.0,LOC|ANG|PRM,KCN,… (three lines)
+                let at = if blocks::archive_form(c.field(0)) {
+                    2
+                } else {
+                    0
+                };
+                self.locals.push((c.line, c.int(file, at)?))
+            }
             "ACEL" => self.raw.acel(file, c)?,
             "LUMPM" => {
                 let on = c.field(0).eq_ignore_ascii_case("ON") || c.field(0) == "1";
@@ -424,6 +573,20 @@ impl Archive {
         free_dependents(&mut model, &self.links);
         self.components(file, &node_map, &elements, &mut model)?;
         self.refusals(file)?;
+        if model.elements.is_empty() && model.point_masses.is_empty() {
+            let line = self.elements.first().map_or(1, |r| r.line);
+            return Err(parse_err(
+                file,
+                line,
+                "EBLOCK",
+                format!(
+                    "no element with stiffness or mass: the archive's {} element record(s) form \
+                     none (a mesher's MESH200 elements carry neither: give them a structural \
+                     element type with ET)",
+                    self.elements.len()
+                ),
+            ));
+        }
         if let Some((line, true)) = self.lumped {
             if let Some(why) = beams::lumped_refusal(&model) {
                 self.refuse(line, "LUMPM", why);
@@ -447,7 +610,8 @@ impl Archive {
         model.deck.eigen = self.eigen.take();
         let mut groups: BTreeMap<&str, Vec<String>> = BTreeMap::new();
         for (name, lines) in &self.noted {
-            let title = catalogue::command(name).map_or("other lines", |(c, _)| c.title());
+            let command = name.split([' ', ',']).next().unwrap_or(name);
+            let title = catalogue::command(command).map_or("other lines", |(c, _)| c.title());
             groups.entry(title).or_default().push(format!(
                 "{} {name} ({})",
                 lines.len(),

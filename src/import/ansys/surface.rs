@@ -16,10 +16,12 @@
 //!
 //! A face whose corner values differ (a varying pressure) keeps the load with its `problem`, as
 //! the Nastran (PLOAD4) and Abaqus importers keep non-uniform pressures: the load stays known
-//! by name and is not applied. Refused by line: other labels than PRES, imaginary pressures,
-//! element lists (ALL, components), the shells' edge faces 3…6, faces of other element types,
-//! collapsed faces, and `SFE` in the archive's `R5.0` form and `SFEBLOCK` (their value records
-//! are not described in the documentation at hand).
+//! by name and is not applied. The archive's form `SFE,Elem,LKEY,Lab,KVAL,R5.0` carries VAL1…VAL4
+//! on the next line (four columns of 16, as archives written by MAPDL 2022 show). Labels that
+//! cannot load a structure (thermal, acoustic, electromagnetic, the fluid–solid interface flag)
+//! are noted. Refused by line: other labels than PRES, imaginary pressures, element lists (ALL,
+//! components), the shells' edge faces 3…6, faces of other element types, collapsed faces, and
+//! `SFEBLOCK` of PRES (its records are not described in the documentation at hand).
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -30,6 +32,12 @@ use crate::import::error::{parse_err, ImportError};
 use crate::import::text::IdMap;
 use crate::model::load::{face_nodes, solid_faces, Load, LoadPart};
 use crate::model::Model;
+
+/// Surface-load labels that cannot load a structure (an `SFEBLOCK` of them is noted): the
+/// fluid–solid interface flag, thermal, acoustic and electromagnetic loads.
+pub(super) const NON_STRUCTURAL_LABELS: [&str; 11] = [
+    "FSIN", "CONV", "HFLUX", "RAD", "RDSF", "IMPD", "SHLD", "MXWF", "CHRGS", "INF", "PORT",
+];
 
 /// One `SFE` pressure as read (external ids).
 #[derive(Debug, Clone)]
@@ -54,22 +62,18 @@ const BRICK_FACES: [[usize; 4]; 6] = [
 /// SOLID187 faces, 0-based among the corners I…L.
 const TET_FACES: [[usize; 3]; 4] = [[1, 0, 2], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
 
-/// `SFE,…`: a pressure on one element face, or a refusal.
+/// `SFE,…`: a pressure on one element face, or a refusal; a label that cannot load a structure
+/// ([`NON_STRUCTURAL_LABELS`]) is noted. `record` is the value line of the archive's form
+/// `SFE,Elem,LKEY,Lab,KVAL,R5.0` (VAL1…VAL4 in columns of 16, as `CDWRITE` writes them), which
+/// the caller reads after the command.
 pub(super) fn sfe(
     file: &str,
     c: &Command,
+    record: Option<(usize, &str)>,
     out: &mut Vec<Pressure>,
+    noted: &mut BTreeMap<String, Vec<usize>>,
     refused: &mut Vec<Refused>,
 ) -> Result<(), ImportError> {
-    if c.fields.iter().any(|f| f.eq_ignore_ascii_case("R5.0")) {
-        refused.push((
-            c.line,
-            "SFE in the archive's R5.0 form: its value lines are not described in the \
-             documentation at hand (the command form SFE,Elem,LKEY,PRES,KVAL,VAL1…VAL4 is read)"
-                .into(),
-        ));
-        return Ok(());
-    }
     let element = c.field(0);
     if element.is_empty() || !element.chars().all(|ch| ch.is_ascii_digit()) {
         refused.push((
@@ -79,6 +83,10 @@ pub(super) fn sfe(
         return Ok(());
     }
     let lab = c.field(2).to_ascii_uppercase();
+    if NON_STRUCTURAL_LABELS.contains(&lab.as_str()) {
+        noted.entry(format!("SFE {lab}")).or_default().push(c.line);
+        return Ok(());
+    }
     if lab != "PRES" {
         refused.push((
             c.line,
@@ -86,14 +94,45 @@ pub(super) fn sfe(
         ));
         return Ok(());
     }
-    let kval = c.int(file, 3)?;
-    let first = c.real(file, 4)?;
+    // the archive's form: the values on the next line; the command form: fields 4…7
+    let values: Vec<&str> = match record {
+        Some((_, text)) => {
+            // separated numbers as written; touching ones by the columns of 16
+            let words: Vec<&str> = text.split_whitespace().collect();
+            let separated = words.len() <= 4
+                && (words.iter()).all(|w| crate::import::text::parse_f64(w).is_some());
+            if separated {
+                (0..4)
+                    .map(|k| words.get(k).copied().unwrap_or(""))
+                    .collect()
+            } else {
+                let lay = super::blocks::Layout {
+                    ints: 0,
+                    reals: 4,
+                    widths: vec![16; 4],
+                };
+                let cols = super::blocks::columns(text, &lay);
+                cols.into_iter().map(|v| v.unwrap_or("")).collect()
+            }
+        }
+        None => (4..8).map(|k| c.field(k)).collect(),
+    };
+    let line = record.map_or(c.line, |(n, _)| n);
+    let real = |s: &str| -> Result<f64, ImportError> {
+        if s.is_empty() {
+            return Ok(0.0);
+        }
+        crate::import::text::parse_f64(s)
+            .ok_or_else(|| parse_err(file, line, "SFE", crate::import::text::bad_number(s)))
+    };
+    let first = real(values[0])?;
     let mut others = [None; 3];
     for (k, v) in others.iter_mut().enumerate() {
-        if !c.field(5 + k).is_empty() {
-            *v = Some(c.real(file, 5 + k)?);
+        if !values[1 + k].is_empty() {
+            *v = Some(real(values[1 + k])?);
         }
     }
+    let kval = c.int(file, 3)?;
     match kval {
         0 | 1 => {}
         2 if first == 0.0 && others.iter().all(|v| v.unwrap_or(0.0) == 0.0) => return Ok(()),
