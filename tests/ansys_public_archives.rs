@@ -163,8 +163,8 @@ fn prime_cube_reads_mp_with_comments() {
     let c: Vec<f64> = inv.i2.iter().map(|v| v / m).collect();
     let cc: f64 = c.iter().map(|v| v * v).sum();
     let want = mass * a * a / 6.0;
-    for k in 0..3 {
-        let j = inv.i7[4 * k] - m * (cc - c[k] * c[k]);
+    for (k, ck) in c.iter().enumerate() {
+        let j = inv.i7[4 * k] - m * (cc - ck * ck);
         // measured ~4e-9 (single-precision coordinates)
         assert!(((j - want) / want).abs() < 4e-8, "{j} {want}");
     }

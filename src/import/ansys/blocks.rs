@@ -202,6 +202,9 @@ pub(super) fn columns<'a>(text: &'a str, lay: &Layout) -> Vec<Option<&'a str>> {
     out
 }
 
+/// A block record: its 1-based line and its columns (`None` when blank or past the line's end).
+pub(super) type Record<'a> = (usize, Vec<Option<&'a str>>);
+
 /// An integer column (blank = 0).
 pub(super) fn int_col(
     file: &str,
@@ -331,11 +334,7 @@ impl<'a> Lines<'a> {
 
     /// A block's format line and its records up to the end line `-1`: each record's line and
     /// columns (`ETBLOCK`, `DBLOCK`).
-    pub fn records(
-        &mut self,
-        start: usize,
-        block: &str,
-    ) -> Result<Vec<(usize, Vec<Option<&'a str>>)>, ImportError> {
+    pub fn records(&mut self, start: usize, block: &str) -> Result<Vec<Record<'a>>, ImportError> {
         let lay = self.format(start, block)?;
         let mut out = Vec::new();
         loop {
