@@ -105,6 +105,25 @@ fn celas2_equals_crod_and_the_chain_closed_form() {
     assert!(rel(&fs, &exact) < 1e-12 && rel(&fr, &exact) < 1e-12);
 }
 
+/// A free-field continuation line may begin with blanks before its comma (MSC's fmondsp.dat
+/// writes "       , 0., 0.02, …"): the CONM2 masses written so equal the chain's closed form.
+#[test]
+fn free_field_continuations_may_start_with_blanks() {
+    let indented = axial_chain(0.0, |i| {
+        format!("CROD,{i},7,{i},{}\n", i + 1) + if i == 1 { "PROD,7,1,1.e-4\n" } else { "" }
+    })
+    .replace(
+        "CONM2,103,3,,2.\n",
+        "CONM2,103,3,,2.,,,,\n       , 0., 0., 0., 0., 0., 0.\n",
+    );
+    assert!(indented.contains("\n       , 0."));
+    let path = write("indented", "chain.bdf", &indented);
+    let f = built_hz(&path, 4, &[]);
+    let exact = chain_closed_form(4, 8e7, 2.0);
+    // measured 1e-15 (before: the line was refused as "a line without a card name")
+    assert!(rel(&f, &exact) < 1e-12, "{f:?} {exact:?}");
+}
+
 /// A massless torsion rod (CROD, GJ/L = 7.8e4·…) clamped at grid 1 with a tip body at grid 2
 /// (mass 3, I_xx = 0.5), the tip held in y, z and the bending rotations: two modes, axial
 /// ω² = (EA/L)/m and torsion ω² = (GJ/L)/I_xx. The tip body is a CONM2 (M, I11), or scalar

@@ -226,8 +226,11 @@ impl Lexer {
                 continue;
             }
             let first = line.as_bytes()[0];
-            let is_cont =
-                matches!(first, b'+' | b'*' | b',') || line[..line.len().min(8)].trim().is_empty();
+            // a free-field continuation may also start with blanks before its comma
+            // ("       , 0., 0.02, …", as MSC's own test decks write TABDMP1 and DLOAD)
+            let is_cont = matches!(first, b'+' | b'*' | b',')
+                || line[..line.len().min(8)].trim().is_empty()
+                || line.trim_start().starts_with(',');
             if is_cont {
                 let Some(card) = self.cards.last_mut().filter(|c| c.loc.file == file) else {
                     return Err(self.err(
