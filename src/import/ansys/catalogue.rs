@@ -185,7 +185,7 @@ pub(crate) const ELEMENT_TYPES: &[(u32, &str, Disposition)] = &[
     (190, "SOLSH190", R("solid shell: formulation not formed here")),
     (200, "MESH200", N("a meshing-only element: it carries no stiffness or mass")),
     (281, "SHELL281", R("8-node shell: not formed here — reduced 2×2 integration of the 8-node serendipity shell; flexbody's curved quadratic shells are the MITC9/MITC6 forms")),
-    (285, "SOLID285", R("4-node tetrahedron with nodal pressure: formulation not formed here")),
+    (285, "SOLID285", R("4-node mixed u-P tetrahedron: its nodal hydrostatic pressure HDSP is a fourth dof shared between elements (not condensable element by element) and the stabilization of its equal-order interpolation is not documented at hand; not formed here (docs/ansys.md)")),
     (288, "PIPE288", R("pipe: formulation not formed here")),
     (289, "PIPE289", R("pipe: formulation not formed here")),
 ];
