@@ -100,7 +100,8 @@ pub fn graphics_faces(model: &Model) -> Vec<GraphicsFace> {
             | ElementKind::Prism6
             | ElementKind::Prism15
             | ElementKind::Pyram5
-            | ElementKind::Pyram13 => {
+            | ElementKind::Pyram13
+            | ElementKind::Pyram13Ansys => {
                 let Some(faces) = solid_faces(e.kind) else {
                     continue;
                 };

@@ -92,7 +92,8 @@ impl DofMap {
                 | ElementKind::Prism6
                 | ElementKind::Prism15
                 | ElementKind::Pyram5
-                | ElementKind::Pyram13 => 3,
+                | ElementKind::Pyram13
+                | ElementKind::Pyram13Ansys => 3,
                 ElementKind::Beam2
                 | ElementKind::Bar2
                 | ElementKind::Beam2Linear

@@ -174,7 +174,7 @@ pub fn solid_faces(kind: ElementKind) -> Option<(FaceTable, EdgeTable)> {
         ElementKind::Prism6 => (PRISM_FACES, &[]),
         ElementKind::Prism15 => (PRISM_FACES, PRISM15_EDGES),
         ElementKind::Pyram5 => (PYRAM_FACES, &[]),
-        ElementKind::Pyram13 => (PYRAM_FACES, PYRAM13_EDGES),
+        ElementKind::Pyram13 | ElementKind::Pyram13Ansys => (PYRAM_FACES, PYRAM13_EDGES),
         ElementKind::Hex8 | ElementKind::Hex8R | ElementKind::Hex8Bbar => (HEX_FACES, &[]),
         ElementKind::Hex20 | ElementKind::Hex20R => (HEX_FACES, HEX20_EDGES),
         ElementKind::Beam2

@@ -106,6 +106,9 @@ pub enum ElementKind {
     Pyram5,
     /// 13-node pyramid (CPYRAM 13).
     Pyram13,
+    /// 13-node pyramid with ANSYS's functions on 2×2×2 points, as ANSYS forms SOLID186 written as
+    /// a pyramid (`fe::elements::pyram13_ansys`); nodes as [`ElementKind::Pyram13`].
+    Pyram13Ansys,
     /// 2-node 3D beam (B31, CBEAM): 6 dofs per node.
     Beam2,
     /// 2-node 3D bar (Nastran CBAR): the beam formulation of [`ElementKind::Beam2`]; kept apart
@@ -145,7 +148,7 @@ impl ElementKind {
             ElementKind::Prism6 => 6,
             ElementKind::Prism15 => 15,
             ElementKind::Pyram5 => 5,
-            ElementKind::Pyram13 => 13,
+            ElementKind::Pyram13 | ElementKind::Pyram13Ansys => 13,
             ElementKind::Beam2
             | ElementKind::Bar2
             | ElementKind::Beam2Linear
@@ -172,6 +175,7 @@ impl ElementKind {
                 | ElementKind::Prism15
                 | ElementKind::Pyram5
                 | ElementKind::Pyram13
+                | ElementKind::Pyram13Ansys
         )
     }
 }

@@ -55,6 +55,7 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
         | ElementKind::Prism15
         | ElementKind::Pyram5
         | ElementKind::Pyram13
+        | ElementKind::Pyram13Ansys
         | ElementKind::Beam2
         | ElementKind::Bar2
         | ElementKind::Beam2Linear

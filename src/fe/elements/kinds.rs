@@ -18,6 +18,7 @@ pub fn element(kind: ElementKind) -> &'static dyn Element {
         ElementKind::Prism15 => &super::prism15::Prism15Element,
         ElementKind::Pyram5 => &super::pyram5::Pyram5Element,
         ElementKind::Pyram13 => &super::pyram13::Pyram13Element,
+        ElementKind::Pyram13Ansys => &super::pyram13_ansys::Pyram13AnsysElement,
         ElementKind::Beam2 | ElementKind::Bar2 => &super::beam_element::BeamElement,
         ElementKind::Beam2Linear => &super::beam188::Beam188Element,
         ElementKind::Beam3Quadratic => &super::beam189::Beam189Element,

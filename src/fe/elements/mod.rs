@@ -29,6 +29,7 @@ pub mod planar_frame;
 pub mod prism15;
 pub mod prism6;
 pub mod pyram13;
+pub mod pyram13_ansys;
 pub mod pyram5;
 pub mod quad4_shell;
 pub mod quad8_shell;

@@ -45,12 +45,12 @@ pub const NODES: [Xyz; 13] = [
 ];
 
 /// The pyramid's centroid in reference coordinates (ζ = 1/4, t = −1/2).
-const CENTROID: Xyz = [0.0, 0.0, -0.5];
+pub(super) const CENTROID: Xyz = [0.0, 0.0, -0.5];
 
 /// Where nodal gradients are taken: at the nodes, except the apex, where the collapsed map's
 /// Jacobian vanishes and a field's gradient depends on the direction of approach; the
 /// centroid's gradients stand in there (exact for a linear field).
-const GRADIENT_POINTS: [Xyz; 13] = {
+pub(super) const GRADIENT_POINTS: [Xyz; 13] = {
     let mut points = NODES;
     points[4] = CENTROID;
     points

@@ -111,6 +111,7 @@ fn corners(brick: ElementKind) -> usize {
         | ElementKind::Hex8Bbar
         | ElementKind::Pyram5
         | ElementKind::Pyram13
+        | ElementKind::Pyram13Ansys
         | ElementKind::Beam2
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
@@ -172,6 +173,7 @@ pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
         | ElementKind::Prism15
         | ElementKind::Pyram5
         | ElementKind::Pyram13
+        | ElementKind::Pyram13Ansys
         | ElementKind::Beam2
         | ElementKind::Bar2
         | ElementKind::Beam2Linear

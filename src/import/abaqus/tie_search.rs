@@ -42,7 +42,9 @@ pub(super) fn ccx_face_nodes(
         | ElementKind::Hex20R => [3, 4, 0, 1, 2, 3][face - 1],
         ElementKind::Tet4 | ElementKind::Tet10 => [0, 0, 1, 0][face - 1],
         ElementKind::Prism6 | ElementKind::Prism15 => [0, 3, 0, 1, 2][face - 1],
-        ElementKind::Pyram5 | ElementKind::Pyram13 => faces[face - 1][0],
+        ElementKind::Pyram5 | ElementKind::Pyram13 | ElementKind::Pyram13Ansys => {
+            faces[face - 1][0]
+        }
         ElementKind::Beam2
         | ElementKind::Bar2
         | ElementKind::Beam2Linear

@@ -310,8 +310,9 @@ fn mpc184(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
 /// integration (KEYOPT(2)=0, the default: C3D20R's K, the mass on Irons' 14 points) or full
 /// integration on Irons' 14 points (KEYOPT(2)=1: K and mass); written as a collapsed brick in
 /// ANSYS's wedge or tetrahedron pattern ([`degenerate_shape`]) it is the 15-node wedge on the
-/// 3 × 3 rule or the 10-node tetrahedron on 4 points, whatever KEYOPT(2) says (the Theory
-/// Reference's table); the pyramid and dropped mid-side nodes are refused.
+/// 3 × 3 rule, the 10-node tetrahedron on 4 points or ANSYS's 13-node pyramid on 2×2×2
+/// points ([`ElementKind::Pyram13Ansys`]), whatever KEYOPT(2) says (the Theory Reference's
+/// table); dropped mid-side nodes are refused.
 fn solid186(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     unsupported_keyopts(t, &[2])?;
     let full = match t.keyopts.get(&2).copied().unwrap_or(0) {
@@ -337,13 +338,10 @@ fn solid186(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     match degenerate_shape(n) {
         Some(Degenerate::Wedge) => Ok(Formed::Element(ElementKind::Prism15, pick(n, &WEDGE))),
         Some(Degenerate::Tetrahedron) => Ok(Formed::Element(ElementKind::Tet10, pick(n, &TET))),
-        Some(Degenerate::Pyramid) => Err(
-            "SOLID186 as a pyramid (nodes M…P and U…X one node): ANSYS forms its 13-node \
-             pyramid by its own condensation of the 20-node brick on 2×2×2 points (Theory \
-             Reference equations 11–192…197), not shown to be flexbody's 13-node pyramid \
-             (Bedrosian's functions): not formed here"
-                .into(),
-        ),
+        Some(Degenerate::Pyramid) => Ok(Formed::Element(
+            ElementKind::Pyram13Ansys,
+            pick(n, &PYRAMID),
+        )),
         None => Err(
             "SOLID186 with repeated nodes in no pattern of ANSYS's degenerate shapes (wedge: \
              K = L = S, O = P = W, A = B; tetrahedron: K = L = S, M…P = U…X, A = B; pyramid: \
@@ -367,6 +365,9 @@ enum Degenerate {
 const WEDGE: [usize; 15] = [0, 1, 2, 4, 5, 6, 8, 9, 11, 12, 13, 15, 16, 17, 18];
 /// The tetrahedron's 10 nodes in C3D10's order (I, J, K, apex M; IJ, JK, KI, IM, JM, KM).
 const TET: [usize; 10] = [0, 1, 2, 4, 8, 9, 11, 16, 17, 18];
+/// The pyramid's 13 nodes in [`ElementKind::Pyram13Ansys`]'s order (base I…L, apex M; base
+/// edges Q…T; edges to the apex Y…B).
+const PYRAMID: [usize; 13] = [0, 1, 2, 3, 4, 8, 9, 10, 11, 16, 17, 18, 19];
 
 /// The shape of a brick written with repeated nodes: K = L = S (the edge KL collapsed), the top
 /// face to one node (M…P and U…X equal), and what both make; `None` for another pattern. Every
@@ -379,10 +380,7 @@ fn degenerate_shape(n: &[u64]) -> Option<Degenerate> {
     let (shape, kept): (Degenerate, &[usize]) = match (kl, apex, wedge) {
         (true, true, _) => (Degenerate::Tetrahedron, &TET),
         (true, false, true) => (Degenerate::Wedge, &WEDGE),
-        (false, true, _) => {
-            let pyramid: Vec<usize> = (0..5).chain(8..12).chain(16..20).collect();
-            return distinct(&pick(n, &pyramid)).then_some(Degenerate::Pyramid);
-        }
+        (false, true, _) => (Degenerate::Pyramid, &PYRAMID),
         _ => return None,
     };
     distinct(&pick(n, kept)).then_some(shape)
@@ -569,6 +567,18 @@ mod tests {
             Ok(Formed::Element(
                 ElementKind::Tet10,
                 vec![1, 2, 3, 5, 9, 10, 12, 17, 18, 19]
+            ))
+        );
+        // the pyramid: M…P = U…X (5)
+        let mut pyramid = nodes.clone();
+        for p in [4, 5, 6, 7, 12, 13, 14, 15] {
+            pyramid[p] = 5;
+        }
+        assert_eq!(
+            form(&t, &record(pyramid), None, None, None),
+            Ok(Formed::Element(
+                ElementKind::Pyram13Ansys,
+                vec![1, 2, 3, 4, 5, 9, 10, 11, 12, 17, 18, 19, 20]
             ))
         );
         // another pattern of repeats is refused

@@ -180,7 +180,8 @@ fn card_parts(
                         | ElementKind::Prism6
                         | ElementKind::Prism15
                         | ElementKind::Pyram5
-                        | ElementKind::Pyram13) => {
+                        | ElementKind::Pyram13
+                        | ElementKind::Pyram13Ansys) => {
                             if thru {
                                 return Err(g.err(6, "THRU is for shell elements; a solid face needs G1 and G3/G4"));
                             }
