@@ -4,7 +4,8 @@
 //! MSC Nastran's QRG (CQUAD4 remark on ZOFFS): the element's reference plane lies ZOFFS along
 //! the element normal from the plane of its grid points (positive: above), and the offset is a
 //! rigid link. So each element corner gets a node at x + ZOFFS·n, where n is the element
-//! normal (CQUAD4: the cross product of the diagonals G1→G3 × G2→G4; CTRIA3: G1→G2 × G1→G3),
+//! normal (CQUAD4: the cross product of the diagonals G1→G3 × G2→G4; CTRIA3: G1→G2 × G1→G3;
+//! the same diagonals for a flat 8-node shell, ANSYS's SHELL281 on a TOP or BOT section),
 //! and an RBE2 on all six dofs ties it to the grid point: u_ref = u + θ × (ZOFFS·n),
 //! θ_ref = θ. The element's stiffness and mass are those of the offset plane, so the body's
 //! M, K and its lumped mass points (at the reference plane, where the material is) are the
@@ -42,7 +43,8 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
     let e = &model.elements[elem];
     let x = |k: usize| model.nodes[e.nodes[k]].x;
     let (p, q) = match e.kind {
-        ElementKind::Quad4 => (sub(x(2), x(0)), sub(x(3), x(1))),
+        // the 8-node shell: the corners' diagonals (its importer offsets flat elements only)
+        ElementKind::Quad4 | ElementKind::Quad8 => (sub(x(2), x(0)), sub(x(3), x(1))),
         ElementKind::Tri3 => (sub(x(1), x(0)), sub(x(2), x(0))),
         ElementKind::Tet4
         | ElementKind::Tet10
@@ -61,8 +63,7 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
         | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3
-        | ElementKind::Tri6
-        | ElementKind::Quad8 => return None,
+        | ElementKind::Tri6 => return None,
     };
     unit(cross(p, q))
 }
@@ -88,8 +89,8 @@ pub fn offset_shells(
         }
         let n = element_normal(model, o.elem).ok_or_else(|| {
             let why = format!(
-                "element {eid} ({:?}): an offset needs a flat shell (CQUAD4/CTRIA3) with a \
-                 normal; this one has none (degenerate corners?)",
+                "element {eid} ({:?}): an offset needs a flat shell (CQUAD4/CTRIA3, a flat \
+                 SHELL281) with a normal; this one has none (degenerate corners?)",
                 model.elements[o.elem].kind
             );
             (at, why)

@@ -1,5 +1,6 @@
 //! 8-node curved shell quadrilateral (CQUAD8, S8, S8R): the MITC9 shell with its centre node
-//! condensed statically; 6 dofs per node.
+//! condensed statically; 6 dofs per node. An element the ANSYS importer made of a SHELL281
+//! (`Model::ansys_shell281`) is formed by [`super::shell281`] instead.
 //!
 //! ```text
 //!  4 ── 7 ── 3      s        corners (±1, ±1), mid-sides 5 (0,−1), 6 (1,0), 7 (0,1), 8 (−1,0)
@@ -207,7 +208,12 @@ pub struct Quad8Element;
 impl Element for Quad8Element {
     fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
         let (p, t) = shell_section::curved_shell_props::<8>(input)?;
-        let (k, m) = matrices(&input.coords::<8>(), &t, &p, input.lumped())?;
+        let (k, m) = match input.model.ansys_shell281.get(&input.index) {
+            Some(sec) => {
+                super::shell281::matrices(&input.coords::<8>(), p.t, &p, sec, input.lumped())?
+            }
+            None => matrices(&input.coords::<8>(), &t, &p, input.lumped())?,
+        };
         Ok(ElementMatrices::nodal(6, k, m))
     }
 
