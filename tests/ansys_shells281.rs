@@ -61,10 +61,13 @@ fn shell281_offset_block_face_equals_ansys_element_forces() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Nodes as (id, position).
+type Nodes = Vec<(u64, [f64; 3])>;
+
 /// An n × n mesh of SHELL281 over [0, L]² at z = 0: nodes (id, position) and element node
 /// lists (I, J, K, L, M, N, O, P), node ids 1 + i + (2n + 1) j on the (2n + 1)² grid without
 /// the element centres.
-fn plate_mesh(n: usize, l: f64) -> (Vec<(u64, [f64; 3])>, Vec<Vec<u64>>) {
+fn plate_mesh(n: usize, l: f64) -> (Nodes, Vec<Vec<u64>>) {
     let m = 2 * n + 1;
     let id = |i: usize, j: usize| (1 + i + m * j) as u64;
     let h = l / (2 * n) as f64;
@@ -152,5 +155,84 @@ fn shell281_simply_supported_plate_equals_kirchhoff() {
         .fold(0.0f64, f64::max);
     println!("SHELL281 plate: {f:?} against {want:?}: {worst:.2e}");
     assert!(worst < 2.7e-3, "{worst:e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// What SHELL281 does not form is refused by its line: the membrane option KEYOPT(1)=1, the
+/// triangle K = L = O, a record without a section, an offset element that is not flat, and
+/// `LUMPM,ON` with a SHELL281 in the model.
+#[test]
+fn unformed_shell281_options_are_refused_by_line() {
+    let (mut nodes, elements) = plate_mesh(2, 2.0);
+    // lift one mid-side node of the last element: a curved element
+    let lifted = elements[3][5];
+    for (n, x) in nodes.iter_mut() {
+        if *n == lifted {
+            x[2] = 0.1;
+        }
+    }
+    let mut s = String::from(
+        "ET,        1,281\nET,        2,281\nKEYOP,        2, 1,        1\nLUMPM,ON\n",
+    );
+    s += "SECTYPE,       1,SHELL,,\nSECDATA,  0.01,  1,  0.0,  3\nSECOFFSET,TOP\n";
+    s += &nblock(
+        &nodes
+            .iter()
+            .map(|&(n, x)| (n, x, [0.0; 3]))
+            .collect::<Vec<_>>(),
+    );
+    let mut triangle = elements[2].clone();
+    triangle[3] = triangle[2];
+    triangle[6] = triangle[2];
+    // (type, section, nodes): the membrane option, no section (9), the triangle, the curved
+    // offset element
+    let records = vec![
+        (2, 1, elements[0].clone()),
+        (1, 9, elements[1].clone()),
+        (1, 1, triangle),
+        (1, 1, elements[3].clone()),
+    ];
+    s += &eblock(&records);
+    s += &material([200e9, 0.3, 8000.0]);
+    let dir = scratch("ansys-shell281-refusals");
+    let cdb = dir.join("refused.cdb");
+    std::fs::write(&cdb, &s).unwrap();
+    let o = build(&cdb, "si", 4, &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    let line_of = |needle: &str| s.lines().position(|l| l.contains(needle)).unwrap() + 1;
+    let first = line_of("(19i9)") + 1;
+    for (line, what) in [
+        (first, "SHELL281 KEYOPT(1)=1"),
+        (first + 1, "SHELL281 without a shell section (SECNUM 9)"),
+        (first + 2, "SHELL281 with repeated nodes"),
+        (first + 3, "formed flat only"),
+    ] {
+        let want = format!("refused.cdb:{line}: ");
+        assert!(
+            err.lines().any(|l| l.contains(&want) && l.contains(what)),
+            "{want} {what}\n{err}"
+        );
+    }
+    // LUMPM is judged once the elements are formed: an archive of formed SHELL281 with it
+    let lumped = String::from("ET,        1,281\nLUMPM,ON\n")
+        + "SECTYPE,       1,SHELL,,\nSECDATA,  0.01,  1,  0.0,  3\n"
+        + &nblock(
+            &nodes
+                .iter()
+                .map(|&(n, x)| (n, x, [0.0; 3]))
+                .collect::<Vec<_>>(),
+        )
+        + &eblock(&[(1, 1, elements[0].clone())])
+        + &material([200e9, 0.3, 8000.0]);
+    let cdb = dir.join("lumped.cdb");
+    std::fs::write(&cdb, &lumped).unwrap();
+    let o = build(&cdb, "si", 4, &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("lumped.cdb:2: ") && err.contains("LUMPM,ON with SHELL281"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
