@@ -14,7 +14,7 @@
 
 use std::collections::BTreeMap;
 
-use super::geometry::{cross, sub, unit};
+use super::geometry::{cross, dot, norm, sub, unit};
 use super::{DofMask, ElementKind, Model, Node, NodeIndex, RigidElement};
 
 /// One shell element's offset, as read from its card.
@@ -37,13 +37,13 @@ pub struct OffsetNodes {
     pub links: Vec<u64>,
 }
 
-/// The unit normal of a flat shell element (module doc); `None` for other kinds or a
-/// degenerate element.
+/// The unit normal of a flat shell element (module doc); `None` for other kinds, a degenerate
+/// element or an 8-node shell that is not flat.
 fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
     let e = &model.elements[elem];
     let x = |k: usize| model.nodes[e.nodes[k]].x;
     let (p, q) = match e.kind {
-        // the 8-node shell: the corners' diagonals (its importer offsets flat elements only)
+        // a flat 8-node shell: the corners' diagonals (below)
         ElementKind::Quad4 | ElementKind::Quad8 => (sub(x(2), x(0)), sub(x(3), x(1))),
         ElementKind::Tri3 => (sub(x(1), x(0)), sub(x(2), x(0))),
         ElementKind::Tet4
@@ -65,7 +65,14 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
         | ElementKind::Beam3
         | ElementKind::Tri6 => return None,
     };
-    unit(cross(p, q))
+    let n = unit(cross(p, q))?;
+    // an 8-node shell has one normal only when flat (its nodes within 1e-9 of its size of the
+    // plane through its first corner)
+    let size = (0..e.nodes.len())
+        .map(|k| norm(sub(x(k), x(0))))
+        .fold(0.0, f64::max);
+    let flat = (0..e.nodes.len()).all(|k| dot(sub(x(k), x(0)), n).abs() <= 1e-9 * size);
+    (e.kind != ElementKind::Quad8 || flat).then_some(n)
 }
 
 /// Moves every offset shell onto nodes at its reference plane, rigidly linked to its grid

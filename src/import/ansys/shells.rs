@@ -122,7 +122,8 @@ impl ShellSection {
             "BOT" => self.offset = Some((c.line, Offset::Bot)),
             _ => {
                 return Some(format!(
-                    "SECOFFSET,{location}: a user offset of a shell section is not formed here                      (MID, TOP and BOT are)"
+                    "SECOFFSET,{location}: a user offset of a shell section is not formed here \
+                     (MID, TOP and BOT are)"
                 ))
             }
         }
