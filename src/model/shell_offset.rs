@@ -38,8 +38,8 @@ pub struct OffsetNodes {
 }
 
 /// The unit normal of a flat shell element (module doc); `None` for other kinds, a degenerate
-/// element or an 8-node shell that is not flat.
-fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
+/// element, an 8-node shell unless `quad8` and it is flat.
+fn element_normal(model: &Model, elem: usize, quad8: bool) -> Option<[f64; 3]> {
     let e = &model.elements[elem];
     let x = |k: usize| model.nodes[e.nodes[k]].x;
     let (p, q) = match e.kind {
@@ -72,7 +72,7 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
         .map(|k| norm(sub(x(k), x(0))))
         .fold(0.0, f64::max);
     let flat = (0..e.nodes.len()).all(|k| dot(sub(x(k), x(0)), n).abs() <= 1e-9 * size);
-    (e.kind != ElementKind::Quad8 || flat).then_some(n)
+    (e.kind != ElementKind::Quad8 || (quad8 && flat)).then_some(n)
 }
 
 /// Moves every offset shell onto nodes at its reference plane, rigidly linked to its grid
@@ -81,6 +81,25 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
 pub fn offset_shells(
     model: &mut Model,
     offsets: &[ShellOffset],
+) -> Result<OffsetNodes, (usize, String)> {
+    offset_elements(model, offsets, false)
+}
+
+/// [`offset_shells`] that also offsets flat 8-node shells (ANSYS's SHELL281 on a TOP or BOT
+/// section, whose element forces show this offset; Nastran's and Abaqus's quadratic shells
+/// keep refusing theirs).
+pub fn offset_shells_and_flat_quad8(
+    model: &mut Model,
+    offsets: &[ShellOffset],
+) -> Result<OffsetNodes, (usize, String)> {
+    offset_elements(model, offsets, true)
+}
+
+/// The offsets of [`offset_shells`], flat 8-node shells with them when `quad8`.
+fn offset_elements(
+    model: &mut Model,
+    offsets: &[ShellOffset],
+    quad8: bool,
 ) -> Result<OffsetNodes, (usize, String)> {
     let mut made = OffsetNodes::default();
     // per grid point: the offset vectors made so far and their nodes
@@ -94,7 +113,7 @@ pub fn offset_shells(
                 format!("element {eid}: ZOFFS = {} is not a number", o.zoffs),
             ));
         }
-        let n = element_normal(model, o.elem).ok_or_else(|| {
+        let n = element_normal(model, o.elem, quad8).ok_or_else(|| {
             let why = format!(
                 "element {eid} ({:?}): an offset needs a flat shell (CQUAD4/CTRIA3, a flat \
                  SHELL281) with a normal; this one has none (degenerate corners?)",

@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 
 use super::blocks::{Command, ElementRecord};
 use crate::import::error::ImportError;
-use crate::model::shell_offset::{offset_shells, ShellOffset};
+use crate::model::shell_offset::{offset_shells_and_flat_quad8, ShellOffset};
 use crate::model::{
     AnsysShell281, Element, ElementKind, Model, Property, Section,
     ShellSection as ModelShellSection,
@@ -407,7 +407,7 @@ impl ShellProperties {
                 }
             }
         }
-        if let Err((at, why)) = offset_shells(model, &offsets) {
+        if let Err((at, why)) = offset_shells_and_flat_quad8(model, &offsets) {
             refused.push((lines[at].0, (lines[at].1, why)));
         }
         refused
