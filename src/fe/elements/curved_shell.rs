@@ -30,6 +30,41 @@ use super::shell::{add_outer, ShellProps, DRILL_INERTIA};
 use super::{ElementError, Xyz};
 use crate::model::geometry::{cross, dot, norm, scale, sub};
 
+/// Reference points of the 8-node quadrilateral's nodes: corners (±1, ±1), then the mid-sides
+/// (0, −1), (1, 0), (0, 1), (−1, 0) (Abaqus, Nastran and ANSYS order).
+pub(crate) const SERENDIPITY8: [[f64; 2]; 8] = [
+    [-1.0, -1.0],
+    [1.0, -1.0],
+    [1.0, 1.0],
+    [-1.0, 1.0],
+    [0.0, -1.0],
+    [1.0, 0.0],
+    [0.0, 1.0],
+    [-1.0, 0.0],
+];
+
+/// 8-node serendipity shape functions (node order of [`SERENDIPITY8`]).
+pub(crate) fn shape8(r: f64, s: f64) -> (Vec<f64>, Vec<[f64; 2]>) {
+    let mut n = Vec::with_capacity(8);
+    let mut d = Vec::with_capacity(8);
+    for p in &SERENDIPITY8 {
+        let (ra, sa) = (p[0], p[1]);
+        if ra != 0.0 && sa != 0.0 {
+            let (fr, fs) = (1.0 + ra * r, 1.0 + sa * s);
+            let q = ra * r + sa * s - 1.0;
+            n.push(0.25 * fr * fs * q);
+            d.push([0.25 * ra * fs * (q + fr), 0.25 * sa * fr * (q + fs)]);
+        } else if ra == 0.0 {
+            n.push(0.5 * (1.0 - r * r) * (1.0 + sa * s));
+            d.push([-r * (1.0 + sa * s), 0.5 * sa * (1.0 - r * r)]);
+        } else {
+            n.push(0.5 * (1.0 + ra * r) * (1.0 - s * s));
+            d.push([0.5 * ra * (1.0 - s * s), -s * (1.0 + ra * r)]);
+        }
+    }
+    (n, d)
+}
+
 /// Shape functions N_a and their (r, s) derivatives at a point.
 pub(crate) type Shape = fn(f64, f64) -> (Vec<f64>, Vec<[f64; 2]>);
 

@@ -2,7 +2,7 @@
 //! "SHELL281"); 6 dofs per node, nodes I, J, K, L, M, N, O, P in flexbody's `Quad8` order.
 //!
 //! * Kinematics: the continuum shell of [`super::curved_shell`] on the 8-node serendipity
-//!   functions ([`super::quad8_shell::shape8`]), directors the surface normals at the nodes.
+//!   functions ([`super::curved_shell::shape8`]), directors the surface normals at the nodes.
 //! * Stiffness on the 2 × 2 Gauss points (MAPDL Theory Reference §13.281: "In-plane: 2 x 2"),
 //!   displacement-based — no assumed strain — for membrane, bending and transverse shear
 //!   alike; two points through the thickness (exact for a homogeneous linear section).
@@ -18,23 +18,12 @@
 //! * Mass: curved_shell's consistent shell mass on the same 2 × 2 points (the Theory
 //!   Reference's table: "Same as stiffness matrix"; not shown against ANSYS).
 
-use super::curved_shell::{self, add_btdb_rows, covariant_pair, point_rows, Lamina};
-use super::quad8_shell::shape8;
+use super::curved_shell::{
+    self, add_btdb_rows, covariant_pair, point_rows, shape8, Lamina, SERENDIPITY8 as REF,
+};
 use super::shell::{add_outer, ShellProps};
 use super::{ElementError, Xyz};
 use crate::model::AnsysShell281;
-
-/// Reference points of the 8 nodes (corners, then mid-sides I–J, J–K, K–L, L–I).
-const REF: [[f64; 2]; 8] = [
-    [-1.0, -1.0],
-    [1.0, -1.0],
-    [1.0, 1.0],
-    [-1.0, 1.0],
-    [0.0, -1.0],
-    [1.0, 0.0],
-    [0.0, 1.0],
-    [-1.0, 0.0],
-];
 
 /// The drilling penalty's share of the transverse shear stiffness (module doc).
 const DRILL_OF_SHEAR: f64 = 1e-4;
