@@ -110,7 +110,8 @@ fn layers_of_one_material_are_one_homogeneous_shell() {
 
 /// What is not formed is refused by its line naming the KEYOPT, the shape or the section line:
 /// SHELL181's default KEYOPT(3)=0, the membrane option, the degenerate triangle; a laminate
-/// of two materials, a TOP offset, a drill stiffness factor, one integration point.
+/// of two materials, a TOP offset (at the SHELL181's record: SHELL281 forms it), a drill
+/// stiffness factor, one integration point.
 #[test]
 fn unformed_shell181_options_are_refused_by_line() {
     let mut s = String::from(
@@ -136,12 +137,13 @@ fn unformed_shell181_options_are_refused_by_line() {
     }
     s += "N,R5.3,LOC,       -1,\nEBLOCK,19,SOLID,         5,         5\n(19i9)\n";
     // (type, section, nodes): the default KEYOPT(3), the membrane option, a triangle, the
-    // laminate section
-    let records: [(u64, u64, [u64; 4]); 4] = [
+    // laminate section, the TOP offset
+    let records: [(u64, u64, [u64; 4]); 5] = [
         (2, 5, [1, 2, 3, 4]),
         (3, 5, [1, 2, 3, 4]),
         (1, 5, [1, 2, 3, 3]),
         (1, 1, [1, 2, 3, 4]),
+        (1, 2, [1, 2, 3, 4]),
     ];
     for (k, (etype, section, n)) in records.iter().enumerate() {
         let head = [1, *etype, 1, *section, 0, 0, 0, 0, 4, 0, 10 + k as u64];
@@ -171,7 +173,13 @@ fn unformed_shell181_options_are_refused_by_line() {
         (first + 1, "SHELL181 KEYOPT(1)=1"),
         (first + 2, "degenerate triangle"),
         (first + 3, "layers of different materials"),
-        (line_of("SECOFFSET,TOP"), "SECOFFSET,TOP"),
+        (
+            first + 4,
+            &format!(
+                "SHELL181 on a section offset to its top surface (SECOFFSET line {})",
+                line_of("SECOFFSET,TOP")
+            ),
+        ),
         (
             line_of("SECDATA,  1.0,  1,  0.0,  1"),
             "1 integration point(s)",

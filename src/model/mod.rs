@@ -28,7 +28,7 @@ pub use connector::{Bush, DofMatrix, Mpc, NodeDof, RigidBody, ScalarMass, Scalar
 pub use deck::{ConstraintSource, DeckRequest, EigenRequest};
 pub use elasticity::{Elasticity, MaterialAxes, PlaneStress, Stiffness6};
 pub use load::{Load, LoadPart};
-pub use section::{BeamBrickSection, Ply, ShellMaterialAxis, ShellSection};
+pub use section::{AnsysShell281, BeamBrickSection, Ply, ShellMaterialAxis, ShellSection};
 
 /// Dense 0-based index of a node in [`Model::nodes`].
 pub type NodeIndex = usize;
@@ -635,6 +635,9 @@ pub struct Model {
     /// Material x-axes of shell elements given on the element (Nastran CQUAD4/CTRIA3 THETA or
     /// MCID): element index → axis; others use their section's `material_axis`.
     pub shell_axes: BTreeMap<usize, ShellMaterialAxis>,
+    /// 8-node shells formed as ANSYS's SHELL281 (`fe::elements::shell281`): element index →
+    /// its section's transverse shear; other `Quad8` elements are flexbody's MITC9.
+    pub ansys_shell281: BTreeMap<usize, AnsysShell281>,
     /// Cross-section integration of the 20-node bricks CalculiX makes of B32R beams (element
     /// index → section; `fe::elements::hex20_beam`): the brick spans the section's bounding
     /// rectangle and is integrated at the section's own points.

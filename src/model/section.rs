@@ -156,6 +156,16 @@ pub struct ShellSection {
     pub material_axis: ShellMaterialAxis,
 }
 
+/// What an ANSYS SHELL281's shell section adds to its element (`fe::elements::shell281`,
+/// docs/ansys.md): ANSYS's user transverse shear stiffnesses (its offset is made by
+/// [`super::shell_offset`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnsysShell281 {
+    /// `SECCONTROL`'s transverse shear stiffnesses E11, E22, E12 (force per length, element
+    /// axes); `None`: ANSYS's k G t with k = 5/6.
+    pub shear: Option<[f64; 3]>,
+}
+
 /// One ply of a laminate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ply {

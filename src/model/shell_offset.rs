@@ -4,7 +4,8 @@
 //! MSC Nastran's QRG (CQUAD4 remark on ZOFFS): the element's reference plane lies ZOFFS along
 //! the element normal from the plane of its grid points (positive: above), and the offset is a
 //! rigid link. So each element corner gets a node at x + ZOFFS·n, where n is the element
-//! normal (CQUAD4: the cross product of the diagonals G1→G3 × G2→G4; CTRIA3: G1→G2 × G1→G3),
+//! normal (CQUAD4: the cross product of the diagonals G1→G3 × G2→G4; CTRIA3: G1→G2 × G1→G3;
+//! the same diagonals for a flat 8-node shell, ANSYS's SHELL281 on a TOP or BOT section),
 //! and an RBE2 on all six dofs ties it to the grid point: u_ref = u + θ × (ZOFFS·n),
 //! θ_ref = θ. The element's stiffness and mass are those of the offset plane, so the body's
 //! M, K and its lumped mass points (at the reference plane, where the material is) are the
@@ -13,7 +14,7 @@
 
 use std::collections::BTreeMap;
 
-use super::geometry::{cross, sub, unit};
+use super::geometry::{cross, dot, norm, sub, unit};
 use super::{DofMask, ElementKind, Model, Node, NodeIndex, RigidElement};
 
 /// One shell element's offset, as read from its card.
@@ -36,13 +37,14 @@ pub struct OffsetNodes {
     pub links: Vec<u64>,
 }
 
-/// The unit normal of a flat shell element (module doc); `None` for other kinds or a
-/// degenerate element.
-fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
+/// The unit normal of a flat shell element (module doc); `None` for other kinds, a degenerate
+/// element, an 8-node shell unless `quad8` and it is flat.
+fn element_normal(model: &Model, elem: usize, quad8: bool) -> Option<[f64; 3]> {
     let e = &model.elements[elem];
     let x = |k: usize| model.nodes[e.nodes[k]].x;
     let (p, q) = match e.kind {
-        ElementKind::Quad4 => (sub(x(2), x(0)), sub(x(3), x(1))),
+        // a flat 8-node shell: the corners' diagonals (below)
+        ElementKind::Quad4 | ElementKind::Quad8 => (sub(x(2), x(0)), sub(x(3), x(1))),
         ElementKind::Tri3 => (sub(x(1), x(0)), sub(x(2), x(0))),
         ElementKind::Tet4
         | ElementKind::Tet10
@@ -62,10 +64,16 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
         | ElementKind::Beam3Quadratic
         | ElementKind::Rod2
         | ElementKind::Beam3
-        | ElementKind::Tri6
-        | ElementKind::Quad8 => return None,
+        | ElementKind::Tri6 => return None,
     };
-    unit(cross(p, q))
+    let n = unit(cross(p, q))?;
+    // an 8-node shell has one normal only when flat (its nodes within 1e-9 of its size of the
+    // plane through its first corner)
+    let size = (0..e.nodes.len())
+        .map(|k| norm(sub(x(k), x(0))))
+        .fold(0.0, f64::max);
+    let flat = (0..e.nodes.len()).all(|k| dot(sub(x(k), x(0)), n).abs() <= 1e-9 * size);
+    (e.kind != ElementKind::Quad8 || (quad8 && flat)).then_some(n)
 }
 
 /// Moves every offset shell onto nodes at its reference plane, rigidly linked to its grid
@@ -74,6 +82,25 @@ fn element_normal(model: &Model, elem: usize) -> Option<[f64; 3]> {
 pub fn offset_shells(
     model: &mut Model,
     offsets: &[ShellOffset],
+) -> Result<OffsetNodes, (usize, String)> {
+    offset_elements(model, offsets, false)
+}
+
+/// [`offset_shells`] that also offsets flat 8-node shells (ANSYS's SHELL281 on a TOP or BOT
+/// section, whose element forces show this offset; Nastran's and Abaqus's quadratic shells
+/// keep refusing theirs).
+pub fn offset_shells_and_flat_quad8(
+    model: &mut Model,
+    offsets: &[ShellOffset],
+) -> Result<OffsetNodes, (usize, String)> {
+    offset_elements(model, offsets, true)
+}
+
+/// The offsets of [`offset_shells`], flat 8-node shells with them when `quad8`.
+fn offset_elements(
+    model: &mut Model,
+    offsets: &[ShellOffset],
+    quad8: bool,
 ) -> Result<OffsetNodes, (usize, String)> {
     let mut made = OffsetNodes::default();
     // per grid point: the offset vectors made so far and their nodes
@@ -87,10 +114,10 @@ pub fn offset_shells(
                 format!("element {eid}: ZOFFS = {} is not a number", o.zoffs),
             ));
         }
-        let n = element_normal(model, o.elem).ok_or_else(|| {
+        let n = element_normal(model, o.elem, quad8).ok_or_else(|| {
             let why = format!(
-                "element {eid} ({:?}): an offset needs a flat shell (CQUAD4/CTRIA3) with a \
-                 normal; this one has none (degenerate corners?)",
+                "element {eid} ({:?}): an offset needs a flat shell (CQUAD4/CTRIA3, a flat \
+                 SHELL281) with a normal; this one has none (degenerate corners?)",
                 model.elements[o.elem].kind
             );
             (at, why)

@@ -30,6 +30,41 @@ use super::shell::{add_outer, ShellProps, DRILL_INERTIA};
 use super::{ElementError, Xyz};
 use crate::model::geometry::{cross, dot, norm, scale, sub};
 
+/// Reference points of the 8-node quadrilateral's nodes: corners (±1, ±1), then the mid-sides
+/// (0, −1), (1, 0), (0, 1), (−1, 0) (Abaqus, Nastran and ANSYS order).
+pub(crate) const SERENDIPITY8: [[f64; 2]; 8] = [
+    [-1.0, -1.0],
+    [1.0, -1.0],
+    [1.0, 1.0],
+    [-1.0, 1.0],
+    [0.0, -1.0],
+    [1.0, 0.0],
+    [0.0, 1.0],
+    [-1.0, 0.0],
+];
+
+/// 8-node serendipity shape functions (node order of [`SERENDIPITY8`]).
+pub(crate) fn shape8(r: f64, s: f64) -> (Vec<f64>, Vec<[f64; 2]>) {
+    let mut n = Vec::with_capacity(8);
+    let mut d = Vec::with_capacity(8);
+    for p in &SERENDIPITY8 {
+        let (ra, sa) = (p[0], p[1]);
+        if ra != 0.0 && sa != 0.0 {
+            let (fr, fs) = (1.0 + ra * r, 1.0 + sa * s);
+            let q = ra * r + sa * s - 1.0;
+            n.push(0.25 * fr * fs * q);
+            d.push([0.25 * ra * fs * (q + fr), 0.25 * sa * fr * (q + fs)]);
+        } else if ra == 0.0 {
+            n.push(0.5 * (1.0 - r * r) * (1.0 + sa * s));
+            d.push([-r * (1.0 + sa * s), 0.5 * sa * (1.0 - r * r)]);
+        } else {
+            n.push(0.5 * (1.0 + ra * r) * (1.0 - s * s));
+            d.push([0.5 * ra * (1.0 - s * s), -s * (1.0 + ra * r)]);
+        }
+    }
+    (n, d)
+}
+
 /// Shape functions N_a and their (r, s) derivatives at a point.
 pub(crate) type Shape = fn(f64, f64) -> (Vec<f64>, Vec<[f64; 2]>);
 
@@ -222,7 +257,7 @@ fn cartesian(e: &[Vec<f64>; 5], c: &[[f64; 3]; 3]) -> [Vec<f64>; 5] {
 }
 
 /// Add c · Bᵀ D B for rows `b` (3 × nd) to the nd×nd `k`.
-fn add_btdb_rows(k: &mut [f64], b: &[&[f64]; 3], d: &[[f64; 3]; 3], c: f64) {
+pub(crate) fn add_btdb_rows(k: &mut [f64], b: &[&[f64]; 3], d: &[[f64; 3]; 3], c: f64) {
     let nd = b[0].len();
     let db: [Vec<f64>; 3] = std::array::from_fn(|i| {
         (0..nd)
@@ -240,6 +275,99 @@ fn add_btdb_rows(k: &mut [f64], b: &[&[f64]; 3], d: &[[f64; 3]; 3], c: f64) {
     }
 }
 
+/// The strain rows of one stiffness point (6N columns, node-major): membrane strains and
+/// curvatures (ε₁₁, ε₂₂, γ₁₂ and κ₁₁, κ₂₂, κ₁₂ in the local lamina frame), the transverse shears
+/// (γ₁₃, γ₂₃) at ζ = ∓1/√3, the drilling row θ·ê₃ − ω (module doc), the area factor
+/// |g_r × g_s| and the local thickness Σ N_a t_a.
+pub(crate) struct PointRows {
+    pub mem: [Vec<f64>; 3],
+    pub kap: [Vec<f64>; 3],
+    pub shear: [[Vec<f64>; 2]; 2],
+    pub drill: Vec<f64>,
+    pub da: f64,
+    pub t: f64,
+}
+
+/// Covariant strain rows at (r, s) for ζ = ∓1/√3 (no assumed strain: the displacement-based
+/// shell).
+pub(crate) fn covariant_pair(l: &Lamina, r: f64, s: f64) -> [[Vec<f64>; 5]; 2] {
+    [l.covariant(r, s, -ZETA), l.covariant(r, s, ZETA)]
+}
+
+/// The rows of stiffness point `ip` at (r, s) from its covariant strain rows `cov` at
+/// ζ = ∓1/√3 (assumed or not), turned into the local lamina frame (module doc).
+pub(crate) fn point_rows(
+    l: &Lamina,
+    [r, s]: [f64; 2],
+    cov: &[[Vec<f64>; 5]; 2],
+    ip: usize,
+) -> Result<PointRows, ElementError> {
+    let nn = l.x.len();
+    let nd = 6 * nn;
+    let (n, dn) = (l.shape)(r, s);
+    let g0 = l.bases(&n, &dn, 0.0);
+    let (e, da) = lamina_frame(g0[0], g0[1]);
+    if da.is_nan() || da <= 0.0 {
+        return Err(ElementError::NonPositiveJacobian { det: da, point: ip });
+    }
+    let t: f64 = n.iter().zip(l.t).map(|(a, b)| a * b).sum();
+    let mut local: Vec<[Vec<f64>; 5]> = Vec::with_capacity(2);
+    for (zi, z) in [-ZETA, ZETA].into_iter().enumerate() {
+        let gz = l.bases(&n, &dn, z);
+        let gc = contravariant(&gz, ip)?;
+        let c: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|q| dot(e[i], gc[q])));
+        local.push(cartesian(&cov[zi], &c));
+    }
+    let zp = t * ZETA / 2.0;
+    let mem: [Vec<f64>; 3] = std::array::from_fn(|q| {
+        (0..nd)
+            .map(|j| 0.5 * (local[1][q][j] + local[0][q][j]))
+            .collect()
+    });
+    let kap: [Vec<f64>; 3] = std::array::from_fn(|q| {
+        (0..nd)
+            .map(|j| (local[1][q][j] - local[0][q][j]) / (2.0 * zp))
+            .collect()
+    });
+    // θ·ê₃ − ½(ê₂·∂U/∂ê₁ − ê₁·∂U/∂ê₂), ∂U/∂ê_i = Σ_k (g^k·ê_i) U,k at ζ = 0
+    let gc = contravariant(&g0, ip)?;
+    let mut drill = vec![0.0; nd];
+    for a in 0..nn {
+        for i in 0..3 {
+            drill[6 * a + 3 + i] += n[a] * e[2][i];
+        }
+    }
+    for kk in 0..3 {
+        let c1 = dot(gc[kk], e[0]);
+        let c2 = dot(gc[kk], e[1]);
+        l.add_dot(&mut drill, &n, &dn, 0.0, e[1], kk, -0.5 * c1);
+        l.add_dot(&mut drill, &n, &dn, 0.0, e[0], kk, 0.5 * c2);
+    }
+    let [lo, hi] = [&local[0], &local[1]];
+    Ok(PointRows {
+        mem,
+        kap,
+        shear: [
+            [lo[3].clone(), lo[4].clone()],
+            [hi[3].clone(), hi[4].clone()],
+        ],
+        drill,
+        da,
+        t,
+    })
+}
+
+/// Makes `k` (nd × nd) exactly symmetric (sums of outer products are symmetric up to rounding).
+pub(crate) fn symmetrize(k: &mut [f64], nd: usize) {
+    for i in 0..nd {
+        for j in 0..i {
+            let v = 0.5 * (k[i * nd + j] + k[j * nd + i]);
+            k[i * nd + j] = v;
+            k[j * nd + i] = v;
+        }
+    }
+}
+
 /// Stiffness (6N×6N, basic frame, node-major `[u v w θx θy θz]`) of the MITC shell (module
 /// doc): tying points `points`, assumed-strain `weights`, in-plane `rule` ((r, s), weight).
 pub(crate) fn stiffness(
@@ -249,26 +377,15 @@ pub(crate) fn stiffness(
     rule: &[([f64; 2], f64)],
     props: &ShellProps,
 ) -> Result<Vec<f64>, ElementError> {
-    let nn = l.x.len();
-    let nd = 6 * nn;
+    let nd = 6 * l.x.len();
     let all: Vec<usize> = (0..nd).collect();
     let mut k = vec![0.0; nd * nd];
     // covariant strains at the tying points, for each thickness point
     let tied: [Vec<[Vec<f64>; 5]>; 2] =
         [-ZETA, ZETA].map(|z| points.iter().map(|p| l.covariant(p[0], p[1], z)).collect());
     for (ip, &([r, s], w)) in rule.iter().enumerate() {
-        let (n, dn) = (l.shape)(r, s);
-        let g0 = l.bases(&n, &dn, 0.0);
-        let (e, da) = lamina_frame(g0[0], g0[1]);
-        if da.is_nan() || da <= 0.0 {
-            return Err(ElementError::NonPositiveJacobian { det: da, point: ip });
-        }
-        let t: f64 = n.iter().zip(l.t).map(|(a, b)| a * b).sum();
-        let p = ShellProps { t, ..*props };
-        let (dm, db, ds, gd) = (p.d_membrane(), p.d_bending(), p.shear_modulus(), p.drill());
         let wm = weights(r, s);
-        let mut local: Vec<[Vec<f64>; 5]> = Vec::with_capacity(2);
-        for (zi, z) in [-ZETA, ZETA].into_iter().enumerate() {
+        let cov: [[Vec<f64>; 5]; 2] = std::array::from_fn(|zi| {
             let mut cov: [Vec<f64>; 5] = std::array::from_fn(|_| vec![0.0; nd]);
             for (pi, m) in wm.iter().enumerate() {
                 for (kk, row) in cov.iter_mut().enumerate() {
@@ -282,58 +399,30 @@ pub(crate) fn stiffness(
                     }
                 }
             }
-            let gz = l.bases(&n, &dn, z);
-            let gc = contravariant(&gz, ip)?;
-            let c: [[f64; 3]; 3] =
-                std::array::from_fn(|i| std::array::from_fn(|q| dot(e[i], gc[q])));
-            local.push(cartesian(&cov, &c));
-        }
-        let zp = t * ZETA / 2.0;
-        let mem: [Vec<f64>; 3] = std::array::from_fn(|q| {
-            (0..nd)
-                .map(|j| 0.5 * (local[1][q][j] + local[0][q][j]))
-                .collect()
+            cov
         });
-        let kap: [Vec<f64>; 3] = std::array::from_fn(|q| {
-            (0..nd)
-                .map(|j| (local[1][q][j] - local[0][q][j]) / (2.0 * zp))
-                .collect()
-        });
-        let dw = da * w;
-        add_btdb_rows(&mut k, &[&mem[0], &mem[1], &mem[2]], &dm, dw);
-        add_btdb_rows(&mut k, &[&kap[0], &kap[1], &kap[2]], &db, dw);
+        let rows = point_rows(l, [r, s], &cov, ip)?;
+        let p = ShellProps {
+            t: rows.t,
+            ..*props
+        };
+        let (dm, db, ds, gd) = (p.d_membrane(), p.d_bending(), p.shear_modulus(), p.drill());
+        let dw = rows.da * w;
+        let m = &rows.mem;
+        add_btdb_rows(&mut k, &[&m[0], &m[1], &m[2]], &dm, dw);
+        let b = &rows.kap;
+        add_btdb_rows(&mut k, &[&b[0], &b[1], &b[2]], &db, dw);
         if ds > 0.0 {
-            for lz in &local {
-                add_outer(&mut k, nd, &lz[3], &all, 0.5 * ds * dw);
-                add_outer(&mut k, nd, &lz[4], &all, 0.5 * ds * dw);
+            for [g13, g23] in &rows.shear {
+                add_outer(&mut k, nd, g13, &all, 0.5 * ds * dw);
+                add_outer(&mut k, nd, g23, &all, 0.5 * ds * dw);
             }
         }
         if gd > 0.0 {
-            // θ·ê₃ − ½(ê₂·∂U/∂ê₁ − ê₁·∂U/∂ê₂), ∂U/∂ê_i = Σ_k (g^k·ê_i) U,k at ζ = 0
-            let gc = contravariant(&g0, ip)?;
-            let mut row = vec![0.0; nd];
-            for a in 0..nn {
-                for i in 0..3 {
-                    row[6 * a + 3 + i] += n[a] * e[2][i];
-                }
-            }
-            for kk in 0..3 {
-                let c1 = dot(gc[kk], e[0]);
-                let c2 = dot(gc[kk], e[1]);
-                l.add_dot(&mut row, &n, &dn, 0.0, e[1], kk, -0.5 * c1);
-                l.add_dot(&mut row, &n, &dn, 0.0, e[0], kk, 0.5 * c2);
-            }
-            add_outer(&mut k, nd, &row, &all, gd * dw);
+            add_outer(&mut k, nd, &rows.drill, &all, gd * dw);
         }
     }
-    // exact symmetry (the sums above are symmetric up to rounding)
-    for i in 0..nd {
-        for j in 0..i {
-            let v = 0.5 * (k[i * nd + j] + k[j * nd + i]);
-            k[i * nd + j] = v;
-            k[j * nd + i] = v;
-        }
-    }
+    symmetrize(&mut k, nd);
     Ok(k)
 }
 

@@ -35,6 +35,7 @@ pub mod quad4_shell;
 pub mod quad8_shell;
 pub mod rod;
 pub mod shell;
+pub mod shell281;
 pub mod solid_incompatible;
 pub mod tapered_beam;
 pub mod tet10;

@@ -1,5 +1,6 @@
 //! 8-node curved shell quadrilateral (CQUAD8, S8, S8R): the MITC9 shell with its centre node
-//! condensed statically; 6 dofs per node.
+//! condensed statically; 6 dofs per node. An element the ANSYS importer made of a SHELL281
+//! (`Model::ansys_shell281`) is formed by [`super::shell281`] instead.
 //!
 //! ```text
 //!  4 ── 7 ── 3      s        corners (±1, ±1), mid-sides 5 (0,−1), 6 (1,0), 7 (0,1), 8 (−1,0)
@@ -21,7 +22,7 @@
 //!   rectangle of constant thickness puts 3/76 of its mass on each corner, 4/19 on each mid-side,
 //!   the consistent diagonal's ratio 6 : 32; rotations about the nodal normal).
 
-use super::curved_shell::{self, Lamina};
+use super::curved_shell::{self, shape8, Lamina};
 use super::element::{
     Element, ElementInput, ElementMatrices, MatricesError, ModePoint, NodalGradients, SolidRules,
 };
@@ -68,28 +69,6 @@ fn shape9(r: f64, s: f64) -> (Vec<f64>, Vec<[f64; 2]>) {
         let (i, j) = (idx(p[0]), idx(p[1]));
         n.push(lr[i] * ls[j]);
         d.push([dr[i] * ls[j], lr[i] * ds[j]]);
-    }
-    (n, d)
-}
-
-/// 8-node serendipity shape functions.
-pub(crate) fn shape8(r: f64, s: f64) -> (Vec<f64>, Vec<[f64; 2]>) {
-    let mut n = Vec::with_capacity(8);
-    let mut d = Vec::with_capacity(8);
-    for p in &REF[..8] {
-        let (ra, sa) = (p[0], p[1]);
-        if ra != 0.0 && sa != 0.0 {
-            let (fr, fs) = (1.0 + ra * r, 1.0 + sa * s);
-            let q = ra * r + sa * s - 1.0;
-            n.push(0.25 * fr * fs * q);
-            d.push([0.25 * ra * fs * (q + fr), 0.25 * sa * fr * (q + fs)]);
-        } else if ra == 0.0 {
-            n.push(0.5 * (1.0 - r * r) * (1.0 + sa * s));
-            d.push([-r * (1.0 + sa * s), 0.5 * sa * (1.0 - r * r)]);
-        } else {
-            n.push(0.5 * (1.0 + ra * r) * (1.0 - s * s));
-            d.push([0.5 * ra * (1.0 - s * s), -s * (1.0 + ra * r)]);
-        }
     }
     (n, d)
 }
@@ -207,7 +186,12 @@ pub struct Quad8Element;
 impl Element for Quad8Element {
     fn matrices(&self, input: &ElementInput) -> Result<ElementMatrices, MatricesError> {
         let (p, t) = shell_section::curved_shell_props::<8>(input)?;
-        let (k, m) = matrices(&input.coords::<8>(), &t, &p, input.lumped())?;
+        let (k, m) = match input.model.ansys_shell281.get(&input.index) {
+            Some(sec) => {
+                super::shell281::matrices(&input.coords::<8>(), p.t, &p, sec, input.lumped())?
+            }
+            None => matrices(&input.coords::<8>(), &t, &p, input.lumped())?,
+        };
         Ok(ElementMatrices::nodal(6, k, m))
     }
 

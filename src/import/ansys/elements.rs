@@ -60,7 +60,7 @@ pub(super) enum Formed {
     RigidLink(u64, u64),
     /// An MPC184 rigid beam (KEYOPT(1)=1) from node id I to J: J follows I's rigid motion.
     RigidBeam(u64, u64),
-    /// A SHELL181 (KEYOPT(3)=2) on its homogeneous section ([`super::shells`]).
+    /// A SHELL181 (KEYOPT(3)=2) or SHELL281 on its homogeneous section ([`super::shells`]).
     Shell(super::shells::Shell),
     /// A BEAM188 (KEYOPT(3)=0) or BEAM189 on its nodes and orientation node ([`super::beams`]).
     Beam(super::beams::Beam),
@@ -127,6 +127,7 @@ pub(super) fn form(
         21 => mass21(t, rec, reals),
         180 => link180(t, rec, reals, section),
         181 => super::shells::shell181(&t.keyopts, rec, reals, shell).map(Formed::Shell),
+        281 => super::shells::shell281(&t.keyopts, rec, shell).map(Formed::Shell),
         184 => mpc184(t, rec),
         188 => super::beams::beam188(&t.keyopts, rec).map(Formed::Beam),
         189 => super::beams::beam189(&t.keyopts, rec).map(Formed::Beam),

@@ -134,7 +134,7 @@ impl Archive {
                 Ok(Formed::Shell(shell)) => {
                     let nodes = (shell.nodes.iter().map(|&id| node_of(id)))
                         .collect::<Result<Vec<_>, _>>()?;
-                    let at = (r.id, r.line);
+                    let at = (r.id, r.line, r.etype);
                     match shells::push_shell(
                         model,
                         &mut shell_props,
@@ -182,6 +182,9 @@ impl Archive {
                     "duplicate element id",
                 ));
             }
+        }
+        for why in shell_props.apply_offsets(model) {
+            refusals.entry(why.1).or_insert((why.0, 0)).1 += 1;
         }
         for why in rotary_without_rotations(model, &rotary) {
             let e = refusals.entry(why.1).or_insert((why.0, 0));

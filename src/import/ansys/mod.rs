@@ -455,7 +455,9 @@ impl Archive {
             "SECOFFSET" => {
                 let beam = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
                 let why = match (self.shell_now, beam) {
-                    (Some(_), _) => shells::ShellSection::secoffset(c),
+                    (Some(id), _) => {
+                        (self.shell_sections.get_mut(&id)).and_then(|s| s.secoffset(c))
+                    }
                     (None, Some(b)) => b.secoffset(c),
                     (None, None) => {
                         Some("SECOFFSET of a section other than a shell or beam: not read".into())
@@ -588,7 +590,9 @@ impl Archive {
             ));
         }
         if let Some((line, true)) = self.lumped {
-            if let Some(why) = beams::lumped_refusal(&model) {
+            if let Some(why) =
+                beams::lumped_refusal(&model).or_else(|| shells::lumped_refusal(&model))
+            {
                 self.refuse(line, "LUMPM", why);
                 self.refusals(file)?;
             }
@@ -630,6 +634,16 @@ impl Archive {
                 "ANSYS archive: SHELL181 (KEYOPT(3)=2) formed with ANSYS's transverse shear factor \
                  and drilling penalty, shown against ANSYS's element forces on flat rectangles \
                  with ν = 0.3; its mass is flexbody's consistent shell mass, not shown against \
+                 ANSYS (docs/ansys.md)"
+                    .into(),
+            );
+        }
+        if !model.ansys_shell281.is_empty() {
+            notes.push(
+                "ANSYS archive: SHELL281 formed as the 8-node shell on 2 × 2 points with its \
+                 section's offset and transverse shear, shown against ANSYS's element forces of \
+                 one flat offset mesh; its drilling penalty (10⁻⁴ of the transverse shear \
+                 stiffness) and its mass (consistent, 2 × 2 points) are not shown against \
                  ANSYS (docs/ansys.md)"
                     .into(),
             );

@@ -1,8 +1,10 @@
 //! Shells of an archive: shell sections (`SECTYPE,id,SHELL` with its `SECDATA`, `SECOFFSET`,
-//! `SECCONTROL` lines) and SHELL181, formed as ANSYS forms it for KEYOPT(3)=2 (full
-//! integration with incompatible modes: flexbody's MITC4 + QM6 quadrilateral with ANSYS's
-//! transverse shear factor and drilling penalty, `fe::elements::shell::Quad4Form`), or refused
-//! by line naming the KEYOPT, the section line or the shape whose form is not shown.
+//! `SECCONTROL` lines), SHELL181, formed as ANSYS forms it for KEYOPT(3)=2 (full integration
+//! with incompatible modes: flexbody's MITC4 + QM6 quadrilateral with ANSYS's transverse shear
+//! factor and drilling penalty, `fe::elements::shell::Quad4Form`), and SHELL281 (the 8-node
+//! serendipity shell on 2 × 2 points with the section's offset and user transverse shear,
+//! `fe::elements::shell281`), or refused by line naming the KEYOPT, the section line or the
+//! shape whose form is not shown.
 //!
 //! What was shown, and how: docs/ansys.md ("Shells").
 
@@ -10,8 +12,10 @@ use std::collections::BTreeMap;
 
 use super::blocks::{Command, ElementRecord};
 use crate::import::error::ImportError;
+use crate::model::shell_offset::{offset_shells_and_flat_quad8, ShellOffset};
 use crate::model::{
-    Element, ElementKind, Model, Property, Section, ShellSection as ModelShellSection,
+    AnsysShell281, Element, ElementKind, Model, Property, Section,
+    ShellSection as ModelShellSection,
 };
 
 /// A `SECTYPE,id,SHELL` section: its layers (`SECDATA` lines), offset and added mass.
@@ -23,6 +27,20 @@ pub(super) struct ShellSection {
     pub layers: Vec<Layer>,
     /// Added mass per unit area (`SECCONTROL`'s ADDMAS).
     pub added_mass: f64,
+    /// `SECOFFSET` TOP or BOT (`None`: MID, the default): its line and whether the nodes are
+    /// on the top surface.
+    pub offset: Option<(usize, Offset)>,
+    /// `SECCONTROL`'s user transverse shear stiffnesses E11, E22, E12 and its line.
+    pub shear: Option<(usize, [f64; 3])>,
+}
+
+/// Where a shell section's nodes are (`SECOFFSET`'s location).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Offset {
+    /// The nodes on the top surface: the mid-surface t/2 below them (along −N).
+    Top,
+    /// The nodes on the bottom surface: the mid-surface t/2 above them (along N).
+    Bot,
 }
 
 /// One layer of a shell section (`SECDATA,TK,MAT,THETA,NUMPT`).
@@ -34,10 +52,16 @@ pub(super) struct Layer {
     pub material: i64,
 }
 
-/// A SHELL181 as the model receives it: the 4 node ids and its homogeneous section.
+/// A SHELL181 or SHELL281 as the model receives it: the node ids and its homogeneous section.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Shell {
+    /// SHELL181's 4 node ids or SHELL281's 8.
     pub nodes: Vec<u64>,
+    /// SHELL281's user transverse shear (`None`: a SHELL181).
+    pub shell281: Option<AnsysShell281>,
+    /// Distance from the nodes to the mid-surface along the element normal (SHELL281's TOP:
+    /// −t/2, BOT: +t/2; else 0).
+    pub offset: f64,
     pub thickness: f64,
     /// The material number (the section's, else the element's `MAT`).
     pub material: i64,
@@ -61,6 +85,8 @@ impl ShellSection {
             line: c.line,
             layers: Vec::new(),
             added_mass: 0.0,
+            offset: None,
+            shear: None,
         };
         (s, refusal)
     }
@@ -86,29 +112,39 @@ impl ShellSection {
         })
     }
 
-    /// `SECOFFSET,MID` is the default; TOP, BOT and USER offsets are refused (SHELL181's offset
-    /// form is not shown against an ANSYS result here).
-    pub fn secoffset(c: &Command) -> Option<String> {
+    /// `SECOFFSET,MID` (the default), TOP and BOT are read (SHELL281 forms TOP and BOT, SHELL181
+    /// refuses them at its record); USER offsets are refused.
+    pub fn secoffset(&mut self, c: &Command) -> Option<String> {
         let location = c.field(0).trim().to_ascii_uppercase();
-        (!(location.is_empty() || location == "MID")).then(|| {
-            format!(
-                "SECOFFSET,{location}: a shell offset from the mid-surface is not formed here \
-                 (only MID)"
-            )
-        })
+        match location.as_str() {
+            "" | "MID" => self.offset = None,
+            "TOP" => self.offset = Some((c.line, Offset::Top)),
+            "BOT" => self.offset = Some((c.line, Offset::Bot)),
+            _ => {
+                return Some(format!(
+                    "SECOFFSET,{location}: a user offset of a shell section is not formed here \
+                     (MID, TOP and BOT are)"
+                ))
+            }
+        }
+        None
     }
 
     /// `SECCONTROL,E11,E22,E12,ADDMAS,MSCALE,BSCALE,DRLSTF` of a shell section: the added mass
-    /// per area is read; user transverse shear stiffnesses and a drill stiffness factor other
-    /// than 1 are refused; the hourglass factors MSCALE, BSCALE do not enter KEYOPT(3)=2.
+    /// per area and the user transverse shear stiffnesses (SHELL281 forms them, SHELL181 refuses
+    /// them at its record) are read; a drill stiffness factor other than 1 is refused; the
+    /// hourglass factors MSCALE, BSCALE do not enter SHELL181 KEYOPT(3)=2 nor SHELL281.
     pub fn seccontrol(&mut self, file: &str, c: &Command) -> Result<Option<String>, ImportError> {
         let value = |k: usize| c.real(file, k);
         self.added_mass = value(3)?;
         let shear = [value(0)?, value(1)?, value(2)?];
-        if shear.iter().any(|&v| v != 0.0) {
-            return Ok(Some(
-                "SECCONTROL: user transverse shear stiffnesses E11, E22, E12 are not read".into(),
-            ));
+        self.shear = shear.iter().any(|&v| v != 0.0).then_some((c.line, shear));
+        if shear[0] < 0.0 || shear[1] < 0.0 || shear[2] * shear[2] > shear[0] * shear[1] {
+            return Ok(Some(format!(
+                "SECCONTROL: transverse shear stiffnesses E11 = {}, E22 = {}, E12 = {} are not \
+                 positive semi-definite",
+                shear[0], shear[1], shear[2]
+            )));
         }
         let drill = value(6)?;
         if drill != 0.0 && drill != 1.0 {
@@ -208,6 +244,21 @@ pub(super) fn shell181(
                 .into(),
         );
     }
+    if let Some(s) = section {
+        if let Some((line, o)) = s.offset {
+            return Err(format!(
+                "SHELL181 on a section offset to its {} surface (SECOFFSET line {line}): \
+                 SHELL181's offset form is not shown against an ANSYS result here (SHELL281's is)",
+                if o == Offset::Top { "top" } else { "bottom" }
+            ));
+        }
+        if let Some((line, _)) = s.shear {
+            return Err(format!(
+                "SHELL181 on a section with user transverse shear stiffnesses (SECCONTROL line \
+                 {line}): not formed for SHELL181 (SHELL281 forms them)"
+            ));
+        }
+    }
     let (thickness, material, added_mass) = match (section, reals) {
         (Some(s), _) => {
             let (t, m) = s.homogeneous(rec.mat)?;
@@ -224,9 +275,69 @@ pub(super) fn shell181(
     };
     Ok(Shell {
         nodes,
+        shell281: None,
+        offset: 0.0,
         thickness,
         material,
         added_mass,
+    })
+}
+
+/// SHELL281 (MAPDL Theory Reference §13.281; docs/ansys.md): the 8-node shell on a homogeneous
+/// shell section, its offset (MID, TOP, BOT) and user transverse shear; refused by line: the
+/// membrane option KEYOPT(1)=1, other KEYOPTs but KEYOPT(8) (what the result file stores), the
+/// triangle (K = L = O) and other repeated nodes, a record without a shell section.
+pub(super) fn shell281(
+    keyopts: &BTreeMap<u32, i64>,
+    rec: &ElementRecord,
+    section: Option<&ShellSection>,
+) -> Result<Shell, String> {
+    if let Some((k, v)) = keyopts.iter().find(|(k, v)| **k != 8 && **v != 0) {
+        return Err(format!(
+            "SHELL281 KEYOPT({k})={v}: {}",
+            if *k == 1 {
+                "the membrane-only shell is not formed here"
+            } else {
+                "this option's formulation is not formed here"
+            }
+        ));
+    }
+    let nodes: Vec<u64> = rec.nodes.iter().take(8).copied().collect();
+    if nodes.len() != 8 || nodes.contains(&0) {
+        return Err(format!(
+            "SHELL281 with {} nodes (I, J, K, L, M, N, O, P expected: mid-side nodes may not be \
+             dropped)",
+            nodes.iter().filter(|&&n| n != 0).count()
+        ));
+    }
+    if (1..8).any(|i| nodes[..i].contains(&nodes[i])) {
+        return Err(
+            "SHELL281 with repeated nodes (the triangle K = L = O): ANSYS's 6-node triangle is \
+             not formed here"
+                .into(),
+        );
+    }
+    let Some(s) = section else {
+        return Err(format!(
+            "SHELL281 without a shell section (SECNUM {}): no thickness",
+            rec.section
+        ));
+    };
+    let (thickness, material) = s.homogeneous(rec.mat)?;
+    let offset = match s.offset {
+        None => 0.0,
+        Some((_, Offset::Bot)) => 0.5 * thickness,
+        Some((_, Offset::Top)) => -0.5 * thickness,
+    };
+    Ok(Shell {
+        nodes,
+        shell281: Some(AnsysShell281 {
+            shear: s.shear.map(|(_, e)| e),
+        }),
+        offset,
+        thickness,
+        material,
+        added_mass: s.added_mass,
     })
 }
 
@@ -250,8 +361,73 @@ fn legacy_thickness(reals: &[f64]) -> Result<f64, String> {
     Ok(tk)
 }
 
-/// Shell properties made so far: (material number, thickness bits, added mass bits) → index.
-pub(super) type ShellProperties = BTreeMap<(i64, u64, u64), usize>;
+/// Shell properties made so far ((material number, thickness bits, added mass bits) → index)
+/// and the offset SHELL281s waiting for their rigid offsets.
+pub(super) struct ShellProperties {
+    made: BTreeMap<(i64, u64, u64), usize>,
+    /// (element index, offset, EBLOCK line, element type)
+    offsets: Vec<(usize, f64, usize, i64)>,
+}
+
+impl ShellProperties {
+    pub fn new() -> ShellProperties {
+        ShellProperties {
+            made: BTreeMap::new(),
+            offsets: Vec::new(),
+        }
+    }
+
+    /// Moves the offset SHELL281s onto nodes at their mid-surfaces joined rigidly to theirs
+    /// (`model::shell_offset`, as Nastran's ZOFFS): ANSYS's element forces of an offset section
+    /// are those of the mid-surface element under that rigid link (docs/ansys.md). A curved
+    /// (non-flat) offset element is refused: its offset along one normal is not ANSYS's. The
+    /// refusals: (line, (element type, why)).
+    pub fn apply_offsets(self, model: &mut Model) -> Vec<(usize, (i64, String))> {
+        let mut refused = Vec::new();
+        let mut offsets = Vec::new();
+        let mut lines = Vec::new();
+        for &(elem, zoffs, line, etype) in &self.offsets {
+            let x: Vec<[f64; 3]> = (model.elements[elem].nodes.iter())
+                .map(|&n| model.nodes[n].x)
+                .collect();
+            match out_of_plane(&x) {
+                Some(d) => refused.push((
+                    line,
+                    (
+                        etype,
+                        format!(
+                            "SHELL281 on an offset section (TOP or BOT) is formed flat only: this \
+                             element's nodes lie up to {d:.3e} of its size off one plane"
+                        ),
+                    ),
+                )),
+                None => {
+                    offsets.push(ShellOffset { elem, zoffs });
+                    lines.push((line, etype));
+                }
+            }
+        }
+        if let Err((at, why)) = offset_shells_and_flat_quad8(model, &offsets) {
+            refused.push((lines[at].0, (lines[at].1, why)));
+        }
+        refused
+    }
+}
+
+/// How far the nodes `x` of an 8-node shell lie off the plane of its corners' diagonals, over
+/// its size, when more than 1e-9 (`None`: flat).
+fn out_of_plane(x: &[[f64; 3]]) -> Option<f64> {
+    use crate::model::geometry::{cross, dot, norm, sub};
+    let n = cross(sub(x[2], x[0]), sub(x[3], x[1]));
+    let size = (x.iter())
+        .flat_map(|a| x.iter().map(move |b| norm(sub(*a, *b))))
+        .fold(0.0, f64::max);
+    let d = (x.iter())
+        .map(|p| dot(sub(*p, x[0]), n).abs() / norm(n))
+        .fold(0.0, f64::max)
+        / size;
+    (d > 1e-9 || d.is_nan()).then_some(d)
+}
 
 /// The property of `shell` (one per material, thickness and added mass): a homogeneous shell
 /// section of the material (membrane, bending, 5/6 transverse shear) with the added mass as
@@ -262,6 +438,7 @@ fn shell_property(
     property_of: &BTreeMap<i64, usize>,
     shell: &Shell,
 ) -> Option<usize> {
+    let made = &mut made.made;
     let key = (
         shell.material,
         shell.thickness.to_bits(),
@@ -275,7 +452,7 @@ fn shell_property(
     section.nsm = shell.added_mass;
     model.properties.push(Property {
         id: (model.properties.len() + 1) as u64,
-        name: format!("SHELL181 MAT{} t={}", shell.material, shell.thickness),
+        name: format!("SHELL MAT{} t={}", shell.material, shell.thickness),
         material,
         section: Section::Shell(section),
     });
@@ -284,29 +461,56 @@ fn shell_property(
 }
 
 /// Adds `shell` (element `id`, on the model's node indices `nodes`) to the model as a 4-node
-/// shell of its property: the element's index, or why not (its material has no MPDATA).
+/// shell (SHELL181) or an 8-node one (SHELL281, with its entry in `Model::ansys_shell281`) of
+/// its property: the element's index, or why not (its material has no MPDATA).
 pub(super) fn push_shell(
     model: &mut Model,
     made: &mut ShellProperties,
     property_of: &BTreeMap<i64, usize>,
-    (id, line): (u64, usize),
+    (id, line, etype): (u64, usize, i64),
     shell: &Shell,
     nodes: Vec<usize>,
 ) -> Result<usize, String> {
     let Some(property) = shell_property(model, made, property_of, shell) else {
         return Err(format!(
-            "SHELL181 of material {}, which has no MPDATA",
+            "{} of material {}, which has no MPDATA",
+            if shell.shell281.is_some() {
+                "SHELL281"
+            } else {
+                "SHELL181"
+            },
             shell.material
         ));
     };
+    let kind = match shell.shell281 {
+        Some(sec) => {
+            model.ansys_shell281.insert(model.elements.len(), sec);
+            if shell.offset != 0.0 {
+                (made.offsets).push((model.elements.len(), shell.offset, line, etype));
+            }
+            ElementKind::Quad8
+        }
+        None => {
+            model.params.ansys_shell181 = true;
+            ElementKind::Quad4
+        }
+    };
     model.elements.push(Element {
         id,
-        kind: ElementKind::Quad4,
+        kind,
         nodes,
         property: Some(property),
         orientation: None,
     });
-    model.params.ansys_shell181 = true;
     model.element_sources.push((id, 0, line as u32));
     Ok(model.elements.len() - 1)
+}
+
+/// Why `LUMPM,ON` is refused: a SHELL281 in the model, whose lumped mass ANSYS's documents do not
+/// establish.
+pub(super) fn lumped_refusal(model: &Model) -> Option<&'static str> {
+    (!model.ansys_shell281.is_empty()).then_some(
+        "LUMPM,ON with SHELL281: ANSYS's lumped mass of the 8-node shell is not established here \
+         (its consistent mass on the 2 × 2 points is formed)",
+    )
 }
