@@ -33,7 +33,7 @@
 
 mod beam_expansion;
 mod connectors;
-mod coupling;
+pub(crate) mod coupling;
 mod data;
 mod defs;
 mod faces;

@@ -16,6 +16,7 @@ mod blocks;
 pub mod catalogue;
 mod connections;
 mod constraints;
+mod contact;
 mod elements;
 mod form;
 pub mod full;
