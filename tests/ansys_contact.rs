@@ -7,6 +7,9 @@
 //!   `*ROTARY INERTIA`, `F` forces and moments on the pilot as `*CLOAD`;
 //! - the force-distributed constraint (CONTA174 KEYOPT(4)=1) against `*DISTRIBUTING` (the RBE3
 //!   with ccx's area weights);
+//! - bonded MPC contact between surfaces (CONTA174 faces of one part on TARGE170 faces of
+//!   another, meshed apart) against `*TIE` with ADJUST=NO, the pinball radius as POSITION
+//!   TOLERANCE; contact nodes outside the pinball left free and counted;
 //! - the pilot as `--interface`, by its number and by a `CMBLOCK` component, a Craig–Bampton
 //!   body whose fixed-interface modes equal the ccx build's;
 //! - the forms not read refused by line.
@@ -308,7 +311,8 @@ fn refused(name: &str, text: &str) -> String {
 
 /// The forms not read are refused by line, naming the KEYOPT or constant: a penalty or
 /// augmented Lagrange contact, standard contact, a pinball radius, TARGE170 KEYOPT(2)=0, a dof
-/// pattern whose digits' order matters, target faces without a pilot.
+/// pattern whose digits' order matters; target faces (bonded contact between surfaces) with
+/// ANSYS's default pinball.
 #[test]
 fn contact_forms_not_read_are_refused_by_line() {
     let m = beam();
@@ -333,7 +337,7 @@ fn contact_forms_not_read_are_refused_by_line() {
         assert!(err.contains("refused.cdb:"), "{err}");
     }
     // TARGE170 faces (the other bonded contact) instead of a pilot
-    let mut text = archive(&m, &pair_types(174, 2, 111111, ""), &faces, "");
+    let mut text = archive(&m, &pair_types(174, 2, 0, ""), &faces, "");
     text = text.replace(
         &format!(
             "{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}{:>9}",
@@ -345,5 +349,182 @@ fn contact_forms_not_read_are_refused_by_line() {
         ),
     );
     let err = refused("ansys-contact-refused-faces", &text);
-    assert!(err.contains("bonded contact between surfaces"), "{err}");
+    assert!(err.contains("PINB = 0"), "{err}");
+}
+
+/// Two parts meshed apart: `a` over [0, 0.3] (3 × 2 × 2 bricks) and `b` over [0.3, 0.6]
+/// (3 × 3 × 3, ids from 10 001), as one mesh (a's elements first).
+fn two_parts() -> (Block, usize) {
+    let a = block([3, 2, 2], [0.3, 0.1, 0.1], true);
+    let b = block([3, 3, 3], [0.3, 0.1, 0.1], true);
+    let mut m = Block {
+        nodes: a.nodes.clone(),
+        elements: a.elements.clone(),
+    };
+    for (id, x) in &b.nodes {
+        m.nodes.insert(id + 10_000, [x[0] + 0.3, x[1], x[2]]);
+    }
+    (m.elements).extend(
+        b.elements
+            .iter()
+            .map(|e| e.iter().map(|n| n + 10_000).collect()),
+    );
+    (m, a.elements.len())
+}
+
+/// The faces at x = `at` of the bricks with a corner there: x-min faces (corners I, L, P, M
+/// and the mid-sides of I-L, L-P, P-M, M-I: C3D20's S6) or x-max faces (as [`tip_faces`]:
+/// S4); with the 1-based element numbers.
+fn faces_at(m: &Block, at: f64, x_min: bool) -> Vec<(usize, Vec<u64>)> {
+    (m.elements.iter().enumerate())
+        .filter(|(_, e)| {
+            let corners: &[usize] = if x_min { &[0, 3, 7, 4] } else { &[1, 2, 6, 5] };
+            corners.iter().all(|&k| m.nodes[&e[k]][0] == at)
+        })
+        .map(|(k, e)| {
+            let face = if x_min {
+                vec![e[0], e[3], e[7], e[4], e[11], e[19], e[15], e[16]]
+            } else {
+                vec![e[1], e[2], e[6], e[5], e[9], e[18], e[13], e[17]]
+            };
+            (k + 1, face)
+        })
+        .collect()
+}
+
+/// The far corner of the second part and the loads on it: (component, value).
+const FAR: u64 = 10_000 + 7 * 7 * 7;
+const FAR_LOADS: [(usize, f64); 2] = [(2, 1.0e3), (3, -500.0)];
+
+/// The two parts as an archive: CONTA174 (type 3, KEYOPT(4)=2) on `contacts`, TARGE170 QUA8
+/// faces (type 2, shape key 9) on the first part's x = 0.3 faces, real constant set 3 with
+/// PINB = −`pinball`; clamped at x = 0, `F` on the far corner.
+fn bonded_archive(m: &Block, contacts: &[Vec<u64>], pinball: f64) -> String {
+    let nodes: Vec<(u64, [f64; 3], [f64; 3])> = (m.nodes.iter())
+        .map(|(&id, &x)| (id, x, [0.0; 3]))
+        .collect();
+    let mut records: Vec<(usize, usize, usize, Vec<u64>)> =
+        (m.elements.iter()).map(|e| (1, 1, 0, e.clone())).collect();
+    records.extend(contacts.iter().map(|c| (3, 3, 0, c.clone())));
+    records.extend(
+        faces_at(m, 0.3, false)
+            .into_iter()
+            .map(|(_, f)| (2, 3, 9, f)),
+    );
+    let clamp: String = root(m).iter().map(|n| format!("D,{n},ALL,0\n")).collect();
+    let loads: String = (FAR_LOADS.iter())
+        .map(|(c, v)| format!("F,{FAR},{},{v:e}\n", ["FX", "FY", "FZ"][c - 1]))
+        .collect();
+    format!(
+        "/PREP7\nET,        1,186\nET,        2,170\nET,        3,174\n\
+         KEYOP,        3, 2,        2\nKEYOP,        3, 4,        2\nKEYOP,        3,12,        5\n\
+         {}{}{}R,3,0,0,0,0,0,{:e}\n{clamp}{loads}FINISH\n",
+        nblock(&nodes),
+        eblock(&records),
+        material(ansys_support::writers::STEEL),
+        -pinball
+    )
+}
+
+/// The two parts as a CalculiX deck: the second part's x = 0.3 faces (S6) tied to the first
+/// part's (S4) by `*TIE` with POSITION TOLERANCE = `pinball` and ADJUST=NO, the far corner's
+/// loads as `*CLOAD`.
+fn bonded_ccx(m: &Block, first_part: usize, pinball: f64) -> String {
+    let mut s = String::from("*SURFACE, NAME=SLAVE, TYPE=ELEMENT\n");
+    for (e, _) in faces_at(m, 0.3, true)
+        .iter()
+        .filter(|(e, _)| *e > first_part)
+    {
+        s += &format!("{e}, S6\n");
+    }
+    s += "*SURFACE, NAME=MASTER, TYPE=ELEMENT\n";
+    for (e, _) in faces_at(m, 0.3, false)
+        .iter()
+        .filter(|(e, _)| *e <= first_part)
+    {
+        s += &format!("{e}, S4\n");
+    }
+    s += &format!("*TIE, NAME=GLUE, POSITION TOLERANCE={pinball:e}, ADJUST=NO\nSLAVE, MASTER\n");
+    let cload: String = (FAR_LOADS.iter())
+        .map(|(c, v)| format!("{FAR}, {c}, {v:e}\n"))
+        .collect();
+    ccx_deck(m, &format!("*CLOAD\n{cload}")).replacen("*STEP", &format!("{s}*STEP"), 1)
+}
+
+/// Bonded MPC contact between two parts meshed apart (3 × 3 contact faces on 2 × 2 target
+/// faces) equals `*TIE` with ADJUST=NO on the same faces: every contact node on a target face,
+/// u = Σ Nᵢ uᵢ of the face's shape functions. With CONTA174 also on the second part's far face
+/// (x = 0.6, beyond the pinball) those nodes stay free: the same body, and the note counts them.
+#[test]
+fn bonded_contact_between_surfaces_equals_the_ccx_tie() {
+    let (m, first_part) = two_parts();
+    let glue: Vec<Vec<u64>> = (faces_at(&m, 0.3, true).into_iter())
+        .filter(|(e, _)| *e > first_part)
+        .map(|(_, f)| f)
+        .collect();
+    assert_eq!(glue.len(), 9);
+    let inp = bonded_ccx(&m, first_part, 1e-3);
+    let (modes, static_) = against_ccx(
+        "ansys-contact-bonded",
+        &bonded_archive(&m, &glue, 1e-3),
+        &inp,
+    );
+    println!(
+        "bonded CONTA174 on TARGE170 against *TIE: frequencies {modes:.2e}, static {static_:.2e}"
+    );
+    // measured 3.4e-12 and 3.7e-12 (the same MPCs: the two builds' eigensolves)
+    assert!(modes < 3.4e-11, "{modes:e}");
+    assert!(static_ < 4e-11, "{static_:e}");
+    // the far face's contact nodes are outside the pinball: free
+    let far: Vec<Vec<u64>> = (faces_at(&m, 0.6, false).into_iter())
+        .map(|(_, f)| f)
+        .collect();
+    let with_far = bonded_archive(&m, &[glue, far].concat(), 1e-3);
+    let (modes, static_) = against_ccx("ansys-contact-bonded-far", &with_far, &inp);
+    println!("with far contact nodes: frequencies {modes:.2e}, static {static_:.2e}");
+    assert!(modes < 3.4e-11, "{modes:e}");
+    assert!(static_ < 4e-11, "{static_:e}");
+    // the note: 40 nodes of the 3 × 3 quadratic faces tied (7 × 7 less the 9 face centres),
+    // the far face's 40 left free
+    let cdb = scratch("ansys-contact-bonded-note").join("far.cdb");
+    std::fs::write(&cdb, &with_far).unwrap();
+    let o = ansys_support::build(&cdb, "si", 4, &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("40 contact nodes tied"), "{err}");
+    assert!(err.contains("40 outside it left free"), "{err}");
+}
+
+/// Bonded contact between surfaces in the forms not read: bonded initial (KEYOPT(12)=6), a
+/// positive PINB (a factor of ANSYS's depth-based default), the Gauss-point detection
+/// (KEYOPT(4)=0) — each refused by line.
+#[test]
+fn bonded_contact_forms_not_read_are_refused_by_line() {
+    let (m, first_part) = two_parts();
+    let glue: Vec<Vec<u64>> = (faces_at(&m, 0.3, true).into_iter())
+        .filter(|(e, _)| *e > first_part)
+        .map(|(_, f)| f)
+        .collect();
+    let text = bonded_archive(&m, &glue, 1e-3);
+    let cases = [
+        (
+            "KEYOP,        3,12,        5",
+            "KEYOP,        3,12,        6",
+            "KEYOPT(12)=6 (bonded initial)",
+        ),
+        ("R,3,0,0,0,0,0,-1e-3", "R,3,0,0,0,0,0,1e0", "PINB = 1"),
+        (
+            "KEYOP,        3, 4,        2",
+            "KEYOP,        3, 4,        0",
+            "KEYOPT(4)=0",
+        ),
+    ];
+    for (k, (from, to, expect)) in cases.iter().enumerate() {
+        assert!(text.contains(from), "{from}");
+        let err = refused(
+            &format!("ansys-bonded-refused-{k}"),
+            &text.replace(from, to),
+        );
+        assert!(err.contains(expect), "{expect}: {err}");
+    }
 }

@@ -23,6 +23,8 @@
 //!   (CNOF) in the pair's real constants; other contact KEYOPTs than 2, 4, 12 and the ignored
 //!   8 and 10; KEYOPT(12)=6 (bonded initial) and every other behaviour.
 //!
+//! **Bonded contact between surfaces** (TARGE170 faces, no pilot): [`super::bonded`].
+//!
 //! Every pair that is not MPC bonded (standard, rough, no-separation contact; penalty,
 //! augmented Lagrange, Lagrange multipliers) is refused by line: ANSYS forms those with its
 //! contact stiffness at the initial contact status, which a constraint cannot reproduce and
@@ -61,7 +63,7 @@ enum Kind {
 }
 
 /// A refusal of a pair: the record it is named by and the reason.
-type PairRefusal<'a> = (&'a ElementRecord, String);
+pub(super) type PairRefusal<'a> = (&'a ElementRecord, String);
 
 /// Every contact pair of `segments` (TARGE170 and CONTA17x records) into the model's rigid
 /// elements; each pair not formed a refusal in `refusals`. The node ids are mapped by
@@ -82,6 +84,23 @@ pub(super) fn surface_constraints<E>(
         let number = |r: &ElementRecord| types[&r.etype].row.map_or(0, |row| row.0);
         let (targets, contacts): (Vec<&ElementRecord>, Vec<&ElementRecord>) =
             records.iter().partition(|r| number(r) == 170);
+        let target_faces = !targets.is_empty()
+            && (targets.iter()).all(|r| r.shape.and_then(super::bonded::face_nodes).is_some());
+        if target_faces && !contacts.is_empty() {
+            let tie = super::bonded::tie;
+            if let Err((r, why)) = tie(
+                types,
+                reals.get(&real),
+                real,
+                &targets,
+                &contacts,
+                &node_of,
+                model,
+            )? {
+                add(refusals, r, why);
+            }
+            continue;
+        }
         match pilot_constraint(types, reals.get(&real), real, &targets, &contacts) {
             Ok((pilot, kind, dofs)) => {
                 let element = spider(pilot, kind, dofs, &contacts, &node_of, model)?;
@@ -138,9 +157,8 @@ fn pilot_constraint<'a>(
     }
     let [pilot] = pilots[..] else {
         let why = if pilots.is_empty() {
-            "bonded contact between surfaces (TARGE170 faces, no pilot): not formed here — \
-             ANSYS ties the contact nodes to the target faces it finds by its own contact \
-             search, not reproduced"
+            "TARGE170 records without a pilot, not all faces (TRIA, QUAD, TRI6, QUA8): their \
+             target shapes (lines, cylinders, cones, spheres, points) are not read"
                 .to_string()
         } else {
             format!(
@@ -374,7 +392,7 @@ fn spider<'a, E>(
 /// A contact record's nodes as a face (corners, then mid-side nodes of edges 1-2, 2-3, …):
 /// CONTA175 one node; CONTA173 I, J, K, L (K = L: the 3-node triangle); CONTA174 I…L, M…P
 /// (K = L = O: the 6-node triangle I, J, K, M, N, P, ANSYS's degenerate form).
-fn contact_face(r: &ElementRecord) -> Result<Vec<u64>, String> {
+pub(super) fn contact_face(r: &ElementRecord) -> Result<Vec<u64>, String> {
     let n = &r.nodes;
     match n.len() {
         1 => Ok(n.clone()),

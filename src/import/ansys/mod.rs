@@ -13,6 +13,7 @@
 
 mod beams;
 mod blocks;
+mod bonded;
 pub mod catalogue;
 mod connections;
 mod constraints;
