@@ -21,22 +21,10 @@
 use std::collections::BTreeMap;
 
 use super::blocks::ElementRecord;
-use super::contact::{contact_face, PairRefusal};
 use super::elements::ElementType;
+use super::segments::{contact_face, face_nodes, PairRefusal};
 use crate::import::abaqus::tie::{face_shape, project};
 use crate::model::{Model, Mpc, NodeDof, NodeIndex};
-
-/// The node count of a TARGE170 face of shape key `shape` (TRIA 6, QUAD 7, TRI6 8, QUA8 9, as
-/// ansys-mapdl-reader's `SHAPE_MAP` names them); `None` for the other shapes.
-pub(super) fn face_nodes(shape: i64) -> Option<usize> {
-    Some(match shape {
-        6 => 3,
-        7 => 4,
-        8 => 6,
-        9 => 8,
-        _ => return None,
-    })
-}
 
 /// A target face: its nodes (indices) and their coordinates.
 struct TargetFace {

@@ -33,27 +33,17 @@
 use std::collections::BTreeMap;
 
 use super::blocks::ElementRecord;
-use super::catalogue::Disposition;
 use super::elements::ElementType;
+use super::segments::{contact_face, face_nodes, PairRefusal, PILOT_SHAPES};
+use super::Archive;
 use crate::import::abaqus::coupling::{nodal_areas, Rule, QUAD_4, QUAD_9, TRI_1, TRI_3};
+use crate::import::error::{parse_err, ImportError};
+use crate::import::text::IdMap;
 use crate::model::{DofMask, Model, NodeIndex, RigidElement};
-
-/// TARGE170's shape keys of a pilot node (`TSHAPE,PILO`): 19, and 99 as ANSYS also writes it
-/// (ansys-mapdl-reader's `mesh.py` reads both as the pilot).
-const PILOT_SHAPES: [i64; 2] = [19, 99];
 
 /// Refusals by (element type, reason): the first record's line and the count, as
 /// [`super::form`] gathers them.
 pub(super) type Refusals = BTreeMap<(i64, String), (usize, usize)>;
-
-/// Whether records of type `t` are contact or target segments read here (TARGE170,
-/// CONTA173, CONTA174, CONTA175).
-pub(super) fn is_segment(t: &ElementType) -> bool {
-    matches!(
-        t.row,
-        Some((170 | 173 | 174 | 175, _, Disposition::Honoured(_)))
-    )
-}
 
 /// What a pair's contact KEYOPT(4) makes of it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -62,20 +52,45 @@ enum Kind {
     ForceDistributed,
 }
 
-/// A refusal of a pair: the record it is named by and the reason.
-pub(super) type PairRefusal<'a> = (&'a ElementRecord, String);
+impl Archive {
+    /// Every contact pair of `segments` (TARGE170 and CONTA17x records) into the model's rigid
+    /// elements and MPCs, each record's id registered in `index` (no element of the model);
+    /// each pair not formed a refusal in `refusals`.
+    pub(super) fn contact_pairs(
+        &self,
+        file: &str,
+        segments: &[&ElementRecord],
+        node_map: &IdMap,
+        model: &mut Model,
+        refusals: &mut Refusals,
+        index: &mut BTreeMap<u64, Option<usize>>,
+    ) -> Result<(), ImportError> {
+        pairs(self, file, segments, node_map, model, (refusals, index))
+    }
+}
 
-/// Every contact pair of `segments` (TARGE170 and CONTA17x records) into the model's rigid
-/// elements; each pair not formed a refusal in `refusals`. The node ids are mapped by
-/// `node_of` (an unknown node: the error it gives).
-pub(super) fn surface_constraints<E>(
-    types: &BTreeMap<i64, ElementType>,
-    reals: &BTreeMap<i64, Vec<f64>>,
+/// [`Archive::contact_pairs`].
+fn pairs(
+    archive: &Archive,
+    file: &str,
     segments: &[&ElementRecord],
-    node_of: impl Fn(&ElementRecord, u64) -> Result<NodeIndex, E>,
+    node_map: &IdMap,
     model: &mut Model,
-    refusals: &mut Refusals,
-) -> Result<(), E> {
+    (refusals, index): (&mut Refusals, &mut BTreeMap<u64, Option<usize>>),
+) -> Result<(), ImportError> {
+    for r in segments {
+        if index.insert(r.id, None).is_some() {
+            let at = format!("element {}", r.id);
+            return Err(parse_err(file, r.line, at, "duplicate element id"));
+        }
+    }
+    let node_of = |r: &ElementRecord, id: u64| {
+        node_map.get(id).ok_or_else(|| {
+            let at = format!("EBLOCK element {}", r.id);
+            parse_err(file, r.line, at, format!("references unknown node {id}"))
+        })
+    };
+    let (types, reals) = (&archive.types, &archive.reals);
     let mut pairs: BTreeMap<i64, Vec<&ElementRecord>> = BTreeMap::new();
     for r in segments {
         pairs.entry(r.real).or_default().push(r);
@@ -84,8 +99,8 @@ pub(super) fn surface_constraints<E>(
         let number = |r: &ElementRecord| types[&r.etype].row.map_or(0, |row| row.0);
         let (targets, contacts): (Vec<&ElementRecord>, Vec<&ElementRecord>) =
             records.iter().partition(|r| number(r) == 170);
-        let target_faces = !targets.is_empty()
-            && (targets.iter()).all(|r| r.shape.and_then(super::bonded::face_nodes).is_some());
+        let target_faces =
+            !targets.is_empty() && (targets.iter()).all(|r| r.shape.and_then(face_nodes).is_some());
         if target_faces && !contacts.is_empty() {
             let tie = super::bonded::tie;
             if let Err((r, why)) = tie(
@@ -377,6 +392,10 @@ fn spider<'a, E>(
         },
         Kind::ForceDistributed => {
             let total: f64 = weight.iter().map(|w| w.1).sum();
+            if !(total > 0.0 && total.is_finite()) {
+                let why = format!("force-distributed constraint on faces of total area {total}");
+                return Ok(Err((contacts[0], why)));
+            }
             RigidElement::Rbe3 {
                 id: pilot.id,
                 reference,
@@ -387,23 +406,6 @@ fn spider<'a, E>(
             }
         }
     }))
-}
-
-/// A contact record's nodes as a face (corners, then mid-side nodes of edges 1-2, 2-3, …):
-/// CONTA175 one node; CONTA173 I, J, K, L (K = L: the 3-node triangle); CONTA174 I…L, M…P
-/// (K = L = O: the 6-node triangle I, J, K, M, N, P, ANSYS's degenerate form).
-pub(super) fn contact_face(r: &ElementRecord) -> Result<Vec<u64>, String> {
-    let n = &r.nodes;
-    match n.len() {
-        1 => Ok(n.clone()),
-        4 if n[2] == n[3] => Ok(n[..3].to_vec()),
-        4 => Ok(n.clone()),
-        8 if n[2] == n[3] && n[3] == n[6] => Ok(vec![n[0], n[1], n[2], n[4], n[5], n[7]]),
-        8 => Ok(n.clone()),
-        k => Err(format!(
-            "contact record of {k} nodes (CONTA175: 1, CONTA173: 4, CONTA174: 8 expected)"
-        )),
-    }
 }
 
 /// The rule integrating a face of `n` nodes exactly on a flat face with straight edges.

@@ -5,7 +5,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::connections::{place_spring, rigid_link, rod_property, rotary_without_rotations};
 use super::elements::Formed;
-use super::{beams, contact, elements, shells, solid_properties, Archive};
+use super::{beams, elements, segments, shells, solid_properties, Archive};
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::IdMap;
 use crate::model::{DofMask, Element, Model, RigidElement};
@@ -32,9 +32,8 @@ impl Archive {
         let mut beam_ctx = beams::BeamContext::new(&self.beam_sections, &property_of);
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
-        // TARGE170 and CONTA17x records, formed as pairs after the loop ([`contact`])
-        let mut segments = Vec::new();
-        for r in &self.elements {
+        let (segs, others) = segments::split(&self.elements, &self.types, ignored);
+        for r in others {
             let Some(t) = self.types.get(&r.etype) else {
                 return Err(parse_err(
                     file,
@@ -49,14 +48,6 @@ impl Archive {
                     .or_default()
                     .push(r.line);
                 index.insert(r.id, None);
-                continue;
-            }
-            if contact::is_segment(t) {
-                segments.push(r);
-                if index.insert(r.id, None).is_some() {
-                    let at = format!("element {}", r.id);
-                    return Err(parse_err(file, r.line, at, "duplicate element id"));
-                }
                 continue;
             }
             let node_of = |id: u64| {
@@ -191,14 +182,7 @@ impl Archive {
                 ));
             }
         }
-        let segment_node = |r: &super::blocks::ElementRecord, id: u64| {
-            node_map.get(id).ok_or_else(|| {
-                let at = format!("EBLOCK element {}", r.id);
-                parse_err(file, r.line, at, format!("references unknown node {id}"))
-            })
-        };
-        let (types, reals) = (&self.types, &self.reals);
-        contact::surface_constraints(types, reals, &segments, segment_node, model, &mut refusals)?;
+        self.contact_pairs(file, &segs, node_map, model, &mut refusals, &mut index)?;
         for why in rotary_without_rotations(model, &rotary) {
             let e = refusals.entry(why.1).or_insert((why.0, 0));
             e.1 += 1;

@@ -23,6 +23,7 @@ mod form;
 pub mod full;
 mod materials;
 mod nodal;
+mod segments;
 mod shells;
 mod surface;
 
