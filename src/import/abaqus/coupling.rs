@@ -38,13 +38,13 @@ use crate::import::error::ImportError;
 use crate::model::{DofMask, NodeIndex, RigidElement};
 
 /// A face rule: points (ξ, η) and weights.
-type Rule = &'static [([f64; 2], f64)];
+pub(crate) type Rule = &'static [([f64; 2], f64)];
 
 const G2: f64 = 0.577_350_269_189_626;
 /// ccx's `gauss2d1`: quadrilateral, one point.
 const QUAD_1: Rule = &[([0.0, 0.0], 4.0)];
 /// ccx's `gauss2d2`: quadrilateral, 2 × 2.
-const QUAD_4: Rule = &[
+pub(crate) const QUAD_4: Rule = &[
     ([-G2, -G2], 1.0),
     ([G2, -G2], 1.0),
     ([-G2, G2], 1.0),
@@ -55,7 +55,7 @@ const W3A: f64 = 0.308_641_975_308_642;
 const W3B: f64 = 0.493_827_160_493_827;
 const W3C: f64 = 0.790_123_456_790_123;
 /// ccx's `gauss2d3`: quadrilateral, 3 × 3.
-const QUAD_9: Rule = &[
+pub(crate) const QUAD_9: Rule = &[
     ([-G3, -G3], W3A),
     ([0.0, -G3], W3B),
     ([G3, -G3], W3A),
@@ -67,9 +67,9 @@ const QUAD_9: Rule = &[
     ([G3, G3], W3A),
 ];
 /// ccx's `gauss2d4`: triangle, one point.
-const TRI_1: Rule = &[([1.0 / 3.0, 1.0 / 3.0], 0.5)];
+pub(crate) const TRI_1: Rule = &[([1.0 / 3.0, 1.0 / 3.0], 0.5)];
 /// ccx's `gauss2d5`: triangle, three points.
-const TRI_3: Rule = &[
+pub(crate) const TRI_3: Rule = &[
     ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),
     ([2.0 / 3.0, 1.0 / 6.0], 1.0 / 6.0),
     ([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
@@ -95,7 +95,7 @@ fn face_rule(card: &str, nodes: usize) -> Option<Rule> {
 
 /// ∫ N_i dA of one face (corner and mid-side coordinates `x`) by `rule`, with |x_ξ × x_η| the
 /// area element (ccx `couplings.f`: `areanodal`).
-fn nodal_areas(x: &[[f64; 3]], rule: Rule) -> Vec<f64> {
+pub(crate) fn nodal_areas(x: &[[f64; 3]], rule: Rule) -> Vec<f64> {
     let mut out = vec![0.0; x.len()];
     for (p, w) in rule {
         let (n, d) = face_shape(x.len(), *p);

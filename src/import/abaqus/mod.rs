@@ -33,7 +33,7 @@
 
 mod beam_expansion;
 mod connectors;
-mod coupling;
+pub(crate) mod coupling;
 mod data;
 mod defs;
 mod faces;
@@ -49,7 +49,7 @@ mod shell_nodes;
 mod steps;
 mod temperature;
 mod thickness;
-mod tie;
+pub(crate) mod tie;
 mod tie_search;
 
 use std::collections::{BTreeMap, HashMap};

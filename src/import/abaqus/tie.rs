@@ -393,7 +393,7 @@ fn id_ranges(ids: &[u64]) -> String {
 /// quadrilateral, 8: serendipity; corners then mid-side nodes of edges 1-2, 2-3, …) at (ξ, η),
 /// and their derivatives (Zienkiewicz & Taylor, Vol. 1 §8.5, §8.8). Triangles use (ξ, η) with
 /// L = (1 − ξ − η, ξ, η); quadrilaterals (ξ, η) ∈ [−1, 1]².
-pub(super) fn face_shape(n: usize, p: [f64; 2]) -> (Vec<f64>, Vec<[f64; 2]>) {
+pub(crate) fn face_shape(n: usize, p: [f64; 2]) -> (Vec<f64>, Vec<[f64; 2]>) {
     let (s, t) = (p[0], p[1]);
     match n {
         3 => (
@@ -454,7 +454,7 @@ pub(super) fn face_shape(n: usize, p: [f64; 2]) -> (Vec<f64>, Vec<[f64; 2]>) {
 
 /// The point of a face (corner and mid-side coordinates `x`) nearest to `p`: Gauss–Newton on
 /// min |x(ξ, η) − p|², the parameters clamped to the face. `None` for a degenerate face.
-fn project(x: &[[f64; 3]], p: [f64; 3]) -> Option<([f64; 2], [f64; 3])> {
+pub(crate) fn project(x: &[[f64; 3]], p: [f64; 3]) -> Option<([f64; 2], [f64; 3])> {
     let tri = matches!(x.len(), 3 | 6);
     let clamp = |q: [f64; 2]| -> [f64; 2] {
         if tri {

@@ -253,6 +253,9 @@ pub(super) struct ElementRecord {
     pub real: i64,
     pub section: i64,
     pub esys: i64,
+    /// The SOLID layout's field 8, the coded shape key (TARGE170's segment shape: 19 or 99
+    /// `TSHAPE,PILO`, as ansys-mapdl-reader reads it); `None` in the contact layout.
+    pub shape: Option<i64>,
     /// Node ids as written (0 = a dropped mid-side node).
     pub nodes: Vec<u64>,
 }
@@ -434,6 +437,7 @@ impl<'a> Lines<'a> {
                     real: f(2)?,
                     section: f(3)?,
                     esys: f(4)?,
+                    shape: Some(f(7)?),
                     nodes: nodes.into_iter().map(|v| v.max(0) as u64).collect(),
                 }
             } else {
@@ -449,6 +453,7 @@ impl<'a> Lines<'a> {
                     mat: f(3)?,
                     section: 0,
                     esys: f(4)?,
+                    shape: None,
                     nodes,
                 }
             };

@@ -1,7 +1,7 @@
 //! The connection elements of an archive into the model's connectors: COMBIN14 springs
 //! (bushes along I→J, scalar springs), LINK180 rod properties, MPC184 rigid links (linear MPCs,
 //! their dependent dof a free one) and the check that a MASS21 rotary inertia sits on a node an
-//! MPC184 rigid beam or a BEAM188 joins.
+//! MPC184 rigid beam, a BEAM188 or a surface-based constraint's pilot joins.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -45,14 +45,30 @@ pub(super) fn rotary_without_rotations(
 ) -> Vec<(usize, (i64, String))> {
     let mut rotating = BTreeSet::new();
     for r in &model.rigid_elements {
-        if let RigidElement::Rbe2 {
-            independent,
-            dependent,
-            ..
-        } = r
-        {
-            rotating.insert(*independent);
-            rotating.extend(dependent.iter().copied());
+        match r {
+            // a spider's independent node moves with its dependents (an MPC184 rigid beam, a
+            // rigid surface constraint's pilot); its dependents rotate with it when it ties
+            // their rotations
+            RigidElement::Rbe2 {
+                independent,
+                dependent,
+                dofs,
+                ..
+            } => {
+                rotating.insert(*independent);
+                if dofs.0 & 0b11_1000 != 0 {
+                    rotating.extend(dependent.iter().copied());
+                }
+            }
+            // a force-distributed constraint's pilot: its rotations follow the surface's
+            RigidElement::Rbe3 {
+                reference,
+                ref_dofs,
+                ..
+            } if ref_dofs.0 & 0b11_1000 == 0b11_1000 => {
+                rotating.insert(*reference);
+            }
+            RigidElement::Rbe3 { .. } => {}
         }
     }
     // a BEAM188 gives its nodes' rotations stiffness (and consistent rotary inertia)
@@ -75,7 +91,7 @@ pub(super) fn rotary_without_rotations(
                     etype,
                     format!(
                         "MASS21 on node {} with rotary inertia IXX={}, IYY={}, IZZ={}: no MPC184 \
-                         rigid beam or BEAM188 joins the node, and no other element read from an \
+                         rigid beam, BEAM188 or surface-based constraint's pilot holds the node, and no other element read from an \
                          archive gives its rotations stiffness, so they would be free (set \
                          KEYOPT(3)=2 or zero inertias)",
                         model.nodes[p.node].id, i[0], i[1], i[2]

@@ -533,6 +533,7 @@ mod tests {
             real: 0,
             section: 0,
             esys: 0,
+            shape: Some(0),
             nodes,
         }
     }

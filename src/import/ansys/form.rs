@@ -5,7 +5,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::connections::{place_spring, rigid_link, rod_property, rotary_without_rotations};
 use super::elements::Formed;
-use super::{beams, elements, shells, solid_properties, Archive};
+use super::{beams, elements, segments, shells, solid_properties, Archive};
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::IdMap;
 use crate::model::{DofMask, Element, Model, RigidElement};
@@ -32,7 +32,8 @@ impl Archive {
         let mut beam_ctx = beams::BeamContext::new(&self.beam_sections, &property_of);
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
-        for r in &self.elements {
+        let (segs, others) = segments::split(&self.elements, &self.types, ignored);
+        for r in others {
             let Some(t) = self.types.get(&r.etype) else {
                 return Err(parse_err(
                     file,
@@ -186,6 +187,7 @@ impl Archive {
         for why in shell_props.apply_offsets(model) {
             refusals.entry(why.1).or_insert((why.0, 0)).1 += 1;
         }
+        self.contact_pairs(file, &segs, node_map, model, &mut refusals, &mut index)?;
         for why in rotary_without_rotations(model, &rotary) {
             let e = refusals.entry(why.1).or_insert((why.0, 0));
             e.1 += 1;

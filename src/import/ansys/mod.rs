@@ -8,19 +8,23 @@
 //! Elements are formed by type and KEYOPT ([`elements`], [`form`]), materials from
 //! `MPTEMP`/`MPDATA` ([`materials`]), shell and beam sections in [`shells`] and [`beams`],
 //! `D`/`CE`/`CP`/`F`/`ACEL` in [`constraints`], `SFE` pressures in [`surface`], the `NBLOCK`'s
-//! nodal coordinate systems in [`nodal`]; node and element components (`CMBLOCK`) become the
-//! model's named sets.
+//! nodal coordinate systems in [`nodal`]; contact pairs (remote points, bonded contact) in
+//! [`contact`] and [`bonded`]; node and element components (`CMBLOCK`) become the model's
+//! named sets.
 
 mod beams;
 mod blocks;
+mod bonded;
 pub mod catalogue;
 mod connections;
 mod constraints;
+mod contact;
 mod elements;
 mod form;
 pub mod full;
 mod materials;
 mod nodal;
+mod segments;
 mod shells;
 mod surface;
 

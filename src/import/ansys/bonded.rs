@@ -1,0 +1,226 @@
+//! Bonded MPC contact between two surfaces (MAPDL Contact Technology Guide §10.1, "Modeling
+//! Solid-Solid and Shell-Shell Assemblies"): CONTA173/174 faces against TARGE170 faces of one
+//! real constant set, KEYOPT(2)=2 (MPC) and KEYOPT(12)=5 (bonded always) — each contact node
+//! within the pinball of the target surface held on its nearest target face point by the face's
+//! shape functions, u_c = Σᵢ Nᵢ(ξ, η) u_i for the three translations (one MPC per component, as
+//! CalculiX's `*TIE` with ADJUST=NO: the node is not moved).
+//!
+//! Read as ANSYS's documentation states it, not shown against an ANSYS result:
+//! * the contact element's KEYOPT(4)=2 (nodal detection, "normal to target surface"): the
+//!   target face point nearest the node; the other detection options (Gauss points, the contact
+//!   surface's normal, the projection-based method) are refused;
+//! * the pinball: a negative PINB (real constant 6) is its radius; ANSYS's default and a
+//!   positive PINB scale with the underlying elements' depth, which is not reproduced: refused.
+//!   Contact nodes farther than the radius from every target face stay free, counted in a note;
+//! * refused by line: KEYOPT(12)=6 (bonded initial: which initially open nodes ANSYS leaves free
+//!   is not established), ICONT and CNOF, contact KEYOPTs other than 2, 4, 12 and the ignored 8
+//!   and 10, TARGE170 KEYOPTs other than 2 (the rigid target's boundary condition, no effect on
+//!   a target on deformable faces), a node in a nodal coordinate system (the equations are on
+//!   global components).
+
+use std::collections::BTreeMap;
+
+use super::blocks::ElementRecord;
+use super::elements::ElementType;
+use super::segments::{contact_face, face_nodes, PairRefusal};
+use crate::import::abaqus::tie::{face_shape, project};
+use crate::model::{Model, Mpc, NodeDof, NodeIndex};
+
+/// A target face: its nodes (indices) and their coordinates.
+struct TargetFace {
+    nodes: Vec<NodeIndex>,
+    x: Vec<[f64; 3]>,
+}
+
+/// The contact nodes of `contacts` tied to the target faces `targets` (module doc): MPCs into
+/// `model` and a note counting the nodes tied and left free; or the pair's refusal.
+pub(super) fn tie<'a, E>(
+    types: &BTreeMap<i64, ElementType>,
+    constants: Option<&Vec<f64>>,
+    real: i64,
+    targets: &[&'a ElementRecord],
+    contacts: &[&'a ElementRecord],
+    node_of: &impl Fn(&ElementRecord, u64) -> Result<NodeIndex, E>,
+    model: &mut Model,
+) -> Result<Result<(), PairRefusal<'a>>, E> {
+    let radius = match options(types, constants, real, targets, contacts) {
+        Ok(radius) => radius,
+        Err(refusal) => return Ok(Err(refusal)),
+    };
+    let mut faces = Vec::with_capacity(targets.len());
+    for &r in targets {
+        let n = r.shape.and_then(face_nodes).unwrap_or(0);
+        let ids: Vec<u64> = r.nodes.iter().copied().filter(|&id| id != 0).collect();
+        if ids.len() != n {
+            let why = format!(
+                "TARGE170 face of shape key {:?} with {} nodes ({n} expected)",
+                r.shape,
+                ids.len()
+            );
+            return Ok(Err((r, why)));
+        }
+        let nodes = (ids.iter().map(|&id| node_of(r, id))).collect::<Result<Vec<_>, E>>()?;
+        let x = nodes.iter().map(|&k| model.nodes[k].x).collect();
+        faces.push(TargetFace { nodes, x });
+    }
+    let mut slaves: Vec<NodeIndex> = Vec::new();
+    for &r in contacts {
+        let face = match contact_face(r) {
+            Ok(face) if face.len() > 1 => face,
+            Ok(_) => {
+                let why = "CONTA175 against target faces: not read (CONTA173/174 faces are)";
+                return Ok(Err((r, why.into())));
+            }
+            Err(why) => return Ok(Err((r, why))),
+        };
+        for id in face.into_iter().filter(|&id| id != 0) {
+            let n = node_of(r, id)?;
+            if !slaves.contains(&n) {
+                slaves.push(n);
+            }
+        }
+    }
+    let on_target: std::collections::BTreeSet<NodeIndex> =
+        faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
+    let framed =
+        (slaves.iter().chain(&on_target)).find(|&&n| model.nodes[n].displacement_frame.is_some());
+    if let Some(&n) = framed {
+        let why = format!(
+            "bonded contact on node {} with a nodal coordinate system (NBLOCK angles): its \
+             equations are formed on global components",
+            model.nodes[n].id
+        );
+        return Ok(Err((contacts[0], why)));
+    }
+    let (mut tied, mut free) = (0usize, Vec::new());
+    for &s in slaves.iter().filter(|s| !on_target.contains(s)) {
+        let p = model.nodes[s].x;
+        let nearest = (faces.iter())
+            .filter_map(|f| project(&f.x, p).map(|(q, at)| (f, q, distance(at, p))))
+            .min_by(|a, b| a.2.total_cmp(&b.2));
+        match nearest {
+            Some((face, q, d)) if d <= radius => {
+                let (shape, _) = face_shape(face.x.len(), q);
+                for component in 0..3u8 {
+                    let mut terms = vec![(NodeDof { node: s, component }, 1.0)];
+                    for (&node, &n) in face.nodes.iter().zip(&shape) {
+                        if n != 0.0 {
+                            terms.push((NodeDof { node, component }, -n));
+                        }
+                    }
+                    model.mpcs.push(Mpc {
+                        id: contacts[0].id,
+                        terms,
+                    });
+                }
+                tied += 1;
+            }
+            _ => free.push(model.nodes[s].id),
+        }
+    }
+    let mut note = format!(
+        "ANSYS archive: bonded MPC contact of real constant set {real} (contact element {} at \
+         line {}): {tied} contact nodes tied to the target faces within the pinball radius {radius}",
+        contacts[0].id, contacts[0].line
+    );
+    if !free.is_empty() {
+        let shown: Vec<String> = free.iter().take(8).map(u64::to_string).collect();
+        note += &format!(
+            "; {} outside it left free (nodes {}{})",
+            free.len(),
+            shown.join(", "),
+            if free.len() > 8 { ", …" } else { "" }
+        );
+    }
+    model.deck.notes.push(note);
+    Ok(Ok(()))
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// The pair's KEYOPTs and real constants (module doc): the pinball radius, or the refusal.
+fn options<'a>(
+    types: &BTreeMap<i64, ElementType>,
+    constants: Option<&Vec<f64>>,
+    real: i64,
+    targets: &[&'a ElementRecord],
+    contacts: &[&'a ElementRecord],
+) -> Result<f64, PairRefusal<'a>> {
+    let first = contacts[0];
+    if let Some(other) = contacts.iter().find(|r| r.etype != first.etype) {
+        let why = format!(
+            "contact elements of types {} and {} in one pair (one contact type expected)",
+            first.etype, other.etype
+        );
+        return Err((other, why));
+    }
+    let t = &types[&first.etype];
+    let name = t.name();
+    let keyopt = |k: u32| t.keyopts.get(&k).copied().unwrap_or(0);
+    let why =
+        match (keyopt(2), keyopt(12), keyopt(4)) {
+            (2, 5, 2) => None,
+            (k2 @ (0 | 1 | 3 | 4), _, _) => Some(format!(
+            "{name} KEYOPT(2)={k2} ({}): a contact ANSYS forms by its contact stiffness at the \
+             initial status, not a constraint — not formed (dropping it would change the \
+             body); only MPC contact (KEYOPT(2)=2) is read",
+            ["augmented Lagrange", "penalty", "", "Lagrange multipliers", "Lagrange multipliers"]
+                [k2 as usize]
+        )),
+            (2, 6, _) => Some(format!(
+            "{name} KEYOPT(12)=6 (bonded initial): which initially open contact nodes ANSYS leaves \
+             free is not established; bonded always (KEYOPT(12)=5) is read"
+        )),
+            (2, 5, k4) => Some(format!(
+            "{name} KEYOPT(4)={k4}: bonded contact between surfaces is read with nodal detection \
+             normal to the target (KEYOPT(4)=2, the nearest target point)"
+        )),
+            (k2, k12, _) => Some(format!(
+                "{name} KEYOPT(2)={k2}, KEYOPT(12)={k12}: only MPC (KEYOPT(2)=2) bonded always \
+             (KEYOPT(12)=5) contact between surfaces is read"
+            )),
+        };
+    if let Some(why) = why {
+        return Err((first, why));
+    }
+    if let Some((k, v)) = (t.keyopts.iter()).find(|(k, _)| ![2, 4, 8, 10, 12].contains(*k)) {
+        return Err((
+            first,
+            format!("{name} KEYOPT({k})={v}: not read for bonded contact"),
+        ));
+    }
+    for &r in targets {
+        let t = &types[&r.etype];
+        if let Some((k, v)) = t.keyopts.iter().find(|(k, _)| **k != 2) {
+            return Err((
+                r,
+                format!("TARGE170 KEYOPT({k})={v}: not read for bonded contact"),
+            ));
+        }
+    }
+    let value = |k: usize| constants.and_then(|c| c.get(k - 1)).copied().unwrap_or(0.0);
+    for (k, label) in [(5, "ICONT"), (10, "CNOF")] {
+        if value(k) != 0.0 {
+            let why = format!(
+                "real constant set {real}: {label} (constant {k}) = {}: an adjustment of the \
+                 contact surface, not reproduced",
+                value(k)
+            );
+            return Err((first, why));
+        }
+    }
+    let pinb = value(6);
+    if pinb >= 0.0 {
+        return Err((
+            first,
+            format!(
+                "real constant set {real}: PINB = {pinb} — ANSYS's default pinball and a positive \
+                 PINB scale with the underlying elements' depth, not reproduced; give the radius \
+                 as a negative (absolute) PINB"
+            ),
+        ));
+    }
+    Ok(-pinb)
+}
