@@ -11,6 +11,23 @@ use crate::import::text::IdMap;
 use crate::model::{DofMask, Element, Model, RigidElement};
 
 impl Archive {
+    /// Refused element records, one refusal per (type, reason): its first line and count.
+    fn refuse_elements(&mut self, refusals: BTreeMap<(i64, String), (usize, usize)>) {
+        for ((etype, why), (line, count)) in refusals {
+            let t = &self.types[&etype];
+            let name = t.name();
+            self.refused.push((
+                line,
+                format!(
+                    "EBLOCK element of type {etype} ({name}, ET line {})",
+                    t.line
+                ),
+                name,
+                format!("{why} ({count} element(s), the first here)"),
+            ));
+        }
+    }
+
     /// The elements formed by type and KEYOPT, their properties (one solid property per
     /// material number); refusals grouped by type and reason, named by the first element's line.
     /// Returns the element ids → index (elements without stiffness: `None`).
@@ -184,28 +201,16 @@ impl Archive {
                 ));
             }
         }
-        for why in shell_props.apply_offsets(model) {
+        let offsets = shell_props.apply_offsets(model);
+        self.contact_pairs(file, &segs, node_map, model, &mut refusals, &mut index)?;
+        for why in offsets
+            .into_iter()
+            .chain(rotary_without_rotations(model, &rotary))
+        {
             refusals.entry(why.1).or_insert((why.0, 0)).1 += 1;
         }
-        self.contact_pairs(file, &segs, node_map, model, &mut refusals, &mut index)?;
-        for why in rotary_without_rotations(model, &rotary) {
-            let e = refusals.entry(why.1).or_insert((why.0, 0));
-            e.1 += 1;
-        }
         model.element_sources.sort_unstable_by_key(|s| s.0);
-        for ((etype, why), (line, count)) in refusals {
-            let t = &self.types[&etype];
-            let name = t.name();
-            self.refused.push((
-                line,
-                format!(
-                    "EBLOCK element of type {etype} ({name}, ET line {})",
-                    t.line
-                ),
-                name,
-                format!("{why} ({count} element(s), the first here)"),
-            ));
-        }
+        self.refuse_elements(refusals);
         if !damped.is_empty() {
             self.noted.insert(
                 "COMBIN14 damping CV1/CV2 (not read: the body is undamped; --damping gives modal damping)".into(),
