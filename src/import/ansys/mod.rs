@@ -6,11 +6,11 @@
 //! with its lines) or refused; a name in no table is refused by its line, and every refusal of
 //! the archive is listed in one error (`ImportOptions::ignore_cards` drops a name on purpose).
 //! Elements are formed by type and KEYOPT ([`elements`], [`form`]), materials from
-//! `MPTEMP`/`MPDATA` ([`materials`]), shell and beam sections in [`shells`] and [`beams`],
-//! `D`/`CE`/`CP`/`F`/`ACEL` in [`constraints`], `SFE` pressures in [`surface`], the `NBLOCK`'s
-//! nodal coordinate systems in [`nodal`]; contact pairs (remote points, bonded contact) in
-//! [`contact`] and [`bonded`]; node and element components (`CMBLOCK`) become the model's
-//! named sets.
+//! `MPTEMP`/`MPDATA` ([`materials`]), the section commands in [`sections`] (shell and beam
+//! sections in [`shells`] and [`beams`]), `D`/`CE`/`CP`/`F`/`ACEL` in [`constraints`], `SFE`
+//! pressures in [`surface`], the `NBLOCK`'s nodal coordinate systems in [`nodal`]; contact
+//! pairs (remote points, bonded contact) in [`contact`] and [`bonded`]; node and element
+//! components (`CMBLOCK`) become the model's named sets.
 
 mod beams;
 mod blocks;
@@ -24,6 +24,7 @@ mod form;
 pub mod full;
 mod materials;
 mod nodal;
+mod sections;
 mod segments;
 mod shells;
 mod surface;
@@ -228,35 +229,8 @@ impl Archive {
                 self.elements.extend(els);
             }
             "N" | "EN" => {} // block end lines outside a block: nothing to end
-            "ET" => {
-                let t = c.int(file, 0)?;
-                self.types.insert(t, ElementType::new(c.line, c.field(1)));
-            }
-            "ETBLOCK" => {
-                // (2i9,19a9): type number, element number, KEYOPT(1)…KEYOPT(18) and a 19th
-                // column (Workbench's SOLID186 records carry its KEYOPT(2)=1 in the fourth
-                // column, the full integration its ds.dat sets with keyo,…,2,1)
-                for (n, cols) in lines.records(c.line, "ETBLOCK")? {
-                    let t = blocks::int_col(file, n, "ETBLOCK", cols[0])?;
-                    let name = cols.get(1).copied().flatten().unwrap_or("");
-                    let mut et = ElementType::new(n, name);
-                    for (k, col) in cols.iter().enumerate().skip(2) {
-                        let v = blocks::int_col(file, n, "ETBLOCK", *col)?;
-                        match k - 1 {
-                            _ if v == 0 => {}
-                            key @ 1..=18 => drop(et.keyopts.insert(key as u32, v)),
-                            _ => refused.push((
-                                n,
-                                format!(
-                                    "ETBLOCK record of type {t}: column {} = {v} (past KEYOPT(18)) \
-                                     is not described in the documentation at hand",
-                                    k + 1
-                                ),
-                            )),
-                        }
-                    }
-                    self.types.insert(t, et);
-                }
+            "ET" | "ETBLOCK" | "KEYOPT" | "KEYOP" => {
+                self.honour_element_types(file, lines, c, &mut refused)?
             }
             "DBLOCK" => {
                 // (i9,a6,2(pg16.9)): node, dof label, value, imaginary value — each a D command
@@ -321,24 +295,6 @@ impl Archive {
                 }
                 lines.skip_sfeblock();
             }
-            "KEYOPT" | "KEYOP" => {
-                let (t, k, v) = (c.int(file, 0)?, c.int(file, 1)?, c.int(file, 2)?);
-                match self.types.get_mut(&t) {
-                    Some(et) if (1..=18).contains(&k) => {
-                        if v == 0 {
-                            et.keyopts.remove(&(k as u32));
-                        } else {
-                            et.keyopts.insert(k as u32, v);
-                        }
-                    }
-                    _ => refused.push((
-                        c.line,
-                        format!(
-                            "KEYOPT of element type {t} (no ET before it) or KEYOPT number {k}"
-                        ),
-                    )),
-                }
-            }
             "MPTEMP" => self.materials.mptemp(file, c)?,
             "MPDATA" | "MP" => self.materials.mpdata(file, c, &mut refused)?,
             "TREF" => self.tref = c.real(file, 0)?,
@@ -368,117 +324,8 @@ impl Archive {
                 let sets = lines.rlblock(c.line, c.int(file, 0)?.max(0) as usize)?;
                 self.reals.extend(sets);
             }
-            "SECTYPE" => {
-                let id = c.int(file, 0)?;
-                self.section_now = None;
-                self.shell_now = None;
-                self.beam_now = None;
-                if c.field(1).eq_ignore_ascii_case("BEAM") {
-                    match beams::BeamSection::open(c) {
-                        Ok(s) => {
-                            self.beam_sections.insert(id, s);
-                            self.beam_now = Some(id);
-                        }
-                        Err(why) => refused.push((c.line, why)),
-                    }
-                } else if c.field(1).eq_ignore_ascii_case("SHELL") {
-                    let (s, refusal) = shells::ShellSection::open(c);
-                    refused.extend(refusal.map(|why| (c.line, why)));
-                    self.shell_sections.insert(id, s);
-                    self.shell_now = Some(id);
-                } else if c.field(1).eq_ignore_ascii_case("LINK") {
-                    let s = LinkSection {
-                        line: c.line,
-                        area: 0.0,
-                        added_mass: 0.0,
-                    };
-                    self.sections.insert(id, s);
-                    self.section_now = Some(id);
-                } else {
-                    refused.push((
-                        c.line,
-                        format!(
-                            "SECTYPE {id},{}: only LINK (LINK180's), SHELL (SHELL181's) and \
-                             BEAM (BEAM188's) sections are read; tapered and other sections' \
-                             elements are not formed here",
-                            c.field(1)
-                        ),
-                    ));
-                }
-            }
-            "SECDATA" | "SECCONTROL" if self.shell_now.is_some() => {
-                let now = self
-                    .shell_now
-                    .and_then(|id| self.shell_sections.get_mut(&id));
-                if let Some(s) = now {
-                    let why = if c.name == "SECDATA" {
-                        s.secdata(file, c)?
-                    } else {
-                        s.seccontrol(file, c)?
-                    };
-                    refused.extend(why.map(|why| (c.line, why)));
-                }
-            }
-            "SECBLOCK" => {
-                // CDWRITE writes a shell section's layers as SECBLOCK,NLAYERS and one record
-                // per layer, "thickness, material, angle, integration points", as SECDATA
-                let count = c.int(file, 0)?.clamp(0, 10_000) as usize;
-                match self
-                    .shell_now
-                    .and_then(|id| self.shell_sections.get_mut(&id))
-                {
-                    Some(s) => {
-                        for _ in 0..count {
-                            let (n, text) = lines.record(c.line, "SECBLOCK")?;
-                            let layer = Command {
-                                line: n,
-                                name: "SECBLOCK".into(),
-                                fields: text.split(',').map(str::trim).collect(),
-                            };
-                            refused.extend(s.secdata(file, &layer)?.map(|why| (n, why)));
-                        }
-                    }
-                    None => {
-                        refused.push((
-                            c.line,
-                            "SECBLOCK of a section other than a shell (a beam section's own \
-                             mesh): not read (ANSYS integrates over it; ASEC, RECT, CSOLID and \
-                             CTUBE beam sections are read)"
-                                .into(),
-                        ));
-                        lines.skip_data_lines();
-                    }
-                }
-            }
-            "SECDATA" | "SECCONTROL" if self.beam_now.is_some() => {
-                let now = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
-                if let Some(why) = now.map(|s| s.read(file, c)).transpose()?.flatten() {
-                    refused.push((c.line, why));
-                }
-            }
-            "SECOFFSET" => {
-                let beam = self.beam_now.and_then(|id| self.beam_sections.get_mut(&id));
-                let why = match (self.shell_now, beam) {
-                    (Some(id), _) => {
-                        (self.shell_sections.get_mut(&id)).and_then(|s| s.secoffset(c))
-                    }
-                    (None, Some(b)) => b.secoffset(c),
-                    (None, None) => {
-                        Some("SECOFFSET of a section other than a shell or beam: not read".into())
-                    }
-                };
-                refused.extend(why.map(|why| (c.line, why)));
-            }
-            // the data of a section not read is not read either (its SECTYPE is refused)
-            "SECDATA" | "SECCONTROL" => {
-                let value = c.real(file, 0)?;
-                if let Some(s) = self.section_now.and_then(|id| self.sections.get_mut(&id)) {
-                    if c.name == "SECDATA" {
-                        s.area = value;
-                    } else {
-                        s.added_mass = value;
-                    }
-                }
+            "SECTYPE" | "SECDATA" | "SECCONTROL" | "SECBLOCK" | "SECOFFSET" => {
+                self.honour_section(file, lines, c, &mut refused)?
             }
             "D" => self.raw.d(file, c, &mut refused)?,
             "CE" => {
@@ -547,6 +394,75 @@ impl Archive {
         }
         for (line, why) in refused {
             self.refuse(line, &c.name, why);
+        }
+        Ok(())
+    }
+
+    /// `ET`, `ETBLOCK` and `KEYOPT`: the element types and their options.
+    fn honour_element_types(
+        &mut self,
+        file: &str,
+        lines: &mut Lines,
+        c: &Command,
+        refused: &mut Vec<(usize, String)>,
+    ) -> Result<(), ImportError> {
+        match c.name.as_str() {
+            "ET" => {
+                let t = c.int(file, 0)?;
+                self.types.insert(t, ElementType::new(c.line, c.field(1)));
+            }
+            "ETBLOCK" => {
+                // (2i9,19a9): type number, element number, KEYOPT(1)…KEYOPT(18) and a 19th
+                // column (Workbench's SOLID186 records carry its KEYOPT(2)=1 in the fourth
+                // column, the full integration its ds.dat sets with keyo,…,2,1)
+                for (n, cols) in lines.records(c.line, "ETBLOCK")? {
+                    let t = blocks::int_col(file, n, "ETBLOCK", cols[0])?;
+                    let name = cols.get(1).copied().flatten().unwrap_or("");
+                    let mut et = ElementType::new(n, name);
+                    for (k, col) in cols.iter().enumerate().skip(2) {
+                        let v = blocks::int_col(file, n, "ETBLOCK", *col)?;
+                        match k - 1 {
+                            _ if v == 0 => {}
+                            key @ 1..=18 => drop(et.keyopts.insert(key as u32, v)),
+                            _ => refused.push((
+                                n,
+                                format!(
+                                    "ETBLOCK record of type {t}: column {} = {v} (past KEYOPT(18)) \
+                                     is not described in the documentation at hand",
+                                    k + 1
+                                ),
+                            )),
+                        }
+                    }
+                    self.types.insert(t, et);
+                }
+            }
+            "KEYOPT" | "KEYOP" => {
+                let (t, k, v) = (c.int(file, 0)?, c.int(file, 1)?, c.int(file, 2)?);
+                match self.types.get_mut(&t) {
+                    Some(et) if (1..=18).contains(&k) => {
+                        if v == 0 {
+                            et.keyopts.remove(&(k as u32));
+                        } else {
+                            et.keyopts.insert(k as u32, v);
+                        }
+                    }
+                    _ => refused.push((
+                        c.line,
+                        format!(
+                            "KEYOPT of element type {t} (no ET before it) or KEYOPT number {k}"
+                        ),
+                    )),
+                }
+            }
+            other => {
+                return Err(parse_err(
+                    file,
+                    c.line,
+                    other,
+                    "dispatched to the wrong reader (an importer defect)",
+                ))
+            }
         }
         Ok(())
     }
