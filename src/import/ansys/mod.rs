@@ -383,14 +383,7 @@ impl Archive {
                     upper_hz: (hi > 0.0).then_some(hi),
                 });
             }
-            other => {
-                return Err(parse_err(
-                    file,
-                    c.line,
-                    other,
-                    "honoured by the catalogue but read by no reader",
-                ))
-            }
+            _ => return Err(unread_honoured(file, c)),
         }
         for (line, why) in refused {
             self.refuse(line, &c.name, why);
@@ -455,14 +448,7 @@ impl Archive {
                     )),
                 }
             }
-            other => {
-                return Err(parse_err(
-                    file,
-                    c.line,
-                    other,
-                    "dispatched to the wrong reader (an importer defect)",
-                ))
-            }
+            _ => return Err(unread_honoured(file, c)),
         }
         Ok(())
     }
@@ -691,6 +677,17 @@ impl Archive {
         }
         Ok(())
     }
+}
+
+/// A command the catalogue honours reached a reader that does not read it (an importer defect,
+/// never the archive's).
+fn unread_honoured(file: &str, c: &Command) -> ImportError {
+    parse_err(
+        file,
+        c.line,
+        &c.name,
+        "honoured by the catalogue but read by no reader",
+    )
 }
 
 /// "12, 14, 15, …": the first lines of a list.

@@ -6,7 +6,7 @@
 use super::blocks::{Command, Lines};
 use super::elements::LinkSection;
 use super::{beams, shells, Archive};
-use crate::import::error::{parse_err, ImportError};
+use crate::import::error::ImportError;
 
 impl Archive {
     /// The section commands: `SECTYPE` opens a link, shell or beam section, `SECDATA`,
@@ -131,14 +131,7 @@ impl Archive {
                     }
                 }
             }
-            other => {
-                return Err(parse_err(
-                    file,
-                    c.line,
-                    other,
-                    "dispatched to the wrong reader (an importer defect)",
-                ))
-            }
+            _ => return Err(super::unread_honoured(file, c)),
         }
         Ok(())
     }
