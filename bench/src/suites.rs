@@ -25,8 +25,9 @@ use std::time::Instant;
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
 use flexbody::interface::{resolve_interfaces, SpiderKind};
 use flexbody::model::DofMask;
-use flexbody::reduce::craig_bampton::{craig_bampton_basis, craig_bampton_basis_owned};
-use flexbody::reduce::orthonormalize::orthonormalize;
+use flexbody::reduce::craig_bampton::{
+    craig_bampton_basis, craig_bampton_basis_owned, orthonormalize_basis,
+};
 use flexbody::reduce::select::ModeCount;
 use flexbody::solve::{lowest_modes_iterative, EigenSpec, SparseColMat, Triplet};
 use serde_json::{json, Value};
@@ -574,7 +575,7 @@ pub fn ours_cb(n: [usize; 3], modes: usize, precision: &str) -> Res<Value> {
     lap("craig-bampton basis", &mut phases);
     let o = {
         let _par = flexbody::solve::ParGuard::new(threads());
-        orthonormalize(&k, &m, &basis.t, &basis.labels).map_err(|e| e.to_string())?
+        orthonormalize_basis(&k, &m, &basis).map_err(|e| e.to_string())?
     };
     lap("orthonormalization", &mut phases);
     phases.insert("total".into(), num(t_all.elapsed().as_secs_f64()));

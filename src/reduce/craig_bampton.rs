@@ -2,7 +2,7 @@
 //! modes K_ii φ = ω² M_ii φ (same factorization, σ = 0), the basis T = [I 0; Ψ Φ_i], and its
 //! orthonormalization by the second eigenproblem (Wang, Niu & Feng 2023 eqs. 24–31).
 
-use super::orthonormalize::orthonormalize;
+use super::orthonormalize::{orthonormalize_projected, Orthonormalized, Projection};
 use super::select::{solve_count_with, ModeCount};
 use super::{check_dofs, Method, ModeLabel, ModeSet, ReduceError};
 use crate::solve::cholesky::{self, Analysis, REFINE_F64, SINGULAR_PIVOT};
@@ -526,7 +526,7 @@ fn craig_bampton_from_basis(
 ) -> Result<ModeSet, ReduceError> {
     let nq = basis.fixed_omega2.len();
     let t3 = Instant::now();
-    let o = orthonormalize(k, m, &basis.t, &basis.labels)?;
+    let o = orthonormalize_basis(k, m, &basis)?;
     let mut diagnostics = o.diagnostics;
     diagnostics.basis_top_omega2 = basis.fixed_omega2.last().copied();
     diagnostics.fixed_interface_omega2 = basis.fixed_omega2.clone();
@@ -557,4 +557,47 @@ fn craig_bampton_from_basis(
         selection: None,
         diagnostics,
     })
+}
+
+/// The basis orthonormalized ([`orthonormalize_projected`]) with K̂ and M̂ from
+/// [`projection`].
+pub fn orthonormalize_basis(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    basis: &CbBasis,
+) -> Result<Orthonormalized, ReduceError> {
+    let known = projection(k, m, &basis.t, &basis.fixed_omega2);
+    orthonormalize_projected(k, m, &basis.t, &basis.labels, &[], Some(known))
+}
+
+/// K̂ = TᵀKT and M̂ = TᵀMT of T = [T_c T_q] (constraint columns first, then the n_q
+/// fixed-interface modes, zero at the interface) with products of K and M with T_c only:
+/// T_qᵀKT_q = Φᵀ K_ii Φ = diag(ω²) and T_qᵀMT_q = I (the eigensolver's Rayleigh–Ritz step made
+/// them so to rounding), the rest is Tᵀ(K T_c) and Tᵀ(M T_c). Measured at 68.5k dofs (12
+/// constraint columns, 30 modes): two products with 12 columns instead of two with 42.
+pub fn projection(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    t: &Mat<f64>,
+    fixed_omega2: &[f64],
+) -> Projection {
+    let p = t.ncols();
+    let nb = p - fixed_omega2.len();
+    let tc = t.as_ref().subcols(0, nb);
+    let block = |a: &SparseColMat<usize, f64>, qq: &dyn Fn(usize) -> f64| {
+        let atc = t.transpose() * sparse_ops::spmm(a.as_ref(), tc); // p × nb
+        let mut h = Mat::<f64>::zeros(p, p);
+        h.as_mut().subcols_mut(0, nb).copy_from(&atc);
+        h.as_mut()
+            .submatrix_mut(0, nb, nb, p - nb)
+            .copy_from(atc.as_ref().subrows(nb, p - nb).transpose());
+        for (j, d) in (nb..p).enumerate() {
+            h[(d, d)] = qq(j);
+        }
+        crate::solve::dense::sym(h.as_ref())
+    };
+    Projection {
+        kh: block(k, &|j| fixed_omega2[j]),
+        mh: block(m, &|_| 1.0),
+    }
 }

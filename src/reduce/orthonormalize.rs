@@ -29,10 +29,15 @@ pub fn rigid_flags(
     scale: f64,
 ) -> Vec<bool> {
     let (energy, _) = crate::solve::sparse_ops::abs_products(k.as_ref(), phi.as_ref());
+    rigid_flags_of_energy(&energy, omega2, scale)
+}
+
+/// [`rigid_flags`] with the energies (|φ_j|ᵀ|K||φ_j|) already at hand.
+fn rigid_flags_of_energy(energy: &[f64], omega2: &[f64], scale: f64) -> Vec<bool> {
     omega2
         .iter()
         .zip(energy)
-        .map(|(&l, e)| l.abs() <= (RIGID_REL * scale).max(ROUNDING_FACTOR * f64::EPSILON * e))
+        .map(|(&l, &e)| l.abs() <= (RIGID_REL * scale).max(ROUNDING_FACTOR * f64::EPSILON * e))
         .collect()
 }
 
@@ -179,8 +184,19 @@ pub fn diagnose(
 ) -> Result<Diagnostics, ReduceError> {
     let kp = spmm(k.as_ref(), phi.as_ref());
     let mp = spmm(m.as_ref(), phi.as_ref());
-    let kk = phi.transpose() * &kp;
-    let mm = phi.transpose() * &mp;
+    diagnose_products(phi, &kp, &mp, omega2, abs_energy(k.as_ref(), phi.as_ref()))
+}
+
+/// [`diagnose`] with K·Φ, M·Φ and max_j |φ_j|ᵀ|K||φ_j| already at hand.
+fn diagnose_products(
+    phi: &Mat<f64>,
+    kp: &Mat<f64>,
+    mp: &Mat<f64>,
+    omega2: &[f64],
+    abs_energy_max: f64,
+) -> Result<Diagnostics, ReduceError> {
+    let kk = phi.transpose() * kp;
+    let mm = phi.transpose() * mp;
     let c = omega2.len();
     let lmax = omega2
         .iter()
@@ -208,8 +224,7 @@ pub fn diagnose(
             rn.sqrt()
         });
     }
-    let k_limit = CHECK_LIMIT
-        .max(ROUNDING_FACTOR * f64::EPSILON * abs_energy(k.as_ref(), phi.as_ref()) / lmax);
+    let k_limit = CHECK_LIMIT.max(ROUNDING_FACTOR * f64::EPSILON * abs_energy_max / lmax);
     for (what, value, limit) in [
         ("|PhiT M Phi - I|max", orth, CHECK_LIMIT),
         ("|PhiT K Phi - diag|max / max w2", kd, k_limit),
@@ -250,27 +265,95 @@ pub fn orthonormalize(
 pub fn orthonormalize_held(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
-    t_in: &Mat<f64>,
+    t: &Mat<f64>,
     labels: &[ModeLabel],
     held: &[usize],
 ) -> Result<Orthonormalized, ReduceError> {
-    let p = t_in.ncols();
-    // K̂ of the basis as given (the stiffness scale of its columns), and the basis with its
-    // massless dofs condensed
-    let (kh_given, condensed) = {
-        let kt = spmm(k.as_ref(), t_in.as_ref());
-        let kh = dense::sym((t_in.transpose() * &kt).as_ref());
-        let c =
-            super::massless::condense_basis(k, m, t_in, &kt, held, faer::get_global_parallelism())?;
-        (kh, c)
-    };
+    orthonormalize_projected(k, m, t, labels, held, None)
+}
+
+/// K̂ = TᵀKT and M̂ = TᵀMT of a basis T, formed by the method that built T from what it knows of
+/// its columns (Craig–Bampton: [`super::craig_bampton::projection`]) with fewer products with K
+/// and M than Tᵀ(K T), Tᵀ(M T).
+#[derive(Clone, Debug)]
+pub struct Projection {
+    /// TᵀKT (p × p).
+    pub kh: Mat<f64>,
+    /// TᵀMT (p × p).
+    pub mh: Mat<f64>,
+}
+
+/// The projections of a basis as the orthonormalization uses them.
+struct Projected {
+    /// K̂ of the basis as given (the stiffness scale of its columns).
+    kh_given: Mat<f64>,
+    /// The basis with its massless dofs condensed (`None`: nothing to condense).
+    condensed: Option<super::massless::CondensedBasis>,
+    /// K̂ of the condensed basis.
+    kh_condensed: Option<Mat<f64>>,
+    /// M̂ of the (condensed) basis.
+    mh: Mat<f64>,
+}
+
+/// K̂ and M̂ of `t`: `known` when no dof outside `held` is massless (a massless dof may need
+/// condensing, which changes T), else TᵀKT and TᵀMT after [`super::massless::condense_basis`].
+fn project(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    t_in: &Mat<f64>,
+    held: &[usize],
+    known: Option<Projection>,
+) -> Result<Projected, ReduceError> {
+    if let Some(Projection { kh, mh }) = known {
+        let massless = super::massless::massless_dofs(m);
+        if massless.iter().all(|d| held.contains(d)) {
+            return Ok(Projected {
+                kh_given: kh,
+                condensed: None,
+                kh_condensed: None,
+                mh,
+            });
+        }
+    }
+    let kt = spmm(k.as_ref(), t_in.as_ref());
+    let kh_given = dense::sym((t_in.transpose() * &kt).as_ref());
+    let condensed =
+        super::massless::condense_basis(k, m, t_in, &kt, held, faer::get_global_parallelism())?;
+    drop(kt);
     let t = condensed.as_ref().map_or(t_in, |c| &c.t);
     let kh_condensed = condensed
         .as_ref()
         .map(|_| dense::sym((t.transpose() * spmm(k.as_ref(), t.as_ref())).as_ref()));
-    let kh = kh_condensed.as_ref().unwrap_or(&kh_given);
     let mt = spmm(m.as_ref(), t.as_ref());
     let mh = dense::sym((t.transpose() * &mt).as_ref());
+    Ok(Projected {
+        kh_given,
+        condensed,
+        kh_condensed,
+        mh,
+    })
+}
+
+/// [`orthonormalize_held`] with K̂ = TᵀKT and M̂ = TᵀMT given by the caller (`known`, used
+/// unless T has massless dofs to condense). They steer the first Rayleigh–Ritz pass and the
+/// dependency test only: the second pass and the checks use K·Φ and M·Φ of the result itself.
+pub fn orthonormalize_projected(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    t_in: &Mat<f64>,
+    labels: &[ModeLabel],
+    held: &[usize],
+    known: Option<Projection>,
+) -> Result<Orthonormalized, ReduceError> {
+    let p = t_in.ncols();
+    let Projected {
+        kh_given,
+        condensed,
+        kh_condensed,
+        mh,
+    } = project(k, m, t_in, held, known)?;
+    let t = condensed.as_ref().map_or(t_in, |c| &c.t);
+    let kh = kh_condensed.as_ref().unwrap_or(&kh_given);
     // a column whose M-norm² is rounding (≤ MASSLESS_COLUMN_TOL of ‖t‖²·max M_ii: a rotation
     // field of a lumped beam without rotary inertia) is massless: kept out of the pivoting, it
     // is condensed below instead of lending its rounding noise a direction
@@ -346,20 +429,29 @@ pub fn orthonormalize_held(
         )
     };
     let (_, y) = dense::projected(ks.as_ref(), mss.as_ref())?;
-    let phi1 = &ts * &y;
-    // second pass on the (now well-conditioned) Φ
-    let k1 = phi1.transpose() * spmm(k.as_ref(), phi1.as_ref());
-    let m1 = phi1.transpose() * spmm(m.as_ref(), phi1.as_ref());
+    // second pass on the (now well-conditioned) Φ₁ = T_s Y; Φ = Φ₁Y₂ and its products with K
+    // and M (for the checks) are Φ₁'s rotated in place, not formed again
+    let mut phi = &ts * &y;
+    drop(ts);
+    let mut kphi = spmm(k.as_ref(), phi.as_ref());
+    let mut mphi = spmm(m.as_ref(), phi.as_ref());
+    let k1 = phi.transpose() * &kphi;
+    let m1 = phi.transpose() * &mphi;
     let (omega2, y2) = dense::projected(k1.as_ref(), m1.as_ref())?;
-    let phi = &phi1 * &y2;
+    for v in [&mut phi, &mut kphi, &mut mphi] {
+        crate::solve::thin_ops::mul_in_place(v.as_mut(), y2.as_ref());
+    }
     let n = g * (&y * &y2); // coefficients of Φ on the columns of T
     let scale = trace_ratio(k, m);
-    let rigid = rigid_flags(k, &phi, &omega2, scale);
+    let (energy, _) = crate::solve::sparse_ops::abs_products(k.as_ref(), phi.as_ref());
+    let rigid = rigid_flags_of_energy(&energy, &omega2, scale);
     let weights = Mat::from_fn(labels.len(), q, |c, j| {
         n[(c, j)] * mh[(c, c)].max(0.0).sqrt()
     });
     let (labels_out, shares) = origin_labels(&rigid, &weights, labels);
-    let mut diagnostics = diagnose(k, m, &phi, &omega2)?;
+    let abs_energy_max = energy.iter().fold(0.0f64, |a, &b| a.max(b));
+    let mut diagnostics = diagnose_products(&phi, &kphi, &mphi, &omega2, abs_energy_max)?;
+    drop((kphi, mphi));
     diagnostics.removed = removed;
     diagnostics.dependency_tol = DEPENDENCY_TOL;
     diagnostics.label_shares = shares;
