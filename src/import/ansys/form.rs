@@ -80,14 +80,9 @@ impl Archive {
             };
             let reals = self.reals.get(&r.real).map(Vec::as_slice);
             let shell = self.shell_sections.get(&r.section);
-            let formed = elements::form(t, r, reals, self.sections.get(&r.section), shell);
-            let orthotropic =
-                (formed.as_ref().ok()).and_then(|f| isotropic_only(f, r.mat, model, &property_of));
-            if let Some(why) = orthotropic {
-                refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
-                index.insert(r.id, None);
-                continue;
-            }
+            // an orthotropic material where only isotropic ones are formed: refused as a form
+            let formed = elements::form(t, r, reals, self.sections.get(&r.section), shell)
+                .and_then(|f| isotropic_only(&f, r.mat, model, &property_of).map_or(Ok(f), Err));
             let slot = match formed {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
@@ -183,28 +178,15 @@ impl Archive {
                         .into_iter()
                         .map(node_of)
                         .collect::<Result<Vec<_>, _>>()?;
-                    let property = match property_of.get(&r.mat) {
-                        Some(&base) => {
-                            match solid_axes.property(model, &self.locals, base, r.esys) {
-                                Ok(p) => Some(p),
-                                Err(why) => {
-                                    refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
-                                    index.insert(r.id, None);
-                                    continue;
-                                }
-                            }
+                    let base = property_of.get(&r.mat).copied();
+                    match push_solid(model, &mut solid_axes, &self.locals, base, r, kind, nodes) {
+                        Ok(e) => Some(e),
+                        Err(why) => {
+                            refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                            index.insert(r.id, None);
+                            continue;
                         }
-                        None => None,
-                    };
-                    model.elements.push(Element {
-                        id: r.id,
-                        kind,
-                        nodes,
-                        property,
-                        orientation: None,
-                    });
-                    model.element_sources.push((r.id, 0, r.line as u32));
-                    Some(model.elements.len() - 1)
+                    }
                 }
                 Err(why) => {
                     let e = refusals.entry((r.etype, why)).or_insert((r.line, 0));
@@ -283,4 +265,30 @@ fn isotropic_only(
     let material = &model.materials[model.properties[*property].material];
     material.stiffness()?;
     Some(format!("orthotropic material {mat} on {what}"))
+}
+
+/// A solid element of `kind` on `nodes` into the model, its property the material's (`base`)
+/// in the element's ESYS ([`esys::SolidAxes`]): its index, or why not.
+fn push_solid(
+    model: &mut Model,
+    solid_axes: &mut esys::SolidAxes,
+    locals: &esys::LocalSystems,
+    base: Option<usize>,
+    r: &super::blocks::ElementRecord,
+    kind: ElementKind,
+    nodes: Vec<usize>,
+) -> Result<usize, String> {
+    let property = match base {
+        Some(base) => Some(solid_axes.property(model, locals, base, r.esys)?),
+        None => None,
+    };
+    model.elements.push(Element {
+        id: r.id,
+        kind,
+        nodes,
+        property,
+        orientation: None,
+    });
+    model.element_sources.push((r.id, 0, r.line as u32));
+    Ok(model.elements.len() - 1)
 }
