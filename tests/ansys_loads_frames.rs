@@ -159,22 +159,32 @@ fn rotated_nodes_equal_nastran_cd_frames() {
     assert!(unrotated > 1e-4, "{unrotated}");
 }
 
-/// An element with an element coordinate system (ESYS) is refused naming its LOCAL; an MPC184
-/// rigid link on a rotated node is refused (its equation is formed on global components).
+/// An isotropic element with an element coordinate system (ESYS naming a LOCAL) is the same
+/// body (the system orients only an orthotropic material, tests/ansys_orthotropic.rs); an ESYS
+/// naming no system of the archive is refused naming it; an MPC184 rigid link on a rotated node
+/// is refused (its equation is formed on global components).
 #[test]
 fn esys_elements_are_refused_naming_their_local() {
     let m = block([2, 1, 1], [0.4, 0.2, 0.2], false);
     let work = scratch("ansys-esys");
-    let cdb = work.join("esys.cdb");
     let et = "ET,1,185\nKEYOPT,1,2,3\nLOCAL,11,0,0.,0.,0.,30.,0.,0.\n";
-    let text = block_archive(&m, et, &BTreeMap::new(), "");
-    // element 2's ESYS field (the fifth) names system 11
-    let text = text.replacen(
-        "        1        1        1        1        0        0        0        0        8        0        2",
-        "        1        1        1        1       11        0        0        0        8        0        2",
-        1,
-    );
-    std::fs::write(&cdb, text).unwrap();
+    let clamp: String = root(&m).iter().map(|n| format!("D,{n},ALL,0\n")).collect();
+    let plain = block_archive(&m, et, &BTreeMap::new(), &clamp);
+    // element 2's ESYS field (the fifth) names system `esys`
+    let with_esys = |esys: u64| {
+        plain.replacen(
+            "        1        1        1        1        0        0        0        0        8        0        2",
+            &format!("        1        1        1        1{esys:>9}        0        0        0        8        0        2"),
+            1,
+        )
+    };
+    let (a, b) = (work.join("plain.cdb"), work.join("esys.cdb"));
+    std::fs::write(&a, &plain).unwrap();
+    std::fs::write(&b, with_esys(11)).unwrap();
+    let diff = frequency_difference(&build(&a, 4, &[]), &build(&b, 4, &[]), 4);
+    assert!(diff == 0.0, "{diff}");
+    let cdb = work.join("undefined.cdb");
+    std::fs::write(&cdb, with_esys(12)).unwrap();
     let o = exe()
         .arg("build")
         .arg(&cdb)
@@ -185,7 +195,7 @@ fn esys_elements_are_refused_naming_their_local() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("element coordinate system 11 (LOCAL at line 4)"),
+        err.contains("element coordinate system 12 (no LOCAL of the archive defines it)"),
         "{err}"
     );
     let link = work.join("link.cdb");

@@ -5,10 +5,10 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::connections::{place_spring, rigid_link, rod_property, rotary_without_rotations};
 use super::elements::Formed;
-use super::{beams, elements, segments, shells, solid_properties, Archive};
+use super::{beams, elements, esys, segments, shells, solid_properties, Archive};
 use crate::import::error::{parse_err, ImportError};
 use crate::import::text::IdMap;
-use crate::model::{DofMask, Element, Model, RigidElement};
+use crate::model::{DofMask, Element, ElementKind, Model, RigidElement};
 
 impl Archive {
     /// Refused element records, one refusal per (type, reason): its first line and count.
@@ -46,6 +46,7 @@ impl Archive {
         let mut damped = Vec::new();
         let mut rods = BTreeMap::new();
         let mut shell_props = shells::ShellProperties::new();
+        let mut solid_axes = esys::SolidAxes::default();
         let mut beam_ctx = beams::BeamContext::new(&self.beam_sections, &property_of);
         // MASS21 with rotary inertia: (line, type, point mass)
         let mut rotary = Vec::new();
@@ -79,7 +80,10 @@ impl Archive {
             };
             let reals = self.reals.get(&r.real).map(Vec::as_slice);
             let shell = self.shell_sections.get(&r.section);
-            let slot = match elements::form(t, r, reals, self.sections.get(&r.section), shell) {
+            // an orthotropic material where only isotropic ones are formed: refused as a form
+            let formed = elements::form(t, r, reals, self.sections.get(&r.section), shell)
+                .and_then(|f| isotropic_only(&f, r.mat, model, &property_of).map_or(Ok(f), Err));
+            let slot = match formed {
                 Ok(Formed::NoStiffness) => {
                     skipped.entry(t.name()).or_default().push(r.line);
                     None
@@ -174,15 +178,15 @@ impl Archive {
                         .into_iter()
                         .map(node_of)
                         .collect::<Result<Vec<_>, _>>()?;
-                    model.elements.push(Element {
-                        id: r.id,
-                        kind,
-                        nodes,
-                        property: property_of.get(&r.mat).copied(),
-                        orientation: None,
-                    });
-                    model.element_sources.push((r.id, 0, r.line as u32));
-                    Some(model.elements.len() - 1)
+                    let base = property_of.get(&r.mat).copied();
+                    match push_solid(model, &mut solid_axes, &self.locals, base, r, kind, nodes) {
+                        Ok(e) => Some(e),
+                        Err(why) => {
+                            refusals.entry((r.etype, why)).or_insert((r.line, 0)).1 += 1;
+                            index.insert(r.id, None);
+                            continue;
+                        }
+                    }
                 }
                 Err(why) => {
                     let e = refusals.entry((r.etype, why)).or_insert((r.line, 0));
@@ -223,4 +227,68 @@ impl Archive {
         }
         Ok(index)
     }
+}
+
+/// Why an element that takes isotropic materials only is refused for its orthotropic material
+/// (`mat`, or its shell section's): shells (ANSYS's shell element axes and its plane-stress
+/// reduction of an orthotropic material are not formed here), beams and links (they read E
+/// and G of one direction), SOLID185's B-bar (its mean dilatation is formed for an isotropic
+/// D only); `None` for any other.
+fn isotropic_only(
+    formed: &Formed,
+    mat: i64,
+    model: &Model,
+    property_of: &BTreeMap<i64, usize>,
+) -> Option<String> {
+    let (what, mat) = match formed {
+        Formed::Shell(shell) => (
+            "a shell: ANSYS's shell element axes (S1 along the first parametric direction at \
+             the element's centre) and its plane-stress reduction of the nine constants are \
+             not formed here",
+            shell.material,
+        ),
+        Formed::Beam(_) => ("a beam: beams read one E and G", mat),
+        Formed::Rod(..) => ("a LINK180: links read one E", mat),
+        Formed::Element(ElementKind::Hex8Bbar, _) => (
+            "SOLID185 KEYOPT(2)=0: the B-bar brick's mean dilatation is formed for isotropic \
+             materials only (KEYOPT(2)=3 is formed with an orthotropic one)",
+            mat,
+        ),
+        Formed::Element(..)
+        | Formed::NoStiffness
+        | Formed::PointMass(..)
+        | Formed::Spring(_)
+        | Formed::RigidLink(..)
+        | Formed::RigidBeam(..) => return None,
+    };
+    let property = property_of.get(&mat)?;
+    let material = &model.materials[model.properties[*property].material];
+    material.stiffness()?;
+    Some(format!("orthotropic material {mat} on {what}"))
+}
+
+/// A solid element of `kind` on `nodes` into the model, its property the material's (`base`)
+/// in the element's ESYS ([`esys::SolidAxes`]): its index, or why not.
+fn push_solid(
+    model: &mut Model,
+    solid_axes: &mut esys::SolidAxes,
+    locals: &esys::LocalSystems,
+    base: Option<usize>,
+    r: &super::blocks::ElementRecord,
+    kind: ElementKind,
+    nodes: Vec<usize>,
+) -> Result<usize, String> {
+    let property = match base {
+        Some(base) => Some(solid_axes.property(model, locals, base, r.esys)?),
+        None => None,
+    };
+    model.elements.push(Element {
+        id: r.id,
+        kind,
+        nodes,
+        property,
+        orientation: None,
+    });
+    model.element_sources.push((r.id, 0, r.line as u32));
+    Ok(model.elements.len() - 1)
 }

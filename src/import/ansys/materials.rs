@@ -1,14 +1,19 @@
-//! `MPTEMP`/`MPDATA`/`MP`: material property tables → isotropic materials. A table with one
-//! temperature is the constant; a table with several is read at `TREF` when one of its
-//! temperatures is `TREF`, otherwise refused. Orthotropic values (EY ≠ EX, GXY inconsistent with
-//! EX and PRXY, …) are refused; thermal, damping and friction labels cannot change K or M of a
-//! linear body and are noted.
+//! `MPTEMP`/`MPDATA`/`MP`: material property tables → isotropic or orthotropic materials. A
+//! table with one temperature is the constant; a table with several is read at `TREF` when one
+//! of its temperatures is `TREF`, otherwise refused. A material whose values are isotropic (EY,
+//! EZ equal to EX, one Poisson's ratio, G consistent) is read exactly as before; any other is
+//! orthotropic, read as the Material Reference (§3.2, "Stress-Strain Relationships") says: EX,
+//! EY, EZ, the three Poisson's ratios in major (PRXY, PRYZ, PRXZ) or minor (NUXY, NUYZ, NUXZ)
+//! form — not both — and GXY, GYZ, GXZ "must all be input … There are no defaults", so a
+//! missing one is refused by name. PRXY is ν_xy = −ε_y/ε_x under σ_x (Jones's ν12), NUXY the
+//! minor ν_yx = ν_xy E_y/E_x (likewise YZ, XZ). Thermal, damping and friction labels cannot
+//! change K or M of a linear body and are noted.
 
 use std::collections::BTreeMap;
 
 use super::blocks::{archive_form, Command};
 use crate::import::error::ImportError;
-use crate::model::Material;
+use crate::model::{elasticity, Material};
 
 /// What a property label is to the body.
 enum Label {
@@ -158,7 +163,7 @@ impl Tables {
     }
 
     /// The materials by number, read at `tref`; refusals for tables not readable there and
-    /// for orthotropic values.
+    /// for materials neither isotropic nor a complete positive-definite orthotropic set.
     pub fn resolve(&self, tref: f64, refused: &mut Vec<Refused>) -> BTreeMap<i64, Material> {
         let mut values: BTreeMap<i64, BTreeMap<&str, (usize, f64)>> = BTreeMap::new();
         for ((mat, lab), (line, table)) in &self.props {
@@ -187,21 +192,32 @@ impl Tables {
         }
         let mut out = BTreeMap::new();
         for (mat, v) in values {
-            if let Some(m) = isotropic(mat, &v, refused) {
-                out.insert(mat, m);
+            let line = v.values().map(|x| x.0).min().unwrap_or(0);
+            let read = match isotropic(mat, &v) {
+                Ok(m) => Ok(m),
+                Err(Isotropy::NoModulus) => Err("no EX".to_owned()),
+                Err(Isotropy::Orthotropic(why)) => orthotropic(mat, &v)
+                    .map_err(|missing| format!("{why} (orthotropic): {missing}")),
+            };
+            match read {
+                Ok(m) => drop(out.insert(mat, m)),
+                Err(why) => refused.push((line, format!("material {mat}: {why}"))),
             }
         }
         out
     }
 }
 
-/// One material's values as an isotropic material, or a refusal (orthotropic, no EX).
-fn isotropic(
-    mat: i64,
-    v: &BTreeMap<&str, (usize, f64)>,
-    refused: &mut Vec<Refused>,
-) -> Option<Material> {
-    let line = v.values().map(|x| x.0).min().unwrap_or(0);
+/// Why a material's values are not an isotropic material.
+enum Isotropy {
+    /// No EX (nor EY, EZ).
+    NoModulus,
+    /// The values differ by direction (the reason).
+    Orthotropic(String),
+}
+
+/// One material's values as an isotropic material (the one path of isotropic materials).
+fn isotropic(mat: i64, v: &BTreeMap<&str, (usize, f64)>) -> Result<Material, Isotropy> {
     let same = |labels: &[&str]| -> Result<Option<f64>, String> {
         let found: Vec<(&str, f64)> = labels
             .iter()
@@ -217,45 +233,86 @@ fn isotropic(
             }
         }
     };
-    let checked = (|| -> Result<Material, String> {
-        let e = same(&["EX", "EY", "EZ"])?.ok_or("no EX")?;
-        let nu = same(&["PRXY", "PRYZ", "PRXZ", "NUXY", "NUYZ", "NUXZ"])?;
-        let g = same(&["GXY", "GYZ", "GXZ"])?;
-        let nu = match (nu, g) {
-            (Some(nu), Some(g)) => {
-                let iso = e / (2.0 * (1.0 + nu));
-                if (g - iso).abs() > 1e-9 * iso {
-                    return Err(format!(
-                        "GXY = {g} is not EX/(2(1+PRXY)) = {iso} (orthotropic)"
-                    ));
-                }
-                nu
+    let ortho = Isotropy::Orthotropic;
+    let e = same(&["EX", "EY", "EZ"])
+        .map_err(ortho)?
+        .ok_or(Isotropy::NoModulus)?;
+    let nu = same(&["PRXY", "PRYZ", "PRXZ", "NUXY", "NUYZ", "NUXZ"]).map_err(ortho)?;
+    let g = same(&["GXY", "GYZ", "GXZ"]).map_err(ortho)?;
+    let nu = match (nu, g) {
+        (Some(nu), Some(g)) => {
+            let iso = e / (2.0 * (1.0 + nu));
+            if (g - iso).abs() > 1e-9 * iso {
+                return Err(ortho(format!("GXY = {g} is not EX/(2(1+PRXY)) = {iso}")));
             }
-            (Some(nu), None) => nu,
-            // ANSYS: PRXY from EX and GXY
-            (None, Some(g)) => e / (2.0 * g) - 1.0,
-            // ANSYS's default Poisson's ratio for an isotropic material is 0.3
-            (None, None) => 0.3,
+            nu
+        }
+        (Some(nu), None) => nu,
+        // ANSYS: PRXY from EX and GXY
+        (None, Some(g)) => e / (2.0 * g) - 1.0,
+        // ANSYS's default Poisson's ratio for an isotropic material is 0.3
+        (None, None) => 0.3,
+    };
+    let rho = v.get("DENS").map_or(0.0, |x| x.1);
+    Ok(Material::isotropic(
+        mat.max(0) as u64,
+        &format!("MAT{mat}"),
+        e,
+        nu,
+        rho,
+    ))
+}
+
+/// One material's values as an orthotropic material in its element axes (module doc: all nine
+/// constants, Poisson's ratios major or minor, ν_ij = ν_ji E_i/E_j for the minor form), D by
+/// Jones §2.4 ([`elasticity::from_engineering_constants`]); or why not (a label missing, both
+/// forms, D not positive definite).
+fn orthotropic(mat: i64, v: &BTreeMap<&str, (usize, f64)>) -> Result<Material, String> {
+    let get = |l: &str| v.get(l).map(|x| x.1);
+    let need =
+        |l: &str| get(l).ok_or_else(|| format!("{l} is not given (ANSYS has no default for it)"));
+    let [ex, ey, ez] = [need("EX")?, need("EY")?, need("EZ")?];
+    let [gxy, gyz, gxz] = [need("GXY")?, need("GYZ")?, need("GXZ")?];
+    // (major label, minor label, E_i, E_j): ν_ij = PRij, or NUij E_i/E_j
+    let pairs = [
+        ("PRXY", "NUXY", ex, ey),
+        ("PRXZ", "NUXZ", ex, ez),
+        ("PRYZ", "NUYZ", ey, ez),
+    ];
+    let mut nu = [0.0; 3];
+    for (k, (major, minor, ei, ej)) in pairs.into_iter().enumerate() {
+        nu[k] = match (get(major), get(minor)) {
+            (Some(_), Some(_)) => {
+                return Err(format!(
+                    "{major} and {minor} are both given (ANSYS takes the major or the minor \
+                     form, not both)"
+                ))
+            }
+            (Some(p), None) => p,
+            (None, Some(m)) => m * ei / ej,
+            (None, None) => {
+                return Err(format!(
+                    "neither {major} nor {minor} is given (ANSYS has no default for it)"
+                ))
+            }
         };
-        let rho = v.get("DENS").map_or(0.0, |x| x.1);
-        Ok(Material::isotropic(
-            mat.max(0) as u64,
-            &format!("MAT{mat}"),
-            e,
-            nu,
-            rho,
-        ))
-    })();
-    match checked {
-        Ok(m) => Some(m),
-        Err(why) => {
-            refused.push((
-                line,
-                format!("material {mat}: {why}: only isotropic materials are read"),
-            ));
-            None
+    }
+    let d = elasticity::from_engineering_constants([ex, ey, ez], nu, [gxy, gxz, gyz])?;
+    match elasticity::check(&d)? {
+        elasticity::Definiteness::Positive => {}
+        elasticity::Definiteness::Singular { rank } => {
+            return Err(format!(
+                "the elasticity matrix is singular (rank {rank} of 6): not positive definite"
+            ))
         }
     }
+    let rho = v.get("DENS").map_or(0.0, |x| x.1);
+    Ok(Material::anisotropic(
+        mat.max(0) as u64,
+        &format!("MAT{mat}"),
+        d,
+        rho,
+    ))
 }
 
 /// What a `TB` table of this label does to a linear body at its undeformed state: `Ok` when

@@ -8,7 +8,8 @@
 //! Elements are formed by type and KEYOPT ([`elements`], [`form`]), materials from
 //! `MPTEMP`/`MPDATA` ([`materials`]), the section commands in [`sections`] (shell and beam
 //! sections in [`shells`] and [`beams`]), `D`/`CE`/`CP`/`F`/`ACEL` in [`constraints`], `SFE`
-//! pressures in [`surface`], the `NBLOCK`'s nodal coordinate systems in [`nodal`]; contact
+//! pressures in [`surface`], the `NBLOCK`'s nodal coordinate systems in [`nodal`], `LOCAL`
+//! systems and the elements' ESYS (orthotropic material axes) in [`esys`]; contact
 //! pairs (remote points, bonded contact) in [`contact`] and [`bonded`]; node and element
 //! components (`CMBLOCK`) become the model's named sets.
 
@@ -20,6 +21,7 @@ mod connections;
 mod constraints;
 mod contact;
 mod elements;
+mod esys;
 mod form;
 pub mod full;
 mod materials;
@@ -100,8 +102,8 @@ struct Archive {
     raw: constraints::Raw,
     /// `SFE` pressures.
     pressures: Vec<surface::Pressure>,
-    /// `LOCAL`/`CLOCAL` systems: (line, system number).
-    locals: Vec<(usize, i64)>,
+    /// `LOCAL`/`CLOCAL` systems and the active one (`CSYS`).
+    locals: esys::LocalSystems,
     lumped: Option<(usize, bool)>,
     /// LINK sections by id, and the section the last SECTYPE opened (`None`: not a LINK one).
     sections: BTreeMap<i64, LinkSection>,
@@ -359,15 +361,9 @@ impl Archive {
                 let (pressures, noted) = (&mut self.pressures, &mut self.noted);
                 surface::sfe(file, c, record, pressures, noted, &mut refused)?;
             }
-            "LOCAL" | "CLOCAL" => {
-                // LOCAL,KCN,… or the archive's LOCAL,R5.0,LOC|ANG|PRM,KCN,… (three lines)
-                let at = if blocks::archive_form(c.field(0)) {
-                    2
-                } else {
-                    0
-                };
-                self.locals.push((c.line, c.int(file, at)?))
-            }
+            // LOCAL,KCN,… or the archive's LOCAL,R5.0,LOC|ANG|PRM,KCN,… (three lines)
+            "LOCAL" | "CLOCAL" => drop(self.locals.define(file, c)?),
+            "CSYS" => self.locals.csys(file, c)?,
             "ACEL" => self.raw.acel(file, c)?,
             "LUMPM" => {
                 let on = c.field(0).eq_ignore_ascii_case("ON") || c.field(0) == "1";

@@ -65,35 +65,6 @@ pub(super) fn to_global(model: &Model, node: usize, v: [f64; 3]) -> [f64; 3] {
     }
 }
 
-impl super::Archive {
-    /// Elements with an element coordinate system (`EBLOCK`'s ESYS > 0): refused, one line per
-    /// system at its first element. ANSYS orients an element's material (and its results) by
-    /// it; the archive's `LOCAL`/`CLOCAL` systems are not resolved here (coordinates and nodal
-    /// angles are written global, so without an ESYS naming them they change nothing).
-    pub(super) fn element_systems(&mut self) {
-        let mut first: BTreeMap<i64, (usize, u64, usize)> = BTreeMap::new();
-        for r in self.elements.iter().filter(|r| r.esys > 0) {
-            first.entry(r.esys).or_insert((r.line, r.id, 0)).2 += 1;
-        }
-        for (esys, (line, id, count)) in first {
-            let local = (self.locals.iter())
-                .find(|l| l.1 == esys)
-                .map_or("no LOCAL of the archive defines it".into(), |l| {
-                    format!("LOCAL at line {}", l.0)
-                });
-            self.refused.push((
-                line,
-                format!("EBLOCK element {id}"),
-                "ESYS".into(),
-                format!(
-                    "element coordinate system {esys} ({local}) on {count} element(s), the first \
-                     here: the material orientation it gives is not read"
-                ),
-            ));
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
