@@ -36,7 +36,24 @@ pub(crate) fn build(
         bytes,
     } = lexer;
     let case = super::case_control::parse(&case_lines, has_case_control, &files)?;
-    let effective = case.effective(subcase, &files, &files[0])?;
+    let effective = match case.effective(subcase, &files, &files[0]) {
+        Ok(effective) => effective,
+        // a refused solution (SOL 105, 106, 200, …) outranks the choice among its subcases
+        Err(e) => {
+            let keys: Vec<String> = ignore.iter().map(|s| ignore_key(s)).collect();
+            let sol = solution(
+                &case,
+                &files,
+                &keys,
+                &mut BTreeMap::new(),
+                &mut Model::default(),
+            );
+            return Err(sol.map_or(e, |card| ImportError::Refused {
+                file: files[0].clone(),
+                cards: vec![card],
+            }));
+        }
+    };
     let mut b = Builder::new(&files[0]);
     b.files = files.clone();
     b.model.deck.title = case.title.clone();
