@@ -14,7 +14,7 @@ mod common;
 use std::collections::HashMap;
 use std::path::Path;
 
-use ansys_support::{build, data, multiply, node_table, read_dofs};
+use ansys_support::{assert_refused_at, build, data, line_of, multiply, node_table, read_dofs};
 use common::scratch;
 
 /// A solution csv of make_shell181.py: node id → [x y z, u (6), ANSYS's K u (6), force and
@@ -160,37 +160,22 @@ fn unformed_shell181_options_are_refused_by_line() {
             s += &format!("MPDATA,R5.0, 1,{label:<4},       {m}, 1, {v:e},\n");
         }
     }
-    let dir = scratch("ansys-shell-refusals");
-    let cdb = dir.join("refused.cdb");
-    std::fs::write(&cdb, &s).unwrap();
-    let o = build(&cdb, "mm-t-s", 4, &[]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    let line_of = |needle: &str| s.lines().position(|l| l.contains(needle)).unwrap() + 1;
-    let first = line_of("(19i9)") + 1;
-    for (line, what) in [
+    let first = line_of(&s, "(19i9)") + 1;
+    let offset = format!(
+        "SHELL181 on a section offset to its top surface (SECOFFSET line {})",
+        line_of(&s, "SECOFFSET,TOP")
+    );
+    let expected = [
         (first, "SHELL181 KEYOPT(3)=0 (the default"),
         (first + 1, "SHELL181 KEYOPT(1)=1"),
         (first + 2, "degenerate triangle"),
         (first + 3, "layers of different materials"),
+        (first + 4, offset.as_str()),
         (
-            first + 4,
-            &format!(
-                "SHELL181 on a section offset to its top surface (SECOFFSET line {})",
-                line_of("SECOFFSET,TOP")
-            ),
-        ),
-        (
-            line_of("SECDATA,  1.0,  1,  0.0,  1"),
+            line_of(&s, "SECDATA,  1.0,  1,  0.0,  1"),
             "1 integration point(s)",
         ),
-        (line_of("SECCONTROL"), "drill stiffness factor 2"),
-    ] {
-        let want = format!("refused.cdb:{line}: ");
-        assert!(
-            err.lines().any(|l| l.contains(&want) && l.contains(what)),
-            "{want} {what}\n{err}"
-        );
-    }
-    let _ = std::fs::remove_dir_all(&dir);
+        (line_of(&s, "SECCONTROL"), "drill stiffness factor 2"),
+    ];
+    assert_refused_at(&s, "ansys-shell-refusals", "mm-t-s", &expected);
 }

@@ -145,6 +145,33 @@ pub fn build(path: &Path, units: &str, modes: usize, extra: &[&str]) -> Output {
         .unwrap()
 }
 
+/// The 1-based number of the first line of `text` that contains `needle`.
+pub fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("no line holds {needle:?}"))
+        + 1
+}
+
+/// Writes `archive` as `refused.cdb` in the scratch folder `folder`, builds it and asserts that
+/// the build exits 2 saying every `(line, what)` as `refused.cdb:LINE: …what…`.
+pub fn assert_refused_at(archive: &str, folder: &str, units: &str, expected: &[(usize, &str)]) {
+    let dir = crate::common::scratch(folder);
+    let cdb = dir.join("refused.cdb");
+    std::fs::write(&cdb, archive).unwrap();
+    let o = build(&cdb, units, 4, &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    for (line, what) in expected {
+        let want = format!("refused.cdb:{line}: ");
+        assert!(
+            err.lines().any(|l| l.contains(&want) && l.contains(what)),
+            "{want} {what}\n{err}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A file of the committed ANSYS data (`tests/data/ansys/`, MIT, its LICENSE beside it).
 pub fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

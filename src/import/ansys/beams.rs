@@ -16,7 +16,7 @@ use super::blocks::{Command, ElementRecord};
 use crate::import::error::ImportError;
 use crate::model::geometry::{cross, dot, norm, scale, sub};
 use crate::model::{
-    BeamSection as ModelBeamSection, Element, ElementKind, Model, Property, Section,
+    BeamSection as ModelBeamSection, Element, ElementKind, Model, Node, Property, Section,
 };
 
 /// The subtypes of `SECTYPE,id,BEAM` whose constants are computed here.
@@ -264,13 +264,25 @@ pub(super) fn rectangle_torsion(b: f64, h: f64) -> f64 {
     a * c.powi(3) * (1.0 / 3.0 - 64.0 / PI.powi(5) * (c / a) * sum)
 }
 
-/// A BEAM188 (KEYOPT(3)=0) as the model receives it: nodes I, J and the orientation node K.
+/// A BEAM188 or BEAM189 as the model receives it: nodes I, J, the mid node and the orientation
+/// node.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Beam {
     pub ends: [u64; 2],
-    /// BEAM189's mid node.
-    pub mid: Option<u64>,
+    pub mid: Mid,
     pub orientation: Option<u64>,
+}
+
+/// A beam's middle node.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Mid {
+    /// BEAM188 KEYOPT(3)=0: none (linear).
+    None,
+    /// BEAM189: the archive's node K.
+    Node(u64),
+    /// BEAM188 KEYOPT(3)=2: ANSYS's internal node, which the archive does not hold: made at
+    /// the middle of IJ.
+    Internal,
 }
 
 /// BEAM188 (MAPDL Element Reference "BEAM188"; Theory Reference §13.188): KEYOPT(3)=0 (linear,
@@ -286,24 +298,17 @@ pub(super) fn beam188(keyopts: &BTreeMap<u32, i64>, rec: &ElementRecord) -> Resu
             keyopt(1)
         ));
     }
-    match keyopt(3) {
-        0 => {}
-        2 => {
-            return Err(
-                "BEAM188 KEYOPT(3)=2 (quadratic, an internal node; 2 points along the length): \
-                 not formed here (KEYOPT(3)=0, linear, is)"
-                    .into(),
-            )
-        }
-        3 => {
-            return Err(
+    let mid =
+        match keyopt(3) {
+            0 => Mid::None,
+            2 => Mid::Internal,
+            3 => return Err(
                 "BEAM188 KEYOPT(3)=3 (cubic, two internal nodes; 3 points along the length): not \
                  formed here (KEYOPT(3)=0, linear, is)"
                     .into(),
-            )
-        }
-        k => return Err(format!("BEAM188 KEYOPT(3)={k}: not an option of BEAM188")),
-    }
+            ),
+            k => return Err(format!("BEAM188 KEYOPT(3)={k}: not an option of BEAM188")),
+        };
     let no_effect = [1, 2, 3, 4, 6, 7, 9, 11, 15];
     if let Some((k, v)) = keyopts.iter().find(|(k, _)| !no_effect.contains(*k)) {
         return Err(format!(
@@ -335,7 +340,7 @@ pub(super) fn beam188(keyopts: &BTreeMap<u32, i64>, rec: &ElementRecord) -> Resu
     let k = n.get(2).copied().filter(|&k| k != 0);
     Ok(Beam {
         ends: [i, j],
-        mid: None,
+        mid,
         orientation: k,
     })
 }
@@ -375,7 +380,7 @@ pub(super) fn beam189(keyopts: &BTreeMap<u32, i64>, rec: &ElementRecord) -> Resu
     }
     Ok(Beam {
         ends: [i, j],
-        mid: Some(mid),
+        mid: Mid::Node(mid),
         orientation: Some(n(3)).filter(|&l| l != 0),
     })
 }
@@ -388,6 +393,8 @@ pub(super) struct BeamContext<'a> {
     pub sections: &'a BTreeMap<i64, BeamSection>,
     pub property_of: &'a BTreeMap<i64, usize>,
     pub made: BeamProperties,
+    /// The id of the next internal node (BEAM188 KEYOPT(3)=2): after the archive's largest.
+    next_internal: Option<u64>,
 }
 
 /// The refusals of the archive's elements: (element type, reason) → (first line, count).
@@ -403,6 +410,7 @@ impl<'a> BeamContext<'a> {
             sections,
             property_of,
             made: BeamProperties::new(),
+            next_internal: None,
         }
     }
 
@@ -417,36 +425,68 @@ impl<'a> BeamContext<'a> {
         refusals: &mut Refusals,
     ) -> Result<Option<usize>, ImportError> {
         let mut nodes = vec![node_of(beam.ends[0])?, node_of(beam.ends[1])?];
-        if let Some(mid) = beam.mid {
-            nodes.push(node_of(mid)?);
-        }
+        let name = match beam.mid {
+            Mid::None => "BEAM188",
+            Mid::Node(mid) => {
+                nodes.push(node_of(mid)?);
+                "BEAM189"
+            }
+            Mid::Internal => {
+                nodes.push(self.internal_node(model, [nodes[0], nodes[1]]));
+                "BEAM188 KEYOPT(3)=2"
+            }
+        };
         let k = beam.orientation.map(&node_of).transpose()?;
-        Ok(match push_beam(model, self, rec, &nodes, k) {
+        Ok(match push_beam(model, self, rec, &nodes, k, name) {
             Ok(e) => Some(e),
             Err(why) => {
+                if beam.mid == Mid::Internal {
+                    // the internal node was the last one made: no element holds it now
+                    model.nodes.pop();
+                    self.next_internal = self.next_internal.map(|id| id - 1);
+                }
                 refusals.entry((rec.etype, why)).or_insert((rec.line, 0)).1 += 1;
                 None
             }
         })
     }
+
+    /// BEAM188 KEYOPT(3)=2's internal node at the middle of `ends`, numbered as ANSYS numbers
+    /// it (the result file of ansys/example-data's `post_beam_result_01.rst`: after the
+    /// largest node id, in element order): its model index.
+    fn internal_node(&mut self, model: &mut Model, ends: [usize; 2]) -> usize {
+        let id = *self
+            .next_internal
+            .get_or_insert_with(|| model.nodes.iter().map(|n| n.id).max().unwrap_or(0) + 1);
+        self.next_internal = Some(id + 1);
+        let [a, b] = ends.map(|k| model.nodes[k].x);
+        model.nodes.push(Node {
+            id,
+            x: std::array::from_fn(|c| (a[c] + b[c]) / 2.0),
+            displacement_frame: None,
+        });
+        model.nodes.len() - 1
+    }
 }
 
-/// Adds a beam (record `rec`; its nodes as model indices: I, J and BEAM189's mid node; `k` the
-/// orientation node) to the model as a [`ElementKind::Beam2Linear`] (BEAM188) or
-/// [`ElementKind::Beam3Quadratic`] (BEAM189) of its section and material: the element's index,
-/// or why not.
+/// Adds a beam (record `rec`, named `name` in refusals; its nodes as model indices: I, J and
+/// the mid node; `k` the orientation node) to the model as a [`ElementKind::Beam2Linear`]
+/// (BEAM188) or [`ElementKind::Beam3Quadratic`] (BEAM189; BEAM188 KEYOPT(3)=2, whose
+/// functions and points the Theory Reference gives as BEAM189's) of its section and material:
+/// the element's index, or why not.
 pub(super) fn push_beam(
     model: &mut Model,
     ctx: &mut BeamContext,
     rec: &ElementRecord,
     nodes: &[usize],
     k: Option<usize>,
+    name: &str,
 ) -> Result<usize, String> {
     let ends = [nodes[0], nodes[1]];
-    let (kind, name) = if nodes.len() == 2 {
-        (ElementKind::Beam2Linear, "BEAM188")
+    let kind = if nodes.len() == 2 {
+        ElementKind::Beam2Linear
     } else {
-        (ElementKind::Beam3Quadratic, "BEAM189")
+        ElementKind::Beam3Quadratic
     };
     let Some(section) = ctx.sections.get(&rec.section) else {
         return Err(format!(
@@ -456,7 +496,7 @@ pub(super) fn push_beam(
     };
     let Some(&solid) = ctx.property_of.get(&rec.mat) else {
         return Err(format!(
-            "BEAM188 of material {}, which has no MPDATA",
+            "{name} of material {}, which has no MPDATA",
             rec.mat
         ));
     };
@@ -548,10 +588,12 @@ pub(super) fn note(model: &Model) -> Option<String> {
     (model.elements.iter())
         .any(|e| beams.contains(&e.kind))
         .then(|| {
-            "ANSYS archive: BEAM188 (KEYOPT(3)=0) and BEAM189 formed as the Theory Reference \
-         states them (linear functions and one-point stiffness, or quadratic functions \
-         and two-point stiffness; consistent mass with rotary inertia; BEAM188's lumped \
-         mass on the translations only); RECT, CSOLID and CTUBE constants in \
+            "ANSYS archive: BEAM188 (KEYOPT(3)=0 and 2) and BEAM189 formed as the Theory \
+         Reference states them (linear functions and one-point stiffness, or quadratic \
+         functions and two-point stiffness — BEAM188 KEYOPT(3)=2 on its internal node, made \
+         at the middle of IJ and numbered after the archive's largest node id, as ANSYS \
+         numbers it; consistent mass with rotary inertia; BEAM188's lumped mass on the \
+         translations only); RECT, CSOLID and CTUBE constants in \
          closed form (A and I exact, J exact for circles and by Saint-Venant's series \
          for rectangles, Cowper's shear factors) where ANSYS computes J and the shear \
          factors on its own section mesh: they may differ from ANSYS's by a few per \
@@ -566,8 +608,8 @@ pub(super) fn lumped_refusal(model: &Model) -> Option<&'static str> {
     (model.elements.iter())
         .any(|e| e.kind == ElementKind::Beam3Quadratic)
         .then_some(
-            "LUMPM,ON with BEAM189: ANSYS's lumped mass of the quadratic beam is not established \
-             here (its consistent mass is formed)",
+            "LUMPM,ON with BEAM189 or BEAM188 KEYOPT(3)=2: ANSYS's lumped mass of the quadratic \
+             beam is not established here (its consistent mass is formed)",
         )
 }
 

@@ -18,11 +18,8 @@
 //!   a target on deformable faces), a node in a nodal coordinate system (the equations are on
 //!   global components).
 
-use std::collections::BTreeMap;
-
 use super::blocks::ElementRecord;
-use super::elements::ElementType;
-use super::segments::{contact_face, face_nodes, PairRefusal};
+use super::segments::{contact_face, face_nodes, Pair, PairRefusal};
 use crate::import::abaqus::tie::{face_shape, project};
 use crate::model::{Model, Mpc, NodeDof, NodeIndex};
 
@@ -35,15 +32,12 @@ struct TargetFace {
 /// The contact nodes of `contacts` tied to the target faces `targets` (module doc): MPCs into
 /// `model` and a note counting the nodes tied and left free; or the pair's refusal.
 pub(super) fn tie<'a, E>(
-    types: &BTreeMap<i64, ElementType>,
-    constants: Option<&Vec<f64>>,
-    real: i64,
-    targets: &[&'a ElementRecord],
-    contacts: &[&'a ElementRecord],
+    pair: &Pair<'a, '_>,
     node_of: &impl Fn(&ElementRecord, u64) -> Result<NodeIndex, E>,
     model: &mut Model,
 ) -> Result<Result<(), PairRefusal<'a>>, E> {
-    let radius = match options(types, constants, real, targets, contacts) {
+    let (real, targets, contacts) = (pair.real, &pair.targets[..], &pair.contacts[..]);
+    let radius = match options(pair) {
         Ok(radius) => radius,
         Err(refusal) => return Ok(Err(refusal)),
     };
@@ -141,13 +135,9 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 /// The pair's KEYOPTs and real constants (module doc): the pinball radius, or the refusal.
-fn options<'a>(
-    types: &BTreeMap<i64, ElementType>,
-    constants: Option<&Vec<f64>>,
-    real: i64,
-    targets: &[&'a ElementRecord],
-    contacts: &[&'a ElementRecord],
-) -> Result<f64, PairRefusal<'a>> {
+fn options<'a>(pair: &Pair<'a, '_>) -> Result<f64, PairRefusal<'a>> {
+    let (types, constants, real) = (pair.types, pair.constants, pair.real);
+    let (targets, contacts) = (&pair.targets[..], &pair.contacts[..]);
     let first = contacts[0];
     if let Some(other) = contacts.iter().find(|r| r.etype != first.etype) {
         let why = format!(

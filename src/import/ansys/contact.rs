@@ -34,7 +34,7 @@ use std::collections::BTreeMap;
 
 use super::blocks::ElementRecord;
 use super::elements::ElementType;
-use super::segments::{contact_face, face_nodes, PairRefusal, PILOT_SHAPES};
+use super::segments::{contact_face, face_nodes, Pair, PairRefusal, PILOT_SHAPES};
 use super::Archive;
 use crate::import::abaqus::coupling::{nodal_areas, Rule, QUAD_4, QUAD_9, TRI_1, TRI_3};
 use crate::import::error::{parse_err, ImportError};
@@ -99,26 +99,24 @@ fn pairs(
         let number = |r: &ElementRecord| types[&r.etype].row.map_or(0, |row| row.0);
         let (targets, contacts): (Vec<&ElementRecord>, Vec<&ElementRecord>) =
             records.iter().partition(|r| number(r) == 170);
-        let target_faces =
-            !targets.is_empty() && (targets.iter()).all(|r| r.shape.and_then(face_nodes).is_some());
-        if target_faces && !contacts.is_empty() {
-            let tie = super::bonded::tie;
-            if let Err((r, why)) = tie(
-                types,
-                reals.get(&real),
-                real,
-                &targets,
-                &contacts,
-                &node_of,
-                model,
-            )? {
+        let pair = Pair {
+            types,
+            constants: reals.get(&real),
+            real,
+            targets,
+            contacts,
+        };
+        let target_faces = !pair.targets.is_empty()
+            && (pair.targets.iter()).all(|r| r.shape.and_then(face_nodes).is_some());
+        if target_faces && !pair.contacts.is_empty() {
+            if let Err((r, why)) = super::bonded::tie(&pair, &node_of, model)? {
                 add(refusals, r, why);
             }
             continue;
         }
-        match pilot_constraint(types, reals.get(&real), real, &targets, &contacts) {
+        match pilot_constraint(&pair) {
             Ok((pilot, kind, dofs)) => {
-                let element = spider(pilot, kind, dofs, &contacts, &node_of, model)?;
+                let element = spider(pilot, kind, dofs, &pair.contacts, &node_of, model)?;
                 match element {
                     Ok(e) => model.rigid_elements.push(e),
                     Err((r, why)) => add(refusals, r, why),
@@ -137,12 +135,10 @@ fn add(refusals: &mut Refusals, r: &ElementRecord, why: String) {
 /// The pair of real constant set `real` as a surface-based constraint: its pilot record, kind
 /// and the pilot dofs constrained; or why not.
 fn pilot_constraint<'a>(
-    types: &BTreeMap<i64, ElementType>,
-    constants: Option<&Vec<f64>>,
-    real: i64,
-    targets: &[&'a ElementRecord],
-    contacts: &[&'a ElementRecord],
+    pair: &Pair<'a, '_>,
 ) -> Result<(&'a ElementRecord, Kind, DofMask), PairRefusal<'a>> {
+    let (types, constants, real) = (pair.types, pair.constants, pair.real);
+    let (targets, contacts) = (&pair.targets[..], &pair.contacts[..]);
     let Some(&first_contact) = contacts.first() else {
         return Err((
             targets[0],

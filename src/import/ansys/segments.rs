@@ -11,6 +11,16 @@ use super::elements::ElementType;
 /// A refusal of a pair: the record it is named by and the reason.
 pub(super) type PairRefusal<'a> = (&'a ElementRecord, String);
 
+/// A pair: the TARGE170 and contact records of one real constant set, with the element types
+/// and the set's real constants that judge them.
+pub(super) struct Pair<'a, 't> {
+    pub types: &'t BTreeMap<i64, ElementType>,
+    pub constants: Option<&'t Vec<f64>>,
+    pub real: i64,
+    pub targets: Vec<&'a ElementRecord>,
+    pub contacts: Vec<&'a ElementRecord>,
+}
+
 /// TARGE170's shape keys of a pilot node (`TSHAPE,PILO`): 19, and 99 as ANSYS also writes it
 /// (ansys-mapdl-reader's `mesh.py` reads both as the pilot).
 pub(super) const PILOT_SHAPES: [i64; 2] = [19, 99];
