@@ -338,7 +338,11 @@ fn cbush1d_equals_a_crod_of_the_same_axial_stiffness() {
         &deck(&format!("CBUSH1D,1,6,1,2\nPBUSH1D,6,{k:?},,1.5\n")),
     );
     let err = build_refused(&massive);
-    assert!(err.contains("PBUSH1D M"), "{err}");
+    // refused where a CBUSH1D uses it (a PBUSH1D no element uses forms nothing)
+    assert!(
+        err.contains("PBUSH1D 6") && err.contains("M = 1.5, used by CBUSH1D 1"),
+        "{err}"
+    );
 }
 
 /// Two CQUAD8 of a clamped strip: `g7` and `g6` are element 1's seventh and element 2's sixth

@@ -36,7 +36,7 @@ pub(crate) fn build(
         bytes,
     } = lexer;
     let case = super::case_control::parse(&case_lines, has_case_control, &files)?;
-    let effective = case.effective(subcase, &files, &files[0])?;
+    let effective = effective_scope(&case, subcase, &files, ignore)?;
     let mut b = Builder::new(&files[0]);
     b.files = files.clone();
     b.model.deck.title = case.title.clone();
@@ -317,6 +317,31 @@ fn statsub_preload(
 
 /// The deck's `SOL` (module `sol`): a normal-modes solution passes; a linear response
 /// solution passes with a note; any other is refused (unless ignored as `SOL`).
+/// The case control's selections for `subcase`; when the deck's subcases leave the choice
+/// open, a refused solution (SOL 105, 106, 200, …) is the error instead: it outranks the
+/// choice among its subcases.
+fn effective_scope(
+    case: &super::case_control::CaseControl,
+    subcase: Option<u64>,
+    files: &[String],
+    ignore: &[String],
+) -> Result<super::case_control::Effective, ImportError> {
+    case.effective(subcase, files, &files[0]).map_err(|e| {
+        let keys: Vec<String> = ignore.iter().map(|s| ignore_key(s)).collect();
+        let sol = solution(
+            case,
+            files,
+            &keys,
+            &mut BTreeMap::new(),
+            &mut Model::default(),
+        );
+        sol.map_or(e, |card| ImportError::Refused {
+            file: files[0].clone(),
+            cards: vec![card],
+        })
+    })
+}
+
 fn solution(
     case: &super::case_control::CaseControl,
     files: &[String],

@@ -18,8 +18,8 @@
 //!   "PBUSH1D"): a spring K along the element axis (from GA to GB, or the x axis of system
 //!   CID), on the grids' translations (the line of action passes through both grids: no
 //!   rotation takes part); a grounded one (GB blank) is refused, as a grounded CBUSH is by
-//!   the build. C (damping) is a note; a non-zero M (the element's mass) is refused, as PBUSH
-//!   M; the SHOCKA, SPRING, DAMPER and GENER lines (nonlinear force–velocity and
+//!   the build. C (damping) is a note; a non-zero M (the element's mass) is an error where a
+//!   CBUSH1D uses the property (a PBUSH1D no element uses forms nothing); the SHOCKA, SPRING, DAMPER and GENER lines (nonlinear force–velocity and
 //!   force–deflection laws) are a note: MSC uses them in nonlinear transient solutions only,
 //!   a normal-modes analysis uses K.
 //!
@@ -50,12 +50,7 @@ pub(super) fn pbush1d<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
     if g.real_or(2, 0.0)? != 0.0 {
         d.note_as("PBUSH1D C".into(), g, super::cards::DAMPING);
     }
-    if g.real_or(3, 0.0)? != 0.0 {
-        d.refuse(
-            g,
-            "PBUSH1D M: a mass of the bush is not supported (model it with CONM2)",
-        );
-    }
+    let mass = g.real_or(3, 0.0)?;
     for at in (8..g.card.fields.len()).step_by(8) {
         match g.text(at).to_ascii_uppercase().as_str() {
             "" => {}
@@ -73,7 +68,7 @@ pub(super) fn pbush1d<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError
             }
         }
     }
-    d.bushes.pbush1d.insert(pid, k);
+    d.bushes.pbush1d.insert(pid, (k, mass, g.card));
     Ok(())
 }
 
@@ -106,12 +101,22 @@ fn resolve_1d(d: &mut Bulk) -> Result<(), ImportError> {
             Some(p) if p > 0 => p as u64,
             Some(p) => return Err(g.err(1, format!("bad property id {p}"))),
         };
-        let k = *d.bushes.pbush1d.get(&pid).ok_or_else(|| {
+        let (k, mass, property) = *d.bushes.pbush1d.get(&pid).ok_or_else(|| {
             g.err(
                 1,
                 format!("references PBUSH1D {pid}, which the deck does not define"),
             )
         })?;
+        if mass != 0.0 {
+            // a PBUSH1D no CBUSH1D uses forms nothing: its M is refused where it is used
+            return Err(C::new(property, d.files).err(
+                3,
+                format!(
+                    "M = {mass}, used by CBUSH1D {eid}: a mass of the bush is not supported \
+                     (model it with CONM2)"
+                ),
+            ));
+        }
         let Some(b) = b else {
             return Err(g.err(
                 3,

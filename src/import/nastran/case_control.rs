@@ -257,7 +257,10 @@ pub(crate) fn parse(
             }
         }
         if word == "SUBCASE" {
+            // `SUBCASE n`, also written `SUBCASE = n` (ZONA's and other decks; pyNastran reads it)
             let id = upper[7..]
+                .trim()
+                .trim_start_matches('=')
                 .trim()
                 .parse::<u64>()
                 .map_err(|_| err(files, loc, "SUBCASE", format!("bad subcase id in '{text}'")))?;
@@ -642,5 +645,17 @@ mod tests {
             (2, 3)
         );
         assert!(cc.effective(Some(7), &files, "d.bdf").is_err());
+    }
+
+    /// `SUBCASE = n` (ZONA's decks, pyNastran's models/aero/zona) is `SUBCASE n`.
+    #[test]
+    fn subcase_id_may_follow_an_equals_sign() {
+        let files = vec!["d.bdf".to_owned()];
+        let text = "SOL 103\nCEND\nSUBCASE = 7\n  SPC = 1\nSUBCASE=8\n  SPC = 1\n";
+        let cc = parse(&lines(text), true, &files).unwrap();
+        let ids: Vec<u64> = cc.subcases.iter().map(|s| s.id).collect();
+        assert_eq!(ids, [7, 8]);
+        let bad = parse(&lines("CEND\nSUBCASE = x\n"), true, &files).unwrap_err();
+        assert!(bad.to_string().contains("bad subcase id"), "{bad}");
     }
 }

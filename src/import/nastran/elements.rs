@@ -36,6 +36,7 @@ const ELEMENTS: &[ElementCard] = &[
     ("CBAR", 2, &[(2, Bar2)]),
     ("CBEAM", 2, &[(2, Beam2)]),
     ("CROD", 2, &[(2, Rod2)]),
+    ("CTUBE", 2, &[(2, Rod2)]),
     ("CQUAD4", 4, &[(4, Quad4)]),
     ("CQUADR", 4, &[(4, Quad4)]),
     ("CTRIAR", 3, &[(3, Tri3)]),

@@ -90,6 +90,24 @@ impl Lexer {
         )
     }
 
+    /// The file `INCLUDE 'name'` in `including` names: a relative name from the including
+    /// file's folder or, when no such file exists there, from the main deck's folder (MSC
+    /// resolves a relative INCLUDE from the job's folder, so nested includes written for it —
+    /// pyNastran's models/Satellite_V02 — name files from there).
+    fn include_path(&self, including: &Path, name: &str) -> std::path::PathBuf {
+        let own = including.parent().unwrap_or(Path::new(".")).join(name);
+        if own.exists() {
+            return own;
+        }
+        let main = Path::new(&self.files[0]).parent().unwrap_or(Path::new("."));
+        let from_main = main.join(name);
+        if from_main.exists() {
+            from_main
+        } else {
+            own
+        }
+    }
+
     /// `INCLUDE 'file'` in the executive or case control: the file's lines are case control.
     fn case_include(
         &mut self,
@@ -109,7 +127,7 @@ impl Lexer {
                 "includes nested deeper than 16 (cycle?)".into(),
             ));
         }
-        let full = parent.parent().unwrap_or(Path::new(".")).join(name);
+        let full = self.include_path(parent, name);
         let text = read_text(&full).map_err(|e| match e {
             ImportError::Io { file, source } => {
                 self.err(loc, "INCLUDE", format!("cannot read {file}: {source}"))
@@ -211,7 +229,7 @@ impl Lexer {
                         "includes nested deeper than 16 (cycle?)".into(),
                     ));
                 }
-                let full = path.parent().unwrap_or(Path::new(".")).join(name);
+                let full = self.include_path(path, name);
                 self.files.push(full.display().to_string());
                 let idx = self.files.len() as u32 - 1;
                 let ended = self.lex_file(&full, idx, depth + 1).map_err(|e| match e {

@@ -1,8 +1,9 @@
-//! Property and material cards — PSOLID, PSHELL, PCOMP, PROD, PBAR, PBARL, PBEAM, PBEAML,
+//! Property and material cards — PSOLID, PSHELL, PCOMP, PROD, PTUBE, PBAR, PBARL, PBEAM, PBEAML,
 //! MAT1, MAT2, MAT8, MAT9 — and their resolution (one property id space, WTMASS on non-structural mass).
 //!
 //! * `MAT1 MID E G NU RHO`: two of E, G, ν give the third, G = E / (2(1+ν)).
-//! * `PROD PID MID A J C NSM`; `PBAR PID MID A I1 I2 J NSM … K1 K2 I12`;
+//! * `PROD PID MID A J C NSM`; `PTUBE PID MID OD T NSM OD2` (a rod of the tube's A and J, for
+//!   CTUBE as a CROD: [`tube`]); `PBAR PID MID A I1 I2 J NSM … K1 K2 I12`;
 //!   `PBEAM PID MID A I1 I2 I12 J NSM` (end A; K1, K2 after the stations);
 //!   `PBARL/PBEAML PID MID GROUP TYPE / DIM1 … NSM` (MSC QRG "PBARL").
 //! * `PSOLID PID MID CORDM IN STRESS ISOP FCTN`: ISOP blank means MSC's CHEXA/CPENTA with
@@ -20,7 +21,7 @@ use crate::model::{BeamSection, BeamTaper, ImportWarning, Material, Property, Se
 /// Note on the library shapes other than ROD: their J and shear factors are textbook values.
 const LIBRARY_CONSTANTS: &str = "A, I1, I2, I12 of the shape exactly; J and the shear factors K1, K2 (Nastran does not publish its own for this shape) by the rules of src/model/beam_library.rs: thin-walled J (Bredt for closed walls), K = web area / A";
 
-/// Reader of PSOLID, PSHELL, PROD, PBAR, PBARL, PBEAM, PBEAML.
+/// Reader of PSOLID, PSHELL, PROD, PTUBE, PBAR, PBARL, PBEAM, PBEAML.
 pub(super) fn property<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
     let name = g.card.name.as_str();
     let p = &mut d.properties;
@@ -341,7 +342,39 @@ fn beam(g: &C, at: [usize; 6], k: Option<[f64; 2]>) -> Result<Section, ImportErr
     }))
 }
 
-/// The section of a PSOLID, PROD, PBAR, PBEAM, PBARL or PBEAML card.
+/// PTUBE `PID MID OD T NSM OD2` (MSC QRG "PTUBE"): the rod of a tube of outer diameter D = OD
+/// and wall T (blank or 0: a solid rod), A = π/4 (D² − d²), J = π/32 (D⁴ − d⁴) with
+/// d = D − 2T (the polar moment, as the QRG states J of the tube); a tapered tube (OD2 ≠ OD)
+/// is an error.
+fn tube(g: &C) -> Result<Section, ImportError> {
+    let od = g.real(2)?.filter(|d| *d > 0.0 && d.is_finite());
+    let od = od.ok_or_else(|| g.err(2, "OD must be > 0"))?;
+    let t = g.real_or(3, 0.0)?;
+    if !(t >= 0.0 && t <= 0.5 * od) {
+        return Err(g.err(
+            3,
+            format!("T = {t}: the wall must be 0 ≤ T ≤ OD/2 = {}", 0.5 * od),
+        ));
+    }
+    if differs(g.real(5)?, od) {
+        return Err(g.err(
+            5,
+            format!(
+                "OD2 = {} ≠ OD = {od}: a tapered tube is not implemented",
+                g.text(5)
+            ),
+        ));
+    }
+    let inner = if t == 0.0 { 0.0 } else { od - 2.0 * t };
+    let pi = std::f64::consts::PI;
+    Ok(Section::Rod {
+        area: pi / 4.0 * (od.powi(2) - inner.powi(2)),
+        j: pi / 32.0 * (od.powi(4) - inner.powi(4)),
+        nsm: g.real_or(4, 0.0)?,
+    })
+}
+
+/// The section of a PSOLID, PROD, PTUBE, PBAR, PBEAM, PBARL or PBEAML card.
 fn section(g: &C) -> Result<Section, ImportError> {
     Ok(match g.card.name.as_str() {
         "PSOLID" => Section::Solid,
@@ -358,6 +391,7 @@ fn section(g: &C) -> Result<Section, ImportError> {
             beam(g, [2, 3, 4, 18, 5, 6], k)?
         }
         "PBEAM" => pbeam(g)?,
+        "PTUBE" => tube(g)?,
         _ => library_card(g)?,
     })
 }

@@ -17,8 +17,8 @@ pub(super) struct BushCards<'a> {
     pub pbush: HashMap<u64, [f64; 6]>,
     /// CBUSH cards with their resolved end nodes.
     pub cbush: Vec<(&'a Card, usize, Option<usize>)>,
-    /// PBUSH1D K by PID.
-    pub pbush1d: HashMap<u64, f64>,
+    /// PBUSH1D K and M by PID, with the card (a CBUSH1D on a PBUSH1D with mass is refused).
+    pub pbush1d: HashMap<u64, (f64, f64, &'a Card)>,
     /// CBUSH1D cards with their resolved end nodes.
     pub cbush1d: Vec<(&'a Card, usize, Option<usize>)>,
 }

@@ -337,12 +337,14 @@ pub(super) fn apply_thickness(
                 ),
             ));
         }
-        if ts.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
+        // MSC QRG CQUAD4/CTRIA3: Ti ≥ 0.0 or blank, not all zero (a corner may taper to 0)
+        if ts.iter().any(|t| !(t.is_finite() && *t >= 0.0)) || ts.iter().all(|t| *t == 0.0) {
+            let hint = if base > 0.0 { "" } else { " (PSHELL T blank?)" };
             return Err(crate::import::error::parse_err(
                 &et.file,
                 et.line,
                 format!("element {eid}"),
-                format!("corner thicknesses {ts:?}: each must be > 0 (PSHELL T blank?)"),
+                format!("corner thicknesses {ts:?}: each must be ≥ 0 and not all 0{hint}"),
             ));
         }
         let kind = model.elements[et.elem].kind;

@@ -8,7 +8,7 @@
 use super::case_control::Effective;
 use super::fields::C;
 use super::reading::Bulk;
-use crate::import::error::ImportError;
+use crate::import::error::{ImportError, RefusedCard};
 use crate::model::EigenRequest;
 
 /// Reader of EIGRL and EIGR.
@@ -107,5 +107,48 @@ pub(super) fn resolve_method(d: &mut Bulk, effective: &Effective) -> Result<(), 
         lower_hz: lo,
         upper_hz: hi,
     });
+    Ok(())
+}
+
+/// Reader of MDLPRM (MSC QRG "MDLPRM": `MDLPRM NAME1 V1 NAME2 V2 …`): each pair through its row
+/// of the MDLPRM table (`cards::mdlprm`): a note, honoured at MSC's default behaviour (a blank
+/// value is the default), or refused with the reason; a name in no row is refused.
+pub(super) fn mdlprm<'a>(d: &mut Bulk<'a>, g: &C<'a>) -> Result<(), ImportError> {
+    use super::cards::mdlprm::{is_accepted, model_param, ModelParamRule};
+    let mut k = 0;
+    while k < g.card.fields.len() {
+        let name = g.text(k).to_ascii_uppercase();
+        let value = g.text(k + 1);
+        k += 2;
+        if name.is_empty() {
+            if !value.is_empty() {
+                return Err(g.err(k - 1, format!("value '{value}' without a parameter name")));
+            }
+            continue;
+        }
+        let refuse = |d: &mut Bulk, reason: String| {
+            d.refused.push(RefusedCard {
+                file: g.file.to_owned(),
+                line: g.line(k - 2),
+                entity: format!("MDLPRM {name} = {value}"),
+                key: "MDLPRM".to_owned(),
+                reason,
+            })
+        };
+        match model_param(&name) {
+            Some((_, category, ModelParamRule::Note(why))) => {
+                let entry = (d.noted.entry(*category).or_default())
+                    .entry(format!("MDLPRM:{name}"))
+                    .or_insert_with(|| (Some(*why), Vec::new()));
+                entry.1.push(g.card.loc);
+            }
+            Some((_, _, ModelParamRule::Only(accepted, why))) => {
+                if !(value.is_empty() || is_accepted(value, accepted)) {
+                    refuse(d, (*why).to_owned());
+                }
+            }
+            None => refuse(d, super::cards::NOT_READ.to_owned()),
+        }
+    }
     Ok(())
 }

@@ -20,6 +20,7 @@
 
 pub(super) mod bulk;
 pub(super) mod commands;
+pub(super) mod mdlprm;
 pub(super) mod params;
 mod rule;
 
@@ -141,6 +142,7 @@ impl Category {
             Category::Eigen => "the eigenvalue method of another analysis (buckling, complex modes) or mode tracking",
             Category::Matrix => "a matrix only a DMAP alter or an aeroelastic solution reads",
             Category::Constraint | Category::DofSet => "a set that does not hold the body in a normal-modes analysis",
+            Category::Property => "a property only an element type refused where it appears would use: by itself it forms nothing",
             _ => OUTPUT,
         }
     }
@@ -272,6 +274,16 @@ pub fn markdown() -> String {
             }
         }
     }
+    s.push_str(
+        "\n## MDLPRM parameters (`MDLPRM, NAME1, V1, NAME2, V2, …`; `--ignore MDLPRM`)\n\n\
+         Each pair of an MDLPRM card is read by its row: a note (any value), or honoured at \
+         the values that keep MSC's default behaviour (a blank value is the default) and \
+         refused at any other. A name in no row is refused.\n\n\
+         | name | disposition |\n|---|---|\n",
+    );
+    for (name, _, rule) in mdlprm::MODEL_PARAMS {
+        s.push_str(&format!("| {name} | {} |\n", mdlprm::disposition(rule)));
+    }
     s
 }
 
@@ -285,6 +297,9 @@ mod tests {
             for w in table.windows(2) {
                 assert!(w[0].0 < w[1].0, "{} before {}", w[0].0, w[1].0);
             }
+        }
+        for w in mdlprm::MODEL_PARAMS.windows(2) {
+            assert!(w[0].0 < w[1].0, "{} before {}", w[0].0, w[1].0);
         }
         assert!(matches!(
             lookup(bulk::CARDS, "GRID"),
