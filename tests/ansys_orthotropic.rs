@@ -10,11 +10,13 @@
 //!   along the ESYS's X, rotated or not;
 //! - refusals by line: a partial orthotropic set naming the label, both Poisson forms, a D not
 //!   positive definite, an orthotropic shell and B-bar brick, a cylindrical ESYS.
+mod ansys_support;
 mod common;
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use ansys_support::{solid_blocks, tet_as_brick};
 use common::{assert_frequencies, ccx_frequencies, exe, scratch};
 
 /// E1, E2, E3, ν12, ν13, ν23, G12, G13, G23, ρ of `fixtures/ccx_ansys_ortho/make_decks.py`
@@ -121,27 +123,7 @@ fn archive(
     systems: &str,
 ) -> String {
     let mut s = format!("/PREP7\n{et}{systems}");
-    s += &format!(
-        "NBLOCK,6,SOLID,{0:>10},{0:>10}\n(3i9,6e21.13e3)\n",
-        nodes.len()
-    );
-    for (id, p) in nodes {
-        s += &format!(
-            "{id:>9}{:>9}{:>9}{:>21.13E}{:>21.13E}{:>21.13E}\n",
-            0, 0, p[0], p[1], p[2]
-        );
-    }
-    s += "N,R5.3,LOC,       -1,\n";
-    s += &format!("EBLOCK,19,SOLID,{0:>10},{0:>10}\n(19i10)\n", elements.len());
-    for (e, n) in elements.iter().enumerate() {
-        let head = [1, 1, 1, 1, esys, 0, 0, 0, n.len() as u64, 0, e as u64 + 1];
-        let record: Vec<u64> = head.iter().chain(n).copied().collect();
-        for line in record.chunks(19) {
-            s += &line.iter().map(|v| format!("{v:>10}")).collect::<String>();
-            s.push('\n');
-        }
-    }
-    s += "        -1\n";
+    s += &solid_blocks(nodes.iter(), elements, esys);
     s += &material(poisson);
     for (id, p) in nodes {
         if p[0] == 0.0 {
@@ -216,14 +198,7 @@ fn difference(a: &[f64], b: &[f64]) -> f64 {
 /// The tetrahedra of `tet10_local` as ANSYS writes a degenerate SOLID186 (I J K K M M M M,
 /// Q R K T, M M M M, Y Z A A).
 fn tets_as_bricks(elements: &[Vec<u64>]) -> Vec<Vec<u64>> {
-    (elements.iter())
-        .map(|n| {
-            vec![
-                n[0], n[1], n[2], n[2], n[3], n[3], n[3], n[3], n[4], n[5], n[2], n[6], n[3], n[3],
-                n[3], n[3], n[7], n[8], n[9], n[9],
-            ]
-        })
-        .collect()
+    elements.iter().map(|n| tet_as_brick(n)).collect()
 }
 
 /// `flexbody build DECK --mass lumped` (the deck through flexbody's Abaqus importer): the

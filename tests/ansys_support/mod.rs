@@ -260,11 +260,14 @@ pub fn tet_as_brick(n: &[u64]) -> Vec<u64> {
     ]
 }
 
-/// An archive of SOLID186 (KEYOPT(2)=`keyopt2`) records on `nodes`, steel as the ccx decks,
-/// clamped at x = 0.
-pub fn solid186_archive(nodes: &[(u64, [f64; 3])], bricks: &[Vec<u64>], keyopt2: u32) -> String {
-    let mut s = format!("ET,        1,186\nKEYOP,        1, 2,        {keyopt2}\n");
-    s += &format!(
+/// The NBLOCK of `nodes` and an EBLOCK of `elements` (type, material, real and section 1, ESYS
+/// `esys`, ids 1, 2, …; records of 19 ten-wide fields per line) as CDWRITE writes solids.
+pub fn solid_blocks<'a>(
+    nodes: impl ExactSizeIterator<Item = (&'a u64, &'a [f64; 3])>,
+    elements: &[Vec<u64>],
+    esys: u64,
+) -> String {
+    let mut s = format!(
         "NBLOCK,6,SOLID,{0:>10},{0:>10}\n(3i9,6e21.13e3)\n",
         nodes.len()
     );
@@ -275,16 +278,24 @@ pub fn solid186_archive(nodes: &[(u64, [f64; 3])], bricks: &[Vec<u64>], keyopt2:
         );
     }
     s += "N,R5.3,LOC,       -1,\n";
-    s += &format!("EBLOCK,19,SOLID,{0:>10},{0:>10}\n(19i10)\n", bricks.len());
-    for (e, b) in bricks.iter().enumerate() {
-        let head = [1, 1, 1, 1, 0, 0, 0, 0, 20, 0, e as u64 + 1];
-        let record: Vec<u64> = head.iter().chain(b).copied().collect();
-        for line in [&record[..19], &record[19..]] {
+    s += &format!("EBLOCK,19,SOLID,{0:>10},{0:>10}\n(19i10)\n", elements.len());
+    for (e, n) in elements.iter().enumerate() {
+        let head = [1, 1, 1, 1, esys, 0, 0, 0, n.len() as u64, 0, e as u64 + 1];
+        let record: Vec<u64> = head.iter().chain(n).copied().collect();
+        for line in record.chunks(19) {
             s += &line.iter().map(|v| format!("{v:>10}")).collect::<String>();
             s.push('\n');
         }
     }
-    s += "        -1\nMPTEMP,R5.0, 1, 1,  0.00000000    ,\n";
+    s + "        -1\n"
+}
+
+/// An archive of SOLID186 (KEYOPT(2)=`keyopt2`) records on `nodes`, steel as the ccx decks,
+/// clamped at x = 0.
+pub fn solid186_archive(nodes: &[(u64, [f64; 3])], bricks: &[Vec<u64>], keyopt2: u32) -> String {
+    let mut s = format!("ET,        1,186\nKEYOP,        1, 2,        {keyopt2}\n");
+    s += &solid_blocks(nodes.iter().map(|(id, p)| (id, p)), bricks, 0);
+    s += "MPTEMP,R5.0, 1, 1,  0.00000000    ,\n";
     for (label, v) in [("EX", 2.1e11), ("NUXY", 0.3), ("DENS", 7850.0)] {
         s += &format!("MPDATA,R5.0, 1,{label:<4},       1, 1, {v:e},\n");
     }
