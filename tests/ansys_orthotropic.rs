@@ -16,7 +16,7 @@ mod common;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use ansys_support::{solid_blocks, tet_as_brick};
+use ansys_support::{build, build_modes, read_inp, solid_blocks, tet_as_brick};
 use common::{assert_frequencies, ccx_frequencies, exe, scratch};
 
 /// E1, E2, E3, ν12, ν13, ν23, G12, G13, G23, ρ of `fixtures/ccx_ansys_ortho/make_decks.py`
@@ -69,46 +69,13 @@ fn material(poisson: Poisson) -> String {
     s
 }
 
-/// Nodes and elements of one of the fixture's decks (an element line ending in a comma
-/// continues on the next).
+/// Nodes and elements of one of the fixture's decks.
 fn read_deck(stem: &str) -> (BTreeMap<u64, [f64; 3]>, Vec<Vec<u64>>) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("fixtures/ccx_ansys_ortho")
         .join(format!("{stem}.inp"));
-    let text = std::fs::read_to_string(path).unwrap();
-    let (mut nodes, mut elements, mut section) = (BTreeMap::new(), Vec::new(), "");
-    let mut pending: Vec<u64> = Vec::new();
-    for line in text.lines() {
-        if line.starts_with('*') {
-            section = if line.starts_with("*NODE") {
-                "node"
-            } else if line.starts_with("*ELEMENT") {
-                "element"
-            } else {
-                ""
-            };
-            continue;
-        }
-        let f: Vec<&str> = (line.split(','))
-            .map(str::trim)
-            .filter(|t| !t.is_empty())
-            .collect();
-        match section {
-            "node" => {
-                let x = std::array::from_fn(|i| f[i + 1].parse().unwrap());
-                nodes.insert(f[0].parse().unwrap(), x);
-            }
-            "element" => {
-                pending.extend(f.iter().map(|t| t.parse::<u64>().unwrap()));
-                if !line.trim_end().ends_with(',') {
-                    elements.push(pending.split_off(1));
-                    pending.clear();
-                }
-            }
-            _ => {}
-        }
-    }
-    (nodes, elements)
+    let (nodes, elements) = read_inp(&path);
+    (nodes.into_iter().collect(), elements)
 }
 
 /// An archive of element type `et` (its ET/KEYOPT lines) on the nodes and elements, material 1
@@ -160,20 +127,11 @@ fn try_build(
 ) -> (Option<i32>, String, Option<flexbody_reader::ReducedBody>) {
     let cdb = dir.join(format!("{name}.cdb"));
     std::fs::write(&cdb, text).unwrap();
-    let out = cdb.with_extension("flexbody");
-    let o = exe()
-        .arg("build")
-        .arg(&cdb)
-        .args(["--units", "si", "--method", "normal", "--modes"])
-        .arg(modes.to_string())
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = build(&cdb, "si", modes, &[]);
     let body = o
         .status
         .success()
-        .then(|| flexbody_reader::read(&out).unwrap());
+        .then(|| flexbody_reader::read(cdb.with_extension("flexbody")).unwrap());
     (
         o.status.code(),
         String::from_utf8_lossy(&o.stderr).into_owned(),
@@ -294,18 +252,7 @@ fn solid186_orthotropic_bricks_equal_the_c3d20r_deck() {
         let text = archive("ET,1,186\n", &nodes, &elements, poisson, esys, &systems);
         let cdb = dir.join(format!("{stem}.cdb"));
         std::fs::write(&cdb, &text).unwrap();
-        let out = cdb.with_extension("flexbody");
-        let o = exe()
-            .arg("build")
-            .arg(&cdb)
-            .args(["--units", "si", "--method", "normal", "--modes", "10"])
-            .args(lumped)
-            .arg("-o")
-            .arg(&out)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let ours = flexbody_reader::read(&out).unwrap().modes.frequency_hz;
+        let ours = build_modes(&cdb, 10, &lumped);
         let twin = deck_frequencies(&dir, stem, &lumped, 10);
         worst_twin = worst_twin.max(assert_frequencies(stem, &ours, &twin, 0, 1e-10));
         let consistent = deck_frequencies(&dir, stem, &["--mass", "consistent"], 10);

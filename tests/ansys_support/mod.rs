@@ -214,10 +214,12 @@ pub fn node_table<const N: usize>(text: &str, skip: usize) -> HashMap<u64, [f64;
 /// Nodes of a mesh: (id, xyz).
 pub type Nodes = Vec<(u64, [f64; 3])>;
 
-/// Nodes and elements (node ids) of one of our own small ccx decks.
+/// Nodes and elements (node ids) of one of our own small ccx decks (an element line ending in a
+/// comma continues on the next).
 pub fn read_inp(path: &Path) -> (Nodes, Vec<Vec<u64>>) {
     let text = std::fs::read_to_string(path).unwrap();
     let (mut nodes, mut elements, mut section) = (Vec::new(), Vec::new(), "");
+    let mut pending: Vec<u64> = Vec::new();
     for line in text.lines() {
         if line.starts_with('*') {
             section = if line.starts_with("*NODE") {
@@ -229,13 +231,22 @@ pub fn read_inp(path: &Path) -> (Nodes, Vec<Vec<u64>>) {
             };
             continue;
         }
-        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        let f: Vec<&str> = (line.split(','))
+            .map(str::trim)
+            .filter(|t| !t.is_empty())
+            .collect();
         match section {
             "node" => nodes.push((
                 f[0].parse().unwrap(),
                 std::array::from_fn(|i| f[i + 1].parse().unwrap()),
             )),
-            "element" => elements.push(f[1..].iter().map(|t| t.parse().unwrap()).collect()),
+            "element" => {
+                pending.extend(f.iter().map(|t| t.parse::<u64>().unwrap()));
+                if !line.trim_end().ends_with(',') {
+                    elements.push(pending.split_off(1));
+                    pending.clear();
+                }
+            }
             _ => {}
         }
     }
