@@ -36,14 +36,14 @@ pub(crate) fn build(
         bytes,
     } = lexer;
     let case = super::case_control::parse(&case_lines, has_case_control, &files)?;
-    let effective = effective_scope(&case, subcase, &files, ignore)?;
+    let ignore: Vec<String> = ignore.iter().map(|s| ignore_key(s)).collect();
+    let effective = effective_scope(&case, subcase, &files, &ignore)?;
     let mut b = Builder::new(&files[0]);
     b.files = files.clone();
     b.model.deck.title = case.title.clone();
     b.model.deck.subcase = effective.subcase;
 
     // Pass 1: cards dropped on purpose set aside; the geometry cards place the nodes.
-    let ignore: Vec<String> = ignore.iter().map(|s| ignore_key(s)).collect();
     let mut ignored: BTreeMap<String, Vec<Loc>> = BTreeMap::new();
     let mut counts = CardCounts::new();
     let mut geometry = GeometryCards::default();
@@ -315,11 +315,9 @@ fn statsub_preload(
     Ok(Some(request))
 }
 
-/// The deck's `SOL` (module `sol`): a normal-modes solution passes; a linear response
-/// solution passes with a note; any other is refused (unless ignored as `SOL`).
 /// The case control's selections for `subcase`; when the deck's subcases leave the choice
 /// open, a refused solution (SOL 105, 106, 200, …) is the error instead: it outranks the
-/// choice among its subcases.
+/// choice among its subcases. `ignore`: the `--ignore` names as [`ignore_key`]s.
 fn effective_scope(
     case: &super::case_control::CaseControl,
     subcase: Option<u64>,
@@ -327,11 +325,10 @@ fn effective_scope(
     ignore: &[String],
 ) -> Result<super::case_control::Effective, ImportError> {
     case.effective(subcase, files, &files[0]).map_err(|e| {
-        let keys: Vec<String> = ignore.iter().map(|s| ignore_key(s)).collect();
         let sol = solution(
             case,
             files,
-            &keys,
+            ignore,
             &mut BTreeMap::new(),
             &mut Model::default(),
         );
@@ -342,6 +339,8 @@ fn effective_scope(
     })
 }
 
+/// The deck's `SOL` (module `sol`): a normal-modes solution passes; a linear response
+/// solution passes with a note; any other is refused (unless ignored as `SOL`).
 fn solution(
     case: &super::case_control::CaseControl,
     files: &[String],
