@@ -156,6 +156,20 @@ fn against_ccx(name: &str, cdb_text: &str, inp_text: &str) -> (f64, f64) {
     (modes, static_)
 }
 
+/// Builds two archives as [`against_ccx`] does: the largest frequency and static response
+/// differences.
+fn against_archive(name: &str, a: &str, b: &str) -> (f64, f64) {
+    let work = scratch(name);
+    let (pa, pb) = (work.join("a.cdb"), work.join("b.cdb"));
+    std::fs::write(&pa, a).unwrap();
+    std::fs::write(&pb, b).unwrap();
+    let args = ["--mass", "lumped", RESIDUALS[0], RESIDUALS[1]];
+    let (ba, bb) = (build(&pa, 8, &args), build(&pb, 8, &args));
+    let modes = frequency_difference(&ba, &bb, 8);
+    let static_ = response_difference(&static_response(&ba, 0), &static_response(&bb, 0));
+    (modes, static_)
+}
+
 /// The rigid surface constraint of CONTA174 faces (KEYOPT(4)=2) equals `*KINEMATIC` 1…3 on the
 /// same faces: the pilot's mass and rotary inertia carried by the tip, the pilot's forces and
 /// moment reaching the beam.
@@ -431,8 +445,13 @@ fn bonded_archive(m: &Block, contacts: &[Vec<u64>], pinball: f64) -> String {
 /// part's (S4) by `*TIE` with POSITION TOLERANCE = `pinball` and ADJUST=NO, the far corner's
 /// loads as `*CLOAD`.
 fn bonded_ccx(m: &Block, first_part: usize, pinball: f64) -> String {
+    bonded_ccx_at(m, first_part, pinball, 0.3)
+}
+
+/// [`bonded_ccx`] with the second part's faces at x = `slave_at`.
+fn bonded_ccx_at(m: &Block, first_part: usize, pinball: f64, slave_at: f64) -> String {
     let mut s = String::from("*SURFACE, NAME=SLAVE, TYPE=ELEMENT\n");
-    for (e, _) in faces_at(m, 0.3, true)
+    for (e, _) in faces_at(m, slave_at, true)
         .iter()
         .filter(|(e, _)| *e > first_part)
     {
@@ -563,4 +582,205 @@ fn force_distributed_weights_are_the_consistent_face_areas() {
     println!("FX on the pilot against the consistent nodal forces: {worst:.2e}");
     // measured 4.1e-13
     assert!(worst < 4e-12, "{worst:e}");
+}
+
+/// The two parts `gap` apart along x (the second over [0.3 + gap, 0.6 + gap]), as
+/// [`two_parts`].
+fn two_parts_apart(gap: f64) -> (Block, usize) {
+    let (mut m, first_part) = two_parts();
+    for (id, x) in m.nodes.iter_mut() {
+        if *id > 10_000 {
+            x[0] += gap;
+        }
+    }
+    (m, first_part)
+}
+
+/// The second part's x-min faces (the contact faces of [`bonded_archive`]) at x = `at`.
+fn glue_faces(m: &Block, first_part: usize, at: f64) -> Vec<Vec<u64>> {
+    (faces_at(m, at, true).into_iter())
+        .filter(|(e, _)| *e > first_part)
+        .map(|(_, f)| f)
+        .collect()
+}
+
+/// `text` with CONTA174's KEYOPT(9) set to `value`.
+fn with_keyopt9(text: &str, value: u32) -> String {
+    let k12 = "KEYOP,        3,12,        5\n";
+    assert!(text.contains(k12));
+    text.replacen(
+        k12,
+        &format!("{k12}KEYOP,        3, 9,        {value}\n"),
+        1,
+    )
+}
+
+/// KEYOPT(9)=1 (exclude the initial gap: Workbench's bonded contact) under MPC bonded contact is
+/// the tie as placed: on touching faces it equals the KEYOPT(9)=0 archive (no gap to close) and
+/// ccx's `*TIE`; with the parts 2e-4 apart (inside the pinball 1e-3) it equals `*TIE,
+/// ADJUST=NO` on the same gap, and KEYOPT(9)=0 there (ANSYS closes the gap) is refused by line
+/// naming the largest gap.
+#[test]
+fn keyopt9_excluding_the_gap_is_the_tie_as_placed() {
+    let (m, first_part) = two_parts();
+    let glue = glue_faces(&m, first_part, 0.3);
+    let plain = bonded_archive(&m, &glue, 1e-3);
+    let inp = bonded_ccx(&m, first_part, 1e-3);
+    let (modes, static_) = against_ccx("ansys-k9-touching", &with_keyopt9(&plain, 1), &inp);
+    println!("KEYOPT(9)=1 touching against *TIE: frequencies {modes:.2e}, static {static_:.2e}");
+    // measured 3.4e-12 and 3.7e-12
+    assert!(modes < 3.4e-11, "{modes:e}");
+    assert!(static_ < 4e-11, "{static_:e}");
+    // the same MPCs as KEYOPT(9)=0: the two archives' bodies agree (measured 0 and 0)
+    let (same, same_static) =
+        against_archive("ansys-k9-touching-0", &with_keyopt9(&plain, 1), &plain);
+    println!("KEYOPT(9)=1 against KEYOPT(9)=0, touching: {same:.2e}, static {same_static:.2e}");
+    assert!(
+        same < 1e-12 && same_static < 1e-12,
+        "{same:e} {same_static:e}"
+    );
+
+    let gap = 2e-4;
+    let (m, first_part) = two_parts_apart(gap);
+    let glue = glue_faces(&m, first_part, 0.3 + gap);
+    assert_eq!(glue.len(), 9);
+    let apart = bonded_archive(&m, &glue, 1e-3);
+    let inp = bonded_ccx_at(&m, first_part, 1e-3, 0.3 + gap);
+    let (modes, static_) = against_ccx("ansys-k9-gap", &with_keyopt9(&apart, 1), &inp);
+    println!(
+        "KEYOPT(9)=1 with a 2e-4 gap against *TIE, ADJUST=NO: {modes:.2e}, static {static_:.2e}"
+    );
+    // measured 4.7e-12 and 6.3e-12 (the same MPCs: the two builds' eigensolves)
+    assert!(modes < 3.4e-11, "{modes:e}");
+    assert!(static_ < 4e-11, "{static_:e}");
+    for (k, text) in [with_keyopt9(&apart, 0), apart.clone()].iter().enumerate() {
+        let err = refused(&format!("ansys-k9-gap-refused-{k}"), text);
+        assert!(err.contains("KEYOPT(9)=0"), "{err}");
+        assert!(err.contains("2.0000e-4"), "{err}");
+        // at the first CONTA174 record: after the header lines, the NBLOCK and the bricks
+        assert!(err.contains("refused.cdb:"), "{err}");
+    }
+}
+
+/// The assemblies flexbody does not form are refused by line: a symmetric pair (the touching
+/// parts bonded both ways, real constant sets 3 and 5: ANSYS keeps one and ignores the other,
+/// which one not stated), and a shell-solid assembly (SHELL181 quadrilaterals on the first
+/// part's x = 0.3 face as CONTA174 contact faces, the bricks' faces their target: ANSYS ties
+/// the shell nodes' rotations too).
+#[test]
+fn symmetric_pairs_and_shell_solid_assemblies_are_refused() {
+    let (m, first_part) = two_parts();
+    let glue = glue_faces(&m, first_part, 0.3);
+    let text = bonded_archive(&m, &glue, 1e-3);
+    // the mirror: CONTA174 (type 3, set 5) on the first part's faces, TARGE170 QUA8 (type 2,
+    // set 5) on the second part's
+    let mirror: Vec<(usize, usize, usize, Vec<u64>)> = (faces_at(&m, 0.3, false).into_iter())
+        .map(|(_, f)| (3, 5, 0, f))
+        .chain(glue.iter().map(|f| (2, 5, 9, f.clone())))
+        .collect();
+    let symmetric = with_records(&text, &mirror, "R,5,0,0,0,0,0,-1e-3\n");
+    let err = refused("ansys-bonded-symmetric", &symmetric);
+    assert!(
+        err.contains("real constant set 3 and its mirror, set 5"),
+        "{err}"
+    );
+    assert!(
+        err.contains("real constant set 5 and its mirror, set 3"),
+        "{err}"
+    );
+
+    // 2 × 2 SHELL181 on the x = 0.3 face (nodes 20 001…, 0.01 thick), bonded to the bricks
+    let mut nodes = String::new();
+    let id = |j: u64, k: u64| 20_001 + 3 * j + k;
+    for j in 0..3u64 {
+        for k in 0..3u64 {
+            let (y, z) = (0.05 * j as f64, 0.05 * k as f64);
+            nodes += &format!("{:>9}{:>9}{:>9}", id(j, k), 0, 0);
+            nodes += &format!("{:>21.13E}{y:>21.13E}{z:>21.13E}\n", 0.3);
+        }
+    }
+    let quads: Vec<Vec<u64>> = (0..2u64)
+        .flat_map(|j| {
+            (0..2u64).map(move |k| vec![id(j, k), id(j + 1, k), id(j + 1, k + 1), id(j, k + 1)])
+        })
+        .collect();
+    let shell: Vec<(usize, usize, usize, Vec<u64>)> = (quads.iter())
+        .map(|q| (5, 6, 0, q.clone()))
+        .chain(quads.iter().map(|q| (3, 7, 0, q.clone())))
+        .chain(
+            (faces_at(&m, 0.3, false).into_iter())
+                .filter(|(e, _)| *e <= first_part)
+                .map(|(_, f)| (2, 7, 9, f)),
+        )
+        .collect();
+    let shell_solid = with_records(
+        &text.replace(
+            "ET,        2,170",
+            "ET,        5,181\nKEYOP,        5, 3,        2\nET,        2,170",
+        ),
+        &shell,
+        "R,6,0.01\nR,7,0,0,0,0,0,-1e-3\n",
+    )
+    .replacen("N,R5.3,LOC", &format!("{nodes}N,R5.3,LOC"), 1);
+    let err = refused("ansys-bonded-shell-solid", &shell_solid);
+    assert!(err.contains("shell-solid or shell-shell assembly"), "{err}");
+    assert!(
+        err.contains("real constant set 7 on contact node 2000"),
+        "{err}"
+    );
+}
+
+/// `text` (a [`bonded_archive`]) with `records` appended to its EBLOCK (ids after the last) and
+/// `reals` after its real constants.
+fn with_records(text: &str, records: &[(usize, usize, usize, Vec<u64>)], reals: &str) -> String {
+    let start = text.find("EBLOCK").unwrap();
+    let end = start + text[start..].find("       -1\n").unwrap();
+    let old: Vec<&str> = text[start..end].lines().skip(2).collect();
+    // the header's record count (a brick's record takes two lines)
+    let count: usize = text[start..]
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .nth(3)
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    let first = count + 1;
+    let mut added = String::new();
+    for (k, (etype, real, shape, nodes)) in records.iter().enumerate() {
+        let head = [
+            1,
+            *etype,
+            *real,
+            1,
+            0,
+            0,
+            0,
+            *shape,
+            nodes.len(),
+            0,
+            first + k,
+        ];
+        let fields: Vec<String> = (head.iter().map(|v| format!("{v:>9}")))
+            .chain(nodes.iter().map(|v| format!("{v:>9}")))
+            .collect();
+        added += &fields[..fields.len().min(19)].concat();
+        added.push('\n');
+        if fields.len() > 19 {
+            added += &fields[19..].concat();
+            added.push('\n');
+        }
+    }
+    let total = count + records.len();
+    let header = format!("EBLOCK,19,SOLID,{0},{0}\n(19i9)\n", total);
+    let body: String = old.iter().map(|l| format!("{l}\n")).collect();
+    let real_at = text.find("R,3,").unwrap();
+    format!(
+        "{}{header}{body}{added}{}{reals}{}",
+        &text[..start],
+        &text[end..real_at],
+        &text[real_at..]
+    )
 }

@@ -12,11 +12,29 @@
 //! * the pinball: a negative PINB (real constant 6) is its radius; ANSYS's default and a
 //!   positive PINB scale with the underlying elements' depth, which is not reproduced: refused.
 //!   Contact nodes farther than the radius from every target face stay free, counted in a note;
+//! * KEYOPT(9), the effect of the initial gap: 1 excludes it (Workbench writes `keyo,cid,9,1 !
+//!   ignore initial gaps/penetration`; an ANSYS contact course: with 1 "the gap is ignored and
+//!   the contact and target surfaces are held together in their 'as assembled' position", with
+//!   0 the contact elements "bring the contact and surfaces together such that the gap is
+//!   closed"): the node bonded where it is, u_c = Σ Nᵢ uᵢ, the form above. Any other value is
+//!   read only when every tied node lies on its target face (its nearest face point within
+//!   1e-9 of the target faces' extent: no gap to close, CNOF being refused), else refused
+//!   naming KEYOPT(9) and the largest gap (a closed gap is another geometry or a preload);
+//! * solid-solid assemblies only: a contact or target node of a shell, beam or link element
+//!   (a shell-solid or shell-shell assembly, Contact Technology Guide §10.1, §10.2: "the program
+//!   automatically constrains both translational and rotational degrees of freedom for a
+//!   shell-solid assembly", TARGE170 KEYOPT(5)=0 set internally to 4, in equations the guide
+//!   does not give) is refused, as is a pair whose mirror (contact and target swapped, another
+//!   real constant set) is in the archive: "only asymmetric contact is supported. If symmetric
+//!   pairs are defined, the program automatically selects one pair and ignores the other" —
+//!   which one is not stated;
 //! * refused by line: KEYOPT(12)=6 (bonded initial: which initially open nodes ANSYS leaves free
-//!   is not established), ICONT and CNOF, contact KEYOPTs other than 2, 4, 12 and the ignored 8
-//!   and 10, TARGE170 KEYOPTs other than 2 (the rigid target's boundary condition, no effect on
+//!   is not established), ICONT and CNOF, contact KEYOPTs other than 2, 4, 9, 12 and the ignored
+//!   8 and 10, TARGE170 KEYOPTs other than 2 (the rigid target's boundary condition, no effect on
 //!   a target on deformable faces), a node in a nodal coordinate system (the equations are on
 //!   global components).
+
+use std::collections::BTreeSet;
 
 use super::blocks::ElementRecord;
 use super::segments::{contact_face, face_nodes, Pair, PairRefusal};
@@ -31,14 +49,16 @@ struct TargetFace {
 
 /// The contact nodes of `contacts` tied to the target faces `targets` (module doc): MPCs into
 /// `model` and a note counting the nodes tied and left free; or the pair's refusal.
+/// `mirror` is the real constant set of a pair with contact and target swapped, if any.
 pub(super) fn tie<'a, E>(
     pair: &Pair<'a, '_>,
+    mirror: Option<i64>,
     node_of: &impl Fn(&ElementRecord, u64) -> Result<NodeIndex, E>,
     model: &mut Model,
 ) -> Result<Result<(), PairRefusal<'a>>, E> {
     let (real, targets, contacts) = (pair.real, &pair.targets[..], &pair.contacts[..]);
-    let radius = match options(pair) {
-        Ok(radius) => radius,
+    let (radius, keyopt9) = match options(pair) {
+        Ok(options) => options,
         Err(refusal) => return Ok(Err(refusal)),
     };
     let mut faces = Vec::with_capacity(targets.len());
@@ -74,8 +94,11 @@ pub(super) fn tie<'a, E>(
             }
         }
     }
-    let on_target: std::collections::BTreeSet<NodeIndex> =
+    let on_target: BTreeSet<NodeIndex> =
         faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
+    if let Some(why) = assembly_refusal(model, &slaves, &on_target, real, mirror) {
+        return Ok(Err((contacts[0], why)));
+    }
     let framed =
         (slaves.iter().chain(&on_target)).find(|&&n| model.nodes[n].displacement_frame.is_some());
     if let Some(&n) = framed {
@@ -86,30 +109,35 @@ pub(super) fn tie<'a, E>(
         );
         return Ok(Err((contacts[0], why)));
     }
-    let (mut tied, mut free) = (0usize, Vec::new());
+    // each contact node within the pinball: its face, the face point and its gap
+    let (mut ties, mut free) = (Vec::new(), Vec::new());
     for &s in slaves.iter().filter(|s| !on_target.contains(s)) {
         let p = model.nodes[s].x;
         let nearest = (faces.iter())
             .filter_map(|f| project(&f.x, p).map(|(q, at)| (f, q, distance(at, p))))
             .min_by(|a, b| a.2.total_cmp(&b.2));
         match nearest {
-            Some((face, q, d)) if d <= radius => {
-                let (shape, _) = face_shape(face.x.len(), q);
-                for component in 0..3u8 {
-                    let mut terms = vec![(NodeDof { node: s, component }, 1.0)];
-                    for (&node, &n) in face.nodes.iter().zip(&shape) {
-                        if n != 0.0 {
-                            terms.push((NodeDof { node, component }, -n));
-                        }
-                    }
-                    model.mpcs.push(Mpc {
-                        id: contacts[0].id,
-                        terms,
-                    });
-                }
-                tied += 1;
-            }
+            Some((face, q, d)) if d <= radius => ties.push((s, face, q, d)),
             _ => free.push(model.nodes[s].id),
+        }
+    }
+    if let Some(why) = gap_refusal(model, &faces, &ties, keyopt9, real) {
+        return Ok(Err((contacts[0], why)));
+    }
+    let tied = ties.len();
+    for (s, face, q, _) in ties {
+        let (shape, _) = face_shape(face.x.len(), q);
+        for component in 0..3u8 {
+            let mut terms = vec![(NodeDof { node: s, component }, 1.0)];
+            for (&node, &n) in face.nodes.iter().zip(&shape) {
+                if n != 0.0 {
+                    terms.push((NodeDof { node, component }, -n));
+                }
+            }
+            model.mpcs.push(Mpc {
+                id: contacts[0].id,
+                terms,
+            });
         }
     }
     let mut note = format!(
@@ -130,12 +158,91 @@ pub(super) fn tie<'a, E>(
     Ok(Ok(()))
 }
 
+/// Why a pair is not a solid-solid assembly flexbody forms (module doc): a contact or target
+/// node of an element that is not a solid (a shell, beam or link: ANSYS ties its rotations
+/// too), or a mirror pair of real constant set `mirror`.
+fn assembly_refusal(
+    model: &Model,
+    slaves: &[NodeIndex],
+    on_target: &BTreeSet<NodeIndex>,
+    real: i64,
+    mirror: Option<i64>,
+) -> Option<String> {
+    let in_pair: BTreeSet<NodeIndex> = slaves.iter().chain(on_target).copied().collect();
+    let structural = (model.elements.iter())
+        .filter(|e| e.property.is_some() && !e.kind.is_solid())
+        .find_map(|e| {
+            e.nodes
+                .iter()
+                .find(|n| in_pair.contains(n))
+                .map(|&n| (e, n))
+        });
+    if let Some((e, n)) = structural {
+        let side = if on_target.contains(&n) {
+            "target"
+        } else {
+            "contact"
+        };
+        return Some(format!(
+            "bonded MPC contact of real constant set {real} on {side} node {} of element {} \
+             ({:?}, not a solid): a shell-solid or shell-shell assembly, for which ANSYS \
+             constrains the shell nodes' rotations as well as their translations (Contact \
+             Technology Guide §10.2, TARGE170 KEYOPT(5)=0 set internally to 4) by equations the \
+             guide does not give — tying the translations alone would be another body; not \
+             formed",
+            model.nodes[n].id, e.id, e.kind
+        ));
+    }
+    mirror.map(|other| {
+        format!(
+            "bonded MPC contact of real constant set {real} and its mirror, set {other} (contact \
+             and target swapped): ANSYS supports only asymmetric MPC contact and \"automatically \
+             selects one pair and ignores the other\" (Contact Technology Guide §10.1) — which \
+             one is not stated, and forming both over-constrains the interface; not formed"
+        )
+    })
+}
+
+/// Why the initial gaps of `ties` (contact node, face, face point, gap) are refused under
+/// KEYOPT(9)=`keyopt9` (module doc): any value but 1 with a gap beyond 1e-9 of the target
+/// faces' extent.
+fn gap_refusal(
+    model: &Model,
+    faces: &[TargetFace],
+    ties: &[(NodeIndex, &TargetFace, [f64; 2], f64)],
+    keyopt9: i64,
+    real: i64,
+) -> Option<String> {
+    if keyopt9 == 1 {
+        return None;
+    }
+    let (mut low, mut high) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for x in faces.iter().flat_map(|f| &f.x) {
+        for k in 0..3 {
+            low[k] = low[k].min(x[k]);
+            high[k] = high[k].max(x[k]);
+        }
+    }
+    let extent = distance(low, high);
+    let &(node, _, _, gap) = ties.iter().max_by(|a, b| a.3.total_cmp(&b.3))?;
+    (gap > 1e-9 * extent).then(|| {
+        format!(
+            "real constant set {real}: KEYOPT(9)={keyopt9} includes the initial gap, which ANSYS \
+             closes, and contact node {} lies {gap:.4e} from its nearest target face point (the \
+             largest gap of the pair; the target faces span {extent:.4e}) — the closed geometry \
+             is not formed; KEYOPT(9)=1 (exclude it: bonded as placed) is read",
+            model.nodes[node].id
+        )
+    })
+}
+
 fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
-/// The pair's KEYOPTs and real constants (module doc): the pinball radius, or the refusal.
-fn options<'a>(pair: &Pair<'a, '_>) -> Result<f64, PairRefusal<'a>> {
+/// The pair's KEYOPTs and real constants (module doc): the pinball radius and KEYOPT(9), or the
+/// refusal.
+fn options<'a>(pair: &Pair<'a, '_>) -> Result<(f64, i64), PairRefusal<'a>> {
     let (types, constants, real) = (pair.types, pair.constants, pair.real);
     let (targets, contacts) = (&pair.targets[..], &pair.contacts[..]);
     let first = contacts[0];
@@ -175,7 +282,7 @@ fn options<'a>(pair: &Pair<'a, '_>) -> Result<f64, PairRefusal<'a>> {
     if let Some(why) = why {
         return Err((first, why));
     }
-    if let Some((k, v)) = (t.keyopts.iter()).find(|(k, _)| ![2, 4, 8, 10, 12].contains(*k)) {
+    if let Some((k, v)) = (t.keyopts.iter()).find(|(k, _)| ![2, 4, 8, 9, 10, 12].contains(*k)) {
         return Err((
             first,
             format!("{name} KEYOPT({k})={v}: not read for bonded contact"),
@@ -212,5 +319,5 @@ fn options<'a>(pair: &Pair<'a, '_>) -> Result<f64, PairRefusal<'a>> {
             ),
         ));
     }
-    Ok(-pinb)
+    Ok((-pinb, keyopt(9)))
 }

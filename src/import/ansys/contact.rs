@@ -30,7 +30,7 @@
 //! contact stiffness at the initial contact status, which a constraint cannot reproduce and
 //! dropping would change the body (`docs/ansys.md`).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::blocks::ElementRecord;
 use super::elements::ElementType;
@@ -95,8 +95,9 @@ fn pairs(
     for r in segments {
         pairs.entry(r.real).or_default().push(r);
     }
+    let number = |r: &ElementRecord| types[&r.etype].row.map_or(0, |row| row.0);
+    let sides = pair_sides(&pairs, &number);
     for (real, records) in pairs {
-        let number = |r: &ElementRecord| types[&r.etype].row.map_or(0, |row| row.0);
         let (targets, contacts): (Vec<&ElementRecord>, Vec<&ElementRecord>) =
             records.iter().partition(|r| number(r) == 170);
         let pair = Pair {
@@ -109,7 +110,8 @@ fn pairs(
         let target_faces = !pair.targets.is_empty()
             && (pair.targets.iter()).all(|r| r.shape.and_then(face_nodes).is_some());
         if target_faces && !pair.contacts.is_empty() {
-            if let Err((r, why)) = super::bonded::tie(&pair, &node_of, model)? {
+            let mirror = mirror_of(real, &sides);
+            if let Err((r, why)) = super::bonded::tie(&pair, mirror, &node_of, model)? {
                 add(refusals, r, why);
             }
             continue;
@@ -126,6 +128,35 @@ fn pairs(
         }
     }
     Ok(())
+}
+
+/// Each pair's node ids: (contact records' nodes, TARGE170 records' nodes).
+type Sides = BTreeMap<i64, (BTreeSet<u64>, BTreeSet<u64>)>;
+
+fn pair_sides(
+    pairs: &BTreeMap<i64, Vec<&ElementRecord>>,
+    number: &impl Fn(&ElementRecord) -> u32,
+) -> Sides {
+    (pairs.iter())
+        .map(|(&real, records)| {
+            let ids = |target: bool| -> BTreeSet<u64> {
+                (records.iter())
+                    .filter(|r| (number(r) == 170) == target)
+                    .flat_map(|r| r.nodes.iter().copied().filter(|&n| n != 0))
+                    .collect()
+            };
+            (real, (ids(false), ids(true)))
+        })
+        .collect()
+}
+
+/// The real constant set of another pair whose contact nodes meet this pair's target nodes and
+/// whose target nodes meet its contact nodes: a symmetric pair's mirror.
+fn mirror_of(real: i64, sides: &Sides) -> Option<i64> {
+    let (contact, target) = &sides[&real];
+    (sides.iter())
+        .find(|(&other, (c, t))| other != real && !c.is_disjoint(target) && !t.is_disjoint(contact))
+        .map(|(&other, _)| other)
 }
 
 fn add(refusals: &mut Refusals, r: &ElementRecord, why: String) {
