@@ -41,8 +41,9 @@ pub struct BlockParams {
     pub upper: Option<f64>,
     /// Largest count band mode may grow to.
     pub max_count: usize,
-    /// Keep M·V beside V (one product with M per step). Without it, the lean basis: half the
-    /// basis memory (8·n·basis bytes less) for two more products with M per step.
+    /// Keep M·V beside V (one product with M per step, M·F; two when the second Gram–Schmidt
+    /// update is made). Without it, the lean basis: half the basis memory (8·n·basis bytes less)
+    /// for one more product with M per step (M·W before the first pass).
     pub keep_mv: bool,
 }
 
@@ -252,7 +253,7 @@ pub fn block_shift_invert(
     let mut solves = 0usize;
     let mut restarts = 0usize;
     // A x from M x: with `keep_mv` every block's M-image is kept (MV beside V), so a step costs
-    // one product with M (in the M-QR) instead of three.
+    // one product with M (M·F, which the Gram–Schmidt test and the M-QR share) instead of two.
     let seconds_solve = std::cell::Cell::new(0.0);
     let mut seconds_orth = 0.0;
     let mut seconds_restart = 0.0;
