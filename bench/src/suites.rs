@@ -101,7 +101,9 @@ pub fn ours_eigen(
         "phases_s": {"read": t_read, "analyse_factor": s.info.seconds_factor,
                      "eigen": s.info.seconds_eigen, "total": total,
                      "eigen_solves": s.info.seconds_solve,
-                     "eigen_orthogonalization": s.info.seconds_orth},
+                     "eigen_orthogonalization": s.info.seconds_orth,
+                     "eigen_restarts": s.info.seconds_restart},
+        "gram_schmidt": gram_schmidt_json(&s.info.gram_schmidt),
         "solves": s.info.solves, "steps": s.info.steps, "restarts": s.info.restarts,
         "block": spec.block.unwrap_or(modes.min(flexbody::solve::DEFAULT_BLOCK)),
         "max_basis": spec.max_basis.unwrap_or_else(|| flexbody::solve::default_basis(
@@ -117,6 +119,12 @@ pub fn ours_eigen(
         "threads": format!("faer {:?}", threads()),
         "loadavg": loadavg(),
     }))
+}
+
+/// The eigen phase's Gram–Schmidt tally as JSON (blocks, second-pass coefficients formed,
+/// second-pass updates made).
+fn gram_schmidt_json(t: &flexbody::solve::eigen::GsTally) -> Value {
+    json!({"blocks": t.blocks, "measured": t.measured, "second_passes": t.second_passes})
 }
 
 /// `solve-kernel K.mtx [B ...]`: times the ordering, the symbolic and the numeric factorization of
@@ -572,6 +580,7 @@ pub fn ours_cb(n: [usize; 3], modes: usize, precision: &str) -> Res<Value> {
         "cb eigen orthogonalization".into(),
         num(basis.eigen.seconds_orth),
     );
+    phases.insert("cb eigen restarts".into(), num(basis.eigen.seconds_restart));
     lap("craig-bampton basis", &mut phases);
     let o = {
         let _par = flexbody::solve::ParGuard::new(threads());
@@ -592,6 +601,7 @@ pub fn ours_cb(n: [usize; 3], modes: usize, precision: &str) -> Res<Value> {
         "eigen_solved_vectors": basis.eigen.solves,
         "eigen_steps": basis.eigen.steps,
         "eigen_restarts": basis.eigen.restarts,
+        "eigen_gram_schmidt": gram_schmidt_json(&basis.eigen.gram_schmidt),
         "nnz_l": basis.eigen.factor.as_ref().map(|f| f.nnz_l),
         "factor_bytes": basis.eigen.factor.as_ref().map(|f| f.factor_bytes),
         "precision": format!("{precision:?}"),

@@ -4,7 +4,8 @@
 //!
 //! It maintains A V = V T + F Eᵀ with V M-orthonormal (n × p), T = VᵀMAV (p × p), F M-orthogonal
 //! to V (n × b) and E (p × b). A step M-orthonormalizes F = QR, computes W = A Q with one
-//! multi-RHS solve, Gram–Schmidt's it twice against [V Q] and appends the block to T. When the
+//! multi-RHS solve, Gram–Schmidt's it against [V Q] (a second pass only when the first lost too
+//! much of the block: [`gram_schmidt`]) and appends the block to T. When the
 //! basis is full, T = YΘYᵀ is truncated to its largest Ritz values (lowest λ = σ + 1/θ):
 //! V ← VY_k, T ← Θ_k, E ← Y_kᵀE. Ritz pair i is converged when its estimate ‖R_F Eᵀy_i‖ ≤
 //! tol·|θ_i| (relative). Vectors in the range of A have positive M-norm, so massless dofs need no
@@ -12,6 +13,7 @@
 
 use super::cholesky::SparseLlt;
 use super::dense;
+use super::gram_schmidt::{self, Orthogonalized};
 use super::sparse_ops::spmm;
 use super::thin_ops;
 use super::SolveError;
@@ -39,8 +41,9 @@ pub struct BlockParams {
     pub upper: Option<f64>,
     /// Largest count band mode may grow to.
     pub max_count: usize,
-    /// Keep M·V beside V (one product with M per step). Without it, the lean basis: half the
-    /// basis memory (8·n·basis bytes less) for two more products with M per step.
+    /// Keep M·V beside V (one product with M per step, M·F; two when the second Gram–Schmidt
+    /// update is made). Without it, the lean basis: half the basis memory (8·n·basis bytes less)
+    /// for one more product with M per step (M·W before the first pass).
     pub keep_mv: bool,
 }
 
@@ -65,30 +68,30 @@ pub struct BlockResult {
     pub seconds_solve: f64,
     /// Wall time in the Gram–Schmidt passes and M-QRs, M products included (s).
     pub seconds_orth: f64,
+    /// Wall time of the thick restarts (V ← V·Y_k, M·V likewise) (s).
+    pub seconds_restart: f64,
+    /// How the Gram–Schmidt passes went.
+    pub gram_schmidt: GsTally,
 }
 
-/// M-orthonormalization of `w` against the M-orthonormal `v` (classical Gram–Schmidt twice,
-/// w ← w − v (Mv)ᵀw): with `mv` = M v no product with M, without it (the lean basis) one per
-/// pass, w ← w − v vᵀ(Mw). Returns (coefficients C with w = vC + rest, rest).
-fn gs(
-    v: MatRef<'_, f64>,
-    mv: Option<MatRef<'_, f64>>,
-    m: SparseColMatRef<'_, usize, f64>,
-    mut w: Mat<f64>,
-) -> (Mat<f64>, Mat<f64>) {
-    let mut c = Mat::<f64>::zeros(v.ncols(), w.ncols());
-    if v.ncols() == 0 {
-        return (c, w);
+/// The Gram–Schmidt passes of one run ([`gram_schmidt::orthogonalize`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GsTally {
+    /// Blocks orthogonalized against the basis.
+    pub blocks: usize,
+    /// Blocks whose first pass failed the DGKS test, so that the second pass's coefficients
+    /// were formed.
+    pub measured: usize,
+    /// Blocks that took the second pass's update (their measured loss was above the limit).
+    pub second_passes: usize,
+}
+
+impl GsTally {
+    fn add(&mut self, o: &Orthogonalized) {
+        self.blocks += 1;
+        self.measured += usize::from(o.measured);
+        self.second_passes += usize::from(o.passes == 2);
     }
-    for _ in 0..2 {
-        let d = match mv {
-            Some(mv) => thin_ops::at_b(mv, w.as_ref()),
-            None => thin_ops::at_b(v, spmm(m, w.as_ref()).as_ref()),
-        };
-        thin_ops::add_a_d(w.as_mut(), v, d.as_ref(), -1.0);
-        c += &d;
-    }
-    (c, w)
 }
 
 /// A ← (K − σM)⁻¹ X with the factorization of K − σM: one solve with an f64 factor; with a
@@ -135,23 +138,28 @@ impl Operator<'_> {
 /// (Q, M Q, R) of an M-QR.
 type Mqr = (Mat<f64>, Mat<f64>, Mat<f64>);
 
-/// M-QR of a block already M-orthogonal to `v` (`mv` = M v, if kept): w ≈ Q R with Q M-orthonormal;
-/// returns (Q, M Q, R) with one product with M. Directions of relative M-norm² below 1e-24 are
-/// replaced by fresh random directions (rows of R zero).
+/// M-QR of a block already M-orthogonal to `v` (`mv` = M v, if kept), from its remainder F, M·F
+/// and FᵀMF as [`gram_schmidt::orthogonalize`] left them: F ≈ Q R with Q M-orthonormal; returns
+/// (Q, M Q, R). Directions of relative M-norm² below 1e-24 are replaced by fresh random
+/// directions (rows of R zero).
 #[allow(clippy::too_many_arguments)]
 fn mqr(
     m: SparseColMatRef<'_, usize, f64>,
     op: &Operator<'_>,
     v: MatRef<'_, f64>,
     mv: Option<MatRef<'_, f64>>,
-    w: Mat<f64>,
+    block: Orthogonalized,
     scale2: f64,
     seed: &mut u64,
     solves: &mut usize,
 ) -> Result<Mqr, SolveError> {
+    let Orthogonalized {
+        rest: w,
+        m_rest: mw,
+        gram: g,
+        ..
+    } = block;
     let (n, b) = (w.nrows(), w.ncols());
-    let mw = spmm(m, w.as_ref());
-    let g = thin_ops::at_b(w.as_ref(), mw.as_ref());
     let (s, u) = dense::eigh(g.as_ref())?;
     let keep: Vec<usize> = (0..b)
         .filter(|&i| s[i] > 1e-24 * scale2.max(f64::MIN_POSITIVE))
@@ -186,8 +194,8 @@ fn mqr(
         op.solve(pz.as_mut())?;
         *solves += b - kq;
         // against v, then against the kept part of q (M-orthogonal to v)
-        let (_, pz) = gs(v, mv, m, pz);
-        let (_, pz) = gs(
+        let pz = gram_schmidt::twice(v, mv, m, pz);
+        let pz = gram_schmidt::twice(
             q.as_ref().subcols(0, kq),
             Some(mq.as_ref().subcols(0, kq)),
             m,
@@ -256,9 +264,10 @@ pub fn block_shift_invert(
     let mut solves = 0usize;
     let mut restarts = 0usize;
     // A x from M x: with `keep_mv` every block's M-image is kept (MV beside V), so a step costs
-    // one product with M (in the M-QR) instead of three.
+    // one product with M (M·F, which the Gram–Schmidt test and the M-QR share) instead of two.
     let seconds_solve = std::cell::Cell::new(0.0);
     let mut seconds_orth = 0.0;
+    let mut seconds_restart = 0.0;
     let op = Operator {
         llt,
         k,
@@ -284,6 +293,7 @@ pub fn block_shift_invert(
     let w0 = apply(&spmm(m, z.as_ref()), &mut solves)?;
     let empty = Mat::<f64>::zeros(n, 0);
     let s0 = w0.norm_max().powi(2);
+    let w0 = gram_schmidt::orthogonalize(empty.as_ref(), None, m, w0)?;
     let (q0, mq0, _) = mqr(m, &op, empty.as_ref(), None, w0, s0, &mut seed, &mut solves)?;
     vbuf.as_mut().subcols_mut(0, b).copy_from(&q0);
     if let Some(mvbuf) = &mut mvbuf {
@@ -291,14 +301,17 @@ pub fn block_shift_invert(
     }
     let mut p = b;
     let w = apply(&mq0, &mut solves)?;
-    let (c, mut f) = gs(vbuf.as_ref().subcols(0, p), mv_of(mvbuf.as_ref(), p), m, w);
-    let mut t = c;
+    let mut f =
+        gram_schmidt::orthogonalize(vbuf.as_ref().subcols(0, p), mv_of(mvbuf.as_ref(), p), m, w)?;
+    let mut t = f.coef.clone();
+    let mut tally = GsTally::default();
+    tally.add(&f);
     let mut e = Mat::<f64>::identity(b, b);
     let mut step = 0;
     let (mut last_ritz_p, mut ritz_solves) = (0, 0);
     while step < max_steps {
         step += 1;
-        // M-QR of the residual block (already M-orthogonal to V: two Gram–Schmidt passes when it
+        // M-QR of the residual block (already M-orthogonal to V: Gram–Schmidt'd when it
         // was formed, and V only shrinks to V·Y_k at a restart)
         let fscale = t.norm_max().powi(2);
         let clock = std::time::Instant::now();
@@ -377,9 +390,12 @@ pub fn block_shift_invert(
                     ritz_solves,
                     seconds_solve: seconds_solve.get(),
                     seconds_orth,
+                    seconds_restart,
+                    gram_schmidt: tally,
                 });
             }
             if p + b > max_basis {
+                let clock = std::time::Instant::now();
                 let yk = y.as_ref().subcols(0, keep);
                 thin_ops::mul_in_place(vbuf.as_mut(), yk);
                 if let Some(mvbuf) = &mut mvbuf {
@@ -389,6 +405,7 @@ pub fn block_shift_invert(
                 e = yk.transpose() * &e;
                 p = keep;
                 restarts += 1;
+                seconds_restart += clock.elapsed().as_secs_f64();
             }
         }
         // expand with Q: A Q = [V Q] C + F'
@@ -398,18 +415,19 @@ pub fn block_shift_invert(
             mvbuf.as_mut().subcols_mut(p, b).copy_from(&mq);
         }
         let clock = std::time::Instant::now();
-        let (c, fnew) = gs(
+        let fnew = gram_schmidt::orthogonalize(
             vbuf.as_ref().subcols(0, p + b),
             mv_of(mvbuf.as_ref(), p + b),
             m,
             aq,
-        );
+        )?;
         seconds_orth += clock.elapsed().as_secs_f64();
+        tally.add(&fnew);
         let mut tn = Mat::<f64>::zeros(p + b, p + b);
         tn.as_mut().submatrix_mut(0, 0, p, p).copy_from(t.as_ref());
         tn.as_mut()
             .submatrix_mut(0, p, p + b, b)
-            .copy_from(c.as_ref());
+            .copy_from(fnew.coef.as_ref());
         let re = &rf * e.transpose(); // b × p
         tn.as_mut().submatrix_mut(p, 0, b, p).copy_from(re.as_ref());
         t = tn;

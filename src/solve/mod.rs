@@ -11,6 +11,7 @@ pub mod buckling;
 pub mod cholesky;
 pub mod dense;
 pub mod eigen;
+mod gram_schmidt;
 pub mod inertia;
 pub mod inertia_relief;
 pub mod memory;
@@ -322,6 +323,10 @@ pub struct EigenInfo {
     pub seconds_solve: f64,
     /// Part of `seconds_eigen` spent orthogonalizing (Gram–Schmidt, M-QR with its M products).
     pub seconds_orth: f64,
+    /// Part of `seconds_eigen` spent in the thick restarts (s).
+    pub seconds_restart: f64,
+    /// How the Krylov basis's Gram–Schmidt passes went.
+    pub gram_schmidt: eigen::GsTally,
     /// With [`EigenSpec::verify_band`]: (modes proven complete, the shift σ of the count).
     pub band_proof: Option<(usize, f64)>,
     /// The solver's own report line for the build: `--engine slepc` ("engine slepc, N MPI
@@ -671,6 +676,8 @@ pub fn lowest_modes_factored(
         seconds_eigen: t1.elapsed().as_secs_f64(),
         seconds_solve: r.seconds_solve,
         seconds_orth: r.seconds_orth,
+        seconds_restart: r.seconds_restart,
+        gram_schmidt: r.gram_schmidt,
         ..Default::default()
     };
     // When the Krylov basis met its own test but the true residual misses the bound (stiffness
