@@ -467,13 +467,8 @@ mod tests {
         SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
     }
 
-    /// The lean basis (no M·V) and the kept one both find the closed-form spectrum of a fixed
-    /// chain, λ_j = (2 − 2 cos(jπ/(n+1)))/h with M = h·I, with M-orthonormal vectors; and on a
-    /// spectrum of five distinct values (the Krylov space is exhausted after five blocks, so the
-    /// M-QR pads with random directions) both give the lowest value, 40-fold, 8 times.
-    #[test]
-    fn lean_and_kept_basis_agree_with_closed_form() {
-        let (n, h) = (400usize, 0.25);
+    /// A fixed chain of `n` dofs: K tridiagonal (2, −1), M = h·I; λ_j = (2 − 2 cos(jπ/(n+1)))/h.
+    fn fixed_chain(n: usize, h: f64) -> (SparseColMat<usize, f64>, SparseColMat<usize, f64>) {
         let mut k = vec![];
         for i in 0..n {
             k.push((i, i, 2.0));
@@ -482,8 +477,18 @@ mod tests {
                 k.push((i + 1, i, -1.0));
             }
         }
-        let k = sparse(n, &k);
         let m = sparse(n, &(0..n).map(|i| (i, i, h)).collect::<Vec<_>>());
+        (sparse(n, &k), m)
+    }
+
+    /// The lean basis (no M·V) and the kept one both find the closed-form spectrum of a fixed
+    /// chain, λ_j = (2 − 2 cos(jπ/(n+1)))/h with M = h·I, with M-orthonormal vectors; and on a
+    /// spectrum of five distinct values (the Krylov space is exhausted after five blocks, so the
+    /// M-QR pads with random directions) both give the lowest value, 40-fold, 8 times.
+    #[test]
+    fn lean_and_kept_basis_agree_with_closed_form() {
+        let (n, h) = (400usize, 0.25);
+        let (k, m) = fixed_chain(n, h);
         let llt = SparseLlt::factor(k.as_ref(), None, faer::Par::Seq).unwrap();
         for keep_mv in [true, false] {
             let r = block_shift_invert(k.as_ref(), m.as_ref(), &llt, 0.0, &params(12, 4, keep_mv))
@@ -537,16 +542,7 @@ mod tests {
     #[test]
     fn ritz_pairs_at_intervals_keep_the_closed_form() {
         let (n, h) = (1500usize, 0.25);
-        let mut k = vec![];
-        for i in 0..n {
-            k.push((i, i, 2.0));
-            if i + 1 < n {
-                k.push((i, i + 1, -1.0));
-                k.push((i + 1, i, -1.0));
-            }
-        }
-        let k = sparse(n, &k);
-        let m = sparse(n, &(0..n).map(|i| (i, i, h)).collect::<Vec<_>>());
+        let (k, m) = fixed_chain(n, h);
         let llt = SparseLlt::factor(k.as_ref(), None, faer::Par::Seq).unwrap();
         let r =
             block_shift_invert(k.as_ref(), m.as_ref(), &llt, 0.0, &params(100, 4, true)).unwrap();
