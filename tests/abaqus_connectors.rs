@@ -7,15 +7,13 @@
 //! keyword rule (blanks, refusals in one error, --ignore, later steps,
 //! a PERTURBATION frequency step after a *STATIC step refused until the preload is read).
 
-mod common;
-
-use common::{dense, generalized_eigenvalues};
+use crate::common::{dense, generalized_eigenvalues};
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
 use flexbody::import::{abaqus, ImportError, ImportOptions};
 use flexbody::model::{Element, ElementKind, Model, Property, Section};
 
 fn write(name: &str, text: &str) -> std::path::PathBuf {
-    let dir = common::scratch(&format!("abaqus-conn-{name}"));
+    let dir = crate::common::scratch(&format!("abaqus-conn-{name}"));
     let path = dir.join(format!("{name}.inp"));
     std::fs::write(&path, text).unwrap();
     path
@@ -277,11 +275,11 @@ fn transform_frames_hold_as_calculix_holds_them() {
 *TRANSFORM, NSET=FIXED, TYPE=C\n0.0, 0.01, 0.02, 0.3, 0.05, 0.04\n\
 *TRANSFORM, NSET=TIP, TYPE=R\n1., 1., 0., 0., 1., 1.\n\
 *BOUNDARY\nFIXED, 1, 1\nFIXED, 3, 3\nTIP, 2, 2\n*STEP\n*FREQUENCY\n8\n*END STEP\n",
-        common::reference("a_block_hex8/mesh.inp").display()
+        crate::common::reference("a_block_hex8/mesh.inp").display()
     );
     let path = write("transform_ccx", &deck);
     let out = path.with_extension("flexbody");
-    let o = common::build_as_ccx(&path, &["-q"], &out);
+    let o = crate::common::build_as_ccx(&path, &["-q"], &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let body = flexbody_reader::read(&out).unwrap();
     // ccx 2.20 (Debian calculix-ccx 2.20-1) on this deck
@@ -289,6 +287,6 @@ fn transform_frames_hold_as_calculix_holds_them() {
         174.7557, 823.1897, 980.9745, 1403.720, 2243.561, 2637.578, 2720.346, 3941.905,
     ];
     let worst =
-        common::assert_frequencies("transform_ccx", &body.modes.frequency_hz, &ccx, 0, 2e-6);
+        crate::common::assert_frequencies("transform_ccx", &body.modes.frequency_hz, &ccx, 0, 2e-6);
     eprintln!("transform_ccx: worst {worst:.1e}");
 }

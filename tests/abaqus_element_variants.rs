@@ -6,11 +6,9 @@
 //! S4R is expanded into C3D8R bricks as ccx does and matches ccx. The ccx results are `fixtures/ccx_elements/results.json` (its
 //! `regenerate.py` runs ccx on the decks beside it).
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{build_as_ccx, exe, scratch};
+use crate::common::{build_as_ccx, exe, scratch};
 use flexbody_reader as file;
 
 fn fixture(name: &str) -> PathBuf {
@@ -19,9 +17,9 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// ccx 2.20's frequencies of `key` (`common::ccx_frequencies`).
+/// ccx 2.20's frequencies of `key` (`crate::common::ccx_frequencies`).
 fn ccx(key: &str) -> Vec<f64> {
-    common::ccx_frequencies("ccx_elements", key)
+    crate::common::ccx_frequencies("ccx_elements", key)
 }
 
 /// Builds `deck` as ccx solves it (consistent mass, normal modes) with `extra`, reads the file.
@@ -42,7 +40,7 @@ fn fixture_frequencies(stem: &str, dir: &Path) -> Vec<f64> {
 /// Asserts our frequencies are ccx's: as many, each within 1e-6 (ccx prints 7 significant
 /// digits); the worst relative difference.
 fn assert_ccx(what: &str, ours: &[f64], theirs: &[f64]) -> f64 {
-    common::assert_frequencies(what, ours, theirs, 0, 1e-6)
+    crate::common::assert_frequencies(what, ours, theirs, 0, 1e-6)
 }
 
 #[test]
@@ -202,7 +200,7 @@ fn c3d8i_matches_calculix_on_a_regular_and_a_distorted_bar() {
     for stem in ["c3d8i_bar", "c3d8i_distorted"] {
         let (ours, theirs) = (fixture_frequencies(stem, &dir), ccx(stem));
         // measured worst 3.7e-7 / 3.3e-7 (regular / distorted): ccx's 7 printed digits
-        let w = common::assert_frequencies(stem, &ours, &theirs, 0, 1e-6);
+        let w = crate::common::assert_frequencies(stem, &ours, &theirs, 0, 1e-6);
         eprintln!("{stem}: worst {w:.2e}");
         let o = exe()
             .arg("check")
@@ -262,7 +260,7 @@ fn c3d8i_craig_bampton_fixed_interface_modes_are_calculix_with_the_interface_cla
         .map(|v| v.as_f64().unwrap())
         .collect();
     // measured worst 2.8e-7 (ccx's 7 printed digits)
-    let w = common::assert_frequencies(
+    let w = crate::common::assert_frequencies(
         "fixed-interface",
         &fixed,
         &ccx("c3d8i_tip_clamped"),

@@ -4,8 +4,6 @@
 //! the reference of a thermal strain — none in a plain frequency step, α (T − T₀) in the static
 //! step a perturbation step perturbs — and the state temperature tables are read at.
 
-mod common;
-
 use flexbody::import::{abaqus, ImportError};
 use flexbody::model::Model;
 
@@ -18,7 +16,7 @@ const STEP: &str =
     "*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n*STEP\n*FREQUENCY\n4\n*END STEP\n";
 
 fn read(name: &str, text: &str) -> Result<Model, ImportError> {
-    let dir = common::scratch(&format!("abaqus-ic-{name}"));
+    let dir = crate::common::scratch(&format!("abaqus-ic-{name}"));
     let path = dir.join(format!("{name}.inp"));
     std::fs::write(&path, text).unwrap();
     abaqus::read(&path)

@@ -172,8 +172,6 @@ fn a_cutoff_at_the_band_top_reports_the_missing_modes() {
     assert_eq!(below, 40);
 }
 
-mod common;
-
 fn conrod() -> String {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("fixtures/models/conrod/conrod.inp")
@@ -184,7 +182,7 @@ fn conrod() -> String {
 /// Builds the conrod with `extra` options; the flexible frequencies and the recipe's
 /// `options.eigensolver`.
 fn build_conrod(out: &std::path::Path, extra: &[&str]) -> (Vec<f64>, Option<String>) {
-    let o = common::exe()
+    let o = crate::common::exe()
         .args(["build", &conrod(), "--interface", "BIG_END,SMALL_END"])
         .args(["--units", "si", "--threads", "1"])
         .args(extra)
@@ -219,7 +217,7 @@ fn build_conrod(out: &std::path::Path, extra: &[&str]) -> (Vec<f64>, Option<Stri
 
 #[test]
 fn eigensolver_option_gives_lanczos_frequencies_through_the_cli() {
-    let dir = common::scratch("amls-cli");
+    let dir = crate::common::scratch("amls-cli");
     for (method, modes, limit_low, limit_all) in [
         // measured: normal 2.0e-10 / 1.7e-7, cb 6.3e-6 / 6.9e-5 (its fixed-interface modes'
         // errors reach the body), craig-chang 2.4e-8 / 2.6e-6 (lower half / all)
@@ -267,7 +265,7 @@ fn a_bad_eigensolver_is_refused_by_name() {
         ("arnoldi", "expected auto, lanczos, amls or amls:FACTOR"),
         ("amls:0.5", "cutoff factor must be a number >= 1"),
     ] {
-        let o = common::exe()
+        let o = crate::common::exe()
             .args([
                 "build",
                 &conrod(),
@@ -277,7 +275,7 @@ fn a_bad_eigensolver_is_refused_by_name() {
                 bad,
                 "-o",
             ])
-            .arg(common::scratch("amls-bad").join("x.flexbody"))
+            .arg(crate::common::scratch("amls-bad").join("x.flexbody"))
             .output()
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);

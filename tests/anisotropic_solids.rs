@@ -7,9 +7,7 @@
 //! *Mechanics of Composite Materials* (1999) eq. 2.29); stress shapes are σ = D ε on a uniform
 //! strain.
 
-mod common;
-
-use common::{build_as_ccx, scratch};
+use crate::common::{build_as_ccx, scratch};
 use flexbody::import::abaqus;
 use flexbody::model::elasticity::rotate;
 use flexbody::model::Model;

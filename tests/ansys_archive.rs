@@ -12,15 +12,13 @@
 //!   as a Nastran deck of CTETRA 4.
 //! * Archives written here: SOLID187 with mid-side nodes against the Nastran CTETRA 10 deck of
 //!   the same mesh; a component as `--interface`; refusals by line.
-mod ansys_support;
-mod common;
 
 use std::collections::HashMap;
 
-use ansys_support::{
+use crate::ansys_support::{
     against_package, build_modes, clamp_lines, examples, hexbeam_as_solved, python, PACKAGE_HZ,
 };
-use common::{exe, generalized_eigenvalues, hz, scratch};
+use crate::common::{exe, generalized_eigenvalues, hz, scratch};
 use faer::Mat;
 use flexbody::fe::{AssemblySpec, MassKind};
 use flexbody::import::ansys::full;
@@ -50,7 +48,7 @@ fn largest_difference(
             (!c).then(|| dofs.dof(i, d.dir as usize).expect("a dof of the node"))
         })
         .collect();
-    let dense = common::dense(ours);
+    let dense = crate::common::dense(ours);
     let mut file_entry: HashMap<(usize, usize), f64> = HashMap::new();
     for &(r, c, v) in &theirs.upper {
         if let (Some(a), Some(b)) = (ours_of[r], ours_of[c]) {

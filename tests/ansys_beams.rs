@@ -13,15 +13,13 @@
 //! - the same frame as BEAM189 against the numpy reference;
 //! - a MASS21 rotary inertia on a BEAM188 node (VM48's motor-generator) against its closed form;
 //! - what is not formed, refused by line.
-mod ansys_support;
-mod common;
 
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::path::Path;
 
-use ansys_support::{build, data, read_dofs};
-use common::{assert_frequencies, scratch};
+use crate::ansys_support::{build, data, read_dofs};
+use crate::common::{assert_frequencies, scratch};
 use flexbody::import::matrix_market::read_matrix;
 
 /// An NBLOCK of `nodes` (id, x).
@@ -276,7 +274,7 @@ fn beam188_deep_beam_converges_to_the_timoshenko_frequencies() {
     );
     let path = scratch("ansys-beam188-deep").join("fv5.cdb");
     std::fs::write(&path, archive).unwrap();
-    let ours = ansys_support::build_modes(&path, 9, &[]);
+    let ours = crate::ansys_support::build_modes(&path, 9, &[]);
     // measured 4.7e-5 (the 400 linear elements' discretization error, O(h²)); the closed forms
     // also equal NAFEMS's targets to their 4 digits
     let worst = assert_frequencies("BEAM188 deep beam, 400 elements", &ours, &want, 0, 1e-4);
@@ -342,7 +340,7 @@ fn beam188_with_mass21_rotary_inertia_equals_the_torsional_closed_form() {
     );
     let path = scratch("ansys-beam188-vm48").join("vm48.cdb");
     std::fs::write(&path, archive).unwrap();
-    let ours = ansys_support::build_modes(&path, 1, &["--mass", "lumped"]);
+    let ours = crate::ansys_support::build_modes(&path, 1, &["--mass", "lumped"]);
     let g = e / (2.0 * (1.0 + nu));
     let want = (g * PI * r.powi(4) / 2.0 / (l * ixx)).sqrt() / (2.0 * PI);
     let d = (ours[0] / want - 1.0).abs();
@@ -510,7 +508,7 @@ fn beam189_vm50_equals_ansys_frequency() {
     );
     let path = scratch("ansys-beam189-vm50").join("vm50.cdb");
     std::fs::write(&path, archive).unwrap();
-    let ours = ansys_support::build_modes(&path, 1, &[]);
+    let ours = crate::ansys_support::build_modes(&path, 1, &[]);
     let d = (ours[0] / 28.761 - 1.0).abs();
     println!("VM50: {ours:?} vs ANSYS 28.761: {d:.1e}");
     // measured 5.4e-6 (ANSYS's 5 digits: half a unit is 1.7e-5)

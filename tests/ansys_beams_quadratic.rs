@@ -13,14 +13,12 @@
 //!   functions with two points along the length, as BEAM189;
 //! - through the CLI the archive equals the same beams written as BEAM189 with the middle nodes
 //!   given.
-mod ansys_support;
-mod common;
 
 use std::collections::HashMap;
 
-use ansys_support::writers::{eblock, nblock};
-use ansys_support::{build_modes, data};
-use common::{assert_frequencies, scratch};
+use crate::ansys_support::writers::{eblock, nblock};
+use crate::ansys_support::{build_modes, data};
+use crate::common::{assert_frequencies, scratch};
 use flexbody::fe::assembly::element_matrices;
 use flexbody::fe::AssemblySpec;
 use flexbody::import::{read_model, ImportOptions};

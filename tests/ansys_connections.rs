@@ -2,11 +2,10 @@
 //! longitudinal spring (KEYOPT(2)=0: k along I→J) and 1-D spring (KEYOPT(2)=1…3: k between one
 //! translation of I and J) holding a MASS21 point mass; the spring options not formed refused by
 //! line naming the KEYOPT.
-mod common;
 
 use std::path::Path;
 
-use common::{exe, generalized_eigenvalues, hz, scratch};
+use crate::common::{exe, generalized_eigenvalues, hz, scratch};
 use faer::Mat;
 
 /// An NBLOCK of `nodes` (id 1, 2, …).

@@ -17,16 +17,14 @@
 //!
 //! Static responses come from the file alone (residual vectors of the scene loads), compared node
 //! by node over the largest displacement.
-mod ansys_support;
-mod common;
 
 use std::path::Path;
 
-use ansys_support::writers::{
+use crate::ansys_support::writers::{
     block, build_body as build, ccx_deck, frequency_difference, material, nblock,
     response_difference, root, static_response, Block, RESIDUALS,
 };
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 
 /// The pilot node: beyond the tip face's centre.
 const PILOT: u64 = 9001;
@@ -98,7 +96,7 @@ fn archive(m: &Block, types: &str, contacts: &[Vec<u64>], extra: &str) -> String
          R,3\nR,4,{MASS:e},{MASS:e},{MASS:e},{ixx:e},{iyy:e},{izz:e}\n{clamp}{extra}FINISH\n",
         nblock(&nodes),
         eblock(&records),
-        material(ansys_support::writers::STEEL),
+        material(crate::ansys_support::writers::STEEL),
     )
 }
 
@@ -436,7 +434,7 @@ fn bonded_archive(m: &Block, contacts: &[Vec<u64>], pinball: f64) -> String {
          {}{}{}R,3,0,0,0,0,0,{:e}\n{clamp}{loads}FINISH\n",
         nblock(&nodes),
         eblock(&records),
-        material(ansys_support::writers::STEEL),
+        material(crate::ansys_support::writers::STEEL),
         -pinball
     )
 }
@@ -508,7 +506,7 @@ fn bonded_contact_between_surfaces_equals_the_ccx_tie() {
     // the far face's 40 left free
     let cdb = scratch("ansys-contact-bonded-note").join("far.cdb");
     std::fs::write(&cdb, &with_far).unwrap();
-    let o = ansys_support::build(&cdb, "si", 4, &[]);
+    let o = crate::ansys_support::build(&cdb, "si", 4, &[]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
     assert!(err.contains("40 contact nodes tied"), "{err}");

@@ -7,13 +7,13 @@
 //!   of the archive itself (its K and M equal the full file's to 5e-12, `tests/ansys_archive.rs`)
 //!   clamped as the full file's constraint table says, and `check --model` of it;
 //! * a full file without its archive: exit 2 naming what is missing.
-mod ansys_support;
-mod common;
 
 use std::path::{Path, PathBuf};
 
-use ansys_support::{against_package, build_modes, clamp_lines, examples, hexbeam_as_solved};
-use common::{exe, scratch};
+use crate::ansys_support::{
+    against_package, build_modes, clamp_lines, examples, hexbeam_as_solved,
+};
+use crate::common::{exe, scratch};
 use flexbody::import::ansys::full;
 
 /// `file.full` and `HexBeam.cdb` copied into `work` as one job: `beam.full`, `beam.cdb`.

@@ -11,18 +11,16 @@
 //! Static responses come from the file alone (residual vectors of the scene loads: u = Σ φ_j
 //! φ_jᵀ f / ω_j², exact for the load), compared node by node. Nodal coordinate systems:
 //! `tests/ansys_loads_frames.rs`.
-mod ansys_support;
-mod common;
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use ansys_support::writers::{
+use crate::ansys_support::writers::{
     block, block_archive, build_body as build, ccx_deck, eblock, lumped_load_differences, material,
     nblock, response_difference, root, static_response, RESIDUALS, STEEL,
 };
-use ansys_support::{read_inp, solid186_archive, wedge_as_brick};
-use common::{exe, scratch};
+use crate::ansys_support::{read_inp, solid186_archive, wedge_as_brick};
+use crate::common::{exe, scratch};
 
 /// `SFE` on each of SOLID186's faces 1…6 (on elements across a cantilever) equals the same
 /// pressures as `*DLOAD` Pn on the C3D20R mesh (a `*STATIC` step before the `*FREQUENCY` one) (the faces by their corners: ANSYS's face 1

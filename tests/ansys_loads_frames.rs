@@ -7,16 +7,14 @@
 //!   CORD2R, GRID CD, SPC1, FORCE (CID) and MPC; SOLID186 with rotated nodes against C3D20R
 //!   with `*TRANSFORM`;
 //! - ESYS elements, a rigid link on a rotated node and a full file over rotated nodes refused.
-mod ansys_support;
-mod common;
 
 use std::collections::BTreeMap;
 
-use ansys_support::writers::{
+use crate::ansys_support::writers::{
     block, block_archive, build_body as build, ccx_deck, eblock, frequency_difference,
     lumped_load_differences, material, nblock, root, static_response, RESIDUALS, STEEL,
 };
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 
 /// The nodal X axis of the angles [THXY, THYZ, THZX] (degrees) as the N command states them:
 /// first about nodal Z, then about the new X, then about the new Y — A = R_z R_x R_y, its
@@ -285,7 +283,7 @@ fn rotated_nodes_equal_abaqus_transform() {
 /// nodes was at hand to show that the displacement frame holds them).
 #[test]
 fn a_full_file_over_rotated_nodes_is_refused_by_line() {
-    let Some(dir) = ansys_support::examples("a full file over rotated nodes") else {
+    let Some(dir) = crate::ansys_support::examples("a full file over rotated nodes") else {
         return;
     };
     let work = scratch("ansys-full-rotated");

@@ -10,14 +10,12 @@
 //!   along the ESYS's X, rotated or not;
 //! - refusals by line: a partial orthotropic set naming the label, both Poisson forms, a D not
 //!   positive definite, an orthotropic shell and B-bar brick, a cylindrical ESYS.
-mod ansys_support;
-mod common;
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use ansys_support::{build, build_modes, read_inp, solid_blocks, tet_as_brick};
-use common::{assert_frequencies, ccx_frequencies, exe, scratch};
+use crate::ansys_support::{build, build_modes, read_inp, solid_blocks, tet_as_brick};
+use crate::common::{assert_frequencies, ccx_frequencies, exe, scratch};
 
 /// E1, E2, E3, ν12, ν13, ν23, G12, G13, G23, ρ of `fixtures/ccx_ansys_ortho/make_decks.py`
 /// (ν_ij = −ε_j/ε_i under σ_i: ANSYS's major PRXY, PRXZ, PRYZ).

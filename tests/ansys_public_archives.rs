@@ -4,17 +4,14 @@
 //! format widths, `MP` lines with `!` comments, solution and selection commands, the IGES
 //! prologue, SECBLOCK shell layers, the archive's SFE value lines, TB tables and PSTRES.
 
-mod ansys_support;
-mod common;
-
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use ansys_support::writers::{
+use crate::ansys_support::writers::{
     block, block_archive, build_body, eblock, frequency_difference, lumped_load_differences,
     material, nblock, root, STEEL,
 };
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 
 /// SOLID186 with full integration (one-element-thick blocks of the reduced 2×2×2 form have
 /// zero-energy modes).

@@ -8,14 +8,14 @@
 //! - one SHELL181 on a `SECTYPE,SHELL` section, clamped, a force at its free edge: K u = F + R;
 //! - layers of one material are one homogeneous shell;
 //! - what is not formed is refused by its line naming the KEYOPT, shape or section line.
-mod ansys_support;
-mod common;
 
 use std::collections::HashMap;
 use std::path::Path;
 
-use ansys_support::{assert_refused_at, build, data, line_of, multiply, node_table, read_dofs};
-use common::scratch;
+use crate::ansys_support::{
+    assert_refused_at, build, data, line_of, multiply, node_table, read_dofs,
+};
+use crate::common::scratch;
 
 /// A solution csv of make_shell181.py: node id → [x y z, u (6), ANSYS's K u (6), force and
 /// moment scale].

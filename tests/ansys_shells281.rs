@@ -6,14 +6,14 @@
 //! - a simply supported thin square plate (NAFEMS FV12's) against Kirchhoff's closed form, on
 //!   its mid-surface and offset to its bottom surface (four times the bending rigidity);
 //! - what is not formed is refused by its line naming the KEYOPT, shape or command.
-mod ansys_support;
-mod common;
 
 use std::collections::HashMap;
 
-use ansys_support::writers::{eblock, material, nblock};
-use ansys_support::{assert_refused_at, build, data, line_of, multiply, node_table, read_dofs};
-use common::scratch;
+use crate::ansys_support::writers::{eblock, material, nblock};
+use crate::ansys_support::{
+    assert_refused_at, build, data, line_of, multiply, node_table, read_dofs,
+};
+use crate::common::scratch;
 
 /// The solution csv of make_shell281.py: node id → [x y z, u (6), ANSYS's K u (6), force and
 /// moment scale].

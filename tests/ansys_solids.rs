@@ -15,17 +15,15 @@
 //!   `tests/data/ansys/make_cyclic_bbar.py`): K_e u_e − ω² M_e r_e + ENF_e = 0 element by element;
 //! - SOLID186 in none of ANSYS's degenerate patterns, SOLID185's collapsed pyramid and other
 //!   KEYOPT(2) refused by line (SOLID186 as ANSYS's pyramid: `tests/ansys_solids_pyramid.rs`).
-mod ansys_support;
-mod common;
 
 use std::collections::HashMap;
 use std::path::Path;
 
-use ansys_support::{
+use crate::ansys_support::{
     assert_refused_at, build, data, line_of, multiply, node_table, read_dofs, read_inp,
     solid186_archive, tet_as_brick, wedge_as_brick,
 };
-use common::{assert_frequencies, ccx_frequencies, scratch};
+use crate::common::{assert_frequencies, ccx_frequencies, scratch};
 
 /// The frequencies of a normal-modes build of `path` (it must succeed).
 fn frequencies(path: &Path, modes: usize) -> Vec<f64> {
@@ -220,9 +218,12 @@ fn solid186_full_integration_equals_the_14_point_reference() {
         0,
         1e-11,
     );
-    let contrast =
-        common::frequency_differences(&hz("keyopt2_1_irons14"), &hz("gauss3_for_contrast"), 0)
-            .unwrap();
+    let contrast = crate::common::frequency_differences(
+        &hz("keyopt2_1_irons14"),
+        &hz("gauss3_for_contrast"),
+        0,
+    )
+    .unwrap();
     assert!(contrast.iter().cloned().fold(0.0, f64::max) > 1e-4);
     println!("SOLID186 against the numpy reference: KEYOPT(2)=1 {d_full:.2e}, 0 {d_reduced:.2e}");
     let _ = std::fs::remove_dir_all(&dir);

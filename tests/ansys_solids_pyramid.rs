@@ -9,13 +9,11 @@
 //!   model), ½ u_eᵀ K_e u_e equals ANSYS's SENE;
 //! - through the CLI (`build --write-matrices`, free-free), ½ uᵀ K u of the assembled K equals
 //!   the elements' summed SENE.
-mod ansys_support;
-mod common;
 
 use std::collections::HashMap;
 
-use ansys_support::{build, data, multiply, read_dofs};
-use common::scratch;
+use crate::ansys_support::{build, data, multiply, read_dofs};
+use crate::common::scratch;
 use flexbody::fe::assembly::element_matrices;
 use flexbody::fe::AssemblySpec;
 use flexbody::import::{read_model, ImportOptions};

@@ -13,14 +13,11 @@
 //! * **flexural** terms: the Euler and Southwell tests of `tests/preload_beams.rs` and
 //!   `tests/geometric_stiffness_file.rs` (unchanged by the two terms above).
 
-mod common;
-mod preload_support;
-
-use common::steel;
+use crate::common::steel;
+use crate::preload_support::{eigenvalues, hold, nodal_load, straight_line, Built};
 use flexbody::fe::preload::{buckling_factor, preload, PreloadCase, PreloadSpec};
 use flexbody::fe::{AssemblySpec, BeamTheory, MassKind};
 use flexbody::model::{BeamSection, ElementKind, Section};
-use preload_support::{eigenvalues, hold, nodal_load, straight_line, Built};
 
 const W: f64 = 0.03;
 const H: f64 = 0.02;

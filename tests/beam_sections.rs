@@ -11,17 +11,14 @@
 //! PA/PB releasing the end rotations of a beam clamped at both grids make it simply supported;
 //! offsets WA/WB equal rigid links (RBE2) to the offset ends.
 
-mod common;
-mod nastran_support;
-
 use std::f64::consts::PI;
 use std::path::Path;
 
-use common::{generalized_eigenvalues, hz};
+use crate::common::{generalized_eigenvalues, hz};
+use crate::nastran_support::write;
 use flexbody::fe::{assemble, eliminate, AssemblySpec, BeamTheory, ConstraintSpec, MassKind};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody::model::Section;
-use nastran_support::write;
 
 const E: f64 = 2.1e11;
 const RHO: f64 = 7850.0;
@@ -304,10 +301,11 @@ fn frequencies(deck: &Path) -> Vec<f64> {
     };
     let a = assemble(&model, &spec).unwrap();
     let r = eliminate(&model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).unwrap();
-    let mut f: Vec<f64> = generalized_eigenvalues(&common::dense(&r.k), &common::dense(&r.m))
-        .into_iter()
-        .map(hz)
-        .collect();
+    let mut f: Vec<f64> =
+        generalized_eigenvalues(&crate::common::dense(&r.k), &crate::common::dense(&r.m))
+            .into_iter()
+            .map(hz)
+            .collect();
     f.sort_by(f64::total_cmp);
     f
 }
@@ -490,7 +488,7 @@ fn unsupported_beam_forms_are_errors_naming_card_and_line() {
             .map(|_| ())
             .expect_err(what)
             .to_string();
-        let line = nastran_support::line_of(&deck, prop.lines().next().unwrap());
+        let line = crate::nastran_support::line_of(&deck, prop.lines().next().unwrap());
         assert!(err.contains(needle), "{what}: {err}");
         // The card's line or the line of the field on its continuation.
         assert!(
@@ -518,7 +516,7 @@ fn unsupported_beam_forms_are_errors_naming_card_and_line() {
             .map(|_| ())
             .expect_err(what)
             .to_string();
-        let line = nastran_support::line_of(&deck, "CBAR,3,");
+        let line = crate::nastran_support::line_of(&deck, "CBAR,3,");
         assert!(
             err.contains(needle) && err.contains("CBAR 3"),
             "{what}: {err}"

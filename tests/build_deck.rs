@@ -10,8 +10,7 @@ use std::process::{Command, Output};
 
 use flexbody_reader as file;
 
-mod common;
-use common::{external_reference, reference};
+use crate::common::{external_reference, reference};
 
 fn tmp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("flexbody-deck-{}", std::process::id()));

@@ -14,8 +14,7 @@ use flexbody::import::{read_model, ImportOptions};
 use flexbody::interface::SpiderKind;
 use flexbody_reader as file;
 
-mod common;
-use common::{external_reference, reference};
+use crate::common::{external_reference, reference};
 
 fn conrod() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp")

@@ -7,11 +7,9 @@
 //! says in each plane (so the section's 1- and 2-directions are where the card puts them); the
 //! sections and joints flexbody does not expand are refused naming the card and line.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{build_as_ccx, scratch};
+use crate::common::{build_as_ccx, scratch};
 use flexbody::import::abaqus;
 use flexbody_reader as file;
 
@@ -51,9 +49,9 @@ fn expanded_beams_match_calculix() {
         "gravity_rect",
     ] {
         let ours = build(stem, &dir);
-        let ccx = common::ccx_frequencies("ccx_beams", stem);
+        let ccx = crate::common::ccx_frequencies("ccx_beams", stem);
         // ccx prints 7 significant digits
-        common::assert_frequencies(stem, &ours, &ccx, 0, 1e-6);
+        crate::common::assert_frequencies(stem, &ours, &ccx, 0, 1e-6);
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -173,7 +171,7 @@ fn sections_and_joints_not_expanded_are_refused_by_name() {
 fn a_beam_node_is_an_interface_node() {
     let dir = scratch("ccx_beams_interface");
     let out = dir.join("tip.flexbody");
-    let o = common::exe()
+    let o = crate::common::exe()
         .arg("build")
         .arg(fixture("rect_cantilever.inp"))
         .args(["--interface", "21", "--fmax", "3000", "--units", "si"])
@@ -183,11 +181,11 @@ fn a_beam_node_is_an_interface_node() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let body = file::read(&out).unwrap();
-    let ccx = common::ccx_frequencies("ccx_beams", "rect_cantilever");
+    let ccx = crate::common::ccx_frequencies("ccx_beams", "rect_cantilever");
     let ours = &body.modes.frequency_hz;
     assert!(ours.len() >= 3, "{ours:?}");
     // measured 8.3e-6
-    let worst = common::assert_frequencies("tip interface", &ours[..3], &ccx[..3], 0, 5e-5);
+    let worst = crate::common::assert_frequencies("tip interface", &ours[..3], &ccx[..3], 0, 5e-5);
     eprintln!("a_beam_node_is_an_interface_node: worst {worst:.2e}");
     let _ = std::fs::remove_dir_all(&dir);
 }

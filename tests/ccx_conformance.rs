@@ -17,13 +17,11 @@
 //! the test says SKIPPED. `FLEXBODY_WRITE_CONFORMANCE=1` writes the table to
 //! `docs/conformance.md`.
 
-mod common;
-
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::{scratch, skipped_install};
+use crate::common::{scratch, skipped_install};
 use flexbody_reader as file;
 
 const SUITE_ENV: &str = "FLEXBODY_CCX_TESTS";
@@ -352,7 +350,7 @@ fn classify(suite: &Path, deck: &Path) -> (String, Outcome) {
         },
     };
     let out = dir.join(format!("{name}.flexbody"));
-    let o = common::build_as_ccx(&dir.join(format!("{name}.inp")), &["-q"], &out);
+    let o = crate::common::build_as_ccx(&dir.join(format!("{name}.inp")), &["-q"], &out);
     let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
     let outcome = if !o.status.success() {
         // the error, and for a refusal its list of keywords (one per line), without the
@@ -407,7 +405,7 @@ fn compare(name: &str, ccx: &[f64], body: &file::ReducedBody) -> Outcome {
         ));
     }
     // the mode counts first: a build that lost a mode does not match on the rest
-    let rel = match common::frequency_differences(ours, ccx, rigid_ours) {
+    let rel = match crate::common::frequency_differences(ours, ccx, rigid_ours) {
         Ok(rel) => rel,
         Err(why) => return Outcome::Mismatch(format!("{why}; exit 0")),
     };
@@ -449,7 +447,7 @@ fn table(results: &BTreeMap<String, Outcome>) -> String {
     }
     let mut s = String::from(
         "# Conformance: CalculiX's frequency tests\n\n\
-         Made by `FLEXBODY_WRITE_CONFORMANCE=1 cargo test --release --test ccx_conformance` \
+         Made by `FLEXBODY_WRITE_CONFORMANCE=1 cargo test --release --test integration ccx_conformance::` \
          (`tests/ccx_conformance.rs`): every deck of Debian's `calculix-ccx-test` with a \
          `*FREQUENCY` step, run by ccx 2.20 and built by `flexbody build DECK --units si \
          --method normal --mass consistent`. In scope: structural decks, not cyclic symmetry, \

@@ -10,11 +10,9 @@
 //!   reference node held written as ccx `*EQUATION`s with ccx's area weights computed in the
 //!   deck writer (`distributing_held_equations`: Σ w u = 0, Σ w r × u = 0 per face).
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{build_as_ccx, scratch};
+use crate::common::{build_as_ccx, scratch};
 use flexbody_reader as file;
 
 fn fixture(name: &str) -> PathBuf {
@@ -44,7 +42,7 @@ fn worst(ours: &[f64], theirs: &[f64], n: usize) -> f64 {
 /// CONSTRAINT NAMEs `LEFT` and `RIGHT`.
 fn fixed_interface(deck: &str, dir: &Path) -> Vec<f64> {
     let out = dir.join(format!("{deck}.flexbody"));
-    let o = common::exe()
+    let o = crate::common::exe()
         .arg("build")
         .arg(fixture(&format!("{deck}.inp")))
         .args(["--units", "si", "--mass", "consistent", "--method", "cb"])
@@ -76,7 +74,7 @@ fn fixed_interface(deck: &str, dir: &Path) -> Vec<f64> {
 #[test]
 fn kinematic_coupling_reference_nodes_clamped_match_calculix() {
     let dir = scratch("ccx-coupling-kinematic");
-    let theirs = common::ccx_frequencies("ccx_coupling", "kinematic_clamped");
+    let theirs = crate::common::ccx_frequencies("ccx_coupling", "kinematic_clamped");
     let ours = fixed_interface("kinematic", &dir);
     let w = worst(&ours, &theirs, 12);
     // measured 1.5e-7 (ccx prints 7 digits)
@@ -92,16 +90,16 @@ fn kinematic_coupling_reference_nodes_clamped_match_calculix() {
 #[test]
 fn distributing_coupling_is_an_rbe3_with_calculix_area_weights() {
     let dir = scratch("ccx-coupling-distributing");
-    let theirs = common::ccx_frequencies("ccx_coupling", "distributing_held_equations");
+    let theirs = crate::common::ccx_frequencies("ccx_coupling", "distributing_held_equations");
     let ours = fixed_interface("distributing", &dir);
     let w = worst(&ours, &theirs, 12);
     // measured 3.4e-7
     assert!(w <= 2e-6, "{w:e}: {ours:?} against {theirs:?}");
     // free, the RBE3s add no stiffness: the free bar, as ccx's *DISTRIBUTING (6 rigid modes)
-    let free = common::ccx_frequencies("ccx_coupling", "distributing");
+    let free = crate::common::ccx_frequencies("ccx_coupling", "distributing");
     assert_eq!(
         free,
-        common::ccx_frequencies("ccx_coupling", "distributing_clamped")
+        crate::common::ccx_frequencies("ccx_coupling", "distributing_clamped")
     );
     let out = dir.join("free.flexbody");
     let (body, _) = build(&fixture("distributing.inp"), &["--modes", "12"], &out);

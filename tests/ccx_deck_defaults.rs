@@ -7,8 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-mod common;
-use common::{build_as_ccx, reference, scratch};
+use crate::common::{build_as_ccx, reference, scratch};
 use flexbody_reader as file;
 
 /// A B31 frame (RECT 0.1 × 0.04, clamped at node 1): 10 elements along x from the origin to

@@ -5,11 +5,9 @@
 //! f_mn = (π/2)((m/a)² + (n/b)²) √(D/(ρt)) and against ccx 2.20
 //! (`fixtures/ccx_s4/results.json`, `fixtures/ccx_frequencies.py`).
 
-mod common;
-
 use std::path::Path;
 
-use common::{build_as_ccx, exe, scratch};
+use crate::common::{build_as_ccx, exe, scratch};
 use flexbody_reader as file;
 
 fn deck() -> std::path::PathBuf {
@@ -64,7 +62,7 @@ fn an_s4_plate_builds_by_default_near_kirchhoff_and_calculix() {
         .collect();
     // measured: +0.20 %, +0.56 %, +0.56 %, +1.06 %, +1.03 %, +1.03 % (ccx's own: the same)
     assert!(off.iter().all(|d| d.abs() <= 1.5e-2), "{off:?}");
-    let ccx = common::ccx_frequencies("ccx_s4", "plate_s4");
+    let ccx = crate::common::ccx_frequencies("ccx_s4", "plate_s4");
     let worst = (ours.iter().zip(&ccx).take(6))
         .map(|(a, b)| (a - b).abs() / b)
         .fold(0.0, f64::max);

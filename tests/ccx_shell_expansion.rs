@@ -4,11 +4,9 @@
 //! (shellf, shellf2, beamfsh1), tests/abaqus_element_variants.rs (an S4R plate) and the decks of
 //! `fixtures/ccx_shells/` below.
 
-mod common;
-
 use std::path::PathBuf;
 
-use common::{build_as_ccx, exe, scratch};
+use crate::common::{build_as_ccx, exe, scratch};
 use flexbody::import::{read_model, ImportOptions, InpShells};
 use flexbody::model::ElementKind;
 
@@ -167,9 +165,9 @@ fn curved_panels_match_calculix() {
             String::from_utf8_lossy(&o.stderr)
         );
         let ours = flexbody_reader::read(&out).unwrap().modes.frequency_hz;
-        let ccx = common::ccx_frequencies("ccx_shells", stem);
+        let ccx = crate::common::ccx_frequencies("ccx_shells", stem);
         // ccx prints 7 significant digits
-        common::assert_frequencies(stem, &ours, &ccx, 0, 1e-6);
+        crate::common::assert_frequencies(stem, &ours, &ccx, 0, 1e-6);
         if stem == "hinged_s8" {
             let check = exe()
                 .arg("check")
@@ -202,8 +200,8 @@ fn a_preloaded_shell_panel_matches_calculix() {
     let report = String::from_utf8_lossy(&o.stdout);
     assert!(report.contains("K + K_G + K_L(u0)"), "{report}");
     let ours = flexbody_reader::read(&out).unwrap().modes.frequency_hz;
-    let ccx = common::ccx_frequencies("ccx_shells", "loaded_s8r");
-    common::assert_frequencies("loaded_s8r", &ours, &ccx, 0, 1e-6);
+    let ccx = crate::common::ccx_frequencies("ccx_shells", "loaded_s8r");
+    crate::common::assert_frequencies("loaded_s8r", &ours, &ccx, 0, 1e-6);
     // the same panel without its *STATIC step
     let text = std::fs::read_to_string(&deck).unwrap();
     let (head, tail) = text.split_once("*STEP\n*STATIC").unwrap();

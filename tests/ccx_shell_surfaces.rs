@@ -9,11 +9,9 @@
 //!   (ccx 2.20 itself resolves a coupling's shell faces before it expands the shells);
 //! * `--inp-shells native`: the same decks with flexbody's shells.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{build_as_ccx, ccx_frequencies, scratch};
+use crate::common::{build_as_ccx, ccx_frequencies, scratch};
 use flexbody_reader as file;
 
 fn deck(name: &str) -> PathBuf {
@@ -212,7 +210,7 @@ fn shell_faces_refused_name_the_surface_and_its_line() {
     let run = |name: &str, text: String| {
         let path = dir.join(name);
         std::fs::write(&path, text).unwrap();
-        let o = common::exe()
+        let o = crate::common::exe()
             .args(["build"])
             .arg(&path)
             .args(["--units", "si", "--method", "normal", "-o"])

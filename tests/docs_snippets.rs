@@ -11,12 +11,10 @@
 //! mode — only when the NPZ has it (before issue 36 it used an undefined `mbs` and `data` and
 //! raised KeyError without `--damping`).
 
-mod common;
-
 use std::path::Path;
 use std::process::Command;
 
-use common::{exe, python_has, run_python, scratch, skipped_install};
+use crate::common::{exe, python_has, run_python, scratch, skipped_install};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -99,8 +97,8 @@ fn the_docs_exudyn_snippets_run_with_and_without_damping() {
         let dir = scratch(&format!("snippets-{damping}"));
         let body = dir.join("conrod.flexbody");
         let npz = dir.join("conrod.npz");
-        common::build_conrod(&body, if damping { &["--damping", "2%"] } else { &[] });
-        let export = common::export(&body, "exudyn", &npz);
+        crate::common::build_conrod(&body, if damping { &["--damping", "2%"] } else { &[] });
+        let export = crate::common::export(&body, "exudyn", &npz);
         assert!(export.status.success());
         println!("damping {damping}:");
         let out = run_python("examples/using_in_exudyn.py", &[&npz, &body], None);
@@ -161,10 +159,10 @@ fn the_revolute_recipe_pendulum_equals_exudyns_own_hcb_pendulum() {
     let dir = scratch("revolute");
     let body = dir.join("conrod.flexbody");
     let mesh = dir.join("mesh");
-    common::build_conrod(&body, &[]);
+    crate::common::build_conrod(&body, &[]);
     // the same rod with its frame attached at the BIG_END centre (node 6962)
     let attached = dir.join("conrod_rc.flexbody");
-    common::build_conrod(&attached, &["--reference-conditions", "6962:123456"]);
+    crate::common::build_conrod(&attached, &["--reference-conditions", "6962:123456"]);
     let export = exe()
         .arg("export")
         .arg(&body)

@@ -4,8 +4,6 @@
 //! far above Lanczos's; `check --model` recomputes them; a hand-damaged entry is refused by
 //! the Rust reader and both Python readers under the same error name.
 
-mod common;
-
 use std::path::Path;
 
 use flexbody_reader as file;
@@ -17,7 +15,7 @@ fn conrod() -> std::path::PathBuf {
 /// Normal modes of the conrod (`--modes 20`, one thread) with `solver`, the constrained K and M
 /// written beside; the body read back.
 fn build(dir: &Path, solver: &str) -> file::ReducedBody {
-    let o = common::exe()
+    let o = crate::common::exe()
         .arg("build")
         .arg(conrod())
         .args(["--interface", "BIG_END,SMALL_END", "--units", "si"])
@@ -43,7 +41,7 @@ fn build(dir: &Path, solver: &str) -> file::ReducedBody {
 
 /// numpy's recomputation (tests/python/eigen_residuals_check.py) of `solver`'s build.
 fn numpy_check(dir: &Path, solver: &str) -> serde_json::Value {
-    let out = common::run_python(
+    let out = crate::common::run_python(
         "tests/python/eigen_residuals_check.py",
         &[
             dir.join(format!("{solver}.flexbody")),
@@ -67,11 +65,11 @@ fn problem(body: &file::ReducedBody) -> &file::EigenProblem {
 /// the band top (too low: its Rayleigh–Ritz pairs are far from eigenpairs).
 #[test]
 fn stored_residuals_are_numpys_and_a_low_amls_cutoff_shows_in_them() {
-    if !common::python_has("scipy") {
-        common::skipped_install("eigen residuals against numpy", "pip install scipy");
+    if !crate::common::python_has("scipy") {
+        crate::common::skipped_install("eigen residuals against numpy", "pip install scipy");
         return;
     }
-    let dir = common::scratch("eigen-residuals");
+    let dir = crate::common::scratch("eigen-residuals");
     let mut largest = vec![];
     for solver in ["lanczos", "amls:1.5"] {
         let body = build(&dir, solver);
@@ -110,7 +108,7 @@ fn stored_residuals_are_numpys_and_a_low_amls_cutoff_shows_in_them() {
     assert!(largest[1] > 1e4 * largest[0], "{largest:?}");
     // check --model recomputes them from the rebuilt model and agrees (measured: exactly)
     for solver in ["lanczos", "amls:1.5"] {
-        let o = common::exe()
+        let o = crate::common::exe()
             .arg("check")
             .arg(dir.join(format!("{solver}.flexbody")))
             .arg("--model")
@@ -136,8 +134,8 @@ type Damage = dyn Fn(&mut file::EigenProblem);
 /// numpy reader refuse it under one error name.
 #[test]
 fn a_hand_damaged_entry_is_refused_by_every_reader() {
-    let dir = common::scratch("eigen-damaged");
-    let o = common::exe()
+    let dir = crate::common::scratch("eigen-damaged");
+    let o = crate::common::exe()
         .arg("build")
         .arg(conrod())
         .args(["--interface", "BIG_END,SMALL_END", "--units", "si"])

@@ -16,8 +16,6 @@
 //!   V εᵀ D ε of its constant strain (solids; the membrane of shells, t A εᵀ D_ps ε);
 //! * invariance: the spectra of K and M do not change when the element is turned in space.
 
-mod common;
-
 use faer::Mat;
 use flexbody::fe::assembly::{element_matrices, ElementMatrices};
 use flexbody::fe::{AssemblySpec, MassKind};
@@ -402,7 +400,7 @@ fn deck(case: &Case, x: &[X], orientation: X) -> (String, String) {
 /// The model of `case` through the points `x`.
 fn model(case: &Case, x: &[X], orientation: X, tag: &str) -> Model {
     let (text, name) = deck(case, x, orientation);
-    let dir = common::scratch(&format!("harness-{tag}"));
+    let dir = crate::common::scratch(&format!("harness-{tag}"));
     let path = dir.join(name);
     std::fs::write(&path, &text).unwrap();
     let m = read_model(&path, &ImportOptions::default())

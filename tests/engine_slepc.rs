@@ -7,15 +7,13 @@
 //! a subspace), both files pass `check --model`, and a band (`--fmax`) is proven complete by
 //! Sylvester's inertia count with either engine. Without `mpirun` or a Python with slepc4py
 //! (Debian: openmpi-bin, python3-slepc4py-real) the comparisons are skipped with a visible
-//! message (`common::skipped_install`: a failure under `CI=true`, where `.ci/run` installs
+//! message (`crate::common::skipped_install`: a failure under `CI=true`, where `.ci/run` installs
 //! them); the refusals that need no engine are always tested.
 
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 use flexbody_reader::{ModeLabel, ReducedBody};
 use std::path::{Path, PathBuf};
 use std::process::Output;
-
-mod common;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -46,7 +44,7 @@ fn engine_missing() -> bool {
     match flexbody::solve::slepc::available() {
         Ok(()) => false,
         Err(why) => {
-            common::skipped_install(
+            crate::common::skipped_install(
                 &format!("the SLEPc engine check (engine_slepc): {why}"),
                 "apt-get install openmpi-bin python3-slepc4py-real",
             );

@@ -7,18 +7,16 @@
 //! Without an importable exudyn the Python part is skipped with a visible message (CI installs
 //! exudyn, see `.ci/run`).
 
-use common::{exe, python_has, run_python, scratch};
+use crate::common::{exe, python_has, run_python, scratch};
 use std::path::Path;
-
-mod common;
 
 #[test]
 fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_frequencies() {
     let dir = scratch("exudyn-exudyn");
     let body = dir.join("rod.flexbody");
     let npz = dir.join("rod.npz");
-    common::build_conrod(&body, &["--stress-modes", "--damping", "2%"]);
-    let o = common::export(&body, "exudyn", &npz);
+    crate::common::build_conrod(&body, &["--stress-modes", "--damping", "2%"]);
+    let o = crate::common::export(&body, "exudyn", &npz);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "export failed: {stderr}");
     assert!(stderr.contains("8 flexible modes, 6963 nodes"), "{stderr}");
@@ -65,7 +63,7 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
     }
 
     if !python_has("exudyn") || !python_has("scipy") {
-        common::skipped_install(
+        crate::common::skipped_install(
             "the exudyn checks of export_exudyn: python3 cannot import exudyn and scipy; the NPZ \
              was written but not loaded in exudyn",
             "pip install exudyn scipy",
@@ -97,7 +95,7 @@ fn exudyn_loads_the_npz_recomputes_its_inertia_terms_and_vibrates_at_the_stored_
 #[test]
 fn the_pendulum_example_runs_and_swings_like_the_rigid_pendulum_of_the_files_mass_properties() {
     if !python_has("exudyn") || !python_has("scipy") || !python_has("matplotlib") {
-        common::skipped_install(
+        crate::common::skipped_install(
             "the pendulum example (export_exudyn): python3 cannot import exudyn, scipy and \
              matplotlib",
             "pip install exudyn scipy matplotlib",
@@ -159,7 +157,7 @@ fn figure(text: &str, label: &str) -> f64 {
 #[test]
 fn the_slider_crank_example_follows_the_rigid_closed_form_within_the_rods_stretch() {
     if !python_has("exudyn") || !python_has("numpy") {
-        common::skipped_install(
+        crate::common::skipped_install(
             "the slider-crank example (export_exudyn): python3 cannot import exudyn and numpy",
             "pip install exudyn numpy",
         );
@@ -188,8 +186,8 @@ fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
     let dir = scratch("exudyn-partial");
     let body = dir.join("rod.flexbody");
     let npz = dir.join("rod.npz");
-    common::build_conrod(&body, &["--invariants", "partial"]);
-    let o = common::export(&body, "exudyn", &npz);
+    crate::common::build_conrod(&body, &["--invariants", "partial"]);
+    let o = crate::common::export(&body, "exudyn", &npz);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     assert!(
@@ -202,7 +200,7 @@ fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
         1,
         "a temp file was left"
     );
-    let o = common::export(&body, "adams", &npz);
+    let o = crate::common::export(&body, "adams", &npz);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--to adams: expected"));
     let _ = std::fs::remove_dir_all(&dir);
@@ -217,7 +215,7 @@ fn a_file_without_every_invariant_is_refused_and_nothing_is_written() {
 #[test]
 fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
     if !python_has("exudyn") || !python_has("numpy") {
-        common::skipped_install(
+        crate::common::skipped_install(
             "the flexbody.exudyn helper check (export_exudyn): python3 cannot import exudyn and \
              numpy",
             "pip install exudyn numpy",
@@ -226,7 +224,7 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
     }
     let dir = scratch("exudyn-helper");
     let rod = dir.join("rod.flexbody");
-    common::build_conrod(&rod, &["--stress-modes", "--damping", "2%"]);
+    crate::common::build_conrod(&rod, &["--stress-modes", "--damping", "2%"]);
     let block = dir.join("block.flexbody");
     let o = exe()
         .arg("build")
@@ -249,7 +247,7 @@ fn python_add_body_builds_the_same_exudyn_body_as_the_exported_npz() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for (body, what) in [(&rod, "6 nodes"), (&block, "3 nodes")] {
         let npz = body.with_extension("npz");
-        let o = common::export(body, "exudyn", &npz);
+        let o = crate::common::export(body, "exudyn", &npz);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let stdout = run_python(
             "tests/python/exudyn_helper_check.py",

@@ -5,13 +5,11 @@
 //! against the modes `build` wrote (Φᵀ M Φ = I, Φᵀ K Φ = diag ω²), which shows they are the
 //! matrices the build reduced.
 
-mod common;
-
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::reference;
+use crate::common::reference;
 use flexbody::build::BuildSpec;
 use flexbody::export::mtx::export_mtx;
 use flexbody::import::ccx_matrices::read_ccx_matrices;

@@ -12,11 +12,9 @@
 //! so Ct and Cr are not zero; 2 % damping) and the planar beam (rotations and rotary inertia;
 //! mean-axis normal modes and a CB body with reference conditions).
 
-use common::{exe, python_has, scratch};
+use crate::common::{exe, python_has, scratch};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-mod common;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -32,7 +30,7 @@ fn run(args: &[&str]) -> String {
 /// EMBSlib's reader compiled with our stand-in header, or None (with the reason printed).
 fn embslib_dumper(dir: &Path) -> Option<PathBuf> {
     let Ok(include) = std::env::var("FLEXBODY_EMBSLIB_INCLUDE") else {
-        common::skipped(
+        crate::common::skipped(
             "the EMBSlib check of export_sid: set FLEXBODY_EMBSLIB_INCLUDE to the folder holding \
              EMBSlib's ReadSID_C.h to load the files with EMBSlib's own reader",
         );
@@ -79,7 +77,7 @@ fn check_sid(name: &str, model: &str, build_args: &[&str]) -> String {
     let text = std::fs::read_to_string(&sid).unwrap();
     assert!(text.ends_with(" end part\n"), "{name}: truncated SID file");
     if !python_has("numpy") {
-        common::skipped_install(
+        crate::common::skipped_install(
             &format!("the SID check of {name} (export_sid): python3 cannot import numpy"),
             "pip install numpy",
         );
@@ -111,12 +109,12 @@ fn check_sid(name: &str, model: &str, build_args: &[&str]) -> String {
         .filter(|l| l.starts_with("welib check skipped:"))
     {
         if line.contains("cannot import welib") {
-            common::skipped_install(
+            crate::common::skipped_install(
                 &format!("the welib check of {name} (export_sid): {line}"),
                 "pip install welib==4.2.0",
             );
         } else {
-            common::skipped(&format!("the welib check of {name} (export_sid): {line}"));
+            crate::common::skipped(&format!("the welib check of {name} (export_sid): {line}"));
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -215,7 +213,7 @@ fn beam_sid_carries_the_files_geometric_stiffness() {
 fn sid_export_refuses_a_file_without_the_second_order_invariants() {
     let dir = scratch("sid-partial");
     let body = dir.join("rod.flexbody");
-    common::build_conrod(&body, &["--invariants", "partial"]);
+    crate::common::build_conrod(&body, &["--invariants", "partial"]);
     let out = dir.join("rod.SID_FEM");
     let o = exe()
         .args(["export", body.to_str().unwrap(), "--to", "sid", "-o"])

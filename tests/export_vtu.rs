@@ -13,12 +13,10 @@
 //! damping), the planar beam (lines, rotations) and a free S4 shell plate written here (quads,
 //! top and bottom fibre shapes).
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::{base64_block, exe, python_has, scratch, skipped_install};
+use crate::common::{base64_block, exe, python_has, scratch, skipped_install};
 use flexbody_reader as file;
 
 fn run(args: &[&str]) {

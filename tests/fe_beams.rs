@@ -2,9 +2,7 @@
 //! torsional rods; Blevins, *Formulas for Natural Frequency and Mode Shape* (1979) Tables 8-1,
 //! 12-1): 40 elements, within 0.1%. Dense generalized eigen-solve on the reduced system.
 
-mod common;
-
-use common::{dense, generalized_eigenvalues, hz, steel};
+use crate::common::{dense, generalized_eigenvalues, hz, steel};
 use flexbody::fe::{assemble, eliminate, AssemblySpec, BeamTheory, ConstraintSpec, MassKind};
 use flexbody::model::{
     BeamSection, DofMask, Element, ElementKind, Model, Node, Property, Section, Spc,

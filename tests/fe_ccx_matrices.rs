@@ -2,9 +2,7 @@
 //! (`fixtures/reference/e_matrices/`, `*FREQUENCY, SOLVER=MATRIXSTORAGE`), entry-wise, relative
 //! to the largest entry; ccx equations are mapped to our dofs through its `.dof` table.
 
-mod common;
-
-use common::{dense, read_mesh_inp, reference};
+use crate::common::{dense, read_mesh_inp, reference};
 use flexbody::fe::{assemble, AssemblySpec, MassKind, Tet10MassRule};
 use flexbody::import::ccx_matrices::read_ccx_matrices;
 

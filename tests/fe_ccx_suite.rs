@@ -1,11 +1,9 @@
 //! Cantilevers of the CalculiX test suite (`ccx_tests/` of the external reference data,
-//! `FLEXBODY_REFERENCE`, else Debian's `calculix-ccx-test`: `common::ccx_suite`; `*FREQUENCY`,
+//! `FLEXBODY_REFERENCE`, else Debian's `calculix-ccx-test`: `crate::common::ccx_suite`; `*FREQUENCY`,
 //! consistent mass; reference frequencies in the `.dat.ref` files, identical in ccx 2.11 and
 //! 2.20): `beamf` (C3D20R, hex20 with reduced 2×2×2 integration) and `beam8f` (C3D8).
 
-mod common;
-
-use common::{ccx_suite, hz, lowest_eigenvalues};
+use crate::common::{ccx_suite, hz, lowest_eigenvalues};
 use flexbody::fe::{AssemblySpec, ConstraintSpec, MassKind};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody::solve::EigenSpec;
@@ -66,6 +64,6 @@ fn check(test: &str, case: &str) {
     let lambda = lowest_eigenvalues(&model, &spec, &ConstraintSpec::default(), &eigen);
     let ours: Vec<f64> = lambda.iter().map(|l| hz(*l)).collect();
     // ccx prints 7 significant digits
-    let worst = common::assert_frequencies(case, &ours, &want, 0, 1e-6);
+    let worst = crate::common::assert_frequencies(case, &ours, &want, 0, 1e-6);
     eprintln!("{case}: worst relative difference {worst:.2e}");
 }

@@ -3,9 +3,7 @@
 //! of its independent nodes exactly, conflicting definitions are errors, and displacement frames
 //! (Nastran CD) leave the frequencies unchanged.
 
-mod common;
-
-use common::{dense, generalized_eigenvalues, steel};
+use crate::common::{dense, generalized_eigenvalues, steel};
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, FeError, MassKind};
 use flexbody::model::{
     CoordKind, CoordSystem, DofMask, Element, ElementKind, Model, Node, PointMass, Property,

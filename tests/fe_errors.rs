@@ -1,8 +1,6 @@
 //! Bad input gives an `FeError` naming the file and the element, never a panic.
 
-mod common;
-
-use common::steel;
+use crate::common::steel;
 use flexbody::fe::elements::ElementError;
 use flexbody::fe::{assemble, AssemblySpec, FeError};
 use flexbody::model::{BeamSection, Element, ElementKind, Model, Node, Property, Section};

@@ -3,9 +3,7 @@
 //! `case.json` to 2e-6 relative (ccx prints 7 significant digits). The models are read with the
 //! `.inp` importer from the very decks ccx ran; the eigen-solve is `solve::lowest_modes`.
 
-mod common;
-
-use common::{hz, lowest_eigenvalues, reference};
+use crate::common::{hz, lowest_eigenvalues, reference};
 use flexbody::fe::{AssemblySpec, ConstraintSpec, MassKind, Tet10MassRule};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody::solve::EigenSpec;

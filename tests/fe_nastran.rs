@@ -9,9 +9,7 @@
 //! CBEAM also its torsional inertia ρI_pL/2 at its two nodes. With these all ten frequencies
 //! agree to < 1e-6. With CBAR-type lumping everywhere the one torsion mode is 19% high.
 
-mod common;
-
-use common::{external_reference, hz, lowest_eigenvalues};
+use crate::common::{external_reference, hz, lowest_eigenvalues};
 use flexbody::fe::{AssemblySpec, BeamLumping, ConstraintSpec, MassKind};
 use flexbody::import::{read_model, Format, ImportOptions};
 use flexbody::model::{Model, Section};

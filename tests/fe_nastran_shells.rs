@@ -2,9 +2,7 @@
 //! CPENTA, CTETRA, CQUAD4/CTRIA3 on PSHELL and on PCOMP, CBEAM, CBAR, CROD in one model,
 //! lumped mass) through the Nastran importer, the assembler and the eigensolver.
 
-mod common;
-
-use common::{external_reference, hz, lowest_eigenvalues};
+use crate::common::{external_reference, hz, lowest_eigenvalues};
 use flexbody::fe::{AssemblySpec, BeamLumping, BeamTheory, ConstraintSpec, MassKind};
 use flexbody::import::{read_model, Format, ImportOptions};
 use flexbody::solve::EigenSpec;

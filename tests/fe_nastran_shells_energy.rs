@@ -4,9 +4,7 @@
 //! matrices evaluated on Nastran's own eigenvectors must give Nastran's element strain energies
 //! ½ φᵀK_eφ and its modal masses φᵀMφ = 1 (so any frequency difference is located in an element).
 
-mod common;
-
-use common::external_reference;
+use crate::common::external_reference;
 use flexbody::fe::assembly::element_matrices;
 use flexbody::fe::{AssemblySpec, BeamLumping, BeamTheory, MassKind};
 use flexbody::import::{read_model, Format, ImportOptions};

@@ -4,11 +4,9 @@
 //! Taylor Vol. 1 §10); rigid motions give zero force; K is symmetric PSD with exactly six zero
 //! eigenvalues; both mass lumpings and the consistent mass total ρV; HRZ masses are positive.
 
-mod common;
-
 use std::collections::HashMap;
 
-use common::{dense, steel};
+use crate::common::{dense, steel};
 use flexbody::fe::{assemble, AssemblySpec, MassKind, Tet10MassRule};
 use flexbody::model::{Element, ElementKind, Model, Node, Property, Section};
 

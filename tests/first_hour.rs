@@ -3,12 +3,10 @@
 //! factorization's progress in a log, options of optional value, an interface node an RBE2
 //! drives, help and option consistency, and a build under `ulimit -v`.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 
 fn conrod() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/models/conrod/conrod.inp")

@@ -145,8 +145,6 @@ fn truncating_a_golden_file_anywhere_never_panics() {
     }
 }
 
-mod format_support;
-
 /// Deterministic xorshift64 so the mutations are the same on every run.
 fn xorshift(state: &mut u64) -> u64 {
     *state ^= *state << 13;
@@ -159,14 +157,14 @@ fn xorshift(state: &mut u64) -> u64 {
 fn mutated_payloads_with_valid_checksums_never_panic() {
     // Mutations behind a correct manifest reach the decoder and the rules: each must give an
     // Ok or a typed error, never a panic or an unbounded allocation.
-    let mut bodies = vec![format_support::body_3node()];
-    let mut b = format_support::body_20node();
+    let mut bodies = vec![crate::format_support::body_3node()];
+    let mut b = crate::format_support::body_20node();
     b.stress_shapes = b.strain_shapes.clone();
     bodies.push(b);
     let mut state = 0x9e3779b97f4a7c15u64;
     let (mut refused, mut total) = (0, 0);
     for body in &bodies {
-        for (name, bytes) in format_support::broken::payloads(body) {
+        for (name, bytes) in crate::format_support::broken::payloads(body) {
             for _ in 0..150 {
                 let mut m = bytes.clone();
                 for _ in 0..1 + xorshift(&mut state) % 3 {
@@ -177,7 +175,7 @@ fn mutated_payloads_with_valid_checksums_never_panic() {
                     let cut = (xorshift(&mut state) % m.len() as u64) as usize;
                     m.truncate(cut);
                 }
-                let file = format_support::broken::with_entry(body, &name, m);
+                let file = crate::format_support::broken::with_entry(body, &name, m);
                 let r = std::panic::catch_unwind(|| flexbody_reader::from_bytes(&file));
                 assert!(r.is_ok(), "{name}: mutation panicked");
                 total += 1;

@@ -1,10 +1,9 @@
 //! The fixture generator's output is what is on disk (regenerate with
-//! `FLEXBODY_REGEN_FIXTURES=1 cargo test --test format_fixtures`), and the golden bodies are
+//! `FLEXBODY_REGEN_FIXTURES=1 cargo test --release --test integration format_fixtures::`), and the golden bodies are
 //! physically what they claim: closed-form frequencies, K-orthogonal and mass-orthonormal
 //! modes, invariants consistent with the nodal masses.
-mod format_support;
 
-use format_support::*;
+use crate::format_support::*;
 
 #[test]
 fn fixtures_on_disk_equal_regenerated_bytes() {

@@ -1,6 +1,5 @@
 //! Writer ↔ reader: round trip with bit-exact floats, deterministic bytes, no partial file on
 //! error, limits, and the v1 byte layout checked against hand-computed bytes (SPEC.md §4).
-mod format_support;
 
 use flexbody::write::{to_bytes, write_reduced_body, Compression, WriteError, WriteOptions};
 use flexbody_reader::codec::encode;
@@ -12,7 +11,7 @@ fn bits(v: &[f64]) -> Vec<u64> {
 
 /// The 3-node body with every optional entry and awkward floats (−0, subnormal, huge).
 fn awkward_body() -> ReducedBody {
-    let mut b = format_support::body_3node();
+    let mut b = crate::format_support::body_3node();
     b.modes.shapes[1] = -0.0;
     b.modes.shapes[2] = f64::MIN_POSITIVE / 8.0;
     b.modes.shapes[3] = 1.0e300;
@@ -53,7 +52,7 @@ fn round_trip_is_bit_exact_for_every_entry() {
         );
         assert_eq!(bits(&s.values), bits(&t.values));
     }
-    for (_, body) in format_support::golden() {
+    for (_, body) in crate::format_support::golden() {
         let back =
             from_bytes(&to_bytes(&body, &WriteOptions::default()).expect("write")).expect("read");
         assert_eq!(back, body);
@@ -65,7 +64,7 @@ fn round_trip_is_bit_exact_for_every_entry() {
 fn writing_twice_gives_identical_bytes_and_files() {
     let dir = std::env::temp_dir().join(format!("flexbody-determinism-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("mkdir");
-    let body = format_support::body_20node();
+    let body = crate::format_support::body_20node();
     let (a, b) = (dir.join("a.flexbody"), dir.join("b.flexbody"));
     write_reduced_body(&a, &body, &WriteOptions::default()).expect("write a");
     write_reduced_body(&b, &body, &WriteOptions::default()).expect("write b");
@@ -73,8 +72,12 @@ fn writing_twice_gives_identical_bytes_and_files() {
     assert!(ba == bb, "two writes of the same body differ");
     assert!(ba == to_bytes(&body, &WriteOptions::default()).expect("bytes"));
     // Overwriting an existing file replaces it whole.
-    write_reduced_body(&a, &format_support::body_3node(), &WriteOptions::default())
-        .expect("overwrite");
+    write_reduced_body(
+        &a,
+        &crate::format_support::body_3node(),
+        &WriteOptions::default(),
+    )
+    .expect("overwrite");
     assert_eq!(read(&a).expect("read").node_count(), 3);
     let leftovers: Vec<_> = std::fs::read_dir(&dir)
         .expect("ls")
@@ -91,7 +94,7 @@ fn writer_errors_name_the_path_and_leave_no_file() {
     std::fs::create_dir_all(&dir).expect("mkdir");
     let target = dir.join("bad.flexbody");
     // 1. An invalid body (NaN in a shape) is refused before anything is written.
-    let mut body = format_support::body_3node();
+    let mut body = crate::format_support::body_3node();
     body.modes.shapes[0] = f64::NAN;
     let err =
         write_reduced_body(&target, &body, &WriteOptions::default()).expect_err("NaN refused");
@@ -114,7 +117,7 @@ fn writer_errors_name_the_path_and_leave_no_file() {
     std::fs::create_dir_all(as_dir.join("inside")).expect("mkdir");
     let err = write_reduced_body(
         &as_dir,
-        &format_support::body_3node(),
+        &crate::format_support::body_3node(),
         &WriteOptions::default(),
     )
     .expect_err("dir target");
@@ -126,7 +129,7 @@ fn writer_errors_name_the_path_and_leave_no_file() {
     let missing = dir.join("no/such/folder/x.flexbody");
     let err = write_reduced_body(
         &missing,
-        &format_support::body_3node(),
+        &crate::format_support::body_3node(),
         &WriteOptions::default(),
     )
     .expect_err("no folder");
@@ -146,7 +149,11 @@ fn writer_errors_name_the_path_and_leave_no_file() {
 
 #[test]
 fn read_limits_refuse_oversized_counts() {
-    let bytes = to_bytes(&format_support::body_20node(), &WriteOptions::default()).expect("write");
+    let bytes = to_bytes(
+        &crate::format_support::body_20node(),
+        &WriteOptions::default(),
+    )
+    .expect("write");
     let limits = ReadLimits {
         max_nodes: 10,
         ..Default::default()
@@ -250,7 +257,7 @@ fn layout_matches_hand_computed_bytes() {
 
 #[test]
 fn writer_refuses_a_header_the_reader_would_refuse() {
-    let mut body = format_support::body_3node();
+    let mut body = crate::format_support::body_3node();
     body.header.title = "x".repeat(flexbody_reader::codec::STRING_RECORD_LIMIT + 1);
     let err = to_bytes(&body, &WriteOptions::default()).expect_err("17 MiB title");
     assert!(
@@ -279,7 +286,7 @@ fn writer_refuses_a_header_the_reader_would_refuse() {
 fn writer_refuses_string_records_and_recipe_over_16_mib() {
     let limit = flexbody_reader::codec::STRING_RECORD_LIMIT;
     // interfaces.bin: 2^21 + 1 dependent ids of 8 bytes are just over 16 MiB
-    let mut body = format_support::body_3node_interfaces();
+    let mut body = crate::format_support::body_3node_interfaces();
     if let Some(interfaces) = body.interfaces.as_mut() {
         interfaces[1].dependent = (1000..1000 + (limit / 8 + 1) as u64).collect();
     }
@@ -294,13 +301,13 @@ fn writer_refuses_string_records_and_recipe_over_16_mib() {
     };
     refused(&body, "interfaces.bin");
     // recipe.json: a model path of 16 MiB + 1
-    let mut body = format_support::body_3node_recipe();
+    let mut body = crate::format_support::body_3node_recipe();
     if let Some(recipe) = body.recipe.as_mut() {
         recipe.model_files[0].path = "p".repeat(limit + 1);
     }
     refused(&body, "recipe.json");
     // just under the limit still writes and reads back
-    let mut body = format_support::body_3node_recipe();
+    let mut body = crate::format_support::body_3node_recipe();
     if let Some(recipe) = body.recipe.as_mut() {
         recipe.model_files[0].path = "p".repeat(limit / 2);
     }

@@ -16,17 +16,14 @@
 //! * The entry holds the twelve unit inertia loads in flexbody's order; a clamped body is
 //!   `Held` (SPEC §5.16).
 
-mod common;
-mod preload_support;
-
 use std::path::{Path, PathBuf};
 
+use crate::preload_support::{eigenvalues, Built};
 use faer::Mat;
 use flexbody::fe::preload::{preload, PreloadCase, PreloadSpec, Spin};
 use flexbody::fe::{AssemblySpec, MassKind};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody_reader::{StaticSupport, UnitLoad};
-use preload_support::{eigenvalues, Built};
 
 const L: f64 = 2.0;
 const NE: usize = 40;
@@ -88,10 +85,10 @@ fn lowest_with(omega2: &[f64], kg: &[f64], s: f64) -> f64 {
 
 #[test]
 fn spinning_cantilever_from_the_files_terms_equals_the_preloaded_build_and_wright_1982() {
-    let dir = common::scratch("geometric_stiffness_file");
+    let dir = crate::common::scratch("geometric_stiffness_file");
     let deck = deck(&dir);
     let out = dir.join("cantilever.flexbody");
-    let o = common::exe()
+    let o = crate::common::exe()
         .arg("build")
         .arg(&deck)
         .args(["--units", "si", "--method", "normal", "--modes", "40"])
@@ -183,7 +180,7 @@ fn spinning_cantilever_from_the_files_terms_equals_the_preloaded_build_and_wrigh
         assert!(err.abs() < 2e-4, "Ω̄ = {om}: {} vs {want}", file / u);
     }
     // `check --model` recomputes the entry from the deck (the recipe's options)
-    let o = common::exe()
+    let o = crate::common::exe()
         .arg("check")
         .arg(&out)
         .arg("--model")
@@ -210,7 +207,7 @@ fn spinning_cantilever_from_the_files_terms_equals_the_preloaded_build_and_wrigh
     let bad = dir.join("tampered.flexbody");
     let bytes = flexbody::write::to_bytes(&tampered, &Default::default()).unwrap();
     std::fs::write(&bad, bytes).unwrap();
-    let o = common::exe()
+    let o = crate::common::exe()
         .arg("check")
         .arg(&bad)
         .arg("--model")
@@ -232,7 +229,7 @@ fn spinning_cantilever_from_the_files_terms_equals_the_preloaded_build_and_wrigh
 /// and an unknown `--geometric-stiffness` value; no file is written.
 #[test]
 fn geometric_stiffness_with_a_preload_or_an_unknown_value_is_refused() {
-    let dir = common::scratch("geometric_stiffness_refused");
+    let dir = crate::common::scratch("geometric_stiffness_refused");
     let deck = deck(&dir);
     let out = dir.join("refused.flexbody");
     for (extra, want) in [
@@ -249,7 +246,7 @@ fn geometric_stiffness_with_a_preload_or_an_unknown_value_is_refused() {
         ),
         (&["--geometric-stiffness", "loads"][..], "inertia"),
     ] {
-        let o = common::exe()
+        let o = crate::common::exe()
             .arg("build")
             .arg(&deck)
             .args(["--units", "si", "--method", "normal", "--modes", "4", "-q"])
@@ -275,7 +272,7 @@ fn geometric_stiffness_with_a_preload_or_an_unknown_value_is_refused() {
 /// 1e-6, and Wright et al. 1982 to 2e-4 (measured ≤ 3.2e-5).
 #[test]
 fn centrif_preloaded_builds_equal_the_files_terms() {
-    let dir = common::scratch("geometric_stiffness_centrif");
+    let dir = crate::common::scratch("geometric_stiffness_centrif");
     let (r, l, ne) = (0.02f64, 2.0f64, 40usize);
     let area = std::f64::consts::PI * r * r;
     let inertia = std::f64::consts::PI * r.powi(4) / 4.0;
@@ -301,7 +298,7 @@ fn centrif_preloaded_builds_equal_the_files_terms() {
         path
     };
     let build = |deck: &Path, extra: &[&str], out: &Path| {
-        let o = common::exe()
+        let o = crate::common::exe()
             .arg("build")
             .arg(deck)
             .args([

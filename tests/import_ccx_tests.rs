@@ -1,12 +1,10 @@
 //! The CalculiX test-suite decks in `ccx_tests/` of the external reference data
-//! (`FLEXBODY_REFERENCE`), else from Debian's `calculix-ccx-test` (`common::ccx_suite`; skipped
+//! (`FLEXBODY_REFERENCE`), else from Debian's `calculix-ccx-test` (`crate::common::ccx_suite`; skipped
 //! visibly without either, a failure under `CI=true`) (real ccx inputs: C3D8,
 //! C3D8I, C3D20R, C3D10, S8/S8R, B32R, SPRINGA, cyclic symmetry): node and element counts
 //! (counted from the decks' data lines; B32R as the bricks ccx expands them into).
 
-mod common;
-
-use common::ccx_suite;
+use crate::common::ccx_suite;
 use flexbody::import::{abaqus, ImportOptions};
 use flexbody::model::ElementKind;
 

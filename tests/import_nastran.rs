@@ -3,9 +3,7 @@
 //! accounted for: the test lists the count per card type and checks that every card type the
 //! reader does not interpret is reported), plus a small deck exercising the remaining cards.
 
-mod common;
-
-use common::external_reference;
+use crate::common::external_reference;
 use flexbody::import::nastran;
 use flexbody::model::{DofMask, ElementKind, Model, RigidElement, Section};
 

@@ -23,9 +23,7 @@
 //! * What is not formed is an error naming card/keyword and line: MAT9 on a shell, PCOMP LAM =
 //!   SMEAR, an `*ORIENTATION` per ply, a cylindrical orientation on a shell.
 
-mod common;
-
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 use flexbody_reader as file;
 use std::f64::consts::PI;
 use std::fmt::Write as _;

@@ -880,3 +880,50 @@ fn no_catch_all_arm_over_element_kinds() {
          where it must be handled): {found:#?}"
     );
 }
+
+/// The test files `tests/integration.rs` must declare: every `tests/NAME.rs` but itself, and
+/// every `tests/NAME/main.rs`, as (module name, path relative to tests/).
+fn integration_test_files(tests: &Path) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(tests)
+        .expect("the tests folder")
+        .map(|e| e.expect("a directory entry").path())
+        .collect();
+    entries.sort();
+    for path in entries {
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if path.is_dir() && path.join("main.rs").exists() {
+            out.push((name.clone(), format!("{name}/main.rs")));
+        } else if path.extension().is_some_and(|x| x == "rs") && name != "integration" {
+            out.push((name.clone(), format!("{name}.rs")));
+        }
+    }
+    out
+}
+
+/// All integration tests are one binary (`autotests = false` in Cargo.toml): a file in tests/
+/// that `tests/integration.rs` does not declare would never run, so every one must be declared.
+#[test]
+fn every_test_file_is_in_the_integration_binary() {
+    let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let root = std::fs::read_to_string(tests.join("integration.rs")).expect("tests/integration.rs");
+    let files = integration_test_files(&tests);
+    assert!(files.len() > 100, "{files:?}");
+    let missing: Vec<&String> = files
+        .iter()
+        .filter(|(module, path)| {
+            let declared = root.lines().any(|l| l.trim() == format!("mod {module};"));
+            let by_path =
+                path.ends_with("/main.rs") && root.contains(&format!("#[path = \"{path}\"]"));
+            !(declared && (by_path || !path.ends_with("/main.rs")))
+        })
+        .map(|(_, path)| path)
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "tests/integration.rs does not declare these test files, so they never run: {missing:?}"
+    );
+}

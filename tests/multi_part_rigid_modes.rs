@@ -4,11 +4,9 @@
 //! on one end face 3 (y and z translations and the rotation about x stay free) — counted by hand
 //! here, not from the file's reference conditions of the whole body (0 for all of them).
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 use flexbody_reader as file;
 
 /// A steel bar of `n` C3D8 elements along x (1 m × 0.1 m × 0.1 m) starting at `x0`, node ids

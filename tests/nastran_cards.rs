@@ -5,24 +5,21 @@
 //! to CROD + PROD, a CBUSH's offset and orientation equal to rigid links and a rotated system, a
 //! CBUSH of 1e12 equal to a clamp, SPOINT spring–mass systems in closed form).
 
-mod common;
-mod nastran_support;
-
 use std::f64::consts::PI;
 use std::path::Path;
 
-use common::{generalized_eigenvalues, hz};
+use crate::common::{generalized_eigenvalues, hz};
+use crate::nastran_support::{build_refused, built_hz, write};
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody::model::Model;
-use nastran_support::{build_refused, built_hz, write};
 
 /// Frequencies (Hz) of the constrained model by a dense generalized eigen-solve (small models),
 /// independent of the build's eigensolver.
 fn dense_hz(model: &Model) -> Vec<f64> {
     let a = assemble(model, &AssemblySpec::default()).unwrap();
     let r = eliminate(model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).unwrap();
-    let (k, m) = (common::dense(&r.k), common::dense(&r.m));
+    let (k, m) = (crate::common::dense(&r.k), crate::common::dense(&r.m));
     generalized_eigenvalues(&k, &m)
         .into_iter()
         .map(hz)
@@ -568,7 +565,7 @@ fn k6rot_scales_the_drilling_stiffness_as_documented() {
     let drill = |param: &str, name: &str| {
         let m = read(&write("k6rot", name, &deck(param)));
         let a = assemble(&m, &AssemblySpec::default()).unwrap();
-        let k = common::dense(&a.k);
+        let k = crate::common::dense(&a.k);
         (m.params.k6rot, k[(5, 5)])
     };
     let (default, k100) = drill("", "default.bdf");

@@ -5,12 +5,10 @@
 //! per category; a SOL that is not a plain modal or response solution is refused by its line;
 //! a file's format comes from its content.
 
-mod common;
-
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 
 /// A solid block (two CHEXA), two CQUAD4 on its top face's edge and one on the top face (it
 /// holds the others' rotation at the edge: without it they hinge there, a zero mode), a CBAR,

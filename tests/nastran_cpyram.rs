@@ -3,9 +3,6 @@
 //! cells are split into pyramids against the same block of CHEXA (8 and 20 nodes) and of the
 //! pyramids split into CTETRA.
 
-mod common;
-mod nastran_support;
-
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -160,7 +157,7 @@ fn join(ids: &[u64]) -> String {
 }
 
 fn write(name: &str, text: &str) -> PathBuf {
-    nastran_support::write("cpyram", name, text)
+    crate::nastran_support::write("cpyram", name, text)
 }
 
 /// Constant-strain patch test: on a unit cube of six pyramids around an off-centre apex, the
@@ -193,7 +190,7 @@ fn cpyram_passes_the_constant_strain_patch_test() {
         );
         let model = read_model(&path, &ImportOptions::default()).unwrap();
         let a = assemble(&model, &AssemblySpec::default()).unwrap();
-        let k = common::dense(&a.k);
+        let k = crate::common::dense(&a.k);
         let n = a.dofs.n_dofs;
         let mut u = vec![0.0; n];
         let on_boundary = |x: [f64; 3]| {
@@ -227,7 +224,7 @@ fn cpyram_passes_the_constant_strain_patch_test() {
 /// Frequencies (Hz) of a free block through the CLI with consistent mass, its six rigid
 /// modes dropped.
 fn flexible_hz(path: &Path, modes: usize) -> Vec<f64> {
-    let f = nastran_support::built_hz(path, modes + 6, &["--mass", "consistent"]);
+    let f = crate::nastran_support::built_hz(path, modes + 6, &["--mass", "consistent"]);
     assert!(
         f[..6].iter().all(|&x| x < 1e-3 * f[6]),
         "six rigid modes: {f:?}"
@@ -293,7 +290,7 @@ fn cpyram_stress_modes_are_finite_and_rigid_modes_strain_free() {
             &format!("stress_{cells:?}.bdf"),
             &block([2, 1, 1], 0.05, cells, [-0.05, 0.05, 0.1]),
         );
-        nastran_support::built_hz(&path, 9, &["--stress-modes", "--mass", "consistent"]);
+        crate::nastran_support::built_hz(&path, 9, &["--stress-modes", "--mass", "consistent"]);
         let body = flexbody_reader::read(path.with_extension("flexbody")).unwrap();
         let stress = body
             .stress_shapes

@@ -17,13 +17,10 @@
 //!   `mass_properties(model, sym_axis='no')`. None of them has a Nastran SOL 103 result beside
 //!   it (their folders hold SOL 101/145 results or none).
 
-mod common;
-mod nastran_support;
-
 use std::f64::consts::PI;
 use std::path::Path;
 
-use nastran_support::{build_refused, built_hz, write};
+use crate::nastran_support::{build_refused, built_hz, write};
 
 /// E, ν (G = E / 2(1 + ν)), length, end mass and its inertia about the rod's axis.
 const E: f64 = 2.0e11;
@@ -110,7 +107,7 @@ fn tapered_or_over_thick_tubes_are_refused_by_field() {
         let text = tube_deck(ptube, "", "");
         let deck = write("ptube_refused", &format!("{name}.bdf"), &text);
         let err = build_refused(&deck);
-        let line = nastran_support::line_of(&text, "PTUBE");
+        let line = crate::nastran_support::line_of(&text, "PTUBE");
         assert!(
             err.contains(&format!("{name}.bdf:{line}: PTUBE 10")) && err.contains(needle),
             "{err}"
@@ -143,7 +140,7 @@ fn mdlprm_parameters_are_notes_honoured_defaults_or_refused() {
     let text = tube_deck(HOLLOW, "", bulk);
     let deck = write("mdlprm", "refused.bdf", &text);
     let err = build_refused(&deck);
-    let line = nastran_support::line_of(&text, "MDLPRM,HDF5");
+    let line = crate::nastran_support::line_of(&text, "MDLPRM,HDF5");
     for needle in [
         format!("refused.bdf:{line}: MDLPRM OFFDEF = NOMASS: only LROFF is honoured"),
         format!(
@@ -187,7 +184,7 @@ fn unused_properties_are_notes_and_a_used_bush_mass_is_refused() {
     let text = tube_deck(HOLLOW, "", &bulk);
     let deck = write("unused_props", "used.bdf", &text);
     let err = build_refused(&deck);
-    let line = nastran_support::line_of(&text, "PBUSH1D");
+    let line = crate::nastran_support::line_of(&text, "PBUSH1D");
     assert!(
         err.contains(&format!("used.bdf:{line}: PBUSH1D 71"))
             && err.contains("M = 300, used by CBUSH1D 70"),
@@ -254,7 +251,7 @@ fn a_refused_solution_outranks_the_subcase_choice() {
 /// found from the main deck's folder when the including file's folder has no such file.
 #[test]
 fn nested_include_is_found_from_the_main_decks_folder() {
-    let root = common::scratch("include_from_main");
+    let root = crate::common::scratch("include_from_main");
     for sub in ["JOBS/QS", "INCLUDE", "BULK"] {
         std::fs::create_dir_all(root.join(sub)).unwrap();
     }
@@ -276,16 +273,16 @@ fn nested_include_is_found_from_the_main_decks_folder() {
 
 /// A real deck of pyNastran's collection: its path in the external reference data.
 fn pynastran_deck(test: &str, rel: &str) -> Option<std::path::PathBuf> {
-    common::external_reference(test, &format!("nastran/pynastran/{rel}"))
+    crate::common::external_reference(test, &format!("nastran/pynastran/{rel}"))
 }
 
 /// Build `deck` (`units`, 8 normal modes) and return the file's total mass and centre of mass.
 fn mass_and_centre(deck: &Path, units: &str) -> (f64, [f64; 3]) {
-    let out = common::scratch("pynastran_real").join(format!(
+    let out = crate::common::scratch("pynastran_real").join(format!(
         "{}.flexbody",
         deck.file_stem().unwrap().to_string_lossy()
     ));
-    let run = common::exe()
+    let run = crate::common::exe()
         .arg("build")
         .arg(deck)
         .args(["--units", units, "--method", "normal", "--modes", "8", "-o"])

@@ -5,9 +5,7 @@
 //! tetrahedra: the build's warning gives the first elastic frequency with the lumped and with
 //! the consistent mass, checked against two independent builds.
 
-mod common;
-
-use common::{build_bdf_modes, exe, scratch};
+use crate::common::{build_bdf_modes, exe, scratch};
 
 const E: f64 = 7e10;
 const NU: f64 = 0.3;

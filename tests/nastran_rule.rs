@@ -3,11 +3,8 @@
 //! every such card with file:line; `ignore_cards` drops named cards on purpose (a warning with
 //! their lines and counts); cards that cannot change the body are notes with their lines.
 
-mod common;
-mod nastran_support;
-
+use crate::nastran_support::{build_refused, line_of, write};
 use flexbody::import::{read_model, ImportError, ImportOptions};
-use nastran_support::{build_refused, line_of, write};
 
 /// A free CBAR line (steel, 1 m, 13 grids) the cases below add cards to.
 fn base() -> String {
@@ -288,7 +285,7 @@ fn cli_ignore_builds_records_the_cards_in_the_recipe_and_check_rebuilds() {
     let text = base() + "CWELD,90,91,1,2\nENDDATA\n";
     let path = write("rule_cli_ignore", "weld.bdf", &text);
     let out = path.with_extension("flexbody");
-    let run = |args: &[&str]| common::exe().args(args).output().unwrap();
+    let run = |args: &[&str]| crate::common::exe().args(args).output().unwrap();
     let (p, o) = (path.to_str().unwrap(), out.to_str().unwrap());
     let built = run(&[
         "build", p, "--units", "si", "--method", "normal", "--modes", "10", "--ignore", "CWELD",

@@ -4,14 +4,11 @@
 //! implicit scalar points against SPOINT, DMIG selected by K2GG/M2GG against the CELAS2 and
 //! CONM2 it replaces, GENEL against the CBUSH it stands for, CBUSH1D against a CROD.
 
-mod common;
-mod nastran_support;
-
-use common::{generalized_eigenvalues, hz};
+use crate::common::{generalized_eigenvalues, hz};
+use crate::nastran_support::{build_refused, built_hz, write};
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody::model::Model;
-use nastran_support::{build_refused, built_hz, write};
 
 /// Largest relative difference of two frequency lists (same length).
 fn rel(a: &[f64], b: &[f64]) -> f64 {
@@ -29,7 +26,7 @@ fn read(path: &std::path::Path) -> Model {
 fn dense_hz(model: &Model) -> Vec<f64> {
     let a = assemble(model, &AssemblySpec::default()).unwrap();
     let r = eliminate(model, &a.dofs, &a.k, &a.m, &ConstraintSpec::default()).unwrap();
-    generalized_eigenvalues(&common::dense(&r.k), &common::dense(&r.m))
+    generalized_eigenvalues(&crate::common::dense(&r.k), &crate::common::dense(&r.m))
         .into_iter()
         .map(hz)
         .collect()
@@ -37,7 +34,7 @@ fn dense_hz(model: &Model) -> Vec<f64> {
 
 /// The assembled stiffness of a model, dense.
 fn dense_k(model: &Model) -> faer::Mat<f64> {
-    common::dense(&assemble(model, &AssemblySpec::default()).unwrap().k)
+    crate::common::dense(&assemble(model, &AssemblySpec::default()).unwrap().k)
 }
 
 /// Largest difference of two dense matrices relative to the largest term of the second.

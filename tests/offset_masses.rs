@@ -4,11 +4,9 @@
 //! moment exactly (closed form), `check --model` passes, and the frequencies equal those of the
 //! model assembled with the offset mass's own 6×6 matrix (an independent path: no mass node).
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{exe, generalized_eigenvalues, hz, scratch};
+use crate::common::{exe, generalized_eigenvalues, hz, scratch};
 use flexbody::fe::{assemble, AssemblySpec, MassKind};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody_reader as file;
@@ -192,7 +190,7 @@ fn offset_point_mass_frequencies_equal_the_six_by_six_point_mass() {
         },
     )
     .unwrap();
-    let lambda = generalized_eigenvalues(&common::dense(&a.k), &common::dense(&a.m));
+    let lambda = generalized_eigenvalues(&crate::common::dense(&a.k), &crate::common::dense(&a.m));
     let reference: Vec<f64> = lambda.iter().skip(6).take(8).map(|&l| hz(l)).collect();
     let out = dir.join("c.flexbody");
     let (ok, err) = run(&[

@@ -6,11 +6,9 @@
 //!   builds in mixed precision and says why, where `--precision f64` stops before factoring;
 //! * a bad value, or `mixed` where no Craig–Bampton interior is factored, is refused.
 
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 use std::path::{Path, PathBuf};
 use std::process::Output;
-
-mod common;
 
 fn conrod() -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -5,17 +5,14 @@
 //! equation; a pinned beam with a cooled rod alongside (a pretensioned tie: the rods' string
 //! stiffness N/L (I − e eᵀ)) against f(T)/f(0) = √(1 + T/P_cr).
 
-mod common;
-mod preload_support;
-
-use common::steel;
+use crate::common::steel;
+use crate::preload_support::{
+    check_ratio, eigenvalues, frequency_ratio, heated, hold, nodal_load, straight_line, Built,
+};
 use flexbody::fe::geometric::{ElementStress, Temperature, Thermal};
 use flexbody::fe::preload::{preload, PreloadCase, PreloadError, PreloadSpec};
 use flexbody::fe::{AssemblySpec, BeamTheory, MassKind};
 use flexbody::model::{BeamSection, Element, ElementKind, Model, Property, Section};
-use preload_support::{
-    check_ratio, eigenvalues, frequency_ratio, heated, hold, nodal_load, straight_line, Built,
-};
 use std::f64::consts::PI;
 
 const W: f64 = 0.03; // local y

@@ -12,7 +12,7 @@
 //! buckling (*BUCKLE, the same loads) is the independent reference of K_G: its factor equals
 //! flexbody's λ₁ to 1e-4 (beampsensfreq, C3D8) and 1e-6 (beamf2, C3D20R). beamft heats the
 //! part with zero expansion: its modes are those of the material tables read at the heated
-//! state. The mode counts are asserted before the frequencies (`common::assert_frequencies`).
+//! state. The mode counts are asserted before the frequencies (`crate::common::assert_frequencies`).
 //!
 //! The decks are CalculiX's (GPL) and are not in the repository: they are read from Debian's
 //! `calculix-ccx-test` or the folder `FLEXBODY_CCX_TESTS` names; without them the tests print
@@ -21,8 +21,7 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-mod common;
-use common::reference;
+use crate::common::reference;
 
 /// The deck `name` decompressed into a scratch folder, or `None` after a SKIPPED line.
 fn deck(name: &str) -> Option<PathBuf> {
@@ -41,7 +40,7 @@ fn deck(name: &str) -> Option<PathBuf> {
         assert!(o.status.success());
         std::fs::write(&out, o.stdout).unwrap();
     } else {
-        common::skipped_install(
+        crate::common::skipped_install(
             &format!(
                 "preload_ccx_suite {name}: needs CalculiX's test deck {name}.inp(.gz) (or set \
                  FLEXBODY_CCX_TESTS to its folder; looked in {})",
@@ -66,7 +65,7 @@ fn ccx(case: &str, key: &str) -> Vec<f64> {
 fn build(deck: &std::path::Path) -> Output {
     let out = deck.with_extension("flexbody");
     let _ = std::fs::remove_file(&out);
-    common::build_as_ccx(deck, &["--modes", "10", "--json"], &out)
+    crate::common::build_as_ccx(deck, &["--modes", "10", "--json"], &out)
 }
 
 /// The number after `λ₁ = ` in `text`.
@@ -83,9 +82,9 @@ fn buckling_factor(text: &str) -> f64 {
 }
 
 /// Every mode of `body` against ccx's perturbation frequencies of `case` within `tol`, the
-/// counts first (`common::assert_frequencies`).
+/// counts first (`crate::common::assert_frequencies`).
 fn assert_modes_equal_ccx(f: &[f64], want: &[f64], case: &str, tol: f64) {
-    let worst = common::assert_frequencies(case, f, want, 0, tol);
+    let worst = crate::common::assert_frequencies(case, f, want, 0, tol);
     println!("{case}: worst {worst:.1e}");
 }
 
@@ -185,7 +184,7 @@ fn own_preloaded_decks_equal_ccx() {
         let dir = std::env::temp_dir().join(format!("flexbody-ccx-preload-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let out = dir.join(format!("{case}.flexbody"));
-        let o = common::build_as_ccx(&deck, &["--modes", "10", "--json"], &out);
+        let o = crate::common::build_as_ccx(&deck, &["--modes", "10", "--json"], &out);
         assert!(
             o.status.success(),
             "{case}: {}",
@@ -194,7 +193,7 @@ fn own_preloaded_decks_equal_ccx() {
         let report = String::from_utf8_lossy(&o.stdout);
         assert!(report.contains("K + K_G + K_L(u0)"), "{case}: {report}");
         let body = flexbody_reader::read(&out).unwrap();
-        let want = common::ccx_frequencies("ccx_preload", case);
+        let want = crate::common::ccx_frequencies("ccx_preload", case);
         assert_modes_equal_ccx(&body.modes.frequency_hz, &want, case, 1e-6);
     }
 }
@@ -239,13 +238,13 @@ fn spinning_bar_without_the_perturbation_step_has_no_spin_softening() {
     let dir = std::env::temp_dir().join(format!("flexbody-ccx-spin-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let (soft, plain) = (dir.join("soft.flexbody"), dir.join("plain.flexbody"));
-    let o = common::build_as_ccx(&deck, &["--modes", "10"], &soft);
+    let o = crate::common::build_as_ccx(&deck, &["--modes", "10"], &soft);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         o.status.success() && err.contains("spin softening −Ω²M⊥"),
         "{err}"
     );
-    let o = common::build_as_ccx(&deck, &["--modes", "10", "--preload", "STEP_1"], &plain);
+    let o = crate::common::build_as_ccx(&deck, &["--modes", "10", "--preload", "STEP_1"], &plain);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         o.status.success() && !err.contains("spin softening"),
@@ -266,14 +265,14 @@ fn spinning_bar_without_the_perturbation_step_has_no_spin_softening() {
         "{lag} vs {spin_hz2}"
     );
     let still = dir.join("still.flexbody");
-    let o = common::build_as_ccx(
+    let o = crate::common::build_as_ccx(
         &reference("../ccx_preload/still_c3d20r.inp"),
         &["--modes", "2"],
         &still,
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let f_still = flexbody_reader::read(&still).unwrap().modes.frequency_hz;
-    let want = common::ccx_frequencies("ccx_preload", "still_c3d20r");
+    let want = crate::common::ccx_frequencies("ccx_preload", "still_c3d20r");
     assert_modes_equal_ccx(&f_still, &want[..2], "still_c3d20r", 1e-6);
     let unloaded2 = f_still[1].powi(2);
     let southwell = (f_plain[1].powi(2) - unloaded2) / spin_hz2;
@@ -294,14 +293,14 @@ fn c3d4_and_c3d6_are_integrated_as_ccx() {
         let dir = std::env::temp_dir().join(format!("flexbody-ccx-rules-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let out = dir.join(format!("{case}.flexbody"));
-        let o = common::build_as_ccx(&deck, &["--modes", "10"], &out);
+        let o = crate::common::build_as_ccx(&deck, &["--modes", "10"], &out);
         assert!(
             o.status.success(),
             "{case}: {}",
             String::from_utf8_lossy(&o.stderr)
         );
         let body = flexbody_reader::read(&out).unwrap();
-        let want = common::ccx_frequencies("ccx_preload", case);
+        let want = crate::common::ccx_frequencies("ccx_preload", case);
         assert_modes_equal_ccx(&body.modes.frequency_hz, &want, case, 1e-6);
     }
 }

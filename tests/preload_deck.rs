@@ -7,8 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-mod common;
-use common::reference;
+use crate::common::reference;
 
 fn tmp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("flexbody-preload-deck-{}", std::process::id()));
@@ -31,7 +30,7 @@ fn block_deck(name: &str, history: &str) -> PathBuf {
 fn build(model: &Path, args: &[&str]) -> Output {
     let out = model.with_extension("flexbody");
     let _ = std::fs::remove_file(&out);
-    common::build_as_ccx(model, args, &out)
+    crate::common::build_as_ccx(model, args, &out)
 }
 
 /// The build fails, writes nothing, and its message contains every piece of `want`.

@@ -6,12 +6,10 @@
 //! honoured is refused naming the line: STATSUB(BUCKLE), a temperature set the bulk data lacks,
 //! a static subcase held differently from the modes', a STATSUB naming no subcase.
 
-mod common;
-
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-use common::{build_as_ccx, exe, scratch};
+use crate::common::{build_as_ccx, exe, scratch};
 use flexbody_reader as file;
 
 const L: f64 = 2.0;
@@ -55,7 +53,7 @@ const STATSUB: &str =
     "SPC = 1\nSUBCASE 1\n  LOAD = 10\nSUBCASE 2\n  STATSUB(PRELOAD) = 1\n  METHOD = 20\n";
 const PLAIN: &str = "SPC = 1\nMETHOD = 20\n";
 
-/// `common::build_as_ccx` (normal modes, consistent mass, SI): success and stderr.
+/// `crate::common::build_as_ccx` (normal modes, consistent mass, SI): success and stderr.
 fn build(model: &Path, out: &Path, extra: &[&str]) -> (bool, String) {
     let o = build_as_ccx(model, extra, out);
     (

@@ -8,15 +8,12 @@
 //! 3e-3 (triangles) at 24×24. And the same plate heated with its edges held in-plane: the
 //! biaxial N = −E t αΔT/(1 − ν) gives ρt ω² = D k⁴ + N k², f/f0 = √(1 + N/(D k²)).
 
-mod common;
-mod preload_support;
-
-use common::shell_grid;
+use crate::common::shell_grid;
+use crate::preload_support::{check_ratio, eigenvalues, heated, hold, Built};
 use flexbody::fe::geometric::{element_stresses, ElementStress};
 use flexbody::fe::preload::{preload, PreloadCase, PreloadSpec};
 use flexbody::fe::{AssemblySpec, MassKind};
 use flexbody::model::{Load, LoadPart, Material, Model};
-use preload_support::{check_ratio, eigenvalues, heated, hold, Built};
 use std::f64::consts::PI;
 
 const A: f64 = 1.0; // along x, the loaded direction

@@ -5,18 +5,15 @@
 //! hex20 and tet10; a bar with roller ends heated uniformly (σ_xx = −EαΔT, the other components
 //! zero, at every integration point).
 
-mod common;
-mod preload_support;
-
 use std::collections::HashMap;
 
+use crate::preload_support::{check_ratio, eigenvalues, frequency_ratio, heated, hold, Built};
 use flexbody::fe::geometric::ElementStress;
 use flexbody::fe::preload::{buckling_factor, preload, PreloadCase, PreloadSpec};
 use flexbody::fe::{AssemblySpec, MassKind};
 use flexbody::model::generate::{block, BlockElement, BlockSpec};
 use flexbody::model::load::{face_nodes, solid_faces};
 use flexbody::model::{Element, ElementKind, Load, LoadPart, Material, Model, Node};
-use preload_support::{check_ratio, eigenvalues, frequency_ratio, heated, hold, Built};
 use std::f64::consts::PI;
 
 const L: f64 = 1.0;

@@ -18,10 +18,8 @@
 //! * K_T feeds the reductions unchanged: Craig–Bampton on K_T (interface at the tip, all
 //!   fixed-interface modes) gives the preloaded frequencies.
 
-mod common;
-mod preload_support;
-
-use common::steel;
+use crate::common::steel;
+use crate::preload_support::{eigenvalues, hold, lowest, straight_line, Built};
 use faer::Mat;
 use flexbody::fe::preload::{
     modal_geometric_stiffness, preload, spin_softening, PreloadCase, PreloadSpec, Spin,
@@ -29,7 +27,6 @@ use flexbody::fe::preload::{
 use flexbody::fe::{AssemblySpec, BeamTheory, MassKind};
 use flexbody::model::{BeamSection, ElementKind, Section};
 use flexbody::solve::sparse_ops;
-use preload_support::{eigenvalues, hold, lowest, straight_line, Built};
 
 const L: f64 = 2.0;
 const W: f64 = 0.04; // along y: in-plane (lead-lag) bending uses I₁ = H W³/12

@@ -8,10 +8,8 @@
 //! * the file's unit inertia terms: Σ_{i≤j} ω_iω_j K̂_G,ij equals K̂_G of the spin ω on a free
 //!   body (linearity of the preload, the fields' decomposition).
 
-mod common;
-mod preload_support;
-
-use common::steel;
+use crate::common::steel;
+use crate::preload_support::{hold, lowest, nodal_load, straight_line, Built};
 use faer::Mat;
 use flexbody::fe::geometric::{element_stresses, ElementStress};
 use flexbody::fe::preload::{
@@ -20,7 +18,6 @@ use flexbody::fe::preload::{
 };
 use flexbody::fe::{AssemblySpec, MassKind};
 use flexbody::model::{BeamSection, ElementKind, Load, LoadPart, Model, Section};
-use preload_support::{hold, lowest, nodal_load, straight_line, Built};
 
 const L: f64 = 2.0;
 const NE: usize = 40;

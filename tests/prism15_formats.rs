@@ -11,12 +11,10 @@
 //! * One mesh read from a `.inp`, a `.bdf` and a `.msh` gives the same free-free frequencies
 //!   to 1e-10 (measured: identical), lumped and consistent.
 
-mod common;
-
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use common::{build_as_ccx, generalized_eigenvalues, hz, scratch};
+use crate::common::{build_as_ccx, generalized_eigenvalues, hz, scratch};
 use flexbody::fe::{assemble, AssemblySpec, MassKind};
 use flexbody::import::{read_model, ImportOptions};
 use flexbody::model::{ElementKind, Model};
@@ -120,7 +118,7 @@ fn inp(m: &Model) -> String {
 
 fn read(path: &Path) -> Model {
     let opts = ImportOptions {
-        material: Some(common::steel()),
+        material: Some(crate::common::steel()),
         ..ImportOptions::default()
     };
     read_model(path, &opts).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -152,7 +150,7 @@ const DECKS: [&str; 3] = ["bar_2x1x1", "bar_4x2x2", "bar_8x4x4"];
 fn c3d15_and_cpenta15_decks_give_ccx_frequencies() {
     let dir = scratch("prism15-ccx");
     for name in DECKS {
-        let want = common::ccx_frequencies("ccx_prism15", name);
+        let want = crate::common::ccx_frequencies("ccx_prism15", name);
         let deck = fixture(&format!("{name}.inp"));
         let got = built_hz(&deck, &dir);
         // ccx prints 7 digits: measured ≤ 3.1e-7 relative (bar_8x4x4), .inp and .bdf alike
@@ -178,7 +176,7 @@ fn c3d15_and_cpenta15_decks_give_ccx_frequencies() {
 #[test]
 fn orthotropic_c3d15_deck_gives_ccx_frequencies() {
     let dir = scratch("prism15-ortho");
-    let want = common::ccx_frequencies("ccx_prism15", "ortho_4x2x2");
+    let want = crate::common::ccx_frequencies("ccx_prism15", "ortho_4x2x2");
     let got = built_hz(&fixture("ortho_4x2x2.inp"), &dir);
     let error = worst_relative(&got, &want);
     println!("ortho_4x2x2: {error:.1e} against ccx");
@@ -231,12 +229,12 @@ fn free_hz(m: &Model, mass: MassKind) -> Vec<f64> {
         ..AssemblySpec::default()
     };
     let a = assemble(m, &spec).unwrap();
-    let k = common::dense(&a.k);
-    let mut mm = common::dense(&a.m);
+    let k = crate::common::dense(&a.k);
+    let mut mm = crate::common::dense(&a.m);
     if mass == MassKind::Consistent {
         // ccx's 9-point mass has rank 9 of 15 per wedge: a tiny multiple of the lumped one
         // keeps M definite for the Cholesky without changing the comparison
-        let lumped = common::dense(&assemble(m, &AssemblySpec::default()).unwrap().m);
+        let lumped = crate::common::dense(&assemble(m, &AssemblySpec::default()).unwrap().m);
         for i in 0..mm.nrows() {
             mm[(i, i)] += 1e-3 * lumped[(i, i)];
         }

@@ -6,8 +6,6 @@
 //!   1.85e22, the reciprocal of a rounding error), and for the same cantilever in compression
 //!   it is Euler's P_cr/P, P_cr = π²EI/(4L²) of a clamped–free column.
 
-mod common;
-
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -37,7 +35,7 @@ fn cantilever(dir: &Path) -> PathBuf {
 /// `flexbody build MODEL --units si --method normal --modes 4 ARGS… -o OUT -q`, asserted to
 /// succeed.
 fn build(model: &Path, args: &[&str], out: &Path) {
-    let o = common::exe()
+    let o = crate::common::exe()
         .arg("build")
         .arg(model)
         .args(["--units", "si", "--method", "normal", "--modes", "4", "-q"])
@@ -66,7 +64,7 @@ fn recipe_text(path: &Path) -> String {
 
 #[test]
 fn recipe_options_are_written_in_the_spec_order() {
-    let dir = common::scratch("recipe_writer_order");
+    let dir = crate::common::scratch("recipe_writer_order");
     let mut s = String::from("*NODE, NSET=NALL\n");
     for i in 0..=10 {
         s += &format!("{}, {:?}, 0.0, 0.0\n", i + 1, 0.2 * i as f64);
@@ -99,7 +97,7 @@ fn recipe_options_are_written_in_the_spec_order() {
 
 #[test]
 fn buckling_factor_is_null_in_tension_and_eulers_in_compression() {
-    let dir = common::scratch("recipe_writer_buckling");
+    let dir = crate::common::scratch("recipe_writer_buckling");
     let deck = cantilever(&dir);
     let out = dir.join("preloaded.flexbody");
     let p = 1000.0;

@@ -5,11 +5,9 @@
 //! constrained K, M of `export --to mtx --model` with the held node's dofs removed
 //! (`tests/python/held_normal_modes_check.py`; skipped visibly without SciPy).
 
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 use std::path::Path;
 use std::process::Command;
-
-mod common;
 
 #[test]
 fn normal_modes_with_the_big_end_held_build_check_and_match_scipy() {
@@ -83,7 +81,7 @@ fn normal_modes_with_the_big_end_held_build_check_and_match_scipy() {
         .output()
         .is_ok_and(|o| o.status.success());
     if !has_scipy {
-        common::skipped_install(
+        crate::common::skipped_install(
             "the SciPy comparison of reference_normal_modes: python3 cannot import scipy",
             "pip install scipy",
         );

@@ -127,6 +127,6 @@ fn skips_go_through_the_common_helper() {
     }
     assert!(
         offenders.is_empty(),
-        "skips printed without common::skipped: {offenders:?}"
+        "skips printed without crate::common::skipped: {offenders:?}"
     );
 }

@@ -9,8 +9,7 @@
 
 use std::path::PathBuf;
 
-mod common;
-use common::exe;
+use crate::common::exe;
 
 const E: f64 = 2.1e11;
 const NU: f64 = 0.3;
@@ -70,7 +69,7 @@ fn strip(
 
 /// Build `deck` with normal modes (the deck's consistent mass and 4 modes) → frequencies.
 fn freqs(name: &str, deck: &str) -> Vec<f64> {
-    common::build_bdf_modes(&format!("drilling-{name}"), deck).0
+    crate::common::build_bdf_modes(&format!("drilling-{name}"), deck).0
 }
 
 /// Out of plane (in-plane dofs 1, 2, 6 held): the CQUADR/CTRIAR plate is the CQUAD4/CTRIA3 one.

@@ -17,9 +17,7 @@
 //! bounds the eigenvalues of the model with its massless dofs condensed, K_mm − K_ms K_ss⁻¹ K_sm
 //! ≤ K_mm (Courant–Fischer).
 
-mod common;
-
-use common::{exe, scratch};
+use crate::common::{exe, scratch};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -277,8 +275,8 @@ fn spectrum_top_hz(dir: &Path) -> f64 {
         }
         d
     };
-    let ev = common::generalized_eigenvalues(&dense_mm(&k), &dense_mm(&m));
-    common::hz(ev.last().copied().unwrap_or(0.0))
+    let ev = crate::common::generalized_eigenvalues(&dense_mm(&k), &dense_mm(&m));
+    crate::common::hz(ev.last().copied().unwrap_or(0.0))
 }
 
 /// Builds `deck` with `args` and the normal-mode reference (with `check_args`: the spiders that

@@ -10,8 +10,7 @@
 
 use std::path::PathBuf;
 
-mod common;
-use common::exe;
+use crate::common::exe;
 
 const A: f64 = 1.0;
 const T: f64 = 0.01;
@@ -73,7 +72,7 @@ fn plate_deck(n: usize, layers: &[(u32, f64, f64)], tria: bool) -> String {
 
 /// Build `deck` (normal modes, the deck's mass and mode count) → (frequencies, stderr).
 fn build(name: &str, deck: &str) -> (Vec<f64>, String) {
-    common::build_bdf_modes(&format!("offsets-{name}"), deck)
+    crate::common::build_bdf_modes(&format!("offsets-{name}"), deck)
 }
 
 fn leissa_hz(h: f64, m: f64, n: f64) -> f64 {

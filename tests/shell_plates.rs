@@ -9,11 +9,9 @@
 //!   0.3024 (MacNeal & Harder, *Finite Elem. Anal. Des.* 1 (1985) 3).
 //! * Free flat plate: exactly 6 zero eigenvalues of K.
 
-mod common;
-
-use common::shell_grid as grid;
-use common::{dense, lowest_eigenvalues};
-use common::{shell_mesh, ShellMesh};
+use crate::common::shell_grid as grid;
+use crate::common::{dense, lowest_eigenvalues};
+use crate::common::{shell_mesh, ShellMesh};
 use faer::Mat;
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
 use flexbody::model::{
@@ -296,7 +294,7 @@ fn shell_drilling_factor_barely_moves_folded_plate_frequencies() {
         let keep: Vec<usize> = (0..n).filter(|&d| (d / 6) % (nx + 1) != 0).collect();
         let kr = Mat::from_fn(keep.len(), keep.len(), |a, b| k[(keep[a], keep[b])]);
         let mr = Mat::from_fn(keep.len(), keep.len(), |a, b| m[(keep[a], keep[b])]);
-        common::generalized_eigenvalues(&kr, &mr)
+        crate::common::generalized_eigenvalues(&kr, &mr)
             .iter()
             .take(6)
             .map(|l| l.sqrt())

@@ -6,11 +6,9 @@
 //! plate exactly. The Abaqus decks are read with `--inp-shells native` (flexbody's shells; by
 //! default a deck's shells are expanded into bricks as ccx does: tests/ccx_shell_expansion.rs).
 
-mod common;
-
 use std::path::Path;
 
-use common::scratch;
+use crate::common::scratch;
 use flexbody::fe::{assemble, eliminate, AssemblySpec, ConstraintSpec, MassKind};
 use flexbody::import::{read_model, ImportOptions, InpShells};
 use flexbody::solve::{lowest_modes, EigenSpec};
@@ -299,7 +297,7 @@ fn nastran_cquad8_ctria6_with_corner_thicknesses() {
 fn calculix_shellf_s8_plate_is_leissas_plate() {
     let deck = Path::new("/usr/share/doc/calculix-ccx-test/examples/test/shellf.inp");
     if !deck.exists() {
-        common::skipped_install(
+        crate::common::skipped_install(
             &format!(
                 "calculix_shellf_s8_plate_is_leissas_plate: needs {}",
                 deck.display()
@@ -361,7 +359,7 @@ fn stress_shapes_and_preload_of_quadratic_shells_are_refused_by_element() {
     let deck = write("stress.inp", &abaqus("S8", 0.01, "", ""));
     let out = deck.with_extension("flexbody");
     let run = |extra: &[&str]| {
-        common::exe()
+        crate::common::exe()
             .arg("build")
             .arg(&deck)
             .args([

@@ -5,11 +5,9 @@
 //! frequencies (`fixtures/ccx_tie/results.json`, `fixtures/ccx_frequencies.py` runs ccx): ccx prints 7
 //! significant digits.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{build_as_ccx, scratch};
+use crate::common::{build_as_ccx, scratch};
 use flexbody_reader as file;
 
 fn fixture(name: &str) -> PathBuf {
@@ -18,9 +16,9 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// ccx 2.20's frequencies of `key` (`common::ccx_frequencies`).
+/// ccx 2.20's frequencies of `key` (`crate::common::ccx_frequencies`).
 fn ccx(key: &str) -> Vec<f64> {
-    common::ccx_frequencies("ccx_tie", key)
+    crate::common::ccx_frequencies("ccx_tie", key)
 }
 
 /// Builds `deck` as ccx solves it; the body and the build's stderr.
@@ -46,7 +44,7 @@ fn assert_ccx(what: &str, body: &file::ReducedBody, theirs: &[f64]) -> f64 {
         "{what}: {:?} against {theirs:?}",
         body.modes.frequency_hz
     );
-    common::assert_frequencies(what, &body.modes.frequency_hz, theirs, rigid, 1e-6)
+    crate::common::assert_frequencies(what, &body.modes.frequency_hz, theirs, rigid, 1e-6)
 }
 
 #[test]
@@ -54,7 +52,7 @@ fn a_conforming_tie_is_the_merged_mesh() {
     let dir = scratch("tie-conforming");
     let (merged, _) = build(&fixture("tie_merged.inp"), &dir);
     let (tied, _) = build(&fixture("tie_conforming.inp"), &dir);
-    common::assert_frequencies(
+    crate::common::assert_frequencies(
         "tied against merged",
         &tied.modes.frequency_hz,
         &merged.modes.frequency_hz,

@@ -10,12 +10,10 @@
 //!   shown, the number of pixels drawn), and mode 7 (`#mode=7&t=0.25`) draws different pixels
 //!   than mode 1 — by the page's own canvas hash and by Chromium's screenshots.
 
-mod common;
-
 use std::path::PathBuf;
 use std::process::Command;
 
-use common::{exe, scratch, skipped_install};
+use crate::common::{exe, scratch, skipped_install};
 use flexbody::export::vtu::significant;
 use flexbody_reader as file;
 
@@ -33,7 +31,7 @@ fn conrod_page(name: &str) -> (file::ReducedBody, PathBuf, PathBuf) {
     let dir = scratch(&format!("view-{name}"));
     let body_path = dir.join("conrod.flexbody");
     let html = dir.join("conrod.html");
-    common::build_conrod(&body_path, &["--damping", "2%"]);
+    crate::common::build_conrod(&body_path, &["--damping", "2%"]);
     run(&[
         "view",
         body_path.to_str().unwrap(),
@@ -44,7 +42,7 @@ fn conrod_page(name: &str) -> (file::ReducedBody, PathBuf, PathBuf) {
 }
 
 fn f32s(text: &str) -> Vec<f32> {
-    common::base64_block(text)
+    crate::common::base64_block(text)
         .0
         .chunks_exact(4)
         .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
@@ -128,7 +126,7 @@ fn the_page_is_self_contained_and_holds_the_files_figures_and_shapes() {
     println!(
         "conrod page: {} of {n} nodes, {} triangles, {} modes equal to the file (float32)",
         stored.len(),
-        common::base64_block(data["triangles"].as_str().unwrap())
+        crate::common::base64_block(data["triangles"].as_str().unwrap())
             .0
             .len()
             / 12,

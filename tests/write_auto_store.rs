@@ -2,7 +2,6 @@
 //! deflate does not shrink is stored, everything else is deflated exactly as `Deflate(6)`
 //! writes it. Checked by opening the written container with the `zip` crate, reading it back
 //! with `flexbody-reader` and with the stdlib reference reader (`format-spec/reference_reader.py`).
-mod format_support;
 
 use std::io::Cursor;
 use std::path::Path;
@@ -34,7 +33,7 @@ fn random_doubles(len: usize, mut state: u64) -> Vec<f64> {
 /// The 3-node chain's records (3 modes, interfaces at nodes 0 and 2) on `NODES` nodes of a
 /// 1 mm grid with equal masses and the given mode-major shapes; invariants computed from them.
 fn large_body(shapes: Vec<f64>) -> ReducedBody {
-    let mut b = format_support::body_3node();
+    let mut b = crate::format_support::body_3node();
     let template_mass = b.nodal_mass[0].clone();
     b.nodes = (0..NODES)
         .map(|p| Node {
@@ -50,7 +49,7 @@ fn large_body(shapes: Vec<f64>) -> ReducedBody {
     b.nodal_mass = vec![template_mass; NODES];
     assert_eq!(shapes.len(), 3 * NODES * 6);
     b.modes.shapes = shapes;
-    b.invariants = format_support::invariants(
+    b.invariants = crate::format_support::invariants(
         &b.nodes,
         &b.nodal_mass,
         &b.modes.shapes,
