@@ -105,6 +105,7 @@ pub fn ours_eigen(
                      "eigen_restarts": s.info.seconds_restart},
         "gram_schmidt": gram_schmidt_json(&s.info.gram_schmidt),
         "solves": s.info.solves, "steps": s.info.steps, "restarts": s.info.restarts,
+        "ritz_solves": s.info.ritz_solves,
         "block": spec.block.unwrap_or(modes.min(flexbody::solve::DEFAULT_BLOCK)),
         "max_basis": spec.max_basis.unwrap_or_else(|| flexbody::solve::default_basis(
             modes,
@@ -601,6 +602,7 @@ pub fn ours_cb(n: [usize; 3], modes: usize, precision: &str) -> Res<Value> {
         "eigen_solved_vectors": basis.eigen.solves,
         "eigen_steps": basis.eigen.steps,
         "eigen_restarts": basis.eigen.restarts,
+        "eigen_ritz_solves": basis.eigen.ritz_solves,
         "eigen_gram_schmidt": gram_schmidt_json(&basis.eigen.gram_schmidt),
         "nnz_l": basis.eigen.factor.as_ref().map(|f| f.nnz_l),
         "factor_bytes": basis.eigen.factor.as_ref().map(|f| f.factor_bytes),

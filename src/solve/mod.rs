@@ -309,6 +309,8 @@ pub struct EigenInfo {
     pub steps: usize,
     /// Thick restarts.
     pub restarts: usize,
+    /// Dense eigensolves of the projected matrix T (the Ritz pairs computed during the run).
+    pub ritz_solves: usize,
     /// ‖ΦᵀMΦ − I‖_max.
     pub orthonormality: f64,
     /// ‖ΦᵀKΦ − diag(ω²)‖_max / max|ω²|.
@@ -672,6 +674,7 @@ pub fn lowest_modes_factored(
         refinement_solves: r.refinement_solves,
         steps: r.steps,
         restarts: r.restarts,
+        ritz_solves: r.ritz_solves,
         factor: Some(llt.stats.clone()),
         seconds_eigen: t1.elapsed().as_secs_f64(),
         seconds_solve: r.seconds_solve,
