@@ -591,9 +591,10 @@ pub struct ModelParams {
     /// and mass in one loop): C3D4 mass with one point (every entry ρV/16), C3D6 stiffness and
     /// mass with two points (`quadrature::wedge_centroid`). Set by the Abaqus/CalculiX importer.
     pub ccx_solid_rules: bool,
-    /// ANSYS's integration rules where they differ from the standard ones: SOLID186's
-    /// consistent mass with Irons' 14-point rule (`quadrature::cube_irons14`). Set by the ANSYS
-    /// importer.
+    /// ANSYS's integration rules where they differ from the standard ones: SOLID186's (and the
+    /// archived SOLID95's) consistent mass with Irons' 14-point rule (`quadrature::cube_irons14`;
+    /// SOLID95 KEYOPT(11)=1's on 2×2×2: `Model::hex20_mass_2x2x2`), their full integration's
+    /// stiffness on the same 14 points. Set by the ANSYS importer.
     pub ansys_solid_rules: bool,
     /// The 4-node shells are ANSYS's SHELL181 with KEYOPT(3)=2: MITC4 + QM6 with ANSYS's
     /// transverse shear factor and drilling penalty (`fe::elements::shell::Quad4Form`). Set by
@@ -642,6 +643,11 @@ pub struct Model {
     /// index → section; `fe::elements::hex20_beam`): the brick spans the section's bounding
     /// rectangle and is integrated at the section's own points.
     pub beam_bricks: BTreeMap<usize, BeamBrickSection>,
+    /// 20-node bricks with reduced integration (`Hex20R`) whose consistent mass is on the same
+    /// 2×2×2 points as their stiffness where `ModelParams::ansys_solid_rules` would take Irons'
+    /// 14 points: ANSYS's archived SOLID95 with KEYOPT(11)=1 (`fe::elements::hex20_beam`);
+    /// element indices.
+    pub hex20_mass_2x2x2: std::collections::BTreeSet<usize>,
     /// Properties (sections).
     pub properties: Vec<Property>,
     /// Materials.

@@ -149,7 +149,10 @@ impl Element for Hex20Element {
             let ms = scalar_mass(&x, rho, section)?;
             return Ok(input.solid(k, ms, 20, true));
         }
-        let mass = if input.model.params.ansys_solid_rules && !lumped {
+        // ANSYS: SOLID186's mass on Irons' 14 points, SOLID95 KEYOPT(11)=1's on its stiffness's
+        // 2×2×2 (MAPDL Archived Elements Theory Reference §1.17: "2 x 2 x 2 if KEYOPT(11) = 1")
+        let gauss2 = self.reduced && input.model.hex20_mass_2x2x2.contains(&input.index);
+        let mass = if input.model.params.ansys_solid_rules && !lumped && !gauss2 {
             hex20::scalar_mass_irons14(&x, rho)
         } else {
             hex20::scalar_mass(&x, rho, self.reduced && !lumped)

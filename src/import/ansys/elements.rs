@@ -93,7 +93,7 @@ pub(super) struct Spring {
 pub(super) type Refusal = String;
 
 /// The KEYOPTs of `t` other than `allowed` that are set: each one refused by name.
-fn unsupported_keyopts(t: &ElementType, allowed: &[u32]) -> Result<(), Refusal> {
+pub(super) fn unsupported_keyopts(t: &ElementType, allowed: &[u32]) -> Result<(), Refusal> {
     match t.keyopts.iter().find(|(k, _)| !allowed.contains(k)) {
         Some((k, v)) => Err(format!(
             "{} KEYOPT({k})={v}: this option's formulation is not formed here",
@@ -133,6 +133,8 @@ pub(super) fn form(
         189 => super::beams::beam189(&t.keyopts, rec).map(Formed::Beam),
         185 => solid185(t, rec),
         186 => solid186(t, rec),
+        45 => solid45(t, rec),
+        95 => solid95(t, rec),
         187 => solid187(t, rec),
         // every honoured row of the catalogue is matched above; a new one must be added here
         other => Err(format!("element type {other} ({name}) has no former")),
@@ -309,30 +311,53 @@ fn mpc184(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
 
 /// SOLID186 (MAPDL Theory Reference §13.186): the 20-node brick with uniform reduced 2×2×2
 /// integration (KEYOPT(2)=0, the default: C3D20R's K, the mass on Irons' 14 points) or full
-/// integration on Irons' 14 points (KEYOPT(2)=1: K and mass); written as a collapsed brick in
-/// ANSYS's wedge or tetrahedron pattern ([`degenerate_shape`]) it is the 15-node wedge on the
-/// 3 × 3 rule, the 10-node tetrahedron on 4 points or ANSYS's 13-node pyramid on 2×2×2
-/// points ([`ElementKind::Pyram13Ansys`]), whatever KEYOPT(2) says (the Theory Reference's
-/// table); dropped mid-side nodes are refused.
+/// integration on Irons' 14 points (KEYOPT(2)=1: K and mass); its degenerate shapes as
+/// [`brick20`] forms them, whatever KEYOPT(2) says (the Theory Reference's table).
 fn solid186(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     unsupported_keyopts(t, &[2])?;
-    let full = match t.keyopts.get(&2).copied().unwrap_or(0) {
-        0 => false,
-        1 => true,
+    let rule = match t.keyopts.get(&2).copied().unwrap_or(0) {
+        0 => Brick20Rule::Reduced,
+        1 => Brick20Rule::Irons14,
         k => return Err(format!("SOLID186 KEYOPT(2)={k}: not an option of SOLID186")),
     };
+    brick20("SOLID186", rec, rule)
+}
+
+/// How a 20-node brick written with 20 distinct nodes is integrated (ANSYS's SOLID186 and the
+/// archived SOLID95; their degenerate shapes take the Theory Reference's rule per shape).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Brick20Rule {
+    /// K on 2×2×2 points, the mass on Irons' 14 (SOLID186 KEYOPT(2)=0): [`ElementKind::Hex20R`].
+    Reduced,
+    /// K and mass on Irons' 14 points (SOLID186 KEYOPT(2)=1, SOLID95 KEYOPT(11)=0):
+    /// [`ElementKind::Hex20`].
+    Irons14,
+    /// K and mass on 2×2×2 points (SOLID95 KEYOPT(11)=1): [`ElementKind::Hex20R`] with its
+    /// index in `Model::hex20_mass_2x2x2` (`legacy::solid_rule`).
+    Gauss2,
+}
+
+/// A 20-node brick record of element `name` (SOLID186, SOLID95): with 20 distinct nodes the
+/// brick on `rule`; written as a collapsed brick in ANSYS's wedge or tetrahedron pattern
+/// ([`degenerate_shape`]) the 15-node wedge on the 3 × 3 rule, the 10-node tetrahedron on 4
+/// points or ANSYS's 13-node pyramid on 2×2×2 points ([`ElementKind::Pyram13Ansys`]); dropped
+/// mid-side nodes are refused.
+pub(super) fn brick20(
+    name: &str,
+    rec: &ElementRecord,
+    rule: Brick20Rule,
+) -> Result<Formed, Refusal> {
     let n = &rec.nodes;
     if n.len() != 20 || n.contains(&0) {
         return Err(format!(
-            "SOLID186 with {} of its 20 nodes (dropped mid-side nodes): not formed here",
+            "{name} with {} of its 20 nodes (dropped mid-side nodes): not formed here",
             n.iter().filter(|&&v| v != 0).count()
         ));
     }
     if distinct(n) {
-        let kind = if full {
-            ElementKind::Hex20
-        } else {
-            ElementKind::Hex20R
+        let kind = match rule {
+            Brick20Rule::Irons14 => ElementKind::Hex20,
+            Brick20Rule::Reduced | Brick20Rule::Gauss2 => ElementKind::Hex20R,
         };
         return Ok(Formed::Element(kind, n.clone()));
     }
@@ -343,13 +368,88 @@ fn solid186(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
             ElementKind::Pyram13Ansys,
             pick(n, &PYRAMID),
         )),
-        None => Err(
-            "SOLID186 with repeated nodes in no pattern of ANSYS's degenerate shapes (wedge: \
+        None => Err(format!(
+            "{name} with repeated nodes in no pattern of ANSYS's degenerate shapes (wedge: \
              K = L = S, O = P = W, A = B; tetrahedron: K = L = S, M…P = U…X, A = B; pyramid: \
              M…P = U…X): not formed here"
-                .into(),
-        ),
+        )),
     }
+}
+
+/// SOLID45 (module doc): KEYOPT(1)=0 (the default) with 8 unique nodes, the brick with Wilson's
+/// incompatible modes and Taylor's correction ([`ElementKind::Hex8`] with incompatible modes);
+/// KEYOPT(1)=1, the trilinear brick on 2×2×2 points ([`ElementKind::Hex8`] without them, in an
+/// archive whose other bricks have none: `legacy::Archive::archived_solid_rules`); collapsed into
+/// ANSYS's wedge (K = L, O = P), either KEYOPT(1), the brick as written on 2×2×2 points
+/// ([`ElementKind::Hex8Bbar`]'s wedge). Refused by line: KEYOPT(2)=1 (one point with
+/// Flanagan–Belytschko hourglass control, whose hourglass stiffness the text does not give, as
+/// SOLID185 KEYOPT(2)=1), the pyramid and tetrahedron patterns, KEYOPTs other than the output
+/// controls KEYOPT(5) and KEYOPT(6) (the element axes KEYOPT(4), the initial stress subroutine
+/// KEYOPT(9)).
+pub(super) fn solid45(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[1, 2, 5, 6])?;
+    match t.keyopts.get(&2).copied().unwrap_or(0) {
+        0 => {}
+        1 => {
+            return Err(
+                "SOLID45 KEYOPT(2)=1 (uniform reduced integration with Flanagan–Belytschko \
+                 hourglass control): its hourglass stiffness is not given in the Theory \
+                 Reference (as SOLID185 KEYOPT(2)=1): not formed here"
+                    .into(),
+            )
+        }
+        k => return Err(format!("SOLID45 KEYOPT(2)={k}: not an option of SOLID45")),
+    }
+    // KEYOPT(1): 0 with the extra shapes, 1 without (`solid_rule` records which: flexbody's
+    // incompatible modes are model-wide)
+    if let k @ 2.. | k @ ..=-1 = t.keyopts.get(&1).copied().unwrap_or(0) {
+        return Err(format!("SOLID45 KEYOPT(1)={k}: not an option of SOLID45"));
+    }
+    let n = &rec.nodes;
+    if n.len() != 8 || n.contains(&0) {
+        return Err("SOLID45 without its 8 nodes".into());
+    }
+    if distinct(n) {
+        return Ok(Formed::Element(ElementKind::Hex8, n.clone()));
+    }
+    if collapsed_wedge8(n) {
+        return Ok(Formed::Element(ElementKind::Hex8Bbar, n.clone()));
+    }
+    Err(
+        "SOLID45 with repeated nodes other than ANSYS's wedge (K = L, O = P): the collapsed \
+         pyramid and tetrahedron are not formed here"
+            .into(),
+    )
+}
+
+/// SOLID95 (module doc): the 20-node brick on Irons' 14 points (KEYOPT(11)=0, the default) or
+/// on 2×2×2 points (KEYOPT(11)=1), stiffness and mass alike; its degenerate shapes as
+/// SOLID186's ([`brick20`]). Refused by line: KEYOPT(3)=1 (this element type's mass lumped —
+/// "diagonalized as described in Lumped Matrices" — while flexbody's mass is consistent or
+/// lumped for the whole body: `LUMPM`, `--mass`), KEYOPTs other than the output controls
+/// KEYOPT(5) and KEYOPT(6) (the element axes KEYOPT(4), the initial stress subroutine
+/// KEYOPT(9)), dropped mid-side nodes.
+pub(super) fn solid95(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
+    unsupported_keyopts(t, &[3, 5, 6, 11])?;
+    match t.keyopts.get(&3).copied().unwrap_or(0) {
+        0 => {}
+        1 => {
+            return Err(
+                "SOLID95 KEYOPT(3)=1 (lumped mass for this element type alone): flexbody's \
+                 mass is consistent or lumped for the whole body (LUMPM,ON or --mass lumped), \
+                 and ANSYS's diagonalization of the 20-node brick is not shown here: not \
+                 formed here"
+                    .into(),
+            )
+        }
+        k => return Err(format!("SOLID95 KEYOPT(3)={k}: not an option of SOLID95")),
+    }
+    let rule = match t.keyopts.get(&11).copied().unwrap_or(0) {
+        0 => Brick20Rule::Irons14,
+        1 => Brick20Rule::Gauss2,
+        k => return Err(format!("SOLID95 KEYOPT(11)={k}: not an option of SOLID95")),
+    };
+    brick20("SOLID95", rec, rule)
 }
 
 /// ANSYS's degenerate shapes of a 20-node brick (MAPDL Element Reference, SOLID186's geometry
@@ -469,7 +569,7 @@ fn solid185(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
             if n.len() != 8 || n.contains(&0) {
                 return Err("SOLID185 without its 8 nodes".into());
             }
-            if distinct(n) || collapsed_wedge185(n) {
+            if distinct(n) || collapsed_wedge8(n) {
                 return Ok(Formed::Element(ElementKind::Hex8Bbar, n.clone()));
             }
             return Err(
@@ -507,14 +607,15 @@ fn solid185(t: &ElementType, rec: &ElementRecord) -> Result<Formed, Refusal> {
     ))
 }
 
-/// SOLID185 collapsed into ANSYS's wedge: K = L and O = P (0-based 2 = 3, 6 = 7), the six
-/// nodes kept distinct (MAPDL Element Reference, SOLID185's geometry figure).
-fn collapsed_wedge185(n: &[u64]) -> bool {
+/// An 8-node brick (SOLID185, SOLID45) collapsed into ANSYS's wedge: K = L and O = P (0-based
+/// 2 = 3, 6 = 7), the six nodes kept distinct (MAPDL Element Reference, SOLID185's and
+/// SOLID45's geometry figures).
+pub(super) fn collapsed_wedge8(n: &[u64]) -> bool {
     n[2] == n[3] && n[6] == n[7] && distinct(&pick(n, &[0, 1, 2, 4, 5, 6]))
 }
 
 /// No id repeats.
-fn distinct(ids: &[u64]) -> bool {
+pub(super) fn distinct(ids: &[u64]) -> bool {
     let mut v = ids.to_vec();
     v.sort_unstable();
     v.windows(2).all(|w| w[0] != w[1])

@@ -250,8 +250,10 @@ fn isotropic_only(
         Formed::Beam(_) => ("a beam: beams read one E and G", mat),
         Formed::Rod(..) => ("a LINK180: links read one E", mat),
         Formed::Element(ElementKind::Hex8Bbar, _) => (
-            "SOLID185 KEYOPT(2)=0: the B-bar brick's mean dilatation is formed for isotropic \
-             materials only (KEYOPT(2)=3 is formed with an orthotropic one)",
+            "SOLID185 KEYOPT(2)=0 or a brick collapsed into ANSYS's wedge (SOLID185, SOLID45): \
+             the B-bar brick's mean dilatation and that wedge are formed for isotropic \
+             materials only (SOLID185 KEYOPT(2)=3 and SOLID45's bricks are formed with an \
+             orthotropic one)",
             mat,
         ),
         Formed::Element(..)

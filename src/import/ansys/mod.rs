@@ -24,6 +24,7 @@ mod elements;
 mod esys;
 mod form;
 pub mod full;
+mod legacy;
 mod materials;
 mod nodal;
 mod sections;
@@ -467,10 +468,7 @@ impl Archive {
         model.params.ansys_solid_rules = true;
         let node_map = self.place_nodes(file, &mut model, None)?;
         let elements = self.form_elements(file, ignored, &node_map, &materials, &mut model)?;
-        // the only Hex8 an archive forms is SOLID185 KEYOPT(2)=3: incompatible modes (its
-        // default, KEYOPT(2)=0, is Hex8Bbar)
-        model.params.solid_bubbles =
-            (model.elements.iter()).any(|e| e.kind == crate::model::ElementKind::Hex8);
+        self.archived_solid_rules(&elements, &mut model);
         self.constraints(file, &node_map, &mut model)?;
         self.surface_loads(file, &node_map, &elements, &mut model)?;
         self.element_systems();

@@ -1,5 +1,6 @@
 """Regenerate `solid186_full.cdb` and `solid186_full.json`: a reference for SOLID186 with full
-integration (KEYOPT(2)=1), computed here independently of flexbody with numpy.
+integration (KEYOPT(2)=1) and for the archived SOLID95, computed here independently of flexbody
+with numpy.
 
 ANSYS forms SOLID186's stiffness with KEYOPT(2)=1 on 14 points and with KEYOPT(2)=0 on 2 x 2 x 2,
 its mass on the same 14 points (MAPDL Theory Reference §13.186; the 14-point mass is also what
@@ -11,7 +12,10 @@ The mesh: a steel cantilever 0.6 x 0.1 x 0.1 m of 3 x 2 x 2 twenty-node bricks w
 (moved) mid-side nodes and skewed corners, clamped at x = 0. The json holds its first 8
 frequencies (Hz) with the stiffness on 14 points (KEYOPT(2)=1), on 2 x 2 x 2 (KEYOPT(2)=0) and,
 for contrast, on 3 x 3 x 3 (what KEYOPT(2)=1 would be with the standard Gauss rule); all with
-the 14-point mass.
+the 14-point mass. SOLID95 (MAPDL Archived Elements Theory Reference §1.17) forms stiffness and
+mass on "14 if KEYOPT(11) = 0, 2 x 2 x 2 if KEYOPT(11) = 1": KEYOPT(11)=0 is the first list,
+and the json's `solid95_keyopt11_1_gauss2` holds the frequencies with stiffness and mass both on
+2 x 2 x 2.
 
 Usage: python3 solid186_full.py (numpy).
 """
@@ -133,17 +137,18 @@ def mesh():
     return np.array(coords), elements
 
 
-def frequencies(coords, elements, krule):
+def frequencies(coords, elements, krule, mrule=None):
     n = 3 * len(coords)
     kg, mg = np.zeros((n, n)), np.zeros((n, n))
     for e in elements:
         ix = np.array([[3 * (v - 1) + c for c in range(3)] for v in e]).ravel()
-        k, m = element(coords[np.array(e) - 1], krule, irons14())
+        k, m = element(coords[np.array(e) - 1], krule, mrule or irons14())
         kg[np.ix_(ix, ix)] += k
         mg[np.ix_(ix, ix)] += m
     free = np.array([i for i in range(n) if abs(coords[i // 3][0]) > 1e-12])
     kf, mf = kg[np.ix_(free, free)], mg[np.ix_(free, free)]
-    # the 14-point mass is singular (rank 14 of 20 per brick): K⁻¹M's largest eigenvalues 1/ω²
+    # the 14-point mass is singular (rank 14 of 20 per brick; 2 x 2 x 2: rank 8): K⁻¹M's largest
+    # eigenvalues 1/ω²
     li = np.linalg.inv(np.linalg.cholesky(kf))
     mu = np.sort(np.linalg.eigvalsh(li @ mf @ li.T))[::-1]
     return [float(np.sqrt(1 / v) / (2 * np.pi)) for v in mu[:8]]
@@ -152,10 +157,11 @@ def frequencies(coords, elements, krule):
 if __name__ == "__main__":
     coords, elements = mesh()
     result = {
-        "_about": "written by solid186_full.py (numpy): first 8 frequencies (Hz), mass on Irons' 14 points",
+        "_about": "written by solid186_full.py (numpy): first 8 frequencies (Hz), mass on Irons' 14 points but for solid95_keyopt11_1_gauss2 (mass on 2 x 2 x 2)",
         "keyopt2_1_irons14": frequencies(coords, elements, irons14()),
         "keyopt2_0_gauss2": frequencies(coords, elements, gauss(2)),
         "gauss3_for_contrast": frequencies(coords, elements, gauss(3)),
+        "solid95_keyopt11_1_gauss2": frequencies(coords, elements, gauss(2), gauss(2)),
     }
     with open("solid186_full.json", "w") as out:
         json.dump(result, out, indent=2)
