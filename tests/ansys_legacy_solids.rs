@@ -11,17 +11,15 @@
 //!   wedges against SOLID185's (shown against ANSYS's element forces there); without them
 //!   (KEYOPT(1)=1) against the same mesh as an Abaqus C3D8 deck;
 //! - SOLID92, SOLID45 KEYOPT(2)=1, SOLID95 KEYOPT(3)=1 and the other refusals by line.
-mod ansys_support;
-mod common;
 
 use std::path::Path;
 
-use ansys_support::writers::{block, eblock, material, nblock, root, Block, STEEL};
-use ansys_support::{
+use crate::ansys_support::writers::{block, eblock, material, nblock, root, Block, STEEL};
+use crate::ansys_support::{
     assert_refused_at, build, data, line_of, read_inp, solid186_archive, tet_as_brick,
     wedge_as_brick,
 };
-use common::{assert_frequencies, ccx_frequencies, scratch};
+use crate::common::{assert_frequencies, ccx_frequencies, scratch};
 
 /// The frequencies of a normal-modes build of `path` with `extra` arguments (it must succeed).
 fn frequencies(path: &Path, modes: usize, extra: &[&str]) -> Vec<f64> {
