@@ -368,7 +368,10 @@ fn beam188_forms_not_formed_are_refused_by_line() {
     let rect = "SECTYPE,1,BEAM,RECT\nSECDATA,0.01,0.02\n";
     let cases = [
         (body("KEYOPT,1,1,1\n", rect, 3), "KEYOPT(1)=1"),
-        (body("KEYOPT,1,3,3\n", rect, 3), "KEYOPT(3)=3"),
+        (
+            body("KEYOPT,1,3,1\n", rect, 3),
+            "KEYOPT(3)=1: not an option",
+        ),
         (
             body("", "SECTYPE,1,BEAM,I\nSECDATA,1,1,2,0.1,0.1,0.1\n", 3),
             "BEAM,I",

@@ -231,6 +231,22 @@ fn cases() -> Vec<Case> {
                 6,
             )
         },
+        // BEAM188 KEYOPT(3)=3: the archive holds I and J, the importer makes the internal
+        // nodes at 1/3 and 2/3 of IJ (the last two here); straight, as they are made
+        Case {
+            warped: false,
+            ..case(
+                Ansys("188", 0),
+                Beam4Cubic,
+                vec![
+                    [0.0; 3],
+                    [1.0, 0.0, 0.0],
+                    [1.0 / 3.0, 0.0, 0.0],
+                    [2.0 / 3.0, 0.0, 0.0],
+                ],
+                6,
+            )
+        },
     ]
 }
 
@@ -348,6 +364,15 @@ fn deck(case: &Case, x: &[X], orientation: X) -> (String, String) {
             (text, "element.inp".into())
         }
         Deck::Ansys(ty, keyopt2) => {
+            // BEAM188 KEYOPT(3)=3: I and J only (the internal nodes are the importer's)
+            let cubic = case.kind == ElementKind::Beam4Cubic;
+            let x = if cubic { &x[..2] } else { x };
+            ids.truncate(x.len());
+            let keyopt3 = if cubic {
+                "KEYOP,        1, 3,        3\n"
+            } else {
+                ""
+            };
             // BEAM188: an ASEC section and the orientation node K = I + the orientation
             let beam = ty == "188" || ty == "189";
             let k_node = beam.then(|| std::array::from_fn(|c| x[0][c] + orientation[c]));
@@ -384,7 +409,7 @@ fn deck(case: &Case, x: &[X], orientation: X) -> (String, String) {
                 .collect();
             let record = record.join("\n");
             let text = format!(
-                "ET,        1,{ty}\nKEYOP,        1, 2,{keyopt2:>9}\n{section}\
+                "ET,        1,{ty}\nKEYOP,        1, 2,{keyopt2:>9}\n{keyopt3}{section}\
                  NBLOCK,6,SOLID,{n:>10},{n:>10}\n(3i9,6e21.13e3)\n{nodes}N,R5.3,LOC,       -1,\n\
                  EBLOCK,19,SOLID,         1,         1\n(19i9)\n{record}\n       -1\n\
                  MPTEMP,R5.0, 1, 1,  0.00000000    ,\n\
@@ -483,7 +508,7 @@ fn measure(case: &Case, x: &[X]) -> f64 {
         Hex8 | Hex8R | Hex8Bbar | Hex20 | Hex20R => 6.0 * tet(x[0], x[1], x[3], x[4]),
         Prism6 | Prism15 => 3.0 * tet(x[0], x[1], x[2], x[3]),
         Pyram5 | Pyram13 | Pyram13Ansys => 2.0 * tet(x[0], x[1], x[3], x[4]),
-        Bar2 | Beam2 | Beam2Linear | Beam3Quadratic | Rod2 => {
+        Bar2 | Beam2 | Beam2Linear | Beam3Quadratic | Beam4Cubic | Rod2 => {
             BAR_A * dot(sub(x[1], x[0]), sub(x[1], x[0])).sqrt()
         }
         Tri3 | Tri6 => SHELL_T * tri(x[0], x[1], x[2]),
@@ -496,7 +521,7 @@ fn name(case: &Case) -> String {
     match case.deck {
         Deck::Nastran(c) => format!("{c}-{:?}", case.kind),
         Deck::Ccx(t) => t.to_string(),
-        Deck::Ansys(t, k) => format!("ANSYS{t}-KEYOPT2={k}"),
+        Deck::Ansys(t, k) => format!("ANSYS{t}-KEYOPT2={k}-{:?}", case.kind),
     }
 }
 
@@ -601,7 +626,7 @@ fn every_element_passes_the_constant_strain_patch_test() {
         let shell = is_shell(case.kind);
         if matches!(
             case.kind,
-            Bar2 | Beam2 | Beam2Linear | Beam3Quadratic | Rod2
+            Bar2 | Beam2 | Beam2Linear | Beam3Quadratic | Beam4Cubic | Rod2
         ) {
             continue; // line elements: no strain field to patch
         }
@@ -711,6 +736,7 @@ fn the_harness_covers_every_element_kind() {
         Bar2,
         Beam2Linear,
         Beam3Quadratic,
+        Beam4Cubic,
         Rod2,
         Tri3,
         Quad4,
@@ -721,8 +747,8 @@ fn the_harness_covers_every_element_kind() {
     for kind in all {
         let formed = match kind {
             Tet4 | Tet10 | Hex8 | Hex8R | Hex8Bbar | Hex20 | Hex20R | Prism6 | Prism15 | Pyram5
-            | Pyram13 | Pyram13Ansys | Beam2 | Bar2 | Beam2Linear | Beam3Quadratic | Rod2
-            | Tri3 | Quad4 | Tri6 | Quad8 => true,
+            | Pyram13 | Pyram13Ansys | Beam2 | Bar2 | Beam2Linear | Beam3Quadratic | Beam4Cubic
+            | Rod2 | Tri3 | Quad4 | Tri6 | Quad8 => true,
             // expanded into bricks on import
             Beam3 => false,
         };

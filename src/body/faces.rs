@@ -76,6 +76,15 @@ pub fn graphics_faces(model: &Model) -> Vec<GraphicsFace> {
                     });
                 }
             }
+            // nodes I, J, K (1/3), L (2/3): three segments I–K–L–J
+            ElementKind::Beam4Cubic => {
+                let [i, j, k, l] = [0, 1, 2, 3].map(|a| e.nodes[a]);
+                for pair in [[i, k], [k, l], [l, j]] {
+                    out.push(GraphicsFace {
+                        nodes: pair.to_vec(),
+                    });
+                }
+            }
             ElementKind::Tri3 | ElementKind::Tri6 | ElementKind::Quad4 | ElementKind::Quad8 => {
                 if e.property.is_some() {
                     let corners = if matches!(e.kind, ElementKind::Tri3 | ElementKind::Tri6) {

@@ -41,6 +41,7 @@ pub fn is_structural(kind: ElementKind) -> bool {
                 | ElementKind::Bar2
                 | ElementKind::Beam2Linear
                 | ElementKind::Beam3Quadratic
+                | ElementKind::Beam4Cubic
                 | ElementKind::Rod2
         )
 }

@@ -98,6 +98,7 @@ impl DofMap {
                 | ElementKind::Bar2
                 | ElementKind::Beam2Linear
                 | ElementKind::Beam3Quadratic
+                | ElementKind::Beam4Cubic
                 | ElementKind::Rod2
                 | ElementKind::Quad4
                 | ElementKind::Tri3

@@ -181,6 +181,7 @@ pub fn solid_faces(kind: ElementKind) -> Option<(FaceTable, EdgeTable)> {
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
         | ElementKind::Beam3Quadratic
+        | ElementKind::Beam4Cubic
         | ElementKind::Rod2
         | ElementKind::Beam3
         | ElementKind::Tri3

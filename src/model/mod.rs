@@ -120,6 +120,10 @@ pub enum ElementKind {
     /// 3-node 3D beam (nodes I, J, mid) with quadratic functions, stiffness on two points, as
     /// ANSYS forms BEAM189 (`fe::elements::beam189`): 6 dofs per node.
     Beam3Quadratic,
+    /// 4-node 3D beam (nodes I, J, then the inner nodes at 1/3 and 2/3 of IJ) with cubic
+    /// functions, stiffness on three points, as ANSYS forms BEAM188 with KEYOPT(3)=3
+    /// (`fe::elements::beam189`): 6 dofs per node.
+    Beam4Cubic,
     /// 2-node rod: axial + torsion (CROD, T3D2).
     Rod2,
     /// 3-node shell triangle (S3, CTRIA3): DKT/DKMT bending + CST membrane, 6 dofs per node; without
@@ -154,7 +158,7 @@ impl ElementKind {
             | ElementKind::Beam2Linear
             | ElementKind::Rod2 => 2,
             ElementKind::Tri3 | ElementKind::Beam3 | ElementKind::Beam3Quadratic => 3,
-            ElementKind::Quad4 => 4,
+            ElementKind::Quad4 | ElementKind::Beam4Cubic => 4,
             ElementKind::Tri6 => 6,
             ElementKind::Quad8 => 8,
         }

@@ -62,6 +62,7 @@ fn element_normal(model: &Model, elem: usize, quad8: bool) -> Option<[f64; 3]> {
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
         | ElementKind::Beam3Quadratic
+        | ElementKind::Beam4Cubic
         | ElementKind::Rod2
         | ElementKind::Beam3
         | ElementKind::Tri6 => return None,

@@ -21,7 +21,12 @@ pub fn element(kind: ElementKind) -> &'static dyn Element {
         ElementKind::Pyram13Ansys => &super::pyram13_ansys::Pyram13AnsysElement,
         ElementKind::Beam2 | ElementKind::Bar2 => &super::beam_element::BeamElement,
         ElementKind::Beam2Linear => &super::beam188::Beam188Element,
-        ElementKind::Beam3Quadratic => &super::beam189::Beam189Element,
+        ElementKind::Beam3Quadratic => &super::beam189::HigherOrderBeam {
+            order: super::beam189::Order::Quadratic,
+        },
+        ElementKind::Beam4Cubic => &super::beam189::HigherOrderBeam {
+            order: super::beam189::Order::Cubic,
+        },
         ElementKind::Rod2 => &super::rod::RodElement,
         ElementKind::Tri3 => &super::tri3_shell::Tri3Element,
         ElementKind::Quad4 => &super::quad4_shell::Quad4Element,

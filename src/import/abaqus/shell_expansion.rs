@@ -116,6 +116,7 @@ fn corners(brick: ElementKind) -> usize {
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
         | ElementKind::Beam3Quadratic
+        | ElementKind::Beam4Cubic
         | ElementKind::Rod2
         | ElementKind::Beam3
         | ElementKind::Tri3
@@ -178,6 +179,7 @@ pub(super) fn node_normal(kind: ElementKind, x: &[Xyz], j: usize) -> Xyz {
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
         | ElementKind::Beam3Quadratic
+        | ElementKind::Beam4Cubic
         | ElementKind::Rod2
         | ElementKind::Beam3 => return [0.0; 3],
         ElementKind::Tri6 => {

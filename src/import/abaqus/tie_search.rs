@@ -49,6 +49,7 @@ pub(super) fn ccx_face_nodes(
         | ElementKind::Bar2
         | ElementKind::Beam2Linear
         | ElementKind::Beam3Quadratic
+        | ElementKind::Beam4Cubic
         | ElementKind::Rod2
         | ElementKind::Tri3
         | ElementKind::Quad4

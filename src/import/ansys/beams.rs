@@ -1,7 +1,9 @@
 //! Beams of an archive: beam sections (`SECTYPE,id,BEAM,subtype` with its `SECDATA`,
-//! `SECOFFSET`, `SECCONTROL` lines) and BEAM188 with linear shape functions (KEYOPT(3)=0), formed
-//! as the MAPDL Theory Reference §13.188 states it (`fe::elements::beam188`), or refused by line
-//! naming the KEYOPT, the section line or what is not formed.
+//! `SECOFFSET`, `SECCONTROL` lines), BEAM188 with linear shape functions (KEYOPT(3)=0,
+//! `fe::elements::beam188`), quadratic (KEYOPT(3)=2) or cubic (KEYOPT(3)=3) ones on ANSYS's
+//! internal nodes (`fe::elements::beam189`) and BEAM189, formed as the MAPDL Theory Reference
+//! §13.188 and §13.189 state them, or refused by line naming the KEYOPT, the section line or
+//! what is not formed.
 //!
 //! Section constants: ASEC the user's own (A, Iyy, Izz, J; shear factor 1, as ANSYS's VM50
 //! frequency shows); RECT, CSOLID and CTUBE in closed form — A and I exact, J exact for the
@@ -13,6 +15,7 @@ use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
 use super::blocks::{Command, ElementRecord};
+use crate::fe::elements::beam189::Order;
 use crate::import::error::ImportError;
 use crate::model::geometry::{cross, dot, norm, scale, sub};
 use crate::model::{
@@ -280,14 +283,15 @@ pub(super) enum Mid {
     None,
     /// BEAM189: the archive's node K.
     Node(u64),
-    /// BEAM188 KEYOPT(3)=2: ANSYS's internal node, which the archive does not hold: made at
-    /// the middle of IJ.
-    Internal,
+    /// BEAM188 KEYOPT(3)=2 (quadratic) or 3 (cubic): ANSYS's internal nodes, which the
+    /// archive does not hold: made where the order puts them along IJ (the middle; 1/3 and
+    /// 2/3).
+    Internal(Order),
 }
 
 /// BEAM188 (MAPDL Element Reference "BEAM188"; Theory Reference §13.188): KEYOPT(3)=0 (linear,
-/// the default) with six dofs per node (KEYOPT(1)=0) formed; the warping dof, the quadratic and
-/// cubic forms and options that change the element are refused naming the KEYOPT. KEYOPT(2)
+/// the default), 2 (quadratic) and 3 (cubic) with six dofs per node (KEYOPT(1)=0) formed; the
+/// warping dof and options that change the element are refused naming the KEYOPT. KEYOPT(2)
 /// (cross-section scaling in large deflection), KEYOPT(11) (pre-integrated section) and the
 /// output controls (4, 6, 7, 9, 15) have no effect on a linear body.
 pub(super) fn beam188(keyopts: &BTreeMap<u32, i64>, rec: &ElementRecord) -> Result<Beam, String> {
@@ -298,17 +302,12 @@ pub(super) fn beam188(keyopts: &BTreeMap<u32, i64>, rec: &ElementRecord) -> Resu
             keyopt(1)
         ));
     }
-    let mid =
-        match keyopt(3) {
-            0 => Mid::None,
-            2 => Mid::Internal,
-            3 => return Err(
-                "BEAM188 KEYOPT(3)=3 (cubic, two internal nodes; 3 points along the length): not \
-                 formed here (KEYOPT(3)=0, linear, is)"
-                    .into(),
-            ),
-            k => return Err(format!("BEAM188 KEYOPT(3)={k}: not an option of BEAM188")),
-        };
+    let mid = match keyopt(3) {
+        0 => Mid::None,
+        2 => Mid::Internal(Order::Quadratic),
+        3 => Mid::Internal(Order::Cubic),
+        k => return Err(format!("BEAM188 KEYOPT(3)={k}: not an option of BEAM188")),
+    };
     let no_effect = [1, 2, 3, 4, 6, 7, 9, 11, 15];
     if let Some((k, v)) = keyopts.iter().find(|(k, _)| !no_effect.contains(*k)) {
         return Err(format!(
@@ -393,7 +392,7 @@ pub(super) struct BeamContext<'a> {
     pub sections: &'a BTreeMap<i64, BeamSection>,
     pub property_of: &'a BTreeMap<i64, usize>,
     pub made: BeamProperties,
-    /// The id of the next internal node (BEAM188 KEYOPT(3)=2): after the archive's largest.
+    /// The id of the next internal node (BEAM188 KEYOPT(3)=2, 3): after the archive's largest.
     next_internal: Option<u64>,
 }
 
@@ -431,19 +430,25 @@ impl<'a> BeamContext<'a> {
                 nodes.push(node_of(mid)?);
                 "BEAM189"
             }
-            Mid::Internal => {
-                nodes.push(self.internal_node(model, [nodes[0], nodes[1]]));
-                "BEAM188 KEYOPT(3)=2"
+            Mid::Internal(order) => {
+                for &at in order.inner() {
+                    nodes.push(self.internal_node(model, [nodes[0], nodes[1]], at));
+                }
+                match order {
+                    Order::Quadratic => "BEAM188 KEYOPT(3)=2",
+                    Order::Cubic => "BEAM188 KEYOPT(3)=3",
+                }
             }
         };
         let k = beam.orientation.map(&node_of).transpose()?;
         Ok(match push_beam(model, self, rec, &nodes, k, name) {
             Ok(e) => Some(e),
             Err(why) => {
-                if beam.mid == Mid::Internal {
-                    // the internal node was the last one made: no element holds it now
-                    model.nodes.pop();
-                    self.next_internal = self.next_internal.map(|id| id - 1);
+                if let Mid::Internal(order) = beam.mid {
+                    // the internal nodes were the last ones made: no element holds them now
+                    let made = order.inner().len();
+                    model.nodes.truncate(model.nodes.len() - made);
+                    self.next_internal = self.next_internal.map(|id| id - made as u64);
                 }
                 refusals.entry((rec.etype, why)).or_insert((rec.line, 0)).1 += 1;
                 None
@@ -451,10 +456,12 @@ impl<'a> BeamContext<'a> {
         })
     }
 
-    /// BEAM188 KEYOPT(3)=2's internal node at the middle of `ends`, numbered as ANSYS numbers
-    /// it (the result file of ansys/example-data's `post_beam_result_01.rst`: after the
-    /// largest node id, in element order): its model index.
-    fn internal_node(&mut self, model: &mut Model, ends: [usize; 2]) -> usize {
+    /// An internal node of BEAM188 KEYOPT(3)=2 or 3 at the fraction `at` of `ends` from I,
+    /// numbered as ANSYS numbers KEYOPT(3)=2's (the result file of ansys/example-data's
+    /// `post_beam_result_01.rst`: after the largest node id, in element order; KEYOPT(3)=3's
+    /// two per element likewise, the one at 1/3 first — no ANSYS file here shows their
+    /// numbers): its model index.
+    fn internal_node(&mut self, model: &mut Model, ends: [usize; 2], at: f64) -> usize {
         let id = *self
             .next_internal
             .get_or_insert_with(|| model.nodes.iter().map(|n| n.id).max().unwrap_or(0) + 1);
@@ -462,7 +469,7 @@ impl<'a> BeamContext<'a> {
         let [a, b] = ends.map(|k| model.nodes[k].x);
         model.nodes.push(Node {
             id,
-            x: std::array::from_fn(|c| (a[c] + b[c]) / 2.0),
+            x: std::array::from_fn(|c| a[c] + at * (b[c] - a[c])),
             displacement_frame: None,
         });
         model.nodes.len() - 1
@@ -470,10 +477,10 @@ impl<'a> BeamContext<'a> {
 }
 
 /// Adds a beam (record `rec`, named `name` in refusals; its nodes as model indices: I, J and
-/// the mid node; `k` the orientation node) to the model as a [`ElementKind::Beam2Linear`]
-/// (BEAM188) or [`ElementKind::Beam3Quadratic`] (BEAM189; BEAM188 KEYOPT(3)=2, whose
-/// functions and points the Theory Reference gives as BEAM189's) of its section and material:
-/// the element's index, or why not.
+/// the inner nodes; `k` the orientation node) to the model as a [`ElementKind::Beam2Linear`]
+/// (BEAM188), [`ElementKind::Beam3Quadratic`] (BEAM189; BEAM188 KEYOPT(3)=2, whose
+/// functions and points the Theory Reference gives as BEAM189's) or [`ElementKind::Beam4Cubic`]
+/// (BEAM188 KEYOPT(3)=3) of its section and material: the element's index, or why not.
 pub(super) fn push_beam(
     model: &mut Model,
     ctx: &mut BeamContext,
@@ -483,10 +490,10 @@ pub(super) fn push_beam(
     name: &str,
 ) -> Result<usize, String> {
     let ends = [nodes[0], nodes[1]];
-    let kind = if nodes.len() == 2 {
-        ElementKind::Beam2Linear
-    } else {
-        ElementKind::Beam3Quadratic
+    let (kind, inner) = match nodes.len() {
+        2 => (ElementKind::Beam2Linear, &[][..]),
+        3 => (ElementKind::Beam3Quadratic, Order::Quadratic.inner()),
+        _ => (ElementKind::Beam4Cubic, Order::Cubic.inner()),
     };
     let Some(section) = ctx.sections.get(&rec.section) else {
         return Err(format!(
@@ -509,9 +516,9 @@ pub(super) fn push_beam(
     if length.is_nan() || length <= 0.0 {
         return Err(format!("{name} of zero length (I and J coincide)"));
     }
-    if let Some(&m) = nodes.get(2) {
-        let middle: [f64; 3] = std::array::from_fn(|c| (x[0][c] + x[1][c]) / 2.0);
-        if norm(sub(model.nodes[m].x, middle)) > 1e-6 * length {
+    for (&m, at) in nodes[2..].iter().zip(inner) {
+        let place: [f64; 3] = std::array::from_fn(|c| x[0][c] + at * (x[1][c] - x[0][c]));
+        if norm(sub(model.nodes[m].x, place)) > 1e-6 * length {
             return Err(format!(
                 "{name} with its mid node off the middle of IJ (a curved or uneven element): not \
                  formed here"
@@ -584,16 +591,22 @@ pub(super) fn push_beam(
 /// The build's note when the model has ANSYS beams: how they are formed and where their
 /// section constants come from.
 pub(super) fn note(model: &Model) -> Option<String> {
-    let beams = [ElementKind::Beam2Linear, ElementKind::Beam3Quadratic];
+    let beams = [
+        ElementKind::Beam2Linear,
+        ElementKind::Beam3Quadratic,
+        ElementKind::Beam4Cubic,
+    ];
     (model.elements.iter())
         .any(|e| beams.contains(&e.kind))
         .then(|| {
-            "ANSYS archive: BEAM188 (KEYOPT(3)=0 and 2) and BEAM189 formed as the Theory \
-         Reference states them (linear functions and one-point stiffness, or quadratic \
-         functions and two-point stiffness — BEAM188 KEYOPT(3)=2 on its internal node, made \
-         at the middle of IJ and numbered after the archive's largest node id, as ANSYS \
-         numbers it; consistent mass with rotary inertia; BEAM188's lumped mass on the \
-         translations only); RECT, CSOLID and CTUBE constants in \
+            "ANSYS archive: BEAM188 (KEYOPT(3)=0, 2 and 3) and BEAM189 formed as the Theory \
+         Reference states them (linear functions and one-point stiffness, quadratic \
+         functions and two-point stiffness, or cubic functions and three-point stiffness — \
+         BEAM188 KEYOPT(3)=2 on its internal node, made at the middle of IJ and numbered \
+         after the archive's largest node id, as ANSYS numbers it; KEYOPT(3)=3 on two, made \
+         at 1/3 and 2/3 of IJ and numbered likewise, the one at 1/3 first; consistent mass \
+         with rotary inertia; BEAM188's lumped mass on the translations only); RECT, CSOLID \
+         and CTUBE constants in \
          closed form (A and I exact, J exact for circles and by Saint-Venant's series \
          for rectangles, Cowper's shear factors) where ANSYS computes J and the shear \
          factors on its own section mesh: they may differ from ANSYS's by a few per \
@@ -602,14 +615,17 @@ pub(super) fn note(model: &Model) -> Option<String> {
         })
 }
 
-/// Why `LUMPM,ON` is refused: a BEAM189 in the model, whose lumped mass ANSYS's documents do not
-/// establish.
+/// Why `LUMPM,ON` is refused: a BEAM189 or BEAM188 KEYOPT(3)=2 or 3 in the model, whose lumped
+/// mass ANSYS's documents do not establish (the Theory Reference names the points, not how the
+/// quadratic and cubic functions' mass is made diagonal).
 pub(super) fn lumped_refusal(model: &Model) -> Option<&'static str> {
+    let higher = [ElementKind::Beam3Quadratic, ElementKind::Beam4Cubic];
     (model.elements.iter())
-        .any(|e| e.kind == ElementKind::Beam3Quadratic)
+        .any(|e| higher.contains(&e.kind))
         .then_some(
-            "LUMPM,ON with BEAM189 or BEAM188 KEYOPT(3)=2: ANSYS's lumped mass of the quadratic \
-             beam is not established here (its consistent mass is formed)",
+            "LUMPM,ON with BEAM189 or BEAM188 KEYOPT(3)=2 or 3: ANSYS's lumped mass of the \
+             quadratic and cubic beams is not established here (their consistent mass is \
+             formed)",
         )
 }
 

@@ -75,7 +75,9 @@ pub(super) fn rotary_without_rotations(
     for e in &model.elements {
         if matches!(
             e.kind,
-            crate::model::ElementKind::Beam2Linear | crate::model::ElementKind::Beam3Quadratic
+            crate::model::ElementKind::Beam2Linear
+                | crate::model::ElementKind::Beam3Quadratic
+                | crate::model::ElementKind::Beam4Cubic
         ) {
             rotating.extend(e.nodes.iter().copied());
         }

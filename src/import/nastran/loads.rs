@@ -209,6 +209,7 @@ fn card_parts(
                         | ElementKind::Bar2
                         | ElementKind::Beam2Linear
                         | ElementKind::Beam3Quadratic
+                        | ElementKind::Beam4Cubic
                         | ElementKind::Rod2
                         | ElementKind::Beam3
                         | ElementKind::Tri6
