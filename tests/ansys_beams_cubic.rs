@@ -14,15 +14,13 @@
 //! - KEYOPT(3)=2 and BEAM189 on the same beam: equal to the cubic where both are exact (the end
 //!   moment), and converging together with the mesh (frequencies);
 //! - `LUMPM,ON` with it refused by line.
-mod ansys_support;
-mod common;
 
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-use ansys_support::writers::{eblock, material, nblock, STEEL};
-use ansys_support::{assert_refused_at, build_modes, line_of};
-use common::{assert_frequencies, scratch};
+use crate::ansys_support::writers::{eblock, material, nblock, STEEL};
+use crate::ansys_support::{assert_refused_at, build_modes, line_of};
+use crate::common::{assert_frequencies, scratch};
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use flexbody::fe::{assemble, AssemblySpec, MassKind};

@@ -18,6 +18,7 @@ mod amls;
 mod anisotropic_solids;
 mod ansys_archive;
 mod ansys_beams;
+mod ansys_beams_cubic;
 mod ansys_beams_quadratic;
 mod ansys_connections;
 mod ansys_contact;
