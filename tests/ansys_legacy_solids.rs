@@ -16,8 +16,7 @@ use std::path::Path;
 
 use crate::ansys_support::writers::{block, eblock, material, nblock, root, Block, STEEL};
 use crate::ansys_support::{
-    assert_refused_at, build, data, line_of, read_inp, solid186_archive, tet_as_brick,
-    wedge_as_brick,
+    assert_refused_at, build, ccx_deck_as_bricks, data, line_of, solid186_archive,
 };
 use crate::common::{assert_frequencies, ccx_frequencies, scratch};
 
@@ -97,18 +96,7 @@ fn solid95_degenerate_shapes_equal_ccx() {
         ("ccx_prism15", "bar_4x2x2"),
         ("ccx_solid186_tet", "bar_tet10_distorted"),
     ] {
-        let deck = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("fixtures")
-            .join(folder)
-            .join(format!("{stem}.inp"));
-        let (nodes, elements) = read_inp(&deck);
-        let bricks: Vec<Vec<u64>> = (elements.iter())
-            .map(|n| match n.len() {
-                15 => wedge_as_brick(n),
-                10 => tet_as_brick(n),
-                other => panic!("{other} nodes"),
-            })
-            .collect();
+        let (nodes, bricks) = ccx_deck_as_bricks(folder, stem);
         let solid186 = solid186_archive(&nodes, &bricks, 0);
         let header = "ET,        1,186\nKEYOP,        1, 2,        0\n";
         assert!(solid186.contains(header));

@@ -20,8 +20,8 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use crate::ansys_support::{
-    assert_refused_at, build, data, line_of, multiply, node_table, read_dofs, read_inp,
-    solid186_archive, tet_as_brick, wedge_as_brick,
+    assert_refused_at, build, ccx_deck_as_bricks, data, line_of, multiply, node_table, read_dofs,
+    solid186_archive,
 };
 use crate::common::{assert_frequencies, ccx_frequencies, scratch};
 
@@ -130,18 +130,7 @@ fn solid185_bbar_equals_ansys_element_forces() {
 /// The ccx deck `fixtures/FOLDER/STEM.inp` rewritten as degenerate SOLID186 bricks, built
 /// through the CLI: its 10 frequencies against ccx's (`results.json`), the worst difference.
 fn degenerate_against_ccx(folder: &str, stem: &str, keyopt2: u32) -> f64 {
-    let deck = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures")
-        .join(folder)
-        .join(format!("{stem}.inp"));
-    let (nodes, elements) = read_inp(&deck);
-    let bricks: Vec<Vec<u64>> = (elements.iter())
-        .map(|n| match n.len() {
-            15 => wedge_as_brick(n),
-            10 => tet_as_brick(n),
-            other => panic!("{other} nodes"),
-        })
-        .collect();
+    let (nodes, bricks) = ccx_deck_as_bricks(folder, stem);
     let dir = scratch(&format!("ansys-degenerate-{stem}-{keyopt2}"));
     let cdb = dir.join(format!("{stem}.cdb"));
     std::fs::write(&cdb, solid186_archive(&nodes, &bricks, keyopt2)).unwrap();

@@ -253,6 +253,24 @@ pub fn read_inp(path: &Path) -> (Nodes, Vec<Vec<u64>>) {
     (nodes, elements)
 }
 
+/// The ccx deck `fixtures/FOLDER/STEM.inp`'s nodes and its 15-node wedges and 10-node
+/// tetrahedra as ANSYS's degenerate 20-node bricks ([`wedge_as_brick`], [`tet_as_brick`]).
+pub fn ccx_deck_as_bricks(folder: &str, stem: &str) -> (Nodes, Vec<Vec<u64>>) {
+    let deck = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures")
+        .join(folder)
+        .join(format!("{stem}.inp"));
+    let (nodes, elements) = read_inp(&deck);
+    let bricks = (elements.iter())
+        .map(|n| match n.len() {
+            15 => wedge_as_brick(n),
+            10 => tet_as_brick(n),
+            other => panic!("{}: {other} nodes", deck.display()),
+        })
+        .collect();
+    (nodes, bricks)
+}
+
 /// A C3D15 wedge as ANSYS writes a degenerate SOLID186 (I J K K M N O O, Q R K T, U V O X,
 /// Y Z A A): corners 1–6, edges 12, 23, 31, 45, 56, 64, 14, 25, 36.
 pub fn wedge_as_brick(n: &[u64]) -> Vec<u64> {

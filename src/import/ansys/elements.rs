@@ -622,10 +622,11 @@ pub(super) fn distinct(ids: &[u64]) -> bool {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn record(nodes: Vec<u64>) -> ElementRecord {
+    /// A record of type 1, material 1, on line 9 with `nodes` (also `legacy`'s tests').
+    pub(in crate::import::ansys) fn record(nodes: Vec<u64>) -> ElementRecord {
         ElementRecord {
             line: 9,
             id: 1,

@@ -99,23 +99,9 @@ impl Archive {
 
 #[cfg(test)]
 mod tests {
-    use super::super::blocks::ElementRecord;
+    use super::super::elements::tests::record;
     use super::super::elements::{Formed, Refusal};
     use super::*;
-
-    fn record(nodes: Vec<u64>) -> ElementRecord {
-        ElementRecord {
-            line: 9,
-            id: 1,
-            mat: 1,
-            etype: 1,
-            real: 0,
-            section: 0,
-            esys: 0,
-            shape: Some(0),
-            nodes,
-        }
-    }
 
     fn formed(t: &ElementType, nodes: Vec<u64>) -> Result<Formed, Refusal> {
         super::super::elements::form(t, &record(nodes), None, None, None)
