@@ -232,7 +232,9 @@ const WHITE_TOL: f64 = 1e-15;
 /// The second whitening of an M-QR (SVQB twice; Stathopoulos & Wu 2002, eq. 4.1): one whitening
 /// Q = W·U·S^{-1/2} leaves |QᵀMQ − I| of order ε·cond(WᵀMW) (measured ~5e-14 on the cb suite's
 /// blocks); when it exceeds [`WHITE_TOL`], G = QᵀMQ = U₂S₂U₂ᵀ whitens it again, Q ← Q·U₂S₂^{-1/2},
-/// M·Q likewise, and R ← S₂^{1/2}U₂ᵀR keeps W = Q·R. Costs three n × b × b products.
+/// M·Q likewise, and R ← S₂^{1/2}U₂ᵀR keeps W = Q·R. Costs three n × b × b products. Only a
+/// rounding-level correction: a block whose QᵀMQ has an eigenvalue outside (1/2, 2) is left as it
+/// is.
 fn rewhiten(
     mut q: faer::MatMut<'_, f64>,
     mut mq: faer::MatMut<'_, f64>,
@@ -251,12 +253,13 @@ fn rewhiten(
         return Ok(());
     }
     let (s, u) = dense::eigh(g.as_ref())?;
-    if s.iter().any(|&x| x.is_nan() || x <= 0.5) {
-        // one whitening left the block far from M-orthonormal: not a rounding matter
-        return Err(SolveError::NotConverged {
-            requested: 0,
-            steps: 0,
-        });
+    if s.iter().any(|x| !(0.5..2.0).contains(x)) {
+        // Not a rounding matter: the block holds directions near the M-QR's relative-norm limit
+        // (a Krylov space nearly exhausted), which one whitening leaves far from M-orthonormal;
+        // whitening them again would magnify what the Gram–Schmidt pass left of V in them. The
+        // block stays as the one whitening made it (the loss is then the second Gram–Schmidt
+        // pass's to measure).
+        return Ok(());
     }
     let t = Mat::from_fn(k, k, |i, j| u[(i, j)] / s[j].sqrt());
     let q2 = q.as_ref() * &t;
