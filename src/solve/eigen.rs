@@ -535,6 +535,87 @@ mod tests {
     /// chain, λ_j = (2 − 2 cos(jπ/(n+1)))/h with M = h·I, with M-orthonormal vectors; and on a
     /// spectrum of five distinct values (the Krylov space is exhausted after five blocks, so the
     /// M-QR pads with random directions) both give the lowest value, 40-fold, 8 times.
+    /// The largest |QᵀMQ − I| of a block, M diagonal (`d`).
+    fn whiteness(q: MatRef<'_, f64>, d: &[f64]) -> f64 {
+        let k = q.ncols();
+        let mut worst = 0.0f64;
+        for i in 0..k {
+            for j in 0..k {
+                let g: f64 = (0..q.nrows()).map(|r| q[(r, i)] * d[r] * q[(r, j)]).sum();
+                worst = worst.max((g - f64::from(u8::from(i == j))).abs());
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn rewhiten_brings_an_ill_conditioned_block_to_rounding_and_keeps_w_equal_q_r() {
+        // W: five nearly parallel columns (cond(WᵀMW) ≈ 1e6-1e7: one whitening leaves ~1e-10, as the 20k eigen suite's worst block left 1.4e-12), M = diag(d) spread over 1e-2…1e2.
+        let (n, k) = (300, 5);
+        let d: Vec<f64> = (0..n)
+            .map(|i| 10f64.powf(-2.0 + 4.0 * i as f64 / n as f64))
+            .collect();
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let base = random_block(n, 1, &mut seed);
+        let noise = random_block(n, k, &mut seed);
+        let w = Mat::from_fn(n, k, |r, c| base[(r, 0)] + 1e-3 * noise[(r, c)]);
+        let mw = Mat::from_fn(n, k, |r, c| d[r] * w[(r, c)]);
+        // one whitening (SVQB): Q = W·U·S^{-1/2}, R = S^{1/2}·Uᵀ
+        let g = w.transpose() * &mw;
+        let (s, u) = dense::eigh(g.as_ref()).unwrap(); // 5 × 5 symmetric: eigh cannot fail
+        let t = Mat::from_fn(k, k, |i, j| u[(i, j)] / s[j].sqrt());
+        let mut q = &w * &t;
+        let mut mq = &mw * &t;
+        let mut r = Mat::from_fn(k, k, |i, j| s[i].sqrt() * u[(j, i)]);
+        let once = whiteness(q.as_ref(), &d);
+        assert!(
+            once > 1e-12,
+            "the case must need a second whitening: {once:.1e}"
+        );
+        rewhiten(q.as_mut(), mq.as_mut(), r.as_mut()).unwrap();
+        // What rewhiten sees is Qᵀ(M·Q) with the M·Q carried along (as the eigensolver keeps it):
+        // that is whitened to rounding. Q's and M·Q's own rounding (ε·√cond(WᵀMW) of them, formed
+        // from nearly parallel columns) bounds QᵀMQ formed afresh.
+        let carried = q.transpose() * &mq;
+        let carried = (0..k)
+            .flat_map(|i| (0..k).map(move |j| (i, j)))
+            .map(|(i, j)| (carried[(i, j)] - f64::from(u8::from(i == j))).abs())
+            .fold(0.0, f64::max);
+        // (rounding level here: n = 300 terms of a Gram whose M spans four decades)
+        assert!(
+            carried <= 5e-14,
+            "|Qᵀ(MQ) − I| after the second whitening: {carried:.1e}"
+        );
+        let twice = whiteness(q.as_ref(), &d);
+        assert!(
+            twice <= 1e-3 * once && twice <= 1e-13,
+            "|QᵀMQ − I| once {once:.1e}, twice {twice:.1e}"
+        );
+        // M·Q follows Q, and Q·R is still W (to the rounding of W's own conditioning)
+        let mq_err = (0..n)
+            .flat_map(|r| (0..k).map(move |c| (r, c)))
+            .map(|(r, c)| (mq[(r, c)] - d[r] * q[(r, c)]).abs())
+            .fold(0.0, f64::max);
+        assert!(mq_err <= 1e-12 * mq.norm_max(), "M·Q off by {mq_err:.1e}");
+        let back = (&q * &r - &w).norm_max() / w.norm_max();
+        assert!(back <= 1e-9, "Q·R − W: {back:.1e}");
+    }
+
+    #[test]
+    fn rewhiten_leaves_a_block_far_from_m_orthonormal_as_it_is() {
+        // QᵀMQ with an eigenvalue 4 (outside (1/2, 2)): not a rounding matter, left unchanged.
+        let (n, k) = (50, 3);
+        let d = vec![1.0; n];
+        let mut q = Mat::from_fn(n, k, |r, c| f64::from(u8::from(r == c)));
+        q[(0, 0)] = 2.0;
+        let mut mq = q.clone();
+        let mut r = Mat::from_fn(k, k, |i, j| f64::from(u8::from(i == j)));
+        let before = (q.clone(), r.clone());
+        rewhiten(q.as_mut(), mq.as_mut(), r.as_mut()).unwrap();
+        assert!(whiteness(q.as_ref(), &d) > 2.9);
+        assert_eq!((q, r), before);
+    }
+
     #[test]
     fn lean_and_kept_basis_agree_with_closed_form() {
         let (n, h) = (400usize, 0.25);
