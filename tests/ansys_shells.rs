@@ -79,6 +79,39 @@ fn shell181_on_a_shell_section_equals_ansys_cantilever() {
     assert!(worst < 5e-13, "{worst:e}");
 }
 
+/// SHELL181's drilling penalty was shown to be ANSYS's only for elements larger than 100 t²
+/// (docs/ansys.md): a build of smaller ones says so. The one-element cantilever (61.85 × 43.5,
+/// t = 5: A = 107.6 t²) builds without the warning; the same element 10 thick (A = 26.9 t²)
+/// builds with it, naming the element's line.
+#[test]
+fn shell181_smaller_than_100_t2_warns_about_its_drilling_stiffness() {
+    let dir = scratch("ansys-shell181-drill-warning");
+    let text = std::fs::read_to_string(data("shell181_one.cdb")).unwrap();
+    let thick = text.replace("SECDATA,  5.0,", "SECDATA, 10.0,");
+    assert_ne!(thick, text);
+    let mut said = Vec::new();
+    for (name, deck) in [("t5.cdb", &text), ("t10.cdb", &thick)] {
+        let path = dir.join(name);
+        std::fs::write(&path, deck).unwrap();
+        let o = build(&path, "mm-t-s", 4, &[]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        said.push(
+            err.lines()
+                .find(|l| l.contains("drilling stiffness"))
+                .map(str::to_string),
+        );
+    }
+    assert_eq!(said[0], None, "A = 107.6 t²: no warning");
+    let warned = said[1].clone().expect("A = 26.9 t²: the drilling warning");
+    let line = line_of(&thick, "        4        0        1        2");
+    assert!(
+        warned.contains("1 SHELL181 element(s)") && warned.contains(&format!("line {line}")),
+        "{warned}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// Frequencies of a normal-modes build of `text` written as `name` (it must succeed).
 fn frequencies(dir: &Path, name: &str, text: &str) -> Vec<f64> {
     let cdb = dir.join(name);

@@ -205,6 +205,7 @@ impl Archive {
                 ));
             }
         }
+        model.warnings.extend(shell_props.drill_warning(file));
         let offsets = shell_props.apply_offsets(model);
         self.contact_pairs(file, &segs, node_map, model, &mut refusals, &mut index)?;
         for why in offsets

@@ -12,6 +12,7 @@ use std::collections::BTreeMap;
 
 use super::blocks::{Command, ElementRecord};
 use crate::import::error::ImportError;
+use crate::model::geometry::{cross, norm, sub};
 use crate::model::shell_offset::{offset_shells_and_flat_quad8, ShellOffset};
 use crate::model::{
     AnsysShell281, Element, ElementKind, Model, Property, Section,
@@ -367,14 +368,42 @@ pub(super) struct ShellProperties {
     made: BTreeMap<(i64, u64, u64), usize>,
     /// (element index, offset, EBLOCK line, element type)
     offsets: Vec<(usize, f64, usize, i64)>,
+    /// EBLOCK lines of SHELL181s smaller than [`DRILL_SHOWN_AREA`] t² (their drilling
+    /// stiffness is not ANSYS's: docs/ansys.md)
+    drill_unshown: Vec<usize>,
 }
+
+/// Area, in thicknesses squared, above which flexbody's SHELL181 drilling penalty was shown to
+/// be ANSYS's (ANSYS's artificial energy AENE: 1.0010 of it at A ≈ 100 t², the box's element
+/// forces at A ≈ 1800–2100 t²); at A ≈ 0.3–1.5 t² ANSYS's is 4–14 times larger (docs/ansys.md).
+const DRILL_SHOWN_AREA: f64 = 100.0;
 
 impl ShellProperties {
     pub fn new() -> ShellProperties {
         ShellProperties {
             made: BTreeMap::new(),
             offsets: Vec::new(),
+            drill_unshown: Vec::new(),
         }
+    }
+
+    /// The warning for SHELL181s smaller than [`DRILL_SHOWN_AREA`] t², if any.
+    pub fn drill_warning(&self, file: &str) -> Option<crate::model::ImportWarning> {
+        let lines = &self.drill_unshown;
+        let first = lines.iter().min()?;
+        Some(crate::model::ImportWarning {
+            file: file.to_string(),
+            message: format!(
+                "{} SHELL181 element(s) smaller in area than {DRILL_SHOWN_AREA} times their \
+                 thickness squared (the first at line {first}): their drilling stiffness is \
+                 flexbody's rule (s k G t/200), shown to be ANSYS's only for larger elements — \
+                 ANSYS's is 4–14 times stiffer at areas of 0.3–1.5 t² (docs/ansys.md); bending \
+                 modes agree with ANSYS's, a mode that turns shell nodes about their normal \
+                 (in-plane rotation at a point support, a beam or rigid link on the drilling \
+                 rotation) does not",
+                lines.len()
+            ),
+        })
     }
 
     /// Moves the offset SHELL281s onto nodes at their mid-surfaces joined rigidly to theirs
@@ -492,6 +521,12 @@ pub(super) fn push_shell(
         }
         None => {
             model.params.ansys_shell181 = true;
+            let x = |a: usize| model.nodes[nodes[a]].x;
+            let (d1, d2) = (sub(x(2), x(0)), sub(x(3), x(1)));
+            let twice_area = norm(cross(d1, d2));
+            if 0.5 * twice_area < DRILL_SHOWN_AREA * shell.thickness * shell.thickness {
+                made.drill_unshown.push(line);
+            }
             ElementKind::Quad4
         }
     };
