@@ -28,6 +28,7 @@ mod ansys_loads;
 mod ansys_loads_frames;
 mod ansys_orthotropic;
 mod ansys_public_archives;
+mod ansys_shell181_triangle;
 mod ansys_shells;
 mod ansys_shells281;
 mod ansys_solids;
