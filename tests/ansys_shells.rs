@@ -142,7 +142,8 @@ fn layers_of_one_material_are_one_homogeneous_shell() {
 }
 
 /// What is not formed is refused by its line naming the KEYOPT, the shape or the section line:
-/// SHELL181's default KEYOPT(3)=0, the membrane option, the degenerate triangle; a laminate
+/// SHELL181's default KEYOPT(3)=0, the membrane option, repeated nodes other than ANSYS's
+/// degenerate triangle K = L (formed: tests/ansys_shell181_triangle.rs); a laminate
 /// of two materials, a TOP offset (at the SHELL181's record: SHELL281 forms it), a drill
 /// stiffness factor, one integration point.
 #[test]
@@ -169,12 +170,12 @@ fn unformed_shell181_options_are_refused_by_line() {
         );
     }
     s += "N,R5.3,LOC,       -1,\nEBLOCK,19,SOLID,         5,         5\n(19i9)\n";
-    // (type, section, nodes): the default KEYOPT(3), the membrane option, a triangle, the
+    // (type, section, nodes): the default KEYOPT(3), the membrane option, a triangle J = K, the
     // laminate section, the TOP offset
     let records: [(u64, u64, [u64; 4]); 5] = [
         (2, 5, [1, 2, 3, 4]),
         (3, 5, [1, 2, 3, 4]),
-        (1, 5, [1, 2, 3, 3]),
+        (1, 5, [1, 2, 2, 3]),
         (1, 1, [1, 2, 3, 4]),
         (1, 2, [1, 2, 3, 4]),
     ];
@@ -201,7 +202,7 @@ fn unformed_shell181_options_are_refused_by_line() {
     let expected = [
         (first, "SHELL181 KEYOPT(3)=0 (the default"),
         (first + 1, "SHELL181 KEYOPT(1)=1"),
-        (first + 2, "degenerate triangle"),
+        (first + 2, "other than ANSYS's degenerate triangle"),
         (first + 3, "layers of different materials"),
         (first + 4, offset.as_str()),
         (

@@ -36,7 +36,13 @@
 //! * ANSYS SHELL181 with KEYOPT(3)=2 (an archive's, `ShellProps::quad4`): the same MITC4 + QM6
 //!   element with ANSYS's two changes, read from ANSYS's own element forces (docs/ansys.md):
 //!   the transverse shear rigidity scaled by s = 1/(1 + A/(160 000 t²)) (A the element's area,
-//!   t its thickness) and the drilling penalty γ_d = s·k G t/200 at the 2×2 points.
+//!   t its thickness) and the drilling penalty γ_d = s·k G t/200 at the 2×2 points. Its
+//!   degenerate triangle (K = L) is this element with nodes 3 and 4 at one point, as ANSYS's
+//!   element energies show it (docs/ansys.md): the three nodes' values span the affine fields,
+//!   so the membrane is the constant-strain triangle (Taylor's modes carry no energy at
+//!   constant strain) and the curvatures are constant; MITC4's e_ξ tied at D, on the
+//!   collapsed side, is zero there (x,ξ = 0, w₃ = w₄), and A is the triangle's area (det J
+//!   vanishes only on that side, not at the 2×2 points).
 //! * Drilling: γ_d (θz − ω)² at the 2×2 points (shell.rs), ω from the bilinear u, v.
 //! * Warped elements: the flat projected element with rigid links to the real nodes (shell.rs);
 //!   exact for rigid motions, approximate (as every flat-facet shell) for strong warping.

@@ -531,10 +531,12 @@ impl Archive {
         ));
         if model.params.ansys_shell181 {
             notes.push(
-                "ANSYS archive: SHELL181 (KEYOPT(3)=2) formed with ANSYS's transverse shear factor \
-                 and drilling penalty, shown against ANSYS's element forces on flat rectangles \
-                 with ν = 0.3; its mass is flexbody's consistent shell mass, not shown against \
-                 ANSYS (docs/ansys.md)"
+                "ANSYS archive: SHELL181 (KEYOPT(3)=2; K = L its degenerate triangle) formed with \
+                 ANSYS's transverse shear factor and drilling penalty, its strain energy (but for \
+                 the drilling penalty's) and consistent mass shown against ANSYS's on flat \
+                 elements with ν = 0.3; ANSYS 2022 R1's drilling penalty is stiffer than the one \
+                 formed, and ANSYS puts no inertia on the drilling rotation (flexbody 10⁻⁴ of \
+                 ρt³/12) (docs/ansys.md)"
                     .into(),
             );
         }

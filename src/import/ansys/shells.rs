@@ -1,7 +1,8 @@
 //! Shells of an archive: shell sections (`SECTYPE,id,SHELL` with its `SECDATA`, `SECOFFSET`,
 //! `SECCONTROL` lines), SHELL181, formed as ANSYS forms it for KEYOPT(3)=2 (full integration
 //! with incompatible modes: flexbody's MITC4 + QM6 quadrilateral with ANSYS's transverse shear
-//! factor and drilling penalty, `fe::elements::shell::Quad4Form`), and SHELL281 (the 8-node
+//! factor and drilling penalty, `fe::elements::shell::Quad4Form`; its degenerate triangle K = L
+//! the same element with nodes 3 and 4 at one point), and SHELL281 (the 8-node
 //! serendipity shell on 2 × 2 points with the section's offset and user transverse shear,
 //! `fe::elements::shell281`), or refused by line naming the KEYOPT, the section line or the
 //! shape whose form is not shown.
@@ -195,8 +196,9 @@ impl ShellSection {
 /// SHELL181 (MAPDL Theory Reference §13.181; docs/ansys.md): KEYOPT(3)=2 formed, on a shell
 /// section or on the legacy real constants TK(I)…TK(L) of one thickness; refused by line:
 /// KEYOPT(3)=0 (the default, uniform reduced integration with hourglass control), the membrane
-/// option KEYOPT(1)=1, other KEYOPTs but KEYOPT(8) (what the result file stores), the
-/// degenerate triangle.
+/// option KEYOPT(1)=1, other KEYOPTs but KEYOPT(8) (what the result file stores), repeated
+/// nodes other than the degenerate triangle K = L (formed: the quadrilateral with nodes 3 and 4
+/// at one point, as ANSYS's strain and kinetic energies show it).
 pub(super) fn shell181(
     keyopts: &BTreeMap<u32, i64>,
     rec: &ElementRecord,
@@ -238,12 +240,15 @@ pub(super) fn shell181(
             nodes.len()
         ));
     }
-    if (1..4).any(|i| nodes[..i].contains(&nodes[i])) {
-        return Err(
-            "SHELL181 with repeated nodes (the degenerate triangle): ANSYS's triangular \
-                    form is not shown here"
-                .into(),
-        );
+    // ANSYS's degenerate triangle (K = L) is the quadrilateral with its nodes 3 and 4 at one
+    // point, as ANSYS forms it (its strain and kinetic energies, docs/ansys.md); other
+    // repeated nodes are not ANSYS's triangle.
+    let distinct = |k: usize| !nodes[..k].contains(&nodes[k]);
+    if !(distinct(1) && distinct(2) && (distinct(3) || nodes[2] == nodes[3])) {
+        return Err(format!(
+            "SHELL181 with repeated nodes {nodes:?} other than ANSYS's degenerate triangle \
+             (K = L with I, J, K distinct): that shape is not formed here"
+        ));
     }
     if let Some(s) = section {
         if let Some((line, o)) = s.offset {
