@@ -531,10 +531,6 @@ mod tests {
         (sparse(n, &k), m)
     }
 
-    /// The lean basis (no M·V) and the kept one both find the closed-form spectrum of a fixed
-    /// chain, λ_j = (2 − 2 cos(jπ/(n+1)))/h with M = h·I, with M-orthonormal vectors; and on a
-    /// spectrum of five distinct values (the Krylov space is exhausted after five blocks, so the
-    /// M-QR pads with random directions) both give the lowest value, 40-fold, 8 times.
     /// The largest |QᵀMQ − I| of a block, M diagonal (`d`).
     fn whiteness(q: MatRef<'_, f64>, d: &[f64]) -> f64 {
         let k = q.ncols();
@@ -550,7 +546,8 @@ mod tests {
 
     #[test]
     fn rewhiten_brings_an_ill_conditioned_block_to_rounding_and_keeps_w_equal_q_r() {
-        // W: five nearly parallel columns (cond(WᵀMW) ≈ 1e6-1e7: one whitening leaves ~1e-10, as the 20k eigen suite's worst block left 1.4e-12), M = diag(d) spread over 1e-2…1e2.
+        // W: five nearly parallel columns (cond(WᵀMW) ≈ 1e6…1e7: one whitening leaves 2.7e-10,
+        // more than the 1.4e-12 traced on the 20k eigen suite), M = diag(d) over 1e-2…1e2.
         let (n, k) = (300, 5);
         let d: Vec<f64> = (0..n)
             .map(|i| 10f64.powf(-2.0 + 4.0 * i as f64 / n as f64))
@@ -616,6 +613,10 @@ mod tests {
         assert_eq!((q, r), before);
     }
 
+    /// The lean basis (no M·V) and the kept one both find the closed-form spectrum of a fixed
+    /// chain, λ_j = (2 − 2 cos(jπ/(n+1)))/h with M = h·I, with M-orthonormal vectors; and on a
+    /// spectrum of five distinct values (the Krylov space is exhausted after five blocks, so the
+    /// M-QR pads with random directions) both give the lowest value, 40-fold, 8 times.
     #[test]
     fn lean_and_kept_basis_agree_with_closed_form() {
         let (n, h) = (400usize, 0.25);

@@ -534,9 +534,9 @@ impl Archive {
                 "ANSYS archive: SHELL181 (KEYOPT(3)=2; K = L its degenerate triangle) formed with \
                  ANSYS's transverse shear factor and drilling penalty, its strain energy (but for \
                  the drilling penalty's) and consistent mass shown against ANSYS's on flat \
-                 elements with ν = 0.3; ANSYS 2022 R1's drilling penalty is stiffer than the one \
-                 formed, and ANSYS puts no inertia on the drilling rotation (flexbody 10⁻⁴ of \
-                 ρt³/12) (docs/ansys.md)"
+                 elements with ν = 0.3; ANSYS's drilling penalty is flexbody's for elements larger \
+                 than 100 t² and stiffer for smaller ones (a warning counts them), and ANSYS puts \
+                 no inertia on the drilling rotation (flexbody 10⁻⁴ of ρt³/12) (docs/ansys.md)"
                     .into(),
             );
         }

@@ -380,7 +380,8 @@ pub(super) struct ShellProperties {
 
 /// Area, in thicknesses squared, above which flexbody's SHELL181 drilling penalty was shown to
 /// be ANSYS's (ANSYS's artificial energy AENE: 1.0010 of it at A ≈ 100 t², the box's element
-/// forces at A ≈ 1800–2100 t²); at A ≈ 0.3–1.5 t² ANSYS's is 4–14 times larger (docs/ansys.md).
+/// forces at A ≈ 1800–2100 t²); at A ≈ 0.3–1.5 t² ANSYS's is 4–14 times larger on
+/// quadrilaterals, up to 27 on triangles (docs/ansys.md).
 const DRILL_SHOWN_AREA: f64 = 100.0;
 
 impl ShellProperties {
@@ -402,7 +403,7 @@ impl ShellProperties {
                 "{} SHELL181 element(s) smaller in area than {DRILL_SHOWN_AREA} times their \
                  thickness squared (the first at line {first}): their drilling stiffness is \
                  flexbody's rule (s k G t/200), shown to be ANSYS's only for larger elements — \
-                 ANSYS's is 4–14 times stiffer at areas of 0.3–1.5 t² (docs/ansys.md); bending \
+                 ANSYS's is 4–27 times stiffer at areas of 0.3–1.5 t² (docs/ansys.md); bending \
                  modes agree with ANSYS's, a mode that turns shell nodes about their normal \
                  (in-plane rotation at a point support, a beam or rigid link on the drilling \
                  rotation) does not",
