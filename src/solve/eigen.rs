@@ -245,11 +245,7 @@ fn rewhiten(
         return Ok(());
     }
     let g = q.as_ref().transpose() * mq.as_ref();
-    let off = (0..k)
-        .flat_map(|i| (0..k).map(move |j| (i, j)))
-        .map(|(i, j)| (g[(i, j)] - f64::from(u8::from(i == j))).abs())
-        .fold(0.0, f64::max);
-    if off <= WHITE_TOL {
+    if off_identity(g.as_ref()) <= WHITE_TOL {
         return Ok(());
     }
     let (s, u) = dense::eigh(g.as_ref())?;
@@ -269,6 +265,15 @@ fn rewhiten(
     let r2 = &tinv * r.as_ref();
     r.copy_from(r2.as_ref());
     Ok(())
+}
+
+/// The largest |G − I| entry of a square Gram matrix G (how far a block is from orthonormal).
+fn off_identity(g: MatRef<'_, f64>) -> f64 {
+    let k = g.nrows();
+    (0..k)
+        .flat_map(|i| (0..k).map(move |j| (i, j)))
+        .map(|(i, j)| (g[(i, j)] - f64::from(u8::from(i == j))).abs())
+        .fold(0.0, f64::max)
 }
 
 /// The first `p` columns of the kept M·V, if it is kept.
@@ -531,17 +536,10 @@ mod tests {
         (sparse(n, &k), m)
     }
 
-    /// The largest |QᵀMQ − I| of a block, M diagonal (`d`).
+    /// The largest |QᵀMQ − I| of a block, M diagonal (`d`), M·Q formed afresh.
     fn whiteness(q: MatRef<'_, f64>, d: &[f64]) -> f64 {
-        let k = q.ncols();
-        let mut worst = 0.0f64;
-        for i in 0..k {
-            for j in 0..k {
-                let g: f64 = (0..q.nrows()).map(|r| q[(r, i)] * d[r] * q[(r, j)]).sum();
-                worst = worst.max((g - f64::from(u8::from(i == j))).abs());
-            }
-        }
-        worst
+        let mq = Mat::from_fn(q.nrows(), q.ncols(), |r, c| d[r] * q[(r, c)]);
+        off_identity((q.transpose() * &mq).as_ref())
     }
 
     #[test]
@@ -573,11 +571,7 @@ mod tests {
         // What rewhiten sees is Qᵀ(M·Q) with the M·Q carried along (as the eigensolver keeps it):
         // that is whitened to rounding. Q's and M·Q's own rounding (ε·√cond(WᵀMW) of them, formed
         // from nearly parallel columns) bounds QᵀMQ formed afresh.
-        let carried = q.transpose() * &mq;
-        let carried = (0..k)
-            .flat_map(|i| (0..k).map(move |j| (i, j)))
-            .map(|(i, j)| (carried[(i, j)] - f64::from(u8::from(i == j))).abs())
-            .fold(0.0, f64::max);
+        let carried = off_identity((q.transpose() * &mq).as_ref());
         // (rounding level here: n = 300 terms of a Gram whose M spans four decades)
         assert!(
             carried <= 5e-14,
