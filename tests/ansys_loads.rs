@@ -89,6 +89,75 @@ fn sfe_on_solid186_equals_the_ccx_dload_and_beam_theory() {
     assert!(off < 1.5e-2, "{tip} {beam}");
 }
 
+/// `SFEBLOCK` of PRES as ANSYS 2024 R2's `CDWRITE` lays it out (its Turek–Hron archive in
+/// `tests/data/ansys_public/`): NVAL 4, format `(i9,i4,i4,6(pg20.9))`, per face a KVAL 1
+/// record (element, LKEY, 1, VAL1…VAL4) and a KVAL 2 record of zeros, then `SFE,end,LOC,-1,`.
+fn sfeblock(loads: &[(usize, usize, f64)]) -> String {
+    let largest = loads.iter().map(|l| l.0).max().unwrap_or(0);
+    let mut s = format!(
+        "SFEBLOCK,4,PRES,{largest:>10},{:>10},0\n(i9,i4,i4,6(pg20.9))\n",
+        2 * loads.len()
+    );
+    for &(e, face, p) in loads {
+        for (kval, v) in [(1, p), (2, 0.0)] {
+            s += &format!("{e:>9}{face:>4}{kval:>4}");
+            s += &format!("{:>16.9e}    ", v).repeat(4);
+            s.push('\n');
+        }
+    }
+    s + "SFE,end,LOC,       -1,\n"
+}
+
+/// The pressures of [`sfe_on_solid186_equals_the_ccx_dload_and_beam_theory`] (every face
+/// number 1…6 across the cantilever, each element its own pressure, written exactly in nine
+/// digits) as one `SFEBLOCK` equal the same pressures as `*DLOAD` Pn on the C3D20R mesh, and
+/// the same `SFE` commands to the bit.
+#[test]
+fn sfeblock_on_solid186_equals_the_ccx_dload() {
+    let m = block([10, 1, 2], [1.0, 0.1, 0.1], true);
+    let clamp: String = root(&m).iter().map(|n| format!("D,{n},ALL,0\n")).collect();
+    let ccx_face = [1, 3, 4, 5, 6, 2];
+    let loads: Vec<(usize, usize, f64)> = (1..=20)
+        .map(|e| (e, (e - 1) % 6 + 1, 1.0e5 + 1.0e4 * e as f64))
+        .collect();
+    let dload: String = (loads.iter())
+        .map(|(e, f, p)| format!("{e}, P{}, {p:e}\n", ccx_face[f - 1]))
+        .collect();
+    let work = scratch("ansys-sfeblock-solid186");
+    let cdb = work.join("block.cdb");
+    let extra = format!("{clamp}{}", sfeblock(&loads));
+    std::fs::write(
+        &cdb,
+        block_archive(&m, "ET,1,186\n", &BTreeMap::new(), &extra),
+    )
+    .unwrap();
+    let inp = work.join("block.inp");
+    std::fs::write(&inp, ccx_deck(&m, &format!("*DLOAD\n{dload}"))).unwrap();
+    let (modes, worst) = lumped_load_differences(&cdb, &inp, 6);
+    println!(
+        "SFEBLOCK faces 1…6 against *DLOAD: static response {worst:.2e}, frequencies {modes:.2e}"
+    );
+    // measured 1.0e-11 and 6.3e-12 (two eigensolves' rounding)
+    assert!(modes < 3e-11, "{modes}");
+    assert!(worst < 3e-11, "{worst}");
+    // and the same as its SFE commands, to the bit
+    let sfe: String = (loads.iter())
+        .map(|(e, f, p)| format!("SFE,{e},{f},PRES,0,{p:e}\n"))
+        .collect();
+    let commands = work.join("commands.cdb");
+    let extra = format!("{clamp}{sfe}");
+    std::fs::write(
+        &commands,
+        block_archive(&m, "ET,1,186\n", &BTreeMap::new(), &extra),
+    )
+    .unwrap();
+    let same = response_difference(
+        &static_response(&build(&cdb, 6, &RESIDUALS), 0),
+        &static_response(&build(&commands, 6, &RESIDUALS), 0),
+    );
+    assert_eq!(same, 0.0);
+}
+
 /// The archive of a flat SHELL181 plate (KEYOPT(3)=2, 10 mm section) of 4 × 3 elements over
 /// [0, 0.8] × [0, 0.6], clamped at x = 0, `extra` appended.
 fn plate_archive(extra: &str) -> (String, Vec<Vec<u64>>, BTreeMap<u64, [f64; 3]>) {
@@ -164,7 +233,8 @@ fn sfe_on_shell181_equals_the_consistent_nodal_forces() {
 }
 
 /// A varying pressure keeps the load (named SFE) with a warning naming the line; an edge face,
-/// an imaginary pressure, the R5.0 form and SFEBLOCK are refused by line (exit 2).
+/// an imaginary pressure (as `SFE` and as an `SFEBLOCK` record) and an `SFEBLOCK` of another
+/// label than PRES are refused by line (exit 2).
 #[test]
 fn varying_pressures_warn_and_other_sfe_forms_are_refused() {
     let work = scratch("ansys-sfe-refused");
@@ -192,10 +262,15 @@ fn varying_pressures_warn_and_other_sfe_forms_are_refused() {
         "{err}"
     );
     let refused = work.join("refused.cdb");
-    let extra = "SFE,2,3,PRES,0,1.0\nSFE,3,1,PRES,2,1.0\nSFE,4,1,PRES,0,R5.0\n(1p4e16.9)\n 1.0 1.0 1.0 1.0\n\
-                 SFEBLOCK,4,PRES,1,1,0\n(i9,i4,i4,6(pg20.9))\n        5   1   1 1.0 1.0 1.0 1.0\nSFE,end,LOC,-1,\n\
-                 SFE,5,1,CONV,0,1.0\n";
-    std::fs::write(&refused, plate_archive(extra).0).unwrap();
+    // an SFEBLOCK of PRES is read (its KVAL 2 record with a value refused), one of another
+    // label refused by its line
+    let blocks = sfeblock(&[(5, 1, 1.0)]).replace("   2   0.000000000e0", "   2  5.000000000e-1")
+        + &sfeblock(&[(5, 1, 1.0)]).replace("PRES", "SELV");
+    let extra = format!(
+        "SFE,2,3,PRES,0,1.0\nSFE,3,1,PRES,2,1.0\nSFE,4,1,PRES,0,R5.0\n(1p4e16.9)\n 1.0 1.0 1.0 1.0\n\
+         {blocks}SFE,5,1,CONV,0,1.0\n"
+    );
+    std::fs::write(&refused, plate_archive(&extra).0).unwrap();
     let o = exe()
         .arg("build")
         .arg(&refused)
@@ -205,7 +280,12 @@ fn varying_pressures_warn_and_other_sfe_forms_are_refused() {
         .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
-    for (k, what) in [(0, "edge faces"), (1, "KVAL = 2"), (5, "SFEBLOCK of PRES")] {
+    for (k, what) in [
+        (0, "edge faces"),
+        (1, "KVAL = 2"),
+        (8, "KVAL = 2"),
+        (10, "SFEBLOCK of SELV"),
+    ] {
         let at = format!("refused.cdb:{}: ", first + k);
         assert!(
             err.contains(&at) && err.contains(what),
@@ -213,9 +293,9 @@ fn varying_pressures_warn_and_other_sfe_forms_are_refused() {
         );
     }
     // the archive's form SFE,…,R5.0 is read with its values (a format line before them
-    // skipped), a thermal SFE (CONV) noted; the skipped block and value lines are not taken
-    // for commands
-    for k in [2, 3, 4, 6, 7, 8, 9] {
+    // skipped), the SFEBLOCK's KVAL 1 record read, a thermal SFE (CONV) noted; the skipped
+    // block and value lines are not taken for commands
+    for k in [2, 3, 4, 5, 6, 7, 9, 11, 12, 13, 14, 15] {
         let at = format!("refused.cdb:{}: ", first + k);
         assert!(!err.contains(&at), "{at}: {err}");
     }

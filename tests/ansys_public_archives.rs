@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use crate::ansys_support::writers::{
     block, block_archive, build_body, eblock, frequency_difference, lumped_load_differences,
-    material, nblock, root, STEEL,
+    material, nblock, response_difference, root, static_response, RESIDUALS, STEEL,
 };
 use crate::common::{exe, scratch};
 
@@ -89,6 +89,106 @@ fn turek_hron_workbench_archive_gives_the_cantilever_frequency() {
     // measured 0 (the same matrices) and 2.6e-4
     assert!(same < 1e-12, "{same}");
     assert!(reduced > 1e-5, "{reduced}");
+}
+
+/// The Turek–Hron archive's `SFEBLOCK` (as ANSYS 2024 R2's `CDWRITE` writes it: element, LKEY,
+/// KVAL, VAL1…VAL4) names the beam's wet surface by the Element Reference's SOLID186 face
+/// numbers: its 126 FSIN records, read as a pressure (the label turned into PRES), load the
+/// body as `SFE` commands on the 126 boundary faces this test finds on the top (y = 0.21), the
+/// bottom (y = 0.19) and the tip (x = 0.6) by their coordinates.
+#[test]
+fn turek_hron_sfeblock_names_the_wet_faces() {
+    let text = std::fs::read_to_string(public("turek_hron_benchmark_solid.cdb")).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let after = |head: &str| 2 + lines.iter().position(|l| l.starts_with(head)).unwrap();
+    // NBLOCK (3i9,6e21.13e3): blank coordinates are zero
+    let mut nodes = BTreeMap::new();
+    for l in lines[after("NBLOCK")..]
+        .iter()
+        .take_while(|l| !l.starts_with('N'))
+    {
+        let x: [f64; 3] = std::array::from_fn(|j| {
+            let col = l.get(27 + 21 * j..48 + 21 * j).unwrap_or("").trim();
+            if col.is_empty() {
+                0.0
+            } else {
+                col.parse().unwrap()
+            }
+        });
+        nodes.insert(l[..9].trim().parse::<u64>().unwrap(), x);
+    }
+    // EBLOCK (19i10): 11 attributes, the element's number last, 20 nodes over two lines
+    let ints = |l: &str| -> Vec<u64> {
+        (0..l.trim_end().len() / 10)
+            .map(|k| l[10 * k..10 * k + 10].trim().parse().unwrap())
+            .collect()
+    };
+    let mut bricks = BTreeMap::new();
+    let records = &lines[after("EBLOCK")..];
+    for pair in records
+        .chunks(2)
+        .take_while(|p| !p[0].trim().starts_with("-1"))
+    {
+        let (head, rest) = (ints(pair[0]), ints(pair[1]));
+        let corners: Vec<u64> = head[11..].iter().chain(&rest).take(8).copied().collect();
+        bricks.insert(head[10], corners);
+    }
+    assert_eq!(bricks.len(), 360);
+    // the boundary faces on the wet planes, by the SOLID186 face list (corners 0-based)
+    const FACES: [[usize; 4]; 6] = [
+        [1, 0, 3, 2],
+        [0, 1, 5, 4],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 0, 4, 7],
+        [4, 5, 6, 7],
+    ];
+    let key = |c: &[u64], f: &[usize; 4]| {
+        let mut k: Vec<u64> = f.iter().map(|&i| c[i]).collect();
+        k.sort_unstable();
+        k
+    };
+    let mut uses: BTreeMap<Vec<u64>, usize> = BTreeMap::new();
+    for c in bricks.values() {
+        for f in &FACES {
+            *uses.entry(key(c, f)).or_default() += 1;
+        }
+    }
+    let on = |c: &[u64], f: &[usize; 4], axis: usize, at: f64| {
+        f.iter().all(|&i| (nodes[&c[i]][axis] - at).abs() < 1e-9)
+    };
+    let mut sfe = String::new();
+    for (e, c) in &bricks {
+        for (k, f) in FACES.iter().enumerate() {
+            let wet = on(c, f, 1, 0.21) || on(c, f, 1, 0.19) || on(c, f, 0, 0.6);
+            if wet && uses[&key(c, f)] == 1 {
+                sfe += &format!("SFE,{e},{},PRES,0,1.0\n", k + 1);
+            }
+        }
+    }
+    let found = sfe.lines().count();
+    // the archive's block: its label as PRES, or replaced by the SFE commands found
+    let begin = text.find("SFEBLOCK,4,FSIN").unwrap();
+    let end = begin + text[begin..].find("SFE,end,LOC").unwrap();
+    let end = end + text[end..].find('\n').unwrap() + 1;
+    let block = &text[begin..end];
+    let work = scratch("ansys-public-turek-sfeblock");
+    let (a, b) = (work.join("sfeblock.cdb"), work.join("sfe.cdb"));
+    std::fs::write(&a, text.replace("SFEBLOCK,4,FSIN", "SFEBLOCK,4,PRES")).unwrap();
+    std::fs::write(&b, text.replace(block, &sfe)).unwrap();
+    let (ua, ub) = (
+        static_response(&build_body(&a, 4, &RESIDUALS), 0),
+        static_response(&build_body(&b, 4, &RESIDUALS), 0),
+    );
+    let worst = response_difference(&ua, &ub);
+    let records = block
+        .lines()
+        .filter(|l| l.get(13..17) == Some("   1"))
+        .count();
+    println!("Turek–Hron SFEBLOCK: {records} faces in the block, {found} wet faces found; static responses {worst:.2e}");
+    assert_eq!((records, found), (126, 126));
+    // measured 0: the same pressures, the same body
+    assert_eq!(worst, 0.0);
 }
 
 /// DBLOCK records are D commands: a block archive clamped by a DBLOCK (CDWRITE's format

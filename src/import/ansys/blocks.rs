@@ -301,6 +301,34 @@ impl<'a> Lines<'a> {
     /// follows them.
     pub fn skip_sfeblock(&mut self) {
         self.skip_data_lines();
+        self.sfeblock_end();
+    }
+
+    /// An `SFEBLOCK`'s format line and records (each record's line and columns), up to its end
+    /// line `SFE,…,-1` (read) or a `-1` line; a command line ends the records too, unread.
+    pub fn sfeblock(&mut self, start: usize) -> Result<Vec<Record<'a>>, ImportError> {
+        let lay = self.format(start, "SFEBLOCK")?;
+        let mut out = Vec::new();
+        while let Some(text) = self.lines.get(self.next).copied() {
+            let t = text.trim();
+            if t.starts_with("-1") {
+                self.next += 1;
+                return Ok(out);
+            }
+            if t.starts_with(|c: char| c.is_ascii_alphabetic() || c == '/' || c == '*') {
+                break;
+            }
+            self.next += 1;
+            if !t.is_empty() {
+                out.push((self.next, columns(text, &lay)));
+            }
+        }
+        self.sfeblock_end();
+        Ok(out)
+    }
+
+    /// The end line `SFE,…,-1` of an `SFEBLOCK`, read when it is the next line.
+    fn sfeblock_end(&mut self) {
         let end = self
             .lines
             .get(self.next)

@@ -279,24 +279,8 @@ impl Archive {
                 }
             }
             "SFEBLOCK" => {
-                let label = (c.fields.iter())
-                    .find(|f| f.parse::<f64>().is_err() && !f.is_empty())
-                    .map_or(String::new(), |f| f.to_ascii_uppercase());
-                if surface::NON_STRUCTURAL_LABELS.contains(&label.as_str()) {
-                    self.noted
-                        .entry(format!("SFEBLOCK {label}"))
-                        .or_default()
-                        .push(c.line);
-                } else {
-                    refused.push((
-                        c.line,
-                        format!(
-                            "SFEBLOCK of {label}: the block's records are not described in the \
-                             documentation at hand (SFE commands are read)"
-                        ),
-                    ));
-                }
-                lines.skip_sfeblock();
+                let (pressures, noted) = (&mut self.pressures, &mut self.noted);
+                surface::sfeblock(file, c, lines, pressures, noted, &mut refused)?;
             }
             "MPTEMP" => self.materials.mptemp(file, c)?,
             "MPDATA" | "MP" => self.materials.mpdata(file, c, &mut refused)?,

@@ -19,9 +19,12 @@
 //! by name and is not applied. The archive's form `SFE,Elem,LKEY,Lab,KVAL,R5.0` carries VAL1…VAL4
 //! on the next line (four columns of 16, as archives written by MAPDL 2022 show). Labels that
 //! cannot load a structure (thermal, acoustic, electromagnetic, the fluid–solid interface flag)
-//! are noted. Refused by line: other labels than PRES, imaginary pressures, element lists (ALL,
-//! components), the shells' edge faces 3…6, faces of other element types, collapsed faces, and
-//! `SFEBLOCK` of PRES (its records are not described in the documentation at hand).
+//! are noted. `SFEBLOCK` (MAPDL 2022 and later) is the same command in blocks: its records are
+//! element, LKEY, KVAL and VAL1…VAL4 (two archives ANSYS wrote of the Turek–Hron beam show it:
+//! each of their FSIN records names, by the faces below, a boundary face of the beam's wet
+//! surface, docs/ansys.md). Refused by line: other labels than PRES, imaginary pressures,
+//! element lists (ALL, components), the shells' edge faces 3…6, faces of other element types,
+//! collapsed faces.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -151,6 +154,58 @@ pub(super) fn sfe(
         first,
         others,
     });
+    Ok(())
+}
+
+/// `SFEBLOCK,NVAL,Lab,…`, format `(i9,i4,i4,6(pg20.9))`: the blocked `SFE` that `CDWRITE`
+/// writes (MAPDL 2022 and later), one record per face and KVAL — element, LKEY, KVAL, VAL1…VAL4
+/// (NVAL of them) — up to `SFE,end,LOC,-1`. Each record of PRES is read as its `SFE` command
+/// (a KVAL 2 record of zeros, which `CDWRITE` writes after each real one, adds nothing); a
+/// label that cannot load a structure is noted, any other refused by the block's line.
+pub(super) fn sfeblock(
+    file: &str,
+    c: &Command,
+    lines: &mut super::blocks::Lines<'_>,
+    out: &mut Vec<Pressure>,
+    noted: &mut BTreeMap<String, Vec<usize>>,
+    refused: &mut Vec<Refused>,
+) -> Result<(), ImportError> {
+    let label = c.field(1).to_ascii_uppercase();
+    let values = c.int(file, 0)?;
+    let why = if NON_STRUCTURAL_LABELS.contains(&label.as_str()) {
+        noted
+            .entry(format!("SFEBLOCK {label}"))
+            .or_default()
+            .push(c.line);
+        None
+    } else if label != "PRES" {
+        Some(format!(
+            "SFEBLOCK of {label}: only PRES (a structural pressure) is read"
+        ))
+    } else if !(1..=4).contains(&values) {
+        Some(format!(
+            "SFEBLOCK with NVAL = {values}: a face's values are VAL1…VAL4 (1 to 4 of them)"
+        ))
+    } else {
+        for (line, cols) in lines.sfeblock(c.line)? {
+            let col = |k: usize| cols.get(k).copied().flatten().unwrap_or("");
+            let given = (0..4).map(|k| if k < values as usize { col(3 + k) } else { "" });
+            let record = Command {
+                line,
+                name: "SFE".into(),
+                fields: [col(0), col(1), "PRES", col(2)]
+                    .into_iter()
+                    .chain(given)
+                    .collect(),
+            };
+            sfe(file, &record, None, out, noted, refused)?;
+        }
+        return Ok(());
+    };
+    if let Some(why) = why {
+        refused.push((c.line, why));
+    }
+    lines.skip_sfeblock();
     Ok(())
 }
 
