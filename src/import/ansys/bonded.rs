@@ -24,10 +24,11 @@
 //!   (a shell-solid or shell-shell assembly, Contact Technology Guide §10.1, §10.2: "the program
 //!   automatically constrains both translational and rotational degrees of freedom for a
 //!   shell-solid assembly", TARGE170 KEYOPT(5)=0 set internally to 4, in equations the guide
-//!   does not give) is refused, as is a pair whose mirror (contact and target swapped, another
-//!   real constant set) is in the archive: "only asymmetric contact is supported. If symmetric
-//!   pairs are defined, the program automatically selects one pair and ignores the other" —
-//!   which one is not stated;
+//!   does not give, and which no ANSYS result at hand shows: none holds a shell-solid or
+//!   shell-shell MPC pair, docs/ansys.md) is refused, as is a pair whose mirror (contact and
+//!   target swapped, another real constant set) is in the archive: "only asymmetric contact is
+//!   supported. If symmetric pairs are defined, the program automatically selects one pair and
+//!   ignores the other" — which one is not stated;
 //! * refused by line: KEYOPT(12)=6 (bonded initial: which initially open nodes ANSYS leaves free
 //!   is not established), ICONT and CNOF, contact KEYOPTs other than 2, 4, 9, 12 and the ignored
 //!   8 and 10, TARGE170 KEYOPTs other than 2 (the rigid target's boundary condition, no effect on
