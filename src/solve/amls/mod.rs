@@ -253,10 +253,9 @@ pub fn amls(
         });
     }
     // the band top: `upper`, else just above the highest returned eigenvalue
-    let top = ritz.values.iter().copied().fold(0.0f64, f64::max);
     let band_top = match spec.upper {
         Some(u) => u,
-        None => super::count_shift_above(top, scale),
+        None => super::count_shift_above(k, m, x.as_ref(), &ritz.values),
     };
     let t2 = std::time::Instant::now();
     let below_top = inertia::count_below(k, m, band_top, spec.dofs_per_node, spec.par)?;
