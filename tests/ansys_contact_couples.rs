@@ -4,8 +4,8 @@
 //! - on congruent meshes (every contact node of both sets a target node's twin) the couple is
 //!   read, formed once: it equals the same two parts tied by `*TIE` (ccx importer) and the two
 //!   parts meshed as one block (shared nodes);
-//! - a couple on meshes that are not congruent stays refused, both sets named, as does a
-//!   shell-solid assembly.
+//! - a couple on meshes that are not congruent, or whose two sets tie different node pairs,
+//!   stays refused, both sets named, as does a shell-solid assembly.
 
 use crate::ansys_contact::{
     against_ccx, bonded_archive, bonded_ccx, faces_at, glue_faces, refused, two_parts,
@@ -87,6 +87,30 @@ fn congruent_symmetric_couple_equals_the_tie_and_the_merged_block() {
     assert!(err.contains("set 5"), "{err}");
     assert!(err.contains("formed once (by set 3)"), "{err}");
     assert!(err.contains("40 contact nodes tied"), "{err}");
+}
+
+/// A couple on congruent meshes whose two sets tie different node pairs (the mirror, set 5,
+/// takes contact faces on 4 of the 9 target faces only): which set ANSYS keeps changes the
+/// body, so it is refused, both sets named.
+#[test]
+fn congruent_couple_tying_different_node_pairs_is_refused() {
+    let (m, first_part) = congruent_parts();
+    let glue = glue_faces(&m, first_part, 0.3);
+    let text = bonded_archive(&m, &glue, 1e-3);
+    let mirror: Vec<(usize, usize, usize, Vec<u64>)> = (faces_at(&m, 0.3, false).into_iter())
+        .take(4)
+        .map(|(_, f)| (3, 5, 0, f))
+        .chain(glue.iter().map(|f| (2, 5, 9, f.clone())))
+        .collect();
+    let err = refused(
+        "ansys-couple-partial",
+        &with_records(&text, &mirror, "R,5,0,0,0,0,0,-1e-3\n"),
+    );
+    assert!(
+        err.contains("real constant set 3 and its mirror, set 5"),
+        "{err}"
+    );
+    assert!(err.contains("the meshes are not congruent"), "{err}");
 }
 
 /// The assemblies flexbody does not form are refused by line: a symmetric couple on meshes that
