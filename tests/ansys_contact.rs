@@ -140,7 +140,7 @@ fn ccx_reference(m: &Block, coupling: &str) -> String {
 
 /// Builds the archive and the ccx deck (lumped mass, residual vectors of the loads): the
 /// largest frequency and static response differences.
-fn against_ccx(name: &str, cdb_text: &str, inp_text: &str) -> (f64, f64) {
+pub(crate) fn against_ccx(name: &str, cdb_text: &str, inp_text: &str) -> (f64, f64) {
     let work = scratch(name);
     let cdb = work.join("remote.cdb");
     std::fs::write(&cdb, cdb_text).unwrap();
@@ -156,7 +156,7 @@ fn against_ccx(name: &str, cdb_text: &str, inp_text: &str) -> (f64, f64) {
 
 /// Builds two archives as [`against_ccx`] does: the largest frequency and static response
 /// differences.
-fn against_archive(name: &str, a: &str, b: &str) -> (f64, f64) {
+pub(crate) fn against_archive(name: &str, a: &str, b: &str) -> (f64, f64) {
     let work = scratch(name);
     let (pa, pb) = (work.join("a.cdb"), work.join("b.cdb"));
     std::fs::write(&pa, a).unwrap();
@@ -307,7 +307,7 @@ fn the_pilot_is_the_craig_bampton_interface_by_number_and_component() {
 }
 
 /// `flexbody build` of an archive expected to be refused: exit 2 and the message.
-fn refused(name: &str, text: &str) -> String {
+pub(crate) fn refused(name: &str, text: &str) -> String {
     let work = scratch(name);
     let cdb = work.join("refused.cdb");
     std::fs::write(&cdb, text).unwrap();
@@ -322,9 +322,48 @@ fn refused(name: &str, text: &str) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// TARGE170 KEYOPT(4)=111 on a force-distributed pilot names the pilot's translations (the units
+/// digit UX, docs/ansys.md: ANSYS's pilots of ansys-mapdl-reader's `materials/file.rst`): the
+/// archive equals `*DISTRIBUTING` 1…3 (the RBE3 with reference dofs 123) on the same faces. The
+/// pilot carries a MASS21 without rotary inertia (KEYOPT(3)=2) and forces only: its rotations
+/// are no dofs of the body, as in ANSYS's field. Read the other way (ROTX…ROTZ) the pilot's
+/// translations would be free: the same archive with 111000 fails the build's verification
+/// with three zero-frequency modes (checked once by hand).
+#[test]
+fn force_distributed_pilot_dofs_111_are_the_translations() {
+    let m = beam();
+    let forces: String = (LOADS.iter().filter(|(c, _)| *c <= 3))
+        .map(|(c, v)| format!("F,{PILOT},{},{v:e}\n", ["FX", "FY", "FZ"][c - 1]))
+        .collect();
+    let [ixx, iyy, izz] = INERTIA;
+    let cdb = archive(&m, &pair_types(174, 1, 111, ""), &tip_faces(&m), &forces)
+        .replace(
+            "ET,        4,21\n",
+            "ET,        4,21\nKEYOP,        4, 3,        2\n",
+        )
+        .replace(
+            &format!("R,4,{MASS:e},{MASS:e},{MASS:e},{ixx:e},{iyy:e},{izz:e}\n"),
+            &format!("R,4,{MASS:e}\n"),
+        );
+    assert!(cdb.contains(&format!("R,4,{MASS:e}\n")));
+    let moment = format!("{PILOT}, 4, {:e}\n", LOADS[3].1);
+    let rotary = format!("*ROTARY INERTIA, ELSET=PM\n{ixx:e}, {iyy:e}, {izz:e}, 0., 0., 0.\n");
+    let full = ccx_reference(&m, "*DISTRIBUTING\n1, 3\n");
+    assert!(full.contains(&moment) && full.contains(&rotary));
+    let inp = full.replace(&moment, "").replace(&rotary, "");
+    let (modes, static_) = against_ccx("ansys-contact-pilot-111", &cdb, &inp);
+    println!(
+        "TARGE170 KEYOPT(4)=111 against *DISTRIBUTING 1, 3: frequencies {modes:.2e}, \
+         static {static_:.2e}"
+    );
+    // measured 2.5e-12 and 4.9e-12
+    assert!(modes < 2e-11, "{modes:e}");
+    assert!(static_ < 4e-11, "{static_:e}");
+}
+
 /// The forms not read are refused by line, naming the KEYOPT or constant: a penalty or
-/// augmented Lagrange contact, standard contact, a pinball radius, TARGE170 KEYOPT(2)=0, a dof
-/// pattern whose digits' order matters; target faces (bonded contact between surfaces) with
+/// augmented Lagrange contact, standard contact, a pinball radius, TARGE170 KEYOPT(2)=0, a subset
+/// of the pilot dofs on a rigid surface constraint; target faces (bonded contact between surfaces) with
 /// ANSYS's default pinball.
 #[test]
 fn contact_forms_not_read_are_refused_by_line() {
@@ -367,7 +406,7 @@ fn contact_forms_not_read_are_refused_by_line() {
 
 /// Two parts meshed apart: `a` over [0, 0.3] (3 × 2 × 2 bricks) and `b` over [0.3, 0.6]
 /// (3 × 3 × 3, ids from 10 001), as one mesh (a's elements first).
-fn two_parts() -> (Block, usize) {
+pub(crate) fn two_parts() -> (Block, usize) {
     let a = block([3, 2, 2], [0.3, 0.1, 0.1], true);
     let b = block([3, 3, 3], [0.3, 0.1, 0.1], true);
     let mut m = Block {
@@ -388,7 +427,7 @@ fn two_parts() -> (Block, usize) {
 /// The faces at x = `at` of the bricks with a corner there: x-min faces (corners I, L, P, M
 /// and the mid-sides of I-L, L-P, P-M, M-I: C3D20's S6) or x-max faces (as [`tip_faces`]:
 /// S4); with the 1-based element numbers.
-fn faces_at(m: &Block, at: f64, x_min: bool) -> Vec<(usize, Vec<u64>)> {
+pub(crate) fn faces_at(m: &Block, at: f64, x_min: bool) -> Vec<(usize, Vec<u64>)> {
     (m.elements.iter().enumerate())
         .filter(|(_, e)| {
             let corners: &[usize] = if x_min { &[0, 3, 7, 4] } else { &[1, 2, 6, 5] };
@@ -412,7 +451,7 @@ const FAR_LOADS: [(usize, f64); 2] = [(2, 1.0e3), (3, -500.0)];
 /// The two parts as an archive: CONTA174 (type 3, KEYOPT(4)=2) on `contacts`, TARGE170 QUA8
 /// faces (type 2, shape key 9) on the first part's x = 0.3 faces, real constant set 3 with
 /// PINB = −`pinball`; clamped at x = 0, `F` on the far corner.
-fn bonded_archive(m: &Block, contacts: &[Vec<u64>], pinball: f64) -> String {
+pub(crate) fn bonded_archive(m: &Block, contacts: &[Vec<u64>], pinball: f64) -> String {
     let nodes: Vec<(u64, [f64; 3], [f64; 3])> = (m.nodes.iter())
         .map(|(&id, &x)| (id, x, [0.0; 3]))
         .collect();
@@ -442,7 +481,7 @@ fn bonded_archive(m: &Block, contacts: &[Vec<u64>], pinball: f64) -> String {
 /// The two parts as a CalculiX deck: the second part's x = 0.3 faces (S6) tied to the first
 /// part's (S4) by `*TIE` with POSITION TOLERANCE = `pinball` and ADJUST=NO, the far corner's
 /// loads as `*CLOAD`.
-fn bonded_ccx(m: &Block, first_part: usize, pinball: f64) -> String {
+pub(crate) fn bonded_ccx(m: &Block, first_part: usize, pinball: f64) -> String {
     bonded_ccx_at(m, first_part, pinball, 0.3)
 }
 
@@ -595,7 +634,7 @@ fn two_parts_apart(gap: f64) -> (Block, usize) {
 }
 
 /// The second part's x-min faces (the contact faces of [`bonded_archive`]) at x = `at`.
-fn glue_faces(m: &Block, first_part: usize, at: f64) -> Vec<Vec<u64>> {
+pub(crate) fn glue_faces(m: &Block, first_part: usize, at: f64) -> Vec<Vec<u64>> {
     (faces_at(m, at, true).into_iter())
         .filter(|(e, _)| *e > first_part)
         .map(|(_, f)| f)
@@ -658,127 +697,4 @@ fn keyopt9_excluding_the_gap_is_the_tie_as_placed() {
         // at the first CONTA174 record: after the header lines, the NBLOCK and the bricks
         assert!(err.contains("refused.cdb:"), "{err}");
     }
-}
-
-/// The assemblies flexbody does not form are refused by line: a symmetric pair (the touching
-/// parts bonded both ways, real constant sets 3 and 5: ANSYS keeps one and ignores the other,
-/// which one not stated), and a shell-solid assembly (SHELL181 quadrilaterals on the first
-/// part's x = 0.3 face as CONTA174 contact faces, the bricks' faces their target: ANSYS ties
-/// the shell nodes' rotations too).
-#[test]
-fn symmetric_pairs_and_shell_solid_assemblies_are_refused() {
-    let (m, first_part) = two_parts();
-    let glue = glue_faces(&m, first_part, 0.3);
-    let text = bonded_archive(&m, &glue, 1e-3);
-    // the mirror: CONTA174 (type 3, set 5) on the first part's faces, TARGE170 QUA8 (type 2,
-    // set 5) on the second part's
-    let mirror: Vec<(usize, usize, usize, Vec<u64>)> = (faces_at(&m, 0.3, false).into_iter())
-        .map(|(_, f)| (3, 5, 0, f))
-        .chain(glue.iter().map(|f| (2, 5, 9, f.clone())))
-        .collect();
-    let symmetric = with_records(&text, &mirror, "R,5,0,0,0,0,0,-1e-3\n");
-    let err = refused("ansys-bonded-symmetric", &symmetric);
-    assert!(
-        err.contains("real constant set 3 and its mirror, set 5"),
-        "{err}"
-    );
-    assert!(
-        err.contains("real constant set 5 and its mirror, set 3"),
-        "{err}"
-    );
-
-    // 2 × 2 SHELL181 on the x = 0.3 face (nodes 20 001…, 0.01 thick), bonded to the bricks
-    let mut nodes = String::new();
-    let id = |j: u64, k: u64| 20_001 + 3 * j + k;
-    for j in 0..3u64 {
-        for k in 0..3u64 {
-            let (y, z) = (0.05 * j as f64, 0.05 * k as f64);
-            nodes += &format!("{:>9}{:>9}{:>9}", id(j, k), 0, 0);
-            nodes += &format!("{:>21.13E}{y:>21.13E}{z:>21.13E}\n", 0.3);
-        }
-    }
-    let quads: Vec<Vec<u64>> = (0..2u64)
-        .flat_map(|j| {
-            (0..2u64).map(move |k| vec![id(j, k), id(j + 1, k), id(j + 1, k + 1), id(j, k + 1)])
-        })
-        .collect();
-    let shell: Vec<(usize, usize, usize, Vec<u64>)> = (quads.iter())
-        .map(|q| (5, 6, 0, q.clone()))
-        .chain(quads.iter().map(|q| (3, 7, 0, q.clone())))
-        .chain(
-            (faces_at(&m, 0.3, false).into_iter())
-                .filter(|(e, _)| *e <= first_part)
-                .map(|(_, f)| (2, 7, 9, f)),
-        )
-        .collect();
-    let shell_solid = with_records(
-        &text.replace(
-            "ET,        2,170",
-            "ET,        5,181\nKEYOP,        5, 3,        2\nET,        2,170",
-        ),
-        &shell,
-        "R,6,0.01\nR,7,0,0,0,0,0,-1e-3\n",
-    )
-    .replacen("N,R5.3,LOC", &format!("{nodes}N,R5.3,LOC"), 1);
-    let err = refused("ansys-bonded-shell-solid", &shell_solid);
-    assert!(err.contains("shell-solid or shell-shell assembly"), "{err}");
-    assert!(
-        err.contains("real constant set 7 on contact node 2000"),
-        "{err}"
-    );
-}
-
-/// `text` (a [`bonded_archive`]) with `records` appended to its EBLOCK (ids after the last) and
-/// `reals` after its real constants.
-fn with_records(text: &str, records: &[(usize, usize, usize, Vec<u64>)], reals: &str) -> String {
-    let start = text.find("EBLOCK").unwrap();
-    let end = start + text[start..].find("       -1\n").unwrap();
-    let old: Vec<&str> = text[start..end].lines().skip(2).collect();
-    // the header's record count (a brick's record takes two lines)
-    let count: usize = text[start..]
-        .lines()
-        .next()
-        .unwrap()
-        .split(',')
-        .nth(3)
-        .unwrap()
-        .trim()
-        .parse()
-        .unwrap();
-    let first = count + 1;
-    let mut added = String::new();
-    for (k, (etype, real, shape, nodes)) in records.iter().enumerate() {
-        let head = [
-            1,
-            *etype,
-            *real,
-            1,
-            0,
-            0,
-            0,
-            *shape,
-            nodes.len(),
-            0,
-            first + k,
-        ];
-        let fields: Vec<String> = (head.iter().map(|v| format!("{v:>9}")))
-            .chain(nodes.iter().map(|v| format!("{v:>9}")))
-            .collect();
-        added += &fields[..fields.len().min(19)].concat();
-        added.push('\n');
-        if fields.len() > 19 {
-            added += &fields[19..].concat();
-            added.push('\n');
-        }
-    }
-    let total = count + records.len();
-    let header = format!("EBLOCK,19,SOLID,{0},{0}\n(19i9)\n", total);
-    let body: String = old.iter().map(|l| format!("{l}\n")).collect();
-    let real_at = text.find("R,3,").unwrap();
-    format!(
-        "{}{header}{body}{added}{}{reals}{}",
-        &text[..start],
-        &text[end..real_at],
-        &text[real_at..]
-    )
 }

@@ -22,6 +22,7 @@ mod ansys_beams_cubic;
 mod ansys_beams_quadratic;
 mod ansys_connections;
 mod ansys_contact;
+mod ansys_contact_couples;
 mod ansys_full;
 mod ansys_legacy_solids;
 mod ansys_loads;

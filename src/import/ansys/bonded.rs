@@ -25,10 +25,17 @@
 //!   automatically constrains both translational and rotational degrees of freedom for a
 //!   shell-solid assembly", TARGE170 KEYOPT(5)=0 set internally to 4, in equations the guide
 //!   does not give, and which no ANSYS result at hand shows: none holds a shell-solid or
-//!   shell-shell MPC pair, docs/ansys.md) is refused, as is a pair whose mirror (contact and
-//!   target swapped, another real constant set) is in the archive: "only asymmetric contact is
-//!   supported. If symmetric pairs are defined, the program automatically selects one pair and
-//!   ignores the other" — which one is not stated;
+//!   shell-shell MPC pair, docs/ansys.md) is refused;
+//! * a symmetric couple (a pair whose mirror, contact and target swapped, is another real
+//!   constant set of the archive: Workbench writes bonded contact so): "only asymmetric contact
+//!   is supported. If symmetric pairs are defined, the program automatically selects one pair
+//!   and ignores the other" — which one is not stated. On congruent meshes it does not matter:
+//!   when every contact node of both pairs coincides with a target node (within 1e-9 of the
+//!   smallest target face's size, so its nearest target point is that node and u_c = u_t) and
+//!   the two pairs tie the same node pairs, either pair is the same equations; the lower set
+//!   is formed and the other's duplicate equations dropped, with a note (ANSYS's static field
+//!   of ansys/example-data's `two_cubes_contact.rst` holds u_c = u_t at every contact node of
+//!   both sets of such a couple). Any other couple is refused, both sets named;
 //! * refused by line: KEYOPT(12)=6 (bonded initial: which initially open nodes ANSYS leaves free
 //!   is not established), ICONT and CNOF, contact KEYOPTs other than 2, 4, 9, 12 and the ignored
 //!   8 and 10, TARGE170 KEYOPTs other than 2 (the rigid target's boundary condition, no effect on
@@ -48,12 +55,21 @@ struct TargetFace {
     x: Vec<[f64; 3]>,
 }
 
+/// A symmetric pair's mirror (contact and target swapped): its real constant set, and whether
+/// the two pairs tie the same node pairs on congruent meshes ([`coincident_ties`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Mirror {
+    pub real: i64,
+    pub same_ties: bool,
+}
+
 /// The contact nodes of `contacts` tied to the target faces `targets` (module doc): MPCs into
 /// `model` and a note counting the nodes tied and left free; or the pair's refusal.
-/// `mirror` is the real constant set of a pair with contact and target swapped, if any.
+/// `mirror` is the pair with contact and target swapped, if any: a couple on congruent meshes
+/// is formed once, by its lower set.
 pub(super) fn tie<'a, E>(
     pair: &Pair<'a, '_>,
-    mirror: Option<i64>,
+    mirror: Option<Mirror>,
     node_of: &impl Fn(&ElementRecord, u64) -> Result<NodeIndex, E>,
     model: &mut Model,
 ) -> Result<Result<(), PairRefusal<'a>>, E> {
@@ -109,6 +125,15 @@ pub(super) fn tie<'a, E>(
             model.nodes[n].id
         );
         return Ok(Err((contacts[0], why)));
+    }
+    if let Some(m) = mirror.filter(|m| m.real < real) {
+        model.deck.notes.push(format!(
+            "ANSYS archive: bonded MPC contact of real constant set {real} (contact element {} \
+             at line {}) is the mirror of set {} on congruent meshes: the same node pairs tied, \
+             formed once (by set {})",
+            contacts[0].id, contacts[0].line, m.real, m.real
+        ));
+        return Ok(Ok(()));
     }
     // each contact node within the pinball: its face, the face point and its gap
     let (mut ties, mut free) = (Vec::new(), Vec::new());
@@ -167,7 +192,7 @@ fn assembly_refusal(
     slaves: &[NodeIndex],
     on_target: &BTreeSet<NodeIndex>,
     real: i64,
-    mirror: Option<i64>,
+    mirror: Option<Mirror>,
 ) -> Option<String> {
     let in_pair: BTreeSet<NodeIndex> = slaves.iter().chain(on_target).copied().collect();
     let structural = (model.elements.iter())
@@ -194,14 +219,75 @@ fn assembly_refusal(
             model.nodes[n].id, e.id, e.kind
         ));
     }
-    mirror.map(|other| {
+    mirror.filter(|m| !m.same_ties).map(|m| {
         format!(
-            "bonded MPC contact of real constant set {real} and its mirror, set {other} (contact \
+            "bonded MPC contact of real constant set {real} and its mirror, set {} (contact \
              and target swapped): ANSYS supports only asymmetric MPC contact and \"automatically \
              selects one pair and ignores the other\" (Contact Technology Guide §10.1) — which \
-             one is not stated, and forming both over-constrains the interface; not formed"
+             one is not stated, and the meshes are not congruent (a contact node of either set \
+             off every target node, or the two sets tie different node pairs), so the choice \
+             changes the body; forming both over-constrains the interface; not formed",
+            m.real
         )
     })
+}
+
+/// The (contact node, target node) pairs of `pair` when every contact node coincides with a
+/// target node — within 1e-9 of the smallest target face's size (its bounding-box diagonal),
+/// the node then its nearest target point with u_c = u_t — else `None` (also for a record
+/// that is not a contact face or a target face).
+pub(super) fn coincident_ties<E>(
+    pair: &Pair<'_, '_>,
+    node_of: &impl Fn(&ElementRecord, u64) -> Result<NodeIndex, E>,
+    model: &Model,
+) -> Result<Option<BTreeSet<(NodeIndex, NodeIndex)>>, E> {
+    let mut size = f64::INFINITY;
+    let mut targets: Vec<(NodeIndex, [f64; 3])> = Vec::new();
+    for &r in &pair.targets {
+        let ids: Vec<u64> = r.nodes.iter().copied().filter(|&id| id != 0).collect();
+        if r.shape.and_then(face_nodes) != Some(ids.len()) {
+            return Ok(None);
+        }
+        let (mut low, mut high) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &id in &ids {
+            let n = node_of(r, id)?;
+            let x = model.nodes[n].x;
+            for k in 0..3 {
+                low[k] = low[k].min(x[k]);
+                high[k] = high[k].max(x[k]);
+            }
+            targets.push((n, x));
+        }
+        size = size.min(distance(low, high));
+    }
+    let tol = 1e-9 * size;
+    if !(tol > 0.0 && tol.is_finite()) {
+        return Ok(None);
+    }
+    targets.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]));
+    let mut ties = BTreeSet::new();
+    for &r in &pair.contacts {
+        let Ok(face) = contact_face(r) else {
+            return Ok(None);
+        };
+        for id in face.into_iter().filter(|&id| id != 0) {
+            let c = node_of(r, id)?;
+            let x = model.nodes[c].x;
+            // the target nodes within tol in x, then the nearest of them
+            let from = targets.partition_point(|t| t.1[0] < x[0] - tol);
+            let near = (targets[from..].iter())
+                .take_while(|t| t.1[0] <= x[0] + tol)
+                .map(|t| (t.0, distance(t.1, x)))
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            match near {
+                Some((t, d)) if d <= tol && t != c => {
+                    ties.insert((c, t));
+                }
+                _ => return Ok(None),
+            }
+        }
+    }
+    Ok(Some(ties))
 }
 
 /// Why the initial gaps of `ties` (contact node, face, face point, gap) are refused under

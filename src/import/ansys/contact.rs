@@ -15,10 +15,14 @@
 //!   each node weighted by its consistent area ∫Nᵢ dA over the contact faces (the faces' shape
 //!   functions — as CalculiX's `*DISTRIBUTING`, [`crate::import::abaqus::coupling`]);
 //! * TARGE170's KEYOPT(4) names the pilot dofs constrained: 0 or 111111 (all six) for both
-//!   kinds; for the force-distributed one also any pattern whose six digits read the same both
-//!   ways (its meaning does not depend on the digits' order, which the documentation at hand
-//!   does not state), as the RBE3's reference dofs; TARGE170 KEYOPT(2)=1 (the pilot's motion
-//!   the user's: ANSYS's default 0 may hold a target it finds free);
+//!   kinds; for the force-distributed one any six-digit pattern of 0 and 1 as the RBE3's
+//!   reference dofs, read from the right: the units digit UX, then UY, UZ, ROTX, ROTY, ROTZ
+//!   (ROTZ first, as written). ANSYS's own field shows the split: in ansys-mapdl-reader's
+//!   `tests/testfiles/materials/file.rst` (ANSYS 21.2) two force-distributed pilots on the same
+//!   contact nodes, KEYOPT(4)=111111 and 111, have equal translations — the translation rows of
+//!   the six-dof area-weighted fit, to 1.7e-15 — and the 111 pilot's rotations are absent
+//!   (zero), so 111 names the translations (docs/ansys.md); TARGE170 KEYOPT(2)=1 (the pilot's
+//!   motion the user's: ANSYS's default 0 may hold a target it finds free);
 //! * refused by line: a pinball radius (PINB), an initial adjustment (ICONT) or contact offset
 //!   (CNOF) in the pair's real constants; other contact KEYOPTs than 2, 4, 12 and the ignored
 //!   8 and 10; KEYOPT(12)=6 (bonded initial) and every other behaviour.
@@ -33,6 +37,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::blocks::ElementRecord;
+use super::bonded;
 use super::elements::ElementType;
 use super::segments::{contact_face, face_nodes, Pair, PairRefusal, PILOT_SHAPES};
 use super::Archive;
@@ -97,21 +102,27 @@ fn pairs(
     }
     let number = |r: &ElementRecord| types[&r.etype].row.map_or(0, |row| row.0);
     let sides = pair_sides(&pairs, &number);
-    for (real, records) in pairs {
+    let pair_of = |real: i64| {
         let (targets, contacts): (Vec<&ElementRecord>, Vec<&ElementRecord>) =
-            records.iter().partition(|r| number(r) == 170);
-        let pair = Pair {
+            pairs[&real].iter().partition(|r| number(r) == 170);
+        Pair {
             types,
             constants: reals.get(&real),
             real,
             targets,
             contacts,
-        };
+        }
+    };
+    for &real in pairs.keys() {
+        let pair = pair_of(real);
         let target_faces = !pair.targets.is_empty()
             && (pair.targets.iter()).all(|r| r.shape.and_then(face_nodes).is_some());
         if target_faces && !pair.contacts.is_empty() {
-            let mirror = mirror_of(real, &sides);
-            if let Err((r, why)) = super::bonded::tie(&pair, mirror, &node_of, model)? {
+            let mirror = match mirror_of(real, &sides) {
+                Some(other) => Some(couple(&pair, &pair_of(other), &node_of, model)?),
+                None => None,
+            };
+            if let Err((r, why)) = bonded::tie(&pair, mirror, &node_of, model)? {
                 add(refusals, r, why);
             }
             continue;
@@ -148,6 +159,26 @@ fn pair_sides(
             (real, (ids(false), ids(true)))
         })
         .collect()
+}
+
+/// `pair`'s mirror `other` as a [`bonded::Mirror`]: the same ties when every contact node of
+/// both coincides with a target node and the two tie the same node pairs, swapped.
+fn couple<E>(
+    pair: &Pair<'_, '_>,
+    other: &Pair<'_, '_>,
+    node_of: &impl Fn(&ElementRecord, u64) -> Result<NodeIndex, E>,
+    model: &Model,
+) -> Result<bonded::Mirror, E> {
+    let ours = bonded::coincident_ties(pair, node_of, model)?;
+    let theirs = bonded::coincident_ties(other, node_of, model)?;
+    let same_ties = match (ours, theirs) {
+        (Some(a), Some(b)) => a.iter().map(|&(c, t)| (t, c)).collect::<BTreeSet<_>>() == b,
+        _ => false,
+    };
+    Ok(bonded::Mirror {
+        real: other.real,
+        same_ties,
+    })
 }
 
 /// The real constant set of another pair whose contact nodes meet this pair's target nodes and
@@ -313,20 +344,18 @@ fn pilot_dofs(t: &ElementType, kind: Kind) -> Result<DofMask, String> {
     if pattern == 0 || pattern == 111_111 {
         return Ok(DofMask::ALL);
     }
-    let palindrome = digits.chars().eq(digits.chars().rev());
     match kind {
-        Kind::ForceDistributed if palindrome => Ok(DofMask(
-            (digits.bytes().enumerate())
+        // the last (units) digit UX, then UY, UZ, ROTX, ROTY, ROTZ: ANSYS's pilots of
+        // ansys-mapdl-reader's materials/file.rst (module doc)
+        Kind::ForceDistributed => Ok(DofMask(
+            (digits.bytes().rev().enumerate())
                 .filter(|(_, b)| *b == b'1')
                 .fold(0, |m, (i, _)| m | 1 << i),
         )),
-        Kind::ForceDistributed => Err(format!(
-            "TARGE170 KEYOPT(4)={pattern}: which dof each digit names (UX first or ROTZ first) \
-             is not established here; patterns reading the same both ways are read"
-        )),
         Kind::Rigid => Err(format!(
             "TARGE170 KEYOPT(4)={pattern} with a rigid surface constraint: which equations \
-             ANSYS keeps for a subset of the pilot dofs is not established; 0 or 111111 read"
+             ANSYS keeps for a subset of the pilot dofs is not established (no ANSYS result with \
+             such a pilot was found); 0 or 111111 read"
         )),
     }
 }
