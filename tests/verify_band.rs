@@ -174,17 +174,18 @@ fn soft_layers_far_below_the_stiffness_scale_converge_and_are_proven() {
     );
     // and the band holds more modes below 1e-6·scale than asked for
     assert!(exact.iter().filter(|&&l| l < 1e-6 * scale).count() > 8);
-    for j in 6..8 {
-        let off = (ours.eigenvalues[j] - exact[j]).abs() / exact[j];
+    for (j, (ours, exact)) in ours
+        .eigenvalues
+        .iter()
+        .zip(&exact)
+        .enumerate()
+        .skip(6)
+        .take(2)
+    {
+        let off = (ours - exact).abs() / exact;
         // measured 1.7e-7 (the dense reference's own error, ε‖L⁻¹KL⁻ᵀ‖/λ, is about 1e-7 here;
         // before, the band count took in the 10 soft modes above the two returned)
-        assert!(
-            off < 1e-6,
-            "mode {}: {} vs {}",
-            j + 1,
-            ours.eigenvalues[j],
-            exact[j]
-        );
+        assert!(off < 1e-6, "mode {}: {ours} vs {exact}", j + 1);
     }
     assert!(ours.eigenvalues[..6]
         .iter()
