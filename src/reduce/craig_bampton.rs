@@ -464,12 +464,13 @@ pub fn craig_bampton_slepc(
     // K_ii and M_ii (with a band, over the modes found up to the first one above it)
     let mut eigen = crate::solve::EigenInfo::default();
     if eig.verify_band || upper.is_some() {
-        let checked = crate::solve::verify_band(
+        // the vectors lent to the count (which tells rigid modes from their rounding) and back
+        let mut checked = crate::solve::verify_band(
             &kii,
             &mii,
             EigenSolution {
                 eigenvalues: sol.eigenvalues.clone(),
-                vectors: Mat::zeros(0, 0),
+                vectors: std::mem::replace(&mut sol.vectors, Mat::zeros(0, 0)),
                 residuals: vec![],
                 info: Default::default(),
             },
@@ -479,6 +480,7 @@ pub fn craig_bampton_slepc(
             },
         )?;
         eigen.band_proof = checked.info.band_proof;
+        sol.vectors = std::mem::replace(&mut checked.vectors, Mat::zeros(0, 0));
     }
     if let Some(top) = upper {
         let keep = sol.eigenvalues.iter().filter(|&&l| l <= top).count();

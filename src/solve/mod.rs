@@ -405,23 +405,14 @@ pub(crate) fn automatic_shifts(scale: f64) -> Vec<f64> {
 /// rigid modes only, above their rounding ceiling ROUNDING_FACTOR·ε·max_j (|φ_j|ᵀ|K||φ_j|). Not
 /// a fraction of the stiffness-over-mass scale: a free satellite with deployed booms has 47
 /// flexible modes below 10⁻⁶ of it (pyNastran's `ISat_Dploy_Sm.dat`: 0.92 Hz against a median
-/// K_ii/M_ii of 2.8e11). Without the vectors (`vectors` not one column per value): the scale's
-/// rule, 10⁻⁶ of it above rigid modes only.
+/// K_ii/M_ii of 2.8e11). `vectors`: one column per value.
 pub(crate) fn count_shift_above(
     k: &SparseColMat<usize, f64>,
-    m: &SparseColMat<usize, f64>,
     vectors: MatRef<'_, f64>,
     values: &[f64],
 ) -> f64 {
+    debug_assert_eq!(vectors.ncols(), values.len());
     let top = values.iter().copied().fold(0.0f64, f64::max);
-    if vectors.ncols() != values.len() {
-        let scale = trace_ratio(k, m);
-        return if is_flexible(top, scale) {
-            top * (1.0 + 1e-8)
-        } else {
-            1e-6 * scale
-        };
-    }
     let (abs_e, _) = sparse_ops::abs_products(k.as_ref(), vectors);
     let ceiling = (abs_e.iter()).fold(0.0f64, |c, &e| c.max(e));
     if above_rounding(top, ceiling) {
@@ -749,7 +740,7 @@ pub(crate) fn verify_band(
     if !spec.verify_band || sol.eigenvalues.is_empty() {
         return Ok(sol);
     }
-    let sigma = count_shift_above(k, m, sol.vectors.as_ref(), &sol.eigenvalues);
+    let sigma = count_shift_above(k, sol.vectors.as_ref(), &sol.eigenvalues);
     let found = sol.eigenvalues.len();
     match inertia::check_band(
         k,

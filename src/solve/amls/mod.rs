@@ -255,7 +255,7 @@ pub fn amls(
     // the band top: `upper`, else just above the highest returned eigenvalue
     let band_top = match spec.upper {
         Some(u) => u,
-        None => super::count_shift_above(k, m, x.as_ref(), &ritz.values),
+        None => super::count_shift_above(k, x.as_ref(), &ritz.values),
     };
     let t2 = std::time::Instant::now();
     let below_top = inertia::count_below(k, m, band_top, spec.dofs_per_node, spec.par)?;
