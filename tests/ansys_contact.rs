@@ -407,7 +407,12 @@ fn contact_forms_not_read_are_refused_by_line() {
 /// Two parts meshed apart: `a` over [0, 0.3] (3 × 2 × 2 bricks) and `b` over [0.3, 0.6]
 /// (3 × 3 × 3, ids from 10 001), as one mesh (a's elements first).
 pub(crate) fn two_parts() -> (Block, usize) {
-    let a = block([3, 2, 2], [0.3, 0.1, 0.1], true);
+    parts_meshing_a_as([3, 2, 2])
+}
+
+/// [`two_parts`] with `a` meshed by `cells` bricks; with the first part's element count.
+pub(crate) fn parts_meshing_a_as(cells: [usize; 3]) -> (Block, usize) {
+    let a = block(cells, [0.3, 0.1, 0.1], true);
     let b = block([3, 3, 3], [0.3, 0.1, 0.1], true);
     let mut m = Block {
         nodes: a.nodes.clone(),

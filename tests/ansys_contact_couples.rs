@@ -8,7 +8,8 @@
 //!   stays refused, both sets named, as does a shell-solid assembly.
 
 use crate::ansys_contact::{
-    against_ccx, bonded_archive, bonded_ccx, faces_at, glue_faces, refused, two_parts,
+    against_ccx, bonded_archive, bonded_ccx, faces_at, glue_faces, parts_meshing_a_as, refused,
+    two_parts,
 };
 use crate::ansys_support::writers::{
     block, build_body as build, ccx_deck, frequency_difference, Block,
@@ -18,29 +19,17 @@ use crate::common::scratch;
 /// Two parts meshed alike: 3 × 3 × 3 SOLID186 over [0, 0.3] and again over [0.3, 0.6] (ids
 /// from 10 001), their x = 0.3 nodes twins; with the first part's element count.
 fn congruent_parts() -> (Block, usize) {
-    let a = block([3, 3, 3], [0.3, 0.1, 0.1], true);
-    let mut m = Block {
-        nodes: a.nodes.clone(),
-        elements: a.elements.clone(),
-    };
-    for (id, x) in &a.nodes {
-        m.nodes.insert(id + 10_000, [x[0] + 0.3, x[1], x[2]]);
-    }
-    (m.elements).extend(
-        a.elements
-            .iter()
-            .map(|e| e.iter().map(|n| n + 10_000).collect()),
-    );
-    (m, a.elements.len())
+    parts_meshing_a_as([3, 3, 3])
 }
 
 /// [`bonded_archive`] of `m` (set 3: CONTA174 on the second part's x = 0.3 faces, TARGE170 on
-/// the first's) with its mirror, set 5: CONTA174 on the first part's faces, TARGE170 QUA8 on
-/// the second's.
-fn couple_archive(m: &Block, first_part: usize) -> String {
+/// the first's) with its mirror, set 5: CONTA174 on the first `mirror_faces` of the first
+/// part's faces, TARGE170 QUA8 on the second's.
+fn couple_archive(m: &Block, first_part: usize, mirror_faces: usize) -> String {
     let glue = glue_faces(m, first_part, 0.3);
     let text = bonded_archive(m, &glue, 1e-3);
     let mirror: Vec<(usize, usize, usize, Vec<u64>)> = (faces_at(m, 0.3, false).into_iter())
+        .take(mirror_faces)
         .map(|(_, f)| (3, 5, 0, f))
         .chain(glue.iter().map(|f| (2, 5, 9, f.clone())))
         .collect();
@@ -54,7 +43,7 @@ fn couple_archive(m: &Block, first_part: usize) -> String {
 #[test]
 fn congruent_symmetric_couple_equals_the_tie_and_the_merged_block() {
     let (m, first_part) = congruent_parts();
-    let text = couple_archive(&m, first_part);
+    let text = couple_archive(&m, first_part, usize::MAX);
     let (modes, static_) = against_ccx(
         "ansys-couple-congruent",
         &text,
@@ -95,17 +84,7 @@ fn congruent_symmetric_couple_equals_the_tie_and_the_merged_block() {
 #[test]
 fn congruent_couple_tying_different_node_pairs_is_refused() {
     let (m, first_part) = congruent_parts();
-    let glue = glue_faces(&m, first_part, 0.3);
-    let text = bonded_archive(&m, &glue, 1e-3);
-    let mirror: Vec<(usize, usize, usize, Vec<u64>)> = (faces_at(&m, 0.3, false).into_iter())
-        .take(4)
-        .map(|(_, f)| (3, 5, 0, f))
-        .chain(glue.iter().map(|f| (2, 5, 9, f.clone())))
-        .collect();
-    let err = refused(
-        "ansys-couple-partial",
-        &with_records(&text, &mirror, "R,5,0,0,0,0,0,-1e-3\n"),
-    );
+    let err = refused("ansys-couple-partial", &couple_archive(&m, first_part, 4));
     assert!(
         err.contains("real constant set 3 and its mirror, set 5"),
         "{err}"
@@ -122,16 +101,10 @@ fn congruent_couple_tying_different_node_pairs_is_refused() {
 #[test]
 fn symmetric_pairs_and_shell_solid_assemblies_are_refused() {
     let (m, first_part) = two_parts();
-    let glue = glue_faces(&m, first_part, 0.3);
-    let text = bonded_archive(&m, &glue, 1e-3);
-    // the mirror: CONTA174 (type 3, set 5) on the first part's faces, TARGE170 QUA8 (type 2,
-    // set 5) on the second part's
-    let mirror: Vec<(usize, usize, usize, Vec<u64>)> = (faces_at(&m, 0.3, false).into_iter())
-        .map(|(_, f)| (3, 5, 0, f))
-        .chain(glue.iter().map(|f| (2, 5, 9, f.clone())))
-        .collect();
-    let symmetric = with_records(&text, &mirror, "R,5,0,0,0,0,0,-1e-3\n");
-    let err = refused("ansys-bonded-symmetric", &symmetric);
+    let err = refused(
+        "ansys-bonded-symmetric",
+        &couple_archive(&m, first_part, usize::MAX),
+    );
     assert!(
         err.contains("real constant set 3 and its mirror, set 5"),
         "{err}"
@@ -143,6 +116,7 @@ fn symmetric_pairs_and_shell_solid_assemblies_are_refused() {
     assert!(err.contains("the meshes are not congruent"), "{err}");
 
     // 2 × 2 SHELL181 on the x = 0.3 face (nodes 20 001…, 0.01 thick), bonded to the bricks
+    let text = bonded_archive(&m, &glue_faces(&m, first_part, 0.3), 1e-3);
     let mut nodes = String::new();
     let id = |j: u64, k: u64| 20_001 + 3 * j + k;
     for j in 0..3u64 {
